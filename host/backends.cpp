@@ -1,0 +1,41 @@
+// The backend registry and the `ref` backend.
+#include <algorithm>
+
+#include "host/device.h"
+#include "ref/pipeline.h"
+
+namespace voxcd {
+
+namespace {
+
+// The reference as a device: the executable specification, one point at a time.
+class RefDevice final : public Device {
+ public:
+  explicit RefDevice(const DeviceConfig& cfg) : cfg_(cfg) { cfg_.validate(); }
+  std::string name() const override { return "ref"; }
+  const DeviceConfig& config() const override { return cfg_; }
+  bool models_cycles() const override { return false; }
+  void load(const DeviceMemory& mem) override {
+    validate_memory(cfg_, mem);
+    mem_ = mem;
+  }
+  std::vector<Record> run(const std::vector<Job>& jobs) override { return run_stream(cfg_, mem_, jobs); }
+
+ private:
+  DeviceConfig cfg_;
+  DeviceMemory mem_;
+};
+
+}  // namespace
+
+std::vector<std::string> device_backends() { return {"ref"}; }
+
+std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions&) {
+  if (backend == "ref") return std::make_unique<RefDevice>(cfg);
+  const auto all = device_backends();
+  std::string list;
+  for (const auto& b : all) list += (list.empty() ? "" : ", ") + b;
+  throw DeviceError("unknown backend '" + backend + "' (this build has: " + list + ")");
+}
+
+}  // namespace voxcd

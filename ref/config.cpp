@@ -1,0 +1,55 @@
+#include "ref/config.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace voxcd {
+
+int DeviceConfig::acc_width() const {
+  // A product M*p needs MW+PW bits; three of them MW+PW+2; adding t (TW bits) one more.
+  return std::max(MW + PW + 2, TW) + 1;
+}
+
+namespace {
+void require(bool ok, const std::string& what) {
+  if (!ok) throw ConfigError("invalid device configuration: " + what);
+}
+}  // namespace
+
+void DeviceConfig::validate() const {
+  auto range = [](const char* name, int v, int lo, int hi) {
+    require(v >= lo && v <= hi, std::string(name) + " = " + std::to_string(v) + " is outside " +
+                                    std::to_string(lo) + ".." + std::to_string(hi));
+  };
+  range("PW", PW, 2, 32);
+  range("PF", PF, 0, PW - 1);
+  range("MW", MW, 2, 32);
+  range("MF", MF, 0, MW - 1);
+  range("TW", TW, 2, 64);
+  require(TF() < TW, "TW = " + std::to_string(TW) + " leaves no integer bit above TF = MF + PF = " +
+                         std::to_string(TF()));
+  range("DW", DW, 1, 16);
+  range("MEMW", MEMW, 2, 64);
+  require((MEMW & (MEMW - 1)) == 0, "MEMW = " + std::to_string(MEMW) + " is not a power of two");
+  range("LANES", LANES, 1, 64);
+  range("SAW", SAW, 1, 24);
+  range("MAW", MAW, 1, 28);
+  range("TAGW", TAGW, 1, 32);
+  // An index must be able to hold every in-grid value 0 .. 2^DW - 1 plus a sign.
+  require(index_width() >= DW + 1, "the accumulator's integer part (" + std::to_string(index_width()) +
+                                       " bits) cannot hold DW = " + std::to_string(DW));
+}
+
+std::string DeviceConfig::to_string() const {
+  std::ostringstream s;
+  s << "PW " << PW << " PF " << PF << " MW " << MW << " MF " << MF << " TW " << TW << " DW " << DW << " MEMW "
+    << MEMW << " LANES " << LANES << " SAW " << SAW << " MAW " << MAW << " TAGW " << TAGW;
+  return s.str();
+}
+
+bool DeviceConfig::same_widths(const DeviceConfig& o) const {
+  return PW == o.PW && PF == o.PF && MW == o.MW && MF == o.MF && TW == o.TW && DW == o.DW && MEMW == o.MEMW &&
+         SAW == o.SAW && MAW == o.MAW && TAGW == o.TAGW;
+}
+
+}  // namespace voxcd

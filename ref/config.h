@@ -1,0 +1,49 @@
+// DeviceConfig: every width of the device, with the names and defaults of rtl/voxcd_pkg.sv.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace voxcd {
+
+// Thrown for a configuration that no device can have (a width out of range, MEMW not a power of two, ...).
+struct ConfigError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct DeviceConfig {
+  int PW = 24;    // shell point coordinate width (signed)
+  int PF = 8;     // shell point fraction bits (units: the shell object's own voxel size)
+  int MW = 18;    // rotation-scale matrix entry width (signed)
+  int MF = 16;    // matrix fraction bits
+  int TW = 48;    // translation width (signed), TF = MF + PF fraction bits
+  int DW = 10;    // map dimensions are 1 .. 2^DW per axis
+  int MEMW = 64;  // voxmap memory word width: MEMW/2 voxel states per word
+  int LANES = 4;  // parallel lookup lanes (timing only, never results)
+  int SAW = 16;   // shell memory holds 2^SAW points
+  int MAW = 18;   // voxmap memory holds 2^MAW words
+  int TAGW = 16;  // job tag width (unsigned)
+
+  int TF() const { return MF + PF; }
+  int states_per_word() const { return MEMW / 2; }
+  uint64_t shell_depth() const { return uint64_t{1} << SAW; }
+  uint64_t map_depth() const { return uint64_t{1} << MAW; }
+  uint64_t max_dim() const { return uint64_t{1} << DW; }
+  uint64_t max_tag() const { return (uint64_t{1} << TAGW) - 1; }
+  // Width of the exact accumulator sum_j M[i][j]*p[j] + t[i]: it cannot overflow.
+  int acc_width() const;
+  // Width of a voxel index after the floor: acc_width() - TF().
+  int index_width() const { return acc_width() - TF(); }
+
+  // Throws ConfigError naming the parameter and the rule it breaks.
+  void validate() const;
+  // "PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 LANES 4 SAW 16 MAW 18 TAGW 16"
+  std::string to_string() const;
+  // Same widths; LANES may differ (it changes timing, never results).
+  bool same_widths(const DeviceConfig& o) const;
+  bool operator==(const DeviceConfig& o) const { return same_widths(o) && LANES == o.LANES; }
+  bool operator!=(const DeviceConfig& o) const { return !(*this == o); }
+};
+
+}  // namespace voxcd

@@ -1,0 +1,149 @@
+#include "ref/pipeline.h"
+
+#include <sstream>
+
+#include "ref/fixed.h"
+
+namespace voxcd {
+
+Transformed transform(const DeviceConfig& /*cfg*/, const Job& job, const ShellWord& p) {
+  Transformed r;
+  for (int i = 0; i < 3; ++i) {
+    Acc a = Acc(job.t[i]);
+    for (int j = 0; j < 3; ++j) a += Acc(job.M[i][j]) * Acc(p[j]);
+    r.acc[i] = a;
+  }
+  return r;
+}
+
+Located locate(const DeviceConfig& cfg, const Job& job, const Transformed& t) {
+  Located l{};
+  const uint64_t n[3] = {job.nx, job.ny, job.nz};
+  l.inside = true;
+  for (int i = 0; i < 3; ++i) {
+    // Arithmetic right shift of a signed value is floor division by 2^TF (defined in C++20, and what GCC and
+    // Clang do in C++17).
+    const Acc idx = t.acc[i] >> cfg.TF();
+    l.index[i] = static_cast<int64_t>(idx);
+    if (idx < 0 || idx >= Acc(n[i])) l.inside = false;
+  }
+  if (l.inside) {
+    const uint64_t x = uint64_t(l.index[0]), y = uint64_t(l.index[1]), z = uint64_t(l.index[2]);
+    l.linear = x + n[0] * (y + n[1] * z);
+    const uint64_t spw = uint64_t(cfg.states_per_word());
+    l.word = uint64_t(job.map_base) + l.linear / spw;
+    l.slot = uint32_t(l.linear % spw);
+  }
+  return l;
+}
+
+uint8_t fetch_state(const DeviceConfig& /*cfg*/, const std::vector<uint64_t>& map, const Located& l) {
+  if (l.word >= map.size()) {
+    throw JobError("voxmap read at word " + std::to_string(l.word) + " is outside the loaded map of " +
+                   std::to_string(map.size()) + " words");
+  }
+  return uint8_t((map[l.word] >> (2 * l.slot)) & 3u);
+}
+
+bool hit_test(uint8_t hit_mask, bool inside, uint8_t state) { return inside && ((hit_mask >> state) & 1u); }
+
+namespace {
+
+[[noreturn]] void job_fail(const Job& job, const std::string& what) {
+  throw JobError("job tag " + std::to_string(job.tag) + ": " + what);
+}
+
+std::string dims_name(int i) { return i == 0 ? "nx" : i == 1 ? "ny" : "nz"; }
+
+}  // namespace
+
+void validate_job(const DeviceConfig& cfg, const Job& job, uint64_t shell_words, uint64_t map_words) {
+  if (!fits_unsigned(job.tag, cfg.TAGW))
+    job_fail(job, "tag does not fit TAGW = " + std::to_string(cfg.TAGW) + " bits");
+  if (job.mode != Mode::All && job.mode != Mode::First && job.mode != Mode::Count)
+    job_fail(job, "mode " + std::to_string(unsigned(job.mode)) + " is not ALL, FIRST or COUNT");
+  if (job.hit_mask > 15) job_fail(job, "hit mask " + std::to_string(job.hit_mask) + " is outside 0..15");
+  if (!fits_unsigned(job.shell_base, cfg.SAW))
+    job_fail(job, "shell_base " + std::to_string(job.shell_base) + " does not fit SAW = " + std::to_string(cfg.SAW));
+  if (uint64_t(job.shell_count) > cfg.shell_depth())
+    job_fail(job, "shell_count " + std::to_string(job.shell_count) + " exceeds the shell memory depth 2^SAW = " +
+                      std::to_string(cfg.shell_depth()));
+  const uint64_t shell_end = uint64_t(job.shell_base) + job.shell_count;
+  if (shell_end > shell_words)
+    job_fail(job, "shell words [" + std::to_string(job.shell_base) + ", " + std::to_string(shell_end) +
+                      ") go past the " + std::to_string(shell_words) + " loaded shell words");
+  if (!fits_unsigned(job.map_base, cfg.MAW))
+    job_fail(job, "map_base " + std::to_string(job.map_base) + " does not fit MAW = " + std::to_string(cfg.MAW));
+  const uint64_t n[3] = {job.nx, job.ny, job.nz};
+  for (int i = 0; i < 3; ++i) {
+    if (n[i] < 1 || n[i] > cfg.max_dim())
+      job_fail(job, dims_name(i) + " = " + std::to_string(n[i]) + " is outside 1..2^DW = " +
+                        std::to_string(cfg.max_dim()));
+  }
+  const uint64_t spw = uint64_t(cfg.states_per_word());
+  const uint64_t map_end = uint64_t(job.map_base) + (job.voxels() + spw - 1) / spw;
+  if (map_end > map_words)
+    job_fail(job, "voxmap words [" + std::to_string(job.map_base) + ", " + std::to_string(map_end) +
+                      ") for a " + std::to_string(job.nx) + "x" + std::to_string(job.ny) + "x" +
+                      std::to_string(job.nz) + " map go past the " + std::to_string(map_words) +
+                      " loaded voxmap words");
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (!fits_signed(job.M[i][j], cfg.MW))
+        job_fail(job, "M" + std::to_string(i) + std::to_string(j) + " = " + std::to_string(job.M[i][j]) +
+                          " does not fit MW = " + std::to_string(cfg.MW) + " bits");
+    }
+    if (!fits_signed(job.t[i], cfg.TW))
+      job_fail(job, "T" + std::to_string(i) + " = " + std::to_string(job.t[i]) + " does not fit TW = " +
+                        std::to_string(cfg.TW) + " bits");
+  }
+}
+
+void validate_memory(const DeviceConfig& cfg, const DeviceMemory& mem) {
+  if (mem.shell.size() > cfg.shell_depth())
+    throw JobError(std::to_string(mem.shell.size()) + " shell words do not fit the shell memory of 2^SAW = " +
+                   std::to_string(cfg.shell_depth()) + " words");
+  if (mem.map.size() > cfg.map_depth())
+    throw JobError(std::to_string(mem.map.size()) + " voxmap words do not fit the voxmap memory of 2^MAW = " +
+                   std::to_string(cfg.map_depth()) + " words");
+  for (size_t k = 0; k < mem.shell.size(); ++k) {
+    const ShellWord& p = mem.shell[k];
+    for (int i = 0; i < 3; ++i) {
+      if (!fits_signed(p[i], cfg.PW))
+        throw JobError("shell word " + std::to_string(k) + " coordinate " + std::to_string(i) + " = " +
+                       std::to_string(p[i]) + " does not fit PW = " + std::to_string(cfg.PW) + " bits");
+    }
+  }
+  for (size_t k = 0; k < mem.map.size(); ++k) {
+    if (!fits_unsigned(mem.map[k], cfg.MEMW))
+      throw JobError("voxmap word " + std::to_string(k) + " has bits above MEMW = " + std::to_string(cfg.MEMW));
+  }
+}
+
+void run_job(const DeviceConfig& cfg, const DeviceMemory& mem, const Job& job, std::vector<Record>& out) {
+  uint32_t hits = 0;
+  for (uint32_t k = 0; k < job.shell_count; ++k) {
+    const Transformed tr = transform(cfg, job, mem.shell[job.shell_base + k]);
+    const Located loc = locate(cfg, job, tr);
+    const uint8_t state = loc.inside ? fetch_state(cfg, mem.map, loc) : 0;
+    if (!hit_test(job.hit_mask, loc.inside, state)) continue;
+    ++hits;
+    if (job.mode != Mode::Count) {
+      out.push_back(Record::hit(job.tag, k, uint32_t(loc.index[0]), uint32_t(loc.index[1]),
+                                uint32_t(loc.index[2]), state));
+    }
+    if (job.mode == Mode::First) break;
+  }
+  out.push_back(Record::done(job.tag, hits));
+}
+
+std::vector<Record> run_stream(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs) {
+  cfg.validate();
+  validate_memory(cfg, mem);
+  for (const Job& j : jobs) validate_job(cfg, j, mem.shell.size(), mem.map.size());
+  std::vector<Record> out;
+  for (const Job& j : jobs) run_job(cfg, mem, j, out);
+  return out;
+}
+
+}  // namespace voxcd

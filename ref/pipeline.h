@@ -1,0 +1,63 @@
+// The lookup pipeline, one pure function per stage, over the same fixed-width values as the RTL; and a job
+// runner for ALL, FIRST and COUNT. This is the specification: nothing in it is clever.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ref/config.h"
+#include "ref/types.h"
+
+namespace voxcd {
+
+// Thrown for a job the device cannot run: a field too wide for its format, a shell or map outside the loaded
+// memory, a map dimension of 0 or above 2^DW. The message names the job's tag and the field.
+struct JobError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+using Acc = __int128;  // wide enough for any valid DeviceConfig (acc_width() <= 67)
+
+// Stage 1, transform: acc_i = sum_j M[i][j] * p[j] + t[i], exact, TF fraction bits.
+struct Transformed {
+  Acc acc[3];
+};
+Transformed transform(const DeviceConfig& cfg, const Job& job, const ShellWord& p);
+
+// Stage 2, floor, bounds and linear address: index_i = acc_i >> TF (arithmetic: floor); inside when
+// 0 <= index_i < n_i on every axis, compared at full width; linear = x + nx * (y + ny * z);
+// word = map_base + linear / (MEMW/2), slot = linear % (MEMW/2). word and slot are 0 when outside.
+struct Located {
+  int64_t index[3];
+  bool inside;
+  uint64_t linear;
+  uint64_t word;
+  uint32_t slot;
+};
+Located locate(const DeviceConfig& cfg, const Job& job, const Transformed& t);
+
+// Stage 3, word fetch and state select: bits [2*slot+1 : 2*slot] of map word `word`. Only for inside points.
+uint8_t fetch_state(const DeviceConfig& cfg, const std::vector<uint64_t>& map, const Located& l);
+
+// Stage 4, hit test: inside and the mask has the state's bit.
+bool hit_test(uint8_t hit_mask, bool inside, uint8_t state);
+
+// Throws JobError unless every field fits its format under cfg and the job reads only loaded words:
+// shell words [shell_base, shell_base + shell_count) < shell_words, map words
+// [map_base, map_base + ceil(nx*ny*nz / (MEMW/2))) < map_words.
+void validate_job(const DeviceConfig& cfg, const Job& job, uint64_t shell_words, uint64_t map_words);
+
+// Throws JobError unless the memory image fits cfg: at most 2^SAW shell words with PW-bit coordinates, at most
+// 2^MAW map words of MEMW bits.
+void validate_memory(const DeviceConfig& cfg, const DeviceMemory& mem);
+
+// Runs one job (which must be valid) and appends its records: hits in ascending point order (ALL), the lowest
+// one (FIRST) or none (COUNT), then the completion record without cycles.
+void run_job(const DeviceConfig& cfg, const DeviceMemory& mem, const Job& job, std::vector<Record>& out);
+
+// Validates the memory and every job, then runs the jobs in order. Cycles are left empty: see ref/timing.h.
+std::vector<Record> run_stream(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs);
+
+}  // namespace voxcd

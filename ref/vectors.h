@@ -1,0 +1,55 @@
+// Conformance vector files (docs/conformance.md is the normative description):
+//   voxcd-vectors 1
+//   config PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 [LANES 4] [SAW 16] [MAW 18] [TAGW 16]
+//   shell N      then N lines "x y z"
+//   map N        then N lines of one hex word
+//   job TAG MODE MASK SHELL_BASE SHELL_COUNT MAP_BASE NX NY NZ M00 .. M22 T0 T1 T2
+//   hit TAG POINT X Y Z STATE
+//   done TAG HITS [CYCLES]
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ref/config.h"
+#include "ref/types.h"
+
+namespace voxcd {
+
+// A malformed vector file; the message starts with "FILE:LINE: ".
+struct VectorError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct VectorFile {
+  std::string path;
+  DeviceConfig config;
+  bool has_lanes = false;  // the config line named LANES
+  DeviceMemory memory;
+  std::vector<Job> jobs;
+  std::vector<int> job_lines;
+  std::vector<Record> expected;  // hit and done records in stream order
+  std::vector<int> expected_lines;
+};
+
+// Parses a whole file. Throws VectorError naming the file, the line and what is wrong: an unknown record, a
+// missing or extra field, a number that does not parse or does not fit its format under the file's config, a
+// section shorter than its count, a job that reads memory the file does not load.
+VectorFile parse_vectors(const std::string& text, const std::string& name);
+VectorFile read_vectors(const std::string& path);
+
+// Writes config, memories, then each job followed by its records from `records` (a stream as run_stream gives;
+// its done records split it into jobs). Done records carry CYCLES when the record has them.
+void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, const DeviceMemory& mem,
+                   const std::vector<Job>& jobs, const std::vector<Record>& records);
+// One job line in the file syntax.
+std::string job_line(const Job& job);
+
+// Compares a backend's stream with the file's expectations. Returns "" when equal, else the first difference:
+// the job (tag and line), the point, what was expected and what came.
+std::string compare_streams(const VectorFile& file, const std::vector<Record>& got, bool compare_cycles);
+
+}  // namespace voxcd
