@@ -222,6 +222,8 @@ class Parser {
       const std::string_view s = tok_[0];
       uint64_t v = 0;
       auto r = std::from_chars(s.data(), s.data() + s.size(), v, 16);
+      if (r.ec == std::errc::result_out_of_range && r.ptr == s.data() + s.size())
+        fail("map word '" + std::string(s) + "' is wider than MEMW = " + std::to_string(f.config.MEMW) + " bits");
       if (r.ec != std::errc() || r.ptr != s.data() + s.size())
         fail("map word '" + std::string(s) + "' is not a hex number");
       if (s.size() > digits || !fits_unsigned(v, f.config.MEMW))
