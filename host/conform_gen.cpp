@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "ref/fixed.h"
 #include "ref/float_model.h"
@@ -97,7 +99,10 @@ class Generator {
   }
 
   void add_block(DeviceMemory& mem, const std::vector<ShellWord>& pts) {
-    if (pts.empty() || mem.shell.size() + pts.size() > cfg_.shell_depth()) return;
+    if (pts.empty()) return;
+    if (mem.shell.size() + pts.size() > cfg_.shell_depth())
+      throw std::invalid_argument("generated shell blocks need " + std::to_string(mem.shell.size() + pts.size()) +
+                                  " words; the shell memory holds 2^SAW = " + std::to_string(cfg_.shell_depth()));
     Block b{uint32_t(mem.shell.size()), uint32_t(pts.size()), {0, 0, 0}, 0};
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const ShellWord& w : pts) {
