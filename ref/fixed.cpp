@@ -19,7 +19,7 @@ std::string FixedFormat::to_string() const {
 
 bool fits_signed(int64_t v, int width) {
   if (width >= 64) return true;
-  const int64_t lim = int64_t{1} << (width - 1);
+  const int64_t lim = int64_t{1} << (width - 1);  // width <= 63: representable
   return v >= -lim && v < lim;
 }
 

@@ -17,8 +17,8 @@ struct RangeError : std::runtime_error {
 struct FixedFormat {
   int width;
   int frac;
-  int64_t min_raw() const { return -(int64_t{1} << (width - 1)); }
-  int64_t max_raw() const { return (int64_t{1} << (width - 1)) - 1; }
+  int64_t max_raw() const { return int64_t((uint64_t{1} << (width - 1)) - 1); }
+  int64_t min_raw() const { return -max_raw() - 1; }
   double min_value() const;
   double max_value() const;
   double ulp() const;

@@ -1,0 +1,26 @@
+# Runs `voxcd conform` on every vector file that must pass (DIRS) and on every file that must fail (FAIL_DIR),
+# on one backend. Arguments: VOXCD, BACKEND, DIRS (;-separated), FAIL_DIR, EXTRA (extra conform arguments).
+set(files)
+foreach(d ${DIRS})
+  file(GLOB f ${d}/*.vec)
+  list(APPEND files ${f})
+endforeach()
+list(LENGTH files n)
+if(n LESS 3)
+  message(FATAL_ERROR "only ${n} vector files found in ${DIRS}")
+endif()
+separate_arguments(extra UNIX_COMMAND "${EXTRA}")
+execute_process(COMMAND ${VOXCD} conform --backend ${BACKEND} ${extra} ${files}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "${n} passed, 0 failed")
+  message(FATAL_ERROR "conform on ${BACKEND} did not pass all ${n} files")
+endif()
+file(GLOB bad ${FAIL_DIR}/*.vec)
+foreach(f ${bad})
+  execute_process(COMMAND ${VOXCD} conform --backend ${BACKEND} ${extra} ${f}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT out MATCHES "0 passed, 1 failed" OR NOT out MATCHES "FAIL ${f}")
+    message(FATAL_ERROR "conform on ${BACKEND} accepted ${f}:\n${out}${err}")
+  endif()
+endforeach()
