@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "host/device.h"
+#include "host/device_cpu.h"
 #include "ref/pipeline.h"
 
 namespace voxcd {
@@ -28,10 +29,11 @@ class RefDevice final : public Device {
 
 }  // namespace
 
-std::vector<std::string> device_backends() { return {"ref"}; }
+std::vector<std::string> device_backends() { return {"ref", "cpu"}; }
 
-std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions&) {
+std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions& opt) {
   if (backend == "ref") return std::make_unique<RefDevice>(cfg);
+  if (backend == "cpu") return make_cpu_device(cfg, opt);
   const auto all = device_backends();
   std::string list;
   for (const auto& b : all) list += (list.empty() ? "" : ", ") + b;

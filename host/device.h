@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct DeviceOptions {
   double hit_stall_prob = 0.0;  // rtl: probability that the hit stream's consumer is not ready in a cycle
   double done_stall_prob = 0.0; // rtl: the same for the completion stream
   uint64_t stall_seed = 1;      // rtl: seed of the back-pressure pattern
+  unsigned threads = 0;         // cpu: worker threads (0 = one per hardware thread); results never depend on it
 };
 
 class Device {

@@ -1,0 +1,191 @@
+// The cpu backend. Three arithmetic paths give the same bits as ref/:
+//  - double: when the accumulator fits 53 bits (the default widths: 49), every product M*p and every partial
+//    sum is an integer below 2^53, so double arithmetic is exact, and floor(acc * 2^-TF) is exact too. This path
+//    vectorises (AVX2 where the processor has it, chosen at run time).
+//  - int64: when the accumulator fits 63 bits.
+//  - ref: otherwise, the reference's own stage functions on 128-bit integers.
+// Jobs are split into chunks of points spread over a thread pool; chunk results are merged in order, so the
+// stream is the same for any thread count.
+#include "host/device_cpu.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/thread_pool.h"
+#include "ref/pipeline.h"
+
+namespace voxcd {
+
+namespace {
+
+constexpr size_t kChunk = 4096;  // points per task
+constexpr size_t kBlock = 256;   // points per vector block inside a task
+
+struct ChunkResult {
+  std::vector<Record> hits;  // ALL: every hit; FIRST: at most the first
+  uint32_t count = 0;
+};
+
+// Linear voxel index of each point of a block, or -1 when outside: the double path.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void block_double(const double* __restrict x, const double* __restrict y, const double* __restrict z, size_t n,
+                  const double m[9], const double t[3], double scale, const double dims[3],
+                  int64_t* __restrict lin) {
+  for (size_t k = 0; k < n; ++k) {
+    const double ax = std::floor((m[0] * x[k] + m[1] * y[k] + m[2] * z[k] + t[0]) * scale);
+    const double ay = std::floor((m[3] * x[k] + m[4] * y[k] + m[5] * z[k] + t[1]) * scale);
+    const double az = std::floor((m[6] * x[k] + m[7] * y[k] + m[8] * z[k] + t[2]) * scale);
+    const bool inside = ax >= 0 && ax < dims[0] && ay >= 0 && ay < dims[1] && az >= 0 && az < dims[2];
+    const double l = ax + dims[0] * (ay + dims[1] * az);
+    lin[k] = inside ? int64_t(l) : int64_t(-1);
+  }
+}
+
+void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n, const Job& j, int tf,
+                 int64_t* lin) {
+  const int64_t nx = j.nx, ny = j.ny, nz = j.nz;
+  for (size_t k = 0; k < n; ++k) {
+    const int64_t ix = (j.M[0][0] * x[k] + j.M[0][1] * y[k] + j.M[0][2] * z[k] + j.t[0]) >> tf;
+    const int64_t iy = (j.M[1][0] * x[k] + j.M[1][1] * y[k] + j.M[1][2] * z[k] + j.t[1]) >> tf;
+    const int64_t iz = (j.M[2][0] * x[k] + j.M[2][1] * y[k] + j.M[2][2] * z[k] + j.t[2]) >> tf;
+    const bool inside = uint64_t(ix) < uint64_t(nx) && uint64_t(iy) < uint64_t(ny) && uint64_t(iz) < uint64_t(nz);
+    lin[k] = inside ? ix + nx * (iy + ny * iz) : -1;
+  }
+}
+
+class CpuDevice final : public Device {
+ public:
+  CpuDevice(const DeviceConfig& cfg, const DeviceOptions& opt) : cfg_(cfg), pool_(opt.threads) {
+    cfg_.validate();
+    if (cfg_.acc_width() <= 53)
+      path_ = Path::Double;
+    else if (cfg_.acc_width() <= 63)
+      path_ = Path::Int64;
+    else
+      path_ = Path::Ref;
+    slot_bits_ = 0;
+    while ((1 << slot_bits_) < cfg_.states_per_word()) ++slot_bits_;
+  }
+  std::string name() const override { return "cpu"; }
+  const DeviceConfig& config() const override { return cfg_; }
+  bool models_cycles() const override { return false; }
+
+  void load(const DeviceMemory& mem) override {
+    validate_memory(cfg_, mem);
+    mem_ = mem;
+    const size_t n = mem.shell.size();
+    if (path_ == Path::Double) {
+      dx_.resize(n), dy_.resize(n), dz_.resize(n);
+      for (size_t k = 0; k < n; ++k) {
+        dx_[k] = double(mem.shell[k].x);
+        dy_[k] = double(mem.shell[k].y);
+        dz_[k] = double(mem.shell[k].z);
+      }
+    } else {
+      ix_.resize(n), iy_.resize(n), iz_.resize(n);
+      for (size_t k = 0; k < n; ++k) {
+        ix_[k] = mem.shell[k].x;
+        iy_[k] = mem.shell[k].y;
+        iz_[k] = mem.shell[k].z;
+      }
+    }
+  }
+
+  std::vector<Record> run(const std::vector<Job>& jobs) override {
+    for (const Job& j : jobs) validate_job(cfg_, j, mem_.shell.size(), mem_.map.size());
+    // Tasks: (job, first point, end point).
+    struct Task {
+      size_t job;
+      uint32_t begin, end;
+    };
+    std::vector<Task> tasks;
+    std::vector<size_t> first_task(jobs.size() + 1);
+    for (size_t j = 0; j < jobs.size(); ++j) {
+      first_task[j] = tasks.size();
+      const uint32_t n = jobs[j].shell_count;
+      for (uint32_t b = 0; b < n; b += uint32_t(kChunk)) tasks.push_back({j, b, uint32_t(std::min<size_t>(n, b + kChunk))});
+    }
+    first_task[jobs.size()] = tasks.size();
+    std::vector<ChunkResult> results(tasks.size());
+    auto work = [&](size_t i) { run_chunk(jobs[tasks[i].job], tasks[i].begin, tasks[i].end, results[i]); };
+    if (tasks.size() > 1 && pool_.size() > 1)
+      pool_.parallel_for(tasks.size(), work);
+    else
+      for (size_t i = 0; i < tasks.size(); ++i) work(i);
+    // Merge in order.
+    std::vector<Record> out;
+    for (size_t j = 0; j < jobs.size(); ++j) {
+      uint32_t hits = 0;
+      for (size_t i = first_task[j]; i < first_task[j + 1]; ++i) {
+        ChunkResult& r = results[i];
+        if (jobs[j].mode == Mode::First) {
+          if (hits == 0 && r.count) {
+            out.push_back(r.hits.front());
+            hits = 1;
+          }
+        } else {
+          hits += r.count;
+          out.insert(out.end(), r.hits.begin(), r.hits.end());
+        }
+      }
+      out.push_back(Record::done(jobs[j].tag, hits));
+    }
+    return out;
+  }
+
+ private:
+  enum class Path { Double, Int64, Ref };
+
+  void run_chunk(const Job& j, uint32_t begin, uint32_t end, ChunkResult& r) const {
+    int64_t lin[kBlock];
+    double m[9], t[3], dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
+    for (int i = 0; i < 9; ++i) m[i] = double(j.M[i / 3][i % 3]);
+    for (int i = 0; i < 3; ++i) t[i] = double(j.t[i]);
+    const double scale = std::ldexp(1.0, -cfg_.TF());
+    const uint64_t slot_mask = (uint64_t{1} << slot_bits_) - 1;
+    for (uint32_t b = begin; b < end; b += uint32_t(kBlock)) {
+      const size_t n = std::min<size_t>(kBlock, end - b);
+      const size_t base = size_t(j.shell_base) + b;
+      switch (path_) {
+        case Path::Double: block_double(&dx_[base], &dy_[base], &dz_[base], n, m, t, scale, dims, lin); break;
+        case Path::Int64: block_int64(&ix_[base], &iy_[base], &iz_[base], n, j, cfg_.TF(), lin); break;
+        case Path::Ref:
+          for (size_t k = 0; k < n; ++k) {
+            const Located l = locate(cfg_, j, transform(cfg_, j, mem_.shell[base + k]));
+            lin[k] = l.inside ? int64_t(l.linear) : -1;
+          }
+          break;
+      }
+      for (size_t k = 0; k < n; ++k) {
+        if (lin[k] < 0) continue;
+        const uint64_t li = uint64_t(lin[k]);
+        const uint64_t word = j.map_base + (li >> slot_bits_);
+        const uint8_t state = uint8_t((mem_.map[word] >> (2 * (li & slot_mask))) & 3u);
+        if (!((j.hit_mask >> state) & 1u)) continue;
+        ++r.count;
+        if (j.mode == Mode::Count) continue;
+        const uint64_t x = li % j.nx, yz = li / j.nx;
+        r.hits.push_back(Record::hit(j.tag, b + uint32_t(k), uint32_t(x), uint32_t(yz % j.ny), uint32_t(yz / j.ny), state));
+        if (j.mode == Mode::First) return;
+      }
+    }
+  }
+
+  DeviceConfig cfg_;
+  mutable ThreadPool pool_;
+  Path path_;
+  int slot_bits_;
+  DeviceMemory mem_;
+  std::vector<double> dx_, dy_, dz_;
+  std::vector<int64_t> ix_, iy_, iz_;
+};
+
+}  // namespace
+
+std::unique_ptr<Device> make_cpu_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
+  return std::make_unique<CpuDevice>(cfg, opt);
+}
+
+}  // namespace voxcd
