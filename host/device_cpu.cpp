@@ -26,21 +26,57 @@ struct ChunkResult {
   uint32_t count = 0;
 };
 
-// Linear voxel index of each point of a block, or -1 when outside: the double path.
+// Linear voxel index of each point of a block, or -1 when outside: the double path. Written without branches
+// so that it vectorises; every value is an integer below 2^53, so it is exact.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
 __attribute__((target_clones("avx2", "default")))
 #endif
 void block_double(const double* __restrict x, const double* __restrict y, const double* __restrict z, size_t n,
-                  const double m[9], const double t[3], double scale, const double dims[3],
-                  int64_t* __restrict lin) {
+                  const double* __restrict mp, const double* __restrict tp, double scale,
+                  const double* __restrict dp, double* __restrict lin) {
+  const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6], m7 = mp[7],
+               m8 = mp[8];
+  const double t0 = tp[0], t1 = tp[1], t2 = tp[2];
+  const double nx = dp[0], ny = dp[1], nz = dp[2];
   for (size_t k = 0; k < n; ++k) {
-    const double ax = std::floor((m[0] * x[k] + m[1] * y[k] + m[2] * z[k] + t[0]) * scale);
-    const double ay = std::floor((m[3] * x[k] + m[4] * y[k] + m[5] * z[k] + t[1]) * scale);
-    const double az = std::floor((m[6] * x[k] + m[7] * y[k] + m[8] * z[k] + t[2]) * scale);
-    const bool inside = ax >= 0 && ax < dims[0] && ay >= 0 && ay < dims[1] && az >= 0 && az < dims[2];
-    const double l = ax + dims[0] * (ay + dims[1] * az);
-    lin[k] = inside ? int64_t(l) : int64_t(-1);
+    const double ax = std::floor((m0 * x[k] + m1 * y[k] + m2 * z[k] + t0) * scale);
+    const double ay = std::floor((m3 * x[k] + m4 * y[k] + m5 * z[k] + t1) * scale);
+    const double az = std::floor((m6 * x[k] + m7 * y[k] + m8 * z[k] + t2) * scale);
+    const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);
+    const double l = ax + nx * (ay + ny * az);
+    lin[k] = inside ? l : -1.0;
   }
+}
+
+// The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
+// bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
+// state | hit << 2; returns the number of hits. Outside points read the map's first word and are masked.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+uint32_t block_double_fetch(const double* __restrict x, const double* __restrict y, const double* __restrict z,
+                            size_t n, const double* __restrict mp, const double* __restrict tp, double scale,
+                            const double* __restrict dp, const uint64_t* __restrict map, int slot_bits,
+                            uint32_t mask, int32_t* __restrict lin, uint8_t* __restrict state) {
+  const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6], m7 = mp[7],
+               m8 = mp[8];
+  const double t0 = tp[0], t1 = tp[1], t2 = tp[2];
+  const double nx = dp[0], ny = dp[1], nz = dp[2];
+  const int32_t slot_mask = (int32_t{1} << slot_bits) - 1;
+  uint32_t count = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const double ax = std::floor((m0 * x[k] + m1 * y[k] + m2 * z[k] + t0) * scale);
+    const double ay = std::floor((m3 * x[k] + m4 * y[k] + m5 * z[k] + t1) * scale);
+    const double az = std::floor((m6 * x[k] + m7 * y[k] + m8 * z[k] + t2) * scale);
+    const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);
+    const int32_t li = int32_t(inside ? ax + nx * (ay + ny * az) : 0.0);
+    const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;
+    const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;
+    lin[k] = li;
+    state[k] = uint8_t(st | (hit << 2));
+    count += hit;
+  }
+  return count;
 }
 
 void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n, const Job& j, int tf,
@@ -140,16 +176,36 @@ class CpuDevice final : public Device {
 
   void run_chunk(const Job& j, uint32_t begin, uint32_t end, ChunkResult& r) const {
     int64_t lin[kBlock];
+    double dlin[kBlock];
+    int32_t lin32[kBlock];
+    uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit
     double m[9], t[3], dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
     for (int i = 0; i < 9; ++i) m[i] = double(j.M[i / 3][i % 3]);
     for (int i = 0; i < 3; ++i) t[i] = double(j.t[i]);
     const double scale = std::ldexp(1.0, -cfg_.TF());
     const uint64_t slot_mask = (uint64_t{1} << slot_bits_) - 1;
+    const bool fused = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
     for (uint32_t b = begin; b < end; b += uint32_t(kBlock)) {
       const size_t n = std::min<size_t>(kBlock, end - b);
       const size_t base = size_t(j.shell_base) + b;
+      if (fused) {
+        const uint32_t count = block_double_fetch(&dx_[base], &dy_[base], &dz_[base], n, m, t, scale, dims,
+                                                  mem_.map.data() + j.map_base, slot_bits_, j.hit_mask, lin32,
+                                                  state);
+        if (count == 0) continue;
+        if (j.mode == Mode::Count) {
+          r.count += count;
+          continue;
+        }
+        for (size_t k = 0; k < n; ++k) lin[k] = lin32[k];
+        if (emit_hits(j, b, n, lin, state, r)) return;
+        continue;
+      }
       switch (path_) {
-        case Path::Double: block_double(&dx_[base], &dy_[base], &dz_[base], n, m, t, scale, dims, lin); break;
+        case Path::Double:
+          block_double(&dx_[base], &dy_[base], &dz_[base], n, m, t, scale, dims, dlin);
+          for (size_t k = 0; k < n; ++k) lin[k] = int64_t(dlin[k]);
+          break;
         case Path::Int64: block_int64(&ix_[base], &iy_[base], &iz_[base], n, j, cfg_.TF(), lin); break;
         case Path::Ref:
           for (size_t k = 0; k < n; ++k) {
@@ -158,19 +214,41 @@ class CpuDevice final : public Device {
           }
           break;
       }
+      // Fetch, select and test without branches (outside points read the map's first word and are masked);
+      // then walk only the hits.
+      const uint64_t* map = mem_.map.data() + j.map_base;
+      const uint32_t mask = j.hit_mask;
+      uint32_t count = 0;
       for (size_t k = 0; k < n; ++k) {
-        if (lin[k] < 0) continue;
-        const uint64_t li = uint64_t(lin[k]);
-        const uint64_t word = j.map_base + (li >> slot_bits_);
-        const uint8_t state = uint8_t((mem_.map[word] >> (2 * (li & slot_mask))) & 3u);
-        if (!((j.hit_mask >> state) & 1u)) continue;
-        ++r.count;
-        if (j.mode == Mode::Count) continue;
-        const uint64_t x = li % j.nx, yz = li / j.nx;
-        r.hits.push_back(Record::hit(j.tag, b + uint32_t(k), uint32_t(x), uint32_t(yz % j.ny), uint32_t(yz / j.ny), state));
-        if (j.mode == Mode::First) return;
+        const bool inside = lin[k] >= 0;
+        const uint64_t li = inside ? uint64_t(lin[k]) : 0;
+        const uint32_t st = uint32_t(map[li >> slot_bits_] >> (2 * (li & slot_mask))) & 3u;
+        const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;
+        state[k] = uint8_t(st | (hit << 2));
+        count += hit;
       }
+      if (count == 0) continue;
+      if (j.mode == Mode::Count) {
+        r.count += count;
+        continue;
+      }
+      if (emit_hits(j, b, n, lin, state, r)) return;
     }
+  }
+
+  // Appends the block's hit records; true when FIRST has its answer.
+  static bool emit_hits(const Job& j, uint32_t b, size_t n, const int64_t* lin, const uint8_t* state,
+                        ChunkResult& r) {
+    for (size_t k = 0; k < n; ++k) {
+      if (!(state[k] & 4u)) continue;
+      ++r.count;
+      const uint64_t li = uint64_t(lin[k]);
+      const uint64_t x = li % j.nx, yz = li / j.nx;
+      r.hits.push_back(Record::hit(j.tag, b + uint32_t(k), uint32_t(x), uint32_t(yz % j.ny), uint32_t(yz / j.ny),
+                                   uint8_t(state[k] & 3u)));
+      if (j.mode == Mode::First) return true;
+    }
+    return false;
   }
 
   DeviceConfig cfg_;
