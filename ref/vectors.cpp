@@ -268,6 +268,17 @@ class Parser {
 
 VectorFile parse_vectors(const std::string& text, const std::string& name) { return Parser(text, name).run(); }
 
+DeviceConfig parse_config_pairs(const std::string& pairs, const std::string& what) {
+  if (pairs.find('\n') != std::string::npos) throw VectorError(what + ": one line of NAME VALUE pairs expected");
+  const std::string prefix = what + ":2: ";
+  try {
+    return parse_vectors("voxcd-vectors 1\nconfig " + pairs + "\n", what).config;
+  } catch (const VectorError& e) {
+    const std::string m = e.what();
+    throw VectorError(what + ": " + (m.rfind(prefix, 0) == 0 ? m.substr(prefix.size()) : m));
+  }
+}
+
 VectorFile read_vectors(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw VectorError(path + ":0: cannot open the file");

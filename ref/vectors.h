@@ -41,6 +41,10 @@ struct VectorFile {
 VectorFile parse_vectors(const std::string& text, const std::string& name);
 VectorFile read_vectors(const std::string& path);
 
+// Parses "NAME VALUE ..." pairs as a config line would have them (defaults for names not given). Throws
+// VectorError naming `what` and the problem.
+DeviceConfig parse_config_pairs(const std::string& pairs, const std::string& what);
+
 // Writes config, memories, then each job followed by its records from `records` (a stream as run_stream gives;
 // its done records split it into jobs). Done records carry CYCLES when the record has them.
 void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, const DeviceMemory& mem,
