@@ -1,7 +1,8 @@
 // The cpu backend. Three arithmetic paths give the same bits as ref/:
 //  - double: when the accumulator fits 53 bits (the default widths: 49), every product M*p and every partial
-//    sum is an integer below 2^53, so double arithmetic is exact, and floor(acc * 2^-TF) is exact too. This path
-//    vectorises (AVX2 where the processor has it, chosen at run time).
+//    sum is an integer below 2^53, so double arithmetic is exact (fused multiply-adds included), and
+//    floor(acc * 2^-TF) is exact too. This path vectorises (AVX-512 or AVX2 and FMA where the processor has
+//    them, chosen at run time).
 //  - int64: when the accumulator fits 63 bits.
 //  - ref: otherwise, the reference's own stage functions on 128-bit integers.
 // Jobs are split into chunks of points spread over a thread pool; chunk results are merged in order, so the
@@ -26,58 +27,62 @@ struct ChunkResult {
   uint32_t count = 0;
 };
 
-// Linear voxel index of each point of a block, or -1 when outside: the double path. Written without branches
-// so that it vectorises; every value is an integer below 2^53, so it is exact.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void block_double(const double* __restrict x, const double* __restrict y, const double* __restrict z, size_t n,
-                  const double* __restrict mp, const double* __restrict tp, double scale,
-                  const double* __restrict dp, double* __restrict lin) {
-  const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6], m7 = mp[7],
-               m8 = mp[8];
-  const double t0 = tp[0], t1 = tp[1], t2 = tp[2];
-  const double nx = dp[0], ny = dp[1], nz = dp[2];
-  for (size_t k = 0; k < n; ++k) {
-    const double ax = std::floor((m0 * x[k] + m1 * y[k] + m2 * z[k] + t0) * scale);
-    const double ay = std::floor((m3 * x[k] + m4 * y[k] + m5 * z[k] + t1) * scale);
-    const double az = std::floor((m6 * x[k] + m7 * y[k] + m8 * z[k] + t2) * scale);
-    const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);
-    const double l = ax + nx * (ay + ny * az);
-    lin[k] = inside ? l : -1.0;
-  }
-}
-
 // The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
 // bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
 // state | hit << 2; returns the number of hits. Outside points read the map's first word and are masked.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-uint32_t block_double_fetch(const double* __restrict x, const double* __restrict y, const double* __restrict z,
-                            size_t n, const double* __restrict mp, const double* __restrict tp, double scale,
-                            const double* __restrict dp, const uint64_t* __restrict map, int slot_bits,
-                            uint32_t mask, int32_t* __restrict lin, uint8_t* __restrict state) {
-  const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6], m7 = mp[7],
-               m8 = mp[8];
-  const double t0 = tp[0], t1 = tp[1], t2 = tp[2];
-  const double nx = dp[0], ny = dp[1], nz = dp[2];
-  const int32_t slot_mask = (int32_t{1} << slot_bits) - 1;
-  uint32_t count = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const double ax = std::floor((m0 * x[k] + m1 * y[k] + m2 * z[k] + t0) * scale);
-    const double ay = std::floor((m3 * x[k] + m4 * y[k] + m5 * z[k] + t1) * scale);
-    const double az = std::floor((m6 * x[k] + m7 * y[k] + m8 * z[k] + t2) * scale);
-    const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);
-    const int32_t li = int32_t(inside ? ax + nx * (ay + ny * az) : 0.0);
-    const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;
-    const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;
-    lin[k] = li;
-    state[k] = uint8_t(st | (hit << 2));
-    count += hit;
+// Compiled three times (AVX-512 with 512-bit vectors, AVX2 with FMA, baseline) and chosen once at run time.
+#define VOXCD_BLOCK_DOUBLE_FETCH_BODY                                                                           \
+  {                                                                                                             \
+    const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6],            \
+                 m7 = mp[7], m8 = mp[8];                                                                        \
+    const double t0 = tp[0], t1 = tp[1], t2 = tp[2];                                                            \
+    const double nx = dp[0], ny = dp[1], nz = dp[2];                                                            \
+    const int32_t slot_mask = (int32_t{1} << slot_bits) - 1;                                                    \
+    uint32_t count = 0;                                                                                         \
+    for (size_t k = 0; k < n; ++k) {                                                                            \
+      const double px = double(x[k]), py = double(y[k]), pz = double(z[k]);                                      \
+      const double ax = std::floor(m0 * px + m1 * py + m2 * pz + t0);                                           \
+      const double ay = std::floor(m3 * px + m4 * py + m5 * pz + t1);                                           \
+      const double az = std::floor(m6 * px + m7 * py + m8 * pz + t2);                                           \
+      const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);                \
+      const int32_t li = int32_t(inside ? ax + nx * (ay + ny * az) : 0.0);                                      \
+      const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;                        \
+      const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;                                                \
+      lin[k] = li;                                                                                              \
+      state[k] = uint8_t(st | (hit << 2));                                                                      \
+      count += hit;                                                                                             \
+    }                                                                                                           \
+    return count;                                                                                               \
   }
-  return count;
-}
+#define VOXCD_BLOCK_DOUBLE_FETCH_ARGS                                                                           \
+  const Coord *__restrict x, const Coord *__restrict y, const Coord *__restrict z, size_t n,                    \
+      const double *__restrict mp, const double *__restrict tp, const double *__restrict dp,                    \
+      const uint64_t *__restrict map, int slot_bits, uint32_t mask, int32_t *__restrict lin,                    \
+      uint8_t *__restrict state
+
+template <class Coord>
+struct BlockKernel {
+  using Fn = uint32_t (*)(VOXCD_BLOCK_DOUBLE_FETCH_ARGS);
+  static uint32_t base(VOXCD_BLOCK_DOUBLE_FETCH_ARGS) VOXCD_BLOCK_DOUBLE_FETCH_BODY
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  __attribute__((target("arch=haswell"))) static uint32_t avx2(VOXCD_BLOCK_DOUBLE_FETCH_ARGS)
+      VOXCD_BLOCK_DOUBLE_FETCH_BODY
+  __attribute__((target("arch=skylake-avx512,prefer-vector-width=512"))) static uint32_t
+      avx512(VOXCD_BLOCK_DOUBLE_FETCH_ARGS) VOXCD_BLOCK_DOUBLE_FETCH_BODY
+#endif
+  static Fn choose() {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
+      return avx512;
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return avx2;
+#endif
+    return base;
+  }
+};
+
+const BlockKernel<double>::Fn block_fetch = BlockKernel<double>::choose();
 
 void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n, const Job& j, int tf,
                  int64_t* lin) {
@@ -119,7 +124,9 @@ class CpuDevice final : public Device {
         dy_[k] = double(mem.shell[k].y);
         dz_[k] = double(mem.shell[k].z);
       }
-    } else {
+    }
+    // The int64 arrays serve the int64 path, and the double path's maps of 2^31 voxels or more.
+    if (path_ == Path::Int64 || (path_ == Path::Double && 3 * cfg_.DW >= 31)) {
       ix_.resize(n), iy_.resize(n), iz_.resize(n);
       for (size_t k = 0; k < n; ++k) {
         ix_[k] = mem.shell[k].x;
@@ -176,22 +183,27 @@ class CpuDevice final : public Device {
 
   void run_chunk(const Job& j, uint32_t begin, uint32_t end, ChunkResult& r) const {
     int64_t lin[kBlock];
-    double dlin[kBlock];
     int32_t lin32[kBlock];
     uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit
-    double m[9], t[3], dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
+    double m[9], t[3];
+    const double dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
     for (int i = 0; i < 9; ++i) m[i] = double(j.M[i / 3][i % 3]);
     for (int i = 0; i < 3; ++i) t[i] = double(j.t[i]);
     const double scale = std::ldexp(1.0, -cfg_.TF());
+    // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is
+    // every product and sum after it (multiples of 2^-TF below 2^(53-TF)).
+    double ms[9], ts[3];
+    for (int i = 0; i < 9; ++i) ms[i] = m[i] * scale;
+    for (int i = 0; i < 3; ++i) ts[i] = t[i] * scale;
     const uint64_t slot_mask = (uint64_t{1} << slot_bits_) - 1;
     const bool fused = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
     for (uint32_t b = begin; b < end; b += uint32_t(kBlock)) {
       const size_t n = std::min<size_t>(kBlock, end - b);
       const size_t base = size_t(j.shell_base) + b;
       if (fused) {
-        const uint32_t count = block_double_fetch(&dx_[base], &dy_[base], &dz_[base], n, m, t, scale, dims,
-                                                  mem_.map.data() + j.map_base, slot_bits_, j.hit_mask, lin32,
-                                                  state);
+        const uint64_t* map = mem_.map.data() + j.map_base;
+        const uint32_t count = block_fetch(&dx_[base], &dy_[base], &dz_[base], n, ms, ts, dims, map, slot_bits_,
+                                           j.hit_mask, lin32, state);
         if (count == 0) continue;
         if (j.mode == Mode::Count) {
           r.count += count;
@@ -202,10 +214,7 @@ class CpuDevice final : public Device {
         continue;
       }
       switch (path_) {
-        case Path::Double:
-          block_double(&dx_[base], &dy_[base], &dz_[base], n, m, t, scale, dims, dlin);
-          for (size_t k = 0; k < n; ++k) lin[k] = int64_t(dlin[k]);
-          break;
+        case Path::Double:  // a map of 2^31 voxels or more: the accumulator fits 53 bits, so int64 is exact
         case Path::Int64: block_int64(&ix_[base], &iy_[base], &iz_[base], n, j, cfg_.TF(), lin); break;
         case Path::Ref:
           for (size_t k = 0; k < n; ++k) {
