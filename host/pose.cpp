@@ -1,0 +1,41 @@
+#include "host/pose.h"
+
+#include <cmath>
+
+#include "ref/fixed.h"
+
+namespace voxcd {
+
+namespace {
+void require_finite(const RigidPose& p, const char* which) {
+  const Eigen::Vector4d q = p.rotation.coeffs();
+  if (!q.allFinite() || !p.translation.allFinite())
+    throw RangeError(std::string("pose of ") + which + " is not finite (NaN or infinite rotation or translation)");
+  if (std::fabs(q.norm() - 1.0) > 1e-6)
+    throw RangeError(std::string("pose of ") + which + " has a rotation quaternion of norm " +
+                     std::to_string(q.norm()) + ", not 1");
+}
+}  // namespace
+
+FloatPose relative_pose(const RigidPose& a, const GridFrame& shell_a, const RigidPose& b, const GridFrame& map_b) {
+  require_finite(a, "A");
+  require_finite(b, "B");
+  const Eigen::Matrix3d Ra = a.rotation.toRotationMatrix(), Rb = b.rotation.toRotationMatrix();
+  const Eigen::Matrix3d R = Rb.transpose() * Ra;
+  const Eigen::Matrix3d M = R * (shell_a.voxel / map_b.voxel);
+  const Eigen::Vector3d t =
+      (Rb.transpose() * (Ra * shell_a.origin + a.translation - b.translation) - map_b.origin) / map_b.voxel;
+  FloatPose p;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) p.M[i][j] = M(i, j);
+    p.t[i] = t(i);
+  }
+  return p;
+}
+
+void pose_job(const DeviceConfig& cfg, const RigidPose& a, const GridFrame& shell_a, const RigidPose& b,
+              const GridFrame& map_b, Job& job) {
+  quantize_pose(cfg, relative_pose(a, shell_a, b, map_b), job);
+}
+
+}  // namespace voxcd
