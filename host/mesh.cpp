@@ -1,0 +1,275 @@
+#include "host/mesh.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <unordered_map>
+
+namespace voxcd {
+
+namespace {
+
+std::string fmt_point(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s << std::setprecision(9) << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+std::string lower_ext(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  const size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+Mesh load_assimp(const std::string& path) {
+  Assimp::Importer imp;
+  // Only positions matter: dropping the other components lets equal positions merge.
+  imp.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
+                                                     aiComponent_COLORS | aiComponent_TEXCOORDS |
+                                                     aiComponent_BONEWEIGHTS | aiComponent_MATERIALS);
+  const aiScene* sc = imp.ReadFile(path, aiProcess_RemoveComponent | aiProcess_Triangulate |
+                                             aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  if (!sc) throw MeshError(path + ": cannot load: " + imp.GetErrorString());
+  Mesh m;
+  m.name = path;
+  for (unsigned i = 0; i < sc->mNumMeshes; ++i) {
+    const aiMesh* am = sc->mMeshes[i];
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    const uint32_t base = uint32_t(m.vertices.size());
+    for (unsigned v = 0; v < am->mNumVertices; ++v)
+      m.vertices.emplace_back(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
+    for (unsigned f = 0; f < am->mNumFaces; ++f) {
+      const aiFace& face = am->mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines sorted into their own meshes are not surface
+      m.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+    }
+  }
+  return m;
+}
+
+}  // namespace
+
+void Mesh::bounds(Eigen::Vector3d& lo, Eigen::Vector3d& hi) const {
+  lo = Eigen::Vector3d::Constant(HUGE_VAL);
+  hi = Eigen::Vector3d::Constant(-HUGE_VAL);
+  for (const auto& t : triangles)
+    for (uint32_t v : t) {
+      lo = lo.cwiseMin(vertices[v]);
+      hi = hi.cwiseMax(vertices[v]);
+    }
+}
+
+double Mesh::volume() const {
+  // Relative to the first vertex, so that far-from-origin meshes keep their precision.
+  if (triangles.empty()) return 0;
+  const Eigen::Vector3d o = vertices[triangles[0][0]];
+  double v = 0;
+  for (size_t t = 0; t < triangles.size(); ++t)
+    v += (corner(t, 0) - o).dot((corner(t, 1) - o).cross(corner(t, 2) - o));
+  return v / 6;
+}
+
+double Mesh::area() const {
+  double a = 0;
+  for (size_t t = 0; t < triangles.size(); ++t) a += (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0)).norm();
+  return a / 2;
+}
+
+Mesh parse_raw(std::istream& in, const std::string& name) {
+  Mesh m;
+  m.name = name;
+  std::string line;
+  size_t lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream ls(line);
+    std::vector<std::string> tok;
+    for (std::string w; ls >> w;) tok.push_back(w);
+    double v[9];
+    bool numeric = true;
+    for (size_t i = 0; i < tok.size() && i < 9; ++i) {
+      const char* s = tok[i].c_str();
+      char* end = nullptr;
+      errno = 0;
+      v[i] = std::strtod(s, &end);
+      if (end == s || *end != '\0' || errno == ERANGE) numeric = false;
+    }
+    if (tok.size() == 1 && !numeric) continue;  // an object name
+    const std::string where = name + ":" + std::to_string(lineno) + ": ";
+    if (!numeric) throw MeshError(where + "expected nine numbers (x1 y1 z1 x2 y2 z2 x3 y3 z3), found '" + line + "'");
+    if (tok.size() != 9)
+      throw MeshError(where + "expected nine numbers per triangle, found " + std::to_string(tok.size()) +
+                      (tok.size() < 9 ? " (truncated?)" : ""));
+    const uint32_t base = uint32_t(m.vertices.size());
+    for (int k = 0; k < 3; ++k) m.vertices.emplace_back(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
+    m.triangles.push_back({base, base + 1, base + 2});
+  }
+  if (in.bad()) throw MeshError(name + ": read error");
+  return m;
+}
+
+void write_raw(const Mesh& m, std::ostream& out) {
+  out << std::setprecision(17);
+  for (size_t t = 0; t < m.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = m.corner(t, k);
+      out << p.x() << ' ' << p.y() << ' ' << p.z() << (k < 2 ? ' ' : '\n');
+    }
+  }
+}
+
+size_t weld(Mesh& m) {
+  struct Hash {
+    size_t operator()(const Eigen::Vector3d& p) const {
+      size_t h = 1469598103934665603ull;
+      for (int i = 0; i < 3; ++i) {
+        double d = p[i] == 0 ? 0.0 : p[i];  // -0 and +0 are the same point
+        uint64_t b;
+        std::memcpy(&b, &d, 8);
+        h = (h ^ b) * 1099511628211ull;
+        h ^= h >> 29;
+      }
+      return h;
+    }
+  };
+  struct Eq {
+    bool operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const { return a == b; }
+  };
+  std::unordered_map<Eigen::Vector3d, uint32_t, Hash, Eq> index;
+  index.reserve(m.vertices.size());
+  std::vector<Eigen::Vector3d> out;
+  std::vector<uint32_t> remap(m.vertices.size(), UINT32_MAX);
+  size_t used = 0;
+  for (auto& t : m.triangles)
+    for (uint32_t& v : t) {
+      if (v >= m.vertices.size())
+        throw MeshError(m.name + ": triangle " + std::to_string(&t - m.triangles.data()) + " has vertex index " +
+                        std::to_string(v) + " out of range (" + std::to_string(m.vertices.size()) + " vertices)");
+      if (remap[v] == UINT32_MAX) {
+        ++used;
+        const Eigen::Vector3d& p = m.vertices[v];
+        if (!p.allFinite()) {
+          remap[v] = uint32_t(out.size());  // kept apart; validate() names it
+          out.push_back(p);
+        } else {
+          auto [it, fresh] = index.emplace(p, uint32_t(out.size()));
+          if (fresh) out.push_back(p);
+          remap[v] = it->second;
+        }
+      }
+      v = remap[v];
+    }
+  m.vertices = std::move(out);
+  return used - m.vertices.size();
+}
+
+void validate(Mesh& m, MeshReport* report) {
+  const std::string& n = m.name;
+  if (m.triangles.empty()) throw MeshError(n + ": the mesh has no triangles");
+  auto tri_name = [&](size_t t) { return "triangle " + std::to_string(t); };
+  for (size_t t = 0; t < m.size(); ++t) {
+    const auto& tr = m.triangles[t];
+    for (uint32_t v : tr) {
+      if (v >= m.vertices.size())
+        throw MeshError(n + ": " + tri_name(t) + " has vertex index " + std::to_string(v) + " out of range");
+      if (!m.vertices[v].allFinite())
+        throw MeshError(n + ": " + tri_name(t) + " has a vertex that is not a finite number " +
+                        fmt_point(m.vertices[v]));
+    }
+    if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2])
+      throw MeshError(n + ": " + tri_name(t) + " is degenerate (a repeated vertex at " +
+                      fmt_point(m.vertices[tr[0] == tr[1] || tr[0] == tr[2] ? tr[0] : tr[1]]) + ")");
+    const Eigen::Vector3d a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
+    const double l2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    if ((b - a).cross(c - a).squaredNorm() <= 1e-26 * l2 * l2)
+      throw MeshError(n + ": " + tri_name(t) + " is degenerate (zero area: " + fmt_point(a) + " " + fmt_point(b) +
+                      " " + fmt_point(c) + " are collinear)");
+  }
+  // Every undirected edge must be used exactly twice, once in each direction.
+  struct Use {
+    uint64_t key;  // lo << 32 | hi
+    uint32_t tri;
+    bool forward;  // lo -> hi in the triangle's winding
+  };
+  std::vector<Use> uses;
+  uses.reserve(3 * m.size());
+  for (size_t t = 0; t < m.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+      uses.push_back({uint64_t(lo) << 32 | hi, uint32_t(t), a < b});
+    }
+  std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+    return x.key != y.key ? x.key < y.key : x.tri < y.tri;
+  });
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    const uint32_t lo = uint32_t(uses[i].key >> 32), hi = uint32_t(uses[i].key);
+    const std::string edge = "edge " + fmt_point(m.vertices[lo]) + "-" + fmt_point(m.vertices[hi]) +
+                             " (vertices " + std::to_string(lo) + ", " + std::to_string(hi) + ")";
+    std::string tris;
+    for (size_t k = i; k < j && k < i + 4; ++k) tris += (k > i ? ", " : "") + std::to_string(uses[k].tri);
+    if (j - i == 1)
+      throw MeshError(n + ": the mesh is open: " + edge + " belongs to triangle " + tris + " only");
+    if (j - i > 2)
+      throw MeshError(n + ": the mesh is not manifold: " + edge + " is shared by " + std::to_string(j - i) +
+                      " triangles (" + tris + (j - i > 4 ? ", ..." : "") + ")");
+    if (uses[i].forward == uses[i + 1].forward)
+      throw MeshError(n + ": inconsistent orientation: " + edge + " runs the same way in triangles " + tris);
+    i = j;
+  }
+  bool flipped = false;
+  if (m.volume() < 0) {
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    flipped = true;
+  }
+  if (report) {
+    report->vertices = m.vertices.size();
+    report->triangles = m.triangles.size();
+    report->flipped = flipped;
+  }
+}
+
+MeshReport prepare(Mesh& m) {
+  MeshReport r;
+  const size_t welded = weld(m);
+  validate(m, &r);
+  r.welded = welded;
+  return r;
+}
+
+Mesh load_mesh(const std::string& path, MeshReport* report) {
+  Mesh m;
+  if (lower_ext(path) == "raw") {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw MeshError(path + ": cannot open");
+    m = parse_raw(in, path);
+  } else {
+    {
+      std::ifstream probe(path);
+      if (!probe) throw MeshError(path + ": cannot open");
+    }
+    m = load_assimp(path);
+  }
+  const MeshReport r = prepare(m);
+  if (report) *report = r;
+  return m;
+}
+
+}  // namespace voxcd

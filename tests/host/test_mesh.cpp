@@ -1,0 +1,185 @@
+// Mesh loading, welding and validation: every format through its loader, and every kind of bad input gives an
+// error that names the problem.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "host/mesh.h"
+#include "host/shapes.h"
+#include "tests/host/test_util.h"
+
+namespace voxcd {
+namespace {
+
+using test::tmp_path;
+
+// The message of the MeshError that fn throws ("" when it throws none).
+template <class Fn>
+std::string error_of(Fn&& fn) {
+  try {
+    fn();
+  } catch (const MeshError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+Mesh raw_mesh(const std::string& text) {
+  std::istringstream in(text);
+  Mesh m = parse_raw(in, "test.raw");
+  return m;
+}
+
+TEST(Shapes, AllClosedAndOutward) {
+  for (const auto& name : shape_names()) {
+    const Mesh m = make_shape(name);
+    EXPECT_GT(m.volume(), 0) << name;
+    EXPECT_EQ(m.name, name);
+  }
+  EXPECT_EQ(make_shape("polytope36").size(), 36u);
+  EXPECT_EQ(make_shape("stellated").size(), 60u);
+  EXPECT_EQ(make_shape("icosahedron").size(), 20u);
+  EXPECT_NEAR(make_shape("cube").volume(), 8.0, 1e-12);
+  EXPECT_NEAR(make_shape("plate").volume(), 0.2, 1e-12);
+  // The sphere approximates 4/3 pi from inside.
+  const double vs = make_shape("sphere").volume();
+  EXPECT_LT(vs, 4.0 / 3 * M_PI);
+  EXPECT_GT(vs, 0.98 * 4.0 / 3 * M_PI);
+  // The stellation is concave: its volume is well below its convex hull's (the icosahedron of its tips).
+  const Mesh st = make_shape("stellated");
+  double r = 0;
+  for (const auto& v : st.vertices) r = std::max(r, v.norm());
+  EXPECT_NEAR(r, 1.0, 1e-12);
+  const double ico_circum = std::sqrt(1 + std::pow((1 + std::sqrt(5.0)) / 2, 2));
+  EXPECT_LT(st.volume(), 0.7 * make_shape("icosahedron").volume() / std::pow(ico_circum, 3));
+  EXPECT_NE(error_of([] { make_shape("teapot"); }).find("unknown shape 'teapot'"), std::string::npos);
+}
+
+TEST(Mesh, RawRoundTripAndWelding) {
+  const Mesh cube = make_shape("cube");
+  std::ostringstream out;
+  write_raw(cube, out);
+  Mesh m = raw_mesh("# a comment\nObject1\n" + out.str());
+  EXPECT_EQ(m.vertices.size(), 36u);  // RAW repeats every vertex
+  const MeshReport r = prepare(m);
+  EXPECT_EQ(r.welded, 28u);
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_NEAR(m.volume(), 8.0, 1e-12);
+}
+
+TEST(Mesh, EveryFormatLoads) {
+  const Mesh src = make_shape("stellated");
+  const std::string base = tmp_path("stellated");
+  {
+    std::ofstream o(base + ".raw");
+    write_raw(src, o);
+  }
+  test::write_obj(src, base + ".obj");
+  test::write_stl(src, base + ".stl");
+  test::write_ply(src, base + ".ply");
+  for (const char* ext : {".raw", ".obj", ".stl", ".ply"}) {
+    MeshReport rep;
+    const Mesh m = load_mesh(base + ext, &rep);
+    EXPECT_EQ(m.size(), src.size()) << ext;
+    EXPECT_EQ(m.vertices.size(), src.vertices.size()) << ext;
+    // STL stores single precision.
+    EXPECT_NEAR(m.volume(), src.volume(), 1e-5) << ext;
+    std::remove((base + ext).c_str());
+  }
+}
+
+TEST(Mesh, ErrorsNameTheProblem) {
+  // Truncated RAW: the last line lost three numbers.
+  EXPECT_NE(error_of([] { raw_mesh("0 0 0 1 0 0 0 1 0\n0 0 0 0 1 0\n"); }).find("test.raw:2"), std::string::npos);
+  EXPECT_NE(error_of([] { raw_mesh("0 0 0 1 0 0 0 1 zero\n"); }).find("test.raw:1"), std::string::npos);
+  // NaN vertex.
+  {
+    Mesh m = make_shape("icosahedron");
+    m.vertices[3].y() = std::nan("");
+    const std::string e = error_of([&] { prepare(m); });
+    EXPECT_NE(e.find("not a finite number"), std::string::npos) << e;
+  }
+  {
+    Mesh m = raw_mesh("0 0 0 1 0 0 0 1 nan\n");
+    EXPECT_NE(error_of([&] { prepare(m); }).find("not a finite number"), std::string::npos);
+  }
+  // Degenerate: a repeated vertex, and three collinear ones.
+  {
+    Mesh m = make_shape("cube");
+    m.triangles[4][1] = m.triangles[4][0];
+    const std::string e = error_of([&] { validate(m); });
+    EXPECT_NE(e.find("triangle 4 is degenerate"), std::string::npos) << e;
+  }
+  {
+    Mesh m = raw_mesh("0 0 0 1 1 1 2 2 2\n");
+    const std::string e = error_of([&] { prepare(m); });
+    EXPECT_NE(e.find("collinear"), std::string::npos) << e;
+  }
+  // Empty.
+  {
+    Mesh m = raw_mesh("# nothing\n");
+    EXPECT_NE(error_of([&] { prepare(m); }).find("no triangles"), std::string::npos);
+  }
+  // Open: one triangle missing.
+  {
+    Mesh m = make_shape("torus");
+    m.triangles.erase(m.triangles.begin() + 100);
+    const std::string e = error_of([&] { validate(m); });
+    EXPECT_NE(e.find("open"), std::string::npos) << e;
+    EXPECT_NE(e.find("edge"), std::string::npos) << e;
+  }
+  // Non-manifold: two tetrahedra sharing an edge (four triangles on it).
+  {
+    Mesh m;
+    m.name = "bowtie";
+    m.vertices = {{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+    m.triangles = {{0, 2, 3}, {1, 3, 2}, {0, 1, 2}, {0, 3, 1}, {0, 4, 5}, {1, 5, 4}, {0, 1, 4}, {0, 5, 1}};
+    const std::string e = error_of([&] { validate(m); });
+    EXPECT_NE(e.find("not manifold"), std::string::npos) << e;
+  }
+  // Inconsistent orientation: one triangle flipped.
+  {
+    Mesh m = make_shape("icosahedron");
+    std::swap(m.triangles[7][1], m.triangles[7][2]);
+    const std::string e = error_of([&] { validate(m); });
+    EXPECT_NE(e.find("inconsistent orientation"), std::string::npos) << e;
+  }
+  // Files: missing, truncated OBJ (faces refer to vertices that never came), garbage.
+  EXPECT_NE(error_of([] { load_mesh("/nonexistent/x.obj"); }).find("cannot open"), std::string::npos);
+  {
+    const std::string p = tmp_path("trunc.obj");
+    test::write_file(p, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4");
+    EXPECT_NE(error_of([&] { load_mesh(p); }), "");
+    test::write_file(p, "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+    EXPECT_NE(error_of([&] { load_mesh(p); }), "");
+    std::remove(p.c_str());
+  }
+  {
+    const std::string p = tmp_path("trunc.stl");
+    test::write_stl(make_shape("cube"), p);
+    std::string text;
+    {
+      std::ifstream in(p);
+      std::stringstream ss;
+      ss << in.rdbuf();
+      text = ss.str();
+    }
+    test::write_file(p, text.substr(0, text.size() / 2));
+    const std::string e = error_of([&] { load_mesh(p); });
+    EXPECT_NE(e, "");
+    std::remove(p.c_str());
+  }
+  // An inside-out mesh is reversed, not rejected.
+  {
+    Mesh m = make_shape("cube");
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    MeshReport r;
+    validate(m, &r);
+    EXPECT_TRUE(r.flipped);
+    EXPECT_NEAR(m.volume(), 8.0, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace voxcd
