@@ -14,6 +14,7 @@
 
 #include "host/thread_pool.h"
 #include "ref/pipeline.h"
+#include "ref/timing.h"
 
 namespace voxcd {
 
@@ -111,7 +112,7 @@ class CpuDevice final : public Device {
   }
   std::string name() const override { return "cpu"; }
   const DeviceConfig& config() const override { return cfg_; }
-  bool models_cycles() const override { return false; }
+  bool models_cycles() const override { return true; }
 
   void load(const DeviceMemory& mem) override {
     validate_memory(cfg_, mem);
@@ -175,6 +176,7 @@ class CpuDevice final : public Device {
       }
       out.push_back(Record::done(jobs[j].tag, hits));
     }
+    annotate_cycles(cfg_, jobs, out);  // the device's cycles, from ref/'s exact timing model
     return out;
   }
 

@@ -1,0 +1,50 @@
+// voxcd_pkg: the device's default widths, enums and record layouts.
+//
+// Every width is also a module parameter of the same name (voxcd_device, voxcd_top), defaulting to the value
+// here, so one RTL source builds any configuration. The names and defaults are those of the C++ DeviceConfig
+// (ref/config.h); tests/rtl/test_pkg.cpp parses this file and fails when the two disagree.
+package voxcd_pkg;
+
+  // ---- Widths (DeviceConfig) ----
+  // Defaults of the module parameters of the same names: a build that overrides one leaves it unread.
+  /* verilator lint_off UNUSEDPARAM */
+  localparam int unsigned PW    = 24;  // shell point coordinate width, signed
+  localparam int unsigned PF    = 8;   // shell point fraction bits
+  localparam int unsigned MW    = 18;  // matrix entry width, signed
+  localparam int unsigned MF    = 16;  // matrix fraction bits
+  localparam int unsigned TW    = 48;  // translation width, signed, TF = MF + PF fraction bits
+  localparam int unsigned DW    = 10;  // map dimensions 1 .. 2^DW per axis
+  localparam int unsigned MEMW  = 64;  // voxmap memory word: MEMW/2 voxel states
+  localparam int unsigned LANES = 4;   // parallel lookup lanes (a power of two)
+  localparam int unsigned SAW   = 16;  // shell memory depth 2^SAW points
+  localparam int unsigned MAW   = 18;  // voxmap memory depth 2^MAW words
+  localparam int unsigned TAGW  = 16;  // job tag width, unsigned
+  /* verilator lint_on UNUSEDPARAM */
+
+  // ---- Counters in completion records ----
+  localparam int unsigned CW = 32;  // cycles and stall counters
+
+  // ---- Pipeline ----
+  // Slots in flight between the issue stage and the hit-test stage (registers R0 .. R5); ref/timing.h has the
+  // same number as kPipelineSlots, and the cycle model is exact only while they agree.
+  localparam int unsigned PipeSlots = 6;
+
+  typedef enum logic [1:0] {
+    ModeAll   = 2'd0,
+    ModeFirst = 2'd1,
+    ModeCount = 2'd2
+  } mode_e;
+
+  typedef enum logic [1:0] {
+    StateEmpty    = 2'd0,
+    StateSurface  = 2'd1,
+    StateInterior = 2'd2,
+    StateReserved = 2'd3
+  } state_e;
+
+  // Default hit mask: surface | interior. The device takes the mask from each job; this is the host's default.
+  /* verilator lint_off UNUSEDPARAM */
+  localparam logic [3:0] DefaultHitMask = 4'b0110;  // read by the host and tests/rtl/test_pkg.cpp, not the RTL
+  /* verilator lint_on UNUSEDPARAM */
+
+endpackage
