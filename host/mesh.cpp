@@ -221,6 +221,11 @@ void validate(Mesh& m, MeshReport* report) {
     size_t j = i;
     while (j < uses.size() && uses[j].key == uses[i].key) ++j;
     const uint32_t lo = uint32_t(uses[i].key >> 32), hi = uint32_t(uses[i].key);
+    if (j - i == 2 && uses[i].forward != uses[i + 1].forward) {
+      i = j;
+      continue;
+    }
+    // Only a bad edge is worth formatting (formatting every edge would dominate the time of a large mesh).
     const std::string edge = "edge " + fmt_point(m.vertices[lo]) + "-" + fmt_point(m.vertices[hi]) +
                              " (vertices " + std::to_string(lo) + ", " + std::to_string(hi) + ")";
     std::string tris;

@@ -10,5 +10,7 @@ int& exit_code();
 
 void add_conform(CLI::App& app);
 void add_selftest(CLI::App& app);
+void add_voxelize(CLI::App& app);
+void add_info(CLI::App& app);
 
 }  // namespace voxcd::cli

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
   voxcd::cli::add_conform(app);
   voxcd::cli::add_selftest(app);
+  voxcd::cli::add_voxelize(app);
+  voxcd::cli::add_info(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,118 @@
+// Shared by `voxcd voxelize` and `voxcd info`: the description of an object file (text or JSON) and its picture.
+#pragma once
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "host/object_file.h"
+#include "host/png.h"
+#include "ref/config.h"
+
+namespace voxcd::cli {
+
+// Device memory an object takes with the default DeviceConfig: the voxmap image (MEMW-bit words) and the shell
+// words (three PW-bit coordinates per point), in bytes rounded up to whole words and whole bytes.
+struct ObjectMemory {
+  uint64_t voxmap_bytes = 0, shell_bytes = 0;
+};
+
+inline ObjectMemory object_memory(const ObjectFile& obj, const DeviceConfig& cfg = DeviceConfig{}) {
+  ObjectMemory m;
+  const uint64_t per = uint64_t(cfg.states_per_word());
+  m.voxmap_bytes = (obj.voxmap.size() + per - 1) / per * uint64_t(cfg.MEMW) / 8;
+  m.shell_bytes = (uint64_t(obj.shell.size()) * 3 * uint64_t(cfg.PW) + 7) / 8;
+  return m;
+}
+
+inline std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += char(c);
+    } else if (c < 0x20) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\u%04x", c);
+      out += b;
+    } else {
+      out += char(c);
+    }
+  }
+  return out + "\"";
+}
+
+inline std::string hex64(uint64_t v) {
+  char b[24];
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
+  return b;
+}
+
+// Numbers with 17 significant digits, so that a reader gets the file's doubles back exactly.
+inline std::string num(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+inline std::string object_json(const std::string& path, const ObjectFile& obj) {
+  const Voxmap& vm = obj.voxmap;
+  const auto c = vm.counts();
+  const auto& d = vm.dims();
+  const auto& sd = obj.shell.grid.dims;
+  const ObjectMemory mem = object_memory(obj);
+  const DeviceConfig cfg;
+  std::ostringstream j;
+  j << "{\n"
+    << "  \"file\": " << json_string(path) << ",\n"
+    << "  \"source\": " << json_string(obj.source) << ",\n"
+    << "  \"source_hash\": \"" << hex64(obj.source_hash) << "\",\n"
+    << "  \"dims\": [" << d[0] << ", " << d[1] << ", " << d[2] << "],\n"
+    << "  \"voxel_size\": " << num(vm.voxel()) << ",\n"
+    << "  \"origin\": [" << num(vm.origin().x()) << ", " << num(vm.origin().y()) << ", " << num(vm.origin().z())
+    << "],\n"
+    << "  \"voxels\": " << vm.size() << ",\n"
+    << "  \"empty\": " << c[kEmpty] << ",\n"
+    << "  \"surface\": " << c[kSurface] << ",\n"
+    << "  \"interior\": " << c[kInterior] << ",\n"
+    << "  \"shell_points\": " << obj.shell.size() << ",\n"
+    << "  \"shell_spacing\": " << num(obj.shell.grid.voxel) << ",\n"
+    << "  \"shell_ratio\": " << num(obj.shell_ratio) << ",\n"
+    << "  \"shell_dims\": [" << sd[0] << ", " << sd[1] << ", " << sd[2] << "],\n"
+    << "  \"voxmap_bytes\": " << mem.voxmap_bytes << ",\n"
+    << "  \"shell_bytes\": " << mem.shell_bytes << ",\n"
+    << "  \"memory_bytes\": " << mem.voxmap_bytes + mem.shell_bytes << ",\n"
+    << "  \"memory_config\": " << json_string(cfg.to_string()) << "\n"
+    << "}\n";
+  return j.str();
+}
+
+inline std::string object_text(const std::string& path, const ObjectFile& obj) {
+  const Voxmap& vm = obj.voxmap;
+  const auto c = vm.counts();
+  const auto& d = vm.dims();
+  const auto& sd = obj.shell.grid.dims;
+  const ObjectMemory mem = object_memory(obj);
+  const DeviceConfig cfg;
+  std::ostringstream t;
+  t.precision(9);
+  t << path << ": object of " << obj.source << " (source hash " << hex64(obj.source_hash) << ")\n"
+    << "  voxmap   " << d[0] << " x " << d[1] << " x " << d[2] << " voxels of size " << vm.voxel() << ", origin ("
+    << vm.origin().x() << ", " << vm.origin().y() << ", " << vm.origin().z() << ")\n"
+    << "  states   empty " << c[kEmpty] << ", surface " << c[kSurface] << ", interior " << c[kInterior] << "\n"
+    << "  shell    " << obj.shell.size() << " points at spacing " << obj.shell.grid.voxel << " (voxel / "
+    << obj.shell_ratio << "), grid " << sd[0] << " x " << sd[1] << " x " << sd[2] << "\n"
+    << "  memory   voxmap " << mem.voxmap_bytes << " bytes (MEMW " << cfg.MEMW << "), shell " << mem.shell_bytes
+    << " bytes (3 x PW " << cfg.PW << " bits per point), total " << mem.voxmap_bytes + mem.shell_bytes
+    << " bytes\n";
+  return t.str();
+}
+
+// The picture of `obj` (voxmap slices, shell over the mesh when there is one) written to png_path.
+inline void write_object_picture(const std::string& png_path, const ObjectFile& obj, const Mesh* mesh) {
+  write_png(png_path, object_picture(obj.voxmap, obj.shell, mesh));
+}
+
+}  // namespace voxcd::cli

@@ -1,0 +1,196 @@
+// `voxcd voxelize` and `voxcd info` as users run them: the numbers `info --json` prints are the library's, the
+// picture is a PNG, and bad input exits non-zero with a message that names what and where.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "host/object_file.h"
+#include "host/shapes.h"
+#include "ref/config.h"
+#include "tests/host/test_util.h"
+
+#ifndef VOXCD_BIN
+#error "VOXCD_BIN: path of the voxcd tool"
+#endif
+
+namespace voxcd {
+namespace {
+
+struct CliRun {
+  int rc = -1;
+  std::string out;  // stdout and stderr
+};
+
+CliRun run(const std::string& args) {
+  CliRun r;
+  const std::string cmd = std::string(VOXCD_BIN) + " " + args + " 2>&1";
+  FILE* f = popen(cmd.c_str(), "r");
+  if (!f) return r;
+  char buf[4096];
+  for (size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;) r.out.append(buf, n);
+  const int st = pclose(f);
+  r.rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+// The number after "key": in flat JSON text (ADD_FAILURE and NaN when missing).
+double json_number(const std::string& json, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(json, m, std::regex("\"" + key + "\": (-?[0-9.eE+-]+)"))) {
+    ADD_FAILURE() << "no key " << key << " in\n" << json;
+    return std::nan("");
+  }
+  return std::stod(m[1]);
+}
+std::array<double, 3> json_triple(const std::string& json, const std::string& key) {
+  std::smatch m;
+  const std::string n = "(-?[0-9.eE+-]+)";
+  if (!std::regex_search(json, m, std::regex("\"" + key + "\": \\[" + n + ", " + n + ", " + n + "\\]"))) {
+    ADD_FAILURE() << "no key " << key << " in\n" << json;
+    return {};
+  }
+  return {std::stod(m[1]), std::stod(m[2]), std::stod(m[3])};
+}
+
+// Every number `info --json` prints, against the object the library makes from the same input.
+void expect_matches(const std::string& json, const ObjectFile& obj) {
+  const auto c = obj.voxmap.counts();
+  const auto d = json_triple(json, "dims");
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(d[a], obj.voxmap.dims()[a]);
+  EXPECT_EQ(json_number(json, "voxel_size"), obj.voxmap.voxel());
+  const auto o = json_triple(json, "origin");
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(o[a], obj.voxmap.origin()[a]);
+  EXPECT_EQ(json_number(json, "empty"), c[kEmpty]);
+  EXPECT_EQ(json_number(json, "surface"), c[kSurface]);
+  EXPECT_EQ(json_number(json, "interior"), c[kInterior]);
+  EXPECT_EQ(json_number(json, "voxels"), obj.voxmap.size());
+  EXPECT_EQ(json_number(json, "shell_points"), obj.shell.size());
+  EXPECT_EQ(json_number(json, "shell_spacing"), obj.shell.grid.voxel);
+  // Default device widths: MEMW-bit voxmap words, three PW-bit coordinates per shell point.
+  const DeviceConfig cfg;
+  const double vbytes = double(obj.voxmap.device_words(cfg.MEMW).size() * cfg.MEMW / 8);
+  const double sbytes = std::ceil(double(obj.shell.size()) * 3 * cfg.PW / 8);
+  EXPECT_EQ(json_number(json, "voxmap_bytes"), vbytes);
+  EXPECT_EQ(json_number(json, "shell_bytes"), sbytes);
+  EXPECT_EQ(json_number(json, "memory_bytes"), vbytes + sbytes);
+}
+
+TEST(Cli, VoxelizeShapeThenInfo) {
+  const std::string vox = test::tmp_path("cli_torus.vox"), png = test::tmp_path("cli_torus.png");
+  const CliRun v = run("voxelize torus --voxel 0.07 -o " + vox + " --png " + png);
+  ASSERT_EQ(v.rc, 0) << v.out;
+  EXPECT_NE(v.out.find("object of shape:torus"), std::string::npos) << v.out;
+  const CliRun i = run("info " + vox + " --json");
+  ASSERT_EQ(i.rc, 0) << i.out;
+  ObjectOptions opt;
+  opt.voxel = 0.07;
+  const ObjectFile lib = make_object(make_shape("torus"), "shape:torus", hash_bytes("shape:torus"), opt);
+  expect_matches(i.out, lib);
+  EXPECT_NE(i.out.find("\"source\": \"shape:torus\""), std::string::npos) << i.out;
+  // The file holds exactly the library's object.
+  const ObjectFile back = read_object(vox);
+  EXPECT_EQ(back.voxmap.words(), lib.voxmap.words());
+  EXPECT_EQ(back.shell.cells, lib.shell.cells);
+  // The text form says the same numbers.
+  const CliRun t = run("info " + vox);
+  ASSERT_EQ(t.rc, 0) << t.out;
+  const auto c = lib.voxmap.counts();
+  EXPECT_NE(t.out.find("empty " + std::to_string(c[kEmpty]) + ", surface " + std::to_string(c[kSurface]) +
+                       ", interior " + std::to_string(c[kInterior])),
+            std::string::npos)
+      << t.out;
+  // The picture: a PNG whose width and height hold three slices and the shell view.
+  std::ifstream in(png, std::ios::binary);
+  std::string head(24, '\0');
+  in.read(&head[0], 24);
+  ASSERT_TRUE(in) << png;
+  EXPECT_EQ(head.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(head.substr(12, 4), "IHDR");
+  const auto be32 = [&](size_t at) {
+    return uint32_t(uint8_t(head[at])) << 24 | uint32_t(uint8_t(head[at + 1])) << 16 |
+           uint32_t(uint8_t(head[at + 2])) << 8 | uint32_t(uint8_t(head[at + 3]));
+  };
+  EXPECT_GE(be32(16), 3 * lib.voxmap.dims()[0]);
+  EXPECT_GE(be32(20), lib.voxmap.dims()[1]);
+  // info --png draws from the object file alone (the shape is regenerated for the mesh).
+  const std::string png2 = test::tmp_path("cli_torus_info.png");
+  EXPECT_EQ(run("info " + vox + " --png " + png2).rc, 0);
+  EXPECT_TRUE(std::ifstream(png2).good());
+  for (const auto& p : {vox, png, png2}) std::remove(p.c_str());
+}
+
+TEST(Cli, VoxelizeMeshFileThenInfo) {
+  const std::string mesh = test::tmp_path("cli_stellated.stl"), vox = test::tmp_path("cli_stellated.vox");
+  test::write_stl(make_shape("stellated"), mesh);
+  const CliRun v = run("voxelize " + mesh + " --voxel 0.05 --shell-ratio 2 -o " + vox);
+  ASSERT_EQ(v.rc, 0) << v.out;
+  const CliRun i = run("info --json " + vox);
+  ASSERT_EQ(i.rc, 0) << i.out;
+  std::string source;
+  uint64_t hash = 0;
+  const Mesh m = load_source(mesh, &source, &hash);
+  ObjectOptions opt;
+  opt.voxel = 0.05;
+  opt.shell_ratio = 2;
+  expect_matches(i.out, make_object(m, source, hash, opt));
+  EXPECT_EQ(json_number(i.out, "shell_ratio"), 2.0);
+  char hex[20];
+  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hash_file(mesh));
+  EXPECT_NE(i.out.find(std::string("\"source_hash\": \"") + hex + "\""), std::string::npos) << i.out;
+  std::remove(mesh.c_str());
+  std::remove(vox.c_str());
+}
+
+TEST(Cli, ErrorsNameWhatAndWhere) {
+  const std::string vox = test::tmp_path("cli_err.vox");
+  // Unknown shape, missing file.
+  CliRun r = run("voxelize teapot --voxel 0.1 -o " + vox);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("teapot: no such file, and not a built-in shape"), std::string::npos) << r.out;
+  // An open mesh file: the file and the open edge.
+  const std::string open = test::tmp_path("cli_open.obj");
+  Mesh m = make_shape("cube");
+  m.triangles.pop_back();
+  test::write_obj(m, open);
+  r = run("voxelize " + open + " --voxel 0.1 -o " + vox);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find(open + ": the mesh is open: edge"), std::string::npos) << r.out;
+  // Bad voxel sizes, a grid too large.
+  for (const char* bad : {"0", "-1", "nan", "abc"}) {
+    r = run(std::string("voxelize cube --voxel ") + bad + " -o " + vox);
+    EXPECT_NE(r.rc, 0) << bad;
+    EXPECT_NE(r.out.find("--voxel"), std::string::npos) << r.out;
+  }
+  r = run("voxelize cube --voxel 0.0001 -o " + vox);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("at most 1024 per axis"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::ifstream(vox).good()) << "no object file after an error";
+  // info on a missing, a truncated and a non-object file.
+  r = run("info /nonexistent/x.vox");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("/nonexistent/x.vox: cannot open"), std::string::npos) << r.out;
+  ASSERT_EQ(run("voxelize cube --voxel 0.5 -o " + vox).rc, 0);
+  std::string bytes;
+  {
+    std::ifstream in(vox, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    bytes = s.str();
+  }
+  test::write_file(vox, bytes.substr(0, 100));
+  r = run("info " + vox);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find(vox + ": truncated at byte "), std::string::npos) << r.out;
+  r = run("info " + open);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find(open + ": not a voxcd object file (bad magic) (byte 0)"), std::string::npos) << r.out;
+  std::remove(open.c_str());
+  std::remove(vox.c_str());
+}
+
+}  // namespace
+}  // namespace voxcd
