@@ -1,0 +1,53 @@
+// rtl/voxcd_pkg.sv and the C++ DeviceConfig (ref/config.h) name the same widths with the same defaults, and the
+// package's pipeline depth is the timing model's. The package is parsed here, so a change to one side alone fails.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "ref/config.h"
+#include "ref/timing.h"
+#include "ref/types.h"
+
+namespace voxcd {
+namespace {
+
+std::map<std::string, long> package_params() {
+  std::ifstream f(VOXCD_RTL_DIR "/voxcd_pkg.sv");
+  EXPECT_TRUE(f.good()) << VOXCD_RTL_DIR "/voxcd_pkg.sv";
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string text = ss.str();
+  std::map<std::string, long> out;
+  const std::regex re(R"(localparam\s+(?:int\s+unsigned|logic\s*\[\d+:0\])\s+(\w+)\s*=\s*(?:\d+'b([01]+)|(\d+))\s*;)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    out[m[1]] = m[2].matched ? std::stol(m[2], nullptr, 2) : std::stol(m[3]);
+  }
+  return out;
+}
+
+TEST(RtlPackage, WidthsMatchDeviceConfig) {
+  const auto p = package_params();
+  const DeviceConfig c;
+  const std::pair<const char*, int> want[] = {{"PW", c.PW},   {"PF", c.PF},       {"MW", c.MW},   {"MF", c.MF},
+                                              {"TW", c.TW},   {"DW", c.DW},       {"MEMW", c.MEMW},
+                                              {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW}};
+  for (const auto& [name, value] : want) {
+    ASSERT_TRUE(p.count(name)) << "voxcd_pkg.sv has no " << name;
+    EXPECT_EQ(p.at(name), value) << name << ": voxcd_pkg.sv and DeviceConfig disagree";
+  }
+}
+
+TEST(RtlPackage, PipelineAndDefaultsMatchTheModels) {
+  const auto p = package_params();
+  ASSERT_TRUE(p.count("PipeSlots"));
+  EXPECT_EQ(p.at("PipeSlots"), kPipelineSlots);
+  ASSERT_TRUE(p.count("DefaultHitMask"));
+  EXPECT_EQ(p.at("DefaultHitMask"), kDefaultHitMask);
+}
+
+}  // namespace
+}  // namespace voxcd
