@@ -24,6 +24,10 @@
 // leaves the job with one empty slot.
 //
 // Memories are written through the two write ports while the device is idle (busy_o low).
+//
+// Ports are plain vectors, one per record field, so that every configuration is one source and the Verilated C++
+// and SystemC ports are plain integers. The code keeps to the subset of SystemVerilog that Verilator and yosys
+// both read (one-dimensional packed vectors, one-level structs, explicit package references).
 module voxcd_device #(
   parameter int unsigned PW    = voxcd_pkg::PW,
   parameter int unsigned PF    = voxcd_pkg::PF,
@@ -35,83 +39,82 @@ module voxcd_device #(
   parameter int unsigned LANES = voxcd_pkg::LANES,
   parameter int unsigned SAW   = voxcd_pkg::SAW,
   parameter int unsigned MAW   = voxcd_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_pkg::TAGW,
-  localparam int unsigned CW   = voxcd_pkg::CW
+  parameter int unsigned TAGW  = voxcd_pkg::TAGW
 ) (
-  input  logic              clk_i,
-  input  logic              rst_ni,
+  input  logic                     clk_i,
+  input  logic                     rst_ni,
 
   // Shell memory write port: word = {z, y, x}, each PW-bit signed with PF fraction bits.
-  input  logic              shell_we_i,
-  input  logic [SAW-1:0]    shell_waddr_i,
-  input  logic [3*PW-1:0]   shell_wdata_i,
+  input  logic                     shell_we_i,
+  input  logic [SAW-1:0]           shell_waddr_i,
+  input  logic [3*PW-1:0]          shell_wdata_i,
   // Voxmap memory write port.
-  input  logic              map_we_i,
-  input  logic [MAW-1:0]    map_waddr_i,
-  input  logic [MEMW-1:0]   map_wdata_i,
+  input  logic                     map_we_i,
+  input  logic [MAW-1:0]           map_waddr_i,
+  input  logic [MEMW-1:0]          map_wdata_i,
 
   // Job stream.
-  input  logic              job_valid_i,
-  output logic              job_ready_o,
-  input  logic [TAGW-1:0]   job_tag_i,
-  input  logic [1:0]        job_mode_i,         // voxcd_pkg::mode_e
-  input  logic [3:0]        job_mask_i,
-  input  logic [SAW-1:0]    job_shell_base_i,
-  input  logic [SAW:0]      job_shell_count_i,
-  input  logic [MAW-1:0]    job_map_base_i,
-  input  logic [DW:0]       job_nx_i,
-  input  logic [DW:0]       job_ny_i,
-  input  logic [DW:0]       job_nz_i,
-  input  logic [MW-1:0]     job_m00_i, job_m01_i, job_m02_i,
-  input  logic [MW-1:0]     job_m10_i, job_m11_i, job_m12_i,
-  input  logic [MW-1:0]     job_m20_i, job_m21_i, job_m22_i,
-  input  logic [TW-1:0]     job_t0_i, job_t1_i, job_t2_i,
+  input  logic                     job_valid_i,
+  output logic                     job_ready_o,
+  input  logic [TAGW-1:0]          job_tag_i,
+  input  logic [1:0]               job_mode_i,         // voxcd_pkg::mode_e
+  input  logic [3:0]               job_mask_i,
+  input  logic [SAW-1:0]           job_shell_base_i,
+  input  logic [SAW:0]             job_shell_count_i,
+  input  logic [MAW-1:0]           job_map_base_i,
+  input  logic [DW:0]              job_nx_i,
+  input  logic [DW:0]              job_ny_i,
+  input  logic [DW:0]              job_nz_i,
+  input  logic [MW-1:0]            job_m00_i, job_m01_i, job_m02_i,
+  input  logic [MW-1:0]            job_m10_i, job_m11_i, job_m12_i,
+  input  logic [MW-1:0]            job_m20_i, job_m21_i, job_m22_i,
+  input  logic [TW-1:0]            job_t0_i, job_t1_i, job_t2_i,
 
   // Hit stream.
-  output logic              hit_valid_o,
-  input  logic              hit_ready_i,
-  output logic [TAGW-1:0]   hit_tag_o,
-  output logic [SAW-1:0]    hit_point_o,
-  output logic [DW-1:0]     hit_x_o,
-  output logic [DW-1:0]     hit_y_o,
-  output logic [DW-1:0]     hit_z_o,
-  output logic [1:0]        hit_state_o,
+  output logic                     hit_valid_o,
+  input  logic                     hit_ready_i,
+  output logic [TAGW-1:0]          hit_tag_o,
+  output logic [SAW-1:0]           hit_point_o,
+  output logic [DW-1:0]            hit_x_o,
+  output logic [DW-1:0]            hit_y_o,
+  output logic [DW-1:0]            hit_z_o,
+  output logic [1:0]               hit_state_o,
 
   // Completion stream.
-  output logic              done_valid_o,
-  input  logic              done_ready_i,
-  output logic [TAGW-1:0]   done_tag_o,
-  output logic [SAW:0]      done_hits_o,
-  output logic [CW-1:0]     done_cycles_o,
-  output logic [SAW:0]      done_points_o,
-  output logic [CW-1:0]     done_stalls_o,
+  output logic                     done_valid_o,
+  input  logic                     done_ready_i,
+  output logic [TAGW-1:0]          done_tag_o,
+  output logic [SAW:0]             done_hits_o,
+  output logic [voxcd_pkg::CW-1:0] done_cycles_o,
+  output logic [SAW:0]             done_points_o,
+  output logic [voxcd_pkg::CW-1:0] done_stalls_o,
 
   // High while a job is queued or in flight or a record waits.
-  output logic              busy_o
+  output logic                     busy_o
 );
 
-  import voxcd_pkg::*;
-
+  localparam int unsigned CW    = voxcd_pkg::CW;
+  localparam int unsigned NumR  = voxcd_pkg::PipeSlots;          // slot registers R0 .. R5
   localparam int unsigned LgL   = $clog2(LANES);
   localparam int unsigned RotW  = LgL > 0 ? LgL : 1;
-  localparam int unsigned RowW  = SAW - LgL;               // rows of one shell bank
+  localparam int unsigned RowW  = SAW - LgL;                      // rows of one shell bank
   localparam int unsigned LaneW = LgL > 0 ? LgL : 1;
-  localparam int unsigned SeqW  = $clog2(PipeSlots + 2) + 1;  // tells apart every job in flight
-  localparam int unsigned NumR  = PipeSlots;                // slot registers R0 .. R5
+  localparam int unsigned SeqW  = $clog2(NumR + 2) + 1;           // tells apart every job in flight
 
-  // ---- Records and slots ----
+  // ---- Jobs and slots ----
   typedef struct packed {
-    logic [TAGW-1:0]          tag;
-    logic [1:0]               mode;
-    logic [3:0]               mask;
-    logic [SAW-1:0]           shell_base;
-    logic [SAW:0]             shell_count;
-    logic [MAW-1:0]           map_base;
-    logic [2:0][DW:0]         n;
-    logic [2:0][2:0][MW-1:0]  m;
-    logic [2:0][TW-1:0]       t;
-    logic [CW-1:0]            stamp;  // cycle in which the job was accepted
+    logic [TAGW-1:0]        tag;
+    logic [1:0]             mode;
+    logic [3:0]             mask;
+    logic [SAW-1:0]         shell_base;
+    logic [SAW:0]           shell_count;
+    logic [MAW-1:0]         map_base;
+    logic [3*(DW+1)-1:0]    n;      // {nz, ny, nx}
+    logic [9*MW-1:0]        m;      // {m22, m21, ..., m00}
+    logic [3*TW-1:0]        t;      // {t2, t1, t0}
+    logic [CW-1:0]          stamp;  // cycle in which the job was accepted
   } job_t;
+  localparam int unsigned JobW = TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW + CW;
 
   typedef struct packed {
     logic              valid;   // a slot of a job (else an empty slot)
@@ -120,8 +123,8 @@ module voxcd_device #(
     logic [SAW:0]      k;       // point index (relative to shell_base) of lane 0
     logic [LANES-1:0]  lanes;   // lanes holding a point of the job
     logic [RotW-1:0]   rot;     // shell bank of lane 0
-    job_t              job;
-  } slot_t;
+  } meta_t;
+  localparam int unsigned MetaW = 1 + SeqW + 1 + (SAW + 1) + LANES + RotW;
 
   // ---- Cycle counter ----
   logic [CW-1:0] now_q;
@@ -131,10 +134,10 @@ module voxcd_device #(
   end
 
   // ---- Job queue (2 entries) ----
-  job_t       fifo_q [2];
-  logic [1:0] fifo_cnt_q;
-  logic       push, pop;
-  job_t       job_in;
+  logic [JobW-1:0] fifo_q [2];
+  logic [1:0]      fifo_cnt_q;
+  logic            push, pop;
+  job_t            job_in;
 
   always_comb begin
     job_in.tag         = job_tag_i;
@@ -144,9 +147,8 @@ module voxcd_device #(
     job_in.shell_count = job_shell_count_i;
     job_in.map_base    = job_map_base_i;
     job_in.n           = {job_nz_i, job_ny_i, job_nx_i};
-    job_in.m           = {{job_m22_i, job_m21_i, job_m20_i},
-                          {job_m12_i, job_m11_i, job_m10_i},
-                          {job_m02_i, job_m01_i, job_m00_i}};
+    job_in.m           = {job_m22_i, job_m21_i, job_m20_i, job_m12_i, job_m11_i, job_m10_i,
+                          job_m02_i, job_m01_i, job_m00_i};
     job_in.t           = {job_t2_i, job_t1_i, job_t0_i};
     job_in.stamp       = now_q;
   end
@@ -168,8 +170,8 @@ module voxcd_device #(
   end
 
   // ---- Pipeline control ----
-  logic adv;         // every slot register advances
-  logic kill;        // R5 holds the first hit of a FIRST job: stop issuing it
+  logic            adv;       // every slot register advances
+  logic            kill;      // R5 holds the first hit of a FIRST job: stop issuing it
   logic [SeqW-1:0] kill_seq;
 
   // ---- Issue stage ----
@@ -206,7 +208,7 @@ module voxcd_device #(
     end
   end
 
-  slot_t issue;
+  meta_t issue;
   always_comb begin
     issue       = '0;
     issue.valid = have && !kill_head;
@@ -214,23 +216,40 @@ module voxcd_device #(
     issue.last  = last_slot;
     issue.k     = k_q;
     issue.rot   = rot;
-    issue.job   = head;
     for (int i = 0; i < LANES; i++) issue.lanes[i] = (k_q + (SAW + 1)'(i)) < head.shell_count;
   end
 
-  // ---- Slot registers R0 .. R5 ----
-  slot_t slot_q [NumR];
+  // ---- Slot registers R0 .. R5: the slot's bookkeeping and its job ----
+  logic [MetaW-1:0] meta_q [NumR];
+  logic [JobW-1:0]  sjob_q [NumR];
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      for (int s = 0; s < NumR; s++) slot_q[s].valid <= 1'b0;
+      for (int s = 0; s < NumR; s++) meta_q[s] <= '0;
     end else if (adv) begin
-      slot_q[0] <= issue;
-      for (int s = 1; s < NumR; s++) slot_q[s] <= slot_q[s - 1];
+      meta_q[0] <= issue;
+      for (int s = 1; s < NumR; s++) meta_q[s] <= meta_q[s - 1];
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (adv) begin
+      sjob_q[0] <= head;
+      for (int s = 1; s < NumR; s++) sjob_q[s] <= sjob_q[s - 1];
     end
   end
 
+  // What each stage reads of its slot.
+  meta_t m0, m5;
+  job_t  j0, j1, j2, j3, j5;
+  assign m0 = meta_q[0];
+  assign m5 = meta_q[NumR - 1];
+  assign j0 = sjob_q[0];
+  assign j1 = sjob_q[1];
+  assign j2 = sjob_q[2];
+  assign j3 = sjob_q[3];
+  assign j5 = sjob_q[NumR - 1];
+
   // ---- Shell banks: address a is in bank a % LANES, row a / LANES ----
-  logic [LANES-1:0][3*PW-1:0] bank_rdata;
+  logic [LANES*3*PW-1:0] bank_rdata;
   for (genvar b = 0; b < LANES; b++) begin : g_bank
     // The LANES consecutive addresses of a slot fall one in each bank: bank b holds the one (b - rot) mod LANES
     // after the first.
@@ -248,18 +267,18 @@ module voxcd_device #(
       .wdata_i(shell_wdata_i),
       .re_i   (adv),
       .raddr_i(row),
-      .rdata_o(bank_rdata[b])
+      .rdata_o(bank_rdata[b*3*PW +: 3*PW])
     );
   end
 
   // ---- Lanes ----
-  logic [LANES-1:0]           lane_inside;
-  logic [LANES-1:0][1:0]      lane_state;
-  logic [LANES-1:0][2:0][DW-1:0] lane_voxel;
+  logic [LANES-1:0]      lane_inside;
+  logic [LANES*2-1:0]    lane_state;
+  logic [LANES*3*DW-1:0] lane_voxel;
 
   for (genvar l = 0; l < LANES; l++) begin : g_lane
-    logic [2:0][PW-1:0] point;
-    assign point = bank_rdata[(32'(slot_q[0].rot) + l) % LANES];
+    logic [3*PW-1:0] point;
+    assign point = bank_rdata[((32'(m0.rot) + l) % LANES) * 3 * PW +: 3 * PW];
     voxcd_lane #(
       .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW)
     ) u_lane (
@@ -269,26 +288,24 @@ module voxcd_device #(
       .map_waddr_i(map_waddr_i),
       .map_wdata_i(map_wdata_i),
       .point_i    (point),
-      .m_i        (slot_q[0].job.m),
-      .t_i        (slot_q[1].job.t),
-      .n_i        (slot_q[2].job.n),
-      .nx_i       (slot_q[3].job.n[0]),
-      .map_base_i (slot_q[3].job.map_base),
+      .m_i        (j0.m),
+      .t_i        (j1.t),
+      .n_i        (j2.n),
+      .nx_i       (j3.n[DW:0]),
+      .map_base_i (j3.map_base),
       .inside_o   (lane_inside[l]),
-      .state_o    (lane_state[l]),
-      .voxel_o    (lane_voxel[l])
+      .state_o    (lane_state[2*l +: 2]),
+      .voxel_o    (lane_voxel[3*DW*l +: 3*DW])
     );
   end
 
   // ---- Hit test and record emission at R5 ----
-  /* verilator lint_off UNUSEDSIGNAL */
-  slot_t            r5;  // the lanes have used its geometry; here only the record fields are read
-  /* verilator lint_on UNUSEDSIGNAL */
   logic [LANES-1:0] hit;        // lanes whose point is a hit
   logic [LANES-1:0] emitted_q;  // hit records of the R5 slot already emitted (ALL)
   logic             found_q;    // a FIRST job's hit has been emitted; its later slots are squashed
   logic [SeqW-1:0]  found_seq_q;
   logic             squash;
+  logic             is_first;
   logic [LANES-1:0] pend;       // hit records still to emit for the R5 slot
   logic             need_done;  // the R5 slot ends its job
   logic             more;       // after this cycle's record the slot has another one
@@ -297,44 +314,35 @@ module voxcd_device #(
   logic [SAW:0]     hits_q, points_q;  // of the current job, over its slots before R5
   logic             out_valid_q, out_done_q, out_ready, out_free, stall, load;
 
-  assign r5 = slot_q[NumR - 1];
-
   always_comb begin
     for (int i = 0; i < LANES; i++) begin
-      hit[i] = r5.lanes[i] && lane_inside[i] && r5.job.mask[lane_state[i]];
+      hit[i] = m5.lanes[i] && lane_inside[i] && j5.mask[lane_state[2*i +: 2]];
     end
   end
 
-  function automatic logic [LANES-1:0] lowest_one(logic [LANES-1:0] v);
-    return v & (~v + 1'b1);
-  endfunction
-
-  function automatic logic [SAW:0] popcount(logic [LANES-1:0] v);
-    logic [SAW:0] c = '0;
-    for (int i = 0; i < LANES; i++) c = c + (SAW + 1)'(v[i]);
-    return c;
-  endfunction
-
   always_comb begin
-    squash    = r5.valid && found_q && (found_seq_q == r5.seq);
+    is_first  = j5.mode == voxcd_pkg::ModeFirst;
+    squash    = m5.valid && found_q && (found_seq_q == m5.seq);
     pend      = '0;
     need_done = 1'b0;
-    if (r5.valid && !squash) begin
-      unique case (mode_e'(r5.job.mode))
-        ModeAll:   pend = hit & ~emitted_q;
-        ModeFirst: pend = lowest_one(hit) & ~emitted_q;
-        default:   pend = '0;
-      endcase
-      need_done = r5.last || ((mode_e'(r5.job.mode) == ModeFirst) && (|hit));
+    if (m5.valid && !squash) begin
+      if (j5.mode == voxcd_pkg::ModeAll) pend = hit & ~emitted_q;
+      else if (is_first)                 pend = hit & (~hit + 1'b1) & ~emitted_q;  // the lowest hit
+      need_done = m5.last || (is_first && (|hit));
     end
     sel = '0;
     for (int i = LANES - 1; i >= 0; i--) begin
       if (pend[i]) sel = LaneW'(i);
     end
     // More than one record left: two or more hits, or a hit and the completion.
-    more         = ((pend & (pend - 1'b1)) != '0) || ((|pend) && need_done);
-    group_hits   = (mode_e'(r5.job.mode) == ModeFirst) ? (SAW + 1)'(|hit) : popcount(hit);
-    group_points = popcount(r5.lanes);
+    more = ((pend & (pend - 1'b1)) != '0) || ((|pend) && need_done);
+    group_hits   = '0;
+    group_points = '0;
+    for (int i = 0; i < LANES; i++) begin
+      group_hits   = group_hits + (SAW + 1)'(hit[i]);
+      group_points = group_points + (SAW + 1)'(m5.lanes[i]);
+    end
+    if (is_first) group_hits = (SAW + 1)'(|hit);
   end
 
   assign out_ready = out_done_q ? done_ready_i : hit_ready_i;
@@ -342,8 +350,8 @@ module voxcd_device #(
   assign stall     = out_valid_q && !out_ready;
   assign adv       = out_free && !more;
   assign load      = out_free && ((|pend) || need_done);
-  assign kill      = adv && r5.valid && !squash && (mode_e'(r5.job.mode) == ModeFirst) && (|hit);
-  assign kill_seq  = r5.seq;
+  assign kill      = adv && m5.valid && !squash && is_first && (|hit);
+  assign kill_seq  = m5.seq;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -358,11 +366,11 @@ module voxcd_device #(
         emitted_q <= '0;
         if (kill) begin
           found_q     <= 1'b1;
-          found_seq_q <= r5.seq;
-        end else if (r5.valid && (r5.seq != found_seq_q)) begin
+          found_seq_q <= m5.seq;
+        end else if (m5.valid && (m5.seq != found_seq_q)) begin
           found_q <= 1'b0;
         end
-        if (r5.valid && !squash) begin
+        if (m5.valid && !squash) begin
           hits_q   <= need_done ? '0 : hits_q + group_hits;
           points_q <= need_done ? '0 : points_q + group_points;
         end
@@ -376,7 +384,7 @@ module voxcd_device #(
   logic [CW-1:0] since_done_q, stall_cnt_q, job_age, cycles;
   logic          done_load;
   assign done_load = load && !(|pend);
-  assign job_age   = now_q - r5.job.stamp;
+  assign job_age   = now_q - j5.stamp;
   assign cycles    = (job_age < since_done_q) ? job_age : since_done_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -402,13 +410,13 @@ module voxcd_device #(
 
   always_ff @(posedge clk_i) begin
     if (load) begin
-      hit_tag_o     <= r5.job.tag;
-      hit_point_o   <= SAW'(r5.k + (SAW + 1)'(sel));
-      hit_x_o       <= lane_voxel[sel][0];
-      hit_y_o       <= lane_voxel[sel][1];
-      hit_z_o       <= lane_voxel[sel][2];
-      hit_state_o   <= lane_state[sel];
-      done_tag_o    <= r5.job.tag;
+      hit_tag_o     <= j5.tag;
+      hit_point_o   <= SAW'(m5.k + (SAW + 1)'(sel));
+      hit_x_o       <= lane_voxel[3*DW*sel + 0*DW +: DW];
+      hit_y_o       <= lane_voxel[3*DW*sel + 1*DW +: DW];
+      hit_z_o       <= lane_voxel[3*DW*sel + 2*DW +: DW];
+      hit_state_o   <= lane_state[2*sel +: 2];
+      done_tag_o    <= j5.tag;
       done_hits_o   <= hits_q + group_hits;
       done_points_o <= points_q + group_points;
       done_cycles_o <= cycles;
@@ -421,8 +429,12 @@ module voxcd_device #(
 
   always_comb begin
     busy_o = have || out_valid_q;
-    for (int s = 0; s < NumR; s++) busy_o = busy_o || slot_q[s].valid;
+    for (int s = 0; s < NumR; s++) busy_o = busy_o || meta_q[s][MetaW-1];  // the valid bit
   end
+
+  // Fields that only some stages read.
+  logic unused;
+  assign unused = ^{m0, m5.rot, j0, j1, j2, j3, j5};
 
 `ifndef SYNTHESIS
   // ---- Assertions (Verilator runs them with --assert) ----
@@ -442,10 +454,13 @@ module voxcd_device #(
   if (((MW + PW + 2 > TW) ? MW + PW + 2 : TW) + 1 - (MF + PF) < DW + 1) begin : g_bad_dw
     $error("the accumulator's integer part cannot hold DW = %0d", DW);
   end
+  if (JobW != $bits(job_in) || MetaW != $bits(issue)) begin : g_bad_widths
+    $error("JobW or MetaW does not match its struct");
+  end
 
   // Records stay put while their consumer is not ready.
-  logic            hold_hit_q, hold_done_q;
-  logic [TAGW+SAW+3*DW+2-1:0] hit_prev_q;
+  logic                           hold_hit_q, hold_done_q;
+  logic [TAGW+SAW+3*DW+2-1:0]     hit_prev_q;
   logic [TAGW+2*(SAW+1)+2*CW-1:0] done_prev_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -9,6 +9,8 @@
 //   R5  voxmap word (this lane's copy of the voxmap memory, read with the R4 address), slot, inside, x, y, z
 // Outputs show the R5 slot: inside_o, state_o (bits [2*slot+1 : 2*slot] of the word) and the voxel index.
 // Latency: 5 cycles from the point in R0 to its state at R5 (plus the shell RAM read before R0).
+// Vectors of three coordinates hold x in the low bits: {z, y, x}; the matrix is {m22, m21, ..., m00} (entry
+// (i, j) at [(3i + j) * MW +: MW]). Written in the subset of SystemVerilog that Verilator and yosys both read.
 // Each lane owns a copy of the voxmap memory, written through the shared write port, so that every lane can
 // read one word in every cycle.
 module voxcd_lane #(
@@ -21,26 +23,26 @@ module voxcd_lane #(
   parameter int unsigned MEMW = voxcd_pkg::MEMW,
   parameter int unsigned MAW  = voxcd_pkg::MAW
 ) (
-  input  logic                    clk_i,
-  input  logic                    en_i,
+  input  logic                  clk_i,
+  input  logic                  en_i,
   // voxmap write port (shared by all lanes)
-  input  logic                    map_we_i,
-  input  logic [MAW-1:0]          map_waddr_i,
-  input  logic [MEMW-1:0]         map_wdata_i,
+  input  logic                  map_we_i,
+  input  logic [MAW-1:0]        map_waddr_i,
+  input  logic [MEMW-1:0]       map_wdata_i,
   // R0: the point and the matrix of its job
-  input  logic [2:0][PW-1:0]      point_i,
-  input  logic [2:0][2:0][MW-1:0] m_i,        // m_i[row][col]
+  input  logic [3*PW-1:0]       point_i,
+  input  logic [9*MW-1:0]       m_i,
   // R1: the translation of the job in R1
-  input  logic [2:0][TW-1:0]      t_i,
+  input  logic [3*TW-1:0]       t_i,
   // R2: the map dimensions of the job in R2
-  input  logic [2:0][DW:0]        n_i,
+  input  logic [3*(DW+1)-1:0]   n_i,
   // R3: the job in R3
-  input  logic [DW:0]             nx_i,
-  input  logic [MAW-1:0]          map_base_i,
+  input  logic [DW:0]           nx_i,
+  input  logic [MAW-1:0]        map_base_i,
   // R5: the result
-  output logic                    inside_o,
-  output logic [1:0]              state_o,
-  output logic [2:0][DW-1:0]      voxel_o
+  output logic                  inside_o,
+  output logic [1:0]            state_o,
+  output logic [3*DW-1:0]       voxel_o
 );
 
   localparam int unsigned TF    = MF + PF;
@@ -54,61 +56,66 @@ module voxcd_lane #(
   localparam int unsigned SpwLg = $clog2(MEMW / 2);
 
   // ---- R1: products ----
-  logic [2:0][2:0][ProdW-1:0] prod_q;
+  logic [9*ProdW-1:0] prod_q;
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       for (int i = 0; i < 3; i++) begin
         for (int j = 0; j < 3; j++) begin
           // Both operands sign-extended to the product width: the low ProdW bits of the product are exact.
-          prod_q[i][j] <= {{PW{m_i[i][j][MW-1]}}, m_i[i][j]} * {{MW{point_i[j][PW-1]}}, point_i[j]};
+          prod_q[(3*i+j)*ProdW +: ProdW] <=
+              {{PW{m_i[(3*i+j)*MW + MW-1]}}, m_i[(3*i+j)*MW +: MW]} *
+              {{MW{point_i[j*PW + PW-1]}}, point_i[j*PW +: PW]};
         end
       end
     end
   end
 
   // ---- R2: accumulator ----
-  logic [2:0][AccW-1:0] acc_q;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [3*AccW-1:0] acc_q;  // the floor drops each coordinate's TF fraction bits
+  /* verilator lint_on UNUSEDSIGNAL */
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       for (int i = 0; i < 3; i++) begin
-        acc_q[i] <= {{(AccW - TW){t_i[i][TW-1]}}, t_i[i]}
-                  + {{(AccW - ProdW){prod_q[i][0][ProdW-1]}}, prod_q[i][0]}
-                  + {{(AccW - ProdW){prod_q[i][1][ProdW-1]}}, prod_q[i][1]}
-                  + {{(AccW - ProdW){prod_q[i][2][ProdW-1]}}, prod_q[i][2]};
+        acc_q[i*AccW +: AccW] <=
+              {{(AccW - TW){t_i[i*TW + TW-1]}}, t_i[i*TW +: TW]}
+            + {{(AccW - ProdW){prod_q[(3*i+0)*ProdW + ProdW-1]}}, prod_q[(3*i+0)*ProdW +: ProdW]}
+            + {{(AccW - ProdW){prod_q[(3*i+1)*ProdW + ProdW-1]}}, prod_q[(3*i+1)*ProdW +: ProdW]}
+            + {{(AccW - ProdW){prod_q[(3*i+2)*ProdW + ProdW-1]}}, prod_q[(3*i+2)*ProdW +: ProdW]};
       end
     end
   end
 
   // ---- R3: floor, bounds, y + ny*z ----
-  logic [2:0][IdxW-1:0] idx;
-  logic [2:0]           in_axis;
-  always_comb begin
-    for (int i = 0; i < 3; i++) begin
-      idx[i]     = acc_q[i][AccW-1:TF];  // the upper bits of a two's complement value: floor(acc / 2^TF)
-      in_axis[i] = !idx[i][IdxW-1] &&
-                   (CmpW'(idx[i][IdxW-2:0]) < CmpW'(n_i[i]));
-    end
-  end
+  // The upper bits of a two's complement value are floor(acc / 2^TF).
+  logic [IdxW-1:0] idx_x, idx_y, idx_z;
+  logic [2:0]      in_axis;
+  assign idx_x = acc_q[0*AccW + TF +: IdxW];
+  assign idx_y = acc_q[1*AccW + TF +: IdxW];
+  assign idx_z = acc_q[2*AccW + TF +: IdxW];
+  assign in_axis[0] = !idx_x[IdxW-1] && (CmpW'(idx_x[IdxW-2:0]) < CmpW'(n_i[0*(DW+1) +: DW+1]));
+  assign in_axis[1] = !idx_y[IdxW-1] && (CmpW'(idx_y[IdxW-2:0]) < CmpW'(n_i[1*(DW+1) +: DW+1]));
+  assign in_axis[2] = !idx_z[IdxW-1] && (CmpW'(idx_z[IdxW-2:0]) < CmpW'(n_i[2*(DW+1) +: DW+1]));
 
-  logic                 inside3_q;
-  logic [2:0][DW-1:0]   vox3_q;
-  logic [YzW-1:0]       yz3_q;
+  logic            inside3_q;
+  logic [3*DW-1:0] vox3_q;
+  logic [YzW-1:0]  yz3_q;
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       inside3_q <= &in_axis;
-      for (int i = 0; i < 3; i++) vox3_q[i] <= idx[i][DW-1:0];
-      yz3_q     <= YzW'(idx[1][DW-1:0]) + YzW'(n_i[1]) * YzW'(idx[2][DW-1:0]);
+      vox3_q    <= {idx_z[DW-1:0], idx_y[DW-1:0], idx_x[DW-1:0]};
+      yz3_q     <= YzW'(idx_y[DW-1:0]) + YzW'(n_i[1*(DW+1) +: DW+1]) * YzW'(idx_z[DW-1:0]);
     end
   end
 
   // ---- R4: linear index, word address and slot ----
   logic [LinW-1:0] linear;
-  assign linear = LinW'(vox3_q[0]) + LinW'(nx_i) * LinW'(yz3_q);
+  assign linear = LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q);
 
-  logic                 inside4_q;
-  logic [2:0][DW-1:0]   vox4_q;
-  logic [MAW-1:0]       addr4_q;
-  logic [SlotW-1:0]     slot4_q;
+  logic             inside4_q;
+  logic [3*DW-1:0]  vox4_q;
+  logic [MAW-1:0]   addr4_q;
+  logic [SlotW-1:0] slot4_q;
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       inside4_q <= inside3_q;
@@ -120,10 +127,10 @@ module voxcd_lane #(
   end
 
   // ---- R5: voxmap read, state select ----
-  logic [MEMW-1:0]    word5;
-  logic               inside5_q;
-  logic [2:0][DW-1:0] vox5_q;
-  logic [SlotW-1:0]   slot5_q;
+  logic [MEMW-1:0]  word5;
+  logic             inside5_q;
+  logic [3*DW-1:0]  vox5_q;
+  logic [SlotW-1:0] slot5_q;
 
   voxcd_ram #(
     .Width(MEMW),
