@@ -61,10 +61,9 @@ module voxcd_lane #(
     if (en_i) begin
       for (int i = 0; i < 3; i++) begin
         for (int j = 0; j < 3; j++) begin
-          // Both operands sign-extended to the product width: the low ProdW bits of the product are exact.
+          // A signed MW x PW multiplier: the ProdW-bit product is exact.
           prod_q[(3*i+j)*ProdW +: ProdW] <=
-              {{PW{m_i[(3*i+j)*MW + MW-1]}}, m_i[(3*i+j)*MW +: MW]} *
-              {{MW{point_i[j*PW + PW-1]}}, point_i[j*PW +: PW]};
+              ProdW'($signed(m_i[(3*i+j)*MW +: MW])) * ProdW'($signed(point_i[j*PW +: PW]));
         end
       end
     end
