@@ -62,8 +62,12 @@ class RtlDevice final : public Device {
     reset();
   }
   ~RtlDevice() override {
+    // The model's scopes unregister from the calling thread's current context: make that this model's own, as
+    // another device may have been used since.
+    Verilated::threadContextp(ctx_.get());
     model_->final();
     if (trace_) trace_->close();
+    model_.reset();
   }
 
   std::string name() const override { return "rtl"; }

@@ -1,0 +1,247 @@
+// The device as the RTL measures it: sustained points per cycle against shell size and lane count, idle cycles
+// between back-to-back jobs, pipeline latency, and the speed of the Verilated simulation beside the host
+// backends (ref, cpu) on the same stream. Every cycle count here is read from the RTL's own completion records
+// or pins, not from the timing model. Writes Markdown to stdout (and to --out FILE); bench/hardware.sh puts it
+// into docs/hardware.md.
+#include <verilated.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+
+#include "Vvoxcd_l4.h"
+#include "bench/bench_common.h"
+#include "host/device.h"
+#include "ref/timing.h"
+
+using namespace voxcd;
+
+namespace {
+
+constexpr uint32_t kSide = 64;      // the map: 64^3 voxels
+constexpr double kFill = 0.01;      // fraction of surface voxels: about 1% of lookups hit
+constexpr uint32_t kShell = 65536;  // shell points: the whole shell memory (SAW = 16)
+
+// A 64^3 map with ~1% surface voxels and a shell of random points inside it (identity pose).
+DeviceMemory scene(uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  DeviceMemory mem;
+  const uint64_t voxels = uint64_t(kSide) * kSide * kSide;
+  mem.map.assign(voxels / 32, 0);
+  for (uint64_t i = 0; i < voxels; ++i)
+    if (u(rng) < kFill) mem.map[i / 32] |= uint64_t(kSurface) << (2 * (i % 32));
+  for (uint32_t k = 0; k < kShell; ++k) {
+    auto c = [&] { return int64_t(u(rng) * kSide * 256); };  // PF = 8
+    mem.shell.push_back({c(), c(), c()});
+  }
+  return mem;
+}
+
+Job job(uint32_t tag, Mode mode, uint32_t base, uint32_t count) {
+  Job j;
+  j.tag = tag;
+  j.mode = mode;
+  j.shell_base = base;
+  j.shell_count = count;
+  j.nx = j.ny = j.nz = kSide;
+  j.M[0][0] = j.M[1][1] = j.M[2][2] = int64_t{1} << 16;
+  return j;
+}
+
+std::vector<Job> stream(Mode mode, uint32_t size, size_t n) {
+  std::vector<Job> jobs;
+  for (size_t i = 0; i < n; ++i) jobs.push_back(job(uint32_t(i), mode, uint32_t((i * 7919) % (kShell - size + 1)), size));
+  return jobs;
+}
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// Points per cycle of the jobs after the first (whose count includes the pipeline fill), from the RTL's records.
+struct Sustained {
+  double points_per_cycle = 0;
+  double hit_fraction = 0;
+  uint64_t idle = 0;  // largest cycles - slots over COUNT jobs after the first: cycles lost between jobs
+};
+
+Sustained sustained(Device& dev, Mode mode, uint32_t size, int lanes) {
+  const std::vector<Job> jobs = stream(mode, size, 8);
+  const std::vector<Record> recs = dev.run(jobs);
+  uint64_t cycles = 0, points = 0, hits = 0, idle = 0;
+  size_t j = 0;
+  for (const Record& r : recs) {
+    if (r.kind != Record::Done) continue;
+    if (j > 0) {
+      cycles += *r.cycles;
+      points += jobs[j].shell_count;
+      hits += r.hits;
+      const uint64_t slots = (jobs[j].shell_count + uint64_t(lanes) - 1) / uint64_t(lanes);
+      if (mode == Mode::Count) idle = std::max<uint64_t>(idle, *r.cycles - slots);
+    }
+    ++j;
+  }
+  return {double(points) / double(cycles), double(hits) / double(points), idle};
+}
+
+// Cycles from a job's acceptance to its first hit record and to its completion record on the pins.
+struct Latency {
+  int to_hit = -1, to_done = -1;
+};
+
+Latency latency() {
+  auto ctx = std::make_unique<VerilatedContext>();
+  auto m = std::make_unique<Vvoxcd_l4>(ctx.get(), "voxcd");
+  auto tick = [&] {
+    m->clk_i = 1;
+    m->eval();
+    m->clk_i = 0;
+    m->eval();
+  };
+  m->rst_ni = 0;
+  m->hit_ready_i = m->done_ready_i = 1;
+  tick();
+  m->rst_ni = 1;
+  // One point at (0.5, 0.5, 0.5) in a 1x1x1 surface map.
+  m->shell_we_i = 1;
+  m->shell_waddr_i = 0;
+  const unsigned __int128 word = (unsigned __int128)128 | ((unsigned __int128)128 << 24) | ((unsigned __int128)128 << 48);
+  for (int w = 0; w < 3; ++w) m->shell_wdata_i[w] = uint32_t(word >> (32 * w));  // {z, y, x}, PW = 24
+  m->map_we_i = 1;
+  m->map_waddr_i = 0;
+  m->map_wdata_i = 1;  // voxel 0: surface
+  tick();
+  m->shell_we_i = m->map_we_i = 0;
+  m->job_valid_i = 1;
+  m->job_mode_i = 0;
+  m->job_mask_i = 6;
+  m->job_shell_count_i = 1;
+  m->job_nx_i = m->job_ny_i = m->job_nz_i = 1;
+  m->job_m00_i = m->job_m11_i = m->job_m22_i = 1u << 16;
+  Latency l;
+  for (int c = 0; c < 40 && l.to_done < 0; ++c) {
+    m->eval();
+    if (m->hit_valid_o && l.to_hit < 0) l.to_hit = c;
+    if (m->done_valid_o) l.to_done = c;
+    const bool accepted = m->job_valid_i && m->job_ready_o;
+    tick();
+    if (accepted) m->job_valid_i = 0;
+  }
+  m->final();
+  Verilated::threadContextp(ctx.get());
+  m.reset();
+  return l;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out_path;
+  int repeats = 5;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out_path = argv[++i];
+    else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
+    else {
+      std::fprintf(stderr, "usage: bench_hardware [--out FILE] [--repeats N]\n");
+      return 2;
+    }
+  }
+  const DeviceMemory mem = scene(11);
+  std::ostringstream md;
+  const int lane_counts[] = {1, 2, 4, 8};
+  const uint32_t sizes[] = {16, 64, 256, 1024, 4096, 16384, 65536};
+
+  // ---- Throughput ----
+  md << "### Sustained throughput\n\n"
+     << "Points per cycle of back-to-back jobs of one shell size (8 jobs; the first, which includes the pipeline "
+        "fill, is left out), read from the RTL's completion records. ALL: a 64^3 voxmap with 1% surface voxels, "
+        "so about 1% of lookups hit and each hit record takes an output cycle; COUNT: no hit records. Goal: at "
+        "least 0.95 x LANES from 256 points.\n\n"
+     << "| shell points |";
+  for (int L : lane_counts) md << " L=" << L << " ALL | L=" << L << " COUNT |";
+  md << "\n|---|";
+  for (size_t i = 0; i < std::size(lane_counts); ++i) md << "---|---|";
+  md << "\n";
+  std::vector<std::unique_ptr<Device>> devs;
+  for (int L : lane_counts) {
+    DeviceConfig cfg;
+    cfg.LANES = L;
+    devs.push_back(make_device("rtl", cfg));
+    devs.back()->load(mem);
+  }
+  uint64_t worst_idle = 0;
+  double worst_ratio = 1e9;
+  for (uint32_t n : sizes) {
+    md << "| " << n << " |";
+    for (size_t li = 0; li < std::size(lane_counts); ++li) {
+      const int L = lane_counts[li];
+      const Sustained a = sustained(*devs[li], Mode::All, n, L);
+      const Sustained c = sustained(*devs[li], Mode::Count, n, L);
+      worst_idle = std::max(worst_idle, c.idle);
+      if (n >= 256) worst_ratio = std::min(worst_ratio, a.points_per_cycle / L);
+      md << " " << fmt("%.2f", a.points_per_cycle) << " | " << fmt("%.2f", c.points_per_cycle) << " |";
+    }
+    md << "\n";
+    std::fprintf(stderr, "throughput: %u points done\n", n);
+  }
+  md << "\nFrom 256 points on, ALL sustains at least " << fmt("%.3f", worst_ratio)
+     << " x LANES (the goal is 0.95). Idle cycles between back-to-back COUNT jobs, largest over every row: "
+     << worst_idle << " (the goal is at most 2).\n\n";
+
+  // ---- Latency ----
+  const Latency lat = latency();
+  md << "### Latency\n\n"
+     << "A one-point job that hits, on the 4-lane model, accepted in cycle 0 with the consumer always ready: its "
+        "hit record is valid on the pins in cycle "
+     << lat.to_hit << " and its completion record in cycle " << lat.to_done
+     << ". The timing model's latency to the hit-test stage is " << kFirstSlotLatency
+     << " cycles (the queue register and " << kPipelineSlots
+     << " slot registers); the output register adds one.\n\n";
+
+  // ---- Simulation speed ----
+  md << "### Simulation speed\n\n"
+     << "One stream of 64 COUNT jobs of 4096 points (262144 lookups) and the same in ALL mode (~1% hits), run "
+        "on each backend; median wall time of "
+     << repeats << " runs. rtl cycles are the RTL's own (the sum of its completion records' cycles).\n\n"
+     << "| backend | lanes | mode | sim Mcycles/s | Mpoints/s | ratio to ref (points/s) |\n|---|---|---|---|---|---|\n";
+  for (Mode mode : {Mode::Count, Mode::All}) {
+    const std::vector<Job> jobs = stream(mode, 4096, 64);
+    double ref_pps = 0;
+    {
+      auto dev = make_device("ref", DeviceConfig{});
+      dev->load(mem);
+      const double t = bench::median_time(repeats, [&] { bench::keep(dev->run(jobs)); });
+      ref_pps = 64.0 * 4096 / t;
+      md << "| ref | - | " << mode_name(mode) << " | - | " << fmt("%.1f", ref_pps / 1e6) << " | 1.0 |\n";
+    }
+    {
+      auto dev = make_device("cpu", DeviceConfig{});
+      dev->load(mem);
+      const double t = bench::median_time(repeats, [&] { bench::keep(dev->run(jobs)); });
+      md << "| cpu | - | " << mode_name(mode) << " | - | " << fmt("%.1f", 64.0 * 4096 / t / 1e6) << " | "
+         << fmt("%.1f", 64.0 * 4096 / t / ref_pps) << " |\n";
+    }
+    for (size_t li = 0; li < std::size(lane_counts); ++li) {
+      std::vector<Record> recs;
+      const double t = bench::median_time(repeats, [&] { recs = devs[li]->run(jobs); });
+      uint64_t cycles = 0;
+      for (const Record& r : recs)
+        if (r.kind == Record::Done) cycles += *r.cycles;
+      md << "| rtl | " << lane_counts[li] << " | " << mode_name(mode) << " | " << fmt("%.2f", cycles / t / 1e6)
+         << " | " << fmt("%.2f", 64.0 * 4096 / t / 1e6) << " | " << fmt("%.2f", 64.0 * 4096 / t / ref_pps)
+         << " |\n";
+    }
+  }
+  md << "\nMachine: " << bench::machine_description() << ". Verilator " << Verilated::productVersion()
+     << ", models built with -O3.\n";
+  std::cout << md.str();
+  if (!out_path.empty()) std::ofstream(out_path) << md.str();
+  return 0;
+}
