@@ -12,5 +12,6 @@ void add_conform(CLI::App& app);
 void add_selftest(CLI::App& app);
 void add_voxelize(CLI::App& app);
 void add_info(CLI::App& app);
+void add_pair(CLI::App& app);
 
 }  // namespace voxcd::cli

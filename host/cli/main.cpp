@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   voxcd::cli::add_selftest(app);
   voxcd::cli::add_voxelize(app);
   voxcd::cli::add_info(app);
+  voxcd::cli::add_pair(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,209 @@
+// voxcd pair: the contacts of two objects at one pose or at many random ones, on any backend.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <random>
+#include <sstream>
+
+#include "host/cli/commands.h"
+#include "host/cli/object_report.h"
+#include "host/collide.h"
+#include "host/mesh.h"
+
+namespace voxcd::cli {
+
+namespace {
+
+struct PairArgs {
+  std::string a, b;
+  std::string pose;
+  size_t random = 0;
+  uint64_t seed = 1;
+  double voxel = 0;
+  std::string backend = "cpu";
+  int lanes = 4;
+  std::string mode = "ALL";
+  bool both = false;
+  bool json = false;
+  size_t show = 10;
+};
+
+// "tx,ty,tz[,rx,ry,rz]": B's translation in A's frame and its rotation in degrees about x, then y, then z.
+RigidPose parse_pose(const std::string& s) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double d = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0')
+      throw CLI::ValidationError("--pose", "'" + item + "' in '" + s + "' is not a number");
+    v.push_back(d);
+  }
+  if (v.size() != 3 && v.size() != 6)
+    throw CLI::ValidationError("--pose", "'" + s + "' has " + std::to_string(v.size()) +
+                                             " numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz");
+  RigidPose p;
+  p.translation = Eigen::Vector3d(v[0], v[1], v[2]);
+  if (v.size() == 6) {
+    const double k = M_PI / 180.0;
+    p.rotation = Eigen::AngleAxisd(v[5] * k, Eigen::Vector3d::UnitZ()) *
+                 Eigen::AngleAxisd(v[4] * k, Eigen::Vector3d::UnitY()) *
+                 Eigen::AngleAxisd(v[3] * k, Eigen::Vector3d::UnitX());
+  }
+  return p;
+}
+
+// Without --voxel: 1/32 of the longest side of the larger mesh, shared by both objects.
+double auto_voxel(const PairArgs& a) {
+  double side = 0;
+  for (const std::string& s : {a.a, a.b}) {
+    if (is_object_file(s)) continue;
+    const Mesh m = load_source(s);
+    Eigen::Vector3d lo, hi;
+    m.bounds(lo, hi);
+    side = std::max(side, (hi - lo).maxCoeff());
+  }
+  return side / 32;
+}
+
+std::string vec_json(const Eigen::Vector3d& v) {
+  char b[128];
+  std::snprintf(b, sizeof b, "[%.9g, %.9g, %.9g]", v.x(), v.y(), v.z());
+  return b;
+}
+
+int pair_cmd(const PairArgs& a) {
+  const double voxel = a.voxel > 0 ? a.voxel : auto_voxel(a);
+  auto ta = std::make_shared<ObjectType>(load_object_type(a.a, voxel));
+  auto tb = std::make_shared<ObjectType>(load_object_type(a.b, voxel));
+  DeviceConfig cfg;
+  cfg.LANES = a.lanes;
+  if (a.backend != "rtl") cfg = fit_memory(cfg, {ta.get(), tb.get()});
+  PairCollider collider(make_device(a.backend, cfg), {ta, tb});
+  PairOptions opt;
+  const auto mode = parse_mode(a.mode);
+  if (!mode) throw CLI::ValidationError("--mode", "'" + a.mode + "' is not ALL, FIRST or COUNT");
+  opt.mode = *mode;
+  opt.both_directions = a.both;
+
+  std::vector<PairRequest> reqs;
+  if (a.random > 0) {
+    // B's centre uniform in the ball where the two enclosing spheres overlap, both orientations uniform.
+    std::mt19937_64 rng(a.seed);
+    std::normal_distribution<double> n(0, 1);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double reach = ta->radius + tb->radius;
+    for (size_t k = 0; k < a.random; ++k) {
+      PairRequest r;
+      r.a = 0;
+      r.b = 1;
+      r.pose_a.rotation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+      r.pose_b.rotation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+      Eigen::Vector3d d(n(rng), n(rng), n(rng));
+      d = d.normalized() * reach * std::cbrt(u(rng));
+      r.pose_a.translation = -(r.pose_a.rotation * ta->centre);
+      r.pose_b.translation = d - r.pose_b.rotation * tb->centre;
+      reqs.push_back(r);
+    }
+  } else {
+    PairRequest r;
+    r.a = 0;
+    r.b = 1;
+    if (!a.pose.empty()) r.pose_b = parse_pose(a.pose);
+    reqs.push_back(r);
+  }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<PairResult> res = collider.collide(reqs, opt);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  uint64_t hits = 0, lookups = 0, cycles = 0, touching = 0, contacts = 0;
+  for (const PairResult& r : res) {
+    hits += r.hits;
+    lookups += r.lookups;
+    cycles += r.cycles;
+    contacts += r.contacts.size();
+    touching += r.hits > 0;
+  }
+  const bool has_cycles = collider.device().models_cycles();
+  if (a.json) {
+    std::ostringstream o;
+    o << "{\"a\": " << json_string(a.a) << ", \"b\": " << json_string(a.b) << ", \"voxel\": " << voxel
+      << ", \"backend\": " << json_string(a.backend) << ", \"mode\": " << json_string(a.mode)
+      << ", \"both_directions\": " << (a.both ? "true" : "false") << ", \"pairs\": " << res.size()
+      << ", \"touching\": " << touching << ", \"hits\": " << hits << ", \"lookups\": " << lookups
+      << ", \"seconds\": " << secs;
+    if (has_cycles) o << ", \"device_cycles\": " << cycles;
+    o << ", \"results\": [";
+    for (size_t i = 0; i < res.size(); ++i) {
+      const PairResult& r = res[i];
+      o << (i ? ", " : "") << "{\"pose_b_translation\": " << vec_json(reqs[i].pose_b.translation)
+        << ", \"hits\": " << r.hits << ", \"lookups\": " << r.lookups;
+      if (has_cycles) o << ", \"device_cycles\": " << r.cycles;
+      o << ", \"contacts\": [";
+      for (size_t k = 0; k < r.contacts.size(); ++k) {
+        const Contact& c = r.contacts[k];
+        o << (k ? ", " : "") << "{\"shell\": \"" << (c.a_in_b ? "A" : "B") << "\", \"point\": " << c.point
+          << ", \"position\": " << vec_json(c.position) << ", \"normal\": " << vec_json(c.normal)
+          << ", \"voxel\": [" << c.voxel[0] << ", " << c.voxel[1] << ", " << c.voxel[2] << "], \"state\": "
+          << int(c.state) << ", \"depth\": " << c.depth << "}";
+      }
+      o << "]}";
+    }
+    o << "]}\n";
+    std::cout << o.str();
+    return 0;
+  }
+  std::printf("A %s: %zu shell points, voxmap %ux%ux%u; B %s: %zu shell points, voxmap %ux%ux%u; voxel %g\n",
+              a.a.c_str(), ta->shell().size(), ta->voxmap().dims()[0], ta->voxmap().dims()[1],
+              ta->voxmap().dims()[2], a.b.c_str(), tb->shell().size(), tb->voxmap().dims()[0],
+              tb->voxmap().dims()[1], tb->voxmap().dims()[2], voxel);
+  std::printf("backend %s, mode %s%s: %zu pair%s, %llu touching, %llu hits, %llu contacts, %llu lookups in %.3f ms "
+              "(%.2f ns per lookup)\n",
+              a.backend.c_str(), a.mode.c_str(), a.both ? ", both directions" : "", res.size(),
+              res.size() == 1 ? "" : "s", (unsigned long long)touching, (unsigned long long)hits,
+              (unsigned long long)contacts, (unsigned long long)lookups, secs * 1e3,
+              lookups ? secs * 1e9 / double(lookups) : 0.0);
+  if (has_cycles)
+    std::printf("device cycles: %llu at %d lanes (%s)\n", (unsigned long long)cycles, cfg.LANES,
+                a.backend == "rtl" ? "measured on the RTL" : "the exact timing model of ref/");
+  size_t shown = 0;
+  for (const PairResult& r : res)
+    for (const Contact& c : r.contacts) {
+      if (shown++ >= a.show) break;
+      std::printf("  contact: %s point %u at (%.4g, %.4g, %.4g) normal (%.3f, %.3f, %.3f) state %d depth %.4g\n",
+                  c.a_in_b ? "A" : "B", c.point, c.position.x(), c.position.y(), c.position.z(), c.normal.x(),
+                  c.normal.y(), c.normal.z(), int(c.state), c.depth);
+    }
+  if (contacts > a.show) std::printf("  ... %llu more (--show N, or --json for all)\n",
+                                     (unsigned long long)(contacts - a.show));
+  return 0;
+}
+
+}  // namespace
+
+void add_pair(CLI::App& app) {
+  auto a = std::make_shared<PairArgs>();
+  CLI::App* c = app.add_subcommand("pair", "Contacts of two objects (object files, meshes or built-in shapes) at "
+                                           "a pose or at random poses (docs/pairs.md)");
+  c->add_option("a", a->a, "Object A: an object file, a mesh file or a built-in shape")->required();
+  c->add_option("b", a->b, "Object B: an object file, a mesh file or a built-in shape")->required();
+  c->add_option("--pose", a->pose, "B's pose in A's frame: tx,ty,tz[,rx,ry,rz] (rotation in degrees about x, y, z)");
+  c->add_option("--random", a->random, "Test N random poses where the bounding spheres overlap instead");
+  c->add_option("--seed", a->seed, "Seed of --random")->capture_default_str();
+  c->add_option("--voxel", a->voxel, "Voxel size for meshes and shapes (default: 1/32 of the larger one's longest side)");
+  c->add_option("--backend", a->backend, "Device backend: " + [] {
+    std::string s;
+    for (const auto& b : device_backends()) s += (s.empty() ? "" : ", ") + b;
+    return s;
+  }())->capture_default_str();
+  c->add_option("--lanes", a->lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
+  c->add_option("--mode", a->mode, "ALL (every contact), FIRST (one per direction) or COUNT")->capture_default_str();
+  c->add_flag("--both", a->both, "Test both directions (A's shell in B and B's shell in A)");
+  c->add_option("--show", a->show, "Contacts to print (text output)")->capture_default_str();
+  c->add_flag("--json", a->json, "Print the result as JSON, with every contact");
+  c->callback([a] { exit_code() = pair_cmd(*a); });
+}
+
+}  // namespace voxcd::cli

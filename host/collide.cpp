@@ -1,0 +1,144 @@
+#include "host/collide.h"
+
+#include <algorithm>
+
+#include "ref/fixed.h"
+
+namespace voxcd {
+
+namespace {
+
+uint64_t map_words(const DeviceConfig& cfg, const Voxmap& vm) {
+  const uint64_t spw = uint64_t(cfg.states_per_word());
+  return (vm.size() + spw - 1) / spw;
+}
+
+void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
+  const auto& d = t.voxmap().dims();
+  for (int i = 0; i < 3; ++i)
+    if (d[i] > cfg.max_dim())
+      throw CapacityError("object '" + t.name + "': its voxmap is " + std::to_string(d[0]) + "x" +
+                          std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels, above the device's 2^DW = " +
+                          std::to_string(cfg.max_dim()) + " per axis");
+}
+
+}  // namespace
+
+uint32_t DeviceImage::add(const ObjectType& t) {
+  check_dims(cfg_, t);
+  const uint64_t shell = t.shell().size(), words = map_words(cfg_, t.voxmap());
+  const uint64_t shell_free = cfg_.shell_depth() - mem_.shell.size(), map_free = cfg_.map_depth() - mem_.map.size();
+  if (shell > shell_free || words > map_free)
+    throw CapacityError("object '" + t.name + "' needs " + std::to_string(shell) + " shell words and " +
+                        std::to_string(words) + " voxmap words; the device has " + std::to_string(shell_free) +
+                        " of 2^SAW = " + std::to_string(cfg_.shell_depth()) + " shell words and " +
+                        std::to_string(map_free) + " of 2^MAW = " + std::to_string(cfg_.map_depth()) +
+                        " voxmap words free");
+  std::vector<ShellWord> sw = t.shell().words(cfg_);
+  std::vector<uint64_t> mw = t.voxmap().device_words(cfg_.MEMW);
+  Placement p;
+  p.shell_base = uint32_t(mem_.shell.size());
+  p.shell_count = uint32_t(shell);
+  p.map_base = uint32_t(mem_.map.size());
+  p.map_words = uint32_t(words);
+  p.dims = t.voxmap().dims();
+  mem_.shell.insert(mem_.shell.end(), sw.begin(), sw.end());
+  mem_.map.insert(mem_.map.end(), mw.begin(), mw.end());
+  placements_.push_back(p);
+  return uint32_t(placements_.size() - 1);
+}
+
+DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& types) {
+  uint64_t shell = 0, words = 0;
+  for (const ObjectType* t : types) {
+    check_dims(cfg, *t);
+    shell += t->shell().size();
+    words += map_words(cfg, t->voxmap());
+  }
+  while (cfg.shell_depth() < shell && cfg.SAW < 24) ++cfg.SAW;
+  while (cfg.map_depth() < words && cfg.MAW < 28) ++cfg.MAW;
+  if (cfg.shell_depth() < shell || cfg.map_depth() < words)
+    throw CapacityError("the object types need " + std::to_string(shell) + " shell words and " +
+                        std::to_string(words) + " voxmap words; the largest device memories hold 2^24 and 2^28");
+  return cfg;
+}
+
+PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types)
+    : device_(std::move(device)), types_(std::move(types)), image_(device_->config()) {
+  for (const auto& t : types_) image_.add(*t);
+  device_->load(image_.memory());
+}
+
+std::vector<Job> PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt) const {
+  const DeviceConfig& cfg = device_->config();
+  std::vector<Job> out;
+  out.reserve(pairs.size() * (opt.both_directions ? 2 : 1));
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const PairRequest& r = pairs[i];
+    if (r.a >= types_.size() || r.b >= types_.size())
+      throw std::out_of_range("pair " + std::to_string(i) + " names object type " +
+                              std::to_string(std::max(r.a, r.b)) + " of " + std::to_string(types_.size()));
+    for (int dir = 0; dir < (opt.both_directions ? 2 : 1); ++dir) {
+      const uint32_t s = dir == 0 ? r.a : r.b, m = dir == 0 ? r.b : r.a;
+      const RigidPose& ps = dir == 0 ? r.pose_a : r.pose_b;
+      const RigidPose& pm = dir == 0 ? r.pose_b : r.pose_a;
+      const DeviceImage::Placement& sp = image_.placement(s);
+      const DeviceImage::Placement& mp = image_.placement(m);
+      Job j;
+      j.tag = uint32_t(out.size() & cfg.max_tag());
+      j.mode = opt.mode;
+      j.hit_mask = opt.hit_mask;
+      j.shell_base = sp.shell_base;
+      j.shell_count = sp.shell_count;
+      j.map_base = mp.map_base;
+      j.nx = mp.dims[0];
+      j.ny = mp.dims[1];
+      j.nz = mp.dims[2];
+      try {
+        pose_job(cfg, ps, types_[s]->shell().frame(), pm, types_[m]->voxmap().grid().frame(), j);
+      } catch (const RangeError& e) {
+        throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
+                         "): " + e.what());
+      }
+      out.push_back(j);
+    }
+  }
+  return out;
+}
+
+std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt) {
+  const std::vector<Job> js = jobs(pairs, opt);
+  const std::vector<Record> recs = device_->run(js);
+  const int per_pair = opt.both_directions ? 2 : 1;
+  std::vector<PairResult> out(pairs.size());
+  size_t j = 0;
+  for (const Record& rec : recs) {
+    const size_t pair = j / size_t(per_pair);
+    const bool a_in_b = j % size_t(per_pair) == 0;
+    PairResult& res = out.at(pair);
+    if (rec.kind == Record::Done) {
+      res.hits += rec.hits;
+      res.lookups += js[j].shell_count;
+      if (rec.cycles) res.cycles += *rec.cycles;
+      ++j;
+      continue;
+    }
+    const PairRequest& r = pairs[pair];
+    const ObjectType& shell_t = *types_[a_in_b ? r.a : r.b];
+    const ObjectType& map_t = *types_[a_in_b ? r.b : r.a];
+    const RigidPose& pose = a_in_b ? r.pose_a : r.pose_b;
+    Contact c;
+    c.pair = uint32_t(pair);
+    c.a_in_b = a_in_b;
+    c.point = rec.point;
+    c.position = pose.rotation * shell_t.shell().points.at(rec.point) + pose.translation;
+    c.normal = pose.rotation * shell_t.shell().normals.at(rec.point);
+    c.voxel = {rec.x, rec.y, rec.z};
+    c.state = rec.state;
+    c.depth = double(map_t.depth.at(map_t.voxmap().index(rec.x, rec.y, rec.z))) * map_t.voxmap().voxel();
+    res.contacts.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace voxcd

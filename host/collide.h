@@ -1,0 +1,105 @@
+// Pair tests on a device: object types placed in the device's memories, the relative pose of each pair quantised
+// into jobs (A's shell in B's voxmap, and B's shell in A's on request), the jobs run back to back, and the hits
+// routed back to their pairs as contacts in world coordinates. docs/pairs.md states the error bounds.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "host/device.h"
+#include "host/object_type.h"
+#include "host/pose.h"
+
+namespace voxcd {
+
+// Object types that do not fit the device's memories or formats; names the type and the sizes.
+struct CapacityError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The memory image of a set of object types, each type's shell words and voxmap words placed after the previous
+// type's. Only the types added are loaded.
+class DeviceImage {
+ public:
+  struct Placement {
+    uint32_t shell_base = 0, shell_count = 0;
+    uint32_t map_base = 0, map_words = 0;
+    std::array<uint32_t, 3> dims = {1, 1, 1};
+  };
+
+  explicit DeviceImage(const DeviceConfig& cfg) : cfg_(cfg) {}
+  // Places a type and returns its index. CapacityError naming the type and what it needs against what is left,
+  // or a dimension above 2^DW; RangeError from the shell's quantisation into PW/PF.
+  uint32_t add(const ObjectType& t);
+  const Placement& placement(uint32_t i) const { return placements_.at(i); }
+  size_t size() const { return placements_.size(); }
+  const DeviceMemory& memory() const { return mem_; }
+  const DeviceConfig& config() const { return cfg_; }
+
+ private:
+  DeviceConfig cfg_;
+  DeviceMemory mem_;
+  std::vector<Placement> placements_;
+};
+
+// cfg with SAW and MAW grown (never shrunk) until the types fit; CapacityError naming the sizes when even the
+// largest memories allowed (SAW 24, MAW 28) are too small, or a voxmap exceeds 2^DW voxels on an axis.
+DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& types);
+
+// One contact: a shell point of one object that lies in a voxel of the other whose state is in the hit mask.
+struct Contact {
+  uint32_t pair = 0;          // index of the request
+  bool a_in_b = true;         // the shell is A's and the voxmap B's (else the reverse)
+  uint32_t point = 0;         // index of the shell point in its object's shell
+  Eigen::Vector3d position;   // the shell point, world coordinates
+  Eigen::Vector3d normal;     // its object's outward surface normal there, world coordinates
+  std::array<uint32_t, 3> voxel = {0, 0, 0};  // the voxel of the other object's voxmap it lies in
+  uint8_t state = 0;          // that voxel's state
+  double depth = 0;           // penetration estimate into the other object, world units
+};
+
+struct PairRequest {
+  uint32_t a = 0, b = 0;  // object types, as PairCollider numbers them
+  RigidPose pose_a, pose_b;
+};
+
+struct PairOptions {
+  Mode mode = Mode::All;
+  uint8_t hit_mask = kDefaultHitMask;
+  bool both_directions = false;  // also B's shell in A's voxmap (needed to see A deep inside B's hollow, ...)
+};
+
+struct PairResult {
+  std::vector<Contact> contacts;  // A in B first, then B in A; each in ascending point order
+  uint32_t hits = 0;              // over both directions (COUNT: the count; FIRST: up to 1 per direction)
+  uint64_t lookups = 0;           // shell points submitted
+  uint64_t cycles = 0;            // device cycles of the pair's jobs, where the backend models them
+};
+
+class PairCollider {
+ public:
+  // Loads the types into the device (its config must fit them: see fit_memory).
+  PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types);
+
+  // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked. RangeError
+  // naming the pair when a pose is not finite or does not fit the fixed-point formats.
+  std::vector<Job> jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt = {}) const;
+  // Runs every pair's jobs back to back on the device and routes the hits to their pairs.
+  std::vector<PairResult> collide(const std::vector<PairRequest>& pairs, const PairOptions& opt = {});
+
+  Device& device() { return *device_; }
+  const ObjectType& type(uint32_t i) const { return *types_.at(i); }
+  size_t types() const { return types_.size(); }
+  const DeviceImage& image() const { return image_; }
+
+ private:
+  std::unique_ptr<Device> device_;
+  std::vector<std::shared_ptr<const ObjectType>> types_;
+  DeviceImage image_;
+};
+
+}  // namespace voxcd
