@@ -70,8 +70,14 @@ PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shar
 }
 
 std::vector<Job> PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt) const {
-  const DeviceConfig& cfg = device_->config();
   std::vector<Job> out;
+  jobs(pairs, opt, out);
+  return out;
+}
+
+void PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out) const {
+  const DeviceConfig& cfg = device_->config();
+  out.clear();
   out.reserve(pairs.size() * (opt.both_directions ? 2 : 1));
   for (size_t i = 0; i < pairs.size(); ++i) {
     const PairRequest& r = pairs[i];
@@ -103,16 +109,45 @@ std::vector<Job> PairCollider::jobs(const std::vector<PairRequest>& pairs, const
       out.push_back(j);
     }
   }
-  return out;
 }
 
 std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt) {
-  const std::vector<Job> js = jobs(pairs, opt);
-  const std::vector<Record> recs = device_->run(js);
+  std::vector<PairResult> out;
+  collide(pairs, opt, out);
+  return out;
+}
+
+void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt,
+                           std::vector<PairResult>& out) {
+  jobs(pairs, opt, jobs_);
+  device_->run_into(jobs_, records_);
+  const std::vector<Job>& js = jobs_;
   const int per_pair = opt.both_directions ? 2 : 1;
-  std::vector<PairResult> out(pairs.size());
+  out.resize(pairs.size());
+  // Each pair's contacts in one allocation (or none, when the capacity is there from an earlier call).
+  counts_.assign(pairs.size(), 0);
+  {
+    size_t job = 0;
+    for (const Record& rec : records_) {
+      if (rec.kind == Record::Done) ++job;
+      else ++counts_[job / size_t(per_pair)];
+    }
+  }
+  // The pose of each pair's objects as matrices, once.
+  rot_a_.resize(pairs.size());
+  rot_b_.resize(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    PairResult& r = out[i];
+    r.contacts.clear();
+    r.contacts.reserve(counts_[i]);
+    r.hits = 0;
+    r.lookups = 0;
+    r.cycles = 0;
+    rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
+    rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
+  }
   size_t j = 0;
-  for (const Record& rec : recs) {
+  for (const Record& rec : records_) {
     const size_t pair = j / size_t(per_pair);
     const bool a_in_b = j % size_t(per_pair) == 0;
     PairResult& res = out.at(pair);
@@ -127,18 +162,18 @@ std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pa
     const ObjectType& shell_t = *types_[a_in_b ? r.a : r.b];
     const ObjectType& map_t = *types_[a_in_b ? r.b : r.a];
     const RigidPose& pose = a_in_b ? r.pose_a : r.pose_b;
+    const Eigen::Matrix3d& R = a_in_b ? rot_a_[pair] : rot_b_[pair];
     Contact c;
     c.pair = uint32_t(pair);
     c.a_in_b = a_in_b;
     c.point = rec.point;
-    c.position = pose.rotation * shell_t.shell().points.at(rec.point) + pose.translation;
-    c.normal = pose.rotation * shell_t.shell().normals.at(rec.point);
+    c.position = R * shell_t.shell().points[rec.point] + pose.translation;
+    c.normal = R * shell_t.shell().normals[rec.point];
     c.voxel = {rec.x, rec.y, rec.z};
     c.state = rec.state;
-    c.depth = double(map_t.depth.at(map_t.voxmap().index(rec.x, rec.y, rec.z))) * map_t.voxmap().voxel();
+    c.depth = double(map_t.depth[map_t.voxmap().index(rec.x, rec.y, rec.z)]) * map_t.voxmap().voxel();
     res.contacts.push_back(c);
   }
-  return out;
 }
 
 }  // namespace voxcd

@@ -88,8 +88,11 @@ class PairCollider {
   // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked. RangeError
   // naming the pair when a pose is not finite or does not fit the fixed-point formats.
   std::vector<Job> jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt = {}) const;
+  void jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out) const;
   // Runs every pair's jobs back to back on the device and routes the hits to their pairs.
   std::vector<PairResult> collide(const std::vector<PairRequest>& pairs, const PairOptions& opt = {});
+  // The same into `out`, reusing its capacity (and the collider's buffers): for callers that query every frame.
+  void collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
 
   Device& device() { return *device_; }
   const ObjectType& type(uint32_t i) const { return *types_.at(i); }
@@ -100,6 +103,10 @@ class PairCollider {
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
   DeviceImage image_;
+  std::vector<Job> jobs_;
+  std::vector<Record> records_;
+  std::vector<size_t> counts_;
+  std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
 };
 
 }  // namespace voxcd

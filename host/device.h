@@ -37,6 +37,9 @@ class Device {
   // Runs the jobs back to back and returns the output stream in order. Throws JobError for an invalid job
   // before running any.
   virtual std::vector<Record> run(const std::vector<Job>& jobs) = 0;
+  // The same stream into `out` (replacing its contents and reusing its capacity), for callers that run many
+  // batches: a backend may keep its working buffers between calls too.
+  virtual void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) { out = run(jobs); }
 };
 
 // The backends this build has, by name.

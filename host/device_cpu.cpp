@@ -138,32 +138,42 @@ class CpuDevice final : public Device {
   }
 
   std::vector<Record> run(const std::vector<Job>& jobs) override {
-    for (const Job& j : jobs) validate_job(cfg_, j, mem_.shell.size(), mem_.map.size());
-    // Tasks: (job, first point, end point).
-    struct Task {
-      size_t job;
-      uint32_t begin, end;
-    };
-    std::vector<Task> tasks;
-    std::vector<size_t> first_task(jobs.size() + 1);
-    for (size_t j = 0; j < jobs.size(); ++j) {
-      first_task[j] = tasks.size();
-      const uint32_t n = jobs[j].shell_count;
-      for (uint32_t b = 0; b < n; b += uint32_t(kChunk)) tasks.push_back({j, b, uint32_t(std::min<size_t>(n, b + kChunk))});
-    }
-    first_task[jobs.size()] = tasks.size();
-    std::vector<ChunkResult> results(tasks.size());
-    auto work = [&](size_t i) { run_chunk(jobs[tasks[i].job], tasks[i].begin, tasks[i].end, results[i]); };
-    if (tasks.size() > 1 && pool_.size() > 1)
-      pool_.parallel_for(tasks.size(), work);
-    else
-      for (size_t i = 0; i < tasks.size(); ++i) work(i);
-    // Merge in order.
     std::vector<Record> out;
+    run_into(jobs, out);
+    return out;
+  }
+
+  void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) override {
+    for (const Job& j : jobs) validate_job(cfg_, j, mem_.shell.size(), mem_.map.size());
+    // Tasks: (job, first point, end point). The buffers live on between calls, so a caller that runs batch
+    // after batch allocates nothing once they have grown.
+    tasks_.clear();
+    first_task_.assign(jobs.size() + 1, 0);
+    for (size_t j = 0; j < jobs.size(); ++j) {
+      first_task_[j] = tasks_.size();
+      const uint32_t n = jobs[j].shell_count;
+      for (uint32_t b = 0; b < n; b += uint32_t(kChunk)) tasks_.push_back({j, b, uint32_t(std::min<size_t>(n, b + kChunk))});
+    }
+    first_task_[jobs.size()] = tasks_.size();
+    if (results_.size() < tasks_.size()) results_.resize(tasks_.size());
+    for (size_t i = 0; i < tasks_.size(); ++i) {
+      results_[i].hits.clear();
+      results_[i].count = 0;
+    }
+    auto work = [&](size_t i) { run_chunk(jobs[tasks_[i].job], tasks_[i].begin, tasks_[i].end, results_[i]); };
+    if (tasks_.size() > 1 && pool_.size() > 1)
+      pool_.parallel_for(tasks_.size(), work);
+    else
+      for (size_t i = 0; i < tasks_.size(); ++i) work(i);
+    // Merge in order.
+    size_t total = jobs.size();
+    for (size_t i = 0; i < tasks_.size(); ++i) total += results_[i].hits.size();
+    out.clear();
+    out.reserve(total);
     for (size_t j = 0; j < jobs.size(); ++j) {
       uint32_t hits = 0;
-      for (size_t i = first_task[j]; i < first_task[j + 1]; ++i) {
-        ChunkResult& r = results[i];
+      for (size_t i = first_task_[j]; i < first_task_[j + 1]; ++i) {
+        ChunkResult& r = results_[i];
         if (jobs[j].mode == Mode::First) {
           if (hits == 0 && r.count) {
             out.push_back(r.hits.front());
@@ -177,7 +187,6 @@ class CpuDevice final : public Device {
       out.push_back(Record::done(jobs[j].tag, hits));
     }
     annotate_cycles(cfg_, jobs, out);  // the device's cycles, from ref/'s exact timing model
-    return out;
   }
 
  private:
@@ -262,8 +271,16 @@ class CpuDevice final : public Device {
     return false;
   }
 
+  struct Task {
+    size_t job;
+    uint32_t begin, end;
+  };
+
   DeviceConfig cfg_;
   mutable ThreadPool pool_;
+  std::vector<Task> tasks_;
+  std::vector<size_t> first_task_;
+  std::vector<ChunkResult> results_;
   Path path_;
   int slot_bits_;
   DeviceMemory mem_;

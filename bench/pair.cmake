@@ -1,0 +1,6 @@
+# bench_pair: pair queries against FCL on the same meshes and poses (docs/pairs.md).
+find_package(fcl CONFIG QUIET)
+voxcd_require_package(fcl_FOUND libfcl-dev "FCL (the peer of bench_pair)")
+add_executable(bench_pair ${CMAKE_CURRENT_LIST_DIR}/bench_pair.cpp)
+target_link_libraries(bench_pair PRIVATE voxcd_host fcl)
+voxcd_warnings(bench_pair)
