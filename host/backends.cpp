@@ -4,6 +4,7 @@
 #include "host/device.h"
 #include "host/device_cpu.h"
 #include "host/device_rtl.h"
+#include "host/device_sysc.h"
 #include "ref/pipeline.h"
 #include "ref/timing.h"
 
@@ -39,6 +40,7 @@ class RefDevice final : public Device {
 std::vector<std::string> device_backends() {
   std::vector<std::string> b = {"ref", "cpu"};
   if (!rtl_lanes().empty()) b.push_back("rtl");
+  if (have_sysc()) b.insert(b.end(), {"sysc-rtl", "sysc-tlm"});
   return b;
 }
 
@@ -46,6 +48,8 @@ std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConf
   if (backend == "ref") return std::make_unique<RefDevice>(cfg);
   if (backend == "cpu") return make_cpu_device(cfg, opt);
   if (backend == "rtl") return make_rtl_device(cfg, opt);
+  if (backend == "sysc-rtl") return make_sysc_device("rtl", cfg, opt);
+  if (backend == "sysc-tlm") return make_sysc_device("tlm", cfg, opt);
   const auto all = device_backends();
   std::string list;
   for (const auto& b : all) list += (list.empty() ? "" : ", ") + b;

@@ -1,0 +1,98 @@
+#include "sysc/address_map.h"
+
+#include <cstring>
+
+namespace voxcd::sysc {
+
+void encode_job(const Job& job, uint8_t* out) {
+  std::memset(out, 0, kJobBytes);
+  put_le(out + 0x00, job.tag, 4);
+  out[0x04] = uint8_t(job.mode);
+  out[0x05] = job.hit_mask;
+  put_le(out + 0x08, job.shell_base, 4);
+  put_le(out + 0x0c, job.shell_count, 4);
+  put_le(out + 0x10, job.map_base, 4);
+  put_le(out + 0x14, job.nx, 4);
+  put_le(out + 0x18, job.ny, 4);
+  put_le(out + 0x1c, job.nz, 4);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) put_le(out + 0x20 + 4 * (3 * i + j), uint64_t(job.M[i][j]), 4);
+  for (int i = 0; i < 3; ++i) put_le(out + 0x48 + 8 * i, uint64_t(job.t[i]), 8);
+}
+
+bool decode_job(const uint8_t* in, Job& job, std::string& why) {
+  for (size_t b : {size_t{0x06}, size_t{0x07}, size_t{0x44}, size_t{0x45}, size_t{0x46}, size_t{0x47}})
+    if (in[b] != 0) {
+      why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
+      return false;
+    }
+  for (size_t b = 0x60; b < kJobBytes; ++b)
+    if (in[b] != 0) {
+      why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
+      return false;
+    }
+  if (in[0x04] > 2) {
+    why = "mode " + std::to_string(in[0x04]) + " is not 0 (ALL), 1 (FIRST) or 2 (COUNT)";
+    return false;
+  }
+  job = Job{};
+  job.tag = uint32_t(get_le(in + 0x00, 4));
+  job.mode = Mode(in[0x04]);
+  job.hit_mask = in[0x05];
+  job.shell_base = uint32_t(get_le(in + 0x08, 4));
+  job.shell_count = uint32_t(get_le(in + 0x0c, 4));
+  job.map_base = uint32_t(get_le(in + 0x10, 4));
+  job.nx = uint32_t(get_le(in + 0x14, 4));
+  job.ny = uint32_t(get_le(in + 0x18, 4));
+  job.nz = uint32_t(get_le(in + 0x1c, 4));
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) job.M[i][j] = int32_t(uint32_t(get_le(in + 0x20 + 4 * (3 * i + j), 4)));
+  for (int i = 0; i < 3; ++i) job.t[i] = int64_t(get_le(in + 0x48 + 8 * i, 8));
+  return true;
+}
+
+void encode_record(const Record& rec, uint8_t* out) {
+  std::memset(out, 0, kRecordBytes);
+  put_le(out + 0x04, rec.tag, 4);
+  if (rec.kind == Record::Hit) {
+    out[0] = kKindHit;
+    out[1] = rec.state;
+    put_le(out + 0x08, rec.point, 4);
+    put_le(out + 0x0c, rec.x, 4);
+    put_le(out + 0x10, rec.y, 4);
+    put_le(out + 0x14, rec.z, 4);
+  } else {
+    out[0] = kKindDone;
+    put_le(out + 0x08, rec.hits, 4);
+    put_le(out + 0x0c, rec.points.value_or(0), 4);
+    put_le(out + 0x10, rec.cycles.value_or(0), 8);
+    put_le(out + 0x18, rec.stalls.value_or(0), 8);
+  }
+}
+
+bool decode_record(const uint8_t* in, Record& rec) {
+  const uint32_t tag = uint32_t(get_le(in + 0x04, 4));
+  if (in[0] == kKindHit) {
+    rec = Record::hit(tag, uint32_t(get_le(in + 0x08, 4)), uint32_t(get_le(in + 0x0c, 4)),
+                      uint32_t(get_le(in + 0x10, 4)), uint32_t(get_le(in + 0x14, 4)), in[1]);
+    return true;
+  }
+  if (in[0] == kKindDone) {
+    rec = Record::done(tag, uint32_t(get_le(in + 0x08, 4)), get_le(in + 0x10, 8));
+    rec.points = get_le(in + 0x0c, 4);
+    rec.stalls = get_le(in + 0x18, 8);
+    return true;
+  }
+  return false;
+}
+
+uint64_t config_word0(const DeviceConfig& c) {
+  return uint64_t(c.PW) | uint64_t(c.PF) << 8 | uint64_t(c.MW) << 16 | uint64_t(c.MF) << 24 | uint64_t(c.TW) << 32 |
+         uint64_t(c.DW) << 40 | uint64_t(c.MEMW) << 48 | uint64_t(c.LANES) << 56;
+}
+
+uint64_t config_word1(const DeviceConfig& c) {
+  return uint64_t(c.SAW) | uint64_t(c.MAW) << 8 | uint64_t(c.TAGW) << 16;
+}
+
+}  // namespace voxcd::sysc

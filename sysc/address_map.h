@@ -1,0 +1,84 @@
+// The device's TLM-2.0 address map (docs/systemc.md is the prose): register, memory, job and result windows, and
+// the byte layout of job descriptors and result records. Shared by both targets and by initiators; no SystemC.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ref/config.h"
+#include "ref/types.h"
+
+namespace voxcd::sysc {
+
+// Windows (byte addresses; all data little-endian).
+constexpr uint64_t kRegBase = 0x0000'0000;     // 64-bit registers, 8-byte accesses
+constexpr uint64_t kRegSize = 0x0000'1000;
+constexpr uint64_t kJobBase = 0x0001'0000;     // write whole job descriptors at offset 0: they are staged
+constexpr uint64_t kJobSize = 0x0001'0000;
+constexpr uint64_t kResultBase = 0x0002'0000;  // read whole result records at offset 0: they are popped
+constexpr uint64_t kResultSize = 0x0001'0000;
+constexpr uint64_t kShellBase = 0x1000'0000;   // shell word k at kShellBase + 16 k (write only)
+constexpr uint64_t kMapBase = 0x2000'0000;     // voxmap word k at kMapBase + 8 k (write only)
+constexpr uint64_t kShellStride = 16;
+constexpr uint64_t kMapStride = 8;
+
+// Registers: offsets in the register window.
+enum Reg : uint64_t {
+  kRegId = 0x00,           // RO: kDeviceId
+  kRegConfig0 = 0x08,      // RO: PW | PF<<8 | MW<<16 | MF<<24 | TW<<32 | DW<<40 | MEMW<<48 | LANES<<56
+  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16
+  kRegClockPs = 0x18,      // RO: clock period in picoseconds
+  kRegStatus = 0x20,       // RO: kStatus* bits
+  kRegStaged = 0x28,       // RO: jobs staged and not yet launched
+  kRegResultCount = 0x30,  // RO: result records readable now
+  kRegRun = 0x38,          // WO: any value launches the staged jobs as one batch
+  kRegJobsDone = 0x40,     // RO: counters since reset, updated as completion records become readable
+  kRegHits = 0x48,
+  kRegPoints = 0x50,
+  kRegCycles = 0x58,       // sum of the completion records' cycles
+  kRegStalls = 0x60,
+  kRegShellWords = 0x68,   // RO: shell words loaded (one past the highest written)
+  kRegMapWords = 0x70,     // RO: voxmap words loaded
+};
+constexpr uint64_t kDeviceId = 0x766f'7863'6400'0001;  // "voxcd", version 1
+// STATUS bits.
+constexpr uint64_t kStatusBusy = 1;     // a launched batch has not finished (its last completion is not readable)
+constexpr uint64_t kStatusResults = 2;  // result records are readable
+constexpr uint64_t kStatusStaged = 4;   // jobs are staged
+constexpr uint64_t kStatusFault = 8;    // the RTL failed an assertion (RTL target only; other accesses then fail)
+
+// Job descriptor: kJobBytes bytes.
+//   0x00 u32 tag      0x04 u8 mode (0 ALL, 1 FIRST, 2 COUNT)   0x05 u8 hit mask   0x06 u16 zero
+//   0x08 u32 shell_base   0x0c u32 shell_count   0x10 u32 map_base   0x14 u32 nx   0x18 u32 ny   0x1c u32 nz
+//   0x20 i32 M[3][3], row-major   0x44 u32 zero   0x48 i64 t[3]   0x60 .. 0x7f zero
+constexpr size_t kJobBytes = 128;
+// Result record: kRecordBytes bytes.
+//   0x00 u8 kind (0 none, 1 hit, 2 done)   0x01 u8 state (hit)   0x02 u16 zero   0x04 u32 tag
+//   hit:  0x08 u32 point   0x0c u32 x   0x10 u32 y   0x14 u32 z   0x18 u64 zero
+//   done: 0x08 u32 hits    0x0c u32 points   0x10 u64 cycles   0x18 u64 stalls
+constexpr size_t kRecordBytes = 32;
+enum RecordKind : uint8_t { kKindNone = 0, kKindHit = 1, kKindDone = 2 };
+
+void encode_job(const Job& job, uint8_t* out);
+// Decodes a descriptor; false (and `why`) when a reserved byte is not zero or the mode is not 0..2.
+bool decode_job(const uint8_t* in, Job& job, std::string& why);
+void encode_record(const Record& rec, uint8_t* out);
+// Decodes one record slot; false for an empty slot (kind 0).
+bool decode_record(const uint8_t* in, Record& rec);
+
+uint64_t config_word0(const DeviceConfig& cfg);
+uint64_t config_word1(const DeviceConfig& cfg);
+
+// Little-endian helpers.
+inline void put_le(uint8_t* p, uint64_t v, int bytes) {
+  for (int i = 0; i < bytes; ++i) p[i] = uint8_t(v >> (8 * i));
+}
+inline uint64_t get_le(const uint8_t* p, int bytes) {
+  uint64_t v = 0;
+  for (int i = 0; i < bytes; ++i) v |= uint64_t(p[i]) << (8 * i);
+  return v;
+}
+
+}  // namespace voxcd::sysc

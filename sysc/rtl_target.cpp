@@ -1,0 +1,289 @@
+#include "sysc/rtl_target.h"
+
+#include <verilated.h>
+#include <verilated_fst_sc.h>
+
+#include "Vvoxcd_sc_l1.h"
+#include "Vvoxcd_sc_l2.h"
+#include "Vvoxcd_sc_l4.h"
+#include "Vvoxcd_sc_l8.h"
+
+namespace voxcd::sysc {
+
+using namespace sc_core;
+
+std::vector<int> rtl_target_lanes() { return {VOXCD_SYSC_LANES}; }
+
+// One signal per pin, typed as Verilator types the ports of the default-width device.
+struct RtlPins {
+  sc_signal<bool> rst_ni{"rst_ni", false};
+  sc_signal<bool> shell_we_i{"shell_we_i"}, map_we_i{"map_we_i"};
+  sc_signal<uint32_t> shell_waddr_i{"shell_waddr_i"}, map_waddr_i{"map_waddr_i"};
+  sc_signal<sc_dt::sc_bv<72>> shell_wdata_i{"shell_wdata_i"};
+  sc_signal<uint64_t> map_wdata_i{"map_wdata_i"};
+  sc_signal<bool> job_valid_i{"job_valid_i"}, job_ready_o{"job_ready_o"};
+  sc_signal<uint32_t> job_tag_i{"job_tag_i"}, job_mode_i{"job_mode_i"}, job_mask_i{"job_mask_i"};
+  sc_signal<uint32_t> job_shell_base_i{"job_shell_base_i"}, job_shell_count_i{"job_shell_count_i"};
+  sc_signal<uint32_t> job_map_base_i{"job_map_base_i"};
+  sc_signal<uint32_t> job_nx_i{"job_nx_i"}, job_ny_i{"job_ny_i"}, job_nz_i{"job_nz_i"};
+  sc_signal<uint32_t> job_m_i[9];
+  sc_signal<uint64_t> job_t_i[3];
+  sc_signal<bool> hit_valid_o{"hit_valid_o"}, hit_ready_i{"hit_ready_i", true};
+  sc_signal<uint32_t> hit_tag_o{"hit_tag_o"}, hit_point_o{"hit_point_o"}, hit_x_o{"hit_x_o"}, hit_y_o{"hit_y_o"},
+      hit_z_o{"hit_z_o"}, hit_state_o{"hit_state_o"};
+  sc_signal<bool> done_valid_o{"done_valid_o"}, done_ready_i{"done_ready_i", true};
+  sc_signal<uint32_t> done_tag_o{"done_tag_o"}, done_hits_o{"done_hits_o"}, done_cycles_o{"done_cycles_o"},
+      done_points_o{"done_points_o"}, done_stalls_o{"done_stalls_o"};
+  sc_signal<bool> busy_o{"busy_o"};
+};
+
+struct RtlModel {
+  virtual ~RtlModel() = default;
+  virtual void final() = 0;
+  virtual void trace(VerilatedFstC* tfp) = 0;
+};
+
+namespace {
+
+template <class M>
+struct ModelOf final : RtlModel {
+  ModelOf(const char* name, sc_clock& clk, RtlPins& p) : m(name) {
+    m.clk_i(clk);
+    m.rst_ni(p.rst_ni);
+    m.shell_we_i(p.shell_we_i);
+    m.shell_waddr_i(p.shell_waddr_i);
+    m.shell_wdata_i(p.shell_wdata_i);
+    m.map_we_i(p.map_we_i);
+    m.map_waddr_i(p.map_waddr_i);
+    m.map_wdata_i(p.map_wdata_i);
+    m.job_valid_i(p.job_valid_i);
+    m.job_ready_o(p.job_ready_o);
+    m.job_tag_i(p.job_tag_i);
+    m.job_mode_i(p.job_mode_i);
+    m.job_mask_i(p.job_mask_i);
+    m.job_shell_base_i(p.job_shell_base_i);
+    m.job_shell_count_i(p.job_shell_count_i);
+    m.job_map_base_i(p.job_map_base_i);
+    m.job_nx_i(p.job_nx_i);
+    m.job_ny_i(p.job_ny_i);
+    m.job_nz_i(p.job_nz_i);
+    m.job_m00_i(p.job_m_i[0]);
+    m.job_m01_i(p.job_m_i[1]);
+    m.job_m02_i(p.job_m_i[2]);
+    m.job_m10_i(p.job_m_i[3]);
+    m.job_m11_i(p.job_m_i[4]);
+    m.job_m12_i(p.job_m_i[5]);
+    m.job_m20_i(p.job_m_i[6]);
+    m.job_m21_i(p.job_m_i[7]);
+    m.job_m22_i(p.job_m_i[8]);
+    m.job_t0_i(p.job_t_i[0]);
+    m.job_t1_i(p.job_t_i[1]);
+    m.job_t2_i(p.job_t_i[2]);
+    m.hit_valid_o(p.hit_valid_o);
+    m.hit_ready_i(p.hit_ready_i);
+    m.hit_tag_o(p.hit_tag_o);
+    m.hit_point_o(p.hit_point_o);
+    m.hit_x_o(p.hit_x_o);
+    m.hit_y_o(p.hit_y_o);
+    m.hit_z_o(p.hit_z_o);
+    m.hit_state_o(p.hit_state_o);
+    m.done_valid_o(p.done_valid_o);
+    m.done_ready_i(p.done_ready_i);
+    m.done_tag_o(p.done_tag_o);
+    m.done_hits_o(p.done_hits_o);
+    m.done_cycles_o(p.done_cycles_o);
+    m.done_points_o(p.done_points_o);
+    m.done_stalls_o(p.done_stalls_o);
+    m.busy_o(p.busy_o);
+  }
+  void final() override { m.final(); }
+  void trace(VerilatedFstC* tfp) override { m.trace(tfp, 99); }
+  M m;
+};
+
+uint32_t masked(int64_t v, int width) { return uint32_t(uint64_t(v) & ((uint64_t{1} << width) - 1)); }
+
+}  // namespace
+
+RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock_period, sc_time access_latency,
+                     const std::string& trace_path)
+    : DeviceTarget(name, cfg, clock_period, access_latency),
+      trace_path_(trace_path),
+      ctx_(std::make_unique<VerilatedContext>()),
+      // Rising edges at T, 2T, ...: the first one resets the device.
+      clk_("clk", clock_period, 0.5, clock_period, true),
+      pins_(std::make_unique<RtlPins>()) {
+  DeviceConfig built;
+  built.LANES = cfg.LANES;
+  if (!cfg.same_widths(built))
+    throw std::invalid_argument(std::string(this->name()) + ": the RTL models are built for the default widths (" +
+                                DeviceConfig{}.to_string() + "), not for " + cfg.to_string());
+  ctx_->fatalOnError(false);  // a failed assertion faults the target instead of ending the process
+  if (!trace_path_.empty()) ctx_->traceEverOn(true);
+  // A SystemC model takes the calling thread's context: make it this target's own.
+  Verilated::threadContextp(ctx_.get());
+  const std::string mname = std::string(basename()) + "_rtl";
+  switch (cfg.LANES) {
+    case 1: model_ = std::make_unique<ModelOf<Vvoxcd_sc_l1>>(mname.c_str(), clk_, *pins_); break;
+    case 2: model_ = std::make_unique<ModelOf<Vvoxcd_sc_l2>>(mname.c_str(), clk_, *pins_); break;
+    case 4: model_ = std::make_unique<ModelOf<Vvoxcd_sc_l4>>(mname.c_str(), clk_, *pins_); break;
+    case 8: model_ = std::make_unique<ModelOf<Vvoxcd_sc_l8>>(mname.c_str(), clk_, *pins_); break;
+    default:
+      throw std::invalid_argument(std::string(this->name()) + ": no RTL model for LANES " +
+                                  std::to_string(cfg.LANES) + " (this build has 1, 2, 4 and 8)");
+  }
+  SC_METHOD(on_edge);
+  sensitive << clk_.posedge_event();
+  dont_initialize();
+}
+
+RtlTarget::~RtlTarget() {
+  Verilated::threadContextp(ctx_.get());
+  model_->final();
+  if (trace_) trace_->close();
+  model_.reset();
+}
+
+void RtlTarget::start_of_simulation() {
+  if (trace_path_.empty()) return;
+  trace_ = std::make_unique<VerilatedFstSc>();
+  model_->trace(trace_.get());
+  trace_->open(trace_path_.c_str());
+}
+
+sc_time RtlTarget::start(sc_time& delay) {
+  // The pins live in the kernel's time: catch up with the initiator's local time first.
+  wait(delay);
+  delay = SC_ZERO_TIME;
+  return sc_time_stamp();
+}
+
+sc_time RtlTarget::write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_time t) {
+  MemRequest req;
+  req.time = t;
+  req.shell = true;
+  req.first = first;
+  req.shell_words = words;
+  return write_memory(req);
+}
+
+sc_time RtlTarget::write_map(uint64_t first, const std::vector<uint64_t>& words, sc_time t) {
+  MemRequest req;
+  req.time = t;
+  req.shell = false;
+  req.first = first;
+  req.map_words = words;
+  return write_memory(req);
+}
+
+sc_time RtlTarget::write_memory(MemRequest& req) {
+  mem_ = &req;
+  while (!req.done && !fault_) wait(mem_event_);
+  mem_ = nullptr;
+  return sc_time_stamp();
+}
+
+void RtlTarget::launch(std::vector<Job> jobs, sc_time t) { batches_.push_back({t, std::move(jobs)}); }
+
+void RtlTarget::advance_to(sc_time t) {
+  // Records taken at an edge at or before t are readable at t, whether or not the clocked method has run yet.
+  while (edge_ < edge_at_or_before(t) && !fault_) wait(edge_event_);
+}
+
+sc_time RtlTarget::await_results(size_t n, sc_time t) {
+  advance_to(t);
+  while (readable() < n && busy() && !fault_) wait(results_event_);
+  return sc_time_stamp();
+}
+
+void RtlTarget::drive_job(const Job& j) {
+  RtlPins& p = *pins_;
+  p.job_tag_i.write(j.tag);
+  p.job_mode_i.write(uint32_t(j.mode));
+  p.job_mask_i.write(j.hit_mask);
+  p.job_shell_base_i.write(j.shell_base);
+  p.job_shell_count_i.write(j.shell_count);
+  p.job_map_base_i.write(j.map_base);
+  p.job_nx_i.write(j.nx);
+  p.job_ny_i.write(j.ny);
+  p.job_nz_i.write(j.nz);
+  for (int i = 0; i < 9; ++i) p.job_m_i[i].write(masked(j.M[i / 3][i % 3], cfg_.MW));
+  const uint64_t tmask = cfg_.TW >= 64 ? ~uint64_t{0} : (uint64_t{1} << cfg_.TW) - 1;
+  for (int i = 0; i < 3; ++i) p.job_t_i[i].write(uint64_t(j.t[i]) & tmask);
+}
+
+void RtlTarget::drive_word(const MemRequest& req) {
+  RtlPins& p = *pins_;
+  const size_t k = req.written;
+  if (req.shell) {
+    sc_dt::sc_bv<72> w;
+    const ShellWord& s = req.shell_words[k];
+    for (int c = 0; c < 3; ++c)
+      for (int b = 0; b < cfg_.PW; ++b) w[c * cfg_.PW + b] = bool((uint64_t(s[c]) >> b) & 1u);
+    p.shell_we_i.write(true);
+    p.shell_waddr_i.write(uint32_t(req.first + k));
+    p.shell_wdata_i.write(w);
+  } else {
+    p.map_we_i.write(true);
+    p.map_waddr_i.write(uint32_t(req.first + k));
+    p.map_wdata_i.write(req.map_words[k]);
+  }
+}
+
+// At every rising edge: first what happened at this edge (the outputs read now are the values the edge sampled),
+// then the inputs for the next edge.
+void RtlTarget::on_edge() {
+  RtlPins& p = *pins_;
+  ++edge_;
+  if (edge_ == 1) {
+    p.rst_ni.write(true);  // this edge reset the device; its outputs before it mean nothing
+  } else {
+    if (job_valid_ && p.job_ready_o.read()) ++fed_;
+    if (p.hit_valid_o.read())
+      partial_.push_back(Record::hit(p.hit_tag_o.read(), p.hit_point_o.read(), p.hit_x_o.read(), p.hit_y_o.read(),
+                                     p.hit_z_o.read(), uint8_t(p.hit_state_o.read())));
+    if (p.done_valid_o.read()) {
+      Record d = Record::done(p.done_tag_o.read(), p.done_hits_o.read(), p.done_cycles_o.read());
+      d.points = p.done_points_o.read();
+      d.stalls = p.done_stalls_o.read();
+      partial_.push_back(d);
+      publish(partial_);
+      partial_.clear();
+      results_event_.notify(SC_ZERO_TIME);
+      if (++completed_ == batches_.front().jobs.size()) {
+        batches_.pop_front();
+        running_ = false;
+      }
+    }
+    if (mem_ && mem_->started && ++mem_->written == mem_->size()) {
+      mem_->done = true;
+      mem_event_.notify(SC_ZERO_TIME);
+      mem_ = nullptr;
+    }
+  }
+
+  // Memory writes wait until every launched batch is done and the device is idle.
+  if (mem_ && !mem_->started && mem_->time < sc_time_stamp() && !busy() && !p.busy_o.read()) mem_->started = true;
+  const bool writing = mem_ && mem_->started;
+  if (writing) drive_word(*mem_);
+  p.shell_we_i.write(writing && mem_->shell);
+  p.map_we_i.write(writing && !mem_->shell);
+
+  if (!running_ && !writing && !batches_.empty() && batches_.front().time < sc_time_stamp()) {
+    running_ = true;
+    fed_ = 0;
+    completed_ = 0;
+  }
+  job_valid_ = running_ && fed_ < batches_.front().jobs.size();
+  if (job_valid_) drive_job(batches_.front().jobs[fed_]);
+  p.job_valid_i.write(job_valid_);
+
+  if (ctx_->gotError()) {
+    fault_ = true;
+    results_event_.notify(SC_ZERO_TIME);
+    mem_event_.notify(SC_ZERO_TIME);
+  }
+  edge_event_.notify(SC_ZERO_TIME);
+}
+
+}  // namespace voxcd::sysc

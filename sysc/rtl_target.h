@@ -1,0 +1,89 @@
+// RtlTarget: the Verilated RTL (rtl/voxcd_device.sv, --sc) behind the device's TLM-2.0 socket. A clocked method
+// (the only writer of the model's input pins) writes memories through the write ports, feeds launched jobs back
+// to back and takes every output record (an always-ready consumer), as host/device_rtl.cpp does in C++.
+//
+// b_transport waits: it first waits out its annotated delay (the pins must be driven at the transaction's time),
+// then until the clocked method has done the access (a memory write, or the records a result read asks for).
+// The time passes in the kernel, not in the annotation: an RTL needs its clock edges to happen, and waiting is
+// what lets other processes run meanwhile. The loosely-timed TlmTarget annotates the same times without waiting.
+#pragma once
+
+#include <deque>
+#include <memory>
+#include <string>
+
+#include "sysc/target.h"
+
+class VerilatedContext;
+class VerilatedFstSc;
+
+namespace voxcd::sysc {
+
+struct RtlPins;   // one signal per pin of the model
+struct RtlModel;  // the Verilated model of one lane count
+
+// Lane counts this build has SystemC RTL models for.
+std::vector<int> rtl_target_lanes();
+
+class RtlTarget final : public DeviceTarget {
+ public:
+  SC_HAS_PROCESS(RtlTarget);
+  // cfg must have the default widths and a lane count of rtl_target_lanes(); trace_path "" = no waveform.
+  RtlTarget(sc_core::sc_module_name name, const DeviceConfig& cfg, sc_core::sc_time clock_period,
+            sc_core::sc_time access_latency = sc_core::SC_ZERO_TIME, const std::string& trace_path = "");
+  ~RtlTarget() override;
+
+  // Clock edges simulated so far.
+  uint64_t edges() const { return edge_; }
+
+ private:
+  struct MemRequest {
+    sc_core::sc_time time;
+    bool shell = true;
+    uint64_t first = 0;
+    std::vector<ShellWord> shell_words;
+    std::vector<uint64_t> map_words;
+    size_t size() const { return shell ? shell_words.size() : map_words.size(); }
+    bool started = false;
+    size_t written = 0;
+    bool done = false;
+  };
+  struct Batch {
+    sc_core::sc_time time;
+    std::vector<Job> jobs;
+  };
+
+  sc_core::sc_time start(sc_core::sc_time& delay) override;
+  sc_core::sc_time write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_core::sc_time t) override;
+  sc_core::sc_time write_map(uint64_t first, const std::vector<uint64_t>& words, sc_core::sc_time t) override;
+  sc_core::sc_time write_memory(MemRequest& req);
+  void launch(std::vector<Job> jobs, sc_core::sc_time t) override;
+  void advance_to(sc_core::sc_time t) override;
+  sc_core::sc_time await_results(size_t n, sc_core::sc_time t) override;
+  bool busy() const override { return running_ || !batches_.empty(); }
+  bool faulted() const override { return fault_; }
+  void start_of_simulation() override;
+
+  void on_edge();  // the clocked method
+  void drive_job(const Job& j);
+  void drive_word(const MemRequest& req);
+
+  std::string trace_path_;
+  std::unique_ptr<VerilatedContext> ctx_;
+  sc_core::sc_clock clk_;
+  std::unique_ptr<RtlPins> pins_;
+  std::unique_ptr<RtlModel> model_;
+  std::unique_ptr<VerilatedFstSc> trace_;
+
+  sc_core::sc_event edge_event_, results_event_, mem_event_;
+  uint64_t edge_ = 0;
+  bool fault_ = false;
+  MemRequest* mem_ = nullptr;
+  std::deque<Batch> batches_;  // launched; the front one runs when running_
+  bool running_ = false;
+  bool job_valid_ = false;
+  size_t fed_ = 0, completed_ = 0;
+  std::vector<Record> partial_;  // records of the job being completed
+};
+
+}  // namespace voxcd::sysc

@@ -1,0 +1,173 @@
+#include "sysc/target.h"
+
+#include <cstring>
+
+#include "ref/pipeline.h"
+#include "sysc/address_map.h"
+
+namespace voxcd::sysc {
+
+using namespace sc_core;
+using tlm::tlm_response_status;
+
+DeviceTarget::DeviceTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock_period, sc_time access_latency)
+    : sc_module(name), socket("socket"), cfg_(cfg), period_(clock_period), latency_(access_latency) {
+  cfg_.validate();
+  if (period_ == SC_ZERO_TIME) throw std::invalid_argument(std::string(basename()) + ": the clock period is zero");
+  socket.register_b_transport(this, &DeviceTarget::b_transport);
+}
+
+uint64_t DeviceTarget::edge_after(sc_time t) const { return t.value() / period_.value() + 1; }
+uint64_t DeviceTarget::edge_at_or_before(sc_time t) const { return t.value() / period_.value(); }
+
+void DeviceTarget::publish(const std::vector<Record>& job_records) {
+  for (const Record& r : job_records) {
+    results_.push_back(r);
+    if (r.kind != Record::Done) continue;
+    ++jobs_done_;
+    hits_ += r.hits;
+    points_ += r.points.value_or(0);
+    cycles_ += r.cycles.value_or(0);
+    stalls_ += r.stalls.value_or(0);
+  }
+}
+
+tlm_response_status DeviceTarget::fail(tlm_response_status s, std::string why) {
+  last_error_ = std::string(name()) + ": " + why;
+  return s;
+}
+
+void DeviceTarget::b_transport(tlm::tlm_generic_payload& tr, sc_time& delay) {
+  const sc_time t = start(delay);
+  sc_time done = t;
+  tr.set_response_status(access(tr, t, done));
+  delay = done + latency_ - sc_time_stamp();
+}
+
+tlm_response_status DeviceTarget::access(tlm::tlm_generic_payload& tr, sc_time t, sc_time& done) {
+  using namespace tlm;
+  const uint64_t addr = tr.get_address();
+  const size_t len = tr.get_data_length();
+  uint8_t* data = tr.get_data_ptr();
+  const bool wr = tr.get_command() == TLM_WRITE_COMMAND;
+  if (tr.get_command() == TLM_IGNORE_COMMAND) return TLM_OK_RESPONSE;
+  if (tr.get_byte_enable_ptr()) return fail(TLM_BYTE_ENABLE_ERROR_RESPONSE, "byte enables are not supported");
+  if (tr.get_streaming_width() < len) return fail(TLM_BURST_ERROR_RESPONSE, "streaming is not supported");
+  if (len == 0 || !data) return fail(TLM_BURST_ERROR_RESPONSE, "an access of zero bytes");
+  const auto in = [&](uint64_t base, uint64_t size) { return addr >= base && addr - base < size; };
+  const auto fits = [&](uint64_t base, uint64_t size) { return addr - base + len <= size; };
+  // A faulted RTL can still say so through its registers.
+  if (faulted() && (wr || !in(kRegBase, kRegSize)))
+    return fail(TLM_GENERIC_ERROR_RESPONSE, "the RTL has failed an assertion");
+
+  if (in(kRegBase, kRegSize)) {
+    const uint64_t off = addr - kRegBase;
+    if (len != 8 || off % 8) return fail(TLM_BURST_ERROR_RESPONSE, "registers take aligned 8-byte accesses");
+    if (!wr) return reg_read(off, data, t);
+    if (off != kRegRun) {
+      if (off <= kRegMapWords) return fail(TLM_COMMAND_ERROR_RESPONSE, "register is read-only");
+      return fail(TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
+    }
+    if (!staged_.empty()) launch(std::move(staged_), t);
+    staged_.clear();
+    return TLM_OK_RESPONSE;
+  }
+  if (in(kJobBase, kJobSize)) {
+    if (!wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the job window is write-only");
+    if (addr != kJobBase || len % kJobBytes || !fits(kJobBase, kJobSize))
+      return fail(TLM_BURST_ERROR_RESPONSE, "write whole job descriptors at the job window's base");
+    std::vector<Job> jobs(len / kJobBytes);
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      std::string why;
+      if (!decode_job(data + i * kJobBytes, jobs[i], why))
+        return fail(TLM_GENERIC_ERROR_RESPONSE, "descriptor " + std::to_string(i) + ": " + why);
+      try {
+        validate_job(cfg_, jobs[i], shell_words_, map_words_);
+      } catch (const std::exception& e) {
+        return fail(TLM_GENERIC_ERROR_RESPONSE, "descriptor " + std::to_string(i) + ": " + e.what());
+      }
+    }
+    staged_.insert(staged_.end(), jobs.begin(), jobs.end());
+    return TLM_OK_RESPONSE;
+  }
+  if (in(kResultBase, kResultSize)) {
+    if (wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the result window is read-only");
+    if (addr != kResultBase || len % kRecordBytes || !fits(kResultBase, kResultSize))
+      return fail(TLM_BURST_ERROR_RESPONSE, "read whole result records at the result window's base");
+    const size_t n = len / kRecordBytes;
+    done = await_results(n, t);
+    std::memset(data, 0, len);
+    for (size_t i = 0; i < n && !results_.empty(); ++i) {
+      encode_record(results_.front(), data + i * kRecordBytes);
+      results_.pop_front();
+    }
+    return TLM_OK_RESPONSE;
+  }
+  if (in(kShellBase, cfg_.shell_depth() * kShellStride)) {
+    if (!wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the shell memory is write-only");
+    if ((addr - kShellBase) % kShellStride || len % kShellStride || !fits(kShellBase, cfg_.shell_depth() * kShellStride))
+      return fail(TLM_BURST_ERROR_RESPONSE, "write whole 16-byte shell words inside the shell memory");
+    std::vector<ShellWord> words(len / kShellStride);
+    const int64_t lim = int64_t{1} << (cfg_.PW - 1);
+    for (size_t i = 0; i < words.size(); ++i) {
+      const uint8_t* p = data + i * kShellStride;
+      words[i] = {int32_t(uint32_t(get_le(p, 4))), int32_t(uint32_t(get_le(p + 4, 4))),
+                  int32_t(uint32_t(get_le(p + 8, 4)))};
+      for (int c = 0; c < 3; ++c)
+        if (words[i][c] < -lim || words[i][c] >= lim)
+          return fail(TLM_GENERIC_ERROR_RESPONSE, "shell word " + std::to_string(i) + " does not fit PW bits");
+      if (get_le(p + 12, 4) != 0)
+        return fail(TLM_GENERIC_ERROR_RESPONSE, "shell word " + std::to_string(i) + ": reserved bytes not zero");
+    }
+    const uint64_t first = (addr - kShellBase) / kShellStride;
+    done = write_shell(first, words, t);
+    shell_words_ = std::max(shell_words_, first + words.size());
+    return TLM_OK_RESPONSE;
+  }
+  if (in(kMapBase, cfg_.map_depth() * kMapStride)) {
+    if (!wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the voxmap memory is write-only");
+    if ((addr - kMapBase) % kMapStride || len % kMapStride || !fits(kMapBase, cfg_.map_depth() * kMapStride))
+      return fail(TLM_BURST_ERROR_RESPONSE, "write whole 8-byte voxmap words inside the voxmap memory");
+    std::vector<uint64_t> words(len / kMapStride);
+    for (size_t i = 0; i < words.size(); ++i) {
+      words[i] = get_le(data + i * kMapStride, 8);
+      if (cfg_.MEMW < 64 && (words[i] >> cfg_.MEMW) != 0)
+        return fail(TLM_GENERIC_ERROR_RESPONSE, "voxmap word " + std::to_string(i) + " has bits above MEMW");
+    }
+    const uint64_t first = (addr - kMapBase) / kMapStride;
+    done = write_map(first, words, t);
+    map_words_ = std::max(map_words_, first + words.size());
+    return TLM_OK_RESPONSE;
+  }
+  return fail(TLM_ADDRESS_ERROR_RESPONSE, "no window at this address");
+}
+
+tlm_response_status DeviceTarget::reg_read(uint64_t off, uint8_t* data, sc_time t) {
+  advance_to(t);
+  uint64_t v = 0;
+  switch (off) {
+    case kRegId: v = kDeviceId; break;
+    case kRegConfig0: v = config_word0(cfg_); break;
+    case kRegConfig1: v = config_word1(cfg_); break;
+    case kRegClockPs: v = uint64_t(period_.to_seconds() * 1e12 + 0.5); break;
+    case kRegStatus:
+      v = (busy() ? kStatusBusy : 0) | (results_.empty() ? 0 : kStatusResults) | (staged_.empty() ? 0 : kStatusStaged) |
+          (faulted() ? kStatusFault : 0);
+      break;
+    case kRegStaged: v = staged_.size(); break;
+    case kRegResultCount: v = results_.size(); break;
+    case kRegRun: return fail(tlm::TLM_COMMAND_ERROR_RESPONSE, "RUN is write-only");
+    case kRegJobsDone: v = jobs_done_; break;
+    case kRegHits: v = hits_; break;
+    case kRegPoints: v = points_; break;
+    case kRegCycles: v = cycles_; break;
+    case kRegStalls: v = stalls_; break;
+    case kRegShellWords: v = shell_words_; break;
+    case kRegMapWords: v = map_words_; break;
+    default: return fail(tlm::TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
+  }
+  put_le(data, v, 8);
+  return tlm::TLM_OK_RESPONSE;
+}
+
+}  // namespace voxcd::sysc

@@ -1,0 +1,81 @@
+// DeviceTarget: what both SystemC targets share: the TLM-2.0 socket, the address map (sysc/address_map.h), access
+// checks and error responses, the staging of job descriptors, the result queue and the counters. How memory
+// writes, batches and time happen is the subclass's: the Verilated RTL (rtl_target.h) or the timing model
+// (tlm_target.h).
+//
+// Time, the same in both (docs/systemc.md): the device's clock has period T and its rising edges at T, 2T, 3T...
+// A transaction at time t acts on the device from the first edge strictly after t. A memory write of n words
+// takes the write port for n edges once the device is idle; a launched batch starts when the previous one has
+// finished and runs its jobs back to back; a job's records become readable together, at the edge at which its
+// completion record is taken from the device. Every transaction completes at the time its effect is done, plus
+// the access latency (a constructor argument).
+#pragma once
+
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_target_socket.h>
+
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "ref/config.h"
+#include "ref/types.h"
+
+namespace voxcd::sysc {
+
+class DeviceTarget : public sc_core::sc_module {
+ public:
+  tlm_utils::simple_target_socket<DeviceTarget> socket;
+
+  DeviceTarget(sc_core::sc_module_name name, const DeviceConfig& cfg, sc_core::sc_time clock_period,
+               sc_core::sc_time access_latency);
+  const DeviceConfig& config() const { return cfg_; }
+  sc_core::sc_time clock_period() const { return period_; }
+  // Why the last access got an error response ("" if none did).
+  const std::string& last_error() const { return last_error_; }
+
+ protected:
+  // The transaction's start time; the RTL target first waits until then (its pins live in simulated time).
+  virtual sc_core::sc_time start(sc_core::sc_time& delay) = 0;
+  // Writes words [first, first + n) of the shell or voxmap memory at time t; returns when the write is done.
+  virtual sc_core::sc_time write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_core::sc_time t) = 0;
+  virtual sc_core::sc_time write_map(uint64_t first, const std::vector<uint64_t>& words, sc_core::sc_time t) = 0;
+  // Launches jobs (valid for the loaded memory) as one batch at time t.
+  virtual void launch(std::vector<Job> jobs, sc_core::sc_time t) = 0;
+  // Makes every job whose records are readable at t readable (publish()).
+  virtual void advance_to(sc_core::sc_time t) = 0;
+  // From t, the time at which at least n records are readable or no launched batch is left; publishes up to then.
+  virtual sc_core::sc_time await_results(size_t n, sc_core::sc_time t) = 0;
+  // After advance_to(t): a launched batch has not finished.
+  virtual bool busy() const = 0;
+  // The RTL reported an assertion failure: every later access fails.
+  virtual bool faulted() const { return false; }
+
+  // Makes one job's records (hits, then its completion record) readable and counts them.
+  void publish(const std::vector<Record>& job_records);
+  size_t readable() const { return results_.size(); }
+  // Edge index k of the first rising edge strictly after t (edges at k * T, k >= 1).
+  uint64_t edge_after(sc_core::sc_time t) const;
+  // The last edge at or before t (0 before the first).
+  uint64_t edge_at_or_before(sc_core::sc_time t) const;
+  sc_core::sc_time edge_time(uint64_t k) const { return sc_core::sc_time::from_value(k * period_.value()); }
+
+  const DeviceConfig cfg_;
+  const sc_core::sc_time period_;
+  const sc_core::sc_time latency_;
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& tr, sc_core::sc_time& delay);
+  tlm::tlm_response_status access(tlm::tlm_generic_payload& tr, sc_core::sc_time t, sc_core::sc_time& done);
+  tlm::tlm_response_status reg_read(uint64_t off, uint8_t* data, sc_core::sc_time t);
+  tlm::tlm_response_status fail(tlm::tlm_response_status s, std::string why);
+
+  std::vector<Job> staged_;
+  std::deque<Record> results_;
+  uint64_t shell_words_ = 0, map_words_ = 0;
+  uint64_t jobs_done_ = 0, hits_ = 0, points_ = 0, cycles_ = 0, stalls_ = 0;
+  std::string last_error_;
+};
+
+}  // namespace voxcd::sysc

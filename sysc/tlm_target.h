@@ -1,0 +1,38 @@
+// TlmTarget: the device as a loosely-timed TLM-2.0 model on ref/: results from ref/pipeline.h (bit-exact), time
+// from ref/timing.h (cycle-exact). b_transport never waits: it computes when the access would be done on the RTL
+// target and annotates the delay. Assumes its initiators' transactions come in time order (one initiator, or
+// initiators kept in order by their quantum).
+#pragma once
+
+#include <deque>
+
+#include "sysc/target.h"
+
+namespace voxcd::sysc {
+
+class TlmTarget final : public DeviceTarget {
+ public:
+  TlmTarget(sc_core::sc_module_name name, const DeviceConfig& cfg, sc_core::sc_time clock_period,
+            sc_core::sc_time access_latency = sc_core::SC_ZERO_TIME);
+
+ private:
+  sc_core::sc_time start(sc_core::sc_time& delay) override;
+  sc_core::sc_time write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_core::sc_time t) override;
+  sc_core::sc_time write_map(uint64_t first, const std::vector<uint64_t>& words, sc_core::sc_time t) override;
+  void launch(std::vector<Job> jobs, sc_core::sc_time t) override;
+  void advance_to(sc_core::sc_time t) override;
+  sc_core::sc_time await_results(size_t n, sc_core::sc_time t) override;
+  bool busy() const override { return !future_.empty(); }
+  sc_core::sc_time memory_write(uint64_t words, sc_core::sc_time t);
+
+  struct Future {
+    uint64_t edge;                // the edge at which the job's completion record is taken
+    std::vector<Record> records;  // the job's hits and its completion record
+  };
+  DeviceMemory mem_;
+  std::deque<Future> future_;
+  uint64_t batch_free_ = 1;  // first edge at which a new batch may be presented
+  uint64_t idle_ = 1;        // first edge at which the device is idle (memory writes may start)
+};
+
+}  // namespace voxcd::sysc

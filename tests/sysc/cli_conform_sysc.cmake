@@ -1,0 +1,51 @@
+# `voxcd conform --backend sysc-rtl|sysc-tlm` as a user runs it: several files in one process (one SystemC server
+# per Device), every lane count, cycles compared; a changed cycle count is caught; a config the RTL models were
+# not built for is refused with a message, while the TLM model takes it.
+file(MAKE_DIRECTORY ${WORK})
+function(run expect_rc out_var)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL expect_rc)
+    message(FATAL_ERROR "'${ARGN}' exited ${rc}, expected ${expect_rc}\n${out}\n${err}")
+  endif()
+  set(${out_var} "${out}${err}" PARENT_SCOPE)
+endfunction()
+function(expect text pattern)
+  if(NOT text MATCHES "${pattern}")
+    message(FATAL_ERROR "expected output matching '${pattern}', got:\n${text}")
+  endif()
+endfunction()
+
+set(files)
+foreach(lanes 1 2 4 8)
+  run(0 out ${VOXCD} conform --generate --seed 5${lanes} --jobs 120 --lanes ${lanes} -o ${WORK}/l${lanes}.vec)
+  list(APPEND files ${WORK}/l${lanes}.vec)
+endforeach()
+foreach(backend sysc-tlm sysc-rtl)
+  run(0 out ${VOXCD} conform --backend ${backend} --cycles ${files})
+  expect("${out}" "4 passed, 0 failed")
+endforeach()
+
+# --print gives the stream with cycles, equal to the file's.
+run(0 out ${VOXCD} conform --backend sysc-tlm --print ${WORK}/l4.vec)
+file(READ ${WORK}/l4.vec text)
+string(REGEX MATCHALL "\n(hit|done) [^\n]*" printed "\n${out}")
+string(REGEX MATCHALL "\n(hit|done) [^\n]*" expected "${text}")
+if(NOT printed STREQUAL expected)
+  message(FATAL_ERROR "--print on sysc-tlm differs from the file's expectations")
+endif()
+
+string(REGEX MATCH "\ndone ([0-9]+) ([0-9]+) ([0-9]+)" first "${text}")
+math(EXPR c "${CMAKE_MATCH_3} + 1")
+string(REPLACE "${first}" "\ndone ${CMAKE_MATCH_1} ${CMAKE_MATCH_2} ${c}" bad "${text}")
+file(WRITE ${WORK}/badcycles.vec "${bad}")
+foreach(backend sysc-tlm sysc-rtl)
+  run(1 out ${VOXCD} conform --backend ${backend} --cycles ${WORK}/badcycles.vec)
+  expect("${out}" "0 passed, 1 failed")
+endforeach()
+
+run(0 out ${VOXCD} conform --generate --seed 9 --jobs 40 --config "PW 14 PF 3 MW 10 MF 8 TW 24 DW 7 MEMW 16"
+    -o ${WORK}/narrow.vec)
+run(0 out ${VOXCD} conform --backend sysc-tlm --cycles ${WORK}/narrow.vec)
+expect("${out}" "1 passed, 0 failed")
+run(1 out ${VOXCD} conform --backend sysc-rtl ${WORK}/narrow.vec)
+expect("${out}" "default widths")
