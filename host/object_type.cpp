@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 
+#include "host/bounds.h"
 #include "host/mesh.h"
 
 namespace voxcd {
@@ -97,9 +98,20 @@ ObjectType make_object_type(ObjectFile obj, const std::string& name) {
   }
   t.lo = lo;
   t.hi = hi;
-  t.centre = 0.5 * (lo + hi);
-  // The sphere around the box's centre through its farthest corner encloses everything the box does.
-  t.radius = 0.5 * (hi - lo).norm();
+  // The smallest sphere around the corners of the surface voxels (interior voxels lie within them) and the shell.
+  std::vector<Eigen::Vector3d> pts = t.object.shell.points;
+  const double h = 0.5 * vm.voxel();
+  for (uint32_t z = 0; z < n[2]; ++z)
+    for (uint32_t y = 0; y < n[1]; ++y)
+      for (uint32_t x = 0; x < n[0]; ++x) {
+        if (vm.at(x, y, z) != kSurface) continue;
+        const Eigen::Vector3d c = vm.centre(x, y, z);
+        for (int k = 0; k < 8; ++k)
+          pts.push_back(c + Eigen::Vector3d(k & 1 ? h : -h, k & 2 ? h : -h, k & 4 ? h : -h));
+      }
+  const Sphere s = min_sphere(pts);
+  t.centre = s.centre;
+  t.radius = s.radius;
   return t;
 }
 

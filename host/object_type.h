@@ -20,7 +20,7 @@ struct ObjectType {
   // Bounds in the object's frame of everything that can take part in a contact: the voxmap's non-empty voxels and
   // the shell points.
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // of the enclosing sphere
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // of the smallest enclosing sphere (host/bounds.h)
   double radius = 0;
 
   const Voxmap& voxmap() const { return object.voxmap; }
