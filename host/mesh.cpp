@@ -40,8 +40,26 @@ Mesh load_assimp(const std::string& path) {
   imp.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
                                                      aiComponent_COLORS | aiComponent_TEXCOORDS |
                                                      aiComponent_BONEWEIGHTS | aiComponent_MATERIALS);
-  const aiScene* sc = imp.ReadFile(path, aiProcess_RemoveComponent | aiProcess_Triangulate |
-                                             aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  // Faces are checked before any post-processing: a damaged file (a truncated PLY declares faces it does not
+  // hold, and assimp gives them no vertices) would otherwise reach Triangulate, whose assertion aborts.
+  const aiScene* raw = imp.ReadFile(path, aiProcess_ValidateDataStructure);
+  if (!raw) throw MeshError(path + ": cannot load: " + imp.GetErrorString());
+  for (unsigned i = 0; i < raw->mNumMeshes; ++i) {
+    const aiMesh* am = raw->mMeshes[i];
+    for (unsigned f = 0; f < am->mNumFaces; ++f) {
+      const aiFace& face = am->mFaces[f];
+      if (face.mNumIndices == 0 || !face.mIndices)
+        throw MeshError(path + ": face " + std::to_string(f) + " of mesh " + std::to_string(i) +
+                        " has no vertices (is the file truncated?)");
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= am->mNumVertices)
+          throw MeshError(path + ": face " + std::to_string(f) + " of mesh " + std::to_string(i) +
+                          " has vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
+                          std::to_string(am->mNumVertices) + " vertices)");
+    }
+  }
+  const aiScene* sc = imp.ApplyPostProcessing(aiProcess_RemoveComponent | aiProcess_Triangulate |
+                                              aiProcess_PreTransformVertices | aiProcess_SortByPType);
   if (!sc) throw MeshError(path + ": cannot load: " + imp.GetErrorString());
   Mesh m;
   m.name = path;
@@ -267,8 +285,17 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
     m = parse_raw(in, path);
   } else {
     {
-      std::ifstream probe(path);
+      std::ifstream probe(path, std::ios::binary);
       if (!probe) throw MeshError(path + ": cannot open");
+      // assimp's PLY reader never returns from a header cut short (assimp 5.2): refuse it here.
+      if (lower_ext(path) == "ply") {
+        std::string head(1 << 16, '\0');
+        probe.read(&head[0], std::streamsize(head.size()));
+        head.resize(size_t(probe.gcount()));
+        if (head.rfind("ply", 0) == 0 && head.find("end_header") == std::string::npos)
+          throw MeshError(path + ": the PLY header has no end_header line in its first " +
+                          std::to_string(head.size()) + " bytes (is the file truncated?)");
+      }
     }
     m = load_assimp(path);
   }

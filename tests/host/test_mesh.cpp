@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <random>
 #include <sstream>
 
 #include "host/mesh.h"
@@ -179,6 +181,103 @@ TEST(Mesh, ErrorsNameTheProblem) {
     EXPECT_TRUE(r.flipped);
     EXPECT_NEAR(m.volume(), 8.0, 1e-12);
   }
+}
+
+// Binary STL: 80-byte header, triangle count, 50 bytes per triangle.
+void write_binary_stl(const Mesh& m, const std::string& path) {
+  std::ofstream o(path, std::ios::binary);
+  o << std::string(80, ' ');
+  const uint32_t n = uint32_t(m.size());
+  o.write(reinterpret_cast<const char*>(&n), 4);
+  for (size_t t = 0; t < m.size(); ++t) {
+    float f[12] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) f[3 + 3 * k + a] = float(m.corner(t, k)[a]);
+    o.write(reinterpret_cast<const char*>(f), sizeof f);
+    o.write("\0\0", 2);
+  }
+}
+
+void write_format(const Mesh& m, const std::string& path, const std::string& fmt) {
+  if (fmt == "obj") test::write_obj(m, path);
+  if (fmt == "stl") test::write_stl(m, path);
+  if (fmt == "bin.stl") write_binary_stl(m, path);
+  if (fmt == "ply") test::write_ply(m, path);
+  if (fmt == "raw") {
+    std::ofstream o(path);
+    write_raw(m, o);
+  }
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Files cut short anywhere, in every format: a MeshError that names the file, or (cut in trailing whitespace)
+// the whole mesh; never a crash (a crash fails the whole test program).
+TEST(Mesh, TruncatedFilesAreErrors) {
+  const uint64_t seed = test::seed();
+  std::printf("seed %llu (VOXCD_SEED)\n", (unsigned long long)seed);
+  std::mt19937_64 rng(seed + 30);
+  const Mesh src = make_shape("icosahedron");
+  for (const std::string fmt : {"obj", "stl", "bin.stl", "ply", "raw"}) {
+    const std::string p = tmp_path("trunc_all." + fmt);
+    write_format(src, p, fmt);
+    const std::string bytes = file_bytes(p);
+    std::uniform_int_distribution<size_t> len(0, bytes.size() - 1);
+    std::vector<size_t> lengths = {0, 1, bytes.size() / 2, bytes.size() - 1};
+    for (int i = 0; i < 60; ++i) lengths.push_back(len(rng));
+    int errors = 0;
+    for (size_t n : lengths) {
+      test::write_file(p, bytes.substr(0, n));
+      try {
+        const Mesh m = load_mesh(p);
+        EXPECT_EQ(m.size(), src.size()) << fmt << " cut at " << n << " seed " << seed;
+      } catch (const MeshError& e) {
+        ++errors;
+        EXPECT_EQ(std::string(e.what()).rfind(p + ":", 0), 0u) << e.what();  // "file: " or "file:line: "
+      }
+    }
+    EXPECT_GE(errors, 50) << fmt;  // nearly every cut loses a triangle
+    std::remove(p.c_str());
+  }
+}
+
+// Bad meshes in files: the error names the file and the problem.
+TEST(Mesh, BadMeshFilesNameTheFile) {
+  auto load_error = [](const std::string& path, const std::string& text) {
+    test::write_file(path, text);
+    const std::string e = error_of([&] { load_mesh(path); });
+    std::remove(path.c_str());
+    return e;
+  };
+  const std::string tet_v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  const std::string tet_f = "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+  const std::string p = tmp_path("bad.obj");
+  EXPECT_EQ(load_error(p, tet_v + tet_f), "");  // the good tetrahedron
+  std::string e = load_error(p, "v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\n" + tet_f);
+  EXPECT_EQ(e.rfind(p + ": triangle 0 has a vertex that is not a finite number", 0), 0u) << e;
+  e = load_error(p, "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 1\n" + tet_f);
+  EXPECT_EQ(e.rfind(p + ": triangle 0 is degenerate", 0), 0u) << e;
+  e = load_error(p, tet_v + "f 1 3 2\nf 1 2 4\nf 2 3 4\n");
+  EXPECT_EQ(e.rfind(p + ": the mesh is open: edge", 0), 0u) << e;
+  for (const char* ext : {".obj", ".stl", ".ply", ".raw", ".off"}) {
+    const std::string q = tmp_path(std::string("empty") + ext);
+    e = load_error(q, "");
+    EXPECT_EQ(e.rfind(q + ": ", 0), 0u) << e;
+  }
+  const std::string r = tmp_path("comments.raw");
+  e = load_error(r, "# no triangles\n");
+  EXPECT_EQ(e, r + ": the mesh has no triangles");
+  // A PLY that declares more faces than it holds.
+  const std::string ply = tmp_path("short.ply");
+  e = load_error(ply, "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                      "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n");
+  EXPECT_EQ(e.rfind(ply + ": ", 0), 0u) << e;
 }
 
 }  // namespace

@@ -60,19 +60,30 @@ TEST(Voxelize, VolumeBracketBuiltins) {
 
 TEST(Voxelize, VolumeBracketLoadedMeshes) {
   const uint64_t seed = test::seed();
+  std::printf("seed %llu (VOXCD_SEED)\n", (unsigned long long)seed);
   std::mt19937_64 rng(seed + 1);
-  for (const char* shape : {"torus", "stellated"}) {
-    const std::string path = test::tmp_path(std::string(shape) + ".obj");
-    test::write_obj(make_shape(shape), path);
-    const Mesh m = load_mesh(path);
-    std::remove(path.c_str());
-    for (double s : {0.1, 0.03}) {
-      VoxelizeOptions o;
-      o.voxel = s;
-      o.shift = random_shift(rng);
-      expect_bracket(m, voxelize(m, o), path + " seed " + std::to_string(seed));
+  for (const char* shape : {"torus", "stellated", "polytope36"})
+    for (const char* ext : {".obj", ".stl", ".ply", ".raw"}) {
+      const std::string path = test::tmp_path(std::string(shape) + ext);
+      const Mesh src = make_shape(shape);
+      if (ext == std::string(".obj")) test::write_obj(src, path);
+      if (ext == std::string(".stl")) test::write_stl(src, path);
+      if (ext == std::string(".ply")) test::write_ply(src, path);
+      if (ext == std::string(".raw")) {
+        std::ofstream o(path);
+        write_raw(src, o);
+      }
+      const Mesh m = load_mesh(path);
+      std::remove(path.c_str());
+      ASSERT_EQ(m.size(), src.size()) << path;
+      for (double s : {0.2, 0.1, 0.05, 0.03})
+        for (int rep = 0; rep < 2; ++rep) {
+          VoxelizeOptions o;
+          o.voxel = s;
+          o.shift = random_shift(rng);
+          expect_bracket(m, voxelize(m, o), path + " voxel " + std::to_string(s) + " seed " + std::to_string(seed));
+        }
     }
-  }
 }
 
 TEST(Voxelize, EveryVoxelAgainstBruteForce) {
