@@ -26,20 +26,23 @@ bool fits_signed(int64_t v, int width) {
 bool fits_unsigned(uint64_t v, int width) { return width >= 64 || v < (uint64_t{1} << width); }
 
 int64_t quantize(double v, FixedFormat f, const std::string& what) {
-  auto fail = [&](const std::string& why) {
-    std::ostringstream s;
-    s.precision(17);
-    s << what << " = " << v << " " << why << " " << f.to_string();
-    throw RangeError(s.str());
-  };
-  if (!std::isfinite(v)) fail("is not a finite number; format is");
-  // Scaling by a power of two is exact; std::round rounds half away from zero.
+  int64_t r = 0;
+  if (try_quantize(v, f, &r)) return r;
+  std::ostringstream s;
+  s.precision(17);
+  s << what << " = " << v << (std::isfinite(v) ? " does not fit " : " is not a finite number; format is ")
+    << f.to_string();
+  throw RangeError(s.str());
+}
+
+bool try_quantize(double v, FixedFormat f, int64_t* out) {
+  if (!std::isfinite(v)) return false;
+  // Scaling by a power of two is exact; std::round rounds half away from zero. Both limits are powers of two, so
+  // the comparison in double is exact too, and it comes before the conversion.
   const double scaled = std::round(std::ldexp(v, f.frac));
-  // Compare in double before converting: both limits are powers of two (exact), so this is exact too.
-  const double lo = -std::ldexp(1.0, f.width - 1);
-  const double hi = std::ldexp(1.0, f.width - 1);
-  if (!(scaled >= lo && scaled < hi)) fail("does not fit");
-  return static_cast<int64_t>(scaled);
+  if (!(scaled >= -std::ldexp(1.0, f.width - 1) && scaled < std::ldexp(1.0, f.width - 1))) return false;
+  *out = static_cast<int64_t>(scaled);
+  return true;
 }
 
 double to_double(int64_t raw, int frac) { return std::ldexp(double(raw), -frac); }

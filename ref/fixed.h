@@ -34,6 +34,10 @@ bool fits_unsigned(uint64_t v, int width);
 // NaN, infinite, or outside the format's range after rounding.
 int64_t quantize(double v, FixedFormat f, const std::string& what);
 
+// The same without the error: false (and *out untouched) when v is not finite or does not fit. For hot paths that
+// build the error message only when it is needed.
+bool try_quantize(double v, FixedFormat f, int64_t* out);
+
 // The real value of a raw fixed-point word.
 double to_double(int64_t raw, int frac);
 

@@ -13,10 +13,13 @@ FixedFormat point_format(const DeviceConfig& cfg) { return {cfg.PW, cfg.PF}; }
 void quantize_pose(const DeviceConfig& cfg, const FloatPose& pose, Job& job) {
   int64_t M[3][3];
   int64_t t[3];
+  const FixedFormat mf = matrix_format(cfg), tf = translation_format(cfg);
   for (int i = 0; i < 3; ++i) {
+    // The message is built only for an entry that fails.
     for (int j = 0; j < 3; ++j)
-      M[i][j] = quantize(pose.M[i][j], matrix_format(cfg), "M" + std::to_string(i) + std::to_string(j));
-    t[i] = quantize(pose.t[i], translation_format(cfg), "T" + std::to_string(i));
+      if (!try_quantize(pose.M[i][j], mf, &M[i][j]))
+        M[i][j] = quantize(pose.M[i][j], mf, "M" + std::to_string(i) + std::to_string(j));
+    if (!try_quantize(pose.t[i], tf, &t[i])) t[i] = quantize(pose.t[i], tf, "T" + std::to_string(i));
   }
   // Only a pose that fits entirely is written: a failure leaves the job as it was.
   std::copy(&M[0][0], &M[0][0] + 9, &job.M[0][0]);

@@ -1,6 +1,8 @@
 // DeviceConfig validation and quantisation: round to nearest, ties away from zero; no wrap, no clamp.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <cmath>
 #include <limits>
 
@@ -77,6 +79,27 @@ TEST(Quantize, OutOfRangeIsAnErrorNamingValueAndFormat) {
   // 1.99999237 = (2^17 - 0.5) / 2^16 rounds up to 2^17: does not fit, never wraps to -2.
   EXPECT_THROW(quantize((131072 - 0.5) / 65536.0, f, "M"), RangeError);
   EXPECT_EQ(quantize((131072 - 0.5001) / 65536.0, f, "M"), 131071);
+}
+
+TEST(Quantize, TryQuantizeAgreesWithQuantize) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-3, 3);
+  const FixedFormat f{18, 16};
+  for (int k = 0; k < 100000; ++k) {
+    double v = u(rng);
+    if (k % 3 == 0) v = std::ldexp(std::round(std::ldexp(v, 17)), -17);  // half-ulp ties
+    int64_t got = 12345;
+    const bool ok = try_quantize(v, f, &got);
+    try {
+      EXPECT_EQ(quantize(v, f, "v"), got);
+      EXPECT_TRUE(ok) << v;
+    } catch (const RangeError&) {
+      EXPECT_FALSE(ok) << v;
+      EXPECT_EQ(got, 12345) << "untouched on failure";
+    }
+  }
+  int64_t r = 0;
+  EXPECT_FALSE(try_quantize(std::numeric_limits<double>::quiet_NaN(), f, &r));
 }
 
 TEST(Quantize, SixtyFourBitFormatHasNoUndefinedConversion) {
