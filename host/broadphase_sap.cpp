@@ -2,8 +2,8 @@
 // fast AABB); "coherent" keeps three sorted endpoint lists from frame to frame, restores their order by
 // insertion sort, and updates the overlapping pairs from the swaps (the paper's coherent AABB).
 #include <algorithm>
+#include <cmath>
 #include <cstring>
-#include <limits>
 
 #include "host/broadphase_detail.h"
 
@@ -11,27 +11,30 @@ namespace voxcd::detail {
 namespace {
 
 // A float at most x / at least x, so that sorting and sweeping on floats never drops a pair the exact double
-// test would keep (the order of floats rounded down is the order of the doubles, up to ties).
-inline float float_down(double x) {
-  float f = float(x);
-  if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+// test would keep (rounding is monotonic, so the order of the rounded-down floats is the order of the doubles, up to ties).
+inline float step_float(float f, bool up) {  // the next float up or down (as std::nextafter, without libm)
+  uint32_t b;
+  std::memcpy(&b, &f, 4);
+  if (f == 0) b = up ? 1u : 0x80000001u;
+  else if ((f > 0) == up) ++b;
+  else --b;
+  std::memcpy(&f, &b, 4);
   return f;
+}
+inline float float_down(double x) {
+  const float f = float(x);
+  return double(f) > x ? step_float(f, false) : f;
 }
 inline float float_up(double x) {
-  float f = float(x);
-  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
+  const float f = float(x);
+  return double(f) < x ? step_float(f, true) : f;
 }
-// The float's bits as an unsigned integer in the float's order.
-inline uint32_t ordered_bits(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, 4);
-  return u & 0x80000000u ? ~u : u | 0x80000000u;
-}
-
-// Sort and sweep from scratch: O(n) radix sort of the lower bounds on the axis of largest variance of the box
-// centres (O(n log n) below 256 bodies), then a sweep that tests each box against those that start before it
-// ends on that axis. O(n + s) where s is the number of overlaps of the projections on that axis.
+// Sort and sweep from scratch every frame: a sort of the lower bounds on the axis of largest variance of the box
+// centres, then a sweep testing each box against those that start before it ends on that axis. A sweep over all n boxes would test every pair whose projections overlap on
+// that one axis, which in a crowded 3-D scene grows like n^(5/3); so the sweep is cut into a grid of columns
+// across the two other axes (cells about four mean box extents wide, at most 64 a side and one per 16 boxes), a
+// box sweeps in every column it touches, and a pair is reported only in the column holding the lower corner of
+// its overlap. O(n + s + k), s the projections overlapping within columns: near O(n log(n / cells) + k).
 class SortAndSweep final : public BroadphaseBase {
  public:
   std::string name() const override { return "sap"; }
@@ -40,14 +43,21 @@ class SortAndSweep final : public BroadphaseBase {
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
     const uint32_t n = uint32_t(bodies.size());
     box_.resize(n);
-    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, ext[3] = {0, 0, 0};
+    double lo_min[3] = {0, 0, 0}, hi_max[3] = {0, 0, 0};
+    if (n) {
+      for (int a = 0; a < 3; ++a) lo_min[a] = bodies[0].box.lo[a], hi_max[a] = bodies[0].box.hi[a];
+    }
     for (uint32_t i = 0; i < n; ++i) {
       check_body(bodies[i], "sap", i, frame);
-      box_[i] = flat(bodies[i].box);
+      const FlatBox& b = box_[i] = flat(bodies[i].box);
       for (int a = 0; a < 3; ++a) {
-        const double c = 0.5 * (box_[i].lo[a] + box_[i].hi[a]);
+        const double c = 0.5 * (b.lo[a] + b.hi[a]);
         sum[a] += c;
         sum2[a] += c * c;
+        ext[a] += b.hi[a] - b.lo[a];
+        lo_min[a] = std::min(lo_min[a], b.lo[a]);
+        hi_max[a] = std::max(hi_max[a], b.hi[a]);
       }
     }
     int axis = 0;
@@ -56,59 +66,86 @@ class SortAndSweep final : public BroadphaseBase {
       const double var = sum2[a] - (n ? sum[a] * sum[a] / n : 0);
       if (var > best) best = var, axis = a;
     }
-    // Keys: ordered float bits of the lower bound above, body index below; sorted by the upper 32 bits only.
-    keys_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) keys_[i] = uint64_t(ordered_bits(float_down(box_[i].lo[axis]))) << 32 | i;
-    if (n < 256) {
-      std::sort(keys_.begin(), keys_.end());
-    } else {
-      tmp_.resize(n);
-      static constexpr int kShift[3] = {32, 43, 54}, kBits[3] = {11, 11, 10};
-      for (int pass = 0; pass < 3; ++pass) {
-        uint32_t count[1 << 11] = {};
-        const uint32_t mask = (1u << kBits[pass]) - 1;
-        for (uint64_t k : keys_) ++count[(k >> kShift[pass]) & mask];
-        uint32_t s = 0;
-        for (uint32_t d = 0; d <= mask; ++d) {
-          const uint32_t c = count[d];
-          count[d] = s;
-          s += c;
-        }
-        for (uint64_t k : keys_) tmp_[count[(k >> kShift[pass]) & mask]++] = k;
-        keys_.swap(tmp_);
-      }
+    // The grid of columns across axes u and v.
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const int limit = std::max(1, int(std::sqrt(n / 16.0)));
+    int cells[2];
+    double inv[2];
+    for (int k = 0; k < 2; ++k) {
+      const int a = k ? v : u;
+      const double range = hi_max[a] - lo_min[a], mean = n ? ext[a] / n : 0;
+      const double want = mean > 0 ? range / (4 * mean) : 64;
+      cells[k] = range > 0 ? int(std::min<double>({want, 64.0, double(limit)})) : 1;
+      cells[k] = std::max(cells[k], 1);
+      inv[k] = range > 0 ? cells[k] / range : 0;
     }
-    // Sorted copies: the float bounds the sweep runs on, and the exact boxes it tests.
-    lo_.resize(n);
-    hi_.resize(n);
-    sorted_.resize(n);
-    id_.resize(n);
-    for (uint32_t s = 0; s < n; ++s) {
-      const uint32_t i = uint32_t(keys_[s]);
-      id_[s] = i;
-      sorted_[s] = box_[i];
-      lo_[s] = float_down(box_[i].lo[axis]);
-      hi_[s] = float_up(box_[i].hi[axis]);
+    auto cell = [&](double x, int k) {
+      const int a = k ? v : u;
+      return uint16_t(std::min(int((x - lo_min[a]) * inv[k]), cells[k] - 1));
+    };
+    // Each box into every column it touches (a counting scatter in body order, which reads the input in
+    // order), then each column sorted on its own: small sorts in cache instead of a gather over all boxes.
+    const int ncell = cells[0] * cells[1];
+    start_.assign(ncell + 1, 0);
+    span_.resize(n);
+    entry_.resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+      const FlatBox& b = box_[i];
+      Span& sp = span_[i];
+      sp = {cell(b.lo[u], 0), cell(b.hi[u], 0), cell(b.lo[v], 1), cell(b.hi[v], 1)};
+      entry_[i] = {float_down(b.lo[axis]), float_up(b.hi[axis]), float_down(b.lo[u]), float_up(b.hi[u]),
+                   float_down(b.lo[v]),    float_up(b.hi[v]),    i,                   sp.u0, sp.v0};
+      for (int cu = sp.u0; cu <= sp.u1; ++cu)
+        for (int cv = sp.v0; cv <= sp.v1; ++cv) ++start_[cu * cells[1] + cv + 1];
     }
+    for (int c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
+    fill_.assign(start_.begin(), start_.end() - 1);
+    entries_.resize(start_[ncell]);
+    for (uint32_t i = 0; i < n; ++i) {
+      const Span& sp = span_[i];
+      for (int cu = sp.u0; cu <= sp.u1; ++cu)
+        for (int cv = sp.v0; cv <= sp.v1; ++cv) entries_[fill_[cu * cells[1] + cv]++] = entry_[i];
+    }
+    for (int c = 0; c < ncell; ++c)
+      std::sort(entries_.begin() + start_[c], entries_.begin() + start_[c + 1],
+                [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); });
     found_.clear();
     uint64_t tests = 0;
-    for (uint32_t s = 0; s < n; ++s) {
-      const float h = hi_[s];
-      const FlatBox& a = sorted_[s];
-      uint32_t t = s + 1;
-      for (; t < n && lo_[t] <= h; ++t)
-        if (overlaps(a, sorted_[t])) found_.push_back(pair_key(id_[s], id_[t]));
-      tests += t - s - 1;
+    for (int c = 0; c < ncell; ++c) {
+      const uint16_t cu = uint16_t(c / cells[1]), cv = uint16_t(c % cells[1]);
+      const Entry* e = entries_.data() + start_[c];
+      const uint32_t m = start_[c + 1] - start_[c];
+      for (uint32_t s = 0; s < m; ++s) {
+        const Entry& a = e[s];
+        uint32_t t = s + 1;
+        for (; t < m && e[t].lo <= a.hi; ++t) {
+          const Entry& b = e[t];
+          // Conservative float test on the other axes, this column only, then the exact test.
+          if ((a.lo_u <= b.hi_u) & (b.lo_u <= a.hi_u) & (a.lo_v <= b.hi_v) & (b.lo_v <= a.hi_v) &
+              (std::max(a.u0, b.u0) == cu) & (std::max(a.v0, b.v0) == cv) && overlaps(box_[a.id], box_[b.id]))
+            found_.push_back(pair_key(a.id, b.id));
+        }
+        tests += t - s - 1;
+      }
     }
     sort_pairs(found_, tmp_, n, pairs_);
     stats_ = {tests, pairs_.size()};
   }
 
  private:
-  std::vector<FlatBox> box_, sorted_;
-  std::vector<uint64_t> keys_, tmp_, found_;
-  std::vector<float> lo_, hi_;
-  std::vector<uint32_t> id_;
+  struct Span {
+    uint16_t u0, u1, v0, v1;  // the columns a box touches
+  };
+  struct Entry {
+    float lo, hi, lo_u, hi_u, lo_v, hi_v;  // rounded outwards
+    uint32_t id;
+    uint16_t u0, v0;
+  };
+  std::vector<FlatBox> box_;
+  std::vector<uint64_t> tmp_, found_;
+  std::vector<Span> span_;
+  std::vector<uint32_t> start_, fill_;
+  std::vector<Entry> entries_, entry_;
 };
 
 // Open-addressing set of pair keys (linear probing, backward-shift deletion): no tombstones, no allocation

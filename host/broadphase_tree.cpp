@@ -95,10 +95,11 @@ class AabbTree final : public BroadphaseBase {
     bool leaf() const { return child1 == kNull; }
   };
 
-  // A margin of an eighth of the box's largest side, plus four frames of its speed bound.
+  // A margin of a quarter of the box's largest side plus four frames of its speed bound (tuned on the paper's scene:
+  // fewer reinsertions against more fat pairs).
   static FlatBox fatten(const FlatBox& b, double max_speed) {
     const double side = std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
-    const double m = 0.125 * side + 4 * max_speed;
+    const double m = 0.25 * side + 4 * max_speed;
     return {{b.lo[0] - m, b.lo[1] - m, b.lo[2] - m}, {b.hi[0] + m, b.hi[1] + m, b.hi[2] + m}};
   }
 
