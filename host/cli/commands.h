@@ -13,5 +13,6 @@ void add_selftest(CLI::App& app);
 void add_voxelize(CLI::App& app);
 void add_info(CLI::App& app);
 void add_pair(CLI::App& app);
+void add_simulate(CLI::App& app);
 
 }  // namespace voxcd::cli

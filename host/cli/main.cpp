@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   voxcd::cli::add_voxelize(app);
   voxcd::cli::add_info(app);
   voxcd::cli::add_pair(app);
+  voxcd::cli::add_simulate(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,144 @@
+// voxcd simulate: the paper's N-body environment (or a scene like it) for a number of frames, with a broadphase and
+// pair tests on a device backend; a summary of rates, counts, time per stage and device cycles.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "host/cli/commands.h"
+#include "host/cli/object_report.h"
+#include "host/scene.h"
+
+namespace voxcd::cli {
+
+namespace {
+
+struct SimulateArgs {
+  SceneSpec scene;
+  SimOptions sim;
+  std::string mode = "ALL";
+  uint64_t frames = 1000;
+  double clock_mhz = 200;
+  bool json = false;
+  bool progress = true;
+};
+
+struct Totals {
+  uint64_t pairs = 0, touching = 0, responses = 0, wall_hits = 0, lookups = 0, hits = 0, contacts = 0, cycles = 0;
+  uint64_t max_cycles = 0;
+  double t_integrate = 0, t_bounds = 0, t_broadphase = 0, t_narrow = 0, t_response = 0;
+  double seconds() const { return t_integrate + t_bounds + t_broadphase + t_narrow + t_response; }
+  void add(const FrameStats& f) {
+    pairs += f.pairs, touching += f.touching, responses += f.responses, wall_hits += f.wall_hits;
+    lookups += f.lookups, hits += f.hits, contacts += f.contacts, cycles += f.device_cycles;
+    max_cycles = std::max(max_cycles, f.device_cycles);
+    t_integrate += f.t_integrate, t_bounds += f.t_bounds, t_broadphase += f.t_broadphase;
+    t_narrow += f.t_narrow, t_response += f.t_response;
+  }
+};
+
+int simulate_cmd(SimulateArgs a) {
+  const auto mode = parse_mode(a.mode);
+  if (!mode) throw CLI::ValidationError("--mode", "'" + a.mode + "' is not ALL, FIRST or COUNT");
+  a.sim.mode = *mode;
+  Scene scene = make_scene(a.scene);
+  const ObjectType& type = *scene.types[0];
+  Simulation sim(std::move(scene), a.sim);
+  const bool bar = a.progress && !a.json && isatty(STDERR_FILENO) && a.frames >= 100;
+  Totals tot;
+  for (uint64_t f = 0; f < a.frames; ++f) {
+    tot.add(sim.step());
+    if (bar && (f % 25 == 0 || f + 1 == a.frames)) {
+      const int width = 40, done = int(width * (f + 1) / a.frames);
+      std::fprintf(stderr, "\r[%s%s] %llu/%llu frames", std::string(size_t(done), '#').c_str(),
+                   std::string(size_t(width - done), '.').c_str(), (unsigned long long)(f + 1),
+                   (unsigned long long)a.frames);
+      if (f + 1 == a.frames) std::fprintf(stderr, "\n");
+    }
+  }
+  const double F = double(a.frames);
+  const double rate = tot.seconds() > 0 ? F / tot.seconds() : 0;
+  const double cyc_per_frame = double(tot.cycles) / F;
+  const double device_rate = cyc_per_frame > 0 ? a.clock_mhz * 1e6 / cyc_per_frame : 0;
+  const auto& d = type.voxmap().dims();
+  if (a.json) {
+    std::ostringstream o;
+    o << "{\"shape\": " << json_string(a.scene.shape) << ", \"objects\": " << a.scene.objects
+      << ", \"voxel\": " << a.scene.voxel << ", \"shell_points\": " << type.shell().size() << ", \"voxmap\": ["
+      << d[0] << ", " << d[1] << ", " << d[2] << "], \"pruning\": " << json_string(a.sim.pruning)
+      << ", \"backend\": " << json_string(a.sim.backend) << ", \"mode\": " << json_string(a.mode)
+      << ", \"both_directions\": " << (a.sim.both_directions ? "true" : "false") << ", \"frames\": " << a.frames
+      << ", \"seed\": " << a.scene.seed << ", \"seconds\": " << tot.seconds() << ", \"frame_rate_hz\": " << rate
+      << ", \"pairs_tested\": " << tot.pairs << ", \"touching_pairs\": " << tot.touching
+      << ", \"responses\": " << tot.responses << ", \"wall_bounces\": " << tot.wall_hits
+      << ", \"lookups\": " << tot.lookups << ", \"hits\": " << tot.hits << ", \"contacts\": " << tot.contacts
+      << ", \"stage_seconds\": {\"integrate\": " << tot.t_integrate << ", \"bounds\": " << tot.t_bounds
+      << ", \"broadphase\": " << tot.t_broadphase << ", \"narrow\": " << tot.t_narrow
+      << ", \"response\": " << tot.t_response << "}, \"lanes\": " << a.sim.lanes
+      << ", \"device_cycles\": " << tot.cycles << ", \"device_cycles_per_frame\": " << cyc_per_frame
+      << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"clock_mhz\": " << a.clock_mhz
+      << ", \"device_frame_rate_hz\": " << device_rate << ", \"state_hash\": \"" << std::hex << sim.state_hash()
+      << std::dec << "\"}\n";
+    std::cout << o.str();
+    return 0;
+  }
+  std::printf("voxcd simulate: %zu x %s in a cube of side %g at density %g, voxel %g (%zu shell points, voxmap "
+              "%ux%ux%u), seed %llu\n",
+              a.scene.objects, a.scene.shape.c_str(), a.scene.side, a.scene.density, a.scene.voxel,
+              type.shell().size(), d[0], d[1], d[2], (unsigned long long)a.scene.seed);
+  std::printf("pruning %s, backend %s, mode %s%s, %llu frames\n", a.sim.pruning.c_str(), a.sim.backend.c_str(),
+              a.mode.c_str(), a.sim.both_directions ? ", both directions" : "", (unsigned long long)a.frames);
+  std::printf("frame rate      %.1f Hz (%.3f ms per frame, one process)\n", rate, 1e3 * tot.seconds() / F);
+  std::printf("per frame       %.2f pairs tested, %.2f touching, %.1f lookups, %.1f contacts, %.3f responses, "
+              "%.3f wall bounces\n",
+              double(tot.pairs) / F, double(tot.touching) / F, double(tot.lookups) / F, double(tot.contacts) / F,
+              double(tot.responses) / F, double(tot.wall_hits) / F);
+  std::printf("time per stage  integrate %.1f us, bounds %.1f us, broadphase %.1f us, pair tests %.1f us, "
+              "response %.1f us\n",
+              1e6 * tot.t_integrate / F, 1e6 * tot.t_bounds / F, 1e6 * tot.t_broadphase / F, 1e6 * tot.t_narrow / F,
+              1e6 * tot.t_response / F);
+  std::printf("device          %.0f cycles per frame (largest %llu) at %d lanes (%s): %.0f Hz at %g MHz\n",
+              cyc_per_frame, (unsigned long long)tot.max_cycles, a.sim.lanes,
+              a.sim.backend == "rtl" || a.sim.backend == "sysc-rtl" ? "measured on the RTL"
+                                                                     : "the exact timing model of ref/",
+              device_rate, a.clock_mhz);
+  std::printf("state hash      %016llx\n", (unsigned long long)sim.state_hash());
+  return 0;
+}
+
+}  // namespace
+
+void add_simulate(CLI::App& app) {
+  auto a = std::make_shared<SimulateArgs>();
+  CLI::App* c = app.add_subcommand("simulate", "The paper's N-body environment: objects moving in a cube, pruned by "
+                                               "a broadphase, pair tests on a device backend (docs/simulate.md)");
+  c->add_option("--objects", a->scene.objects, "Number of objects")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+  c->add_option("--shape", a->scene.shape, "A built-in shape name or a mesh file")->capture_default_str();
+  c->add_option("--voxel", a->scene.voxel, "Voxel size in world units (the paper: 1)")->capture_default_str();
+  c->add_option("--density", a->scene.density, "Fraction of the cube the objects fill")->capture_default_str();
+  c->add_option("--speed", a->scene.speed, "Largest initial speed per frame, as a fraction of the object's radius")
+      ->capture_default_str();
+  c->add_option("--pruning", a->sim.pruning, "Broadphase: " + [] {
+    std::string s;
+    for (const auto& b : broadphase_names()) s += (s.empty() ? "" : ", ") + b;
+    return s;
+  }())->capture_default_str();
+  c->add_option("--backend", a->sim.backend, "Device backend: " + [] {
+    std::string s;
+    for (const auto& b : device_backends()) s += (s.empty() ? "" : ", ") + b;
+    return s;
+  }())->capture_default_str();
+  c->add_option("--lanes", a->sim.lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
+  c->add_option("--mode", a->mode, "ALL (every contact) or FIRST (whether a pair touches)")->capture_default_str();
+  c->add_flag("--both", a->sim.both_directions, "Test both directions of every pair");
+  c->add_option("--frames", a->frames, "Frames to simulate")->capture_default_str();
+  c->add_option("--seed", a->scene.seed, "Seed of the scene")->capture_default_str();
+  c->add_option("--clock", a->clock_mhz, "Device clock in MHz for the modelled frame rate")->capture_default_str();
+  c->add_option("--threads", a->sim.threads, "cpu backend threads (0: all)")->capture_default_str();
+  c->add_flag("!--no-progress", a->progress, "No progress bar");
+  c->add_flag("--json", a->json, "Print the summary as JSON");
+  c->callback([a] { exit_code() = simulate_cmd(*a); });
+}
+
+}  // namespace voxcd::cli

@@ -1,0 +1,239 @@
+#include "host/scene.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <stdexcept>
+
+#include "host/mesh.h"
+#include "host/shapes.h"
+
+namespace voxcd {
+
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+Eigen::Quaterniond random_rotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0, 1);
+  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+}
+
+Eigen::Vector3d random_direction(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0, 1);
+  Eigen::Vector3d d;
+  do d = Eigen::Vector3d(n(rng), n(rng), n(rng));
+  while (d.squaredNorm() < 1e-12);
+  return d.normalized();
+}
+
+}  // namespace
+
+BodyBounds body_bounds(const ObjectType& t, const Body& b) {
+  BodyBounds bb;
+  const Eigen::Matrix3d R = b.pose.rotation.toRotationMatrix();
+  bb.centre = R * t.centre + b.pose.translation;
+  bb.radius = t.radius;
+  const Eigen::Vector3d c = R * (0.5 * (t.lo + t.hi)) + b.pose.translation;
+  const Eigen::Vector3d e = R.cwiseAbs() * (0.5 * (t.hi - t.lo));
+  bb.box.lo = c - e;
+  bb.box.hi = c + e;
+  // No point of the body is farther than |centre| + radius from its origin.
+  bb.max_speed = b.velocity.norm() + b.spin.norm() * (t.centre.norm() + t.radius);
+  bb.max_accel = 0;  // velocities change only in responses, which flag the body
+  return bb;
+}
+
+Scene make_scene(const SceneSpec& spec) {
+  if (spec.objects == 0) throw std::invalid_argument("scene: objects must be at least 1");
+  if (!(spec.side > 0) || !std::isfinite(spec.side)) throw std::invalid_argument("scene: side must be positive");
+  if (!(spec.density > 0 && spec.density <= 0.3))
+    throw std::invalid_argument("scene: density " + std::to_string(spec.density) + " is outside (0, 0.3]");
+  if (!(spec.speed >= 0) || !std::isfinite(spec.speed)) throw std::invalid_argument("scene: speed must be >= 0");
+  if (!(spec.spin >= 0) || !std::isfinite(spec.spin)) throw std::invalid_argument("scene: spin must be >= 0");
+  if (!(spec.voxel > 0) || !std::isfinite(spec.voxel)) throw std::invalid_argument("scene: voxel must be > 0");
+  std::string source;
+  uint64_t hash = 0;
+  Mesh mesh = load_source(spec.shape, &source, &hash);
+  // Scale so that the objects fill `density` of the cube, and centre the mesh on its box's centre.
+  const double volume = mesh.volume();
+  const double s = std::cbrt(spec.density * spec.side * spec.side * spec.side / double(spec.objects) / volume);
+  Eigen::Vector3d lo, hi;
+  mesh.bounds(lo, hi);
+  const Eigen::Vector3d mid = 0.5 * (lo + hi);
+  for (auto& v : mesh.vertices) v = (v - mid) * s;
+  const double extent = (hi - lo).maxCoeff() * s;
+  if (extent / spec.voxel > 1020)
+    throw std::invalid_argument("scene: voxel " + std::to_string(spec.voxel) + " makes each object " +
+                                std::to_string(int(extent / spec.voxel)) + " voxels across, above 2^10");
+  if (extent / spec.voxel < 2)
+    throw std::invalid_argument("scene: voxel " + std::to_string(spec.voxel) + " is larger than half the object (" +
+                                std::to_string(extent) + " across); objects would be a voxel or two");
+  ObjectOptions oo;
+  oo.voxel = spec.voxel;
+  Scene scene;
+  scene.side = spec.side;
+  auto type = std::make_shared<ObjectType>(
+      make_object_type(make_object(mesh, source, hash, oo), spec.shape + " x" + std::to_string(s)));
+  scene.types.push_back(type);
+  const double r = type->radius;
+  if (2 * r >= spec.side) throw std::invalid_argument("scene: the objects do not fit the cube");
+  // Random non-overlapping placement of the bounding spheres.
+  std::mt19937_64 rng(spec.seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Eigen::Vector3d> centres;
+  for (size_t k = 0; k < spec.objects; ++k) {
+    Body b;
+    b.pose.rotation = random_rotation(rng);
+    Eigen::Vector3d c;
+    bool placed = false;
+    for (int attempt = 0; attempt < 10000 && !placed; ++attempt) {
+      c = Eigen::Vector3d(r + u(rng) * (spec.side - 2 * r), r + u(rng) * (spec.side - 2 * r),
+                          r + u(rng) * (spec.side - 2 * r));
+      placed = true;
+      for (const auto& o : centres)
+        if ((o - c).squaredNorm() < 4 * r * r) {
+          placed = false;
+          break;
+        }
+    }
+    if (!placed)
+      throw std::invalid_argument("scene: could not place object " + std::to_string(k) + " without overlap");
+    centres.push_back(c);
+    b.pose.translation = c - b.pose.rotation * type->centre;
+    b.velocity = random_direction(rng) * (spec.speed * r * u(rng));
+    b.spin = random_direction(rng) * (spec.spin * u(rng));
+    scene.bodies.push_back(b);
+  }
+  return scene;
+}
+
+Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(scene)), opt_(opt) {
+  broadphase_ = make_broadphase(opt.pruning);
+  DeviceConfig cfg;
+  cfg.LANES = opt.lanes;
+  std::vector<const ObjectType*> types;
+  for (const auto& t : scene_.types) types.push_back(t.get());
+  if (opt.backend != "rtl") cfg = fit_memory(cfg, types);
+  DeviceOptions dopt;
+  dopt.threads = opt.threads;
+  collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types);
+  moved_.assign(scene_.bodies.size(), true);
+}
+
+void Simulation::compute_bounds() {
+  bounds_.resize(scene_.bodies.size());
+  for (size_t i = 0; i < scene_.bodies.size(); ++i) {
+    const Body& b = scene_.bodies[i];
+    bounds_[i] = body_bounds(*scene_.types[b.type], b);
+    bounds_[i].moved_unexpectedly = moved_[i];
+  }
+}
+
+FrameStats Simulation::step() {
+  FrameStats st;
+  st.frame = frame_;
+  const size_t n = scene_.bodies.size();
+  std::fill(moved_.begin(), moved_.end(), false);
+
+  // Integrate (explicit Euler), renormalising the orientation; bounce off the walls by the bounding sphere.
+  double t0 = now();
+  for (size_t i = 0; i < n; ++i) {
+    Body& b = scene_.bodies[i];
+    b.pose.translation += b.velocity;
+    const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
+    Eigen::Quaterniond q = b.pose.rotation;
+    q.coeffs() += 0.5 * (w * q).coeffs();
+    b.pose.rotation = q.normalized();
+    const ObjectType& t = *scene_.types[b.type];
+    const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
+    for (int a = 0; a < 3; ++a) {
+      if ((c[a] - t.radius < 0 && b.velocity[a] < 0) || (c[a] + t.radius > scene_.side && b.velocity[a] > 0)) {
+        b.velocity[a] = -b.velocity[a];
+        moved_[i] = true;
+        ++st.wall_hits;
+      }
+    }
+  }
+  double t1 = now();
+  st.t_integrate = t1 - t0;
+
+  compute_bounds();
+  double t2 = now();
+  st.t_bounds = t2 - t1;
+
+  broadphase_->update(bounds_, frame_);
+  const std::vector<BodyPair>& pairs = broadphase_->pairs();
+  double t3 = now();
+  st.t_broadphase = t3 - t2;
+
+  requests_.resize(pairs.size());
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
+    requests_[k].a = a.type;
+    requests_[k].b = b.type;
+    requests_[k].pose_a = a.pose;
+    requests_[k].pose_b = b.pose;
+  }
+  PairOptions po;
+  po.mode = opt_.mode;
+  po.both_directions = opt_.both_directions;
+  collider_->collide(requests_, po, results_);
+  double t4 = now();
+  st.t_narrow = t4 - t3;
+  st.pairs = pairs.size();
+
+  // Response, in the broadphase's order (deterministic): for a touching pair that is approaching along the contact
+  // normal, exchange the velocity components along it (an elastic impulse between equal masses) and reverse both
+  // spins (the paper's rotation response). A pair already separating is left alone, so it cannot stick.
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const PairResult& r = results_[k];
+    st.lookups += r.lookups;
+    st.hits += r.hits;
+    st.contacts += r.contacts.size();
+    st.device_cycles += r.cycles;
+    if (r.hits == 0) continue;
+    ++st.touching;
+    Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
+    // The normal from A towards B: A's outward normals where A's shell is in B, minus B's where B's is in A; the
+    // line between the bounding spheres' centres when the contacts give none (COUNT, or normals that cancel).
+    Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
+    for (const Contact& c : r.contacts) nrm += c.a_in_b ? c.normal : -c.normal;
+    if (nrm.squaredNorm() < 1e-12) nrm = bounds_[pairs[k].second].centre - bounds_[pairs[k].first].centre;
+    if (nrm.squaredNorm() < 1e-24) nrm = Eigen::Vector3d::UnitX();
+    nrm.normalize();
+    const double closing = (b.velocity - a.velocity).dot(nrm);
+    if (closing >= 0) continue;  // separating already
+    a.velocity += closing * nrm;
+    b.velocity -= closing * nrm;
+    a.spin = -a.spin;
+    b.spin = -b.spin;
+    moved_[pairs[k].first] = moved_[pairs[k].second] = true;
+    ++st.responses;
+  }
+  // The stream of the frame is taken one cycle after its last completion record.
+  if (st.pairs > 0 && collider_->device().models_cycles()) st.device_cycles += 1;
+  st.t_response = now() - t4;
+  ++frame_;
+  return st;
+}
+
+uint64_t Simulation::state_hash() const {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](double v) {
+    uint64_t bits;
+    std::memcpy(&bits, &v, 8);
+    for (int i = 0; i < 8; ++i) {
+      h ^= (bits >> (8 * i)) & 0xff;
+      h *= 1099511628211ull;
+    }
+  };
+  for (const Body& b : scene_.bodies) {
+    for (int i = 0; i < 3; ++i) mix(b.pose.translation[i]), mix(b.velocity[i]), mix(b.spin[i]);
+    for (int i = 0; i < 4; ++i) mix(b.pose.rotation.coeffs()[i]);
+  }
+  return h;
+}
+
+}  // namespace voxcd

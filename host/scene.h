@@ -1,0 +1,103 @@
+// N-body scenes: instances of object types with rigid state, and the paper's simulation environment (a cube of side
+// 100 at a density of 2.5%, random momentum, Euler integration, wall and object-object response), stepped frame by
+// frame with a broadphase and pair tests on a device backend. docs/simulate.md describes it.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/broadphase.h"
+#include "host/collide.h"
+#include "host/object_type.h"
+
+namespace voxcd {
+
+struct Body {
+  uint32_t type = 0;
+  RigidPose pose;                                    // world = rotation * local + translation
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // world units per frame
+  Eigen::Vector3d spin = Eigen::Vector3d::Zero();      // angular velocity, radians per frame, world axes
+};
+
+struct Scene {
+  double side = 100;  // the environment: the cube [0, side]^3, walls on its faces
+  std::vector<std::shared_ptr<const ObjectType>> types;
+  std::vector<Body> bodies;
+};
+
+// The paper's environment (Section 7): `objects` copies of one shape (a built-in name or a mesh file) scaled so
+// that they fill `density` of the cube, voxelised at `voxel` world units (the paper's accuracy: one unit), placed
+// at random without overlapping bounding spheres, with random orientations, random velocities of up to `speed`
+// times the object's bounding radius per frame and random spins of up to `spin` radians per frame.
+struct SceneSpec {
+  std::string shape = "polytope36";
+  size_t objects = 64;
+  double side = 100;
+  double density = 0.025;
+  double speed = 0.1;
+  double spin = 0.02;
+  double voxel = 1.0;
+  uint64_t seed = 1;
+};
+
+// Throws std::invalid_argument naming the field for a value out of range (no objects, density outside (0, 0.3],
+// a voxel size that makes the object larger than 2^10 voxels or smaller than 2 across), MeshError for the shape.
+Scene make_scene(const SceneSpec& spec);
+
+struct SimOptions {
+  std::string pruning = "sap";   // a broadphase name (host/broadphase.h)
+  std::string backend = "cpu";   // a device backend
+  int lanes = 4;                 // lanes of the modelled device
+  Mode mode = Mode::All;         // ALL reports every contact; FIRST only tells whether a pair touches
+  bool both_directions = false;  // also test B's shell in A's voxmap
+  unsigned threads = 0;          // cpu backend threads (0: all); results never depend on it
+};
+
+struct FrameStats {
+  uint64_t frame = 0;
+  uint64_t pairs = 0;       // from the broadphase, tested on the device
+  uint64_t touching = 0;    // pairs with at least one hit
+  uint64_t responses = 0;   // pairs whose velocities the response changed (they were approaching)
+  uint64_t wall_hits = 0;   // body-wall bounces
+  uint64_t lookups = 0;     // shell points submitted
+  uint64_t hits = 0;
+  uint64_t contacts = 0;
+  uint64_t device_cycles = 0;  // of the frame's job stream (measured on rtl, the timing model on ref and cpu)
+  // Seconds per stage.
+  double t_integrate = 0, t_bounds = 0, t_broadphase = 0, t_narrow = 0, t_response = 0;
+  double seconds() const { return t_integrate + t_bounds + t_broadphase + t_narrow + t_response; }
+};
+
+class Simulation {
+ public:
+  // The device is configured from the scene: only its object types are loaded, with memories grown to fit them.
+  Simulation(Scene scene, const SimOptions& opt);
+  // One frame: integrate, bounce off the walls, bounds, broadphase, pair tests, response.
+  FrameStats step();
+  const Scene& scene() const { return scene_; }
+  const Broadphase& broadphase() const { return *broadphase_; }
+  const DeviceConfig& device_config() const { return collider_->device().config(); }
+  uint64_t frame() const { return frame_; }
+  // A hash of every body's state (bit patterns of positions, orientations and velocities): equal runs, equal hash.
+  uint64_t state_hash() const;
+
+ private:
+  void compute_bounds();
+
+  Scene scene_;
+  SimOptions opt_;
+  std::unique_ptr<Broadphase> broadphase_;
+  std::unique_ptr<PairCollider> collider_;
+  std::vector<BodyBounds> bounds_;
+  std::vector<bool> moved_;
+  std::vector<PairRequest> requests_;
+  std::vector<PairResult> results_;
+  uint64_t frame_ = 0;
+};
+
+// A body's world bounds: its type's smallest enclosing sphere and the world box of its type's local box.
+BodyBounds body_bounds(const ObjectType& t, const Body& b);
+
+}  // namespace voxcd

@@ -1,0 +1,165 @@
+// N-body scenes: enclosing spheres that really enclose (the paper's does not always), the paper's environment as
+// specified, and simulations that are deterministic and the same whatever the broadphase, thread count or backend
+// (every broadphase is conservative, so the touching pairs, and so the responses, are the same).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "host/bounds.h"
+#include "host/device_rtl.h"
+#include "host/scene.h"
+#include "host/shapes.h"
+
+namespace voxcd {
+namespace {
+
+TEST(Bounds, SmallestSphereAgainstBruteForce) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<Eigen::Vector3d> p(2 + rng() % 9);
+    for (auto& q : p) q = Eigen::Vector3d(u(rng), u(rng), 0.3 * u(rng));
+    const Sphere s = min_sphere(p);
+    for (const auto& q : p) ASSERT_TRUE(s.contains(q)) << "trial " << trial;
+    // No sphere through 2 or 3 of the points that encloses all of them is smaller (the minimum is one of those,
+    // or a 4-point one, which is never smaller than the best enclosing 2- or 3-point sphere when one exists).
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < p.size(); ++i)
+      for (size_t j = i + 1; j < p.size(); ++j) {
+        const Sphere c{0.5 * (p[i] + p[j]), 0.5 * (p[i] - p[j]).norm()};
+        bool all = true;
+        for (const auto& q : p) all = all && c.contains(q, 1e-9);
+        if (all) {
+          best = std::min(best, c.radius);
+        }
+      }
+    if (std::isfinite(best)) {
+      EXPECT_LE(s.radius, best * (1 + 1e-9)) << "trial " << trial;
+    }
+  }
+}
+
+TEST(Bounds, ThePapersSphereMissesAVertexOfATetrahedron) {
+  // A regular tetrahedron: the longest chord is an edge; the sphere on it leaves the other two vertices out.
+  const std::vector<Eigen::Vector3d> tet = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  const Sphere paper = longest_chord_sphere(tet);
+  int outside = 0;
+  for (const auto& v : tet) outside += !paper.contains(v);
+  EXPECT_EQ(outside, 2);
+  const Sphere s = min_sphere(tet);
+  for (const auto& v : tet) EXPECT_TRUE(s.contains(v));
+  EXPECT_NEAR(s.radius, std::sqrt(3.0), 1e-9);
+  EXPECT_NEAR(s.centre.norm(), 0.0, 1e-9);
+}
+
+TEST(Bounds, ObjectTypeSphereEnclosesMeshAndShell) {
+  for (const char* name : {"polytope36", "stellated", "torus", "plate"}) {
+    const Mesh m = make_shape(name);
+    ObjectOptions o;
+    o.voxel = 0.1;
+    const ObjectType t = make_object_type(make_object(m, name, 0, o), name);
+    const Sphere s{t.centre, t.radius};
+    for (const auto& v : m.vertices) EXPECT_TRUE(s.contains(v)) << name;
+    for (const auto& p : t.shell().points) EXPECT_TRUE(s.contains(p)) << name;
+    // And it is not needlessly large: within a voxel diagonal of the mesh's own smallest sphere.
+    EXPECT_LE(t.radius, min_sphere(m.vertices).radius + std::sqrt(3.0) * 0.1 + 1e-9) << name;
+  }
+}
+
+TEST(Scene, ThePapersEnvironment) {
+  SceneSpec spec;
+  spec.objects = 128;
+  spec.seed = 5;
+  const Scene sc = make_scene(spec);
+  ASSERT_EQ(sc.bodies.size(), 128u);
+  const ObjectType& t = *sc.types[0];
+  // Density: the voxelised solid brackets the mesh volume; the objects fill 2.5% of the cube.
+  const auto n = t.voxmap().counts();
+  const double v3 = std::pow(t.voxmap().voxel(), 3);
+  EXPECT_LE(double(n[kInterior]) * v3 * 128, 0.025 * 1e6);
+  EXPECT_GE(double(n[kInterior] + n[kSurface]) * v3 * 128, 0.025 * 1e6);
+  for (size_t i = 0; i < sc.bodies.size(); ++i) {
+    const BodyBounds bi = body_bounds(t, sc.bodies[i]);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_GE(bi.centre[a] - bi.radius, -1e-9);
+      EXPECT_LE(bi.centre[a] + bi.radius, 100 + 1e-9);
+    }
+    EXPECT_LE(sc.bodies[i].velocity.norm(), 0.1 * t.radius + 1e-12);
+    for (size_t j = i + 1; j < sc.bodies.size(); ++j)
+      EXPECT_FALSE(spheres_overlap(bi, body_bounds(t, sc.bodies[j]))) << i << " " << j;
+  }
+  SceneSpec bad = spec;
+  bad.density = 0;
+  EXPECT_THROW(make_scene(bad), std::invalid_argument);
+  bad = spec;
+  bad.voxel = 1e-4;
+  EXPECT_THROW(make_scene(bad), std::invalid_argument);
+}
+
+uint64_t run(const SceneSpec& spec, SimOptions opt, int frames, uint64_t* touching = nullptr) {
+  Simulation sim(make_scene(spec), opt);
+  uint64_t t = 0;
+  for (int f = 0; f < frames; ++f) t += sim.step().touching;
+  if (touching) *touching = t;
+  return sim.state_hash();
+}
+
+TEST(Simulate, EveryBroadphaseAndThreadCountGivesTheSameRun) {
+  SceneSpec spec;
+  spec.objects = 40;
+  spec.density = 0.05;  // twice the paper's, so that objects meet often
+  spec.speed = 0.3;
+  spec.voxel = 1.5;
+  spec.seed = 3;
+  SimOptions opt;
+  uint64_t touching = 0;
+  const uint64_t want = run(spec, opt, 150, &touching);
+  EXPECT_GT(touching, 20u) << "the run must have collisions for the comparison to mean something";
+  for (const std::string& b : broadphase_names()) {
+    for (unsigned threads : {1u, 2u}) {
+      opt.pruning = b;
+      opt.threads = threads;
+      EXPECT_EQ(run(spec, opt, 150), want) << "pruning " << b << " threads " << threads;
+    }
+  }
+  spec.seed = 4;
+  opt = SimOptions{};
+  EXPECT_NE(run(spec, opt, 150), want) << "another seed, another run";
+}
+
+TEST(Simulate, BackendsAgreeAndBodiesStayInTheCube) {
+  SceneSpec spec;
+  spec.objects = 16;
+  spec.density = 0.05;
+  spec.speed = 0.5;
+  spec.voxel = 1.5;
+  SimOptions opt;
+  std::vector<std::string> backends = {"cpu", "ref"};
+  if (!rtl_lanes().empty()) backends.push_back("rtl");
+  std::vector<uint64_t> cycles;
+  uint64_t hash = 0;
+  for (const auto& b : backends) {
+    opt.backend = b;
+    Simulation sim(make_scene(spec), opt);
+    uint64_t c = 0;
+    for (int f = 0; f < 120; ++f) c += sim.step().device_cycles;
+    cycles.push_back(c);
+    if (b == "cpu") hash = sim.state_hash();
+    EXPECT_EQ(sim.state_hash(), hash) << b;
+    const ObjectType& t = *sim.scene().types[0];
+    for (const Body& body : sim.scene().bodies) {
+      const BodyBounds bb = body_bounds(t, body);
+      // A bounce happens in the frame a body crosses a wall; a collision pushing it back out costs one more
+      // frame's travel at most.
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_GE(bb.centre[a] - bb.radius, -2 * bb.max_speed - 1e-9);
+        EXPECT_LE(bb.centre[a] + bb.radius, 100 + 2 * bb.max_speed + 1e-9);
+      }
+    }
+  }
+  for (size_t i = 1; i < cycles.size(); ++i) EXPECT_EQ(cycles[i], cycles[0]) << backends[i];
+  EXPECT_GT(cycles[0], 0u);
+}
+
+}  // namespace
+}  // namespace voxcd
