@@ -26,7 +26,7 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j2
 
 case "$mode" in
-  run) exec build/voxcd selftest "$@" ;;
+  run) exec build/voxcd simulate "$@" ;;
   test) cd build && exec ctest -j2 --output-on-failure "$@" ;;
   *) echo "usage: bash .ci/setup.sh run|test" >&2; exit 2 ;;
 esac
