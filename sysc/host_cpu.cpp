@@ -125,7 +125,13 @@ void HostCpu::load(const DeviceMemory& mem) {
 }
 
 std::vector<Record> HostCpu::run(const std::vector<Job>& jobs) {
-  std::vector<uint8_t> buf;
+  std::vector<Record> out;
+  run_into(jobs, out);
+  return out;
+}
+
+void HostCpu::run_into(const std::vector<Job>& jobs, std::vector<Record>& out) {
+  std::vector<uint8_t>& buf = buf_;
   const size_t job_burst = burst_ / kJobBytes;
   for (size_t k = 0; k < jobs.size(); k += job_burst) {
     const size_t n = std::min(job_burst, jobs.size() - k);
@@ -134,7 +140,8 @@ std::vector<Record> HostCpu::run(const std::vector<Job>& jobs) {
     must(access(true, kJobBase, buf.data(), buf.size()), "job write", kJobBase);
   }
   write_reg(kRegRun, 1);
-  std::vector<Record> out;
+  out.clear();
+  out.reserve(2 * jobs.size());  // every job has a completion record; most pairs have few hits
   size_t done = 0;
   const size_t rec_burst = std::max<size_t>(1, burst_ / kRecordBytes);
   while (done < jobs.size()) {
@@ -150,7 +157,6 @@ std::vector<Record> HostCpu::run(const std::vector<Job>& jobs) {
       throw BusError(std::string(name()) + ": the device is idle after " + std::to_string(done) + " of " +
                      std::to_string(jobs.size()) + " completion records");
   }
-  return out;
 }
 
 }  // namespace voxcd::sysc

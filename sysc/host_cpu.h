@@ -62,6 +62,8 @@ class HostCpu : public sc_core::sc_module {
   void load(const DeviceMemory& mem);
   // Stages the jobs, launches them as one batch, reads results until every job's completion record has come.
   std::vector<Record> run(const std::vector<Job>& jobs);
+  // The same into `out` (replacing its contents, reusing its capacity): the same transactions.
+  void run_into(const std::vector<Job>& jobs, std::vector<Record>& out);
   // Spends `t` computing (local time; synchronised at the end of the quantum).
   void compute(sc_core::sc_time t);
   // The CPU's notion of now: kernel time plus its local time.
@@ -76,6 +78,7 @@ class HostCpu : public sc_core::sc_module {
 
   tlm_utils::tlm_quantumkeeper qk_;
   size_t burst_;
+  std::vector<uint8_t> buf_;  // the bytes of one transaction
   std::deque<Task> tasks_;
   sc_core::sc_event task_event_;
   size_t posted_ = 0, finished_ = 0;

@@ -20,8 +20,9 @@ DeviceTarget::DeviceTarget(sc_module_name name, const DeviceConfig& cfg, sc_time
 uint64_t DeviceTarget::edge_after(sc_time t) const { return t.value() / period_.value() + 1; }
 uint64_t DeviceTarget::edge_at_or_before(sc_time t) const { return t.value() / period_.value(); }
 
-void DeviceTarget::publish(const std::vector<Record>& job_records) {
-  for (const Record& r : job_records) {
+void DeviceTarget::publish(const Record* job_records, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    const Record& r = job_records[i];
     results_.push_back(r);
     if (r.kind != Record::Done) continue;
     ++jobs_done_;

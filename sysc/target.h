@@ -53,7 +53,8 @@ class DeviceTarget : public sc_core::sc_module {
   virtual bool faulted() const { return false; }
 
   // Makes one job's records (hits, then its completion record) readable and counts them.
-  void publish(const std::vector<Record>& job_records);
+  void publish(const Record* job_records, size_t n);
+  void publish(const std::vector<Record>& job_records) { publish(job_records.data(), job_records.size()); }
   size_t readable() const { return results_.size(); }
   // Edge index k of the first rising edge strictly after t (edges at k * T, k >= 1).
   uint64_t edge_after(sc_core::sc_time t) const;

@@ -2,15 +2,15 @@
 
 #include <algorithm>
 
-#include "ref/pipeline.h"
 #include "ref/timing.h"
 
 namespace voxcd::sysc {
 
 using namespace sc_core;
 
-TlmTarget::TlmTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock_period, sc_time access_latency)
-    : DeviceTarget(name, cfg, clock_period, access_latency) {}
+TlmTarget::TlmTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock_period, sc_time access_latency,
+                     unsigned threads)
+    : DeviceTarget(name, cfg, clock_period, access_latency), runner_(cfg, threads) {}
 
 sc_time TlmTarget::start(sc_time& delay) { return sc_time_stamp() + delay; }
 
@@ -21,34 +21,32 @@ sc_time TlmTarget::memory_write(uint64_t words, sc_time t) {
 }
 
 sc_time TlmTarget::write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_time t) {
-  if (mem_.shell.size() < first + words.size()) mem_.shell.resize(first + words.size());
-  std::copy(words.begin(), words.end(), mem_.shell.begin() + long(first));
+  runner_.write_shell(first, words.data(), words.size());
   return memory_write(words.size(), t);
 }
 
 sc_time TlmTarget::write_map(uint64_t first, const std::vector<uint64_t>& words, sc_time t) {
-  if (mem_.map.size() < first + words.size()) mem_.map.resize(first + words.size());
-  std::copy(words.begin(), words.end(), mem_.map.begin() + long(first));
+  runner_.write_map(first, words.data(), words.size());
   return memory_write(words.size(), t);
 }
 
 void TlmTarget::launch(std::vector<Job> jobs, sc_time t) {
-  // Memory writes wait for every launched batch, so the memory seen now is the memory the batch reads.
-  std::vector<Record> recs = run_stream(cfg_, mem_, jobs);
-  const std::vector<JobTiming> timing = job_timing(cfg_, jobs, recs);
-  annotate_cycles(cfg_, jobs, recs);
+  // Memory writes wait for every launched batch, so the memory seen now is the memory the batch reads. The
+  // completion records come with ref/timing.h's cycles.
+  // Usually nothing of an earlier batch is left: the records go straight to pending_.
+  const bool direct = pending_head_ == pending_.size();
+  std::vector<Record>& batch = direct ? pending_ : batch_;
+  runner_.run_into(jobs, batch);
   // The first job is presented at the start edge and accepted at the next; a completion record emitted `cycles`
   // after the previous one (the first: after acceptance) is taken one edge after its emission.
   const uint64_t start_edge = std::max(edge_after(t), batch_free_);
   uint64_t edge = start_edge + 2;
-  size_t r = 0;
+  size_t r = 0, last_first = 0;
   for (size_t j = 0; j < jobs.size(); ++j) {
-    Future f;
-    while (recs[r].kind == Record::Hit) f.records.push_back(recs[r++]);
-    f.records.push_back(recs[r++]);
-    edge += timing[j].cycles;
-    f.edge = edge;
-    future_.push_back(std::move(f));
+    last_first = r;
+    while (batch[r].kind == Record::Hit) ++r;
+    edge += *batch[r++].cycles;
+    future_.push_back({edge, r - last_first});
   }
   batch_free_ = edge;
   // The device is idle one edge after the last completion record is taken, or later when slots issued behind a
@@ -56,21 +54,32 @@ void TlmTarget::launch(std::vector<Job> jobs, sc_time t) {
   // record is taken (ref/timing.h rule 3; the empty slot that follows them holds no point and keeps nothing busy).
   const Job& last = jobs.back();
   uint64_t drain = 0;
-  if (last.mode == Mode::First && future_.back().records.size() == 2) {
+  if (last.mode == Mode::First && future_.back().records == 2) {
     const uint64_t lanes = uint64_t(cfg_.LANES);
     const uint64_t groups = last.shell_count == 0 ? 1 : (last.shell_count + lanes - 1) / lanes;
-    const uint64_t f = future_.back().records.front().point / lanes;
+    const uint64_t f = batch[last_first].point / lanes;
     const uint64_t squashed = std::min(groups - 1, f + kPipelineSlots - 1) - f;
     drain = squashed > 0 ? squashed - 1 : 0;
   }
   idle_ = edge + 1 + drain;
+  if (direct) {
+    pending_head_ = 0;
+  } else {
+    pending_.erase(pending_.begin(), pending_.begin() + std::ptrdiff_t(pending_head_));
+    pending_head_ = 0;
+    pending_.insert(pending_.end(), batch_.begin(), batch_.end());
+  }
+}
+
+void TlmTarget::publish_next() {
+  const size_t n = future_.front().records;
+  publish(pending_.data() + pending_head_, n);
+  pending_head_ += n;
+  future_.pop_front();
 }
 
 void TlmTarget::advance_to(sc_time t) {
-  while (!future_.empty() && edge_time(future_.front().edge) <= t) {
-    publish(future_.front().records);
-    future_.pop_front();
-  }
+  while (!future_.empty() && edge_time(future_.front().edge) <= t) publish_next();
 }
 
 sc_time TlmTarget::await_results(size_t n, sc_time t) {
@@ -78,8 +87,7 @@ sc_time TlmTarget::await_results(size_t n, sc_time t) {
   sc_time when = t;
   while (readable() < n && !future_.empty()) {
     when = std::max(when, edge_time(future_.front().edge));
-    publish(future_.front().records);
-    future_.pop_front();
+    publish_next();
   }
   return when;
 }

@@ -1,19 +1,22 @@
-// TlmTarget: the device as a loosely-timed TLM-2.0 model on ref/: results from ref/pipeline.h (bit-exact), time
-// from ref/timing.h (cycle-exact). b_transport never waits: it computes when the access would be done on the RTL
-// target and annotates the delay. Assumes its initiators' transactions come in time order (one initiator, or
-// initiators kept in order by their quantum).
+// TlmTarget: the device as a loosely-timed TLM-2.0 model: results from ref/fast.h's FastRunner (bit-exact with
+// ref/pipeline.h, the specification), time from ref/timing.h (cycle-exact). b_transport never waits: it computes
+// when the access would be done on the RTL target and annotates the delay. Assumes its initiators' transactions
+// come in time order (one initiator, or initiators kept in order by their quantum).
 #pragma once
 
 #include <deque>
 
+#include "ref/fast.h"
 #include "sysc/target.h"
 
 namespace voxcd::sysc {
 
 class TlmTarget final : public DeviceTarget {
  public:
+  // `threads`: host threads computing a batch (FastRunner's; 1 = the simulation's own thread). Neither results nor
+  // annotated times depend on it.
   TlmTarget(sc_core::sc_module_name name, const DeviceConfig& cfg, sc_core::sc_time clock_period,
-            sc_core::sc_time access_latency = sc_core::SC_ZERO_TIME);
+            sc_core::sc_time access_latency = sc_core::SC_ZERO_TIME, unsigned threads = 1);
 
  private:
   sc_core::sc_time start(sc_core::sc_time& delay) override;
@@ -24,12 +27,16 @@ class TlmTarget final : public DeviceTarget {
   sc_core::sc_time await_results(size_t n, sc_core::sc_time t) override;
   bool busy() const override { return !future_.empty(); }
   sc_core::sc_time memory_write(uint64_t words, sc_core::sc_time t);
+  void publish_next();
 
   struct Future {
-    uint64_t edge;                // the edge at which the job's completion record is taken
-    std::vector<Record> records;  // the job's hits and its completion record
+    uint64_t edge;     // the edge at which the job's completion record is taken
+    size_t records;    // the job's hits and its completion record, next in pending_
   };
-  DeviceMemory mem_;
+  FastRunner runner_;
+  std::vector<Record> batch_;    // a batch launched while records of an earlier one are pending
+  std::vector<Record> pending_;  // records of launched jobs from pending_head_ on, not yet readable
+  size_t pending_head_ = 0;
   std::deque<Future> future_;
   uint64_t batch_free_ = 1;  // first edge at which a new batch may be presented
   uint64_t idle_ = 1;        // first edge at which the device is idle (memory writes may start)

@@ -1,0 +1,309 @@
+#include "ref/fast.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "ref/fixed.h"
+#include "ref/pipeline.h"
+#include "ref/thread_pool.h"
+#include "ref/timing.h"
+
+namespace voxcd {
+
+namespace {
+
+constexpr size_t kChunk = 4096;  // points per task
+constexpr size_t kBlock = 256;   // points per vector block inside a task
+
+// The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
+// bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
+// state | hit << 2; returns the number of hits. Outside points read the map's first word and are masked.
+// Compiled three times (AVX-512 with 512-bit vectors, AVX2 with FMA, baseline) and chosen once at run time.
+#define VOXCD_BLOCK_DOUBLE_FETCH_BODY                                                                           \
+  {                                                                                                             \
+    const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6],            \
+                 m7 = mp[7], m8 = mp[8];                                                                        \
+    const double t0 = tp[0], t1 = tp[1], t2 = tp[2];                                                            \
+    const double nx = dp[0], ny = dp[1], nz = dp[2];                                                            \
+    const int32_t slot_mask = (int32_t{1} << slot_bits) - 1;                                                    \
+    uint32_t count = 0;                                                                                         \
+    for (size_t k = 0; k < n; ++k) {                                                                            \
+      const double px = double(x[k]), py = double(y[k]), pz = double(z[k]);                                      \
+      const double ax = std::floor(m0 * px + m1 * py + m2 * pz + t0);                                           \
+      const double ay = std::floor(m3 * px + m4 * py + m5 * pz + t1);                                           \
+      const double az = std::floor(m6 * px + m7 * py + m8 * pz + t2);                                           \
+      const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);                \
+      const int32_t li = int32_t(inside ? ax + nx * (ay + ny * az) : 0.0);                                      \
+      const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;                        \
+      const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;                                                \
+      lin[k] = li;                                                                                              \
+      state[k] = uint8_t(st | (hit << 2));                                                                      \
+      count += hit;                                                                                             \
+    }                                                                                                           \
+    return count;                                                                                               \
+  }
+#define VOXCD_BLOCK_DOUBLE_FETCH_ARGS                                                                           \
+  const Coord *__restrict x, const Coord *__restrict y, const Coord *__restrict z, size_t n,                    \
+      const double *__restrict mp, const double *__restrict tp, const double *__restrict dp,                    \
+      const uint64_t *__restrict map, int slot_bits, uint32_t mask, int32_t *__restrict lin,                    \
+      uint8_t *__restrict state
+
+template <class Coord>
+struct BlockKernel {
+  using Fn = uint32_t (*)(VOXCD_BLOCK_DOUBLE_FETCH_ARGS);
+  static uint32_t base(VOXCD_BLOCK_DOUBLE_FETCH_ARGS) VOXCD_BLOCK_DOUBLE_FETCH_BODY
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  __attribute__((target("arch=haswell"))) static uint32_t avx2(VOXCD_BLOCK_DOUBLE_FETCH_ARGS)
+      VOXCD_BLOCK_DOUBLE_FETCH_BODY
+  __attribute__((target("arch=skylake-avx512,prefer-vector-width=512"))) static uint32_t
+      avx512(VOXCD_BLOCK_DOUBLE_FETCH_ARGS) VOXCD_BLOCK_DOUBLE_FETCH_BODY
+#endif
+  struct Choice {
+    Fn fn;
+    const char* name;
+  };
+  static Choice choose() {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
+      return {avx512, "avx512"};
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return {avx2, "avx2"};
+#endif
+    return {base, "baseline"};
+  }
+};
+
+const BlockKernel<double>::Choice block_fetch = BlockKernel<double>::choose();
+
+void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n, const Job& j, int tf,
+                 int64_t* lin) {
+  const int64_t nx = j.nx, ny = j.ny, nz = j.nz;
+  for (size_t k = 0; k < n; ++k) {
+    const int64_t ix = (j.M[0][0] * x[k] + j.M[0][1] * y[k] + j.M[0][2] * z[k] + j.t[0]) >> tf;
+    const int64_t iy = (j.M[1][0] * x[k] + j.M[1][1] * y[k] + j.M[1][2] * z[k] + j.t[1]) >> tf;
+    const int64_t iz = (j.M[2][0] * x[k] + j.M[2][1] * y[k] + j.M[2][2] * z[k] + j.t[2]) >> tf;
+    const bool inside = uint64_t(ix) < uint64_t(nx) && uint64_t(iy) < uint64_t(ny) && uint64_t(iz) < uint64_t(nz);
+    lin[k] = inside ? ix + nx * (iy + ny * iz) : -1;
+  }
+}
+
+// Appends the block's hit records; true when FIRST has its answer.
+bool emit_hits(const Job& j, uint32_t b, size_t n, const int64_t* lin, const uint8_t* state, std::vector<Record>& hits,
+               uint32_t& count) {
+  for (size_t k = 0; k < n; ++k) {
+    if (!(state[k] & 4u)) continue;
+    ++count;
+    const uint64_t li = uint64_t(lin[k]);
+    const uint64_t x = li % j.nx, yz = li / j.nx;
+    hits.push_back(Record::hit(j.tag, b + uint32_t(k), uint32_t(x), uint32_t(yz % j.ny), uint32_t(yz / j.ny),
+                               uint8_t(state[k] & 3u)));
+    if (j.mode == Mode::First) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+FastRunner::FastRunner(const DeviceConfig& cfg, unsigned threads) : cfg_(cfg) {
+  cfg_.validate();
+  if (cfg_.acc_width() <= 53)
+    path_ = Path::Double;
+  else if (cfg_.acc_width() <= 63)
+    path_ = Path::Int64;
+  else
+    path_ = Path::Wide;
+  keep_int64_ = path_ == Path::Int64 || (path_ == Path::Double && 3 * cfg_.DW >= 31);
+  while ((1 << slot_bits_) < cfg_.states_per_word()) ++slot_bits_;
+  pool_ = std::make_unique<ThreadPool>(threads);
+}
+
+FastRunner::~FastRunner() = default;
+
+const char* FastRunner::path_name(Path p) {
+  switch (p) {
+    case Path::Double: return "double";
+    case Path::Int64: return "int64";
+    case Path::Wide: return "wide";
+  }
+  return "?";
+}
+
+const char* FastRunner::double_kernel() { return block_fetch.name; }
+
+unsigned FastRunner::threads() const { return pool_->size(); }
+
+void FastRunner::set_shell_word(size_t k, const ShellWord& w) {
+  shell_[k] = w;
+  if (path_ == Path::Double) dx_[k] = double(w.x), dy_[k] = double(w.y), dz_[k] = double(w.z);
+  if (keep_int64_) ix_[k] = w.x, iy_[k] = w.y, iz_[k] = w.z;
+}
+
+void FastRunner::load(const DeviceMemory& mem) {
+  validate_memory(cfg_, mem);
+  shell_.clear();
+  map_.clear();
+  write_shell(0, mem.shell.data(), mem.shell.size());
+  write_map(0, mem.map.data(), mem.map.size());
+}
+
+void FastRunner::write_shell(uint64_t first, const ShellWord* words, size_t n) {
+  if (first + n > cfg_.shell_depth())
+    throw JobError("shell words [" + std::to_string(first) + ", " + std::to_string(first + n) +
+                   ") do not fit the shell memory of 2^SAW = " + std::to_string(cfg_.shell_depth()) + " words");
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!fits_signed(words[i][c], cfg_.PW))
+        throw JobError("shell word " + std::to_string(first + i) + " coordinate " + std::to_string(c) + " = " +
+                       std::to_string(words[i][c]) + " does not fit PW = " + std::to_string(cfg_.PW) + " bits");
+  const size_t end = size_t(first + n);
+  if (shell_.size() < end) {
+    shell_.resize(end);
+    if (path_ == Path::Double) dx_.resize(end), dy_.resize(end), dz_.resize(end);
+    if (keep_int64_) ix_.resize(end), iy_.resize(end), iz_.resize(end);
+  }
+  for (size_t i = 0; i < n; ++i) set_shell_word(size_t(first) + i, words[i]);
+}
+
+void FastRunner::write_map(uint64_t first, const uint64_t* words, size_t n) {
+  if (first + n > cfg_.map_depth())
+    throw JobError("voxmap words [" + std::to_string(first) + ", " + std::to_string(first + n) +
+                   ") do not fit the voxmap memory of 2^MAW = " + std::to_string(cfg_.map_depth()) + " words");
+  for (size_t i = 0; i < n; ++i)
+    if (!fits_unsigned(words[i], cfg_.MEMW))
+      throw JobError("voxmap word " + std::to_string(first + i) + " has bits above MEMW = " +
+                     std::to_string(cfg_.MEMW));
+  const size_t end = size_t(first + n);
+  if (map_.size() < end) map_.resize(end);
+  std::copy(words, words + n, map_.begin() + std::ptrdiff_t(first));
+}
+
+std::vector<Record> FastRunner::run(const std::vector<Job>& jobs, bool cycles) {
+  std::vector<Record> out;
+  run_into(jobs, out, cycles);
+  return out;
+}
+
+void FastRunner::run_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) {
+  for (const Job& j : jobs) validate_job(cfg_, j, shell_.size(), map_.size());
+  // Tasks: (job, first point, end point).
+  tasks_.clear();
+  first_task_.assign(jobs.size() + 1, 0);
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    first_task_[j] = tasks_.size();
+    const uint32_t n = jobs[j].shell_count;
+    for (uint32_t b = 0; b < n; b += uint32_t(kChunk))
+      tasks_.push_back({j, b, uint32_t(std::min<size_t>(n, b + kChunk))});
+  }
+  first_task_[jobs.size()] = tasks_.size();
+  if (tasks_.size() <= 1 || pool_->size() <= 1) {
+    // One thread: chunks in order, hits straight into `out`; FIRST skips the chunks after its hit.
+    out.clear();
+    out.reserve(2 * jobs.size());
+    for (size_t j = 0; j < jobs.size(); ++j) {
+      uint32_t hits = 0;
+      for (size_t i = first_task_[j]; i < first_task_[j + 1]; ++i) {
+        run_chunk(jobs[j], tasks_[i].begin, tasks_[i].end, out, hits);
+        if (jobs[j].mode == Mode::First && hits) break;
+      }
+      out.push_back(Record::done(jobs[j].tag, hits));
+    }
+  } else {
+    if (results_.size() < tasks_.size()) results_.resize(tasks_.size());
+    for (size_t i = 0; i < tasks_.size(); ++i) {
+      results_[i].hits.clear();
+      results_[i].count = 0;
+    }
+    pool_->parallel_for(tasks_.size(), [&](size_t i) {
+      run_chunk(jobs[tasks_[i].job], tasks_[i].begin, tasks_[i].end, results_[i].hits, results_[i].count);
+    });
+    // Merge in order.
+    size_t total = jobs.size();
+    for (size_t i = 0; i < tasks_.size(); ++i) total += results_[i].hits.size();
+    out.clear();
+    out.reserve(total);
+    for (size_t j = 0; j < jobs.size(); ++j) {
+      uint32_t hits = 0;
+      for (size_t i = first_task_[j]; i < first_task_[j + 1]; ++i) {
+        ChunkResult& r = results_[i];
+        if (jobs[j].mode == Mode::First) {
+          if (hits == 0 && r.count) {
+            out.push_back(r.hits.front());
+            hits = 1;
+          }
+        } else {
+          hits += r.count;
+          out.insert(out.end(), r.hits.begin(), r.hits.end());
+        }
+      }
+      out.push_back(Record::done(jobs[j].tag, hits));
+    }
+  }
+  if (cycles) annotate_cycles(cfg_, jobs, out);
+}
+
+void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
+                           uint32_t& hit_count) const {
+  int64_t lin[kBlock];
+  int32_t lin32[kBlock];
+  uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit
+  const bool fused = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
+  // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is every
+  // product and sum after it (multiples of 2^-TF below 2^(53-TF)).
+  double ms[9], ts[3];
+  const double dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
+  if (fused) {
+    const double scale = std::ldexp(1.0, -cfg_.TF());
+    for (int i = 0; i < 9; ++i) ms[i] = double(j.M[i / 3][i % 3]) * scale;
+    for (int i = 0; i < 3; ++i) ts[i] = double(j.t[i]) * scale;
+  }
+  const uint64_t slot_mask = (uint64_t{1} << slot_bits_) - 1;
+  const uint64_t* map = map_.data() + j.map_base;
+  for (uint32_t b = begin; b < end; b += uint32_t(kBlock)) {
+    const size_t n = std::min<size_t>(kBlock, end - b);
+    const size_t base = size_t(j.shell_base) + b;
+    if (fused) {
+      const uint32_t count = block_fetch.fn(&dx_[base], &dy_[base], &dz_[base], n, ms, ts, dims, map, slot_bits_,
+                                            j.hit_mask, lin32, state);
+      if (count == 0) continue;
+      if (j.mode == Mode::Count) {
+        hit_count += count;
+        continue;
+      }
+      for (size_t k = 0; k < n; ++k) lin[k] = lin32[k];
+      if (emit_hits(j, b, n, lin, state, hits, hit_count)) return;
+      continue;
+    }
+    switch (path_) {
+      case Path::Double:  // a map of 2^31 voxels or more: the accumulator fits 53 bits, so int64 is exact
+      case Path::Int64: block_int64(&ix_[base], &iy_[base], &iz_[base], n, j, cfg_.TF(), lin); break;
+      case Path::Wide:
+        for (size_t k = 0; k < n; ++k) {
+          const Located l = locate(cfg_, j, transform(cfg_, j, shell_[base + k]));
+          lin[k] = l.inside ? int64_t(l.linear) : -1;
+        }
+        break;
+    }
+    // Fetch, select and test without branches (outside points read the map's first word and are masked); then
+    // walk only the hits.
+    const uint32_t mask = j.hit_mask;
+    uint32_t count = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const bool inside = lin[k] >= 0;
+      const uint64_t li = inside ? uint64_t(lin[k]) : 0;
+      const uint32_t st = uint32_t(map[li >> slot_bits_] >> (2 * (li & slot_mask))) & 3u;
+      const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;
+      state[k] = uint8_t(st | (hit << 2));
+      count += hit;
+    }
+    if (count == 0) continue;
+    if (j.mode == Mode::Count) {
+      hit_count += count;
+      continue;
+    }
+    if (emit_hits(j, b, n, lin, state, hits, hit_count)) return;
+  }
+}
+
+}  // namespace voxcd
