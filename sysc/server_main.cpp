@@ -102,7 +102,7 @@ int sc_main(int argc, char** argv) {
     }
   }
   if (!have_target) return usage("--target is required");
-  Channel ch(kServerFd);
+  Channel ch(kServerFd, /*buffered=*/true);
   try {
     Platform platform("platform", opt);
     ch.put_u64(0);  // ready

@@ -13,8 +13,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,7 +30,9 @@ constexpr uint64_t kOpRun = 2;
 // A byte stream over a socket; throws std::runtime_error when the peer has gone.
 class Channel {
  public:
-  explicit Channel(int fd) : fd_(fd) {}
+  // `buffered`: reads take whatever the socket has (up to 64 KiB) into the Channel, so a Channel that reads must
+  // live as long as the connection; unbuffered, every get() is its own read and a Channel may be a temporary.
+  explicit Channel(int fd, bool buffered = false) : fd_(fd), buffered_(buffered) {}
   void put(const void* p, size_t n) {
     out_.insert(out_.end(), static_cast<const uint8_t*>(p), static_cast<const uint8_t*>(p) + n);
   }
@@ -56,6 +60,25 @@ class Channel {
     uint8_t* d = static_cast<uint8_t*>(p);
     size_t off = 0;
     while (off < n) {
+      if (in_pos_ < in_.size()) {
+        const size_t k = std::min(n - off, in_.size() - in_pos_);
+        std::memcpy(d + off, in_.data() + in_pos_, k);
+        in_pos_ += k;
+        off += k;
+        continue;
+      }
+      if (buffered_) {
+        in_.resize(65536);
+        const ssize_t r = ::read(fd_, in_.data(), in_.size());
+        in_.resize(r > 0 ? size_t(r) : 0);
+        in_pos_ = 0;
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) {
+          if (off == 0 && r == 0) return false;
+          throw std::runtime_error("the peer closed the connection");
+        }
+        continue;
+      }
       const ssize_t r = ::read(fd_, d + off, n - off);
       if (r < 0 && errno == EINTR) continue;
       if (r <= 0) {
@@ -81,7 +104,10 @@ class Channel {
 
  private:
   int fd_;
+  bool buffered_;
   std::vector<uint8_t> out_;
+  std::vector<uint8_t> in_;  // buffered: bytes read, not yet taken from in_pos_ on
+  size_t in_pos_ = 0;
 };
 
 }  // namespace voxcd::sysc
