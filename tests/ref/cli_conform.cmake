@@ -1,18 +1,7 @@
 # voxcd conform as a user runs it: generate, pass; break one expectation, fail with the file, tag and point;
 # a truncated file fails with its line; the summary line and the exit code say so.
 file(MAKE_DIRECTORY ${WORK})
-function(run expect_rc out_var)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL expect_rc)
-    message(FATAL_ERROR "'${ARGN}' exited ${rc}, expected ${expect_rc}\n${out}\n${err}")
-  endif()
-  set(${out_var} "${out}${err}" PARENT_SCOPE)
-endfunction()
-function(expect text pattern)
-  if(NOT text MATCHES "${pattern}")
-    message(FATAL_ERROR "expected output matching '${pattern}', got:\n${text}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
 
 run(0 out ${VOXCD} conform --generate --seed 7 --jobs 150 --lanes 4 -o ${WORK}/good.vec)
 run(0 out ${VOXCD} conform ${WORK}/good.vec)

@@ -2,18 +2,7 @@
 # built for L lanes; --print shows the RTL's own stream with its measured cycles; cycles for another lane count
 # are refused.
 file(MAKE_DIRECTORY ${WORK})
-function(run expect_rc out_var)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL expect_rc)
-    message(FATAL_ERROR "'${ARGN}' exited ${rc}, expected ${expect_rc}\n${out}\n${err}")
-  endif()
-  set(${out_var} "${out}${err}" PARENT_SCOPE)
-endfunction()
-function(expect text pattern)
-  if(NOT text MATCHES "${pattern}")
-    message(FATAL_ERROR "expected output matching '${pattern}', got:\n${text}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
 
 foreach(lanes 1 2 4 8)
   run(0 out ${VOXCD} conform --generate --seed 3${lanes} --jobs 300 --lanes ${lanes} -o ${WORK}/l${lanes}.vec)

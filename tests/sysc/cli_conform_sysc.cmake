@@ -2,18 +2,7 @@
 # per Device), every lane count, cycles compared; a changed cycle count is caught; a config the RTL models were
 # not built for is refused with a message, while the TLM model takes it.
 file(MAKE_DIRECTORY ${WORK})
-function(run expect_rc out_var)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL expect_rc)
-    message(FATAL_ERROR "'${ARGN}' exited ${rc}, expected ${expect_rc}\n${out}\n${err}")
-  endif()
-  set(${out_var} "${out}${err}" PARENT_SCOPE)
-endfunction()
-function(expect text pattern)
-  if(NOT text MATCHES "${pattern}")
-    message(FATAL_ERROR "expected output matching '${pattern}', got:\n${text}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
 
 set(files)
 foreach(lanes 1 2 4 8)
