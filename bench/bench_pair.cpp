@@ -15,6 +15,7 @@
 #include "bench/bench_common.h"
 #include "host/collide.h"
 #include "host/shapes.h"
+#include "tests/exact_geometry.h"
 
 using namespace voxcd;
 
@@ -38,52 +39,6 @@ fcl::Transform3d to_fcl(const RigidPose& p) {
   t.linear() = p.rotation.toRotationMatrix();
   t.translation() = p.translation;
   return t;
-}
-
-// Exact geometry by brute force: is p inside the closed mesh (ray parity), and its distance to the surface.
-bool inside(const Mesh& m, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d d = Eigen::Vector3d(0.5773, 0.3119, 0.7549).normalized();
-  int n = 0;
-  for (size_t t = 0; t < m.size(); ++t) {
-    const Eigen::Vector3d a = m.corner(t, 0), e1 = m.corner(t, 1) - a, e2 = m.corner(t, 2) - a;
-    const Eigen::Vector3d q = d.cross(e2);
-    const double det = e1.dot(q);
-    if (det == 0) continue;
-    const Eigen::Vector3d s = p - a;
-    const double u = s.dot(q) / det;
-    if (u < 0 || u > 1) continue;
-    const Eigen::Vector3d r = s.cross(e1);
-    const double v = d.dot(r) / det;
-    if (v < 0 || u + v > 1) continue;
-    if (e2.dot(r) / det > 0) ++n;
-  }
-  return n % 2;
-}
-
-double distance(const Mesh& m, const Eigen::Vector3d& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t t = 0; t < m.size(); ++t) {
-    // Closest point on the triangle (Ericson 5.1.5).
-    const Eigen::Vector3d a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
-    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    Eigen::Vector3d q;
-    const Eigen::Vector3d bp = p - b, cp = p - c;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
-    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-    if (d1 <= 0 && d2 <= 0) q = a;
-    else if (d3 >= 0 && d4 <= d3) q = b;
-    else if (vc <= 0 && d1 >= 0 && d3 <= 0) q = a + ab * (d1 / (d1 - d3));
-    else if (d6 >= 0 && d5 <= d6) q = c;
-    else if (vb <= 0 && d2 >= 0 && d6 <= 0) q = a + ac * (d2 / (d2 - d6));
-    else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    else {
-      const double den = 1.0 / (va + vb + vc);
-      q = a + ab * (vb * den) + ac * (vc * den);
-    }
-    best = std::min(best, (p - q).norm());
-  }
-  return best;
 }
 
 Mesh transformed(const Mesh& m, const RigidPose& pose) {
@@ -202,14 +157,15 @@ int main(int argc, char** argv) {
             for (size_t s = 0; s < std::min<size_t>(cs.size(), 40); ++s) {
               const Contact& c = cs[pick() % cs.size()];
               const Mesh& other = c.a_in_b ? wb : wa;
-              if (!inside(other, c.position)) worst_out = std::max(worst_out, distance(other, c.position));
+              if (!test::inside_reference(other, c.position))
+                worst_out = std::max(worst_out, test::mesh_distance(other, c.position));
             }
             if (fcl_hit[k] && res[k].hits == 0) {
               for (const auto& v : wa.vertices)
-                if (inside(wb, v)) worst_missed = std::max(worst_missed, distance(wb, v));
+                if (test::inside_reference(wb, v)) worst_missed = std::max(worst_missed, test::mesh_distance(wb, v));
               if (both)
                 for (const auto& v : wb.vertices)
-                  if (inside(wa, v)) worst_missed = std::max(worst_missed, distance(wa, v));
+                  if (test::inside_reference(wa, v)) worst_missed = std::max(worst_missed, test::mesh_distance(wa, v));
             }
           }
           false_dist = f("%.4f", worst_out) + " (" + f("%.2f", worst_out / voxel) + " voxels)";

@@ -17,38 +17,9 @@
 namespace voxcd {
 namespace {
 
-double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                               const Eigen::Vector3d& c) {
-  // Ericson, Real-Time Collision Detection, 5.1.5: the closest point by Voronoi regions.
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).norm();
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
-}
-
-double mesh_distance(const Mesh& m, const Eigen::Vector3d& p) {
-  double d = std::numeric_limits<double>::infinity();
-  for (size_t t = 0; t < m.size(); ++t) d = std::min(d, point_triangle_distance(p, m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)));
-  return d;
-}
-
 // Signed depth of a point in a closed mesh: + inside, - outside.
 double signed_depth(const Mesh& m, const Eigen::Vector3d& p) {
-  const double d = mesh_distance(m, p);
+  const double d = test::mesh_distance(m, p);
   return test::inside_reference(m, p) ? d : -d;
 }
 
@@ -86,7 +57,7 @@ std::vector<Eigen::Vector3d> surface_samples(const Mesh& m, int per_triangle, st
 double reach_into(const std::vector<Eigen::Vector3d>& samples_a, const Mesh& b) {
   double best = 0;
   for (const auto& p : samples_a)
-    if (test::inside_reference(b, p)) best = std::max(best, mesh_distance(b, p));
+    if (test::inside_reference(b, p)) best = std::max(best, test::mesh_distance(b, p));
   return best;
 }
 

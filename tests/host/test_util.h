@@ -12,6 +12,7 @@
 
 #include "host/mesh.h"
 #include "host/voxelize.h"
+#include "tests/exact_geometry.h"
 
 namespace voxcd::test {
 
@@ -62,26 +63,6 @@ inline void write_ply(const Mesh& m, const std::string& path) {
     << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (const auto& v : m.vertices) o << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
   for (const auto& t : m.triangles) o << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
-}
-
-// Point in a closed mesh by the parity of crossings along a fixed generic direction (Moller-Trumbore).
-inline bool inside_reference(const Mesh& m, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d d = Eigen::Vector3d(0.5773, 0.3119, 0.7549).normalized();
-  int n = 0;
-  for (size_t t = 0; t < m.size(); ++t) {
-    const Eigen::Vector3d a = m.corner(t, 0), e1 = m.corner(t, 1) - a, e2 = m.corner(t, 2) - a;
-    const Eigen::Vector3d q = d.cross(e2);
-    const double det = e1.dot(q);
-    if (det == 0) continue;
-    const Eigen::Vector3d s = p - a;
-    const double u = s.dot(q) / det;
-    if (u < 0 || u > 1) continue;
-    const Eigen::Vector3d r = s.cross(e1);
-    const double v = d.dot(r) / det;
-    if (v < 0 || u + v > 1) continue;
-    if (e2.dot(r) / det > 0) ++n;
-  }
-  return n % 2;
 }
 
 // Triangle a, b, c against the axis-aligned cube centred at c0 with half side h (separating axes, no shortcuts).
