@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
       {"in cache: 32^3 voxmap (8 KiB), 4096-point shell", 32, 32, 32, 4096, 256},
       {"not in cache: 1024x1024x64 voxmap (16 MiB), 65536-point shell", 1024, 1024, 64, 65536, 16}};
   std::ostringstream md;
+  md << bench::provenance(argc, argv) << "\n\n";
   md << "| voxmap | backend | threads | ns per point (median of " << repeats << ") | ratio to ref |\n"
      << "|---|---|---|---|---|\n";
   for (const Scenario& s : scenarios) {

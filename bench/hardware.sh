@@ -15,13 +15,4 @@ trap 'rm -rf "$tmp"' EXIT
   echo
   bash bench/rtl_cost.sh
 } > "$tmp/section.md"
-doc=docs/hardware.md
-begin='<!-- bench:hardware:begin -->'
-end='<!-- bench:hardware:end -->'
-grep -qF "$begin" "$doc" && grep -qF "$end" "$doc" || { echo "$doc lacks the bench markers" >&2; exit 1; }
-awk -v b="$begin" -v e="$end" -v f="$tmp/section.md" '
-  $0 == b { print; while ((getline line < f) > 0) print line; skip = 1; next }
-  $0 == e { skip = 0 }
-  !skip { print }' "$doc" > "$tmp/doc.md"
-mv "$tmp/doc.md" "$doc"
-echo "wrote $doc"
+bash bench/splice.sh docs/hardware.md hardware "$tmp/section.md"

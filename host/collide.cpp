@@ -129,6 +129,9 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
   {
     size_t job = 0;
     for (const Record& rec : records_) {
+      if (job == js.size())
+        throw DeviceError("the device returned records after the completions of all " + std::to_string(js.size()) +
+                          " jobs");
       if (rec.kind == Record::Done) ++job;
       else ++counts_[job / size_t(per_pair)];
     }
@@ -146,33 +149,52 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
     rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
   }
-  size_t j = 0;
-  for (const Record& rec : records_) {
+  // Contacts, job by job. The depth lookups land all over B's depth field (4 bytes per voxel, often larger than
+  // the cache), so the loop prefetches the depth of the hit a few records ahead.
+  constexpr size_t kAhead = 16;
+  const size_t nrec = records_.size();
+  size_t r = 0;
+  for (size_t j = 0; j < js.size(); ++j) {
     const size_t pair = j / size_t(per_pair);
     const bool a_in_b = j % size_t(per_pair) == 0;
-    PairResult& res = out.at(pair);
-    if (rec.kind == Record::Done) {
-      res.hits += rec.hits;
-      res.lookups += js[j].shell_count;
-      if (rec.cycles) res.cycles += *rec.cycles;
-      ++j;
-      continue;
-    }
-    const PairRequest& r = pairs[pair];
-    const ObjectType& shell_t = *types_[a_in_b ? r.a : r.b];
-    const ObjectType& map_t = *types_[a_in_b ? r.b : r.a];
-    const RigidPose& pose = a_in_b ? r.pose_a : r.pose_b;
+    PairResult& res = out[pair];
+    const PairRequest& req = pairs[pair];
+    const ObjectType& shell_t = *types_[a_in_b ? req.a : req.b];
+    const ObjectType& map_t = *types_[a_in_b ? req.b : req.a];
+    const RigidPose& pose = a_in_b ? req.pose_a : req.pose_b;
     const Eigen::Matrix3d& R = a_in_b ? rot_a_[pair] : rot_b_[pair];
-    Contact c;
-    c.pair = uint32_t(pair);
-    c.a_in_b = a_in_b;
-    c.point = rec.point;
-    c.position = R * shell_t.shell().points[rec.point] + pose.translation;
-    c.normal = R * shell_t.shell().normals[rec.point];
-    c.voxel = {rec.x, rec.y, rec.z};
-    c.state = rec.state;
-    c.depth = double(map_t.depth[map_t.voxmap().index(rec.x, rec.y, rec.z)]) * map_t.voxmap().voxel();
-    res.contacts.push_back(c);
+    const auto& points = shell_t.shell().points;
+    const auto& normals = shell_t.shell().normals;
+    const Voxmap& vm = map_t.voxmap();
+    const float* depth = map_t.depth.data();
+    const size_t nvox = map_t.depth.size();
+    const double voxel = vm.voxel();
+    for (; r < nrec && records_[r].kind != Record::Done; ++r) {
+      if (r + kAhead < nrec) {
+        const Record& ahead = records_[r + kAhead];
+        if (ahead.kind == Record::Hit) {
+          const uint64_t i = vm.index(ahead.x, ahead.y, ahead.z);
+          if (i < nvox) __builtin_prefetch(depth + i);
+        }
+      }
+      const Record& rec = records_[r];
+      Contact c;
+      c.pair = uint32_t(pair);
+      c.a_in_b = a_in_b;
+      c.point = rec.point;
+      c.position = R * points[rec.point] + pose.translation;
+      c.normal = R * normals[rec.point];
+      c.voxel = {rec.x, rec.y, rec.z};
+      c.state = rec.state;
+      c.depth = double(depth[vm.index(rec.x, rec.y, rec.z)]) * voxel;
+      res.contacts.push_back(c);
+    }
+    if (r == nrec) throw DeviceError("the device returned fewer completions than the " + std::to_string(js.size()) +
+                                     " jobs it was given");
+    const Record& done = records_[r++];
+    res.hits += done.hits;
+    res.lookups += js[j].shell_count;
+    if (done.cycles) res.cycles += *done.cycles;
   }
 }
 

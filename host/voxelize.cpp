@@ -90,27 +90,6 @@ void triangle_crossings(const GridMesh& gm, const Mesh& m, size_t t, const GridP
   }
 }
 
-// Akenine-Moller's separating-axis test of a triangle against the cube centred at c with half side h.
-bool tri_box(const Eigen::Vector3d& c, double h, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-             const Eigen::Vector3d& d) {
-  const Eigen::Vector3d v0 = a - c, v1 = b - c, v2 = d - c;
-  for (int i = 0; i < 3; ++i) {
-    if (std::min({v0[i], v1[i], v2[i]}) > h || std::max({v0[i], v1[i], v2[i]}) < -h) return false;
-  }
-  const Eigen::Vector3d e[3] = {v1 - v0, v2 - v1, v0 - v2};
-  for (int k = 0; k < 3; ++k)
-    for (int i = 0; i < 3; ++i) {
-      Eigen::Vector3d axis = Eigen::Vector3d::Zero();
-      axis[i] = 1;
-      axis = axis.cross(e[k]);
-      const double p0 = axis.dot(v0), p1 = axis.dot(v1), p2 = axis.dot(v2);
-      const double r = h * axis.cwiseAbs().sum();
-      if (std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r) return false;
-    }
-  const Eigen::Vector3d n = e[0].cross(e[1]);
-  return std::abs(n.dot(v0)) <= h * n.cwiseAbs().sum();
-}
-
 // Calls fn(x, y, z) for every voxel of the grid whose cube grown by kGrow meets triangle t. Walks the columns
 // along the triangle's dominant normal axis, so the work is proportional to its area, not its bounding box.
 template <class Fn>
@@ -158,7 +137,7 @@ void triangle_voxels(const GridMesh& gm, const Mesh& m, size_t t, const GridPlac
       for (int64_t ia = a0; ia <= a1; ++ia) {
         idx[a] = int(ia);
         const Eigen::Vector3d c(idx[0] + 0.5, idx[1] + 0.5, idx[2] + 0.5);
-        if (tri_box(c, h, A, B, C)) fn(uint32_t(idx[0]), uint32_t(idx[1]), uint32_t(idx[2]));
+        if (triangle_meets_cube(c, h, A, B, C)) fn(uint32_t(idx[0]), uint32_t(idx[1]), uint32_t(idx[2]));
       }
     }
 }
@@ -336,6 +315,26 @@ Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt) {
     w[i] = (w[i] & ~(s | (s << 1))) | s;
   }
   return vm;
+}
+
+bool triangle_meets_cube(const Eigen::Vector3d& c, double h, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+             const Eigen::Vector3d& d) {
+  const Eigen::Vector3d v0 = a - c, v1 = b - c, v2 = d - c;
+  for (int i = 0; i < 3; ++i) {
+    if (std::min({v0[i], v1[i], v2[i]}) > h || std::max({v0[i], v1[i], v2[i]}) < -h) return false;
+  }
+  const Eigen::Vector3d e[3] = {v1 - v0, v2 - v1, v0 - v2};
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) {
+      Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+      axis[i] = 1;
+      axis = axis.cross(e[k]);
+      const double p0 = axis.dot(v0), p1 = axis.dot(v1), p2 = axis.dot(v2);
+      const double r = h * axis.cwiseAbs().sum();
+      if (std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r) return false;
+    }
+  const Eigen::Vector3d n = e[0].cross(e[1]);
+  return std::abs(n.dot(v0)) <= h * n.cwiseAbs().sum();
 }
 
 }  // namespace voxcd

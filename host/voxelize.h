@@ -87,4 +87,9 @@ std::vector<uint64_t> surface_bits(const Mesh& mesh, const GridPlacement& g, uns
 void for_each_overlap(const Mesh& mesh, const GridPlacement& g, size_t t0, size_t t1,
                       const std::function<void(size_t, uint32_t, uint32_t, uint32_t)>& fn);
 
+// Akenine-Moller's separating-axis test: does triangle (a, b, d) meet the axis-aligned cube centred at c with half
+// side h (boundary included)?
+bool triangle_meets_cube(const Eigen::Vector3d& c, double h, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                         const Eigen::Vector3d& d);
+
 }  // namespace voxcd

@@ -15,6 +15,9 @@ namespace {
 
 constexpr size_t kChunk = 4096;  // points per task
 constexpr size_t kBlock = 256;   // points per vector block inside a task
+// Below this many points in a batch the pool's wake-up costs more than the second core saves (bench_pair: a
+// 6,000-point pair query took 67 us on one thread and 89 us on two), so the batch runs on the calling thread.
+constexpr size_t kParallelMinPoints = 65536;
 
 // The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
 // bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
@@ -75,7 +78,8 @@ struct BlockKernel {
   }
 };
 
-const BlockKernel<double>::Choice block_fetch = BlockKernel<double>::choose();
+// Coordinates are int32 on the double path: DeviceConfig::validate keeps PW within 2..32.
+const BlockKernel<int32_t>::Choice block_fetch = BlockKernel<int32_t>::choose();
 
 void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n, const Job& j, int tf,
                  int64_t* lin) {
@@ -90,15 +94,35 @@ void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n,
 }
 
 // Appends the block's hit records; true when FIRST has its answer.
+// Quotients by a job's nx and ny without a hardware divide (tens of cycles per hit): a double reciprocal gives the
+// quotient within one for dividends below 2^53 (every map that fits memory), and the correction makes it exact.
+struct Divider {
+  uint64_t d;
+  double inv;
+  explicit Divider(uint64_t den) : d(den), inv(1.0 / double(den)) {}
+  uint64_t operator()(uint64_t v) const {
+    uint64_t q = uint64_t(double(v) * inv);
+    while (q * d > v) --q;
+    while ((q + 1) * d <= v) ++q;
+    return q;
+  }
+};
+
+struct Dividers {
+  Divider x, y;
+  explicit Dividers(const Job& j) : x(j.nx), y(j.ny) {}
+};
+
 bool emit_hits(const Job& j, uint32_t b, size_t n, const int64_t* lin, const uint8_t* state, std::vector<Record>& hits,
                uint32_t& count) {
+  const Dividers div(j);
   for (size_t k = 0; k < n; ++k) {
     if (!(state[k] & 4u)) continue;
     ++count;
     const uint64_t li = uint64_t(lin[k]);
-    const uint64_t x = li % j.nx, yz = li / j.nx;
-    hits.push_back(Record::hit(j.tag, b + uint32_t(k), uint32_t(x), uint32_t(yz % j.ny), uint32_t(yz / j.ny),
-                               uint8_t(state[k] & 3u)));
+    const uint64_t yz = div.x(li), z = div.y(yz);
+    hits.push_back(Record::hit(j.tag, b + uint32_t(k), uint32_t(li - yz * j.nx), uint32_t(yz - z * j.ny),
+                               uint32_t(z), uint8_t(state[k] & 3u)));
     if (j.mode == Mode::First) return true;
   }
   return false;
@@ -136,7 +160,7 @@ unsigned FastRunner::threads() const { return pool_->size(); }
 
 void FastRunner::set_shell_word(size_t k, const ShellWord& w) {
   shell_[k] = w;
-  if (path_ == Path::Double) dx_[k] = double(w.x), dy_[k] = double(w.y), dz_[k] = double(w.z);
+  if (path_ == Path::Double) sx_[k] = int32_t(w.x), sy_[k] = int32_t(w.y), sz_[k] = int32_t(w.z);
   if (keep_int64_) ix_[k] = w.x, iy_[k] = w.y, iz_[k] = w.z;
 }
 
@@ -160,7 +184,7 @@ void FastRunner::write_shell(uint64_t first, const ShellWord* words, size_t n) {
   const size_t end = size_t(first + n);
   if (shell_.size() < end) {
     shell_.resize(end);
-    if (path_ == Path::Double) dx_.resize(end), dy_.resize(end), dz_.resize(end);
+    if (path_ == Path::Double) sx_.resize(end), sy_.resize(end), sz_.resize(end);
     if (keep_int64_) ix_.resize(end), iy_.resize(end), iz_.resize(end);
   }
   for (size_t i = 0; i < n; ++i) set_shell_word(size_t(first) + i, words[i]);
@@ -190,14 +214,16 @@ void FastRunner::run_into(const std::vector<Job>& jobs, std::vector<Record>& out
   // Tasks: (job, first point, end point).
   tasks_.clear();
   first_task_.assign(jobs.size() + 1, 0);
+  size_t points = 0;
   for (size_t j = 0; j < jobs.size(); ++j) {
     first_task_[j] = tasks_.size();
     const uint32_t n = jobs[j].shell_count;
+    points += n;
     for (uint32_t b = 0; b < n; b += uint32_t(kChunk))
       tasks_.push_back({j, b, uint32_t(std::min<size_t>(n, b + kChunk))});
   }
   first_task_[jobs.size()] = tasks_.size();
-  if (tasks_.size() <= 1 || pool_->size() <= 1) {
+  if (tasks_.size() <= 1 || pool_->size() <= 1 || points < kParallelMinPoints) {
     // One thread: chunks in order, hits straight into `out`; FIRST skips the chunks after its hit.
     out.clear();
     out.reserve(2 * jobs.size());
@@ -264,7 +290,7 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
     const size_t n = std::min<size_t>(kBlock, end - b);
     const size_t base = size_t(j.shell_base) + b;
     if (fused) {
-      const uint32_t count = block_fetch.fn(&dx_[base], &dy_[base], &dz_[base], n, ms, ts, dims, map, slot_bits_,
+      const uint32_t count = block_fetch.fn(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_,
                                             j.hit_mask, lin32, state);
       if (count == 0) continue;
       if (j.mode == Mode::Count) {

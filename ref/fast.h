@@ -82,7 +82,9 @@ class FastRunner {
   std::unique_ptr<ThreadPool> pool_;
   std::vector<ShellWord> shell_;
   std::vector<uint64_t> map_;
-  std::vector<double> dx_, dy_, dz_;
+  // The double path's coordinates as int32 (PW <= 32): half the memory traffic of doubles; the kernel converts
+  // them exactly.
+  std::vector<int32_t> sx_, sy_, sz_;
   std::vector<int64_t> ix_, iy_, iz_;
   std::vector<Task> tasks_;
   std::vector<size_t> first_task_;
