@@ -121,11 +121,12 @@ class SyscDevice final : public Device {
     send(ch);
     expect_ok("running");
     std::vector<Record> out(read_u64());
-    std::vector<uint8_t> rb(sysc::kRecordBytes);
-    for (Record& r : out) {
-      read_bytes(rb.data(), rb.size());
-      if (!sysc::decode_record(rb.data(), r)) throw DeviceError(name_ + ": the server sent an empty record");
-    }
+    // All records in one read (not one read per record), then decoded.
+    std::vector<uint8_t> rb(out.size() * sysc::kRecordBytes);
+    if (!rb.empty()) read_bytes(rb.data(), rb.size());
+    for (size_t i = 0; i < out.size(); ++i)
+      if (!sysc::decode_record(rb.data() + i * sysc::kRecordBytes, out[i]))
+        throw DeviceError(name_ + ": the server sent an empty record");
     last_sim_ps_ = read_u64();
     last_.simulated_s = double(last_sim_ps_ - before) * 1e-12;
     last_.wall_s = double(read_u64()) * 1e-9;

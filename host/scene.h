@@ -53,11 +53,15 @@ struct SimOptions {
   Mode mode = Mode::All;         // ALL reports every contact; FIRST only tells whether a pair touches
   bool both_directions = false;  // also test B's shell in A's voxmap
   unsigned threads = 0;          // cpu backend threads (0: all); results never depend on it
+  // Before the device, drop broadphase pairs whose oriented boxes (each type's contact bounds in its own frame,
+  // grown by one voxel) are disjoint: such a pair can have no hit, so results never depend on it.
+  bool midphase = true;
 };
 
 struct FrameStats {
   uint64_t frame = 0;
-  uint64_t pairs = 0;       // from the broadphase, tested on the device
+  uint64_t pairs = 0;       // from the broadphase
+  uint64_t tested = 0;      // of those, tested on the device (the others' oriented boxes are disjoint)
   uint64_t touching = 0;    // pairs with at least one hit
   uint64_t responses = 0;   // pairs whose velocities the response changed (they were approaching)
   uint64_t wall_hits = 0;   // body-wall bounces
@@ -93,6 +97,7 @@ class Simulation {
   std::vector<BodyBounds> bounds_;
   std::vector<bool> moved_;
   std::vector<PairRequest> requests_;
+  std::vector<uint32_t> tested_;  // the broadphase index of each request
   std::vector<PairResult> results_;
   uint64_t frame_ = 0;
 };

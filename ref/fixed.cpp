@@ -1,6 +1,7 @@
 #include "ref/fixed.h"
 
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace voxcd {
@@ -35,12 +36,25 @@ int64_t quantize(double v, FixedFormat f, const std::string& what) {
   throw RangeError(s.str());
 }
 
+namespace {
+// 2^e as a double, built from its exponent bits (std::ldexp is a library call, and this runs per pose entry).
+double pow2(int e) {
+  if (e < -1022 || e > 1023) return std::ldexp(1.0, e);
+  const uint64_t bits = uint64_t(e + 1023) << 52;
+  double d;
+  std::memcpy(&d, &bits, sizeof d);
+  return d;
+}
+}  // namespace
+
 bool try_quantize(double v, FixedFormat f, int64_t* out) {
   if (!std::isfinite(v)) return false;
-  // Scaling by a power of two is exact; std::round rounds half away from zero. Both limits are powers of two, so
-  // the comparison in double is exact too, and it comes before the conversion.
-  const double scaled = std::round(std::ldexp(v, f.frac));
-  if (!(scaled >= -std::ldexp(1.0, f.width - 1) && scaled < std::ldexp(1.0, f.width - 1))) return false;
+  // Scaling by a power of two is exact (a product with 2^frac rounds like ldexp where the result is subnormal);
+  // std::round rounds half away from zero. Both limits are powers of two, so the comparison in double is exact
+  // too, and it comes before the conversion.
+  const double scaled = std::round(v * pow2(f.frac));
+  const double limit = pow2(f.width - 1);
+  if (!(scaled >= -limit && scaled < limit)) return false;
   *out = static_cast<int64_t>(scaled);
   return true;
 }
