@@ -352,7 +352,7 @@ int main(int argc, char** argv) {
      << " radius a frame, bouncing off the walls; seed " << seed << ". Made by `" << command << "`.\n\n"
      << "Ours: `sap`, `coherent`, `tree` (box overlap; timed: `update()`, which reads the bodies' bounds and "
         "returns the sorted exact pairs), `sphere` and `queue` (sphere overlap). Peers: Bullet "
-     << BT_BULLET_VERSION << " (single precision; timed: `setAabb` of every proxy and "
+     << BT_BULLET_VERSION / 100 << "." << BT_BULLET_VERSION % 100 << " (single precision; timed: `setAabb` of every proxy and "
         "`calculateOverlappingPairs`; axis sweep is `btAxisSweep3` below 16000 bodies and `bt32BitAxisSweep3` "
         "above, without its raycast accelerator) and FCL " << FCL_VERSION
      << " (timed: `setTranslation` and `computeAABB` of every object, `update()`, and `collide()` with a "
