@@ -14,6 +14,7 @@
 #include "host/device_rtl.h"
 #include "ref/pipeline.h"
 #include "ref/timing.h"
+#include "tests/rtl/scoreboard.h"
 
 namespace voxcd {
 namespace {
@@ -49,23 +50,8 @@ TEST(RtlSoak, MillionJobsUnderRandomBackPressure) {
     auto dev = make_device("rtl", v.config, opt);
     dev->load(v.memory);
     const std::vector<Record> got = dev->run(v.jobs);
-    // Scoreboard, record by record: a lost, duplicated or reordered record shows as the first mismatch.
-    size_t job = 0;
-    for (size_t i = 0; i < want.size(); ++i) {
-      ASSERT_LT(i, got.size()) << what << ": stream ends after " << got.size() << " of " << want.size()
-                               << " records (lost from job " << job << ")";
-      ASSERT_TRUE(got[i].same_as(want[i], false))
-          << what << ": record " << i << " of job " << job << ": expected '" << want[i].to_string() << "', got '"
-          << got[i].to_string() << "'";
-      if (want[i].kind != Record::Done) continue;
-      ASSERT_EQ(*got[i].cycles, *want[i].cycles + *got[i].stalls)
-          << what << ": job " << job << " cycles " << *got[i].cycles << " != predicted " << *want[i].cycles
-          << " + stalls " << *got[i].stalls;
-      stalls += *got[i].stalls;
-      ++job;
-    }
-    ASSERT_EQ(got.size(), want.size()) << what << ": extra records after the last job";
-    ASSERT_EQ(job, v.jobs.size()) << what;
+    test::scoreboard(want, got, what, stalls);
+    if (HasFatalFailure()) return;
     jobs += v.jobs.size();
     records += got.size();
     for (const Record& r : got) hits += r.kind == Record::Hit;

@@ -12,6 +12,7 @@
 #include "ref/pipeline.h"
 #include "ref/timing.h"
 #include "tests/ref/directed_cases.h"
+#include "tests/rtl/scoreboard.h"
 
 namespace voxcd {
 namespace {
@@ -118,22 +119,10 @@ TEST(Rtl, BackPressureLosesNothingAndCyclesAreAccountedFor) {
         auto dev = make_device("rtl", v.config, opt);
         dev->load(v.memory);
         const std::vector<Record> got = dev->run(v.jobs);
-        // Scoreboard: the same records in the same order (none lost, duplicated or reordered).
-        ASSERT_EQ(got.size(), want.size()) << what;
+        // Scoreboard: the same records in the same order (none lost, duplicated or reordered), cycles accounted.
         uint64_t stalls = 0;
-        size_t job = 0;
-        for (size_t i = 0; i < want.size(); ++i) {
-          ASSERT_TRUE(got[i].same_as(want[i], false))
-              << what << ": record " << i << ": expected '" << want[i].to_string() << "', got '"
-              << got[i].to_string() << "'";
-          if (want[i].kind != Record::Done) continue;
-          // Cycles = the always-ready prediction + the stall cycles the device counted in the job's window.
-          ASSERT_EQ(*got[i].cycles, *want[i].cycles + *got[i].stalls)
-              << what << ": job " << job << " (tag " << want[i].tag << ") cycles " << *got[i].cycles
-              << " = predicted " << *want[i].cycles << " + stalls " << *got[i].stalls << " does not hold";
-          stalls += *got[i].stalls;
-          ++job;
-        }
+        test::scoreboard(want, got, what, stalls);
+        if (HasFatalFailure()) return;
         if (ph > 0 || pd > 0) EXPECT_GT(stalls, 0u) << what << ": back-pressure must have stalled the device";
         else EXPECT_EQ(stalls, 0u) << what;
       }
