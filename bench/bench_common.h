@@ -81,6 +81,13 @@ inline std::string provenance(int argc, char** argv) {
          " at the start)._";
 }
 
+// printf formatting of one number, for table cells: fmt("%.2f", x).
+inline std::string fmt(const char* format, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, format, v);
+  return b;
+}
+
 // Keeps a value alive so the optimiser cannot drop the work that made it.
 template <class T>
 inline void keep(const T& v) {

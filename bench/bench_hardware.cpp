@@ -59,11 +59,6 @@ std::vector<Job> stream(Mode mode, uint32_t size, size_t n) {
   return jobs;
 }
 
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 // Points per cycle of the jobs after the first (whose count includes the pipeline fill), from the RTL's records.
 struct Sustained {
@@ -186,12 +181,12 @@ int main(int argc, char** argv) {
       const Sustained c = sustained(*devs[li], Mode::Count, n, L);
       worst_idle = std::max(worst_idle, c.idle);
       if (n >= 256) worst_ratio = std::min(worst_ratio, a.points_per_cycle / L);
-      md << " " << fmt("%.2f", a.points_per_cycle) << " | " << fmt("%.2f", c.points_per_cycle) << " |";
+      md << " " << bench::fmt("%.2f", a.points_per_cycle) << " | " << bench::fmt("%.2f", c.points_per_cycle) << " |";
     }
     md << "\n";
     std::fprintf(stderr, "throughput: %u points done\n", n);
   }
-  md << "\nFrom 256 points on, ALL sustains at least " << fmt("%.3f", worst_ratio)
+  md << "\nFrom 256 points on, ALL sustains at least " << bench::fmt("%.3f", worst_ratio)
      << " x LANES (the goal is 0.95). Idle cycles between back-to-back COUNT jobs, largest over every row: "
      << worst_idle << " (the goal is at most 2).\n\n";
 
@@ -219,14 +214,14 @@ int main(int argc, char** argv) {
       dev->load(mem);
       const double t = bench::median_time(repeats, [&] { bench::keep(dev->run(jobs)); });
       ref_pps = 64.0 * 4096 / t;
-      md << "| ref | - | " << mode_name(mode) << " | - | " << fmt("%.1f", ref_pps / 1e6) << " | 1.0 |\n";
+      md << "| ref | - | " << mode_name(mode) << " | - | " << bench::fmt("%.1f", ref_pps / 1e6) << " | 1.0 |\n";
     }
     {
       auto dev = make_device("cpu", DeviceConfig{});
       dev->load(mem);
       const double t = bench::median_time(repeats, [&] { bench::keep(dev->run(jobs)); });
-      md << "| cpu | - | " << mode_name(mode) << " | - | " << fmt("%.1f", 64.0 * 4096 / t / 1e6) << " | "
-         << fmt("%.1f", 64.0 * 4096 / t / ref_pps) << " |\n";
+      md << "| cpu | - | " << mode_name(mode) << " | - | " << bench::fmt("%.1f", 64.0 * 4096 / t / 1e6) << " | "
+         << bench::fmt("%.1f", 64.0 * 4096 / t / ref_pps) << " |\n";
     }
     for (size_t li = 0; li < std::size(lane_counts); ++li) {
       std::vector<Record> recs;
@@ -234,8 +229,8 @@ int main(int argc, char** argv) {
       uint64_t cycles = 0;
       for (const Record& r : recs)
         if (r.kind == Record::Done) cycles += *r.cycles;
-      md << "| rtl | " << lane_counts[li] << " | " << mode_name(mode) << " | " << fmt("%.2f", cycles / t / 1e6)
-         << " | " << fmt("%.2f", 64.0 * 4096 / t / 1e6) << " | " << fmt("%.2f", 64.0 * 4096 / t / ref_pps)
+      md << "| rtl | " << lane_counts[li] << " | " << mode_name(mode) << " | " << bench::fmt("%.2f", cycles / t / 1e6)
+         << " | " << bench::fmt("%.2f", 64.0 * 4096 / t / 1e6) << " | " << bench::fmt("%.2f", 64.0 * 4096 / t / ref_pps)
          << " |\n";
     }
   }

@@ -47,11 +47,6 @@ Mesh transformed(const Mesh& m, const RigidPose& pose) {
   return out;
 }
 
-std::string f(const char* fmt, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, fmt, v);
-  return b;
-}
 
 }  // namespace
 
@@ -118,7 +113,7 @@ int main(int argc, char** argv) {
      << FCL_VERSION << ": `fcl::collide` on OBBRSS hierarchies with all contacts (exact triangle intersections).\n\n"
      << "| method | voxel | shell points A/B | us per query | ratio (FCL / this) | contacts per query | touching poses | max false-contact distance | the same along the grid's axes | deepest missed penetration |\n"
      << "|---|---|---|---|---|---|---|---|---|---|\n"
-     << "| FCL all contacts | - | - | " << f("%.1f", fcl_t * 1e6 / double(poses)) << " | 1.0 | " << f("%.0f", double(fcl_contacts) / double(poses)) << " | " << fcl_touching
+     << "| FCL all contacts | - | - | " << bench::fmt("%.1f", fcl_t * 1e6 / double(poses)) << " | 1.0 | " << bench::fmt("%.0f", double(fcl_contacts) / double(poses)) << " | " << fcl_touching
      << " | 0 (exact) | 0 (exact) | 0 (exact) |\n";
   for (double voxel : voxels) {
     ObjectOptions o;
@@ -176,13 +171,13 @@ int main(int argc, char** argv) {
                   if (test::inside_reference(wa, v)) worst_missed = std::max(worst_missed, test::mesh_distance(wa, v));
             }
           }
-          false_dist = f("%.4f", worst_out) + " (" + f("%.2f", worst_out / voxel) + " voxels)";
-          false_max = f("%.4f", worst_out_max) + " (" + f("%.2f", worst_out_max / voxel) + " voxels)";
-          missed = f("%.4f", worst_missed) + " (" + f("%.2f", worst_missed / voxel) + " voxels)";
+          false_dist = bench::fmt("%.4f", worst_out) + " (" + bench::fmt("%.2f", worst_out / voxel) + " voxels)";
+          false_max = bench::fmt("%.4f", worst_out_max) + " (" + bench::fmt("%.2f", worst_out_max / voxel) + " voxels)";
+          missed = bench::fmt("%.4f", worst_missed) + " (" + bench::fmt("%.2f", worst_missed / voxel) + " voxels)";
         }
         md << "| voxcd " << (both ? "both directions" : "A in B") << ", " << (threads ? "1 thread" : "all threads")
            << " | " << voxel << " | " << ta->shell().size() << "/" << tb->shell().size() << " | "
-           << f("%.1f", t * 1e6 / double(poses)) << " | " << f("%.1f", fcl_t / t) << " | " << f("%.0f", double(contacts) / double(poses)) << " | " << touching << " | "
+           << bench::fmt("%.1f", t * 1e6 / double(poses)) << " | " << bench::fmt("%.1f", fcl_t / t) << " | " << bench::fmt("%.0f", double(contacts) / double(poses)) << " | " << touching << " | "
            << false_dist << " | " << false_max << " | " << missed << " |\n";
         std::fprintf(stderr, "voxel %g both %d threads %u: %.1f us\n", voxel, both, threads, t * 1e6 / double(poses));
       }

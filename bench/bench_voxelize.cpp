@@ -65,11 +65,6 @@ Timing measure(const Mesh& src, int res, int repeats, bool with_shell) {
   return t;
 }
 
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 }  // namespace
 
@@ -119,7 +114,7 @@ int main(int argc, char** argv) {
     if (c.name == "icosphere level 8") goal_time = t.prepare + t.vox_all;
   }
   md << "\nGoal: a 1M-triangle mesh at 256^3 in under 2 s. The 1,310,720-triangle icosphere at 256^3 takes "
-     << fmt("%.2f", goal_time) << " s for prepare + voxelize on every thread (" << (goal_time < 2 ? "met" : "missed")
+     << bench::fmt("%.2f", goal_time) << " s for prepare + voxelize on every thread (" << (goal_time < 2 ? "met" : "missed")
      << "); loading a file adds the parser's time.\n\n";
 
   // 2. Resolution, for the 1.3M-triangle icosphere.
@@ -132,7 +127,7 @@ int main(int argc, char** argv) {
     const Timing t = measure(big, res, res >= 512 ? std::min(repeats, 3) : repeats, shell);
     char line[512];
     std::snprintf(line, sizeof line, "| %d | %ux%ux%u | %.3f | %.3f | %s | %s | %llu | %llu |\n", res, t.dims[0],
-                  t.dims[1], t.dims[2], t.vox_all, t.vox_one, shell ? fmt("%.3f", t.shell_all).c_str() : "-",
+                  t.dims[1], t.dims[2], t.vox_all, t.vox_one, shell ? bench::fmt("%.3f", t.shell_all).c_str() : "-",
                   shell ? std::to_string(t.shell_points).c_str() : "-", (unsigned long long)t.surface,
                   (unsigned long long)t.interior);
     md << line;
