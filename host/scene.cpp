@@ -149,7 +149,10 @@ Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(sc
   cfg.LANES = opt.lanes;
   std::vector<const ObjectType*> types;
   for (const auto& t : scene_.types) types.push_back(t.get());
-  if (opt.backend != "rtl") cfg = fit_memory(cfg, types);
+  if (opt.device)
+    cfg = *opt.device;
+  else if (opt.backend != "rtl")
+    cfg = fit_memory(cfg, types);
   DeviceOptions dopt;
   dopt.threads = opt.threads;
   collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types);

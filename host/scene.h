@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ struct SimOptions {
   std::string pruning = "sap";   // a broadphase name (host/broadphase.h)
   std::string backend = "cpu";   // a device backend
   int lanes = 4;                 // lanes of the modelled device
+  // The device's whole configuration (e.g. one `voxcd size` derived); it replaces `lanes` and the memories grown
+  // to fit. Unset: the default widths with `lanes`.
+  std::optional<DeviceConfig> device;
   Mode mode = Mode::All;         // ALL reports every contact; FIRST only tells whether a pair touches
   bool both_directions = false;  // also test B's shell in A's voxmap
   unsigned threads = 0;          // cpu backend threads (0: all); results never depend on it
