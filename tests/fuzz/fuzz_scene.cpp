@@ -1,0 +1,69 @@
+// Fuzz target: scene input (SceneSpec, what voxcd simulate's options fill) through make_scene. The input is the
+// spec's fields in binary: shape (one byte: a built-in shape, or a name that is neither a shape nor a file),
+// objects (two bytes, mod 128), side, density, speed, spin and voxel (doubles, as their bytes) and the seed.
+// std::invalid_argument starting with "scene: " and MeshError naming the shape are the documented errors. A scene
+// that is made must hold every object with its bounding sphere inside the cube. Valid specs whose objects would be
+// more than 48 voxels across are skipped: they cost time, not coverage (the validation runs before voxelising).
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "host/mesh.h"
+#include "host/scene.h"
+#include "tests/fuzz/fuzz_common.h"
+
+using namespace voxcd;
+
+namespace {
+
+struct Reader {
+  const uint8_t* p;
+  template <class T>
+  T next() {
+    T v;
+    std::memcpy(&v, p, sizeof v);
+    p += sizeof v;
+    return v;
+  }
+};
+
+constexpr size_t kSize = 1 + 2 + 5 * 8 + 8;
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size < kSize) return 0;
+  static const char* const kShapes[] = {"polytope36", "stellated", "icosahedron", "sphere",
+                                        "torus",      "cube",      "plate",       "no-such-shape"};
+  Reader r{data};
+  SceneSpec s;
+  s.shape = kShapes[r.next<uint8_t>() % 8];
+  s.objects = r.next<uint16_t>() % 128;
+  s.side = r.next<double>();
+  s.density = r.next<double>();
+  s.speed = r.next<double>();
+  s.spin = r.next<double>();
+  s.voxel = r.next<double>();
+  s.seed = r.next<uint64_t>();
+  const bool valid = s.objects > 0 && s.side > 0 && std::isfinite(s.side) && s.density > 0 && s.density <= 0.3 &&
+                     s.speed >= 0 && std::isfinite(s.speed) && s.spin >= 0 && std::isfinite(s.spin) &&
+                     s.voxel > 0 && std::isfinite(s.voxel);
+  if (valid && std::cbrt(s.density / double(s.objects)) * s.side / s.voxel > 48) return 0;
+  try {
+    const Scene sc = make_scene(s);
+    if (sc.bodies.size() != s.objects || sc.types.size() != 1) fuzz::finding("make_scene: wrong number of bodies");
+    const ObjectType& t = *sc.types[0];
+    for (const Body& b : sc.bodies) {
+      const Eigen::Vector3d c = b.pose.translation + b.pose.rotation * t.centre;
+      for (int i = 0; i < 3; ++i)
+        if (!(c[i] >= t.radius * (1 - 1e-9) && c[i] <= s.side - t.radius * (1 - 1e-9)))
+          fuzz::finding("make_scene: a body's bounding sphere leaves the cube");
+    }
+  } catch (const std::invalid_argument& e) {
+    fuzz::expect_prefix(e.what(), "scene: ", "std::invalid_argument");
+  } catch (const MeshError& e) {
+    fuzz::expect_prefix(e.what(), s.shape + ":", "MeshError");
+  }
+  return 0;
+}

@@ -1,0 +1,50 @@
+# Command-line errors as users meet them: each names the option (or the pair) and what is wrong, with CLI11's exit
+# codes for argument errors (105 a bad value, 106 no subcommand, 109 an unknown option) and 2 for an error the
+# subcommand raised. docs/robustness.md lists them.
+file(MAKE_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+
+run(106 out ${VOXCD})
+expect("${out}" "A subcommand is required")
+run(109 out ${VOXCD} info --frob ${WORK}/x.vox)
+expect("${out}" "not expected: --frob")
+
+run(105 out ${VOXCD} conform)
+expect("${out}" "conform needs FILE\\.\\.\\. \\(or --generate\\)")
+run(105 out ${VOXCD} conform --generate --seed 1 --jobs 4)
+expect("${out}" "--generate needs -o FILE")
+run(105 out ${VOXCD} conform --lanes 0 ${WORK}/x.vec)
+expect("${out}" "--lanes: Value 0 not in range 1 to 64")
+run(105 out ${VOXCD} simulate --lanes 65)
+expect("${out}" "--lanes: Value 65 not in range 1 to 64")
+run(105 out ${VOXCD} simulate --objects 0)
+expect("${out}" "--objects: Value 0 not in range 1 to 1048576")
+
+# A bad --config names the option, then the key or the rule; nothing is written.
+run(2 out ${VOXCD} conform --generate --seed 1 --jobs 4 --config "MEMW 48" -o ${WORK}/cfg.vec)
+expect("${out}" "voxcd: error: --config: invalid device configuration: MEMW = 48 is not a power of two")
+run(2 out ${VOXCD} conform --generate --seed 1 --jobs 4 --config "FOO 1" -o ${WORK}/cfg.vec)
+expect("${out}" "voxcd: error: --config: unknown config parameter 'FOO'")
+if(EXISTS ${WORK}/cfg.vec)
+  message(FATAL_ERROR "a refused --config still wrote ${WORK}/cfg.vec")
+endif()
+
+run(105 out ${VOXCD} pair cube cube --pose 1,2)
+expect("${out}" "--pose: '1,2' has 2 numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz")
+run(105 out ${VOXCD} pair cube cube --pose 1,x,3)
+expect("${out}" "--pose: 'x' in '1,x,3' is not a number")
+run(105 out ${VOXCD} pair cube cube --mode SOME)
+expect("${out}" "--mode: 'SOME' is not ALL, FIRST or COUNT")
+run(105 out ${VOXCD} simulate --mode SOME)
+expect("${out}" "--mode: 'SOME' is not ALL, FIRST or COUNT")
+
+# Poses that parse but cannot be tested: the error names the pair, its objects and the value.
+run(2 out ${VOXCD} pair cube cube --voxel 0.25 --pose nan,0,0)
+expect("${out}" "voxcd: error: pair 0 \\(cube, cube\\): pose of B is not finite \\(NaN or infinite rotation or translation\\)")
+run(2 out ${VOXCD} pair cube cube --voxel 0.25 --pose 0,inf,0)
+expect("${out}" "voxcd: error: pair 0 \\(cube, cube\\): pose of B is not finite")
+run(2 out ${VOXCD} pair cube cube --voxel 0.25 --pose 1e9,0,0)
+expect("${out}" "voxcd: error: pair 0 \\(cube, cube\\): T0 = -3999999999\\.[0-9]+ does not fit signed 48-bit with 24 fraction bits")
+if(out MATCHES "contacts")
+  message(FATAL_ERROR "a refused pose still printed a result:\n${out}")
+endif()
