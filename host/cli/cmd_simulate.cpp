@@ -1,5 +1,5 @@
-// voxcd simulate: the paper's N-body environment (or a scene like it) for a number of frames, with a broadphase and
-// pair tests on a device backend; a summary of rates, counts, time per stage and device cycles.
+// voxcd simulate: the paper's N-body environment (or a scene like it, or a scene file) for a number of frames, with
+// a broadphase and pair tests on a device backend; a summary of rates, counts, time per stage and device cycles.
 #include <unistd.h>
 
 #include <cstdio>
@@ -9,12 +9,17 @@
 #include "host/cli/commands.h"
 #include "host/cli/object_report.h"
 #include "host/scene.h"
+#include "host/scene_file.h"
+#include "ref/vectors.h"
 
 namespace voxcd::cli {
 
 namespace {
 
 struct SimulateArgs {
+  std::string file;    // a scene file (docs/scenes.md); the options below override it where given
+  std::string config;  // a whole device configuration, "NAME VALUE" pairs
+  CLI::App* app = nullptr;
   SceneSpec scene;
   SimOptions sim;
   std::string mode = "ALL";
@@ -42,8 +47,58 @@ int simulate_cmd(SimulateArgs a) {
   const auto mode = parse_mode(a.mode);
   if (!mode) throw CLI::ValidationError("--mode", "'" + a.mode + "' is not ALL, FIRST or COUNT");
   a.sim.mode = *mode;
-  Scene scene = make_scene(a.scene);
+  Scene scene;
+  std::string description;
+  if (!a.file.empty()) {
+    SceneFile f = read_scene_file(a.file);
+    // Options given on the command line override the file.
+    auto given = [&](const char* opt) { return a.app->count(opt) > 0; };
+    if (given("--objects") || given("--shape") || given("--voxel")) {
+      if (f.types.size() != 1)
+        throw CLI::ValidationError("--objects, --shape, --voxel",
+                                   "apply only to a scene file with one object type; " + a.file + " has " +
+                                       std::to_string(f.types.size()));
+      if (given("--objects")) f.types[0].count = a.scene.objects;
+      if (given("--shape")) f.types[0].shape = a.scene.shape, f.types[0].mesh.clear(), f.types[0].name = a.scene.shape;
+      if (given("--voxel")) f.types[0].voxel = a.scene.voxel;
+    }
+    if (given("--density")) f.density = a.scene.density, f.density_given = true;
+    if (given("--speed")) f.speed = a.scene.speed;
+    if (given("--seed")) f.seed = a.scene.seed;
+    if (!given("--pruning")) a.sim.pruning = f.broadphase;
+    if (!given("--backend")) a.sim.backend = f.backend;
+    if (!given("--mode")) {
+      a.mode = f.mode;
+      a.sim.mode = *parse_mode(f.mode);
+    }
+    if (!given("--both")) a.sim.both_directions = f.both_directions;
+    if (!given("--frames")) a.frames = f.frames;
+    if (!given("--clock")) a.clock_mhz = f.clock;
+    a.scene.objects = f.objects();
+    a.scene.side = f.side;
+    a.scene.density = f.density;
+    a.scene.seed = f.seed;
+    scene = make_scene(f);
+    description = a.file + ": " + std::to_string(f.objects()) + " objects of " + std::to_string(f.types.size()) +
+                  " type" + (f.types.size() > 1 ? "s" : "") + " in a cube of side " + [&] {
+                    std::ostringstream o;
+                    o << f.side;
+                    return o.str();
+                  }();
+    a.scene.shape = f.types[0].shape.empty() ? f.types[0].mesh : f.types[0].shape;
+    a.scene.voxel = f.types[0].voxel;
+  } else {
+    scene = make_scene(a.scene);
+  }
+  if (!a.config.empty()) {
+    DeviceConfig cfg = parse_config_pairs(a.config, "--config");
+    cfg.validate();
+    if (a.app->count("--lanes")) cfg.LANES = a.sim.lanes;
+    a.sim.device = cfg;
+  }
+  if (a.sim.device) a.sim.lanes = a.sim.device->LANES;
   const ObjectType& type = *scene.types[0];
+  const std::vector<std::shared_ptr<const ObjectType>> types = scene.types;
   Simulation sim(std::move(scene), a.sim);
   const bool bar = a.progress && !a.json && isatty(STDERR_FILENO) && a.frames >= 100;
   Totals tot;
@@ -64,7 +119,16 @@ int simulate_cmd(SimulateArgs a) {
   const auto& d = type.voxmap().dims();
   if (a.json) {
     std::ostringstream o;
-    o << "{\"shape\": " << json_string(a.scene.shape) << ", \"objects\": " << a.scene.objects
+    o << "{";
+    if (!a.file.empty()) {
+      o << "\"scene\": " << json_string(a.file) << ", \"types\": [";
+      for (size_t i = 0; i < types.size(); ++i)
+        o << (i ? ", " : "") << "{\"name\": " << json_string(types[i]->name) << ", \"voxel\": "
+          << types[i]->voxmap().voxel() << ", \"shell_points\": " << types[i]->shell().size() << "}";
+      o << "], ";
+    }
+    o << "\"device\": " << json_string(sim.device_config().to_string()) << ", ";
+    o << "\"shape\": " << json_string(a.scene.shape) << ", \"objects\": " << a.scene.objects
       << ", \"voxel\": " << a.scene.voxel << ", \"shell_points\": " << type.shell().size() << ", \"voxmap\": ["
       << d[0] << ", " << d[1] << ", " << d[2] << "], \"pruning\": " << json_string(a.sim.pruning)
       << ", \"backend\": " << json_string(a.sim.backend) << ", \"mode\": " << json_string(a.mode)
@@ -84,10 +148,20 @@ int simulate_cmd(SimulateArgs a) {
     std::cout << o.str();
     return 0;
   }
-  std::printf("voxcd simulate: %zu x %s in a cube of side %g at density %g, voxel %g (%zu shell points, voxmap "
-              "%ux%ux%u), seed %llu\n",
-              a.scene.objects, a.scene.shape.c_str(), a.scene.side, a.scene.density, a.scene.voxel,
-              type.shell().size(), d[0], d[1], d[2], (unsigned long long)a.scene.seed);
+  if (a.file.empty()) {
+    std::printf("voxcd simulate: %zu x %s in a cube of side %g at density %g, voxel %g (%zu shell points, voxmap "
+                "%ux%ux%u), seed %llu\n",
+                a.scene.objects, a.scene.shape.c_str(), a.scene.side, a.scene.density, a.scene.voxel,
+                type.shell().size(), d[0], d[1], d[2], (unsigned long long)a.scene.seed);
+  } else {
+    std::printf("voxcd simulate: %s, seed %llu\n", description.c_str(), (unsigned long long)a.scene.seed);
+    for (const auto& t : types) {
+      const auto& td = t->voxmap().dims();
+      std::printf("  type %-20s voxel %g, %zu shell points, voxmap %ux%ux%u\n", t->name.c_str(), t->voxmap().voxel(),
+                  t->shell().size(), td[0], td[1], td[2]);
+    }
+  }
+  if (a.sim.device) std::printf("device          %s\n", sim.device_config().to_string().c_str());
   std::printf("pruning %s, backend %s, mode %s%s, %llu frames\n", a.sim.pruning.c_str(), a.sim.backend.c_str(),
               a.mode.c_str(), a.sim.both_directions ? ", both directions" : "", (unsigned long long)a.frames);
   std::printf("frame rate      %.1f Hz (%.3f ms per frame, one process)\n", rate, 1e3 * tot.seconds() / F);
@@ -112,8 +186,15 @@ int simulate_cmd(SimulateArgs a) {
 
 void add_simulate(CLI::App& app) {
   auto a = std::make_shared<SimulateArgs>();
-  CLI::App* c = app.add_subcommand("simulate", "The paper's N-body environment: objects moving in a cube, pruned by "
-                                               "a broadphase, pair tests on a device backend (docs/simulate.md)");
+  CLI::App* c = app.add_subcommand("simulate", "The paper's N-body environment, or a scene file: objects moving in a "
+                                               "cube, pruned by a broadphase, pair tests on a device backend "
+                                               "(docs/simulate.md, docs/scenes.md)");
+  a->app = c;
+  c->add_option("scene", a->file, "A scene file (docs/scenes.md); the options given override it")
+      ->check(CLI::ExistingFile);
+  c->add_option("--config", a->config,
+                "The device's whole configuration as NAME VALUE pairs (e.g. as voxcd size prints it); "
+                "--lanes overrides its LANES");
   c->add_option("--objects", a->scene.objects, "Number of objects")->capture_default_str()->check(CLI::Range(1, 1 << 20));
   c->add_option("--shape", a->scene.shape, "A built-in shape name or a mesh file")->capture_default_str();
   c->add_option("--voxel", a->scene.voxel, "Voxel size in world units (the paper: 1)")->capture_default_str();
@@ -140,6 +221,9 @@ void add_simulate(CLI::App& app) {
   c->add_flag("!--no-midphase", a->sim.midphase,
               "test every broadphase pair on the device (by default pairs whose oriented boxes are disjoint are dropped "
               "first; the results are the same)");
+  c->add_flag("!--no-cull", a->sim.cull,
+              "submit every shell point of a tested pair (by default only the clusters of points that can land in "
+              "the other object's voxmap; the results are the same)");
   c->add_flag("!--no-progress", a->progress, "No progress bar");
   c->add_flag("--json", a->json, "Print the summary as JSON");
   c->callback([a] { exit_code() = simulate_cmd(*a); });
