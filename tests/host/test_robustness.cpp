@@ -1,0 +1,245 @@
+// Bad inputs that docs/robustness.md lists and no other suite drives: object types that do not fit the device, pairs
+// that name a type that does not exist, a job with a mode outside the enum, shell points outside a narrow PW, bad
+// voxelisation and object options, inconsistent objects given to write_object, scene specs out of range, and the
+// queue broadphase's body limit. Each error must say what is wrong and where (the name, the field, the value).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "host/broadphase.h"
+#include "host/collide.h"
+#include "host/device.h"
+#include "host/object_file.h"
+#include "host/object_type.h"
+#include "host/point_shell.h"
+#include "host/scene.h"
+#include "host/shapes.h"
+#include "ref/pipeline.h"
+#include "tests/host/test_util.h"
+
+namespace voxcd {
+namespace {
+
+// The text of the exception E that fn throws; a failure when it throws nothing or something else.
+template <class E, class Fn>
+std::string error_text(Fn&& fn) {
+  try {
+    fn();
+  } catch (const E& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "threw another type: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "threw nothing";
+  return "";
+}
+
+#define EXPECT_HAS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
+
+std::shared_ptr<const ObjectType> type_of(const std::string& shape, double voxel) {
+  const Mesh m = make_shape(shape);
+  ObjectOptions o;
+  o.voxel = voxel;
+  return std::make_shared<ObjectType>(make_object_type(make_object(m, m.name, 0, o), m.name));
+}
+
+TEST(Robustness, VoxmapAboveTwoToTheDWIsACapacityErrorNamingTheType) {
+  const auto t = type_of("cube", 0.25);  // 11 x 11 x 11 voxels
+  ASSERT_EQ(t->voxmap().dims()[0], 11u);
+  DeviceConfig cfg;
+  cfg.DW = 3;  // 8 voxels per axis
+  const std::string want = "object 'cube': its voxmap is 11x11x11 voxels, above the device's 2^DW = 8 per axis";
+  EXPECT_EQ(error_text<CapacityError>([&] { DeviceImage(cfg).add(*t); }), want);
+  EXPECT_EQ(error_text<CapacityError>([&] { fit_memory(cfg, {t.get()}); }), want);
+  EXPECT_EQ(error_text<CapacityError>([&] { PairCollider(make_device("cpu", cfg), {t}); }), want);
+  cfg.DW = 4;  // 16 per axis: fits
+  EXPECT_NO_THROW(PairCollider(make_device("cpu", cfg), {t}));
+}
+
+TEST(Robustness, TypesBeyondTheLargestMemoriesAreACapacityError) {
+  const auto t = type_of("cube", 0.25);
+  const size_t shell = t->shell().size();
+  // The same type many times over: more shell words than 2^24 (SAW 24), the largest shell memory.
+  const size_t copies = (size_t(1) << 24) / shell + 1;
+  std::vector<const ObjectType*> types(copies, t.get());
+  const std::string e = error_text<CapacityError>([&] { fit_memory(DeviceConfig{}, types); });
+  EXPECT_HAS(e, "the object types need " + std::to_string(copies * shell) + " shell words and ");
+  EXPECT_HAS(e, "the largest device memories hold 2^24 and 2^28");
+  types.pop_back();  // at most 2^24 words: fits, with SAW grown to 24
+  EXPECT_EQ(fit_memory(DeviceConfig{}, types).SAW, 24);
+}
+
+TEST(Robustness, PairNamingATypeThatDoesNotExistIsAnError) {
+  const auto t = type_of("cube", 0.5);
+  PairCollider col(make_device("cpu", DeviceConfig{}), {t, t});
+  PairRequest ok, bad;
+  bad.b = 2;
+  std::vector<PairResult> out = col.collide({ok});
+  ASSERT_EQ(out.size(), 1u);
+  const auto before = out[0].contacts.size();
+  EXPECT_EQ(error_text<std::out_of_range>([&] { col.collide({ok, bad}, PairOptions{}, out); }),
+            "pair 1 names object type 2 of 2");
+  ASSERT_EQ(out.size(), 1u) << "a refused batch changed the results";
+  EXPECT_EQ(out[0].contacts.size(), before);
+  bad.b = 0;
+  bad.a = 7;
+  EXPECT_EQ(error_text<std::out_of_range>([&] { col.jobs({bad}); }), "pair 0 names object type 7 of 2");
+}
+
+TEST(Robustness, JobWithAModeOutsideTheEnumIsRefused) {
+  const DeviceConfig cfg;
+  DeviceMemory mem;
+  mem.shell.assign(4, ShellWord{0, 0, 0});
+  mem.map.assign(1, 0);
+  Job j;
+  j.tag = 5;
+  j.shell_count = 4;
+  j.nx = j.ny = j.nz = 2;
+  for (int i = 0; i < 3; ++i) j.M[i][i] = int64_t(1) << cfg.MF;
+  EXPECT_NO_THROW(validate_job(cfg, j, mem.shell.size(), mem.map.size()));
+  j.mode = static_cast<Mode>(3);
+  const std::string want = "job tag 5: mode 3 is not ALL, FIRST or COUNT";
+  EXPECT_EQ(error_text<JobError>([&] { validate_job(cfg, j, mem.shell.size(), mem.map.size()); }), want);
+  // Every software backend refuses it before running anything.
+  for (const std::string backend : {"ref", "cpu"}) {
+    auto dev = make_device(backend, cfg);
+    dev->load(mem);
+    EXPECT_EQ(error_text<JobError>([&] { dev->run({j}); }), want) << backend;
+  }
+}
+
+TEST(Robustness, ShellPointOutsideANarrowPWNamesThePoint) {
+  // PW 10 with PF 2: shell coordinates in [-128, 128) shell cells; a cube at voxel 0.02 has a shell grid of about
+  // 145 cells per axis.
+  const auto t = type_of("cube", 0.02);
+  DeviceConfig cfg;
+  cfg.PW = 10;
+  cfg.PF = 2;
+  cfg.SAW = 17;  // room for its 119288 points
+  cfg.validate();
+  const std::string e = error_text<RangeError>([&] { t->shell().words(cfg); });
+  EXPECT_HAS(e, "shell point ");
+  EXPECT_HAS(e, "does not fit signed 10-bit with 2 fraction bits, range [-128, 127.75]");
+  EXPECT_EQ(error_text<RangeError>([&] { DeviceImage(cfg).add(*t); }), e);
+}
+
+TEST(Robustness, BadObjectOptionsAndInputsNameTheMeshAndTheValue) {
+  const Mesh cube = make_shape("cube");
+  VoxelizeOptions vo;
+  vo.voxel = 0.5;
+  vo.shift = Eigen::Vector3d(0.5, 0, 0.5);
+  EXPECT_HAS(error_text<MeshError>([&] { place_grid(cube, vo); }),
+             "cube: grid shift components must lie in [1/1024, 1], got 0.000000");
+  vo.shift.y() = 1.5;
+  EXPECT_HAS(error_text<MeshError>([&] { place_grid(cube, vo); }), "got 1.500000");
+  ShellOptions so;
+  so.target_voxel = 0.5;
+  so.ratio = 0;
+  EXPECT_EQ(error_text<MeshError>([&] { point_shell(cube, so); }),
+            "cube: the shell ratio must be a positive finite number, got 0.000000");
+  so.ratio = std::nan("");
+  EXPECT_HAS(error_text<MeshError>([&] { point_shell(cube, so); }), "the shell ratio must be a positive finite");
+  EXPECT_EQ(error_text<MeshError>([&] { load_object_type("cube", 0); }),
+            "cube: a mesh or shape needs a positive voxel size (--voxel) to be voxelised");
+  EXPECT_HAS(error_text<MeshError>([&] { load_object_type("cube", -1); }), "needs a positive voxel size");
+
+  // A voxmap with nothing on it (every voxel cleared after voxelising).
+  ObjectOptions oo;
+  oo.voxel = 0.5;
+  ObjectFile obj = make_object(cube, "cube", 0, oo);
+  for (uint64_t& w : obj.voxmap.words()) w = 0;
+  EXPECT_EQ(error_text<MeshError>([&] { make_object_type(obj, "empty"); }), "empty: the voxmap has no surface voxel");
+
+  // A directory given as a mesh.
+  const std::string dir = test::tmp_path("robust_dir");
+  std::filesystem::create_directories(dir);
+  EXPECT_EQ(error_text<MeshError>([&] { load_source(dir); }), dir + ": not a regular file");
+  std::filesystem::remove(dir);
+
+  // A mesh built in code whose triangle names a vertex that does not exist.
+  Mesh m;
+  m.name = "built";
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.triangles = {{0, 1, 7}};
+  EXPECT_EQ(error_text<MeshError>([&] { validate(m); }), "built: triangle 0 has vertex index 7 out of range");
+  EXPECT_EQ(error_text<MeshError>([&] { weld(m); }),
+            "built: triangle 0 has vertex index 7 out of range (3 vertices)");
+}
+
+TEST(Robustness, WriteObjectRefusesAnInconsistentObjectAndWritesNothing) {
+  ObjectOptions oo;
+  oo.voxel = 0.5;
+  const ObjectFile good = make_object(make_shape("cube"), "shape:cube", 0, oo);
+  const std::string path = test::tmp_path("robust.vox");
+  std::remove(path.c_str());
+  ObjectFile bad = good;
+  bad.shell.normals.pop_back();
+  EXPECT_EQ(error_text<ObjectFileError>([&] { write_object(path, bad); }),
+            path + ": the shell's cells, points and normals differ in number");
+  bad = good;
+  bad.shell.grid.dims[1] = 0;
+  EXPECT_EQ(error_text<ObjectFileError>([&] { write_object(path, bad); }),
+            path + ": grid dimension 0 does not fit an object file");
+  bad.shell.grid.dims[1] = kObjectMaxDim + 1;
+  EXPECT_HAS(error_text<ObjectFileError>([&] { write_object(path, bad); }),
+             "grid dimension " + std::to_string(kObjectMaxDim + 1) + " does not fit");
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+}
+
+TEST(Robustness, SceneSpecsOutOfRangeNameTheField) {
+  auto scene_error = [](void (*change)(SceneSpec&)) {
+    SceneSpec s;
+    s.objects = 8;
+    s.voxel = 2;
+    change(s);
+    return error_text<std::invalid_argument>([&] { make_scene(s); });
+  };
+  EXPECT_EQ(scene_error([](SceneSpec& s) { s.objects = 0; }), "scene: objects must be at least 1");
+  EXPECT_EQ(scene_error([](SceneSpec& s) { s.side = -1; }), "scene: side must be positive");
+  EXPECT_EQ(scene_error([](SceneSpec& s) { s.side = INFINITY; }), "scene: side must be positive");
+  EXPECT_EQ(scene_error([](SceneSpec& s) { s.speed = -0.1; }), "scene: speed must be >= 0");
+  EXPECT_EQ(scene_error([](SceneSpec& s) { s.spin = NAN; }), "scene: spin must be >= 0");
+  EXPECT_EQ(scene_error([](SceneSpec& s) { s.voxel = 0; }), "scene: voxel must be > 0");
+  EXPECT_HAS(scene_error([](SceneSpec& s) { s.voxel = 50; }), "scene: voxel 50.000000 is larger than half the object");
+  // Long thin plates at the highest density: their enclosing spheres do not all fit the cube.
+  const std::string crowded = scene_error([](SceneSpec& s) {
+    s.shape = "plate";
+    s.objects = 64;
+    s.density = 0.3;
+    s.voxel = 0.5;
+  });
+  EXPECT_TRUE(crowded == "scene: the objects do not fit the cube" ||
+              crowded.rfind("scene: could not place object ", 0) == 0)
+      << crowded;
+}
+
+TEST(Robustness, QueueBroadphaseRefusesMoreBodiesThanItKeeps) {
+  auto bp = make_broadphase("queue");
+  std::vector<BodyBounds> bodies(8193);
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].centre = Eigen::Vector3d(double(i), 0, 0);
+    bodies[i].radius = 0.25;
+    bodies[i].box.lo = bodies[i].centre - Eigen::Vector3d::Constant(0.25);
+    bodies[i].box.hi = bodies[i].centre + Eigen::Vector3d::Constant(0.25);
+  }
+  EXPECT_EQ(error_text<std::invalid_argument>([&] { bp->update(bodies, 0); }),
+            "broadphase queue: 8193 bodies; it keeps every pair and takes at most 8192");
+}
+
+TEST(Robustness, DeviceWordsOfAnImpossibleMemoryWidthAreAnError) {
+  ObjectOptions oo;
+  oo.voxel = 0.5;
+  const ObjectFile obj = make_object(make_shape("cube"), "shape:cube", 0, oo);
+  for (int memw : {0, 1, 48, 128})
+    EXPECT_EQ(error_text<std::invalid_argument>([&] { obj.voxmap.device_words(memw); }),
+              "MEMW must be a power of two in 2..64, got " + std::to_string(memw));
+  EXPECT_EQ(obj.voxmap.device_words(64), obj.voxmap.words());
+}
+
+}  // namespace
+}  // namespace voxcd
