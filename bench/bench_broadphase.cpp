@@ -211,7 +211,7 @@ int main(int argc, char** argv) {
   int frames = 300, repeats = 3;
   uint64_t seed = 1;
   double budget = 150;  // seconds a contender may take at one N (projected from the last N); beyond, it is skipped
-  std::string out_path, command = "bench_broadphase";
+  std::string out_path, csv_path, command = "bench_broadphase";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     command += " " + a;
@@ -227,9 +227,10 @@ int main(int argc, char** argv) {
     else if (a == "--seed") seed = std::stoull(next());
     else if (a == "--budget") budget = std::stod(next());
     else if (a == "--out") out_path = next();
+    else if (a == "--csv") csv_path = next();
     else {
       std::cerr << "usage: bench_broadphase [--min-n N] [--max-n N] [--frames F] [--repeats R] [--seed S] "
-                   "[--budget SECONDS] [--out FILE]\n";
+                   "[--budget SECONDS] [--out FILE] [--csv FILE]\n";
       return 2;
     }
   }
@@ -254,6 +255,8 @@ int main(int argc, char** argv) {
   for (size_t k = 0; k < ne + 3; ++k) table << "---:|";
   table << "\n";
   bool all_agree = true;
+  std::ostringstream csv;  // the table's times, one row per contender and N, for plots
+  csv << "n,contender,ours,predicate,us_per_frame\n";
   for (uint32_t n = min_n; n <= max_n; n *= 4) {
     std::vector<double> t(ne, -1);
     std::map<std::string, std::vector<uint64_t>> reference;  // per predicate: exact pairs in each frame
@@ -335,6 +338,10 @@ int main(int argc, char** argv) {
     }
     std::snprintf(buf, sizeof buf, "%s | %s | %.2fx |\n", peer_name.c_str(), ours_name.c_str(), best_peer / best_ours);
     table << buf;
+    for (size_t k = 0; k < ne; ++k)
+      if (t[k] >= 0)
+        csv << n << "," << entries[k].label << "," << entries[k].ours << "," << entries[k].predicate << ","
+            << t[k] * 1e6 << "\n";
     std::ostringstream raw;
     for (size_t k = 0; k < ne; ++k)
       if (!entries[k].ours && t[k] >= 0) {
@@ -371,6 +378,10 @@ int main(int argc, char** argv) {
       std::cerr << "cannot write " << out_path << "\n";
       return 1;
     }
+  }
+  if (!csv_path.empty() && !(std::ofstream(csv_path) << csv.str())) {
+    std::cerr << "cannot write " << csv_path << "\n";
+    return 1;
   }
   return all_agree ? 0 : 1;
 }

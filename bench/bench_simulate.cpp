@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "bench/bench_common.h"
 #include "host/scene.h"
@@ -22,6 +23,21 @@ int main(int argc, char** argv) {
   uint64_t frames = 300;
   double clock_mhz = 200;
   std::vector<size_t> counts = {2, 8, 32, 64, 128, 256, 1024, 4096};
+  std::vector<std::string> prunings = broadphase_names();
+  double fixed_voxel = 0;  // 0: voxel (64/N)^(1/3)
+  bool midphase = true;
+  std::string csv_path;
+  // "a,b,c" -> items; an empty item is an error naming the option.
+  auto split = [](const std::string& list, const char* what) {
+    std::vector<std::string> items;
+    std::stringstream in(list);
+    std::string item;
+    while (std::getline(in, item, ','))
+      if (item.empty()) throw std::invalid_argument(std::string(what) + ": empty item in '" + list + "'");
+      else items.push_back(item);
+    if (items.empty()) throw std::invalid_argument(std::string(what) + " is empty");
+    return items;
+  };
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out_path = argv[++i];
     else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
@@ -29,21 +45,73 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--max-objects") && i + 1 < argc) {
       const size_t m = size_t(std::atoll(argv[++i]));
       counts.erase(std::remove_if(counts.begin(), counts.end(), [&](size_t c) { return c > m; }), counts.end());
+    } else if (!std::strcmp(argv[i], "--counts") && i + 1 < argc) {
+      counts.clear();
+      try {
+        for (const auto& c : split(argv[++i], "--counts")) {
+          size_t used = 0;
+          const long long v = std::stoll(c, &used);
+          if (used != c.size() || v < 1) throw std::invalid_argument("--counts: '" + c + "' is not a positive count");
+          counts.push_back(size_t(v));
+        }
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_simulate: %s\n", e.what());
+        return 2;
+      }
+    } else if (!std::strcmp(argv[i], "--prunings") && i + 1 < argc) {
+      try {
+        prunings = split(argv[++i], "--prunings");
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_simulate: %s\n", e.what());
+        return 2;
+      }
+      const std::vector<std::string> known = broadphase_names();
+      for (const auto& p : prunings)
+        if (std::find(known.begin(), known.end(), p) == known.end()) {
+          std::fprintf(stderr, "bench_simulate: --prunings: unknown broadphase '%s'\n", p.c_str());
+          return 2;
+        }
+    } else if (!std::strcmp(argv[i], "--voxel") && i + 1 < argc) {
+      fixed_voxel = std::atof(argv[++i]);
+      if (!(fixed_voxel > 0) || !std::isfinite(fixed_voxel)) {
+        std::fprintf(stderr, "bench_simulate: --voxel: '%s' is not a positive size\n", argv[i]);
+        return 2;
+      }
+    } else if (!std::strcmp(argv[i], "--clock") && i + 1 < argc) {
+      clock_mhz = std::atof(argv[++i]);
+      if (!(clock_mhz > 0) || !std::isfinite(clock_mhz)) {
+        std::fprintf(stderr, "bench_simulate: --clock: '%s' is not a positive frequency\n", argv[i]);
+        return 2;
+      }
+    } else if (!std::strcmp(argv[i], "--no-midphase")) {
+      midphase = false;
+    } else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) {
+      csv_path = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: bench_simulate [--out FILE] [--repeats N] [--frames F] [--max-objects N]\n");
+      std::fprintf(stderr,
+                   "usage: bench_simulate [--out FILE] [--repeats N] [--frames F] [--max-objects N] [--counts N,N,..] "
+                   "[--prunings NAME,..] [--voxel S] [--clock MHZ] [--no-midphase] [--csv FILE]\n");
       return 2;
     }
   }
+  // The pruning whose pairs and device cycles the table reports (the same stream for every broadphase).
+  const std::string dev_pruning =
+      std::find(prunings.begin(), prunings.end(), "sap") != prunings.end() ? "sap" : prunings.front();
+  std::ostringstream csv;
+  csv << "objects,pruning,hz,pairs_tested,device_cycles,device_hz\n";
   std::ostringstream md;
   md << provenance << "\n\n";
   md << "Frames per second (median of " << repeats << " runs of " << frames
-     << " frames) of `voxcd simulate` on the cpu backend with one thread: the paper's 36-face polytope, voxel (64/N)^(1/3) (1 at N = 64: the same voxmap at every N), "
-        "density 2.5%, ALL contacts, one direction. Device: cycles per frame of the same job streams from the "
+     << " frames) of `voxcd simulate` on the cpu backend with one thread: the paper's 36-face polytope, "
+     << (fixed_voxel > 0 ? "voxel " + bench::fmt("%g", fixed_voxel) + " at every N (the objects shrink as N grows)"
+                         : std::string("voxel (64/N)^(1/3) (1 at N = 64: the same voxmap at every N)"))
+     << ", density 2.5%, ALL contacts, one direction"
+     << (midphase ? "" : ", no mid-phase (every broadphase pair goes to the device, as in the paper)")
+     << ". Device: cycles per frame of the same job streams from the "
         "exact timing model, 4 lanes, and the frame rate they allow at "
      << clock_mhz << " MHz.\n\n| objects |";
-  const std::vector<std::string> prunings = broadphase_names();
   for (const auto& p : prunings) md << " " << p << " (Hz) |";
-  md << " pairs tested on the device per frame (sap, after the mid-phase) | device cycles per frame | device frame rate (Hz) |\n|---|";
+  md << " pairs tested on the device per frame (" << dev_pruning << (midphase ? ", after the mid-phase" : "") << ") | device cycles per frame | device frame rate (Hz) |\n|---|";
   for (size_t i = 0; i < prunings.size(); ++i) md << "---|";
   md << "---|---|---|\n";
   for (size_t n : counts) {
@@ -59,10 +127,11 @@ int main(int argc, char** argv) {
       spec.objects = n;
       // The same resolution per object at every N (objects shrink as N grows at a fixed density): voxel 1 at the
       // paper's 64 objects.
-      spec.voxel = std::cbrt(64.0 / double(n));
+      spec.voxel = fixed_voxel > 0 ? fixed_voxel : std::cbrt(64.0 / double(n));
       SimOptions opt;
       opt.pruning = p;
       opt.threads = 1;
+      opt.midphase = midphase;
       std::vector<double> rates;
       for (int r = 0; r < repeats; ++r) {
         Simulation sim(make_scene(spec), opt);
@@ -75,13 +144,16 @@ int main(int argc, char** argv) {
           cy += st.device_cycles;
         }
         rates.push_back(double(frames) / t);
-        if (p == "sap") pairs = double(pr) / double(frames), cycles = double(cy) / double(frames);
+        if (p == dev_pruning) pairs = double(pr) / double(frames), cycles = double(cy) / double(frames);
       }
       const double hz = bench::median(rates);
       char b[64];
       std::snprintf(b, sizeof b, " %.0f |", hz);
       md << b;
       std::fprintf(stderr, "%zu objects, %s: %.0f Hz\n", n, p.c_str(), hz);
+      csv << n << "," << p << "," << hz << "," << (p == dev_pruning ? bench::fmt("%g", pairs) : "") << ","
+          << (p == dev_pruning ? bench::fmt("%g", cycles) : "") << ","
+          << (p == dev_pruning && cycles > 0 ? bench::fmt("%g", clock_mhz * 1e6 / cycles) : "") << "\n";
     }
     char b[160];
     std::snprintf(b, sizeof b, " %.1f | %.0f | %.0f |\n", pairs, cycles, cycles > 0 ? clock_mhz * 1e6 / cycles : 0.0);
@@ -91,5 +163,9 @@ int main(int argc, char** argv) {
         "bounds, broadphase, pair tests, response), as `voxcd simulate` reports it.\n";
   std::cout << md.str();
   if (!out_path.empty()) std::ofstream(out_path) << md.str();
+  if (!csv_path.empty() && !(std::ofstream(csv_path) << csv.str())) {
+    std::fprintf(stderr, "bench_simulate: cannot write %s\n", csv_path.c_str());
+    return 1;
+  }
   return 0;
 }
