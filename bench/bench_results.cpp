@@ -246,28 +246,43 @@ btTransform to_bullet(const RigidPose& p) {
                      btVector3(btScalar(p.translation.x()), btScalar(p.translation.y()), btScalar(p.translation.z())));
 }
 
-void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
-  const Mesh m = make_shape("polytope36");
-  double radius = 0;
-  for (const auto& v : m.vertices) radius = std::max(radius, v.norm());
-  auto verts = std::make_shared<std::vector<fcl::Vector3d>>(m.vertices.begin(), m.vertices.end());
-  auto faces = std::make_shared<std::vector<int>>();
-  for (const auto& t : m.triangles) faces->insert(faces->end(), {3, int(t[0]), int(t[1]), int(t[2])});
-  auto convex = std::make_shared<fcl::Convexd>(verts, int(m.triangles.size()), faces);
-  auto collides = [&](const PairRequest& r) {
-    fcl::CollisionObjectd oa(convex, to_fcl(r.pose_a)), ob(convex, to_fcl(r.pose_b));
+// Exact geometry of one pose set (FCL on the convex polytope: GJK for touching and separation, EPA for the
+// penetration depth), and the peers' narrow phases timed on it.
+struct ExactSet {
+  std::vector<PairRequest> reqs;
+  std::vector<bool> touching;
+  std::vector<double> depth, separation;
+  size_t n_touching = 0;
+  double fcl_seconds = 0, bullet_seconds = 0;  // per query
+  size_t bullet_agree = 0;                     // poses where Bullet's GJK/EPA agrees with FCL on touching
+};
+
+class ConvexPeers {
+ public:
+  explicit ConvexPeers(const Mesh& m) {
+    auto verts = std::make_shared<std::vector<fcl::Vector3d>>(m.vertices.begin(), m.vertices.end());
+    auto faces = std::make_shared<std::vector<int>>();
+    for (const auto& t : m.triangles) faces->insert(faces->end(), {3, int(t[0]), int(t[1]), int(t[2])});
+    convex_ = std::make_shared<fcl::Convexd>(verts, int(m.triangles.size()), faces);
+    for (const auto& v : m.vertices) hull_.addPoint(btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())), false);
+    hull_.recalcLocalAabb();
+    hull_.setMargin(0);
+  }
+
+  bool collides(const PairRequest& r) const {
+    fcl::CollisionObjectd oa(convex_, to_fcl(r.pose_a)), ob(convex_, to_fcl(r.pose_b));
     fcl::CollisionRequestd creq;
     fcl::CollisionResultd cres;
     fcl::collide(&oa, &ob, creq, cres);
     return cres.isCollision();
-  };
-  // Poses near first contact, where the errors are: random orientations and a random direction; B's centre at the
-  // distance along it where the two first touch (bisection with FCL) plus an offset uniform in +-kNear.
-  const double kNear = 0.25;
-  auto reqs = random_poses(a.poses, 1, 1, 12);
-  {
-    std::mt19937_64 rng(13);
-    std::uniform_real_distribution<double> u(-kNear, kNear);
+  }
+
+  // Random orientations and direction; B's centre where the two first touch along it (bisection) plus an offset
+  // uniform in +-near.
+  std::vector<PairRequest> near_contact(size_t n, double radius, double near, uint64_t seed) const {
+    auto reqs = random_poses(n, 1, 1, seed);
+    std::mt19937_64 rng(seed + 1);
+    std::uniform_real_distribution<double> u(-near, near);
     for (auto& r : reqs) {
       const Eigen::Vector3d dir = r.pose_b.translation.normalized();
       double lo = 0, hi = 2.5 * radius;
@@ -277,93 +292,107 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
       }
       r.pose_b.translation = dir * (0.5 * (lo + hi) + u(rng));
     }
+    return reqs;
   }
-  const size_t n = reqs.size();
 
-  // Exact geometry (FCL, convex: GJK for separation, EPA for penetration depth), untimed.
-  std::vector<bool> touching(n);
-  std::vector<double> depth(n, 0), separation(n, 0);
-  for (size_t k = 0; k < n; ++k) {
-    fcl::CollisionObjectd oa(convex, to_fcl(reqs[k].pose_a)), ob(convex, to_fcl(reqs[k].pose_b));
-    fcl::CollisionRequestd creq(1, true);
-    fcl::CollisionResultd cres;
-    fcl::collide(&oa, &ob, creq, cres);
-    touching[k] = cres.isCollision();
-    if (touching[k]) {
-      depth[k] = cres.getContact(0).penetration_depth;
-    } else {
-      fcl::DistanceRequestd dreq;
-      fcl::DistanceResultd dres;
-      fcl::distance(&oa, &ob, dreq, dres);
-      separation[k] = dres.min_distance;
+  ExactSet exact(std::vector<PairRequest> reqs, int repeats) {
+    ExactSet e;
+    const size_t n = reqs.size();
+    e.touching.resize(n);
+    e.depth.assign(n, 0);
+    e.separation.assign(n, 0);
+    for (size_t k = 0; k < n; ++k) {
+      fcl::CollisionObjectd oa(convex_, to_fcl(reqs[k].pose_a)), ob(convex_, to_fcl(reqs[k].pose_b));
+      fcl::CollisionRequestd creq(1, true);
+      fcl::CollisionResultd cres;
+      fcl::collide(&oa, &ob, creq, cres);
+      e.touching[k] = cres.isCollision();
+      e.n_touching += e.touching[k];
+      if (e.touching[k]) {
+        e.depth[k] = cres.getContact(0).penetration_depth;
+      } else {
+        fcl::DistanceRequestd dreq;
+        fcl::DistanceResultd dres;
+        fcl::distance(&oa, &ob, dreq, dres);
+        e.separation[k] = dres.min_distance;
+      }
     }
-  }
-  size_t n_touching = 0;
-  for (bool t : touching) n_touching += t;
-
-  // Peers' narrow phases on the same poses, timed: FCL's boolean collide (GJK) and Bullet's GJK/EPA closest points.
-  const double fcl_t = bench::median_time(a.repeats, [&] {
-                         size_t hits = 0;
-                         for (const auto& r : reqs) {
-                           fcl::CollisionObjectd oa(convex, to_fcl(r.pose_a)), ob(convex, to_fcl(r.pose_b));
-                           fcl::CollisionRequestd creq;
-                           fcl::CollisionResultd cres;
-                           fcl::collide(&oa, &ob, creq, cres);
-                           hits += cres.isCollision();
+    e.fcl_seconds = bench::median_time(repeats, [&] {
+                      size_t hits = 0;
+                      for (const auto& r : reqs) hits += collides(r);
+                      bench::keep(hits);
+                    }) /
+                    double(n);
+    btVoronoiSimplexSolver simplex;
+    btGjkEpaPenetrationDepthSolver epa;
+    e.bullet_seconds = bench::median_time(repeats, [&] {
+                         e.bullet_agree = 0;
+                         for (size_t k = 0; k < n; ++k) {
+                           btGjkPairDetector gjk(&hull_, &hull_, &simplex, &epa);
+                           btGjkPairDetector::ClosestPointInput in;
+                           in.m_transformA = to_bullet(reqs[k].pose_a);
+                           in.m_transformB = to_bullet(reqs[k].pose_b);
+                           btPointCollector out;
+                           gjk.getClosestPoints(in, out, nullptr);
+                           e.bullet_agree += out.m_hasResult && ((out.m_distance <= 0) == e.touching[k]);
                          }
-                         bench::keep(hits);
                        }) /
                        double(n);
-  btConvexHullShape hull;
-  for (const auto& v : m.vertices) hull.addPoint(btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())), false);
-  hull.recalcLocalAabb();
-  hull.setMargin(0);
-  btVoronoiSimplexSolver simplex;
-  btGjkEpaPenetrationDepthSolver epa;
-  size_t bullet_agree = 0;
-  const double bullet_t = bench::median_time(a.repeats, [&] {
-                            bullet_agree = 0;
-                            for (size_t k = 0; k < n; ++k) {
-                              btGjkPairDetector gjk(&hull, &hull, &simplex, &epa);
-                              btGjkPairDetector::ClosestPointInput in;
-                              in.m_transformA = to_bullet(reqs[k].pose_a);
-                              in.m_transformB = to_bullet(reqs[k].pose_b);
-                              btPointCollector out;
-                              gjk.getClosestPoints(in, out, nullptr);
-                              bullet_agree += out.m_hasResult && ((out.m_distance <= 0) == touching[k]);
-                            }
-                          }) /
-                          double(n);
+    e.reqs = std::move(reqs);
+    return e;
+  }
 
-  md << "Pair: two of the paper's 36-face polytopes (convex, radius " << bench::fmt("%.2f", radius) << "), " << n
-     << " random poses near first contact (random orientations and direction; B's centre where the two first "
-        "touch along it, then moved by up to +-" << kNear << " units along it): " << n_touching
-     << " touch by exact geometry (FCL " << FCL_VERSION
-     << " on the convex polytopes: GJK, with EPA for the penetration depth; GJK distance for the separated). "
-        "Per voxel size: one query at a time on the cpu backend with one thread, ALL contacts, median of "
+ private:
+  std::shared_ptr<fcl::Convexd> convex_;
+  btConvexHullShape hull_;
+};
+
+void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
+  const Mesh m = make_shape("polytope36");
+  double radius = 0;
+  for (const auto& v : m.vertices) radius = std::max(radius, v.norm());
+  const double kNear = 3;  // voxels either side of first contact: past every bound of docs/pairs.md
+  ConvexPeers peers(m);
+
+  md << "Pair: two of the paper's 36-face polytopes (convex, radius " << bench::fmt("%.2f", radius) << "). For each "
+     << "voxel size, " << a.poses << " random poses near first contact: random orientations and direction, B's "
+        "centre where the two first touch along that direction (bisection) moved by up to +-"
+     << kNear << " voxels along it. Exact geometry on the same poses: FCL " << FCL_VERSION
+     << " on the convex polytopes (GJK for touching and separation, EPA for penetration depth). voxcd: one "
+        "query at a time on the cpu backend with one thread, ALL contacts, median of "
      << a.repeats
      << " runs. A missed contact is a pose that touches by exact geometry where voxcd reports no hit (its "
         "penetration depth); a false contact is a pose voxcd reports touching that is separated by exact "
-        "geometry (its separation). Depths and separations in units of the voxel size: the quantiles (50%, 90%, "
-        "max) of the missed and false poses.\n\n"
+        "geometry (its separation). Depths and separations in voxels: the quantiles (50%, 90%, max) of the "
+        "missed and of the false poses. Peers timed on the same poses: FCL `fcl::collide` (boolean, GJK on "
+        "`fcl::Convexd`) and Bullet "
+     << BT_BULLET_VERSION / 100 << "." << BT_BULLET_VERSION % 100
+     << " `btGjkPairDetector` with EPA on `btConvexHullShape` (single precision, margin 0); ratio = the peer's "
+        "time per query over voxcd's.\n\n"
      << "| voxel (units) | direction | shell points | voxmap voxels | us per query | update rate (Hz) | lookups / s "
-        "| device Hz (" << a.clock_mhz << " MHz) | missed | missed depth, voxels (50/90/max) | false | "
-        "false separation, voxels (50/90/max) | FCL / voxcd time | Bullet / voxcd time |\n"
-     << "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+        "| device Hz (" << a.clock_mhz << " MHz) | touching poses | missed | missed depth, voxels (50/90/max) | "
+        "false | false separation, voxels (50/90/max) | FCL / voxcd time | Bullet / voxcd time |\n"
+     << "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   csv << "kind,voxel,both,value_voxels\n";
-  std::ostringstream summary;
+  std::ostringstream summary, peer_note;
+  uint64_t seed = 12;
   for (double voxel : a.voxels) {
+    const ExactSet e = peers.exact(peers.near_contact(a.poses, radius, kNear * voxel, seed += 2), a.repeats);
+    const size_t n = e.reqs.size();
+    peer_note << (peer_note.str().empty() ? "" : ", ") << voxel << ": FCL " << bench::fmt("%.2f", e.fcl_seconds * 1e6)
+              << " us, Bullet " << bench::fmt("%.2f", e.bullet_seconds * 1e6) << " us (agrees with FCL in "
+              << e.bullet_agree << " of " << n << ")";
     const auto t = polytope_at(m, voxel);
     for (bool both : {false, true}) {
       PairOptions opt;
       opt.both_directions = both;
       std::vector<PairResult> res;
-      const PairTiming tm = time_pairs(t, t, reqs, opt, a.repeats, &res);
+      const PairTiming tm = time_pairs(t, t, e.reqs, opt, a.repeats, &res);
       std::vector<double> missed, falses;
       for (size_t k = 0; k < n; ++k) {
         const bool hit = res[k].hits > 0;
-        if (touching[k] && !hit) missed.push_back(depth[k] / voxel);
-        if (!touching[k] && hit) falses.push_back(separation[k] / voxel);
+        if (e.touching[k] && !hit) missed.push_back(e.depth[k] / voxel);
+        if (!e.touching[k] && hit) falses.push_back(e.separation[k] / voxel);
       }
       for (double d : missed) csv << "missed," << voxel << "," << both << "," << d << "\n";
       for (double d : falses) csv << "false," << voxel << "," << both << "," << d << "\n";
@@ -375,14 +404,15 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
       md << "| " << voxel << " | " << (both ? "both" : "A in B") << " | " << t->shell().size() << " | "
          << t->voxmap().size() << " | " << bench::fmt("%.2f", tm.seconds * 1e6) << " | "
          << hz_text(1 / tm.seconds) << " | " << bench::fmt("%.3g", tm.lookups / tm.seconds) << " | "
-         << hz_text(a.clock_mhz * 1e6 / tm.cycles) << " | " << missed.size() << " of " << n_touching << " | "
-         << q3(missed) << " | " << falses.size() << " of " << n - n_touching << " | " << q3(falses) << " | "
-         << bench::fmt("%.2f", fcl_t / tm.seconds) << " | " << bench::fmt("%.2f", bullet_t / tm.seconds) << " |\n";
+         << hz_text(a.clock_mhz * 1e6 / tm.cycles) << " | " << e.n_touching << " of " << n << " | "
+         << missed.size() << " | " << q3(missed) << " | " << falses.size() << " of " << n - e.n_touching << " | "
+         << q3(falses) << " | " << bench::fmt("%.2f", e.fcl_seconds / tm.seconds) << " | "
+         << bench::fmt("%.2f", e.bullet_seconds / tm.seconds) << " |\n";
       summary << "summary," << voxel << "," << both << "," << tm.seconds * 1e6 << "," << 1 / tm.seconds << ","
               << tm.lookups / tm.seconds << "," << a.clock_mhz * 1e6 / tm.cycles << "," << missed.size() << ","
               << falses.size() << "," << quantile(missed, 1.0) << "," << quantile(falses, 1.0) << ","
-              << quantile(missed, 0.9) << "," << quantile(falses, 0.9) << "," << fcl_t * 1e6 << ","
-              << bullet_t * 1e6 << "\n";
+              << quantile(missed, 0.9) << "," << quantile(falses, 0.9) << "," << e.fcl_seconds * 1e6 << ","
+              << e.bullet_seconds * 1e6 << "\n";
       std::fprintf(stderr, "error voxel %g both %d: %.1f us, %zu missed, %zu false\n", voxel, both,
                    tm.seconds * 1e6, missed.size(), falses.size());
     }
@@ -390,15 +420,11 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
   csv << "# summary: voxel,both,us_per_query,hz,lookups_per_s,device_hz,missed,false,missed_max,false_max,"
          "missed_q90,false_q90,fcl_us,bullet_us\n"
       << summary.str();
-  md << "\nPeers on the same poses, timed in the same run: FCL " << FCL_VERSION << " `fcl::collide` (boolean, GJK "
-     << "on `fcl::Convexd`) " << bench::fmt("%.2f", fcl_t * 1e6) << " us per query; Bullet "
-     << BT_BULLET_VERSION / 100 << "." << BT_BULLET_VERSION % 100
-     << " `btGjkPairDetector` with EPA on `btConvexHullShape` (single precision, margin 0) "
-     << bench::fmt("%.2f", bullet_t * 1e6) << " us per query, agreeing with FCL on touching in " << bullet_agree
-     << " of " << n << " poses. Both are exact narrow phases for convex shapes only and return one contact; voxcd "
-        "returns every contact and treats concave shapes the same (docs/pairs.md has the concave case, "
-        "against FCL's mesh hierarchies). Quantiles are of the missed or false poses only, in voxels (multiply by "
-        "the voxel size for world units); the design bounds are in docs/pairs.md.\n";
+  md << "\nPeers per query, by voxel size's pose set: " << peer_note.str()
+     << ". Both peers are exact narrow phases for convex shapes only and return one contact; voxcd returns "
+        "every contact and treats concave shapes the same (the concave case, against FCL's mesh hierarchies, is "
+        "the bench_pair table below). Quantiles are of the missed or false poses only; the bounds they meet are "
+        "in docs/pairs.md.\n";
 }
 
 // ---- fixed: MF, PF against disagreement with exact arithmetic ----

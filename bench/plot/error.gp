@@ -4,9 +4,14 @@ f = data.'/error.csv'
 set format x '%g'
 set logscale x
 set xlabel 'voxel size (world units; the polytope is about 2 across)'
-set xrange [*:*] reverse
-set autoscale xfix
-set offsets graph 0.05, graph 0.05, 0, 0
+vmin = 1e30
+vmax = 0
+do for [i=1:words(voxels)] { v = word(voxels, i) + 0; vmin = v < vmin ? v : vmin; vmax = v > vmax ? v : vmax }
+set xrange [vmax * 1.3:vmin / 1.3]
+# A tic at each voxel size measured.
+xt = ''
+do for [i=1:words(voxels)] { xt = xt.sprintf('"%s" %s,', word(voxels, i), word(voxels, i)) }
+eval('set xtics ('.xt[1:strlen(xt)-1].')')
 
 set output out.'/error_speed.png'
 set multiplot layout 1,2 title 'Speed against error: one pair of 36-face polytopes, one direction (A in B) and both' font ',14'
@@ -21,7 +26,7 @@ plot rows2(f, 1, 'summary', 3, '0') using 2:5 with linespoints ls 1 title 'cpu, 
      rows2(f, 1, 'summary', 3, '1') using 2:7 with linespoints ls 2 dt 2 title 'device, both', \
      rows2(f, 1, 'summary', 3, '0') using 2:(1e6/$14) with lines ls 4 title 'FCL GJK (convex)', \
      rows2(f, 1, 'summary', 3, '0') using 2:(1e6/$15) with lines ls 5 title 'Bullet GJK/EPA (convex)'
-set title 'Error: the worst pose of each kind (a kind with no pose is not drawn)'
+set title 'Worst error (a kind with no pose is not drawn)'
 set ylabel 'world units'
 set key inside right top
 plot rows2(f, 1, 'summary', 3, '0') using 2:($10*$2) with linespoints ls 3 title 'missed: deepest, A in B', \
@@ -34,7 +39,7 @@ unset multiplot
 set output out.'/error_distribution.png'
 unset logscale
 set xrange [0:*] noreverse
-set offsets 0, 0, 0, 0
+set xtics autofreq
 set format x '%g'
 set format y '%g'
 set multiplot layout 1,2 title 'Distribution of the errors (A in B), in voxels of each size' font ',14'

@@ -11,7 +11,7 @@ set ylabel 'update rate (frames per second)'
 set key outside right top
 
 set output out.'/fig14a_objects.png'
-set title "Fig. 14(a): all pairs, bounding spheres, fast AABB (sap); voxel 1, density 2.5%, no mid-phase\n{/*0.8 paper points: the values its text quotes}"
+set title "Fig. 14(a): all pairs, bounding spheres, fast AABB (sap)\n{/*0.8 voxel 1, density 2.5%, no mid-phase; paper points: the values its text quotes}"
 $paper_a << EOD
 8,99.5,sphere
 64,12.9,sphere
@@ -27,7 +27,7 @@ plot rows(f, 2, 'all') using 1:3 with linespoints ls 7 title 'ours: all pairs', 
      $paper_a using 1:(strcol(3) eq 'sap' ? $2 : NaN) with points ls 3 pt 5 title 'paper: fast AABB'
 
 set output out.'/fig14b_objects.png'
-set title "Fig. 14(b): coherent AABB and the priority queue against all pairs and fast AABB\n{/*0.8 paper point: 'in excess of 1000 Hz' for two objects (a lower bound)}"
+set title "Fig. 14(b): coherent AABB and the priority queue\n{/*0.8 voxel 1, density 2.5%, no mid-phase; paper point: 'in excess of 1000 Hz' for two objects (a lower bound)}"
 $paper_b << EOD
 2,1000
 EOD
@@ -42,6 +42,7 @@ plot rows(f, 2, 'all') using 1:3 with linespoints ls 7 title 'ours: all pairs', 
 set output out.'/large_n.png'
 set title "Beyond the paper: up to 65,536 objects (voxel (64/N)^{1/3}, density 2.5%)"
 set format x '10^{%T}'
+set xrange [128:131072]
 plot rows(g, 2, 'sap') using 1:3 with linespoints ls 4 title 'ours: sap', \
      rows(g, 2, 'tree') using 1:3 with linespoints ls 9 title 'ours: tree', \
      rows(g, 2, 'sap') using 1:6 with linespoints ls 2 dt 3 title 'modelled device (200 MHz), pairs only'

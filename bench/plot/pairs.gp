@@ -9,13 +9,13 @@ set multiplot layout 1,2 title "Fig. 12 / Table 1: one pair of 36-face polytopes
 set title 'Update rate'
 set xlabel 'points in the point shell'
 set ylabel 'update rate (Hz, pair queries per second)'
-set key below
+set key inside right top
 plot f using (strcol(1) eq 'shell' ? $3 : NaN):8 with linespoints ls 1 title 'ours: cpu backend, 1 thread', \
      f using (strcol(1) eq 'shell' ? $3 : NaN):11 with linespoints ls 2 title 'ours: modelled device, 200 MHz', \
      f using (strcol(1) eq 'shell' ? $12 : NaN):13 with linespoints ls 3 dt 2 title 'paper, Table 1 (Pentium 166)'
 set title 'Time per lookup'
 set ylabel 'time per shell-point lookup (us)'
-set key below
+set key inside right center
 plot f using (strcol(1) eq 'shell' ? $3 : NaN):($9/1000) with linespoints ls 1 title 'ours: cpu backend, 1 thread', \
      f using (strcol(1) eq 'shell' ? $3 : NaN):(1e6/($11*$3)) with linespoints ls 2 title 'ours: modelled device', \
      f using (strcol(1) eq 'shell' ? $12 : NaN):($14*1000) with linespoints ls 3 dt 2 title 'paper, Table 1'

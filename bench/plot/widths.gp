@@ -9,9 +9,9 @@ set title 'Disagreement with exact (double) arithmetic'
 set logscale y
 set ylabel 'fraction of points in another voxel'
 set key inside right top
-plot data.'/fixed.csv' using 1:($2 > 0 ? $2 : NaN) with linespoints ls 1 title 'shell points (half-integers)', \
-     data.'/fixed.csv' using 1:($3 > 0 ? $3 : NaN) with linespoints ls 4 title 'any points', \
-     data.'/fixed.csv' using 1:($3 > 0 ? $3 : NaN):(sprintf('PF %d', $2)) with labels offset 0,1 notitle
+plot data.'/fixed.csv' using 1:($3 > 0 ? $3 : NaN) with linespoints ls 1 title 'shell points (half-integers)', \
+     data.'/fixed.csv' using 1:($4 > 0 ? $4 : NaN) with linespoints ls 4 title 'any points', \
+     data.'/fixed.csv' using 1:($4 > 0 ? $4 : NaN):(sprintf('PF %d', $2)) with labels offset 0,1 notitle
 set title 'Hardware cost, voxcd\_device LANES 1 (yosys synth\_ecp5)'
 unset logscale y
 set format y '%g'
