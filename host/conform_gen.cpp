@@ -190,8 +190,12 @@ class Generator {
       const double fit = std::clamp(md / std::max(1.0, b.extent), 0.02, 1.0);
       s = chance(0.2) ? 1.0 : real(0.6, 1.4) * (chance(0.8) ? fit : 1.0);
     }
+    // Within the matrix format: a narrow one (MW = MF + 1, as voxcd size derives when scale ratios are below 1)
+    // cannot hold +1, so a turn's +1 entries become its largest value there. Unchanged for MW >= MF + 2.
+    const FixedFormat mfmt = matrix_format(cfg_);
+    const double mlo = std::max(-1.95, mfmt.min_value()), mhi = std::min(1.95, mfmt.max_value());
     for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k) pose.M[i][k] = std::clamp(R[i][k] * s, -1.95, 1.95);
+      for (int k = 0; k < 3; ++k) pose.M[i][k] = std::clamp(R[i][k] * s, mlo, mhi);
     // Bring the block's centre near the map's centre, with jitter, or place it exactly on faces / -1/4.
     const double mc[3] = {m.nx / 2.0, m.ny / 2.0, m.nz / 2.0};
     for (int i = 0; i < 3; ++i) {

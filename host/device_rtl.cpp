@@ -14,6 +14,8 @@
 #include "Vvoxcd_l2.h"
 #include "Vvoxcd_l4.h"
 #include "Vvoxcd_l8.h"
+#include "voxcd_rtl_configs.h"  // models of derived configurations (rtl/CMakeLists.txt, VOXCD_RTL_CONFIGS)
+#include "ref/vectors.h"
 #endif
 
 namespace voxcd {
@@ -227,13 +229,29 @@ class RtlDevice final : public Device {
 
 std::vector<int> rtl_lanes() { return {1, 2, 4, 8}; }
 
+std::vector<DeviceConfig> rtl_configs() {
+  std::vector<DeviceConfig> out;
+#define VOXCD_RTL_CONFIG_ENTRY(model, pairs) out.push_back(parse_config_pairs(pairs, "rtl model " #model));
+  VOXCD_RTL_CONFIG_MODELS(VOXCD_RTL_CONFIG_ENTRY)
+#undef VOXCD_RTL_CONFIG_ENTRY
+  return out;
+}
+
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
   cfg.validate();
-  DeviceConfig built;  // the models are built for the default widths
+  // A model of exactly this configuration (lanes included), built from the list in tests/scenes/configs.txt.
+#define VOXCD_RTL_CONFIG_ENTRY(model, pairs) \
+  if (cfg == parse_config_pairs(pairs, "rtl model " #model)) return std::make_unique<RtlDevice<model>>(cfg, opt);
+  VOXCD_RTL_CONFIG_MODELS(VOXCD_RTL_CONFIG_ENTRY)
+#undef VOXCD_RTL_CONFIG_ENTRY
+  DeviceConfig built;  // the other models are built for the default widths
   built.LANES = cfg.LANES;
-  if (!cfg.same_widths(built))
-    throw DeviceError("rtl: this build has models for the default widths only (" + DeviceConfig{}.to_string() +
-                      " with LANES 1, 2, 4, 8), not for " + cfg.to_string());
+  if (!cfg.same_widths(built)) {
+    std::string extra;
+    for (const DeviceConfig& c : rtl_configs()) extra += "; " + c.to_string();
+    throw DeviceError("rtl: this build has models for the default widths (" + DeviceConfig{}.to_string() +
+                      " with LANES 1, 2, 4, 8)" + extra + ", not for " + cfg.to_string());
+  }
   switch (cfg.LANES) {
     case 1: return std::make_unique<RtlDevice<Vvoxcd_l1>>(cfg, opt);
     case 2: return std::make_unique<RtlDevice<Vvoxcd_l2>>(cfg, opt);
@@ -247,6 +265,7 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
 #else
 
 std::vector<int> rtl_lanes() { return {}; }
+std::vector<DeviceConfig> rtl_configs() { return {}; }
 
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig&, const DeviceOptions&) {
   throw DeviceError("rtl: this build has no RTL models (Verilator was not found at configure time)");

@@ -14,5 +14,6 @@ void add_voxelize(CLI::App& app);
 void add_info(CLI::App& app);
 void add_pair(CLI::App& app);
 void add_simulate(CLI::App& app);
+void add_size(CLI::App& app);
 
 }  // namespace voxcd::cli

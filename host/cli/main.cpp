@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   voxcd::cli::add_info(app);
   voxcd::cli::add_pair(app);
   voxcd::cli::add_simulate(app);
+  voxcd::cli::add_size(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

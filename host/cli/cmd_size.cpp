@@ -1,0 +1,58 @@
+// voxcd size: the smallest device for a scene file at a requested accuracy and frame rate (widths, memories,
+// lanes), with its predicted error, cycles per frame, memory and, with --cost, its yosys cost. docs/size.md.
+#include <iostream>
+
+#include "host/cli/commands.h"
+#include "host/size.h"
+
+namespace voxcd::cli {
+
+namespace {
+
+struct SizeArgs {
+  std::string file;
+  SizeRequest req;
+  bool json = false;
+  bool cost = false;
+  std::string rtl_dir = default_rtl_dir();
+};
+
+int size_cmd(const SizeArgs& a) {
+  const SceneFile f = read_scene_file(a.file);
+  const Scene scene = make_scene(f);
+  SizeReport r;
+  try {
+    r = derive_size(f, scene, a.req);
+  } catch (const SizeError& e) {
+    std::cerr << "voxcd size: " << a.file << ": cannot be met: " << e.what() << '\n';
+    return 3;
+  }
+  if (a.cost) r.cost = yosys_cost(r.config, a.rtl_dir);
+  std::cout << (a.json ? size_json(r, scene) : size_text(r, scene));
+  return 0;
+}
+
+}  // namespace
+
+void add_size(CLI::App& app) {
+  auto a = std::make_shared<SizeArgs>();
+  CLI::App* c = app.add_subcommand(
+      "size", "The smallest device for a scene file: widths from its extents and the accuracy, memories from its "
+              "object types, lanes from the frame rate through the cycle model (docs/size.md)");
+  c->add_option("scene", a->file, "A scene file (docs/scenes.md)")->required()->check(CLI::ExistingFile);
+  c->add_option("--accuracy", a->req.accuracy, "Largest error of the fixed-point path, world units (default: the "
+                                               "scene file's)")
+      ->check(CLI::PositiveNumber);
+  c->add_option("--rate", a->req.rate, "Frames per second (default: the scene file's)")->check(CLI::PositiveNumber);
+  c->add_option("--clock", a->req.clock, "Device clock, MHz (default: the scene file's)")->check(CLI::PositiveNumber);
+  c->add_option("--frames", a->req.frames, "Frames simulated to measure cycles (default: the scene file's)")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1000000}));
+  c->add_flag("--cost", a->cost,
+              "Also synthesise the configuration with yosys (synth_xilinx) for LUTs, FFs, DSPs and block RAMs; "
+              "takes tens of seconds");
+  c->add_option("--rtl", a->rtl_dir, "The rtl/ directory for --cost")->capture_default_str();
+  c->add_flag("--json", a->json, "Print the report as JSON");
+  c->callback([a] { exit_code() = size_cmd(*a); });
+}
+
+}  // namespace voxcd::cli
