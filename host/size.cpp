@@ -79,7 +79,7 @@ SceneExtents scene_extents(const Scene& scene) {
       if (bodies[a] == 0 || bodies[b] == 0 || (a == b && bodies[a] < 2)) continue;
       const ObjectType &ta = *scene.types[a], &tb = *scene.types[b];
       const GridFrame sa = ta.shell().frame(), mb = tb.voxmap().grid().frame();
-      SceneExtents::Pair p{a, b, mb.voxel, max_point[a]};
+      SceneExtents::Pair p{a, b, mb.voxel, max_point[a], sa.voxel / mb.voxel};
       e.pairs.push_back(p);
       e.max_ratio = std::max(e.max_ratio, sa.voxel / mb.voxel);
       // t = (R_B^T (R_A o_A + x_A - x_B) - o_B) / v_B with x = c - R centre: |t_i| <= |t|.
@@ -93,7 +93,9 @@ double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* 
   double err = 0;
   for (size_t k = 0; k < e.pairs.size(); ++k) {
     const auto& p = e.pairs[k];
-    const double v = p.voxel_b * (3 * std::ldexp(1.0, -(cfg.MF + 1)) * p.max_point_a + std::ldexp(1.0, -(cfg.TF() + 1)));
+    double v = 3 * std::ldexp(1.0, -(cfg.MF + 1)) * p.max_point_a + std::ldexp(1.0, -(cfg.TF() + 1));
+    if (cfg.PF < 1) v += 3 * (p.ratio + std::ldexp(1.0, -(cfg.MF + 1))) * std::ldexp(1.0, -(cfg.PF + 1));
+    v *= p.voxel_b;
     if (v > err || k == 0) {
       err = v;
       if (worst) *worst = k;

@@ -32,17 +32,19 @@ struct SceneExtents {
   double max_ratio = 0;        // largest shell spacing of A over voxel of B, any ordered pair: the largest |M_ij|
   double max_translation = 0;  // bound on |t_i| in B's voxels for any two bodies in the cube (grown by a radius)
   uint32_t max_dim = 1;        // largest voxmap dimension
-  // Per ordered pair (A's shell in B's map): B's voxel and A's largest shell coordinate (the bound's inputs).
+  // Per ordered pair (A's shell in B's map): B's voxel, A's largest shell coordinate and A's shell spacing over
+  // B's voxel (the bound's inputs).
   struct Pair {
     uint32_t a = 0, b = 0;
-    double voxel_b = 0, max_point_a = 0;
+    double voxel_b = 0, max_point_a = 0, ratio = 0;
   };
   std::vector<Pair> pairs;
 };
 SceneExtents scene_extents(const Scene& scene);
 
 // The fixed-point path's error bound for the scene's pairs on cfg, in world units: the largest over ordered pairs of
-// voxel_B * (3 * 2^-(MF+1) * max|p_A| + 2^-(TF+1)) (shell words are exact, so the point term is 0). `worst` gets
+// voxel_B * (3 * 2^-(MF+1) * max|p_A| + 2^-(TF+1)): shell words are exact half-integers from PF 1 on, so the
+// point term is 0; with PF 0 it is added (|Mq_i|_1 * 2^-(PF+1), |Mq_i|_1 <= 3 (ratio + 2^-(MF+1))). `worst` gets
 // the index of the pair that gives it.
 double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* worst = nullptr);
 

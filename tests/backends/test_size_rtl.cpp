@@ -1,0 +1,105 @@
+// The RTL built for configurations `voxcd size` derives (rtl/CMakeLists.txt, VOXCD_RTL_CONFIGS): each model is
+// the configuration tests/scenes/configs.txt lists for its scene; conformance vectors generated for that
+// configuration pass on it, cycle for cycle; and its scene simulates on it exactly as on the cpu backend.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "host/conform_gen.h"
+#include "host/device.h"
+#include "host/device_rtl.h"
+#include "host/scene_file.h"
+#include "ref/pipeline.h"
+#include "ref/timing.h"
+#include "ref/vectors.h"
+
+namespace voxcd {
+namespace {
+
+const std::string kScenes = VOXCD_SCENES_DIR;
+
+// The scene tests/scenes/configs.txt lists for cfg ("" when none).
+std::string scene_of(const DeviceConfig& cfg) {
+  std::ifstream in(kScenes + "/configs.txt");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto sp = line.find(' ');
+    if (parse_config_pairs(line.substr(sp + 1), "configs.txt") == cfg) return line.substr(0, sp);
+  }
+  return "";
+}
+
+TEST(SizeRtl, ModelsAreListedDerivedConfigurations) {
+  ASSERT_FALSE(rtl_configs().empty()) << "the build has no models of derived configurations (VOXCD_RTL_CONFIGS)";
+  for (const DeviceConfig& cfg : rtl_configs()) {
+    EXPECT_NE(scene_of(cfg), "") << cfg.to_string();
+    EXPECT_FALSE(cfg.same_widths(DeviceConfig{})) << "a derived configuration with the default widths";
+    EXPECT_EQ(make_device("rtl", cfg)->config(), cfg);
+  }
+  // A configuration without a model is refused, naming the ones there are.
+  DeviceConfig other = rtl_configs()[0];
+  other.TW += 1;
+  try {
+    make_device("rtl", other);
+    FAIL() << "no error";
+  } catch (const DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find(rtl_configs()[0].to_string()), std::string::npos) << e.what();
+  }
+}
+
+TEST(SizeRtl, ConformanceVectorsOfTheConfigurationPass) {
+  for (const DeviceConfig& cfg : rtl_configs()) {
+    SCOPED_TRACE(cfg.to_string());
+    for (uint64_t seed : {1, 2, 3}) {
+      GenerateOptions g;
+      g.seed = seed;
+      g.jobs = 300;
+      g.config = cfg;
+      const GeneratedVectors v = generate_vectors(g);
+      ASSERT_EQ(v.config, cfg);
+      std::vector<Record> want = run_stream(cfg, v.memory, v.jobs);
+      annotate_cycles(cfg, v.jobs, want);
+      auto dev = make_device("rtl", cfg);
+      dev->load(v.memory);
+      const std::vector<Record> got = dev->run(v.jobs);
+      ASSERT_EQ(got.size(), want.size()) << "seed " << seed;
+      size_t hits = 0;
+      for (size_t k = 0; k < got.size(); ++k) {
+        ASSERT_TRUE(got[k].same_as(want[k], true)) << "seed " << seed << ", record " << k;
+        hits += got[k].kind == Record::Hit;
+      }
+      EXPECT_GT(hits, 100u) << "seed " << seed;
+    }
+  }
+}
+
+TEST(SizeRtl, SceneSimulatesOnItsDerivedModelAsOnCpu) {
+  for (const DeviceConfig& cfg : rtl_configs()) {
+    const std::string scene = scene_of(cfg);
+    SCOPED_TRACE(scene + ": " + cfg.to_string());
+    const SceneFile f = read_scene_file(kScenes + "/" + scene);
+    SimOptions opt;
+    opt.pruning = f.broadphase;
+    opt.device = cfg;
+    opt.lanes = cfg.LANES;
+    opt.backend = "cpu";
+    Simulation cpu(make_scene(f), opt);
+    opt.backend = "rtl";
+    Simulation rtl(make_scene(f), opt);
+    ASSERT_EQ(rtl.device_config(), cfg);
+    uint64_t hits = 0;
+    for (int k = 0; k < 40; ++k) {
+      const FrameStats a = cpu.step(), b = rtl.step();
+      ASSERT_EQ(a.hits, b.hits) << "frame " << k;
+      ASSERT_EQ(a.contacts, b.contacts) << "frame " << k;
+      ASSERT_EQ(a.device_cycles, b.device_cycles) << "frame " << k;
+      hits += a.hits;
+    }
+    EXPECT_EQ(cpu.state_hash(), rtl.state_hash());
+    EXPECT_GT(hits, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace voxcd
