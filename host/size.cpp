@@ -262,6 +262,13 @@ YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& rtl_dir) {
 double SizeReport::modelled_rate() const {
   return chosen().max_cycles ? clock * 1e6 / double(chosen().max_cycles) : 0;
 }
+DeviceConfig SizeReport::default_widths() const {
+  DeviceConfig d;
+  d.LANES = config.LANES;
+  d.SAW = config.SAW;
+  d.MAW = config.MAW;
+  return d;
+}
 uint64_t SizeReport::shell_bits() const { return config.shell_depth() * uint64_t(3 * config.PW); }
 uint64_t SizeReport::map_bits() const { return config.map_depth() * uint64_t(config.MEMW) * uint64_t(config.LANES); }
 
@@ -290,7 +297,7 @@ SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest
       throw SizeError("rate", r.rate / best,
                       "64 lanes take " + std::to_string(m.max_cycles) + " cycles for the largest of " +
                           std::to_string(r.frames) + " frames, " + fmt(best) + " frames per second at " +
-                          fmt(r.clock) + " MHz; " + fmt(r.rate) + " requested is " + fmt(r.rate / best) +
+                          fmt(r.clock) + " MHz; " + fmt(r.rate, 8) + " requested is " + fmt(r.rate / best) +
                           " times faster");
     }
   }
@@ -318,7 +325,7 @@ std::string size_text(const SizeReport& r, const Scene& scene) {
   const LaneMeasure& m = r.chosen();
   const auto& wp = r.extents.pairs.at(r.worst_pair);
   o << "voxcd size: " << r.scene << ": " << r.objects << " objects of " << scene.types.size() << " type"
-    << (scene.types.size() > 1 ? "s" : "") << "; accuracy " << fmt(r.accuracy) << " world units, " << fmt(r.rate)
+    << (scene.types.size() > 1 ? "s" : "") << "; accuracy " << fmt(r.accuracy) << " world units, " << fmt(r.rate, 8)
     << " frames/s at " << fmt(r.clock) << " MHz\n";
   for (const auto& t : scene.types) {
     const auto& d = t->voxmap().dims();
@@ -338,7 +345,7 @@ std::string size_text(const SizeReport& r, const Scene& scene) {
   o << "cycles          ";
   for (size_t i = 0; i < r.lanes.size(); ++i)
     o << (i ? ", " : "") << "LANES " << r.lanes[i].lanes << ": " << r.lanes[i].max_cycles;
-  o << " (largest frame; budget " << r.budget << " at " << fmt(r.rate) << " frames/s)\n";
+  o << " (largest frame; budget " << r.budget << " at " << fmt(r.rate, 8) << " frames/s)\n";
   o << "frame rate      " << fmt(r.modelled_rate(), 6) << " frames/s at " << fmt(r.clock) << " MHz with LANES "
     << c.LANES << " (largest frame " << m.max_cycles << " cycles, mean " << fmt(m.mean_cycles, 6) << ")\n";
   o << "memory          shell 2^" << c.SAW << " x " << 3 * c.PW << " bit = " << bits_text(r.shell_bits())
@@ -351,6 +358,15 @@ std::string size_text(const SizeReport& r, const Scene& scene) {
       << ", " << fmt(r.cost->seconds, 3) << " s)\n";
   else
     o << "cost            not synthesised (add --cost to run yosys)\n";
+  if (r.default_cost) {
+    const DeviceConfig d = r.default_widths();
+    o << "default widths  " << r.default_cost->luts << " LUTs, " << r.default_cost->ffs << " FFs, "
+      << r.default_cost->dsps << " DSPs, " << fmt(r.default_cost->brams) << " block RAMs for " << d.to_string()
+      << " (shell 2^" << d.SAW << " x " << 3 * d.PW << " bit); derived/default LUTs "
+      << fmt(double(r.cost->luts) / double(std::max<uint64_t>(1, r.default_cost->luts)), 3) << ", DSPs "
+      << fmt(double(r.cost->dsps) / double(std::max<uint64_t>(1, r.default_cost->dsps)), 3) << ", block RAMs "
+      << fmt(r.cost->brams / std::max(0.5, r.default_cost->brams), 3) << "\n";
+  }
   return o.str();
 }
 
@@ -394,6 +410,10 @@ std::string size_json(const SizeReport& r, const Scene& scene) {
                  {"seconds", r.cost->seconds}};
   else
     j["cost"] = nullptr;
+  if (r.default_cost)
+    j["default_widths_cost"] = {{"config", r.default_widths().to_string()}, {"luts", r.default_cost->luts},
+                                {"ffs", r.default_cost->ffs}, {"dsps", r.default_cost->dsps},
+                                {"brams", r.default_cost->brams}};
   return j.dump(2) + "\n";
 }
 

@@ -101,6 +101,9 @@ struct SizeReport {
   uint64_t shell_bits() const;    // 2^SAW x 3 PW
   uint64_t map_bits() const;      // 2^MAW x MEMW, one copy per lane
   std::optional<YosysCost> cost;
+  // The same LANES, SAW and MAW at the default widths, synthesised the same way (the peer for the cost).
+  std::optional<YosysCost> default_cost;
+  DeviceConfig default_widths() const;
 };
 
 // The whole derivation. SizeError when a constraint cannot be met; SceneFileError from the scene.

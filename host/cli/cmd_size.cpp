@@ -27,7 +27,10 @@ int size_cmd(const SizeArgs& a) {
     std::cerr << "voxcd size: " << a.file << ": cannot be met: " << e.what() << '\n';
     return 3;
   }
-  if (a.cost) r.cost = yosys_cost(r.config, a.rtl_dir);
+  if (a.cost) {
+    r.cost = yosys_cost(r.config, a.rtl_dir);
+    r.default_cost = yosys_cost(r.default_widths(), a.rtl_dir);
+  }
   std::cout << (a.json ? size_json(r, scene) : size_text(r, scene));
   return 0;
 }
@@ -48,8 +51,8 @@ void add_size(CLI::App& app) {
   c->add_option("--frames", a->req.frames, "Frames simulated to measure cycles (default: the scene file's)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1000000}));
   c->add_flag("--cost", a->cost,
-              "Also synthesise the configuration with yosys (synth_xilinx) for LUTs, FFs, DSPs and block RAMs; "
-              "takes tens of seconds");
+              "Also synthesise the configuration, and the default widths at its LANES, SAW and MAW, with yosys "
+              "(synth_xilinx) for LUTs, FFs, DSPs and block RAMs; about 10 s each");
   c->add_option("--rtl", a->rtl_dir, "The rtl/ directory for --cost")->capture_default_str();
   c->add_flag("--json", a->json, "Print the report as JSON");
   c->callback([a] { exit_code() = size_cmd(*a); });
