@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# bench/size_doc.sh: regenerates the worked example and the accuracy sweep of docs/size.md by running voxcd size
+# on tests/scenes/mixed.json (the example with --cost: yosys, about 25 s).
+# Usage: bash bench/size_doc.sh [BUILD_DIR]   (default build/)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:-$root/build}"
+voxcd="$build/voxcd"
+cd "$root"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+{
+  echo '```'
+  echo '$ build/voxcd size tests/scenes/mixed.json --cost'
+  "$voxcd" size tests/scenes/mixed.json --cost
+  echo '```'
+} >"$tmp/example.md"
+{
+  echo '```'
+  for a in 0.1 0.03 0.01 0.003 0.001; do
+    echo "\$ build/voxcd size tests/scenes/mixed.json --accuracy $a | grep -E '^(configuration|error) '"
+    "$voxcd" size tests/scenes/mixed.json --accuracy "$a" | grep -E '^(configuration|error) '
+  done
+  echo '```'
+} >"$tmp/accuracy.md"
+bash bench/splice.sh docs/size.md size-example "$tmp/example.md"
+bash bench/splice.sh docs/size.md size-accuracy "$tmp/accuracy.md"
