@@ -273,7 +273,7 @@ Scene make_scene(const SceneFile& f) {
     for (auto& v : l.mesh.vertices) v *= l.s;
     const double extent = l.extent * l.s;
     if (extent / t.voxel > 1020)
-      throw fail(t.key + ".voxel", num_text(t.voxel) + " makes the object " + std::to_string(int(extent / t.voxel)) +
+      throw fail(t.key + ".voxel", num_text(t.voxel) + " makes the object " + num_text(std::ceil(extent / t.voxel)) +
                                        " voxels across (" + num_text(extent) + " world units), above 2^10");
     if (extent / t.voxel < 2)
       throw fail(t.key + ".voxel", num_text(t.voxel) + " is larger than half the object (" + num_text(extent) +
