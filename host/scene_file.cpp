@@ -42,7 +42,7 @@ class Reader {
   // Every key of the object must be one of `known`.
   void only(std::initializer_list<const char*> known) const {
     for (const auto& [k, v] : j_.items()) {
-      if (std::none_of(known.begin(), known.end(), [&](const char* n) { return k == n; })) {
+      if (std::none_of(known.begin(), known.end(), [&key = k](const char* n) { return key == n; })) {
         std::string list;
         for (const char* n : known) list += (list.empty() ? "" : ", ") + std::string(n);
         fail(key_path(k), "unknown key (known here: " + list + ")");
