@@ -136,8 +136,9 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
   json j;
   try {
     j = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+  } catch (const json::exception& e) {
+    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."; a number too
+    // large for a double is an out_of_range.406 ("number overflow parsing '1e999'"), not a parse_error.
     std::string what = e.what();
     const auto p = what.find("] ");
     throw SceneFileError(where + ": not valid JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
