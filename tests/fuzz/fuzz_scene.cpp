@@ -3,7 +3,7 @@
 // objects (two bytes, mod 128), side, density, speed, spin and voxel (doubles, as their bytes) and the seed.
 // std::invalid_argument starting with "scene: " and MeshError naming the shape are the documented errors. A scene
 // that is made must hold every object with its bounding sphere inside the cube. Valid specs whose objects would be
-// more than 48 voxels across are skipped: they cost time, not coverage (the validation runs before voxelising).
+// more than 12 voxels across are skipped: they cost time, not coverage (the validation runs before voxelising).
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -49,7 +49,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const bool valid = s.objects > 0 && s.side > 0 && std::isfinite(s.side) && s.density > 0 && s.density <= 0.3 &&
                      s.speed >= 0 && std::isfinite(s.speed) && s.spin >= 0 && std::isfinite(s.spin) &&
                      s.voxel > 0 && std::isfinite(s.voxel);
-  if (valid && std::cbrt(s.density / double(s.objects)) * s.side / s.voxel > 48) return 0;
+  if (valid && std::cbrt(s.density / double(s.objects)) * s.side / s.voxel > 12) return 0;
   try {
     const Scene sc = make_scene(s);
     if (sc.bodies.size() != s.objects || sc.types.size() != 1) fuzz::finding("make_scene: wrong number of bodies");
