@@ -3,7 +3,8 @@
 // objects (two bytes, mod 128), side, density, speed, spin and voxel (doubles, as their bytes) and the seed.
 // std::invalid_argument starting with "scene: " and MeshError naming the shape are the documented errors. A scene
 // that is made must hold every object with its bounding sphere inside the cube. Valid specs whose objects would be
-// more than 12 voxels across are skipped: they cost time, not coverage (the validation runs before voxelising).
+// more than 12 voxels across (computed as make_scene does) are skipped: they cost time, not coverage (the check of
+// the size runs before voxelising).
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 
 #include "host/mesh.h"
 #include "host/scene.h"
+#include "host/shapes.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace voxcd;
@@ -29,6 +31,15 @@ struct Reader {
 };
 
 constexpr size_t kSize = 1 + 2 + 5 * 8 + 8;
+
+// A built-in shape's largest extent over the cube root of its volume: make_scene's objects are that ratio times
+// cbrt(density * side^3 / objects) across.
+double extent_ratio(const std::string& shape) {
+  const Mesh m = make_shape(shape);
+  Eigen::Vector3d lo, hi;
+  m.bounds(lo, hi);
+  return (hi - lo).maxCoeff() / std::cbrt(m.volume());
+}
 
 }  // namespace
 
@@ -49,7 +60,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const bool valid = s.objects > 0 && s.side > 0 && std::isfinite(s.side) && s.density > 0 && s.density <= 0.3 &&
                      s.speed >= 0 && std::isfinite(s.speed) && s.spin >= 0 && std::isfinite(s.spin) &&
                      s.voxel > 0 && std::isfinite(s.voxel);
-  if (valid && std::cbrt(s.density / double(s.objects)) * s.side / s.voxel > 12) return 0;
+  static const double kRatio[] = {extent_ratio(kShapes[0]), extent_ratio(kShapes[1]), extent_ratio(kShapes[2]),
+                                  extent_ratio(kShapes[3]), extent_ratio(kShapes[4]), extent_ratio(kShapes[5]),
+                                  extent_ratio(kShapes[6]), 1.0};
+  const double across = kRatio[data[0] % 8] * std::cbrt(s.density / double(s.objects)) * s.side / s.voxel;
+  if (valid && across > 12) return 0;
   try {
     const Scene sc = make_scene(s);
     if (sc.bodies.size() != s.objects || sc.types.size() != 1) fuzz::finding("make_scene: wrong number of bodies");
