@@ -56,6 +56,7 @@ TEST(SceneFile, ErrorsNameTheFileAndTheKey) {
       {R"({"types": [{"shape": "cube"}])", "s.json: not valid JSON: parse error at line 1, column"},
       {R"([1, 2])", "s.json: (top level): must be an object, not array"},
       {"", "s.json: not valid JSON"},
+      {R"({"types": [{"shape": "cube", "voxel": 1e999}]})", "s.json: not valid JSON: number overflow parsing '1e999'"},
   };
   for (const auto& [text, want] : cases) {
     const std::string got = error_of(text);
