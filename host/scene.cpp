@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <stdexcept>
@@ -98,9 +99,12 @@ Scene make_scene(const SceneSpec& spec) {
   const Eigen::Vector3d mid = 0.5 * (lo + hi);
   for (auto& v : mesh.vertices) v = (v - mid) * s;
   const double extent = (hi - lo).maxCoeff() * s;
-  if (extent / spec.voxel > 1020)
-    throw std::invalid_argument("scene: voxel " + std::to_string(spec.voxel) + " makes each object " +
-                                std::to_string(int(extent / spec.voxel)) + " voxels across, above 2^10");
+  if (extent / spec.voxel > 1020) {
+    char across[32];  // as a double: a tiny voxel makes the count too large for an int, or infinite
+    std::snprintf(across, sizeof across, "%.6g", extent / spec.voxel);
+    throw std::invalid_argument("scene: voxel " + std::to_string(spec.voxel) + " makes each object " + across +
+                                " voxels across, above 2^10");
+  }
   if (extent / spec.voxel < 2)
     throw std::invalid_argument("scene: voxel " + std::to_string(spec.voxel) + " is larger than half the object (" +
                                 std::to_string(extent) + " across); objects would be a voxel or two");
