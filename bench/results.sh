@@ -43,13 +43,13 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j2 --target bench_results bench_simulate bench_pair bench_broadphase >/dev/null
 
 if ((quick)); then
-  reps=3 poses=32 err_poses=300 points=200000 frames=200 big_frames=10
+  reps=3 pair_reps=5 poses=32 err_poses=300 points=200000 frames=200 big_frames=10
   shells=25,92,219,606,1150,2314,5321,9337 maps=20,120,700,3500,16000,80000,200000
   voxels=0.4,0.2,0.1,0.05 widths=8:2,12:4,16:8,20:8 cost_widths=(8:2 16:8)
   fig14_counts=2,4,8,16,32,64,128,256 big_counts=256,1024,4096,16384
   pair_args=(--repeats 3 --poses 20 --voxel 0.04) bp_args=(--max-n 4096 --frames 60 --repeats 3)
 else
-  reps=7 poses=256 err_poses=2000 points=2000000 frames=1000 big_frames=50
+  reps=7 pair_reps=21 poses=256 err_poses=2000 points=2000000 frames=1000 big_frames=50
   shells=25,92,219,384,606,840,1150,1509,1909,2314,5321,9337
   maps=20,50,120,300,700,1500,3500,8000,16000,35000,80000,200000
   voxels=0.4,0.2,0.1,0.05,0.025 widths=8:2,10:4,12:4,14:6,16:8,20:8 cost_widths=(8:2 12:4 16:8 20:8)
@@ -63,7 +63,7 @@ run() {  # label command...: runs a bench program, its progress to the log
   "$@" >/dev/null 2>>"$data/progress.log"
 }
 : >"$data/progress.log"
-run "pairs: Table 1, Figs. 11-13" "$build/bench_results" pairs --repeats "$reps" --poses "$poses" \
+run "pairs: Table 1, Figs. 11-13" "$build/bench_results" pairs --repeats "$pair_reps" --poses "$poses" \
   --shells "$shells" --maps "$maps" --out "$data/pairs.md" --csv "$data/pairs.csv"
 run "speed against error" "$build/bench_results" error --repeats "$reps" --poses "$err_poses" --voxels "$voxels" \
   --out "$data/error.md" --csv "$data/error.csv"
