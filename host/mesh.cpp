@@ -295,6 +295,12 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
         if (head.rfind("ply", 0) == 0 && head.find("end_header") == std::string::npos)
           throw MeshError(path + ": the PLY header has no end_header line in its first " +
                           std::to_string(head.size()) + " bytes (is the file truncated?)");
+        // Nor from one whose end_header runs on into other characters ("end_headerx").
+        const size_t end = head.find("\nend_header");
+        if (head.rfind("ply", 0) == 0 && end != std::string::npos && end + 11 < head.size() &&
+            !std::isspace(static_cast<unsigned char>(head[end + 11])))
+          throw MeshError(path + ": the PLY header's end_header at byte " + std::to_string(end + 1) +
+                          " is not followed by the end of its line");
       }
     }
     m = load_assimp(path);
