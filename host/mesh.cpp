@@ -295,12 +295,17 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
         if (head.rfind("ply", 0) == 0 && head.find("end_header") == std::string::npos)
           throw MeshError(path + ": the PLY header has no end_header line in its first " +
                           std::to_string(head.size()) + " bytes (is the file truncated?)");
-        // Nor from one whose end_header runs on into other characters ("end_headerx").
-        const size_t end = head.find("\nend_header");
-        if (head.rfind("ply", 0) == 0 && end != std::string::npos && end + 11 < head.size() &&
-            !std::isspace(static_cast<unsigned char>(head[end + 11])))
-          throw MeshError(path + ": the PLY header's end_header at byte " + std::to_string(end + 1) +
-                          " is not followed by the end of its line");
+        // Nor from one whose end_header runs on into other characters ("end_headerx", "[end_headerx") outside a
+        // comment line.
+        for (size_t end = head.find("end_header"); head.rfind("ply", 0) == 0 && end != std::string::npos;
+             end = head.find("end_header", end + 1)) {
+          const size_t line = head.rfind('\n', end) == std::string::npos ? 0 : head.rfind('\n', end) + 1;
+          const size_t word = head.find_first_not_of(" \t\r", line);
+          if (head.compare(word, 7, "comment") == 0 || head.compare(word, 8, "obj_info") == 0) continue;
+          if (end + 10 < head.size() && !std::isspace(static_cast<unsigned char>(head[end + 10])))
+            throw MeshError(path + ": the PLY header's end_header at byte " + std::to_string(end) +
+                            " is not followed by the end of its line");
+        }
       }
     }
     m = load_assimp(path);
