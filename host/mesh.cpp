@@ -287,25 +287,23 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
     {
       std::ifstream probe(path, std::ios::binary);
       if (!probe) throw MeshError(path + ": cannot open");
-      // assimp's PLY reader never returns from a header cut short (assimp 5.2): refuse it here.
+      // assimp 5.2's PLY reader never returns from a header without an end_header line: one that is cut short, or
+      // whose end_header runs on into other characters ("end_headerx", "xend_header"). Refuse those here.
       if (lower_ext(path) == "ply") {
         std::string head(1 << 16, '\0');
         probe.read(&head[0], std::streamsize(head.size()));
         head.resize(size_t(probe.gcount()));
-        if (head.rfind("ply", 0) == 0 && head.find("end_header") == std::string::npos)
+        bool ended = false;
+        for (size_t line = 0; line < head.size() && !ended;) {
+          const size_t next = head.find('\n', line);
+          const size_t word = head.find_first_not_of(" \t", line);
+          ended = word != std::string::npos && word < next && head.compare(word, 10, "end_header") == 0 &&
+                  (word + 10 == head.size() || std::isspace(static_cast<unsigned char>(head[word + 10])));
+          line = next == std::string::npos ? head.size() : next + 1;
+        }
+        if (head.rfind("ply", 0) == 0 && !ended)
           throw MeshError(path + ": the PLY header has no end_header line in its first " +
                           std::to_string(head.size()) + " bytes (is the file truncated?)");
-        // Nor from one whose end_header runs on into other characters ("end_headerx", "[end_headerx") outside a
-        // comment line.
-        for (size_t end = head.find("end_header"); head.rfind("ply", 0) == 0 && end != std::string::npos;
-             end = head.find("end_header", end + 1)) {
-          const size_t line = head.rfind('\n', end) == std::string::npos ? 0 : head.rfind('\n', end) + 1;
-          const size_t word = head.find_first_not_of(" \t\r", line);
-          if (head.compare(word, 7, "comment") == 0 || head.compare(word, 8, "obj_info") == 0) continue;
-          if (end + 10 < head.size() && !std::isspace(static_cast<unsigned char>(head[end + 10])))
-            throw MeshError(path + ": the PLY header's end_header at byte " + std::to_string(end) +
-                            " is not followed by the end of its line");
-        }
       }
     }
     m = load_assimp(path);
