@@ -1,6 +1,7 @@
 #include "host/collide.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "ref/fixed.h"
 
@@ -20,6 +21,31 @@ void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
       throw CapacityError("object '" + t.name + "': its voxmap is " + std::to_string(d[0]) + "x" +
                           std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels, above the device's 2^DW = " +
                           std::to_string(cfg.max_dim()) + " per axis");
+}
+
+// keep[k] = 1 when cluster k's box (centre, half) can land in [0, n) through p -> M p + t; |M| is aM. Axis by axis
+// over all clusters, so the loops vectorise (one build per vector width). The slack covers the double arithmetic:
+// the values stay below 2^40, where its rounding is far below 1e-4.
+__attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default"))) void cull_clusters(
+    const std::vector<double> (&centre)[3], const std::vector<double> (&half)[3], size_t nc, const double (&M)[3][3],
+    const double (&aM)[3][3], const double (&t)[3], const double (&n)[3], uint8_t* __restrict keep) {
+  constexpr double kSlack = 1e-4;
+  const double* __restrict cx = centre[0].data();
+  const double* __restrict cy = centre[1].data();
+  const double* __restrict cz = centre[2].data();
+  const double* __restrict hx = half[0].data();
+  const double* __restrict hy = half[1].data();
+  const double* __restrict hz = half[2].data();
+  for (size_t k = 0; k < nc; ++k) keep[k] = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double m0 = M[i][0], m1 = M[i][1], m2 = M[i][2], a0 = aM[i][0], a1 = aM[i][1], a2 = aM[i][2];
+    const double lo = -kSlack - t[i], hi = n[i] + kSlack - t[i];
+    for (size_t k = 0; k < nc; ++k) {
+      const double c = m0 * cx[k] + m1 * cy[k] + m2 * cz[k];
+      const double h = a0 * hx[k] + a1 * hy[k] + a2 * hz[k];
+      keep[k] &= uint8_t((c + h >= lo) & (c - h < hi));
+    }
+  }
 }
 
 }  // namespace
@@ -65,19 +91,89 @@ DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& 
 
 PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types)
     : device_(std::move(device)), types_(std::move(types)), image_(device_->config()) {
-  for (const auto& t : types_) image_.add(*t);
+  for (const auto& t : types_) {
+    image_.add(*t);
+    // Clusters of up to kClusterPoints consecutive points, never across a z-slice of the shell grid (cells come
+    // in linear-index order, z slowest): small boxes, since consecutive points of one slice are near each other.
+    const auto& cells = t->shell().cells;
+    Clusters cl;
+    for (uint32_t k = 0; k < cells.size();) {
+      uint32_t end = k + 1;
+      std::array<uint32_t, 3> lo = cells[k], hi = cells[k];
+      while (end < cells.size() && end - k < kClusterPoints && cells[end][2] == cells[k][2]) {
+        for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], cells[end][i]), hi[i] = std::max(hi[i], cells[end][i]);
+        ++end;
+      }
+      cl.first.push_back(k);
+      for (int i = 0; i < 3; ++i) {
+        // Point k is at cells[k] + 0.5 exactly (within half a cell more when PF = 0: the margin of 0.5).
+        cl.centre[i].push_back(0.5 * (double(lo[i]) + double(hi[i])) + 0.5);
+        cl.half[i].push_back(0.5 * (double(hi[i]) - double(lo[i])) + 0.5);
+      }
+      k = end;
+    }
+    cl.first.push_back(uint32_t(cells.size()));
+    clusters_.push_back(std::move(cl));
+  }
   device_->load(image_.memory());
+}
+
+void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
+                            std::vector<JobSource>& sources) const {
+  const DeviceConfig& cfg = device_->config();
+  auto emit = [&](uint32_t first, uint32_t end) {
+    Job j = whole;
+    j.shell_base = whole.shell_base + first;
+    j.shell_count = end - first;
+    j.tag = uint32_t(out.size() & cfg.max_tag());
+    out.push_back(j);
+    sources.push_back({src.pair, src.a_in_b, first});
+  };
+  // A cluster's box (centre c, half-extent h, in the shell's grid) lands in the voxmap grid inside the box of
+  // centre Mq c + tq and half-extent |Mq| h, exactly; the cluster is kept when that box meets [0, n) on every
+  // axis (with a slack for the double arithmetic far below the spacing of the fixed-point values).
+  const double mscale = std::ldexp(1.0, -cfg.MF), tscale = std::ldexp(1.0, -cfg.TF());
+  double M[3][3], aM[3][3], t[3];
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) M[i][k] = double(whole.M[i][k]) * mscale, aM[i][k] = std::abs(M[i][k]);
+    t[i] = double(whole.t[i]) * tscale;
+  }
+  const double n[3] = {double(whole.nx), double(whole.ny), double(whole.nz)};
+  const Clusters& cl = clusters_[shell_type];
+  const size_t nc = cl.first.size() - 1;
+  keep_.resize(nc);
+  cull_clusters(cl.centre, cl.half, nc, M, aM, t, n, keep_.data());
+  // Runs of kept clusters; runs closer than kMergeGap points apart are one job (a job costs more on the host than
+  // a few extra lookups).
+  uint32_t run_first = 0, run_end = 0;
+  bool open = false;
+  for (size_t k = 0; k < nc; ++k) {
+    if (!keep_[k]) continue;
+    const uint32_t first = cl.first[k], end = cl.first[k + 1];
+    if (open && first - run_end <= kMergeGap) {
+      run_end = end;
+    } else {
+      if (open) emit(run_first, run_end);
+      run_first = first;
+      run_end = end;
+      open = true;
+    }
+  }
+  if (open) emit(run_first, run_end);
 }
 
 std::vector<Job> PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt) const {
   std::vector<Job> out;
-  jobs(pairs, opt, out);
+  std::vector<JobSource> sources;
+  jobs(pairs, opt, out, sources);
   return out;
 }
 
-void PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out) const {
+void PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out,
+                        std::vector<JobSource>& sources) const {
   const DeviceConfig& cfg = device_->config();
   out.clear();
+  sources.clear();
   out.reserve(pairs.size() * (opt.both_directions ? 2 : 1));
   for (size_t i = 0; i < pairs.size(); ++i) {
     const PairRequest& r = pairs[i];
@@ -106,7 +202,13 @@ void PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions
         throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
                          "): " + e.what());
       }
-      out.push_back(j);
+      const JobSource src{uint32_t(i), dir == 0, 0};
+      if (opt.cull) {
+        add_runs(j, s, src, out, sources);
+      } else {
+        out.push_back(j);
+        sources.push_back(src);
+      }
     }
   }
 }
@@ -119,10 +221,9 @@ std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pa
 
 void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt,
                            std::vector<PairResult>& out) {
-  jobs(pairs, opt, jobs_);
+  jobs(pairs, opt, jobs_, sources_);
   device_->run_into(jobs_, records_);
   const std::vector<Job>& js = jobs_;
-  const int per_pair = opt.both_directions ? 2 : 1;
   out.resize(pairs.size());
   // Each pair's contacts in one allocation (or none, when the capacity is there from an earlier call).
   counts_.assign(pairs.size(), 0);
@@ -133,7 +234,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
         throw DeviceError("the device returned records after the completions of all " + std::to_string(js.size()) +
                           " jobs");
       if (rec.kind == Record::Done) ++job;
-      else ++counts_[job / size_t(per_pair)];
+      else ++counts_[sources_[job].pair];
     }
   }
   // The pose of each pair's objects as matrices, once.
@@ -150,13 +251,18 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
   }
   // Contacts, job by job. The depth lookups land all over B's depth field (4 bytes per voxel, often larger than
-  // the cache), so the loop prefetches the depth of the hit a few records ahead.
+  // the cache), so the loop prefetches the depth of the hit a few records ahead. A direction of a pair can have
+  // several jobs (runs of its shell, ascending); in FIRST mode only the first hit among them is the direction's.
   constexpr size_t kAhead = 16;
   const size_t nrec = records_.size();
+  const bool first_only = opt.mode == Mode::First;
   size_t r = 0;
+  bool found = false;  // FIRST: the current direction has its hit
   for (size_t j = 0; j < js.size(); ++j) {
-    const size_t pair = j / size_t(per_pair);
-    const bool a_in_b = j % size_t(per_pair) == 0;
+    const JobSource& src = sources_[j];
+    if (j == 0 || src.pair != sources_[j - 1].pair || src.a_in_b != sources_[j - 1].a_in_b) found = false;
+    const size_t pair = src.pair;
+    const bool a_in_b = src.a_in_b;
     PairResult& res = out[pair];
     const PairRequest& req = pairs[pair];
     const ObjectType& shell_t = *types_[a_in_b ? req.a : req.b];
@@ -177,13 +283,15 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
           if (i < nvox) __builtin_prefetch(depth + i);
         }
       }
+      if (first_only && found) continue;
       const Record& rec = records_[r];
+      const uint32_t point = rec.point + src.first;
       Contact c;
       c.pair = uint32_t(pair);
       c.a_in_b = a_in_b;
-      c.point = rec.point;
-      c.position = R * points[rec.point] + pose.translation;
-      c.normal = R * normals[rec.point];
+      c.point = point;
+      c.position = R * points[point] + pose.translation;
+      c.normal = R * normals[point];
       c.voxel = {rec.x, rec.y, rec.z};
       c.state = rec.state;
       c.depth = double(depth[vm.index(rec.x, rec.y, rec.z)]) * voxel;
@@ -192,7 +300,11 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     if (r == nrec) throw DeviceError("the device returned fewer completions than the " + std::to_string(js.size()) +
                                      " jobs it was given");
     const Record& done = records_[r++];
-    res.hits += done.hits;
+    if (first_only) {
+      if (!found && done.hits) ++res.hits, found = true;
+    } else {
+      res.hits += done.hits;
+    }
     res.lookups += js[j].shell_count;
     if (done.cycles) res.cycles += *done.cycles;
   }

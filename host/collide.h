@@ -71,6 +71,20 @@ struct PairOptions {
   Mode mode = Mode::All;
   uint8_t hit_mask = kDefaultHitMask;
   bool both_directions = false;  // also B's shell in A's voxmap (needed to see A deep inside B's hollow, ...)
+  // Submit only the shell points that can land in the other object's voxmap: the z-slices and, within them, the
+  // y-rows of the shell grid that the voxmap's box covers in the shell's frame (through the quantised pose, with
+  // the fixed-point error bound and one shell cell of margin). Each run of such points is one job. The points
+  // left out are outside the voxmap on the device, so contacts and hits never depend on it; lookups and device
+  // cycles do. docs/pairs.md.
+  bool cull = true;
+};
+
+// Where a job came from: its pair, its direction, and the index in the shell of its first point (a hit's point
+// index is relative to that).
+struct JobSource {
+  uint32_t pair = 0;
+  bool a_in_b = true;
+  uint32_t first = 0;
 };
 
 struct PairResult {
@@ -85,10 +99,12 @@ class PairCollider {
   // Loads the types into the device (its config must fit them: see fit_memory).
   PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types);
 
-  // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked. RangeError
-  // naming the pair when a pose is not finite or does not fit the fixed-point formats.
+  // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked; one job per
+  // direction without opt.cull, zero or more (runs of the shell in ascending order) with it. RangeError naming
+  // the pair when a pose is not finite or does not fit the fixed-point formats.
   std::vector<Job> jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt = {}) const;
-  void jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out) const;
+  void jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out,
+            std::vector<JobSource>& sources) const;
   // Runs every pair's jobs back to back on the device and routes the hits to their pairs.
   std::vector<PairResult> collide(const std::vector<PairRequest>& pairs, const PairOptions& opt = {});
   // The same into `out`, reusing its capacity (and the collider's buffers): for callers that query every frame.
@@ -102,8 +118,24 @@ class PairCollider {
  private:
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
+  // The culled runs of one direction of one pair, appended to out and sources.
+  void add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
+                std::vector<JobSource>& sources) const;
+
+  // Per type, its shell in clusters of consecutive points: the first point of each (one past the end last), and
+  // each cluster's box in the shell's grid (centre and half-extent per axis).
+  struct Clusters {
+    std::vector<uint32_t> first;
+    std::vector<double> centre[3], half[3];
+  };
+  static constexpr uint32_t kClusterPoints = 32;
+  static constexpr uint32_t kMergeGap = 32;
+
   DeviceImage image_;
+  std::vector<Clusters> clusters_;
+  mutable std::vector<uint8_t> keep_;
   std::vector<Job> jobs_;
+  std::vector<JobSource> sources_;
   std::vector<Record> records_;
   std::vector<size_t> counts_;
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;

@@ -229,6 +229,7 @@ FrameStats Simulation::step() {
   PairOptions po;
   po.mode = opt_.mode;
   po.both_directions = opt_.both_directions;
+  po.cull = opt_.cull;
   collider_->collide(requests_, po, results_);
   double t4 = now();
   st.t_narrow = t4 - t3;

@@ -60,6 +60,9 @@ struct SimOptions {
   // Before the device, drop broadphase pairs whose oriented boxes (each type's contact bounds in its own frame,
   // grown by one voxel) are disjoint: such a pair can have no hit, so results never depend on it.
   bool midphase = true;
+  // Submit only the shell points whose clusters can land in the other object's voxmap (PairOptions::cull):
+  // results never depend on it, lookups and device cycles do.
+  bool cull = true;
 };
 
 struct FrameStats {

@@ -25,6 +25,7 @@ struct PairArgs {
   int lanes = 4;
   std::string mode = "ALL";
   bool both = false;
+  bool cull = true;
   bool json = false;
   size_t show = 10;
 };
@@ -87,6 +88,7 @@ int pair_cmd(const PairArgs& a) {
   if (!mode) throw CLI::ValidationError("--mode", "'" + a.mode + "' is not ALL, FIRST or COUNT");
   opt.mode = *mode;
   opt.both_directions = a.both;
+  opt.cull = a.cull;
 
   std::vector<PairRequest> reqs;
   if (a.random > 0) {
@@ -202,6 +204,9 @@ void add_pair(CLI::App& app) {
   c->add_option("--mode", a->mode, "ALL (every contact), FIRST (one per direction) or COUNT")->capture_default_str();
   c->add_flag("--both", a->both, "Test both directions (A's shell in B and B's shell in A)");
   c->add_option("--show", a->show, "Contacts to print (text output)")->capture_default_str();
+  c->add_flag("!--no-cull", a->cull,
+              "submit every shell point (by default only the clusters of points that can land in the other "
+              "object's voxmap; the contacts are the same)");
   c->add_flag("--json", a->json, "Print the result as JSON, with every contact");
   c->callback([a] { exit_code() = pair_cmd(*a); });
 }

@@ -221,6 +221,9 @@ void add_simulate(CLI::App& app) {
   c->add_flag("!--no-midphase", a->sim.midphase,
               "test every broadphase pair on the device (by default pairs whose oriented boxes are disjoint are dropped "
               "first; the results are the same)");
+  c->add_flag("!--no-cull", a->sim.cull,
+              "submit every shell point of a tested pair (by default only the clusters of points that can land in "
+              "the other object's voxmap; the results are the same)");
   c->add_flag("!--no-progress", a->progress, "No progress bar");
   c->add_flag("--json", a->json, "Print the summary as JSON");
   c->callback([a] { exit_code() = simulate_cmd(*a); });

@@ -214,6 +214,58 @@ TEST(Pairs, EveryBackendGivesTheSameContacts) {
   }
 }
 
+TEST(Pairs, CullingChangesLookupsButNoContact) {
+  // PairOptions::cull submits only the clusters of shell points that can land in the other voxmap. Every hit must
+  // survive it, in every mode, also with PF = 0 (shell words rounded by half a cell) and narrow matrix formats.
+  const uint64_t s = seed();
+  std::mt19937_64 rng(s + 2);
+  auto ta = type_of(make_shape("stellated"), 0.1), tb = type_of(make_shape("torus"), 0.12);
+  std::vector<PairRequest> reqs;
+  std::uniform_real_distribution<double> u(-1, 1), dist(0, 3.5);
+  for (int k = 0; k < 80; ++k) {
+    PairRequest r;
+    r.a = 0;
+    r.b = 1;
+    r.pose_a.rotation = random_rotation(rng);
+    r.pose_b.rotation = random_rotation(rng);
+    r.pose_b.translation = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized() * dist(rng);
+    reqs.push_back(r);
+  }
+  DeviceConfig narrow;
+  narrow.PF = 0;
+  narrow.MF = 10;
+  narrow.MW = 12;
+  for (const DeviceConfig& cfg : {DeviceConfig{}, narrow}) {
+    for (Mode mode : {Mode::All, Mode::First, Mode::Count}) {
+      PairOptions on, off;
+      on.mode = off.mode = mode;
+      on.both_directions = off.both_directions = true;
+      off.cull = false;
+      PairCollider col(make_device("cpu", fit_memory(cfg, {ta.get(), tb.get()})), {ta, tb});
+      const std::vector<PairResult> x = col.collide(reqs, on), y = col.collide(reqs, off);
+      uint64_t lookups_on = 0, lookups_off = 0, hits = 0;
+      for (size_t i = 0; i < reqs.size(); ++i) {
+        SCOPED_TRACE("pair " + std::to_string(i) + " mode " + mode_name(mode) + " PF " + std::to_string(cfg.PF));
+        ASSERT_EQ(x[i].hits, y[i].hits);
+        ASSERT_EQ(x[i].contacts.size(), y[i].contacts.size());
+        for (size_t k = 0; k < x[i].contacts.size(); ++k) {
+          EXPECT_EQ(x[i].contacts[k].a_in_b, y[i].contacts[k].a_in_b);
+          EXPECT_EQ(x[i].contacts[k].point, y[i].contacts[k].point);
+          EXPECT_EQ(x[i].contacts[k].voxel, y[i].contacts[k].voxel);
+          EXPECT_EQ(x[i].contacts[k].depth, y[i].contacts[k].depth);
+        }
+        EXPECT_LE(x[i].lookups, y[i].lookups);
+        lookups_on += x[i].lookups, lookups_off += y[i].lookups, hits += x[i].hits;
+      }
+      EXPECT_GT(hits, 50u) << mode_name(mode);
+      EXPECT_LT(4 * lookups_on, 3 * lookups_off) << "culling should leave out a quarter of the points of these poses";
+      if (mode == Mode::All && cfg.PF == 8)
+        std::printf("culling: %llu of %llu lookups, %llu hits\n", (unsigned long long)lookups_on,
+                    (unsigned long long)lookups_off, (unsigned long long)hits);
+    }
+  }
+}
+
 TEST(Pairs, BadPosesAndFullMemoryAreErrorsThatNameThePair) {
   auto t = type_of(make_shape("cube"), 0.25);
   PairCollider col(make_device("cpu", DeviceConfig{}), {t, t});
