@@ -4,8 +4,8 @@
 # Builds bench_results, bench_simulate, bench_pair and bench_broadphase in build-results/ (Release), runs them,
 # synthesises voxcd_device at a few fixed-point widths with yosys, draws the plots with gnuplot and splices each
 # table into docs/results.md (bench/splice.sh). The data behind the plots stays in build-results/results/.
-# Full run: 11 to 16 minutes on 2 cores (quiet or loaded); --quick (fewer repeats, poses, sizes and frames): about a
-# minute.
+# Full run: 11 minutes on a quiet 2-core machine with a warm build, up to 30 on a loaded one with a cold build;
+# --quick (fewer repeats, poses, sizes and frames): about a minute once built.
 #
 # Needs the Debian packages gnuplot-nox (plots), yosys (hardware cost) and python3, besides the build's own.
 set -euo pipefail
