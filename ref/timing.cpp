@@ -21,20 +21,23 @@ std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job
   uint64_t t = kFirstSlotLatency;
   uint64_t prev_done = 0;
   size_t r = 0;
-  std::vector<uint64_t> group_hits;
   for (size_t j = 0; j < jobs.size(); ++j) {
     const Job& job = jobs[j];
     const uint64_t count = job.shell_count;
     const uint64_t groups = count == 0 ? 1 : ceil_div(count, L);
-    group_hits.assign(groups, 0);
     uint64_t first_group = groups;  // group of the first hit record
+    uint64_t hit_records = 0, hit_groups = 0, last_group = groups;  // groups with a hit record, the latest one
     for (; r < records.size() && records[r].kind == Record::Hit; ++r) {
       const Record& h = records[r];
       if (h.tag != job.tag || h.point >= count)
         throw std::invalid_argument("timing: hit record " + std::to_string(r) + " does not belong to job " +
                                     std::to_string(j));
       const uint64_t g = h.point / L;
-      ++group_hits[g];
+      if (hit_records && g < last_group)
+        throw std::invalid_argument("timing: hit record " + std::to_string(r) + " of job " + std::to_string(j) +
+                                    " is not in ascending point order");
+      ++hit_records;
+      if (g != last_group) ++hit_groups, last_group = g;
       if (first_group == groups) first_group = g;
     }
     if (r == records.size() || records[r].tag != job.tag)
@@ -57,13 +60,14 @@ std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job
       jt.slots = f + 1 + squashed + bubble;
       jt.points = std::min(count, (f + 1) * L);
     } else {
-      for (uint64_t g = 0; g < groups; ++g) {
-        // Records of the slot: its hit records (ALL only), and the completion record on the job's last slot.
-        const uint64_t recs = (job.mode == Mode::All ? group_hits[g] : 0) + (g + 1 == groups ? 1 : 0);
-        const uint64_t cost = recs > 1 ? recs : 1;
-        if (g + 1 == groups) done_at = t + cost - 1;
-        t += cost;
-      }
+      // A slot takes max(1, its records) cycles: its hit records (ALL only), and the completion record on the
+      // job's last slot. Summed over the slots without a loop over them.
+      const bool all = job.mode == Mode::All;
+      const uint64_t recs = (all ? hit_records : 0) + 1;
+      const uint64_t busy = (all ? hit_groups : 0) + ((all && last_group == groups - 1) ? 0 : 1);
+      const uint64_t total = recs + (groups - busy);
+      done_at = t + total - 1;
+      t += total;
       jt.slots = groups;
       jt.points = count;
     }
