@@ -173,13 +173,13 @@ void part_pairs(const Args& a, std::ostream& md, std::ostream& csv) {
   const Mesh m = make_shape("polytope36");
   const auto reqs = random_poses(a.poses, 0.5, 1.6, 11);
   csv << "series,target,shell_points,map_voxels,voxel_a,voxel_b,us_per_query,hz,ns_per_lookup,device_cycles,"
-         "device_hz,paper_points,paper_hz,paper_ms\n";
+         "device_hz,paper_points,paper_hz,paper_ms,lookups\n";
   const auto [vb, tb] = voxel_for(m, a.map_voxels, [](const ObjectType& t) { return t.voxmap().size(); });
   md << "Pair: two of the paper's 36-face polytopes (about 2 units across), " << a.poses
      << " random poses with B's centre 0.5 to 1.6 from A's (most interpenetrate), A's shell in B's voxmap, ALL "
         "contacts; one query at a time on the cpu backend with one thread (as the paper's single CPU), median of "
      << a.repeats << " runs over all poses. Update rate = 1 / time per query; time per lookup = time per query / "
-        "shell points. Device: the modelled device's cycles for the same jobs (exact timing model, 4 lanes) at "
+        "lookups (the shell points the query submits to the device). Device: the modelled device's cycles for the same jobs (exact timing model, 4 lanes) at "
      << a.clock_mhz << " MHz.\n\n";
   md << "**Fixed voxmap (Table 1, Fig. 12)**: B voxelised at " << bench::fmt("%.4f", vb) << " units: "
      << tb->voxmap().dims()[0] << " x " << tb->voxmap().dims()[1] << " x " << tb->voxmap().dims()[2] << " = "
@@ -205,7 +205,7 @@ void part_pairs(const Args& a, std::ostream& md, std::ostream& csv) {
     csv << "shell," << target << "," << ta->shell().size() << "," << tb->voxmap().size() << "," << va << "," << vb
         << "," << t.seconds * 1e6 << "," << hz << "," << ns << "," << t.cycles << "," << dev_hz << ","
         << (p ? std::to_string(p->points) : "") << "," << (p ? bench::fmt("%g", p->hz) : "") << ","
-        << (p ? bench::fmt("%g", p->ms) : "") << "\n";
+        << (p ? bench::fmt("%g", p->ms) : "") << "," << t.lookups << "\n";
     std::fprintf(stderr, "pairs shell %zu (voxel %.4f): %.1f Hz, %.1f ns/lookup\n", ta->shell().size(), va, hz, ns);
   }
   md << "\n**Voxmap resolution (Fig. 11)**: A and B at the same voxel size (shell at the matching density, the "
@@ -221,7 +221,7 @@ void part_pairs(const Args& a, std::ostream& md, std::ostream& csv) {
     md << "| " << tv->voxmap().size() << " | " << bench::fmt("%.4f", v) << " | " << tv->shell().size() << " | "
        << hz_text(hz) << " | " << bench::fmt("%.3f", ns / 1e3) << " | " << hz_text(dev_hz) << " |\n";
     csv << "map," << target << "," << tv->shell().size() << "," << tv->voxmap().size() << "," << v << "," << v << ","
-        << t.seconds * 1e6 << "," << hz << "," << ns << "," << t.cycles << "," << dev_hz << ",,,\n";
+        << t.seconds * 1e6 << "," << hz << "," << ns << "," << t.cycles << "," << dev_hz << ",,,," << t.lookups << "\n";
     std::fprintf(stderr, "pairs map %llu (voxel %.4f): %.1f Hz\n", (unsigned long long)tv->voxmap().size(), v, hz);
   }
 }

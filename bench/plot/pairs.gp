@@ -17,7 +17,7 @@ set title 'Time per lookup'
 set ylabel 'time per shell-point lookup (us)'
 set key inside right center
 plot f using (strcol(1) eq 'shell' ? $3 : NaN):($9/1000) with linespoints ls 1 title 'ours: cpu backend, 1 thread', \
-     f using (strcol(1) eq 'shell' ? $3 : NaN):(1e6/($11*$3)) with linespoints ls 2 title 'ours: modelled device', \
+     f using (strcol(1) eq 'shell' ? $3 : NaN):(1e6/($11*$15)) with linespoints ls 2 title 'ours: modelled device', \
      f using (strcol(1) eq 'shell' ? $12 : NaN):($14*1000) with linespoints ls 3 dt 2 title 'paper, Table 1'
 unset multiplot
 
