@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# CI's sanitizer step, run after `bash .ci/setup.sh test` (which installs the packages): the test suite built with
+# AddressSanitizer (leaks included) and UndefinedBehaviorSanitizer into build-asan/, without the Verilated RTL and
+# SystemC models (VOXCD_DEVICE_MODELS=OFF: their suites drive generated code, and building them with ASan would take
+# longer than CI allows). Runs every test of that build but the ones labelled slow: ref, backends (ref and cpu),
+# host, cli and the fuzz regressions. Any sanitizer report fails the run. docs/robustness.md, "Sanitizers".
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVOXCD_SANITIZE=ON -DVOXCD_DEVICE_MODELS=OFF \
+      >/dev/null
+# The tests and the tool they run; not bench/ (bench_hardware needs the Verilated models).
+cmake --build build-asan -j2 --target tests/all voxcd
+# UBSan stops at the first error (the build also has -fno-sanitize-recover); LeakSanitizer runs at every exit, with
+# the one suppression tests/lsan.supp explains (a leak inside assimp 5.2.5).
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_init_order=1:detect_stack_use_after_return=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
+export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
+# Left out as well: the rtl-labelled tests this build still has (they need the Verilated models), and
+# Pairs.EveryBackendGivesTheSameContacts, whose hit threshold counts each pair once per backend after the first, so
+# it needs the rtl backend to pass.
+cd build-asan && exec ctest -j2 --output-on-failure -LE "slow|rtl" -E "^backends\.Pairs\.EveryBackendGivesTheSameContacts$" "$@"
