@@ -50,20 +50,20 @@ bool boxes_overlap(const ObjectType& ta, const RigidPose& pa, const ObjectType& 
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-Eigen::Quaterniond random_rotation(std::mt19937_64& rng) {
+}  // namespace
+
+Eigen::Quaterniond scene_rotation(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0, 1);
   return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
 }
 
-Eigen::Vector3d random_direction(std::mt19937_64& rng) {
+Eigen::Vector3d scene_direction(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0, 1);
   Eigen::Vector3d d;
   do d = Eigen::Vector3d(n(rng), n(rng), n(rng));
   while (d.squaredNorm() < 1e-12);
   return d.normalized();
 }
-
-}  // namespace
 
 BodyBounds body_bounds(const ObjectType& t, const Body& b) {
   BodyBounds bb;
@@ -123,7 +123,7 @@ Scene make_scene(const SceneSpec& spec) {
   std::vector<Eigen::Vector3d> centres;
   for (size_t k = 0; k < spec.objects; ++k) {
     Body b;
-    b.pose.rotation = random_rotation(rng);
+    b.pose.rotation = scene_rotation(rng);
     Eigen::Vector3d c;
     bool placed = false;
     for (int attempt = 0; attempt < 10000 && !placed; ++attempt) {
@@ -140,8 +140,8 @@ Scene make_scene(const SceneSpec& spec) {
       throw std::invalid_argument("scene: could not place object " + std::to_string(k) + " without overlap");
     centres.push_back(c);
     b.pose.translation = c - b.pose.rotation * type->centre;
-    b.velocity = random_direction(rng) * (spec.speed * r * u(rng));
-    b.spin = random_direction(rng) * (spec.spin * u(rng));
+    b.velocity = scene_direction(rng) * (spec.speed * r * u(rng));
+    b.spin = scene_direction(rng) * (spec.spin * u(rng));
     scene.bodies.push_back(b);
   }
   return scene;

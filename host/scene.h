@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,11 @@ class Simulation {
   std::vector<PairResult> results_;
   uint64_t frame_ = 0;
 };
+
+// The scenes' random draws (a uniform rotation; a uniform unit direction), one definition so that scene files
+// place bodies exactly as the built-in scene does.
+Eigen::Quaterniond scene_rotation(std::mt19937_64& rng);
+Eigen::Vector3d scene_direction(std::mt19937_64& rng);
 
 // A body's world bounds: its type's smallest enclosing sphere and the world box of its type's local box.
 BodyBounds body_bounds(const ObjectType& t, const Body& b);

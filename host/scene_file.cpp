@@ -103,19 +103,6 @@ class Reader {
   const std::string& where_;
 };
 
-Eigen::Quaterniond random_rotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0, 1);
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-}
-
-Eigen::Vector3d random_direction(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0, 1);
-  Eigen::Vector3d d;
-  do d = Eigen::Vector3d(n(rng), n(rng), n(rng));
-  while (d.squaredNorm() < 1e-12);
-  return d.normalized();
-}
-
 }  // namespace
 
 double SceneFile::smallest_voxel() const {
@@ -304,7 +291,7 @@ Scene make_scene(const SceneFile& f) {
     for (uint64_t k = 0; k < f.types[i].count; ++k) {
       Body b;
       b.type = uint32_t(i);
-      b.pose.rotation = random_rotation(rng);
+      b.pose.rotation = scene_rotation(rng);
       Eigen::Vector3d c;
       bool placed = false;
       for (int attempt = 0; attempt < 10000 && !placed; ++attempt) {
@@ -324,8 +311,8 @@ Scene make_scene(const SceneFile& f) {
       centres.push_back(c);
       radii.push_back(r);
       b.pose.translation = c - b.pose.rotation * type.centre;
-      b.velocity = random_direction(rng) * (f.speed * r * u(rng));
-      b.spin = random_direction(rng) * (f.spin * u(rng));
+      b.velocity = scene_direction(rng) * (f.speed * r * u(rng));
+      b.spin = scene_direction(rng) * (f.spin * u(rng));
       scene.bodies.push_back(b);
     }
   }
