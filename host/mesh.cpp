@@ -305,6 +305,34 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
           throw MeshError(path + ": the PLY header has no end_header line in its first " +
                           std::to_string(head.size()) + " bytes (is the file truncated?)");
       }
+      // assimp's OFF reader allocates for the counts its header declares before reading them: refuse counts the file
+      // cannot hold (a vertex takes at least 5 bytes, "0 0 0", a face at least 7, "3 0 1 2").
+      if (lower_ext(path) == "off") {
+        probe.clear();
+        probe.seekg(0, std::ios::end);
+        const uint64_t size = uint64_t(std::max<std::streamoff>(probe.tellg(), 0));
+        probe.seekg(0);
+        std::string text(size_t(std::min<uint64_t>(size, 4096)), '\0');
+        probe.read(&text[0], std::streamsize(text.size()));
+        std::istringstream in(text);
+        std::string tok;
+        in >> tok;  // OFF
+        std::vector<uint64_t> n;
+        while (n.size() < 2 && in >> tok) {
+          if (tok[0] == '#') {
+            std::getline(in, tok);
+            continue;
+          }
+          char* end = nullptr;
+          const unsigned long long v = std::strtoull(tok.c_str(), &end, 10);
+          if (end == tok.c_str() || *end != '\0') break;
+          n.push_back(v);
+        }
+        if (n.size() == 2 && (n[0] > size / 5 || n[1] > size / 7))
+          throw MeshError(path + ": the OFF header declares " + std::to_string(n[0]) + " vertices and " +
+                          std::to_string(n[1]) + " faces, more than its " + std::to_string(size) +
+                          " bytes can hold (is the file truncated?)");
+      }
     }
     m = load_assimp(path);
   }
