@@ -208,9 +208,9 @@ TEST(Pairs, EveryBackendGivesTheSameContacts) {
           EXPECT_EQ(x.contacts[k].state, y.contacts[k].state);
           EXPECT_EQ(x.contacts[k].position, y.contacts[k].position);
         }
-        hits += x.hits;
+        if (bi == 1) hits += x.hits;
       }
-    EXPECT_GT(hits, 100u) << mode_name(mode);
+    EXPECT_GT(hits, 50u) << mode_name(mode) << ": the poses must touch for the comparison to mean something";
   }
 }
 
