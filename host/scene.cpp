@@ -117,34 +117,47 @@ Scene make_scene(const SceneSpec& spec) {
   scene.types.push_back(type);
   const double r = type->radius;
   if (2 * r >= spec.side) throw std::invalid_argument("scene: the objects do not fit the cube");
-  // Random non-overlapping placement of the bounding spheres.
-  std::mt19937_64 rng(spec.seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Eigen::Vector3d> centres;
-  for (size_t k = 0; k < spec.objects; ++k) {
-    Body b;
-    b.pose.rotation = scene_rotation(rng);
-    Eigen::Vector3d c;
-    bool placed = false;
-    for (int attempt = 0; attempt < 10000 && !placed; ++attempt) {
-      c = Eigen::Vector3d(r + u(rng) * (spec.side - 2 * r), r + u(rng) * (spec.side - 2 * r),
-                          r + u(rng) * (spec.side - 2 * r));
-      placed = true;
-      for (const auto& o : centres)
-        if ((o - c).squaredNorm() < 4 * r * r) {
-          placed = false;
-          break;
-        }
-    }
-    if (!placed)
-      throw std::invalid_argument("scene: could not place object " + std::to_string(k) + " without overlap");
-    centres.push_back(c);
-    b.pose.translation = c - b.pose.rotation * type->centre;
-    b.velocity = scene_direction(rng) * (spec.speed * r * u(rng));
-    b.spin = scene_direction(rng) * (spec.spin * u(rng));
-    scene.bodies.push_back(b);
+  try {
+    place_bodies(scene, {spec.objects}, spec.speed, spec.spin, spec.seed);
+  } catch (const PlacementError& e) {
+    throw std::invalid_argument("scene: could not place object " + std::to_string(e.instance) + " without overlap");
   }
   return scene;
+}
+
+void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> radii;
+  const double side = scene.side;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    const ObjectType& type = *scene.types.at(i);
+    const double r = type.radius;
+    for (uint64_t k = 0; k < counts[i]; ++k) {
+      Body b;
+      b.type = uint32_t(i);
+      b.pose.rotation = scene_rotation(rng);
+      Eigen::Vector3d c;
+      bool placed = false;
+      for (int attempt = 0; attempt < 10000 && !placed; ++attempt) {
+        c = Eigen::Vector3d(r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r));
+        placed = true;
+        for (size_t o = 0; o < centres.size(); ++o)
+          if ((centres[o] - c).squaredNorm() < (r + radii[o]) * (r + radii[o])) {
+            placed = false;
+            break;
+          }
+      }
+      if (!placed) throw PlacementError(uint32_t(i), k);
+      centres.push_back(c);
+      radii.push_back(r);
+      b.pose.translation = c - b.pose.rotation * type.centre;
+      b.velocity = scene_direction(rng) * (speed * r * u(rng));
+      b.spin = scene_direction(rng) * (spin * u(rng));
+      scene.bodies.push_back(b);
+    }
+  }
 }
 
 Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(scene)), opt_(opt) {

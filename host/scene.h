@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,19 @@ class Simulation {
   std::vector<PairResult> results_;
   uint64_t frame_ = 0;
 };
+
+// Places counts[i] bodies of scene.types[i] in the cube [0, scene.side]^3, type by type, appending them to
+// scene.bodies: random non-overlapping enclosing spheres (up to 10,000 tries each), random orientations, velocities
+// of up to `speed` times the type's radius per frame in a random direction and spins of up to `spin` radians per
+// frame. Deterministic for a seed. PlacementError names the body that found no place.
+struct PlacementError : std::runtime_error {
+  PlacementError(uint32_t t, uint64_t k)
+      : std::runtime_error("could not place instance " + std::to_string(k) + " of type " + std::to_string(t)),
+        type(t), instance(k) {}
+  uint32_t type;
+  uint64_t instance;
+};
+void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed);
 
 // The scenes' random draws (a uniform rotation; a uniform unit direction), one definition so that scene files
 // place bodies exactly as the built-in scene does.

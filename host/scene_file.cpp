@@ -279,42 +279,15 @@ Scene make_scene(const SceneFile& f) {
       throw fail(t.key, "the object (radius " + num_text(scene.types.back()->radius) +
                             ") does not fit the cube of side " + num_text(f.side));
   }
-  // Random non-overlapping placement of the bounding spheres, in the order of the types: with one type the same
-  // draws as make_scene(SceneSpec), so the same bodies.
-  std::mt19937_64 rng(f.seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Eigen::Vector3d> centres;
-  std::vector<double> radii;
-  for (size_t i = 0; i < f.types.size(); ++i) {
-    const ObjectType& type = *scene.types[i];
-    const double r = type.radius;
-    for (uint64_t k = 0; k < f.types[i].count; ++k) {
-      Body b;
-      b.type = uint32_t(i);
-      b.pose.rotation = scene_rotation(rng);
-      Eigen::Vector3d c;
-      bool placed = false;
-      for (int attempt = 0; attempt < 10000 && !placed; ++attempt) {
-        c = Eigen::Vector3d(r + u(rng) * (f.side - 2 * r), r + u(rng) * (f.side - 2 * r),
-                            r + u(rng) * (f.side - 2 * r));
-        placed = true;
-        for (size_t o = 0; o < centres.size(); ++o)
-          if ((centres[o] - c).squaredNorm() < (r + radii[o]) * (r + radii[o])) {
-            placed = false;
-            break;
-          }
-      }
-      if (!placed)
-        throw fail(f.types[i].key + ".count", "could not place instance " + std::to_string(k) + " of " +
-                                                  std::to_string(f.types[i].count) +
-                                                  " without overlapping another (the cube is too full)");
-      centres.push_back(c);
-      radii.push_back(r);
-      b.pose.translation = c - b.pose.rotation * type.centre;
-      b.velocity = scene_direction(rng) * (f.speed * r * u(rng));
-      b.spin = scene_direction(rng) * (f.spin * u(rng));
-      scene.bodies.push_back(b);
-    }
+  // With one type, the same draws as make_scene(SceneSpec), so the same bodies.
+  std::vector<uint64_t> counts;
+  for (const auto& t : f.types) counts.push_back(t.count);
+  try {
+    place_bodies(scene, counts, f.speed, f.spin, f.seed);
+  } catch (const PlacementError& e) {
+    const auto& t = f.types[e.type];
+    throw fail(t.key + ".count", "could not place instance " + std::to_string(e.instance) + " of " +
+                                     std::to_string(t.count) + " without overlapping another (the cube is too full)");
   }
   return scene;
 }
