@@ -133,6 +133,8 @@ class PairCollider {
 
   DeviceImage image_;
   std::vector<Clusters> clusters_;
+  // Scratch of add_runs (which clusters survive), kept to avoid an allocation per pair: jobs() is const but, like
+  // collide(), not to be called on one collider from two threads at once.
   mutable std::vector<uint8_t> keep_;
   std::vector<Job> jobs_;
   std::vector<JobSource> sources_;
