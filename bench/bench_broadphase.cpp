@@ -211,7 +211,7 @@ int main(int argc, char** argv) {
   int frames = 300, repeats = 3;
   uint64_t seed = 1;
   double budget = 150;  // seconds a contender may take at one N (projected from the last N); beyond, it is skipped
-  std::string out_path, csv_path, command = "bench_broadphase";
+  std::string out_path, csv_path, only, command = "bench_broadphase";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     command += " " + a;
@@ -228,9 +228,10 @@ int main(int argc, char** argv) {
     else if (a == "--budget") budget = std::stod(next());
     else if (a == "--out") out_path = next();
     else if (a == "--csv") csv_path = next();
+    else if (a == "--only") only = "," + next() + ",";
     else {
       std::cerr << "usage: bench_broadphase [--min-n N] [--max-n N] [--frames F] [--repeats R] [--seed S] "
-                   "[--budget SECONDS] [--out FILE] [--csv FILE]\n";
+                   "[--budget SECONDS] [--out FILE] [--csv FILE] [--only LABEL,LABEL...]\n";
       return 2;
     }
   }
@@ -238,6 +239,7 @@ int main(int argc, char** argv) {
       {"sap", "box", [] { return std::make_unique<Ours>("sap"); }, true},
       {"coherent", "box", [] { return std::make_unique<Ours>("coherent"); }, true},
       {"tree", "box", [] { return std::make_unique<Ours>("tree"); }, true},
+      {"grid", "box", [] { return std::make_unique<Ours>("grid"); }, true},
       {"Bullet axis sweep", "box", [] { return std::make_unique<BulletBp>(true); }, false},
       {"Bullet dbvt", "box", [] { return std::make_unique<BulletBp>(false); }, false},
       {"FCL dynamic tree", "box", [] { return std::make_unique<FclBp>(true); }, false},
@@ -248,6 +250,8 @@ int main(int argc, char** argv) {
   const size_t ne = entries.size();
   std::vector<double> last(ne, 0);     // seconds a frame at the previous N
   std::vector<bool> skipped(ne, false);
+  for (size_t k = 0; k < ne; ++k)
+    if (!only.empty() && only.find("," + entries[k].label + ",") == std::string::npos) skipped[k] = true;
   std::ostringstream table, notes;
   table << "| N | radius | box pairs/frame | ";
   for (const auto& e : entries) table << e.label << " | ";
@@ -263,16 +267,18 @@ int main(int argc, char** argv) {
     double mean_pairs = 0;
     std::vector<double> mean_raw(ne, 0);
     for (size_t k = 0; k < ne; ++k) {
-      if (skipped[k]) continue;
-      if (entries[k].label == "queue" && n > 8192) {
+      if (!skipped[k] && entries[k].label == "queue" && n > 8192) {
         skipped[k] = true;
         notes << "- queue: not run beyond 8192 bodies (it keeps all n(n-1)/2 pair wake-up times).\n";
-        continue;
       }
-      std::vector<double> per_frame;
-      std::vector<uint64_t> counts;
-      double raw = 0;
-      for (int r = 0; r < repeats; ++r) {
+    }
+    // Repeats outermost, so that a burst of load on this shared machine falls on every contender alike.
+    std::vector<std::vector<double>> per_frame(ne);
+    std::vector<std::vector<uint64_t>> counts(ne);
+    std::vector<double> raws(ne, 0);
+    for (int r = 0; r < repeats; ++r) {
+      for (size_t k = 0; k < ne; ++k) {
+        if (skipped[k]) continue;
         Scene scene(n, seed);
         auto c = entries[k].make();
         c->reset(scene.bounds());
@@ -284,27 +290,31 @@ int main(int argc, char** argv) {
           c->frame(scene.bounds());
           total += bench::now_seconds() - t0;
           if (check) {
-            counts.push_back(c->count(scene.bounds()));
-            raw += double(c->raw());
+            counts[k].push_back(c->count(scene.bounds()));
+            raws[k] += double(c->raw());
           }
         }
-        per_frame.push_back(total / frames);
+        per_frame[k].push_back(total / frames);
       }
-      t[k] = bench::median(per_frame);
+    }
+    for (size_t k = 0; k < ne; ++k) {
+      if (skipped[k]) continue;
+      const double raw = raws[k];
+      t[k] = bench::median(per_frame[k]);
       mean_raw[k] = raw / frames;
       auto& ref = reference[entries[k].predicate];
       if (ref.empty()) {
-        ref = counts;
+        ref = counts[k];
         if (entries[k].predicate == "box") {
           double s = 0;
-          for (auto c : counts) s += double(c);
+          for (auto c : counts[k]) s += double(c);
           mean_pairs = s / frames;
         }
-      } else if (ref != counts) {
+      } else if (ref != counts[k]) {
         all_agree = false;
         size_t f = 0;
-        while (f < counts.size() && counts[f] == ref[f]) ++f;
-        notes << "- MISMATCH at N = " << n << ": " << entries[k].label << " reports " << counts[f]
+        while (f < counts[k].size() && counts[k][f] == ref[f]) ++f;
+        notes << "- MISMATCH at N = " << n << ": " << entries[k].label << " reports " << counts[k][f]
               << " exact pairs at frame " << f + 1 << ", the first " << entries[k].predicate
               << " contender " << ref[f] << ".\n";
       }
@@ -357,7 +367,7 @@ int main(int argc, char** argv) {
      << ", one thread. Scene: cube of side " << kSide << ", " << kDensity * 100
      << "% density of equal spheres, velocities up to " << kSpeed
      << " radius a frame, bouncing off the walls; seed " << seed << ". Made by `" << command << "`.\n\n"
-     << "Ours: `sap`, `coherent`, `tree` (box overlap; timed: `update()`, which reads the bodies' bounds and "
+     << "Ours: `sap`, `coherent`, `tree`, `grid` (box overlap; timed: `update()`, which reads the bodies' bounds and "
         "returns the sorted exact pairs), `sphere` and `queue` (sphere overlap). Peers: Bullet "
      << BT_BULLET_VERSION / 100 << "." << BT_BULLET_VERSION % 100 << " (single precision; timed: `setAabb` of every proxy and "
         "`calculateOverlappingPairs`; axis sweep is `btAxisSweep3` below 16000 bodies and `bt32BitAxisSweep3` "

@@ -116,7 +116,7 @@ class SpherePairs final : public BroadphaseBase {
 }  // namespace
 }  // namespace detail
 
-std::vector<std::string> broadphase_names() { return {"all", "sphere", "sap", "coherent", "queue", "tree"}; }
+std::vector<std::string> broadphase_names() { return {"all", "sphere", "sap", "coherent", "queue", "tree", "grid"}; }
 
 std::unique_ptr<Broadphase> make_broadphase(const std::string& name) {
   if (name == "all") return std::make_unique<detail::AllPairs>();
@@ -125,6 +125,7 @@ std::unique_ptr<Broadphase> make_broadphase(const std::string& name) {
   if (name == "coherent") return detail::make_coherent();
   if (name == "queue") return detail::make_queue();
   if (name == "tree") return detail::make_tree();
+  if (name == "grid") return detail::make_grid();
   std::string known;
   for (const auto& n : broadphase_names()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown broadphase '" + name + "' (known: " + known + ")");

@@ -61,7 +61,7 @@ class Broadphase {
 // "all" (every pair, the paper's baseline), "sphere" (bounding spheres, all pairs tested), "sap" (sort and sweep on
 // AABBs, the paper's fast AABB), "coherent" (sweep and prune kept sorted by insertion sort from the last frame),
 // "queue" (priority queue of wake-up times from the motion bounds, sphere predicate), "tree" (dynamic AABB tree,
-// for large N).
+// for large N), "grid" (uniform grid rebuilt every frame, in levels by box size).
 std::vector<std::string> broadphase_names();
 // Throws std::invalid_argument naming the unknown name and listing the known ones.
 std::unique_ptr<Broadphase> make_broadphase(const std::string& name);

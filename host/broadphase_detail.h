@@ -66,5 +66,6 @@ std::unique_ptr<Broadphase> make_sap();
 std::unique_ptr<Broadphase> make_coherent();
 std::unique_ptr<Broadphase> make_queue();
 std::unique_ptr<Broadphase> make_tree();
+std::unique_ptr<Broadphase> make_grid();
 
 }  // namespace voxcd::detail

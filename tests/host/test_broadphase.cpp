@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -32,6 +33,7 @@ struct SceneOptions {
   double world = 100;      // bodies live in [0, world]^3
   bool dyadic = false;     // coordinates, sizes and velocities multiples of 1/4: many exact touches
   double max_half = 5;     // largest half side
+  double min_half = 0.05;  // smallest half side (but for the points)
   double teleport = 0.01;  // chance a frame that a body jumps (flagged)
   double kick = 0.01;      // chance a frame that a body gets a new, faster velocity (flagged)
   bool flag = true;        // false: kicks are not flagged (breaks the motion bounds)
@@ -117,7 +119,7 @@ class TestScene {
     } else if (s < 0.1) {
       b.half = Vec::Constant(o_.max_half * 3);  // a few large bodies
     } else {
-      for (int a = 0; a < 3; ++a) b.half[a] = std::exp(uni(std::log(0.05), std::log(o_.max_half)));
+      for (int a = 0; a < 3; ++a) b.half[a] = std::exp(uni(std::log(o_.min_half), std::log(o_.max_half)));
     }
     b.p = random_position(b.half);
     const double k = uni(0, 1);
@@ -222,6 +224,14 @@ TEST_P(EachBroadphase, MatchesBruteForceOnRandomScenes) {
     o.kick = 0.1;
     cases.push_back({o, 40});
   }
+  {  // sizes over five orders of magnitude (box sizes at every level of a grid's hierarchy)
+    SceneOptions o;
+    o.n = 400;
+    o.world = 100;
+    o.min_half = 1e-4;
+    o.max_half = 8;
+    cases.push_back({o, 30});
+  }
   {  // a few thousand: the paper's density, small bodies
     SceneOptions o;
     o.n = 2500;
@@ -293,12 +303,12 @@ INSTANTIATE_TEST_SUITE_P(Broadphase, EachBroadphase, ::testing::ValuesIn(broadph
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 
 TEST(Broadphase, NamesAndPredicates) {
-  const std::vector<std::string> want = {"all", "sphere", "sap", "coherent", "queue", "tree"};
+  const std::vector<std::string> want = {"all", "sphere", "sap", "coherent", "queue", "tree", "grid"};
   EXPECT_EQ(broadphase_names(), want);
   EXPECT_EQ(make_broadphase("all")->predicate(), "all");
   EXPECT_EQ(make_broadphase("sphere")->predicate(), "sphere");
   EXPECT_EQ(make_broadphase("queue")->predicate(), "sphere");
-  for (const char* n : {"sap", "coherent", "tree"}) EXPECT_EQ(make_broadphase(n)->predicate(), "box") << n;
+  for (const char* n : {"sap", "coherent", "tree", "grid"}) EXPECT_EQ(make_broadphase(n)->predicate(), "box") << n;
 }
 
 TEST(Broadphase, UnknownNameListsTheNames) {
@@ -309,6 +319,65 @@ TEST(Broadphase, UnknownNameListsTheNames) {
     const std::string m = e.what();
     EXPECT_NE(m.find("octree"), std::string::npos) << m;
     for (const auto& n : broadphase_names()) EXPECT_NE(m.find(n), std::string::npos) << m;
+  }
+}
+
+// Degenerate and extreme inputs of the box broadphases against brute force: every body at one point, points on
+// a line, tiny boxes spread over 10^9, and boxes near the largest doubles (whose sides overflow to infinity).
+TEST(Broadphase, DegenerateAndExtremeScenesGiveTheExactPairs) {
+  auto body = [](Vec lo, Vec hi) {
+    BodyBounds b;
+    b.box.lo = lo;
+    b.box.hi = hi;
+    b.centre = 0.5 * lo + 0.5 * hi;
+    b.radius = 0;
+    return b;
+  };
+  std::vector<std::pair<std::string, std::vector<BodyBounds>>> scenes;
+  std::mt19937_64 rng(test::seed());
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  {
+    std::vector<BodyBounds> s(60, body(Vec(1, 2, 3), Vec(1, 2, 3)));
+    scenes.push_back({"one point", s});
+  }
+  {
+    std::vector<BodyBounds> s;
+    for (int i = 0; i < 200; ++i) {
+      const double x = std::floor(uni(0, 50));
+      s.push_back(body(Vec(x, 0, 0), Vec(x, 0, 0)));
+    }
+    scenes.push_back({"points on a line", s});
+  }
+  {
+    std::vector<BodyBounds> s;
+    for (int i = 0; i < 300; ++i) {
+      const Vec lo(uni(-1e9, 1e9), uni(-1e9, 1e9), uni(-1e-3, 1e-3));
+      s.push_back(body(lo, lo + Vec::Constant(i % 3 ? 1e-9 : 1e8)));
+    }
+    scenes.push_back({"tiny and large boxes spread over 1e9", s});
+  }
+  {
+    const double big = std::numeric_limits<double>::max();
+    std::vector<BodyBounds> s;
+    for (int i = 0; i < 100; ++i) {
+      const Vec c(uni(-1, 1), uni(-1, 1), uni(-1, 1));
+      if (i % 10 == 0)
+        s.push_back(body(Vec::Constant(-big), Vec::Constant(big)));
+      else if (i % 10 == 1)
+        s.push_back(body(c * big, c * big));
+      else
+        s.push_back(body(c * 10, c * 10 + Vec::Constant(0.5)));
+    }
+    scenes.push_back({"boxes as wide as the doubles", s});
+  }
+  for (const auto& name : broadphase_names()) {
+    auto bp = make_broadphase(name);
+    if (bp->predicate() != "box") continue;
+    uint64_t frame = 0;
+    for (const auto& [what, bodies] : scenes) {
+      bp->update(bodies, frame++);
+      EXPECT_EQ(bp->pairs(), brute_force("box", bodies)) << name << ": " << what << ", seed " << test::seed();
+    }
   }
 }
 
