@@ -50,7 +50,8 @@ T masked(int64_t v, int width) {
 template <class Model>
 class RtlDevice final : public Device {
  public:
-  RtlDevice(const DeviceConfig& cfg, const DeviceOptions& opt) : cfg_(cfg), opt_(opt), stall_rng_(opt.stall_seed) {
+  RtlDevice(const DeviceConfig& cfg, const DeviceOptions& opt, const RtlFaults& faults)
+      : cfg_(cfg), opt_(opt), faults_(faults), stall_rng_(opt.stall_seed) {
     ctx_ = std::make_unique<VerilatedContext>();
     ctx_->fatalOnError(false);  // an assertion in the RTL becomes a DeviceError here, not an abort
     if (!opt_.trace_path.empty()) ctx_->traceEverOn(true);
@@ -78,6 +79,7 @@ class RtlDevice final : public Device {
 
   void load(const DeviceMemory& mem) override {
     validate_memory(cfg_, mem);
+    enter();
     Model& m = *model_;
     const size_t n = std::max(mem.shell.size(), mem.map.size());
     for (size_t k = 0; k < n; ++k) {
@@ -102,6 +104,7 @@ class RtlDevice final : public Device {
 
   std::vector<Record> run(const std::vector<Job>& jobs) override {
     for (const Job& j : jobs) validate_job(cfg_, j, shell_words_, map_words_);
+    enter();
     Model& m = *model_;
     std::vector<Record> out;
     std::bernoulli_distribution hit_stall(opt_.hit_stall_prob), done_stall(opt_.done_stall_prob);
@@ -109,7 +112,9 @@ class RtlDevice final : public Device {
     uint64_t idle = 0;
     // A job takes at most one cycle per point and record plus the pipeline; allow far more before giving up.
     const uint64_t patience = 1000 + 64 * (uint64_t{1} << cfg_.SAW);
-    while (dones < jobs.size()) {
+    const size_t completions = jobs.size() - (faults_.miss_last_completion && !jobs.empty() ? 1 : 0);
+    bool wrote_while_busy = false;
+    while (dones < completions) {
       m.job_valid_i = next < jobs.size();
       if (m.job_valid_i) drive_job(jobs[next]);
       m.hit_ready_i = !hit_stall(stall_rng_);
@@ -131,6 +136,10 @@ class RtlDevice final : public Device {
       }
       tick();
       if (job_fire) ++next;
+      if (faults_.write_while_busy) {  // for the next edge, once
+        m.map_we_i = m.busy_o && !wrote_while_busy;
+        wrote_while_busy = wrote_while_busy || m.map_we_i;
+      }
       idle = progress ? 0 : idle + 1;
       if (idle > patience)
         throw DeviceError("rtl: no record for " + std::to_string(idle) + " cycles after " +
@@ -179,6 +188,11 @@ class RtlDevice final : public Device {
     m.job_t2_i = masked<uint64_t>(j.t[2], tw);
   }
 
+  // Verilator reports a failed assertion to the calling thread's current context, and making any context makes
+  // it the current one: make it this model's own before driving the pins, or a failure would be another
+  // device's (tests/rtl/test_rtl_faults.cpp).
+  void enter() { Verilated::threadContextp(ctx_.get()); }
+
   void reset() {
     Model& m = *model_;
     m.clk_i = 0;
@@ -217,6 +231,7 @@ class RtlDevice final : public Device {
 
   DeviceConfig cfg_;
   DeviceOptions opt_;
+  RtlFaults faults_;
   std::mt19937_64 stall_rng_;
   std::unique_ptr<VerilatedContext> ctx_;
   std::unique_ptr<Model> model_;
@@ -238,10 +253,15 @@ std::vector<DeviceConfig> rtl_configs() {
 }
 
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
+  return make_rtl_device(cfg, opt, RtlFaults{});
+}
+
+std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt, const RtlFaults& faults) {
   cfg.validate();
   // A model of exactly this configuration (lanes included), built from the list in tests/scenes/configs.txt.
-#define VOXCD_RTL_CONFIG_ENTRY(model, pairs) \
-  if (cfg == parse_config_pairs(pairs, "rtl model " #model)) return std::make_unique<RtlDevice<model>>(cfg, opt);
+#define VOXCD_RTL_CONFIG_ENTRY(model, pairs)                \
+  if (cfg == parse_config_pairs(pairs, "rtl model " #model)) \
+    return std::make_unique<RtlDevice<model>>(cfg, opt, faults);
   VOXCD_RTL_CONFIG_MODELS(VOXCD_RTL_CONFIG_ENTRY)
 #undef VOXCD_RTL_CONFIG_ENTRY
   DeviceConfig built;  // the other models are built for the default widths
@@ -253,10 +273,10 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
                       " with LANES 1, 2, 4, 8)" + extra + ", not for " + cfg.to_string());
   }
   switch (cfg.LANES) {
-    case 1: return std::make_unique<RtlDevice<Vvoxcd_l1>>(cfg, opt);
-    case 2: return std::make_unique<RtlDevice<Vvoxcd_l2>>(cfg, opt);
-    case 4: return std::make_unique<RtlDevice<Vvoxcd_l4>>(cfg, opt);
-    case 8: return std::make_unique<RtlDevice<Vvoxcd_l8>>(cfg, opt);
+    case 1: return std::make_unique<RtlDevice<Vvoxcd_l1>>(cfg, opt, faults);
+    case 2: return std::make_unique<RtlDevice<Vvoxcd_l2>>(cfg, opt, faults);
+    case 4: return std::make_unique<RtlDevice<Vvoxcd_l4>>(cfg, opt, faults);
+    case 8: return std::make_unique<RtlDevice<Vvoxcd_l8>>(cfg, opt, faults);
     default: break;
   }
   throw DeviceError("rtl: this build has models for LANES 1, 2, 4 and 8, not LANES " + std::to_string(cfg.LANES));
@@ -267,8 +287,12 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
 std::vector<int> rtl_lanes() { return {}; }
 std::vector<DeviceConfig> rtl_configs() { return {}; }
 
-std::unique_ptr<Device> make_rtl_device(const DeviceConfig&, const DeviceOptions&) {
+std::unique_ptr<Device> make_rtl_device(const DeviceConfig&, const DeviceOptions&, const RtlFaults&) {
   throw DeviceError("rtl: this build has no RTL models (Verilator was not found at configure time)");
+}
+
+std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
+  return make_rtl_device(cfg, opt, RtlFaults{});
 }
 
 #endif

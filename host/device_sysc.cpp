@@ -73,15 +73,15 @@ class SyscDevice final : public Device {
       throw DeviceError(name_ + ": cannot start " + path + ": " + std::strerror(rc) +
                         " (set VOXCD_SYSC_SERVER to the voxcd_sysc_server program)");
     }
-    expect_ok("starting");
-  }
-
-  ~SyscDevice() override {
-    ::close(fd_);  // the server ends at the end of its input
-    int status = 0;
-    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    try {
+      expect_ok("starting");
+    } catch (...) {
+      stop();  // no destructor runs for a constructor that throws
+      throw;
     }
   }
+
+  ~SyscDevice() override { stop(); }
 
   std::string name() const override { return name_; }
   const DeviceConfig& config() const override { return cfg_; }
@@ -121,21 +121,30 @@ class SyscDevice final : public Device {
     send(ch);
     expect_ok("running");
     std::vector<Record> out(read_u64());
-    // All records in one read (not one read per record), then decoded.
+    // All records in one read (not one read per record), and the whole answer read before any record is
+    // decoded: a bad record must not leave the rest of the answer to be taken for the next one.
     std::vector<uint8_t> rb(out.size() * sysc::kRecordBytes);
     if (!rb.empty()) read_bytes(rb.data(), rb.size());
+    last_sim_ps_ = read_u64();
+    const uint64_t wall_ns = read_u64();
     for (size_t i = 0; i < out.size(); ++i)
       if (!sysc::decode_record(rb.data() + i * sysc::kRecordBytes, out[i]))
-        throw DeviceError(name_ + ": the server sent an empty record");
-    last_sim_ps_ = read_u64();
+        throw DeviceError(name_ + ": the server sent an empty record (record " + std::to_string(i) + " of " +
+                          std::to_string(out.size()) + ")");
     last_.simulated_s = double(last_sim_ps_ - before) * 1e-12;
-    last_.wall_s = double(read_u64()) * 1e-9;
+    last_.wall_s = double(wall_ns) * 1e-9;
     return out;
   }
 
   SyscRunTime last_run() const { return last_; }
 
  private:
+  void stop() {
+    ::close(fd_);  // the server ends at the end of its input
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
   void send(sysc::Channel& ch) {
     try {
       ch.flush();

@@ -183,7 +183,7 @@ sc_time RtlTarget::write_memory(MemRequest& req) {
   return sc_time_stamp();
 }
 
-void RtlTarget::launch(std::vector<Job> jobs, sc_time t) { batches_.push_back({t, std::move(jobs)}); }
+void RtlTarget::launch(std::vector<Job>& jobs, sc_time t) { batches_.push_back({t, std::move(jobs)}); }
 
 void RtlTarget::advance_to(sc_time t) {
   // Records taken at an edge at or before t are readable at t, whether or not the clocked method has run yet.
@@ -262,8 +262,10 @@ void RtlTarget::on_edge() {
     }
   }
 
-  // Memory writes wait until every launched batch is done and the device is idle.
-  if (mem_ && !mem_->started && mem_->time < sc_time_stamp() && !busy() && !p.busy_o.read()) mem_->started = true;
+  // Memory writes wait until every launched batch is done and the device is idle (unless start_writes_while_busy).
+  if (mem_ && !mem_->started && mem_->time < sc_time_stamp() &&
+      ((!busy() && !p.busy_o.read()) || !writes_wait_for_idle_))
+    mem_->started = true;
   const bool writing = mem_ && mem_->started;
   if (writing) drive_word(*mem_);
   p.shell_we_i.write(writing && mem_->shell);

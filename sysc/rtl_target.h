@@ -36,6 +36,10 @@ class RtlTarget final : public DeviceTarget {
   // Clock edges simulated so far.
   uint64_t edges() const { return edge_; }
 
+  // Test-only fault injection (tests/sysc): memory writes start without waiting for the device to be idle, so a
+  // write while a batch runs makes the RTL's assertion fail and the target fault. The platform never calls it.
+  void start_writes_while_busy() { writes_wait_for_idle_ = false; }
+
  private:
   struct MemRequest {
     sc_core::sc_time time;
@@ -57,7 +61,7 @@ class RtlTarget final : public DeviceTarget {
   sc_core::sc_time write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_core::sc_time t) override;
   sc_core::sc_time write_map(uint64_t first, const std::vector<uint64_t>& words, sc_core::sc_time t) override;
   sc_core::sc_time write_memory(MemRequest& req);
-  void launch(std::vector<Job> jobs, sc_core::sc_time t) override;
+  void launch(std::vector<Job>& jobs, sc_core::sc_time t) override;
   void advance_to(sc_core::sc_time t) override;
   sc_core::sc_time await_results(size_t n, sc_core::sc_time t) override;
   bool busy() const override { return running_ || !batches_.empty(); }
@@ -78,6 +82,7 @@ class RtlTarget final : public DeviceTarget {
   sc_core::sc_event edge_event_, results_event_, mem_event_;
   uint64_t edge_ = 0;
   bool fault_ = false;
+  bool writes_wait_for_idle_ = true;
   MemRequest* mem_ = nullptr;
   std::deque<Batch> batches_;  // launched; the front one runs when running_
   bool running_ = false;

@@ -1,11 +1,13 @@
 // Bad inputs that docs/robustness.md lists and no other suite drives: object types that do not fit the device, pairs
 // that name a type that does not exist, a job with a mode outside the enum, shell points outside a narrow PW, bad
-// voxelisation and object options, inconsistent objects given to write_object, scene specs out of range, and the
-// queue broadphase's body limit. Each error must say what is wrong and where (the name, the field, the value).
+// voxelisation and object options, inconsistent objects given to write_object, scene specs out of range, the
+// queue broadphase's body limit, a device whose record stream does not match its jobs, and an open mesh given to
+// the voxeliser without validation. Each error must say what is wrong and where (the name, the field, the value).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +19,7 @@
 #include "host/point_shell.h"
 #include "host/scene.h"
 #include "host/shapes.h"
+#include "host/voxelize.h"
 #include "ref/pipeline.h"
 #include "tests/host/test_util.h"
 
@@ -239,6 +242,123 @@ TEST(Robustness, DeviceWordsOfAnImpossibleMemoryWidthAreAnError) {
     EXPECT_EQ(error_text<std::invalid_argument>([&] { obj.voxmap.device_words(memw); }),
               "MEMW must be a power of two in 2..64, got " + std::to_string(memw));
   EXPECT_EQ(obj.voxmap.device_words(64), obj.voxmap.words());
+}
+
+// A device that runs the ref backend and spoils the stream of its next run as told: one record after the last
+// completion, or the last completion left out. PairCollider must refuse both streams.
+class SpoilingDevice final : public Device {
+ public:
+  enum class Spoil { None, ExtraRecord, MissingCompletion };
+  explicit SpoilingDevice(const DeviceConfig& cfg) : inner_(make_device("ref", cfg)) {}
+  std::string name() const override { return "spoiling"; }
+  const DeviceConfig& config() const override { return inner_->config(); }
+  bool models_cycles() const override { return true; }
+  void load(const DeviceMemory& mem) override { inner_->load(mem); }
+  std::vector<Record> run(const std::vector<Job>& jobs) override {
+    std::vector<Record> out = inner_->run(jobs);
+    if (next == Spoil::ExtraRecord) out.push_back(Record::hit(0, 0, 0, 0, 0, 1));
+    if (next == Spoil::MissingCompletion) out.pop_back();
+    next = Spoil::None;
+    return out;
+  }
+  Spoil next = Spoil::None;
+
+ private:
+  std::unique_ptr<Device> inner_;
+};
+
+bool same_results(const std::vector<PairResult>& a, const std::vector<PairResult>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i].hits != b[i].hits || a[i].lookups != b[i].lookups || a[i].contacts.size() != b[i].contacts.size())
+      return false;
+    for (size_t k = 0; k < a[i].contacts.size(); ++k) {
+      const Contact &x = a[i].contacts[k], &y = b[i].contacts[k];
+      if (x.pair != y.pair || x.a_in_b != y.a_in_b || x.point != y.point || x.voxel != y.voxel || x.state != y.state)
+        return false;
+    }
+  }
+  return true;
+}
+
+TEST(Robustness, DeviceStreamThatDoesNotMatchTheJobsIsADeviceError) {
+  const auto t = type_of("cube", 0.25);
+  auto owned = std::make_unique<SpoilingDevice>(DeviceConfig{});
+  SpoilingDevice* dev = owned.get();
+  PairCollider col(std::move(owned), {t, t});
+  std::vector<PairRequest> reqs(3);
+  reqs[1].pose_b.translation = Eigen::Vector3d(0.5, 0.25, 0);
+  reqs[2].pose_b.translation = Eigen::Vector3d(5, 0, 0);  // apart: no contact
+  PairOptions opt;
+  opt.both_directions = true;
+  const size_t jobs = col.jobs(reqs, opt).size();
+  ASSERT_GE(jobs, 4u);
+  const std::vector<PairResult> good = col.collide(reqs, opt);
+  ASSERT_GT(good[0].contacts.size(), 0u);
+  ASSERT_GT(good[1].contacts.size(), 0u);
+
+  // A record after the last completion: refused before any result is touched.
+  std::vector<PairResult> out = good;
+  dev->next = SpoilingDevice::Spoil::ExtraRecord;
+  EXPECT_EQ(error_text<DeviceError>([&] { col.collide(reqs, opt, out); }),
+            "the device returned records after the completions of all " + std::to_string(jobs) + " jobs");
+  EXPECT_TRUE(same_results(out, good)) << "the refused batch changed the results";
+
+  // The last completion missing: found when the results are routed, so `out` holds a partial batch.
+  dev->next = SpoilingDevice::Spoil::MissingCompletion;
+  EXPECT_EQ(error_text<DeviceError>([&] { col.collide(reqs, opt, out); }),
+            "the device returned fewer completions than the " + std::to_string(jobs) + " jobs it was given");
+
+  // Neither loses the collider's types or the device's memory: the next batch is the same as the first.
+  col.collide(reqs, opt, out);
+  EXPECT_TRUE(same_results(out, good));
+  EXPECT_TRUE(same_results(col.collide(reqs, opt), good));
+}
+
+// voxelize and make_object expect a mesh that prepare() has validated (load_mesh and make_shape do); given an open
+// mesh without it, the parity fill finds a column ray that crosses the surface an odd number of times, and names it.
+TEST(Robustness, OpenMeshThatSkippedValidationIsAnOddCrossingError) {
+  Mesh m = make_shape("cube");
+  // Drop one triangle of a face the x rays cross.
+  size_t drop = m.size();
+  for (size_t t = 0; t < m.size() && drop == m.size(); ++t) {
+    const Eigen::Vector3d n = (m.corner(t, 1) - m.corner(t, 0)).cross(m.corner(t, 2) - m.corner(t, 0));
+    if (std::abs(n.x()) > 0.99 * n.norm()) drop = t;
+  }
+  ASSERT_LT(drop, m.size());
+  const Eigen::Vector3d a = m.corner(drop, 0), b = m.corner(drop, 1), c = m.corner(drop, 2);
+  m.triangles.erase(m.triangles.begin() + long(drop));
+  m.name = "open cube";
+  EXPECT_HAS(error_text<MeshError>([&] {
+               Mesh copy = m;
+               prepare(copy);
+             }),
+             "open cube: the mesh is open");
+
+  VoxelizeOptions vo;
+  vo.voxel = 0.25;
+  vo.shift = Eigen::Vector3d(0.3, 0.37, 0.61);  // no column centre on the dropped triangle's edges
+  const std::string e = error_text<MeshError>([&] { voxelize(m, vo); });
+  std::smatch g;
+  ASSERT_TRUE(std::regex_match(
+      e, g, std::regex(R"(open cube: the ray through column \(y (\d+), z (\d+)\) crosses the surface an odd number of times)")))
+      << e;
+  // The named column's ray passes through the dropped triangle (its centre lies inside the triangle's projection
+  // onto the y-z plane), so it crosses the cube once.
+  const GridPlacement gp = place_grid(m, vo);
+  const double y = gp.origin.y() + vo.voxel * (std::stoi(g[1]) + 0.5);
+  const double z = gp.origin.z() + vo.voxel * (std::stoi(g[2]) + 0.5);
+  const auto side = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+    return (q.y() - p.y()) * (z - p.z()) - (q.z() - p.z()) * (y - p.y());
+  };
+  const double s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
+  EXPECT_TRUE((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0))
+      << "column centre (" << y << ", " << z << ") is outside the dropped triangle";
+
+  ObjectOptions oo;
+  oo.voxel = vo.voxel;
+  oo.shift = vo.shift;
+  EXPECT_EQ(error_text<MeshError>([&] { make_object(m, m.name, 0, oo); }), e);
 }
 
 }  // namespace

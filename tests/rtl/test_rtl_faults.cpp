@@ -1,0 +1,140 @@
+// The rtl backend's checks on a device that misbehaves: a failed RTL assertion, no progress, and records or
+// activity after the last completion record. A correct device and host never do these, so all but the timeout are
+// made with the test-only RtlFaults of host/device_rtl.h (the timeout only needs consumers that are never ready).
+// Each error must say what happened, leave the caller's records as they were, and belong to the device that failed.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <regex>
+#include <string>
+
+#include "host/device.h"
+#include "host/device_rtl.h"
+#include "ref/pipeline.h"
+
+namespace voxcd {
+namespace {
+
+// `points` shell points at the origin and a 4x4x4 voxmap of surface voxels: with M = 0 and t = 0 every point of a
+// job hits voxel (0, 0, 0), whatever the widths.
+DeviceMemory origin_memory(const DeviceConfig& cfg, size_t points) {
+  DeviceMemory m;
+  m.shell.assign(points, ShellWord{});
+  const uint64_t per_word = uint64_t(cfg.MEMW) / 2;
+  const uint64_t surface = cfg.MEMW == 64 ? 0x5555555555555555ull : 0x5555555555555555ull & ((1ull << cfg.MEMW) - 1);
+  m.map.assign((64 + per_word - 1) / per_word, surface);
+  return m;
+}
+
+Job origin_job(uint32_t tag, Mode mode, uint32_t count) {
+  Job j;
+  j.tag = tag;
+  j.mode = mode;
+  j.shell_count = count;
+  j.nx = j.ny = j.nz = 4;
+  return j;
+}
+
+// The text of the DeviceError that fn throws; a failure when it throws nothing or something else.
+template <class Fn>
+std::string device_error(Fn&& fn) {
+  try {
+    fn();
+  } catch (const DeviceError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "threw another type: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "threw nothing";
+  return "";
+}
+
+// What a caller holds from an earlier batch; no failed run may touch it.
+const std::vector<Record> kEarlier = {Record::hit(7, 1, 2, 3, 0, 1), Record::done(7, 1, 42)};
+
+void expect_untouched(const std::vector<Record>& out) {
+  ASSERT_EQ(out.size(), kEarlier.size());
+  for (size_t i = 0; i < out.size(); ++i) EXPECT_TRUE(out[i].same_as(kEarlier[i], true)) << out[i].to_string();
+}
+
+const std::regex kAssertion(R"(rtl: an assertion in the RTL failed at cycle \d+ \(its message is printed above\))");
+
+TEST(RtlFaults, FailedAssertionIsADeviceErrorOfTheDeviceThatFailed) {
+  DeviceConfig cfg;
+  cfg.LANES = 2;
+  const DeviceMemory mem = origin_memory(cfg, 64);
+  const std::vector<Job> jobs = {origin_job(1, Mode::All, 64)};
+  RtlFaults faults;
+  faults.write_while_busy = true;
+  auto bad = make_rtl_device(cfg, {}, faults);
+  bad->load(mem);
+  // Made after the failing device, so its context is the thread's current one when the failing device runs:
+  // the failure must still be the failing device's, not this one's.
+  auto good = make_device("rtl", cfg);
+  good->load(mem);
+
+  std::vector<Record> out = kEarlier;
+  const std::string e = device_error([&] { bad->run_into(jobs, out); });
+  EXPECT_TRUE(std::regex_match(e, kAssertion)) << e;
+  expect_untouched(out);
+  // The failed device stays failed: every later load or run says so again.
+  EXPECT_TRUE(std::regex_match(device_error([&] { bad->run(jobs); }), kAssertion));
+  EXPECT_TRUE(std::regex_match(device_error([&] { bad->load(mem); }), kAssertion));
+
+  // The other device is untouched by it.
+  const std::vector<Record> want = run_stream(cfg, mem, jobs);
+  const std::vector<Record> got = good->run(jobs);
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_TRUE(got[i].same_as(want[i], false)) << got[i].to_string();
+}
+
+TEST(RtlFaults, NoProgressIsADeviceErrorAfterTheBackendsPatience) {
+  // The smallest shell memory this build has a model for: the patience is 1000 + 64 * 2^SAW cycles.
+  DeviceConfig cfg;
+  for (const DeviceConfig& c : rtl_configs())
+    if (c.SAW < cfg.SAW) cfg = c;
+  std::printf("config %s\n", cfg.to_string().c_str());
+  DeviceOptions opt;
+  opt.hit_stall_prob = 1.0;  // neither stream is ever taken
+  opt.done_stall_prob = 1.0;
+  auto dev = make_rtl_device(cfg, opt);
+  dev->load(origin_memory(cfg, 16));
+  const std::vector<Job> jobs = {origin_job(1, Mode::All, 16), origin_job(2, Mode::Count, 16),
+                                 origin_job(3, Mode::First, 16)};
+  std::vector<Record> out = kEarlier;
+  const uint64_t idle = 1000 + 64 * (uint64_t{1} << cfg.SAW) + 1;
+  EXPECT_EQ(device_error([&] { dev->run_into(jobs, out); }),
+            "rtl: no record for " + std::to_string(idle) + " cycles after 0 of 3 jobs completed");
+  expect_untouched(out);
+}
+
+TEST(RtlFaults, RecordAfterTheLastCompletionIsADeviceError) {
+  // The run takes the first job's completion for the last one; the second job's hit at point 0 comes after it.
+  DeviceConfig cfg;
+  RtlFaults faults;
+  faults.miss_last_completion = true;
+  auto dev = make_rtl_device(cfg, {}, faults);
+  dev->load(origin_memory(cfg, 64));
+  std::vector<Record> out = kEarlier;
+  EXPECT_EQ(device_error([&] { dev->run_into({origin_job(1, Mode::All, 64), origin_job(2, Mode::All, 8)}, out); }),
+            "rtl: a record came after the last completion record");
+  expect_untouched(out);
+}
+
+TEST(RtlFaults, BusyAfterTheLastCompletionIsADeviceError) {
+  // The same with a second job that counts 1000 points: no record for 250 cycles, longer than the pipeline.
+  DeviceConfig cfg;
+  RtlFaults faults;
+  faults.miss_last_completion = true;
+  auto dev = make_rtl_device(cfg, {}, faults);
+  dev->load(origin_memory(cfg, 1000));
+  std::vector<Record> out = kEarlier;
+  EXPECT_EQ(
+      device_error([&] { dev->run_into({origin_job(1, Mode::All, 8), origin_job(2, Mode::Count, 1000)}, out); }),
+      "rtl: the device is still busy after the last completion record");
+  expect_untouched(out);
+}
+
+}  // namespace
+}  // namespace voxcd
