@@ -30,7 +30,7 @@ class UniformGrid final : public BroadphaseBase {
       box_[i] = flat(bodies[i].box);
       ids_[i] = i;
     }
-    found_.clear();
+    nfound_ = 0;
     tests_ = 0;
     size_t used = 0;
     // ids_[0, m): the boxes not yet placed in a level.
@@ -43,6 +43,7 @@ class UniformGrid final : public BroadphaseBase {
       // as it goes up, against every later level it does not end in).
       for (uint32_t k = 0; k < m; ++k) pairs_with(lv, ids_[k]);
     }
+    found_.resize(nfound_);
     sort_pairs(found_, tmp_, n, pairs_);
     stats_ = {tests_, pairs_.size()};
   }
@@ -153,11 +154,19 @@ class UniformGrid final : public BroadphaseBase {
     return large;
   }
 
-  // Box e against the entries [from, to).
+  // Box e against the entries [from, to). Without a branch on the outcome (which the scenes make hard to
+  // predict): every candidate's key is written, and the count advances only for an overlap.
   void test_run(const Entry& e, const Entry* entries, uint32_t from, uint32_t to) {
+    if (from >= to) return;
     tests_ += to - from;
-    for (uint32_t q = from; q < to; ++q)
-      if (overlaps(e.box, entries[q].box)) found_.push_back(pair_key(e.id, entries[q].id));
+    if (found_.size() < nfound_ + (to - from)) found_.resize(2 * (nfound_ + (to - from)));
+    uint64_t* out = found_.data() + nfound_;
+    size_t k = 0;
+    for (uint32_t q = from; q < to; ++q) {
+      out[k] = pair_key(e.id, entries[q].id);
+      k += overlaps(e.box, entries[q].box);
+    }
+    nfound_ += k;
   }
 
   // Every overlapping pair of a level's boxes, once: each box against the rest of its cell and the cells after it
@@ -214,7 +223,8 @@ class UniformGrid final : public BroadphaseBase {
   std::vector<double> size_, sorted_;
   std::vector<std::array<int, 3>> xyz_tmp_;
   std::vector<Level> levels_;
-  std::vector<uint64_t> found_, tmp_;
+  std::vector<uint64_t> found_, tmp_;  // found_[0, nfound_): the pairs of this frame
+  size_t nfound_ = 0;
   uint64_t tests_ = 0;
 };
 

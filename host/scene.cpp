@@ -18,13 +18,12 @@ namespace {
 // every non-empty voxel and shell point) grown by one of its voxels, which covers the fixed-point error of a job
 // (a small fraction of a voxel) and rounding here. Gottschalk's separating-axis test: 3 + 3 face axes and 9 edge
 // cross products, with a relative slack on the near-parallel cross products.
-bool boxes_overlap(const ObjectType& ta, const RigidPose& pa, const ObjectType& tb, const RigidPose& pb) {
+// Ra, ca: A's rotation and the centre of its box in the world (as compute_bounds keeps them for every body).
+bool boxes_overlap(const ObjectType& ta, const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca, const ObjectType& tb,
+                   const Eigen::Matrix3d& Rb, const Eigen::Vector3d& cb) {
   const double ga = ta.voxmap().voxel(), gb = tb.voxmap().voxel();
   const Eigen::Vector3d ea = 0.5 * (ta.hi - ta.lo) + Eigen::Vector3d::Constant(ga);
   const Eigen::Vector3d eb = 0.5 * (tb.hi - tb.lo) + Eigen::Vector3d::Constant(gb);
-  const Eigen::Matrix3d Ra = pa.rotation.toRotationMatrix(), Rb = pb.rotation.toRotationMatrix();
-  const Eigen::Vector3d ca = Ra * (0.5 * (ta.lo + ta.hi)) + pa.translation;
-  const Eigen::Vector3d cb = Rb * (0.5 * (tb.lo + tb.hi)) + pb.translation;
   // B's axes and centre in A's frame.
   const Eigen::Matrix3d R = Ra.transpose() * Rb;
   const Eigen::Vector3d t = Ra.transpose() * (cb - ca);
@@ -66,11 +65,14 @@ Eigen::Vector3d scene_direction(std::mt19937_64& rng) {
 }
 
 BodyBounds body_bounds(const ObjectType& t, const Body& b) {
-  BodyBounds bb;
   const Eigen::Matrix3d R = b.pose.rotation.toRotationMatrix();
+  return body_bounds(t, b, R, R * (0.5 * (t.lo + t.hi)) + b.pose.translation);
+}
+
+BodyBounds body_bounds(const ObjectType& t, const Body& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& c) {
+  BodyBounds bb;
   bb.centre = R * t.centre + b.pose.translation;
   bb.radius = t.radius;
-  const Eigen::Vector3d c = R * (0.5 * (t.lo + t.hi)) + b.pose.translation;
   const Eigen::Vector3d e = R.cwiseAbs() * (0.5 * (t.hi - t.lo));
   bb.box.lo = c - e;
   bb.box.hi = c + e;
@@ -177,10 +179,16 @@ Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(sc
 }
 
 void Simulation::compute_bounds() {
-  bounds_.resize(scene_.bodies.size());
-  for (size_t i = 0; i < scene_.bodies.size(); ++i) {
+  const size_t n = scene_.bodies.size();
+  bounds_.resize(n);
+  rot_.resize(n);
+  box_centre_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
     const Body& b = scene_.bodies[i];
-    bounds_[i] = body_bounds(*scene_.types[b.type], b);
+    const ObjectType& t = *scene_.types[b.type];
+    rot_[i] = b.pose.rotation.toRotationMatrix();
+    box_centre_[i] = rot_[i] * (0.5 * (t.lo + t.hi)) + b.pose.translation;
+    bounds_[i] = body_bounds(t, b, rot_[i], box_centre_[i]);
     bounds_[i].moved_unexpectedly = moved_[i];
   }
 }
@@ -227,9 +235,11 @@ FrameStats Simulation::step() {
   requests_.clear();
   tested_.clear();
   for (size_t k = 0; k < pairs.size(); ++k) {
-    const Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
-    if (opt_.midphase && (!spheres_overlap(bounds_[pairs[k].first], bounds_[pairs[k].second]) ||
-                          !boxes_overlap(*scene_.types[a.type], a.pose, *scene_.types[b.type], b.pose)))
+    const uint32_t ia = pairs[k].first, ib = pairs[k].second;
+    const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
+    if (opt_.midphase &&
+        (!spheres_overlap(bounds_[ia], bounds_[ib]) || !boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia],
+                                                                      *scene_.types[b.type], rot_[ib], box_centre_[ib])))
       continue;
     PairRequest r;
     r.a = a.type;

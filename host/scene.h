@@ -104,6 +104,9 @@ class Simulation {
   std::unique_ptr<Broadphase> broadphase_;
   std::unique_ptr<PairCollider> collider_;
   std::vector<BodyBounds> bounds_;
+  // Each body's rotation matrix and the world centre of its contact box, this frame (for the mid-phase).
+  std::vector<Eigen::Matrix3d> rot_;
+  std::vector<Eigen::Vector3d> box_centre_;
   std::vector<bool> moved_;
   std::vector<PairRequest> requests_;
   std::vector<uint32_t> tested_;  // the broadphase index of each request
@@ -131,5 +134,7 @@ Eigen::Vector3d scene_direction(std::mt19937_64& rng);
 
 // A body's world bounds: its type's smallest enclosing sphere and the world box of its type's local box.
 BodyBounds body_bounds(const ObjectType& t, const Body& b);
+// The same, given R = b's rotation matrix and c = R * (t.lo + t.hi) / 2 + b's translation (its box's centre).
+BodyBounds body_bounds(const ObjectType& t, const Body& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& c);
 
 }  // namespace voxcd
