@@ -58,6 +58,9 @@ class FastRunner {
   // record carries annotate_cycles' cycles, points and stalls (ref/timing.h). The working buffers live on between
   // calls: a caller that runs batch after batch allocates nothing once they have grown.
   void run_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles = true);
+  // run_into without the validation, for a caller that has validated every job (validate_job) against the memories
+  // as they are now, as the SystemC target does when a descriptor arrives. An invalid job is undefined behaviour.
+  void run_validated_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles = true);
   std::vector<Record> run(const std::vector<Job>& jobs, bool cycles = true);
 
  private:

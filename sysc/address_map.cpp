@@ -21,21 +21,26 @@ void encode_job(const Job& job, uint8_t* out) {
 }
 
 bool decode_job(const uint8_t* in, Job& job, std::string& why) {
-  for (size_t b : {size_t{0x06}, size_t{0x07}, size_t{0x44}, size_t{0x45}, size_t{0x46}, size_t{0x47}})
-    if (in[b] != 0) {
-      why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
-      return false;
-    }
-  for (size_t b = 0x60; b < kJobBytes; ++b)
-    if (in[b] != 0) {
-      why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
-      return false;
-    }
+  // The reserved bytes as whole words first; the loops below name the first one that is set.
+  const uint64_t reserved = get_le(in + 0x06, 2) | get_le(in + 0x44, 4) | get_le(in + 0x60, 8) | get_le(in + 0x68, 8) |
+                            get_le(in + 0x70, 8) | get_le(in + 0x78, 8);
+  if (reserved != 0) {
+    for (size_t b : {size_t{0x06}, size_t{0x07}, size_t{0x44}, size_t{0x45}, size_t{0x46}, size_t{0x47}})
+      if (in[b] != 0) {
+        why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
+        return false;
+      }
+    for (size_t b = 0x60; b < kJobBytes; ++b)
+      if (in[b] != 0) {
+        why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
+        return false;
+      }
+  }
   if (in[0x04] > 2) {
     why = "mode " + std::to_string(in[0x04]) + " is not 0 (ALL), 1 (FIRST) or 2 (COUNT)";
     return false;
   }
-  job = Job{};
+  // Every field is set below.
   job.tag = uint32_t(get_le(in + 0x00, 4));
   job.mode = Mode(in[0x04]);
   job.hit_mask = in[0x05];
@@ -71,19 +76,30 @@ void encode_record(const Record& rec, uint8_t* out) {
 }
 
 bool decode_record(const uint8_t* in, Record& rec) {
-  const uint32_t tag = uint32_t(get_le(in + 0x04, 4));
+  if (in[0] != kKindHit && in[0] != kKindDone) return false;
+  // Field by field rather than through Record::hit / Record::done: the same record without a temporary.
+  rec.tag = uint32_t(get_le(in + 0x04, 4));
   if (in[0] == kKindHit) {
-    rec = Record::hit(tag, uint32_t(get_le(in + 0x08, 4)), uint32_t(get_le(in + 0x0c, 4)),
-                      uint32_t(get_le(in + 0x10, 4)), uint32_t(get_le(in + 0x14, 4)), in[1]);
-    return true;
-  }
-  if (in[0] == kKindDone) {
-    rec = Record::done(tag, uint32_t(get_le(in + 0x08, 4)), get_le(in + 0x10, 8));
+    rec.kind = Record::Hit;
+    rec.point = uint32_t(get_le(in + 0x08, 4));
+    rec.x = uint32_t(get_le(in + 0x0c, 4));
+    rec.y = uint32_t(get_le(in + 0x10, 4));
+    rec.z = uint32_t(get_le(in + 0x14, 4));
+    rec.state = in[1];
+    rec.hits = 0;
+    rec.cycles.reset();
+    rec.points.reset();
+    rec.stalls.reset();
+  } else {
+    rec.kind = Record::Done;
+    rec.point = rec.x = rec.y = rec.z = 0;
+    rec.state = 0;
+    rec.hits = uint32_t(get_le(in + 0x08, 4));
     rec.points = get_le(in + 0x0c, 4);
+    rec.cycles = get_le(in + 0x10, 8);
     rec.stalls = get_le(in + 0x18, 8);
-    return true;
   }
-  return false;
+  return true;
 }
 
 uint64_t config_word0(const DeviceConfig& c) {

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -71,11 +72,31 @@ bool decode_record(const uint8_t* in, Record& rec);
 uint64_t config_word0(const DeviceConfig& cfg);
 uint64_t config_word1(const DeviceConfig& cfg);
 
-// Little-endian helpers.
+// Little-endian helpers. On a little-endian host the whole words are copied (the compiler does not merge the byte
+// loop into one load or store, and descriptors and records are decoded per word on every batch).
 inline void put_le(uint8_t* p, uint64_t v, int bytes) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  if (bytes == 8) return void(std::memcpy(p, &v, 8));
+  if (bytes == 4) {
+    const uint32_t w = uint32_t(v);
+    return void(std::memcpy(p, &w, 4));
+  }
+#endif
   for (int i = 0; i < bytes; ++i) p[i] = uint8_t(v >> (8 * i));
 }
 inline uint64_t get_le(const uint8_t* p, int bytes) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  if (bytes == 8) {
+    uint64_t v;
+    std::memcpy(&v, p, 8);
+    return v;
+  }
+  if (bytes == 4) {
+    uint32_t v;
+    std::memcpy(&v, p, 4);
+    return v;
+  }
+#endif
   uint64_t v = 0;
   for (int i = 0; i < bytes; ++i) v |= uint64_t(p[i]) << (8 * i);
   return v;

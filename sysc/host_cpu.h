@@ -64,6 +64,10 @@ class HostCpu : public sc_core::sc_module {
   std::vector<Record> run(const std::vector<Job>& jobs);
   // The same into `out` (replacing its contents, reusing its capacity): the same transactions.
   void run_into(const std::vector<Job>& jobs, std::vector<Record>& out);
+  // The same transactions for `jobs` descriptors already encoded (kJobBytes each, sysc/address_map.h), leaving the
+  // result records as the device gave them (kRecordBytes each, the empty slots after the last one dropped) in
+  // `records` (replaced, its capacity reused): for a caller that forwards them as bytes.
+  void run_encoded(const uint8_t* descriptors, size_t jobs, std::vector<uint8_t>& records);
   // Spends `t` computing (local time; synchronised at the end of the quantum).
   void compute(sc_core::sc_time t);
   // The CPU's notion of now: kernel time plus its local time.
@@ -78,7 +82,7 @@ class HostCpu : public sc_core::sc_module {
 
   tlm_utils::tlm_quantumkeeper qk_;
   size_t burst_;
-  std::vector<uint8_t> buf_;  // the bytes of one transaction
+  std::vector<uint8_t> descriptors_, records_;  // run_into's encoded jobs and records
   std::deque<Task> tasks_;
   sc_core::sc_event task_event_;
   size_t posted_ = 0, finished_ = 0;

@@ -23,7 +23,8 @@ int usage(const char* why) {
 }
 
 void serve(Platform& p, Channel& ch) {
-  std::vector<Record> recs;  // kept between requests: a run that fits its capacity touches no new memory
+  // Kept between requests: a run that fits their capacity touches no new memory.
+  std::vector<uint8_t> descriptors, records;
   for (;;) {
     uint8_t opb[8];
     if (!ch.get(opb, 8)) return;  // the Device was destroyed
@@ -43,23 +44,21 @@ void serve(Platform& p, Channel& ch) {
         ch.put_u64(0);
         ch.put_u64(sc_core::sc_time_stamp().value());
       } else if (op == kOpRun) {
-        std::vector<Job> jobs(ch.get_u64());
-        std::vector<uint8_t> buf(kJobBytes);
-        for (Job& j : jobs) {
-          if (!ch.get(buf.data(), buf.size())) throw std::runtime_error("short job descriptor");
-          std::string why;
-          if (!decode_job(buf.data(), j, why)) throw std::runtime_error(why);
-        }
+        // The descriptors go to the device as they came and the records back as the device gave them. A malformed
+        // descriptor is refused here, before anything runs.
+        const size_t n = ch.get_u64();
+        descriptors.resize(n * kJobBytes);
+        if (n && !ch.get(descriptors.data(), descriptors.size())) throw std::runtime_error("short job descriptor");
+        Job j;
+        std::string why;
+        for (size_t i = 0; i < n; ++i)
+          if (!decode_job(&descriptors[i * kJobBytes], j, why)) throw std::runtime_error(why);
         const auto t0 = std::chrono::steady_clock::now();
-        p.execute([&](HostCpu& cpu) { cpu.run_into(jobs, recs); });
+        p.execute([&](HostCpu& cpu) { cpu.run_encoded(descriptors.data(), n, records); });
         const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0);
         ch.put_u64(0);
-        ch.put_u64(recs.size());
-        std::vector<uint8_t> rb(kRecordBytes);
-        for (const Record& r : recs) {
-          encode_record(r, rb.data());
-          ch.put(rb.data(), rb.size());
-        }
+        ch.put_u64(records.size() / kRecordBytes);
+        ch.put(records.data(), records.size());
         ch.put_u64(sc_core::sc_time_stamp().value());
         ch.put_u64(uint64_t(ns.count()));
       } else {

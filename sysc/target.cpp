@@ -1,5 +1,6 @@
 #include "sysc/target.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "ref/pipeline.h"
@@ -21,16 +22,56 @@ uint64_t DeviceTarget::edge_after(sc_time t) const { return t.value() / period_.
 uint64_t DeviceTarget::edge_at_or_before(sc_time t) const { return t.value() / period_.value(); }
 
 void DeviceTarget::publish(const Record* job_records, size_t n) {
+  uint8_t* out = queue_records(n);
+  JobCounts c;
   for (size_t i = 0; i < n; ++i) {
     const Record& r = job_records[i];
-    results_.push_back(r);
+    encode_record(r, out + i * kRecordBytes);
     if (r.kind != Record::Done) continue;
-    ++jobs_done_;
-    hits_ += r.hits;
-    points_ += r.points.value_or(0);
-    cycles_ += r.cycles.value_or(0);
-    stalls_ += r.stalls.value_or(0);
+    c.hits += r.hits;
+    c.points += r.points.value_or(0);
+    c.cycles += r.cycles.value_or(0);
+    c.stalls += r.stalls.value_or(0);
   }
+  publish_queued(n, c);
+}
+
+uint8_t* DeviceTarget::queue_records(size_t n) {
+  const size_t bytes = n * kRecordBytes;
+  if (head_ > 0 && end_ + bytes > cap_) {
+    // Move what is left to the front before growing.
+    std::memmove(results_.get(), results_.get() + head_, end_ - head_);
+    ready_ -= head_;
+    end_ -= head_;
+    head_ = 0;
+  }
+  if (end_ + bytes > cap_) {
+    const size_t cap = std::max(end_ + bytes, 2 * cap_);
+    std::unique_ptr<uint8_t[]> grown(new uint8_t[cap]);
+    if (end_) std::memcpy(grown.get(), results_.get(), end_);
+    results_ = std::move(grown);
+    cap_ = cap;
+  }
+  uint8_t* out = results_.get() + end_;
+  end_ += bytes;
+  return out;
+}
+
+void DeviceTarget::publish_queued(size_t n, const JobCounts& c) {
+  ready_ += n * kRecordBytes;
+  ++jobs_done_;
+  hits_ += c.hits;
+  points_ += c.points;
+  cycles_ += c.cycles;
+  stalls_ += c.stalls;
+}
+
+void DeviceTarget::take_records(uint8_t* out, size_t n) {
+  const size_t bytes = std::min(n * kRecordBytes, ready_ - head_);
+  if (bytes) std::memcpy(out, results_.get() + head_, bytes);
+  if (bytes < n * kRecordBytes) std::memset(out + bytes, 0, n * kRecordBytes - bytes);
+  head_ += bytes;
+  if (head_ == end_) head_ = ready_ = end_ = 0;  // nothing left: start again at the front
 }
 
 tlm_response_status DeviceTarget::fail(tlm_response_status s, std::string why) {
@@ -69,26 +110,31 @@ tlm_response_status DeviceTarget::access(tlm::tlm_generic_payload& tr, sc_time t
       if (off <= kRegMapWords) return fail(TLM_COMMAND_ERROR_RESPONSE, "register is read-only");
       return fail(TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
     }
-    if (!staged_.empty()) launch(std::move(staged_), t);
-    staged_.clear();
+    if (staged_count_) {
+      staged_.resize(staged_count_);
+      launch(staged_, t);
+      staged_count_ = 0;
+    }
     return TLM_OK_RESPONSE;
   }
   if (in(kJobBase, kJobSize)) {
     if (!wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the job window is write-only");
     if (addr != kJobBase || len % kJobBytes || !fits(kJobBase, kJobSize))
       return fail(TLM_BURST_ERROR_RESPONSE, "write whole job descriptors at the job window's base");
-    std::vector<Job> jobs(len / kJobBytes);
-    for (size_t i = 0; i < jobs.size(); ++i) {
-      std::string why;
-      if (!decode_job(data + i * kJobBytes, jobs[i], why))
+    // Decoded in place after the staged jobs; they count as staged once the whole transaction is accepted.
+    const size_t n = len / kJobBytes, old = staged_count_;
+    if (staged_.size() < old + n) staged_.resize(old + n);
+    std::string why;
+    for (size_t i = 0; i < n; ++i) {
+      if (!decode_job(data + i * kJobBytes, staged_[old + i], why))
         return fail(TLM_GENERIC_ERROR_RESPONSE, "descriptor " + std::to_string(i) + ": " + why);
       try {
-        validate_job(cfg_, jobs[i], shell_words_, map_words_);
+        validate_job(cfg_, staged_[old + i], shell_words_, map_words_);
       } catch (const std::exception& e) {
         return fail(TLM_GENERIC_ERROR_RESPONSE, "descriptor " + std::to_string(i) + ": " + e.what());
       }
     }
-    staged_.insert(staged_.end(), jobs.begin(), jobs.end());
+    staged_count_ = old + n;
     return TLM_OK_RESPONSE;
   }
   if (in(kResultBase, kResultSize)) {
@@ -97,11 +143,7 @@ tlm_response_status DeviceTarget::access(tlm::tlm_generic_payload& tr, sc_time t
       return fail(TLM_BURST_ERROR_RESPONSE, "read whole result records at the result window's base");
     const size_t n = len / kRecordBytes;
     done = await_results(n, t);
-    std::memset(data, 0, len);
-    for (size_t i = 0; i < n && !results_.empty(); ++i) {
-      encode_record(results_.front(), data + i * kRecordBytes);
-      results_.pop_front();
-    }
+    take_records(data, n);
     return TLM_OK_RESPONSE;
   }
   if (in(kShellBase, cfg_.shell_depth() * kShellStride)) {
@@ -152,11 +194,11 @@ tlm_response_status DeviceTarget::reg_read(uint64_t off, uint8_t* data, sc_time 
     case kRegConfig1: v = config_word1(cfg_); break;
     case kRegClockPs: v = uint64_t(period_.to_seconds() * 1e12 + 0.5); break;
     case kRegStatus:
-      v = (busy() ? kStatusBusy : 0) | (results_.empty() ? 0 : kStatusResults) | (staged_.empty() ? 0 : kStatusStaged) |
+      v = (busy() ? kStatusBusy : 0) | (readable() == 0 ? 0 : kStatusResults) | (staged_count_ == 0 ? 0 : kStatusStaged) |
           (faulted() ? kStatusFault : 0);
       break;
-    case kRegStaged: v = staged_.size(); break;
-    case kRegResultCount: v = results_.size(); break;
+    case kRegStaged: v = staged_count_; break;
+    case kRegResultCount: v = readable(); break;
     case kRegRun: return fail(tlm::TLM_COMMAND_ERROR_RESPONSE, "RUN is write-only");
     case kRegJobsDone: v = jobs_done_; break;
     case kRegHits: v = hits_; break;

@@ -15,12 +15,13 @@
 #include <tlm>
 #include <tlm_utils/simple_target_socket.h>
 
-#include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "ref/config.h"
 #include "ref/types.h"
+#include "sysc/address_map.h"
 
 namespace voxcd::sysc {
 
@@ -41,8 +42,9 @@ class DeviceTarget : public sc_core::sc_module {
   // Writes words [first, first + n) of the shell or voxmap memory at time t; returns when the write is done.
   virtual sc_core::sc_time write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_core::sc_time t) = 0;
   virtual sc_core::sc_time write_map(uint64_t first, const std::vector<uint64_t>& words, sc_core::sc_time t) = 0;
-  // Launches jobs (valid for the loaded memory) as one batch at time t.
-  virtual void launch(std::vector<Job> jobs, sc_core::sc_time t) = 0;
+  // Launches jobs (valid for the loaded memory) as one batch at time t. The target may take the vector's contents;
+  // the caller clears it afterwards (and so keeps its capacity when the target only read it).
+  virtual void launch(std::vector<Job>& jobs, sc_core::sc_time t) = 0;
   // Makes every job whose records are readable at t readable (publish()).
   virtual void advance_to(sc_core::sc_time t) = 0;
   // From t, the time at which at least n records are readable or no launched batch is left; publishes up to then.
@@ -55,7 +57,16 @@ class DeviceTarget : public sc_core::sc_module {
   // Makes one job's records (hits, then its completion record) readable and counts them.
   void publish(const Record* job_records, size_t n);
   void publish(const std::vector<Record>& job_records) { publish(job_records.data(), job_records.size()); }
-  size_t readable() const { return results_.size(); }
+  // The result queue holds encoded records (kRecordBytes each, sysc/address_map.h): the readable ones, then those a
+  // target queued ahead of time and has not made readable yet. queue_records appends n slots after everything
+  // queued and returns them for the caller to fill (valid until the next call); publish_queued makes the next n
+  // queued records, one job's, readable and adds the job's counts.
+  struct JobCounts {
+    uint64_t hits = 0, points = 0, cycles = 0, stalls = 0;
+  };
+  uint8_t* queue_records(size_t n);
+  void publish_queued(size_t n, const JobCounts& counts);
+  size_t readable() const { return (ready_ - head_) / kRecordBytes; }
   // Edge index k of the first rising edge strictly after t (edges at k * T, k >= 1).
   uint64_t edge_after(sc_core::sc_time t) const;
   // The last edge at or before t (0 before the first).
@@ -72,8 +83,17 @@ class DeviceTarget : public sc_core::sc_module {
   tlm::tlm_response_status reg_read(uint64_t off, uint8_t* data, sc_core::sc_time t);
   tlm::tlm_response_status fail(tlm::tlm_response_status s, std::string why);
 
+  // Copies up to n readable records to `out` (the slots after them read as zero) and removes them from the queue.
+  void take_records(uint8_t* out, size_t n);
+
+  // Jobs staged_[0, staged_count_) are staged. The vector keeps the size it had (a target that only reads the
+  // jobs it launches leaves them), so staging decodes into jobs that exist instead of constructing new ones.
   std::vector<Job> staged_;
-  std::deque<Record> results_;
+  size_t staged_count_ = 0;
+  // The result queue: bytes [head_, ready_) readable, [ready_, end_) queued; capacity cap_. Not a std::vector: growing
+  // it would zero bytes that are written right after.
+  std::unique_ptr<uint8_t[]> results_;
+  size_t head_ = 0, ready_ = 0, end_ = 0, cap_ = 0;
   uint64_t shell_words_ = 0, map_words_ = 0;
   uint64_t jobs_done_ = 0, hits_ = 0, points_ = 0, cycles_ = 0, stalls_ = 0;
   std::string last_error_;

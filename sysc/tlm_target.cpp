@@ -30,13 +30,15 @@ sc_time TlmTarget::write_map(uint64_t first, const std::vector<uint64_t>& words,
   return memory_write(words.size(), t);
 }
 
-void TlmTarget::launch(std::vector<Job> jobs, sc_time t) {
+void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   // Memory writes wait for every launched batch, so the memory seen now is the memory the batch reads. The
-  // completion records come with ref/timing.h's cycles.
-  // Usually nothing of an earlier batch is left: the records go straight to pending_.
-  const bool direct = pending_head_ == pending_.size();
-  std::vector<Record>& batch = direct ? pending_ : batch_;
-  runner_.run_into(jobs, batch);
+  // completion records come with ref/timing.h's cycles. The records are encoded once, into the result queue, where
+  // they wait until their edge comes (publish_next).
+  std::vector<Record>& batch = batch_;
+  // Every job was validated when it was staged, and the loaded memories only grow: no need to check again.
+  runner_.run_validated_into(jobs, batch);
+  uint8_t* out = queue_records(batch.size());
+  for (size_t i = 0; i < batch.size(); ++i) encode_record(batch[i], out + i * kRecordBytes);
   // The first job is presented at the start edge and accepted at the next; a completion record emitted `cycles`
   // after the previous one (the first: after acceptance) is taken one edge after its emission.
   const uint64_t start_edge = std::max(edge_after(t), batch_free_);
@@ -45,8 +47,10 @@ void TlmTarget::launch(std::vector<Job> jobs, sc_time t) {
   for (size_t j = 0; j < jobs.size(); ++j) {
     last_first = r;
     while (batch[r].kind == Record::Hit) ++r;
-    edge += *batch[r++].cycles;
-    future_.push_back({edge, r - last_first});
+    const Record& done = batch[r++];
+    edge += *done.cycles;
+    future_.push_back({edge, r - last_first,
+                       {done.hits, done.points.value_or(0), *done.cycles, done.stalls.value_or(0)}});
   }
   batch_free_ = edge;
   // The device is idle one edge after the last completion record is taken, or later when slots issued behind a
@@ -62,19 +66,10 @@ void TlmTarget::launch(std::vector<Job> jobs, sc_time t) {
     drain = squashed > 0 ? squashed - 1 : 0;
   }
   idle_ = edge + 1 + drain;
-  if (direct) {
-    pending_head_ = 0;
-  } else {
-    pending_.erase(pending_.begin(), pending_.begin() + std::ptrdiff_t(pending_head_));
-    pending_head_ = 0;
-    pending_.insert(pending_.end(), batch_.begin(), batch_.end());
-  }
 }
 
 void TlmTarget::publish_next() {
-  const size_t n = future_.front().records;
-  publish(pending_.data() + pending_head_, n);
-  pending_head_ += n;
+  publish_queued(future_.front().records, future_.front().counts);
   future_.pop_front();
 }
 

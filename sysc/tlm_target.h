@@ -22,21 +22,21 @@ class TlmTarget final : public DeviceTarget {
   sc_core::sc_time start(sc_core::sc_time& delay) override;
   sc_core::sc_time write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_core::sc_time t) override;
   sc_core::sc_time write_map(uint64_t first, const std::vector<uint64_t>& words, sc_core::sc_time t) override;
-  void launch(std::vector<Job> jobs, sc_core::sc_time t) override;
+  void launch(std::vector<Job>& jobs, sc_core::sc_time t) override;
   void advance_to(sc_core::sc_time t) override;
   sc_core::sc_time await_results(size_t n, sc_core::sc_time t) override;
   bool busy() const override { return !future_.empty(); }
   sc_core::sc_time memory_write(uint64_t words, sc_core::sc_time t);
   void publish_next();
 
+  // A launched job whose records are queued (DeviceTarget::queue_records) and not yet readable.
   struct Future {
     uint64_t edge;     // the edge at which the job's completion record is taken
-    size_t records;    // the job's hits and its completion record, next in pending_
+    size_t records;    // the job's hits and its completion record
+    JobCounts counts;  // what its completion record adds to the counters
   };
   FastRunner runner_;
-  std::vector<Record> batch_;    // a batch launched while records of an earlier one are pending
-  std::vector<Record> pending_;  // records of launched jobs from pending_head_ on, not yet readable
-  size_t pending_head_ = 0;
+  std::vector<Record> batch_;  // the records of the batch being launched (kept for its capacity)
   std::deque<Future> future_;
   uint64_t batch_free_ = 1;  // first edge at which a new batch may be presented
   uint64_t idle_ = 1;        // first edge at which the device is idle (memory writes may start)
