@@ -23,12 +23,12 @@ void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
                           std::to_string(cfg.max_dim()) + " per axis");
 }
 
-// keep[k] = 1 when cluster k's box (centre, half) can land in [0, n) through p -> M p + t; |M| is aM. Axis by axis
-// over all clusters, so the loops vectorise (one build per vector width). The slack covers the double arithmetic:
-// the values stay below 2^40, where its rounding is far below 1e-4.
-__attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default"))) void cull_clusters(
-    const std::vector<double> (&centre)[3], const std::vector<double> (&half)[3], size_t nc, const double (&M)[3][3],
-    const double (&aM)[3][3], const double (&t)[3], const double (&n)[3], uint8_t* __restrict keep) {
+// keep[k] = 1 when cluster k's box (centre, half) can land in [0, n) through p -> M p + t; |M| is aM: all three axes
+// of a cluster in one pass, without branches. The slack covers the double arithmetic: the values stay below 2^40,
+// where its rounding is far below 1e-4.
+inline void cull_clusters(const std::vector<double> (&centre)[3], const std::vector<double> (&half)[3], size_t nc,
+                          const double (&M)[3][3], const double (&aM)[3][3], const double (&t)[3], const double (&n)[3],
+                          uint8_t* __restrict keep) {
   constexpr double kSlack = 1e-4;
   const double* __restrict cx = centre[0].data();
   const double* __restrict cy = centre[1].data();
@@ -36,16 +36,29 @@ __attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default")))
   const double* __restrict hx = half[0].data();
   const double* __restrict hy = half[1].data();
   const double* __restrict hz = half[2].data();
-  for (size_t k = 0; k < nc; ++k) keep[k] = 1;
-  for (int i = 0; i < 3; ++i) {
-    const double m0 = M[i][0], m1 = M[i][1], m2 = M[i][2], a0 = aM[i][0], a1 = aM[i][1], a2 = aM[i][2];
-    const double lo = -kSlack - t[i], hi = n[i] + kSlack - t[i];
-    for (size_t k = 0; k < nc; ++k) {
-      const double c = m0 * cx[k] + m1 * cy[k] + m2 * cz[k];
-      const double h = a0 * hx[k] + a1 * hy[k] + a2 * hz[k];
-      keep[k] &= uint8_t((c + h >= lo) & (c - h < hi));
+  double lo[3], hi[3];
+  for (int i = 0; i < 3; ++i) lo[i] = -kSlack - t[i], hi[i] = n[i] + kSlack - t[i];
+  for (size_t k = 0; k < nc; ++k) {
+    bool in = true;
+    for (int i = 0; i < 3; ++i) {
+      const double c = M[i][0] * cx[k] + M[i][1] * cy[k] + M[i][2] * cz[k];
+      const double h = aM[i][0] * hx[k] + aM[i][1] * hy[k] + aM[i][2] * hz[k];
+      in &= (c + h >= lo[i]) & (c - h < hi[i]);
     }
+    keep[k] = uint8_t(in);
   }
+}
+
+// The first index >= i whose bit equals `value` in bits (nbits of them), or nbits.
+inline size_t next_bit(const std::vector<uint64_t>& bits, size_t nbits, size_t i, bool value) {
+  while (i < nbits) {
+    uint64_t w = bits[i >> 6];
+    if (!value) w = ~w;
+    w &= ~uint64_t(0) << (i & 63);
+    if (w) return std::min(nbits, (i & ~size_t(63)) + size_t(__builtin_ctzll(w)));
+    i = (i | 63) + 1;
+  }
+  return nbits;
 }
 
 }  // namespace
@@ -132,7 +145,7 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
   // A cluster's box (centre c, half-extent h, in the shell's grid) lands in the voxmap grid inside the box of
   // centre Mq c + tq and half-extent |Mq| h, exactly; the cluster is kept when that box meets [0, n) on every
   // axis (with a slack for the double arithmetic far below the spacing of the fixed-point values).
-  const double mscale = std::ldexp(1.0, -cfg.MF), tscale = std::ldexp(1.0, -cfg.TF());
+  const double mscale = detail::pow2(-cfg.MF), tscale = detail::pow2(-cfg.TF());
   double M[3][3], aM[3][3], t[3];
   for (int i = 0; i < 3; ++i) {
     for (int k = 0; k < 3; ++k) M[i][k] = double(whole.M[i][k]) * mscale, aM[i][k] = std::abs(M[i][k]);
@@ -143,13 +156,16 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
   const size_t nc = cl.first.size() - 1;
   keep_.resize(nc);
   cull_clusters(cl.centre, cl.half, nc, M, aM, t, n, keep_.data());
-  // Runs of kept clusters; runs closer than kMergeGap points apart are one job (a job costs more on the host than
-  // a few extra lookups).
+  bits_.assign((nc + 63) / 64, 0);
+  for (size_t k = 0; k < nc; ++k) bits_[k >> 6] |= uint64_t(keep_[k]) << (k & 63);
+  // Runs of kept clusters, found a run at a time in the bit mask (the keep pattern is hard to predict, so a branch
+  // per cluster costs more than the whole cull); runs closer than kMergeGap points apart are one job (a job costs
+  // more on the host than a few extra lookups).
   uint32_t run_first = 0, run_end = 0;
   bool open = false;
-  for (size_t k = 0; k < nc; ++k) {
-    if (!keep_[k]) continue;
-    const uint32_t first = cl.first[k], end = cl.first[k + 1];
+  for (size_t k = next_bit(bits_, nc, 0, true); k < nc;) {
+    const size_t e = next_bit(bits_, nc, k, false);
+    const uint32_t first = cl.first[k], end = cl.first[e];
     if (open && first - run_end <= kMergeGap) {
       run_end = end;
     } else {
@@ -158,6 +174,7 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
       run_end = end;
       open = true;
     }
+    k = next_bit(bits_, nc, e, true);
   }
   if (open) emit(run_first, run_end);
 }

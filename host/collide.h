@@ -136,6 +136,7 @@ class PairCollider {
   // Scratch of add_runs (which clusters survive), kept to avoid an allocation per pair: jobs() is const but, like
   // collide(), not to be called on one collider from two threads at once.
   mutable std::vector<uint8_t> keep_;
+  mutable std::vector<uint64_t> bits_;
   std::vector<Job> jobs_;
   std::vector<JobSource> sources_;
   std::vector<Record> records_;
