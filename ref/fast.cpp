@@ -167,6 +167,7 @@ FastRunner::FastRunner(const DeviceConfig& cfg, unsigned threads) : cfg_(cfg) {
     path_ = Path::Wide;
   keep_int64_ = path_ == Path::Int64 || (path_ == Path::Double && 3 * cfg_.DW >= 31);
   while ((1 << slot_bits_) < cfg_.states_per_word()) ++slot_bits_;
+  tf_scale_ = std::ldexp(1.0, -cfg_.TF());
   pool_ = std::make_unique<ThreadPool>(threads);
 }
 
@@ -311,7 +312,7 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
   double ms[9], ts[3];
   const double dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
   if (fused) {
-    const double scale = std::ldexp(1.0, -cfg_.TF());
+    const double scale = tf_scale_;
     for (int i = 0; i < 9; ++i) ms[i] = double(j.M[i / 3][i % 3]) * scale;
     for (int i = 0; i < 3; ++i) ts[i] = double(j.t[i]) * scale;
   }

@@ -81,6 +81,7 @@ class FastRunner {
   DeviceConfig cfg_;
   Path path_ = Path::Double;
   int slot_bits_ = 0;
+  double tf_scale_ = 1;  // 2^-TF (std::ldexp is a library call; run_chunk needs it per job)
   bool keep_int64_ = false;  // the int64 arrays serve the int64 path and the double path's maps of 2^31 voxels
   std::unique_ptr<ThreadPool> pool_;
   std::vector<ShellWord> shell_;

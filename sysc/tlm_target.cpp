@@ -31,14 +31,15 @@ sc_time TlmTarget::write_map(uint64_t first, const std::vector<uint64_t>& words,
 }
 
 void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
-  // Memory writes wait for every launched batch, so the memory seen now is the memory the batch reads. The
-  // completion records come with ref/timing.h's cycles. The records are encoded once, into the result queue, where
-  // they wait until their edge comes (publish_next).
-  std::vector<Record>& batch = batch_;
-  // Every job was validated when it was staged, and the loaded memories only grow: no need to check again.
-  runner_.run_validated_into(jobs, batch);
-  uint8_t* out = queue_records(batch.size());
-  for (size_t i = 0; i < batch.size(); ++i) encode_record(batch[i], out + i * kRecordBytes);
+  // Memory writes wait for every launched batch, so the memory seen now is the memory the batch reads. Every job
+  // was validated when it was staged, and the loaded memories only grow: no need to check again.
+  runner_.run_validated_into(jobs, batch_, /*cycles=*/false);
+  // The completion records get ref/timing.h's cycles as annotate_cycles gives them (cycles, points, no stalls),
+  // in the same pass that encodes the batch's records into the result queue, where they wait for their edge.
+  const std::vector<JobTiming> timing = job_timing(cfg_, jobs, batch_);
+  future_.erase(future_.begin(), future_.begin() + std::ptrdiff_t(future_head_));  // the jobs already readable
+  future_head_ = 0;
+  uint8_t* out = queue_records(batch_.size());
   // The first job is presented at the start edge and accepted at the next; a completion record emitted `cycles`
   // after the previous one (the first: after acceptance) is taken one edge after its emission.
   const uint64_t start_edge = std::max(edge_after(t), batch_free_);
@@ -46,11 +47,15 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   size_t r = 0, last_first = 0;
   for (size_t j = 0; j < jobs.size(); ++j) {
     last_first = r;
-    while (batch[r].kind == Record::Hit) ++r;
-    const Record& done = batch[r++];
-    edge += *done.cycles;
-    future_.push_back({edge, r - last_first,
-                       {done.hits, done.points.value_or(0), *done.cycles, done.stalls.value_or(0)}});
+    for (; batch_[r].kind == Record::Hit; ++r) encode_record(batch_[r], out + r * kRecordBytes);
+    Record& done = batch_[r];
+    done.cycles = timing[j].cycles;
+    done.points = timing[j].points;
+    done.stalls = 0;
+    encode_record(done, out + r * kRecordBytes);
+    ++r;
+    edge += timing[j].cycles;
+    future_.push_back({edge, r - last_first, {done.hits, timing[j].points, timing[j].cycles, 0}});
   }
   batch_free_ = edge;
   // The device is idle one edge after the last completion record is taken, or later when slots issued behind a
@@ -61,7 +66,7 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   if (last.mode == Mode::First && future_.back().records == 2) {
     const uint64_t lanes = uint64_t(cfg_.LANES);
     const uint64_t groups = last.shell_count == 0 ? 1 : (last.shell_count + lanes - 1) / lanes;
-    const uint64_t f = batch[last_first].point / lanes;
+    const uint64_t f = batch_[last_first].point / lanes;
     const uint64_t squashed = std::min(groups - 1, f + kPipelineSlots - 1) - f;
     drain = squashed > 0 ? squashed - 1 : 0;
   }
@@ -69,19 +74,19 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
 }
 
 void TlmTarget::publish_next() {
-  publish_queued(future_.front().records, future_.front().counts);
-  future_.pop_front();
+  const Future& f = future_[future_head_++];
+  publish_queued(f.records, f.counts);
 }
 
 void TlmTarget::advance_to(sc_time t) {
-  while (!future_.empty() && edge_time(future_.front().edge) <= t) publish_next();
+  while (busy() && edge_time(future_[future_head_].edge) <= t) publish_next();
 }
 
 sc_time TlmTarget::await_results(size_t n, sc_time t) {
   advance_to(t);
   sc_time when = t;
-  while (readable() < n && !future_.empty()) {
-    when = std::max(when, edge_time(future_.front().edge));
+  while (readable() < n && busy()) {
+    when = std::max(when, edge_time(future_[future_head_].edge));
     publish_next();
   }
   return when;

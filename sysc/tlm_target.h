@@ -4,7 +4,7 @@
 // come in time order (one initiator, or initiators kept in order by their quantum).
 #pragma once
 
-#include <deque>
+#include <vector>
 
 #include "ref/fast.h"
 #include "sysc/target.h"
@@ -25,7 +25,7 @@ class TlmTarget final : public DeviceTarget {
   void launch(std::vector<Job>& jobs, sc_core::sc_time t) override;
   void advance_to(sc_core::sc_time t) override;
   sc_core::sc_time await_results(size_t n, sc_core::sc_time t) override;
-  bool busy() const override { return !future_.empty(); }
+  bool busy() const override { return future_head_ < future_.size(); }
   sc_core::sc_time memory_write(uint64_t words, sc_core::sc_time t);
   void publish_next();
 
@@ -37,7 +37,8 @@ class TlmTarget final : public DeviceTarget {
   };
   FastRunner runner_;
   std::vector<Record> batch_;  // the records of the batch being launched (kept for its capacity)
-  std::deque<Future> future_;
+  std::vector<Future> future_;  // launched jobs from future_head_ on are not readable yet
+  size_t future_head_ = 0;
   uint64_t batch_free_ = 1;  // first edge at which a new batch may be presented
   uint64_t idle_ = 1;        // first edge at which the device is idle (memory writes may start)
 };
