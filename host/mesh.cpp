@@ -323,9 +323,11 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
             std::getline(in, tok);
             continue;
           }
-          char* end = nullptr;
-          const unsigned long long v = std::strtoull(tok.c_str(), &end, 10);
-          if (end == tok.c_str() || *end != '\0') break;
+          // As assimp reads a count: the digits at the start of the word, whatever follows them ("12x" is 12).
+          if (!std::isdigit(static_cast<unsigned char>(tok[0]))) break;
+          uint64_t v = 0;
+          for (size_t i = 0; i < tok.size() && std::isdigit(static_cast<unsigned char>(tok[i])); ++i)
+            v = std::min<uint64_t>(v * 10 + uint64_t(tok[i] - '0'), uint64_t(1) << 60);
           n.push_back(v);
         }
         if (n.size() == 2 && (n[0] > size / 5 || n[1] > size / 7))
