@@ -94,7 +94,6 @@ void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n,
   }
 }
 
-// Appends the block's hit records; true when FIRST has its answer.
 // Quotients by a job's nx and ny without a hardware divide (tens of cycles per hit): a double reciprocal gives the
 // quotient within one for dividends below 2^53 (every map that fits memory), and the correction makes it exact.
 struct Divider {
@@ -122,7 +121,8 @@ Record& push_record(std::vector<Record>& out, Record::Kind kind, uint32_t tag) {
   return r;
 }
 
-// Walks the hits of a block (state bit 2) eight states at a time: most of a block's points are no hit.
+// Appends the block's hit records; true when FIRST has its answer. Walks the states eight at a time: most of a
+// block's points are no hit.
 template <class Lin>
 bool emit_hits(const Job& j, uint32_t b, size_t n, const Lin* lin, const uint8_t* state, std::vector<Record>& hits,
                uint32_t& count) {
