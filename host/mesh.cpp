@@ -12,6 +12,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 #include <unordered_map>
 
@@ -269,6 +270,140 @@ void validate(Mesh& m, MeshReport* report) {
   }
 }
 
+namespace {
+
+// The bytes of a PLY scalar type, 0 for an unknown name.
+size_t ply_type_size(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
+  if (t == "double" || t == "float64") return 8;
+  return 0;
+}
+
+// assimp 5.2's PLY reader allocates and loops for the counts a file declares (elements, and each list's length)
+// before it finds that the data ends: a count of 10^13 hangs it or exhausts memory. Walks the body as the header
+// describes it and refuses any count larger than what is left of the file can hold. Stops quietly where the file
+// is not what this walk understands (assimp then reports it). `text`: the whole file.
+void check_ply_counts(const std::string& path, const std::string& text) {
+  struct Property {
+    size_t size = 0, count_size = 0;  // count_size > 0: a list
+  };
+  struct Element {
+    std::string name;
+    uint64_t count = 0;
+    std::vector<Property> props;
+  };
+  std::vector<Element> elements;
+  std::string format;
+  size_t pos = 0;
+  bool ended = false;
+  while (pos < text.size() && !ended) {
+    size_t next = text.find('\n', pos);
+    if (next == std::string::npos) next = text.size();
+    std::istringstream line(text.substr(pos, next - pos));
+    pos = next + 1;
+    std::string word;
+    line >> word;
+    if (word == "format") {
+      line >> format;
+    } else if (word == "element") {
+      Element e;
+      std::string count;
+      line >> e.name >> count;
+      if (count.empty() || !std::all_of(count.begin(), count.end(), [](char c) { return std::isdigit(uint8_t(c)); }))
+        return;
+      e.count = count.size() > 18 ? uint64_t(1) << 62 : std::stoull(count);
+      elements.push_back(e);
+    } else if (word == "property") {
+      if (elements.empty()) return;
+      std::string type;
+      line >> type;
+      Property p;
+      if (type == "list") {
+        std::string ct, it;
+        line >> ct >> it;
+        p.count_size = ply_type_size(ct);
+        p.size = ply_type_size(it);
+        if (!p.count_size) return;
+      } else {
+        p.size = ply_type_size(type);
+      }
+      if (!p.size) return;
+      elements.back().props.push_back(p);
+    } else if (word == "end_header") {
+      ended = true;
+    }
+  }
+  if (!ended || pos > text.size()) return;
+  const bool ascii = format == "ascii";
+  const bool big = format == "binary_big_endian";
+  if (!ascii && !big && format != "binary_little_endian") return;
+  auto refuse = [&](const Element& e, uint64_t count, const char* what, uint64_t room) {
+    const std::string n = count >= uint64_t(1) << 62 ? "over 4e18" : std::to_string(count);
+    throw MeshError(path + ": the PLY file declares " + n + " " + what + " in element '" +
+                    e.name + "', more than the " + std::to_string(room) + " " + (ascii ? "words" : "bytes") +
+                    " after them can hold (is the file truncated or damaged?)");
+  };
+  if (ascii) {
+    // Every value is a word: an element needs a word per property at least.
+    std::vector<std::pair<size_t, size_t>> words;  // [begin, end) in text
+    for (size_t i = pos; i < text.size();) {
+      while (i < text.size() && std::isspace(uint8_t(text[i]))) ++i;
+      const size_t b = i;
+      while (i < text.size() && !std::isspace(uint8_t(text[i]))) ++i;
+      if (i > b) words.emplace_back(b, i);
+    }
+    size_t w = 0;
+    for (const Element& e : elements) {
+      const uint64_t left = words.size() - w;
+      if (!e.props.empty() && e.count > left / e.props.size()) refuse(e, e.count, "items", left);
+      for (uint64_t k = 0; k < e.count; ++k)
+        for (const Property& p : e.props) {
+          if (w >= words.size()) return;
+          if (!p.count_size) {
+            ++w;
+            continue;
+          }
+          // A list: its length (the leading digits of the word, as assimp reads it), then that many values.
+          const auto [b, end] = words[w++];
+          uint64_t n = 0;
+          for (size_t i = b; i < end && std::isdigit(uint8_t(text[i])); ++i)
+            n = std::min<uint64_t>(n * 10 + uint64_t(text[i] - '0'), uint64_t(1) << 62);
+          if (n > words.size() - w) refuse(e, n, "list values", words.size() - w);
+          w += size_t(n);
+        }
+    }
+    return;
+  }
+  uint64_t at = pos;
+  const uint64_t size = text.size();
+  for (const Element& e : elements) {
+    uint64_t least = 0;  // the bytes of one item, its lists empty
+    for (const Property& p : e.props) least += p.count_size ? p.count_size : p.size;
+    if (least && e.count > (size - at) / least) refuse(e, e.count, "items", size - at);
+    for (uint64_t k = 0; k < e.count; ++k)
+      for (const Property& p : e.props) {
+        if (!p.count_size) {
+          at += p.size;
+          if (at > size) return;
+          continue;
+        }
+        if (at + p.count_size > size) return;
+        uint64_t n = 0;
+        for (size_t i = 0; i < p.count_size; ++i) {
+          const uint64_t byte = uint8_t(text[size_t(at + (big ? i : p.count_size - 1 - i))]);
+          n = n << 8 | byte;
+        }
+        at += p.count_size;
+        if (n > (size - at) / p.size) refuse(e, n, "list values", size - at);
+        at += n * p.size;
+      }
+  }
+}
+
+}  // namespace
+
 MeshReport prepare(Mesh& m) {
   MeshReport r;
   const size_t welded = weld(m);
@@ -304,6 +439,10 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
         if (head.rfind("ply", 0) == 0 && !ended)
           throw MeshError(path + ": the PLY header has no end_header line in its first " +
                           std::to_string(head.size()) + " bytes (is the file truncated?)");
+        probe.clear();
+        probe.seekg(0);
+        const std::string whole((std::istreambuf_iterator<char>(probe)), std::istreambuf_iterator<char>());
+        check_ply_counts(path, whole);
       }
       // assimp's OFF reader allocates for the counts its header declares before reading them: refuse counts the file
       // cannot hold (a vertex takes at least 5 bytes, "0 0 0", a face at least 7, "3 0 1 2").
