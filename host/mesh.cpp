@@ -288,6 +288,7 @@ size_t ply_type_size(const std::string& t) {
 void check_ply_counts(const std::string& path, const std::string& text) {
   struct Property {
     size_t size = 0, count_size = 0;  // count_size > 0: a list
+    bool unknown = false;
   };
   struct Element {
     std::string name;
@@ -319,26 +320,28 @@ void check_ply_counts(const std::string& path, const std::string& text) {
       if (elements.empty()) return;
       std::string type;
       line >> type;
+      // An unknown type counts as one byte (the least any value takes) and ends the walk through the body.
       Property p;
       if (type == "list") {
         std::string ct, it;
         line >> ct >> it;
         p.count_size = ply_type_size(ct);
         p.size = ply_type_size(it);
-        if (!p.count_size) return;
+        if (!p.count_size || !p.size) p = {1, 0}, p.unknown = true;
       } else {
         p.size = ply_type_size(type);
+        if (!p.size) p.size = 1, p.unknown = true;
       }
-      if (!p.size) return;
       elements.back().props.push_back(p);
     } else if (word == "end_header") {
       ended = true;
     }
   }
   if (!ended || pos > text.size()) return;
-  const bool ascii = format == "ascii";
-  const bool big = format == "binary_big_endian";
-  if (!ascii && !big && format != "binary_little_endian") return;
+  // assimp reads more than the three format names (it took "binary_littleA_endian" as binary): anything but ascii
+  // is walked as binary, big-endian when it says so.
+  const bool ascii = format.rfind("ascii", 0) == 0;
+  const bool big = !ascii && format.find("big") != std::string::npos;
   auto refuse = [&](const Element& e, uint64_t count, const char* what, uint64_t room) {
     const std::string n = count >= uint64_t(1) << 62 ? "over 4e18" : std::to_string(count);
     throw MeshError(path + ": the PLY file declares " + n + " " + what + " in element '" +
@@ -357,10 +360,10 @@ void check_ply_counts(const std::string& path, const std::string& text) {
     size_t w = 0;
     for (const Element& e : elements) {
       const uint64_t left = words.size() - w;
-      if (!e.props.empty() && e.count > left / e.props.size()) refuse(e, e.count, "items", left);
+      if (e.count > left / std::max<size_t>(e.props.size(), 1)) refuse(e, e.count, "items", left);
       for (uint64_t k = 0; k < e.count; ++k)
         for (const Property& p : e.props) {
-          if (w >= words.size()) return;
+          if (w >= words.size() || p.unknown) return;
           if (!p.count_size) {
             ++w;
             continue;
@@ -379,11 +382,12 @@ void check_ply_counts(const std::string& path, const std::string& text) {
   uint64_t at = pos;
   const uint64_t size = text.size();
   for (const Element& e : elements) {
-    uint64_t least = 0;  // the bytes of one item, its lists empty
+    uint64_t least = 0;  // the bytes of one item, its lists empty (an item of no property counts as one byte)
     for (const Property& p : e.props) least += p.count_size ? p.count_size : p.size;
-    if (least && e.count > (size - at) / least) refuse(e, e.count, "items", size - at);
+    if (e.count > (size - at) / std::max<uint64_t>(least, 1)) refuse(e, e.count, "items", size - at);
     for (uint64_t k = 0; k < e.count; ++k)
       for (const Property& p : e.props) {
+        if (p.unknown) return;
         if (!p.count_size) {
           at += p.size;
           if (at > size) return;

@@ -2,6 +2,7 @@
 // error that names the problem.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -244,6 +245,62 @@ TEST(Mesh, TruncatedFilesAreErrors) {
     EXPECT_GE(errors, 50) << fmt;  // nearly every cut loses a triangle
     std::remove(p.c_str());
   }
+}
+
+// PLY counts are checked against the rest of the file before assimp sees them (it allocates and loops for them
+// first): valid files of every encoding, with extra properties, comments and an empty element, load; counts the
+// file cannot hold are refused with the element and the room there is.
+TEST(Mesh, PlyCountsBeyondTheFileAreRefusedAndValidFilesLoad) {
+  const std::vector<std::array<float, 3>> V = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const std::vector<std::array<int32_t, 3>> F = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                                 {2, 3, 7}, {2, 7, 6}, {1, 2, 6}, {1, 6, 5}, {0, 4, 7}, {0, 7, 3}};
+  auto put = [](std::string& out, const void* p, size_t n, bool big) {
+    const char* c = static_cast<const char*>(p);
+    for (size_t i = 0; i < n; ++i) out += c[big ? n - 1 - i : i];  // this machine is little-endian
+  };
+  // face_count: the list length written for the last face (3 for a valid file).
+  auto ply = [&](const std::string& format, uint32_t face_count, const std::string& vertex_count = "8") {
+    std::string s = "ply\nformat " + format + " 1.0\ncomment a cube\nelement vertex " + vertex_count +
+                    "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
+                    "element face 12\nproperty list " + std::string(format == "ascii" ? "uchar" : "uint") +
+                    " int vertex_indices\nelement edge 0\nproperty int a\nend_header\n";
+    const bool ascii = format == "ascii", big = format == "binary_big_endian";
+    for (const auto& v : V) {
+      if (ascii) {
+        s += std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + " 7\n";
+      } else {
+        for (float x : v) put(s, &x, 4, big);
+        s += char(7);
+      }
+    }
+    for (size_t k = 0; k < F.size(); ++k) {
+      const uint32_t n = k + 1 == F.size() ? face_count : 3;
+      if (ascii) {
+        s += std::to_string(n) + " " + std::to_string(F[k][0]) + " " + std::to_string(F[k][1]) + " " +
+             std::to_string(F[k][2]) + "\n";
+      } else {
+        put(s, &n, 4, big);
+        for (int32_t i : F[k]) put(s, &i, 4, big);
+      }
+    }
+    return s;
+  };
+  const std::string p = tmp_path("counts.ply");
+  for (const std::string format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
+    test::write_file(p, ply(format, 3));
+    EXPECT_EQ(load_mesh(p).size(), F.size()) << format;
+    test::write_file(p, ply(format, 4000000000u));
+    std::string e = error_of([&] { load_mesh(p); });
+    EXPECT_NE(e.find(p + ": the PLY file declares 4000000000 list values in element 'face', more than the "),
+              std::string::npos)
+        << format << ": " << e;
+    test::write_file(p, ply(format, 3, "123456789012"));
+    e = error_of([&] { load_mesh(p); });
+    EXPECT_NE(e.find(p + ": the PLY file declares 123456789012 items in element 'vertex'"), std::string::npos)
+        << format << ": " << e;
+  }
+  std::remove(p.c_str());
 }
 
 // Bad meshes in files: the error names the file and the problem.
