@@ -50,7 +50,7 @@ struct SceneSpec {
 Scene make_scene(const SceneSpec& spec);
 
 struct SimOptions {
-  std::string pruning = "sap";   // a broadphase name (host/broadphase.h)
+  std::string pruning = "grid";  // a broadphase name (host/broadphase.h): the fastest at every N measured
   std::string backend = "cpu";   // a device backend
   int lanes = 4;                 // lanes of the modelled device
   // The device's whole configuration (e.g. one `voxcd size` derived); it replaces `lanes` and the memories grown

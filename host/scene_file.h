@@ -48,7 +48,7 @@ struct SceneFile {
   double clock = 200;    // MHz
   uint64_t frames = 100; // frames `voxcd size` simulates to measure pairs and points
   // How the scene is run.
-  std::string broadphase = "sap";
+  std::string broadphase = "grid";
   std::string backend = "cpu";
   std::string mode = "ALL";
   bool both_directions = false;
