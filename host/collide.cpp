@@ -23,12 +23,12 @@ void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
                           std::to_string(cfg.max_dim()) + " per axis");
 }
 
-// keep[k] = 1 when cluster k's box (centre, half) can land in [0, n) through p -> M p + t; |M| is aM: all three axes
-// of a cluster in one pass, without branches. The slack covers the double arithmetic: the values stay below 2^40,
-// where its rounding is far below 1e-4.
+// Bit k of `bits` = 1 when cluster k's box (centre, half) can land in [0, n) through p -> M p + t; |M| is aM: all
+// three axes of a cluster in one pass, without branches, the bits gathered in a register. The slack covers the
+// double arithmetic: the values stay below 2^40, where its rounding is far below 1e-4.
 inline void cull_clusters(const std::vector<double> (&centre)[3], const std::vector<double> (&half)[3], size_t nc,
                           const double (&M)[3][3], const double (&aM)[3][3], const double (&t)[3], const double (&n)[3],
-                          uint8_t* __restrict keep) {
+                          uint64_t* __restrict bits) {
   constexpr double kSlack = 1e-4;
   const double* __restrict cx = centre[0].data();
   const double* __restrict cy = centre[1].data();
@@ -38,14 +38,19 @@ inline void cull_clusters(const std::vector<double> (&centre)[3], const std::vec
   const double* __restrict hz = half[2].data();
   double lo[3], hi[3];
   for (int i = 0; i < 3; ++i) lo[i] = -kSlack - t[i], hi[i] = n[i] + kSlack - t[i];
-  for (size_t k = 0; k < nc; ++k) {
-    bool in = true;
-    for (int i = 0; i < 3; ++i) {
-      const double c = M[i][0] * cx[k] + M[i][1] * cy[k] + M[i][2] * cz[k];
-      const double h = aM[i][0] * hx[k] + aM[i][1] * hy[k] + aM[i][2] * hz[k];
-      in &= (c + h >= lo[i]) & (c - h < hi[i]);
+  for (size_t w = 0; w * 64 < nc; ++w) {
+    uint64_t word = 0;
+    const size_t end = std::min(nc, w * 64 + 64);
+    for (size_t k = w * 64; k < end; ++k) {
+      bool in = true;
+      for (int i = 0; i < 3; ++i) {
+        const double c = M[i][0] * cx[k] + M[i][1] * cy[k] + M[i][2] * cz[k];
+        const double h = aM[i][0] * hx[k] + aM[i][1] * hy[k] + aM[i][2] * hz[k];
+        in &= (c + h >= lo[i]) & (c - h < hi[i]);
+      }
+      word |= uint64_t(in) << (k & 63);
     }
-    keep[k] = uint8_t(in);
+    bits[w] = word;
   }
 }
 
@@ -154,10 +159,8 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
   const double n[3] = {double(whole.nx), double(whole.ny), double(whole.nz)};
   const Clusters& cl = clusters_[shell_type];
   const size_t nc = cl.first.size() - 1;
-  keep_.resize(nc);
-  cull_clusters(cl.centre, cl.half, nc, M, aM, t, n, keep_.data());
-  bits_.assign((nc + 63) / 64, 0);
-  for (size_t k = 0; k < nc; ++k) bits_[k >> 6] |= uint64_t(keep_[k]) << (k & 63);
+  bits_.resize((nc + 63) / 64);
+  cull_clusters(cl.centre, cl.half, nc, M, aM, t, n, bits_.data());
   // Runs of kept clusters, found a run at a time in the bit mask (the keep pattern is hard to predict, so a branch
   // per cluster costs more than the whole cull); runs closer than kMergeGap points apart are one job (a job costs
   // more on the host than a few extra lookups).

@@ -135,7 +135,6 @@ class PairCollider {
   std::vector<Clusters> clusters_;
   // Scratch of add_runs (which clusters survive), kept to avoid an allocation per pair: jobs() is const but, like
   // collide(), not to be called on one collider from two threads at once.
-  mutable std::vector<uint8_t> keep_;
   mutable std::vector<uint64_t> bits_;
   std::vector<Job> jobs_;
   std::vector<JobSource> sources_;
