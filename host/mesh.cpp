@@ -282,13 +282,15 @@ size_t ply_type_size(const std::string& t) {
 }
 
 // assimp 5.2's PLY reader allocates and loops for the counts a file declares (elements, and each list's length)
-// before it finds that the data ends: a count of 10^13 hangs it or exhausts memory. Walks the body as the header
-// describes it and refuses any count larger than what is left of the file can hold. Stops quietly where the file
-// is not what this walk understands (assimp then reports it). `text`: the whole file.
-void check_ply_counts(const std::string& path, const std::string& text) {
+// before it finds that the data ends: a count of 10^13 hangs it or exhausts memory. And it reads headers loosely
+// (a misspelt format or property line still loads, with counts read from the wrong bytes). So the header must be
+// exactly what the PLY format allows (ply, format ascii|binary_little_endian|binary_big_endian, comment, obj_info,
+// element NAME COUNT, property TYPE NAME, property list TYPE TYPE NAME, end_header), and the body is walked as it
+// describes: any count larger than what is left of the file can hold is refused. `text`: the whole file, whose
+// first line is "ply" and which has an end_header line (checked before).
+void check_ply(const std::string& path, const std::string& text) {
   struct Property {
     size_t size = 0, count_size = 0;  // count_size > 0: a list
-    bool unknown = false;
   };
   struct Element {
     std::string name;
@@ -299,49 +301,63 @@ void check_ply_counts(const std::string& path, const std::string& text) {
   std::string format;
   size_t pos = 0;
   bool ended = false;
-  while (pos < text.size() && !ended) {
+  for (int number = 1; pos < text.size() && !ended; ++number) {
     size_t next = text.find('\n', pos);
     if (next == std::string::npos) next = text.size();
-    std::istringstream line(text.substr(pos, next - pos));
+    const std::string raw = text.substr(pos, next - pos);
+    std::istringstream line(raw);
     pos = next + 1;
-    std::string word;
+    auto bad = [&](const std::string& why) {
+      std::string shown = raw.substr(0, 60);
+      for (char& c : shown)
+        if (!std::isprint(uint8_t(c))) c = '?';
+      throw MeshError(path + ": line " + std::to_string(number) + " of the PLY header, '" + shown + "': " + why);
+    };
+    std::string word, rest;
     line >> word;
-    if (word == "format") {
-      line >> format;
+    if (number == 1 || word.empty() || word == "comment" || word == "obj_info") {
+      continue;
+    } else if (word == "format") {
+      std::string version;
+      line >> format >> version;
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+        bad("the format is not ascii, binary_little_endian or binary_big_endian");
     } else if (word == "element") {
       Element e;
       std::string count;
       line >> e.name >> count;
-      if (count.empty() || !std::all_of(count.begin(), count.end(), [](char c) { return std::isdigit(uint8_t(c)); }))
-        return;
+      if (e.name.empty() || count.empty() ||
+          !std::all_of(count.begin(), count.end(), [](char c) { return std::isdigit(uint8_t(c)); }))
+        bad("an element needs a name and a count");
       e.count = count.size() > 18 ? uint64_t(1) << 62 : std::stoull(count);
       elements.push_back(e);
     } else if (word == "property") {
-      if (elements.empty()) return;
-      std::string type;
+      if (elements.empty()) bad("a property before any element");
+      std::string type, name;
       line >> type;
-      // An unknown type counts as one byte (the least any value takes) and ends the walk through the body.
       Property p;
       if (type == "list") {
         std::string ct, it;
         line >> ct >> it;
         p.count_size = ply_type_size(ct);
         p.size = ply_type_size(it);
-        if (!p.count_size || !p.size) p = {1, 0}, p.unknown = true;
+        if (!p.count_size || !p.size) bad("a list property needs two known types (char .. double, int8 .. float64)");
       } else {
         p.size = ply_type_size(type);
-        if (!p.size) p.size = 1, p.unknown = true;
+        if (!p.size) bad("unknown property type '" + type + "'");
       }
+      line >> name;
+      if (name.empty()) bad("a property needs a name");
       elements.back().props.push_back(p);
     } else if (word == "end_header") {
       ended = true;
+    } else {
+      bad("not a PLY header line (ply, format, comment, obj_info, element, property, end_header)");
     }
   }
-  if (!ended || pos > text.size()) return;
-  // assimp reads more than the three format names (it took "binary_littleA_endian" as binary): anything but ascii
-  // is walked as binary, big-endian when it says so.
-  const bool ascii = format.rfind("ascii", 0) == 0;
-  const bool big = !ascii && format.find("big") != std::string::npos;
+  if (!ended || pos > text.size() || format.empty()) return;
+  const bool ascii = format == "ascii";
+  const bool big = format == "binary_big_endian";
   auto refuse = [&](const Element& e, uint64_t count, const char* what, uint64_t room) {
     const std::string n = count >= uint64_t(1) << 62 ? "over 4e18" : std::to_string(count);
     throw MeshError(path + ": the PLY file declares " + n + " " + what + " in element '" +
@@ -363,7 +379,7 @@ void check_ply_counts(const std::string& path, const std::string& text) {
       if (e.count > left / std::max<size_t>(e.props.size(), 1)) refuse(e, e.count, "items", left);
       for (uint64_t k = 0; k < e.count; ++k)
         for (const Property& p : e.props) {
-          if (w >= words.size() || p.unknown) return;
+          if (w >= words.size()) return;
           if (!p.count_size) {
             ++w;
             continue;
@@ -387,7 +403,6 @@ void check_ply_counts(const std::string& path, const std::string& text) {
     if (e.count > (size - at) / std::max<uint64_t>(least, 1)) refuse(e, e.count, "items", size - at);
     for (uint64_t k = 0; k < e.count; ++k)
       for (const Property& p : e.props) {
-        if (p.unknown) return;
         if (!p.count_size) {
           at += p.size;
           if (at > size) return;
@@ -440,13 +455,15 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
                   (word + 10 == head.size() || std::isspace(static_cast<unsigned char>(head[word + 10])));
           line = next == std::string::npos ? head.size() : next + 1;
         }
-        if (head.rfind("ply", 0) == 0 && !ended)
+        // assimp takes "ply" or "PLY" as the magic word.
+        const bool ply = head.rfind("ply", 0) == 0 || head.rfind("PLY", 0) == 0;
+        if (ply && !ended)
           throw MeshError(path + ": the PLY header has no end_header line in its first " +
                           std::to_string(head.size()) + " bytes (is the file truncated?)");
         probe.clear();
         probe.seekg(0);
         const std::string whole((std::istreambuf_iterator<char>(probe)), std::istreambuf_iterator<char>());
-        check_ply_counts(path, whole);
+        if (ply) check_ply(path, whole);
       }
       // assimp's OFF reader allocates for the counts its header declares before reading them: refuse counts the file
       // cannot hold (a vertex takes at least 5 bytes, "0 0 0", a face at least 7, "3 0 1 2").

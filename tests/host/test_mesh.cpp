@@ -249,8 +249,8 @@ TEST(Mesh, TruncatedFilesAreErrors) {
 
 // PLY counts are checked against the rest of the file before assimp sees them (it allocates and loops for them
 // first): valid files of every encoding, with extra properties, comments and an empty element, load; counts the
-// file cannot hold are refused with the element and the room there is.
-TEST(Mesh, PlyCountsBeyondTheFileAreRefusedAndValidFilesLoad) {
+// file cannot hold are refused with the element and the room there is, and so are header lines PLY does not have.
+TEST(Mesh, PlyHeadersAndCountsAreCheckedAndValidFilesLoad) {
   const std::vector<std::array<float, 3>> V = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   const std::vector<std::array<int32_t, 3>> F = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
@@ -299,6 +299,20 @@ TEST(Mesh, PlyCountsBeyondTheFileAreRefusedAndValidFilesLoad) {
     e = error_of([&] { load_mesh(p); });
     EXPECT_NE(e.find(p + ": the PLY file declares 123456789012 items in element 'vertex'"), std::string::npos)
         << format << ": " << e;
+  }
+  // Header lines the format does not have are refused (assimp reads them loosely, then counts from the wrong bytes).
+  const std::string good = ply("binary_little_endian", 3);
+  for (const auto& [from, to, says] : std::vector<std::array<std::string, 3>>{
+           {"format binary_little_endian", "format binary_littleA_endian", "line 2 of the PLY header"},
+           {"property float y", "profloaperty float y", "not a PLY header line"},
+           {"property float y", "property flaot y", "unknown property type 'flaot'"},
+           {"element face 12", "element face", "an element needs a name and a count"}}) {
+    std::string bad = good;
+    bad.replace(bad.find(from), from.size(), to);
+    test::write_file(p, bad);
+    const std::string e = error_of([&] { load_mesh(p); });
+    EXPECT_EQ(e.rfind(p + ": line ", 0), 0u) << to << ": " << e;
+    EXPECT_NE(e.find(says), std::string::npos) << to << ": " << e;
   }
   std::remove(p.c_str());
 }
