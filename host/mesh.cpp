@@ -358,40 +358,49 @@ void check_ply(const std::string& path, const std::string& text) {
   if (!ended || pos > text.size() || format.empty()) return;
   const bool ascii = format == "ascii";
   const bool big = format == "binary_big_endian";
-  auto refuse = [&](const Element& e, uint64_t count, const char* what, uint64_t room) {
+  auto refuse = [&](const Element& e, uint64_t count, const char* what, uint64_t room, const char* unit) {
     const std::string n = count >= uint64_t(1) << 62 ? "over 4e18" : std::to_string(count);
-    throw MeshError(path + ": the PLY file declares " + n + " " + what + " in element '" +
-                    e.name + "', more than the " + std::to_string(room) + " " + (ascii ? "words" : "bytes") +
-                    " after them can hold (is the file truncated or damaged?)");
+    throw MeshError(path + ": the PLY file declares " + n + " " + what + " in element '" + e.name +
+                    "', more than the " + std::to_string(room) + " " + unit +
+                    " can hold (is the file truncated or damaged?)");
   };
   if (ascii) {
-    // Every value is a word: an element needs a word per property at least.
-    std::vector<std::pair<size_t, size_t>> words;  // [begin, end) in text
-    for (size_t i = pos; i < text.size();) {
-      while (i < text.size() && std::isspace(uint8_t(text[i]))) ++i;
-      const size_t b = i;
-      while (i < text.size() && !std::isspace(uint8_t(text[i]))) ++i;
-      if (i > b) words.emplace_back(b, i);
-    }
-    size_t w = 0;
+    // assimp reads an ASCII element item from one line: an element needs a line an item, and a list's length
+    // (the leading digits of its word, as assimp reads it) at most the words left on its line.
+    uint64_t lines = 0;
+    for (size_t i = pos; i < text.size(); ++i) lines += text[i] == '\n';
+    if (pos < text.size() && text.back() != '\n') ++lines;
+    size_t at = pos;
+    std::vector<std::pair<size_t, size_t>> words;  // of the current line, [begin, end) in text
     for (const Element& e : elements) {
-      const uint64_t left = words.size() - w;
-      if (e.count > left / std::max<size_t>(e.props.size(), 1)) refuse(e, e.count, "items", left);
-      for (uint64_t k = 0; k < e.count; ++k)
+      if (e.count > lines) refuse(e, e.count, "items", lines, "lines after them");
+      lines -= e.count;
+      for (uint64_t k = 0; k < e.count && at < text.size(); ++k) {
+        size_t eol = text.find('\n', at);
+        if (eol == std::string::npos) eol = text.size();
+        words.clear();
+        for (size_t i = at; i < eol;) {
+          while (i < eol && std::isspace(uint8_t(text[i]))) ++i;
+          const size_t b = i;
+          while (i < eol && !std::isspace(uint8_t(text[i]))) ++i;
+          if (i > b) words.emplace_back(b, i);
+        }
+        at = eol + 1;
+        size_t w = 0;
         for (const Property& p : e.props) {
-          if (w >= words.size()) return;
+          if (w >= words.size()) break;
           if (!p.count_size) {
             ++w;
             continue;
           }
-          // A list: its length (the leading digits of the word, as assimp reads it), then that many values.
           const auto [b, end] = words[w++];
           uint64_t n = 0;
           for (size_t i = b; i < end && std::isdigit(uint8_t(text[i])); ++i)
             n = std::min<uint64_t>(n * 10 + uint64_t(text[i] - '0'), uint64_t(1) << 62);
-          if (n > words.size() - w) refuse(e, n, "list values", words.size() - w);
+          if (n > words.size() - w) refuse(e, n, "list values", words.size() - w, "words left on its line");
           w += size_t(n);
         }
+      }
     }
     return;
   }
@@ -400,7 +409,8 @@ void check_ply(const std::string& path, const std::string& text) {
   for (const Element& e : elements) {
     uint64_t least = 0;  // the bytes of one item, its lists empty (an item of no property counts as one byte)
     for (const Property& p : e.props) least += p.count_size ? p.count_size : p.size;
-    if (e.count > (size - at) / std::max<uint64_t>(least, 1)) refuse(e, e.count, "items", size - at);
+    if (e.count > (size - at) / std::max<uint64_t>(least, 1))
+      refuse(e, e.count, "items", size - at, "bytes after them");
     for (uint64_t k = 0; k < e.count; ++k)
       for (const Property& p : e.props) {
         if (!p.count_size) {
@@ -415,7 +425,7 @@ void check_ply(const std::string& path, const std::string& text) {
           n = n << 8 | byte;
         }
         at += p.count_size;
-        if (n > (size - at) / p.size) refuse(e, n, "list values", size - at);
+        if (n > (size - at) / p.size) refuse(e, n, "list values", size - at, "bytes after them");
         at += n * p.size;
       }
   }
