@@ -237,9 +237,9 @@ FrameStats Simulation::step() {
   for (size_t k = 0; k < pairs.size(); ++k) {
     const uint32_t ia = pairs[k].first, ib = pairs[k].second;
     const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
-    if (opt_.midphase &&
-        (!spheres_overlap(bounds_[ia], bounds_[ib]) || !boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia],
-                                                                      *scene_.types[b.type], rot_[ib], box_centre_[ib])))
+    if (opt_.midphase && (!spheres_overlap(bounds_[ia], bounds_[ib]) ||
+                          !boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia], *scene_.types[b.type],
+                                         rot_[ib], box_centre_[ib])))
       continue;
     PairRequest r;
     r.a = a.type;
