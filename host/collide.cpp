@@ -257,7 +257,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
       else ++counts_[sources_[job].pair];
     }
   }
-  // The pose of each pair's objects as matrices, once.
+  // The pose of each pair's objects as matrices, once, for the pairs with contacts.
   rot_a_.resize(pairs.size());
   rot_b_.resize(pairs.size());
   for (size_t i = 0; i < pairs.size(); ++i) {
@@ -267,6 +267,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     r.hits = 0;
     r.lookups = 0;
     r.cycles = 0;
+    if (counts_[i] == 0) continue;
     rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
     rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
   }
