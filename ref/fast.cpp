@@ -98,14 +98,17 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block
     const __m512d py = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, y + k));
     const __m512d pz = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, z + k));
     const __m512d ax = _mm512_fmadd_pd(m0, px, _mm512_fmadd_pd(m1, py, _mm512_fmadd_pd(m2, pz, t0)));
-    const __m512d ay = _mm512_fmadd_pd(m3, px, _mm512_fmadd_pd(m4, py, _mm512_fmadd_pd(m5, pz, t1)));
-    const __m512d az = _mm512_fmadd_pd(m6, px, _mm512_fmadd_pd(m7, py, _mm512_fmadd_pd(m8, pz, t2)));
     __mmask8 in = _mm512_mask_cmp_pd_mask(live, ax, zero, _CMP_GE_OQ);
     in = _mm512_mask_cmp_pd_mask(in, ax, nx, _CMP_LT_OQ);
-    in = _mm512_mask_cmp_pd_mask(in, ay, zero, _CMP_GE_OQ);
-    in = _mm512_mask_cmp_pd_mask(in, ay, ny, _CMP_LT_OQ);
-    in = _mm512_mask_cmp_pd_mask(in, az, zero, _CMP_GE_OQ);
-    in = _mm512_mask_cmp_pd_mask(in, az, nz, _CMP_LT_OQ);
+    __m512d ay = zero, az = zero;
+    if (in != 0) {  // y and z only where a point is inside along x
+      ay = _mm512_fmadd_pd(m3, px, _mm512_fmadd_pd(m4, py, _mm512_fmadd_pd(m5, pz, t1)));
+      az = _mm512_fmadd_pd(m6, px, _mm512_fmadd_pd(m7, py, _mm512_fmadd_pd(m8, pz, t2)));
+      in = _mm512_mask_cmp_pd_mask(in, ay, zero, _CMP_GE_OQ);
+      in = _mm512_mask_cmp_pd_mask(in, ay, ny, _CMP_LT_OQ);
+      in = _mm512_mask_cmp_pd_mask(in, az, zero, _CMP_GE_OQ);
+      in = _mm512_mask_cmp_pd_mask(in, az, nz, _CMP_LT_OQ);
+    }
     if (in == 0) {
       _mm_mask_storeu_epi8(state + k, live, _mm_setzero_si128());
       continue;
