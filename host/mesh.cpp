@@ -465,8 +465,9 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
                   (word + 10 == head.size() || std::isspace(static_cast<unsigned char>(head[word + 10])));
           line = next == std::string::npos ? head.size() : next + 1;
         }
-        // assimp takes "ply" or "PLY" as the magic word.
-        const bool ply = head.rfind("ply", 0) == 0 || head.rfind("PLY", 0) == 0;
+        // assimp takes the magic word in any case ("pLy" too).
+        const bool ply = head.size() >= 3 && std::tolower(uint8_t(head[0])) == 'p' &&
+                         std::tolower(uint8_t(head[1])) == 'l' && std::tolower(uint8_t(head[2])) == 'y';
         if (ply && !ended)
           throw MeshError(path + ": the PLY header has no end_header line in its first " +
                           std::to_string(head.size()) + " bytes (is the file truncated?)");
