@@ -15,7 +15,8 @@ void throw_bad_body(const std::string& who, size_t i, uint64_t frame, const char
   throw std::invalid_argument(s.str());
 }
 
-// LSD radix sort on the pair packed into 2 * bits(n - 1) bits, 11 bits a pass: O(k) for any pair count.
+// LSD radix sort on the pair packed into 2 * bits(n - 1) bits, in as few passes of at most 11 bits as cover them
+// (two of 8 bits for 256 bodies, whose counts clear and sum in a blink): O(k) for any pair count.
 void sort_keys(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint32_t n) {
   const size_t k = keys.size();
   if (k < 256) {
@@ -26,17 +27,21 @@ void sort_keys(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint
   while (b < 32 && (uint64_t(1) << b) < n) ++b;
   for (auto& key : keys) key = (key >> 32) << b | (key & 0xffffffffu);
   scratch.resize(k);
-  constexpr int kDigit = 11;
-  for (int shift = 0; shift < 2 * b; shift += kDigit) {
-    uint32_t count[1 << kDigit] = {};
-    for (uint64_t key : keys) ++count[(key >> shift) & ((1 << kDigit) - 1)];
+  constexpr int kMaxDigit = 11;
+  const int passes = (2 * b + kMaxDigit - 1) / kMaxDigit;
+  const int digit = (2 * b + passes - 1) / passes;
+  const uint64_t dmask = (uint64_t(1) << digit) - 1;
+  uint32_t count[1 << kMaxDigit];
+  for (int shift = 0; shift < 2 * b; shift += digit) {
+    std::fill(count, count + (size_t(1) << digit), 0u);
+    for (uint64_t key : keys) ++count[(key >> shift) & dmask];
     uint32_t sum = 0;
-    for (auto& c : count) {
-      const uint32_t t = c;
-      c = sum;
+    for (size_t d = 0; d < (size_t(1) << digit); ++d) {
+      const uint32_t t = count[d];
+      count[d] = sum;
       sum += t;
     }
-    for (uint64_t key : keys) scratch[count[(key >> shift) & ((1 << kDigit) - 1)]++] = key;
+    for (uint64_t key : keys) scratch[count[(key >> shift) & dmask]++] = key;
     keys.swap(scratch);
   }
   const uint64_t mask = (uint64_t(1) << b) - 1;
