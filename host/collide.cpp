@@ -244,8 +244,8 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
   jobs(pairs, opt, jobs_, sources_);
   device_->run_into(jobs_, records_);
   const std::vector<Job>& js = jobs_;
-  out.resize(pairs.size());
-  // Each pair's contacts in one allocation (or none, when the capacity is there from an earlier call).
+  // The stream is checked whole before `out` is touched, so a misbehaving device leaves the caller's results as
+  // they were. Each pair's contacts then go in one allocation (or none, when the capacity is there already).
   counts_.assign(pairs.size(), 0);
   {
     size_t job = 0;
@@ -256,7 +256,11 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
       if (rec.kind == Record::Done) ++job;
       else ++counts_[sources_[job].pair];
     }
+    if (job != js.size())
+      throw DeviceError("the device returned fewer completions than the " + std::to_string(js.size()) +
+                        " jobs it was given");
   }
+  out.resize(pairs.size());
   // The pose of each pair's objects as matrices, once, for the pairs with contacts.
   rot_a_.resize(pairs.size());
   rot_b_.resize(pairs.size());

@@ -304,10 +304,11 @@ TEST(Robustness, DeviceStreamThatDoesNotMatchTheJobsIsADeviceError) {
             "the device returned records after the completions of all " + std::to_string(jobs) + " jobs");
   EXPECT_TRUE(same_results(out, good)) << "the refused batch changed the results";
 
-  // The last completion missing: found when the results are routed, so `out` holds a partial batch.
+  // The last completion missing: refused before any result is touched too.
   dev->next = SpoilingDevice::Spoil::MissingCompletion;
   EXPECT_EQ(error_text<DeviceError>([&] { col.collide(reqs, opt, out); }),
             "the device returned fewer completions than the " + std::to_string(jobs) + " jobs it was given");
+  EXPECT_TRUE(same_results(out, good)) << "the refused batch changed the results";
 
   // Neither loses the collider's types or the device's memory: the next batch is the same as the first.
   col.collide(reqs, opt, out);
