@@ -487,9 +487,13 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
         probe.read(&text[0], std::streamsize(text.size()));
         std::istringstream in(text);
         std::string tok;
-        in >> tok;  // OFF
+        in >> tok;  // OFF, COFF, NOFF...: digits glued to the keyword are the first count to assimp
         std::vector<uint64_t> n;
-        while (n.size() < 2 && in >> tok) {
+        const size_t digits = tok.find_first_of("0123456789");
+        bool glued = digits != std::string::npos;
+        if (glued) tok = tok.substr(digits);
+        while (n.size() < 2 && (glued || in >> tok)) {
+          glued = false;
           if (tok[0] == '#') {
             std::getline(in, tok);
             continue;
@@ -501,9 +505,12 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
             v = std::min<uint64_t>(v * 10 + uint64_t(tok[i] - '0'), uint64_t(1) << 60);
           n.push_back(v);
         }
+        auto off_count = [](uint64_t v) {
+          return v >= uint64_t(1) << 60 ? std::string("over 10^18") : std::to_string(v);
+        };
         if (n.size() == 2 && (n[0] > size / 5 || n[1] > size / 7))
-          throw MeshError(path + ": the OFF header declares " + std::to_string(n[0]) + " vertices and " +
-                          std::to_string(n[1]) + " faces, more than its " + std::to_string(size) +
+          throw MeshError(path + ": the OFF header declares " + off_count(n[0]) + " vertices and " + off_count(n[1]) +
+                          " faces, more than its " + std::to_string(size) +
                           " bytes can hold (is the file truncated?)");
       }
     }
