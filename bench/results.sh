@@ -3,7 +3,8 @@
 #
 # Builds bench_results, bench_simulate, bench_pair and bench_broadphase in build-results/ (Release), runs them,
 # synthesises voxcd_device at a few fixed-point widths with yosys, draws the plots with gnuplot and splices each
-# table into docs/results.md (bench/splice.sh). The data behind the plots stays in build-results/results/.
+# table into docs/results.md (bench/splice.sh), the broadphase table into docs/broadphase.md too. The data behind
+# the plots stays in build-results/results/.
 # Full run: 11 minutes on a quiet 2-core machine with a warm build, up to 30 on a loaded one with a cold build;
 # --quick (fewer repeats, poses, sizes and frames): about a minute once built.
 #
@@ -74,9 +75,9 @@ run "N-body: Fig. 14, the paper's pipeline" "$build/bench_simulate" --counts "$f
   --prunings all,sphere,sap,coherent,queue --voxel 1 --no-midphase --frames "$frames" --repeats "$reps" \
   --out "$data/nbody.md" --csv "$data/nbody.csv"
 run "N-body: Fig. 14 with the mid-phase" "$build/bench_simulate" --counts "$fig14_counts" \
-  --prunings all,sphere,sap,coherent,queue --voxel 1 --frames "$frames" --repeats "$reps" \
+  --prunings all,sphere,sap,coherent,queue,grid --voxel 1 --frames "$frames" --repeats "$reps" \
   --out "$data/nbody_mid.md" --csv "$data/nbody_mid.csv"
-run "N-body: large N" "$build/bench_simulate" --counts "$big_counts" --prunings sap,tree --frames "$big_frames" \
+run "N-body: large N" "$build/bench_simulate" --counts "$big_counts" --prunings sap,tree,grid --frames "$big_frames" \
   --repeats 3 --out "$data/large.md" --csv "$data/large.csv"
 run "peers: pair queries (bench_pair)" "$build/bench_pair" "${pair_args[@]}" --out "$data/peers_pair.md"
 # bench_broadphase's own table names its command and machine but not the date and load: add the line the other
@@ -167,4 +168,5 @@ done
 for block in pairs error fixed cost nbody nbody_mid large peers_pair peers_bp; do
   bash bench/splice.sh docs/results.md "results-$block" "$data/$block.md" >/dev/null
 done
+bash bench/splice.sh docs/broadphase.md broadphase "$data/peers_bp.md" >/dev/null
 echo "results.sh: wrote docs/results.md and $(ls "$plots"/*.png | wc -l) plots in $plots in $((SECONDS - start)) s" >&2
