@@ -315,6 +315,10 @@ void check_ply(const std::string& path, const std::string& text) {
     };
     std::string word, rest;
     line >> word;
+    if (word != "comment" && word != "obj_info")
+      for (char c : raw)
+        if ((uint8_t(c) < 0x20 && c != '\t' && c != '\r') || uint8_t(c) >= 0x7f)
+          bad("a control or non-ASCII character outside a comment");
     if (number == 1 || word.empty() || word == "comment" || word == "obj_info") {
       continue;
     } else if (word == "format") {
@@ -355,7 +359,8 @@ void check_ply(const std::string& path, const std::string& text) {
       bad("not a PLY header line (ply, format, comment, obj_info, element, property, end_header)");
     }
   }
-  if (!ended || pos > text.size() || format.empty()) return;
+  if (!ended || format.empty()) return;
+  pos = std::min(pos, text.size());  // an end_header line without a newline: no body
   const bool ascii = format == "ascii";
   const bool big = format == "binary_big_endian";
   auto refuse = [&](const Element& e, uint64_t count, const char* what, uint64_t room, const char* unit) {
