@@ -315,6 +315,9 @@ void check_ply(const std::string& path, const std::string& text) {
     };
     std::string word, rest;
     line >> word;
+    // (A carriage return may end a line; inside one, assimp takes it as a line break and reads another header.)
+    const size_t cr = raw.find('\r');
+    if (cr != std::string::npos && cr + 1 != raw.size()) bad("a carriage return inside the line");
     if (word != "comment" && word != "obj_info")
       for (char c : raw)
         if ((uint8_t(c) < 0x20 && c != '\t' && c != '\r') || uint8_t(c) >= 0x7f)
@@ -383,6 +386,10 @@ void check_ply(const std::string& path, const std::string& text) {
       for (uint64_t k = 0; k < e.count && at < text.size(); ++k) {
         size_t eol = text.find('\n', at);
         if (eol == std::string::npos) eol = text.size();
+        const size_t cr = text.find('\r', at);
+        if (cr != std::string::npos && cr + 1 < eol)
+          throw MeshError(path + ": a carriage return inside item " + std::to_string(k) + " of element '" + e.name +
+                          "' (assimp would read it as a line break)");
         words.clear();
         for (size_t i = at; i < eol;) {
           while (i < eol && std::isspace(uint8_t(text[i]))) ++i;
