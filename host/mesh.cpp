@@ -376,7 +376,14 @@ void check_ply(const std::string& path, const std::string& text) {
     // assimp reads an ASCII element item from one line: an element needs a line an item, and a list's length
     // (the leading digits of its word, as assimp reads it) at most the words left on its line.
     uint64_t lines = 0;
-    for (size_t i = pos; i < text.size(); ++i) lines += text[i] == '\n';
+    for (size_t i = pos; i < text.size(); ++i) {
+      const uint8_t c = uint8_t(text[i]);
+      lines += c == '\n';
+      // assimp reads the body as C strings and skips what it does not know differently from a plain word split.
+      if ((c < 0x20 && c != '\n' && c != '\r' && c != '\t') || c >= 0x7f)
+        throw MeshError(path + ": byte " + std::to_string(i) + " of the ASCII PLY file is a control or non-ASCII " +
+                        "character (" + std::to_string(c) + ")");
+    }
     if (pos < text.size() && text.back() != '\n') ++lines;
     size_t at = pos;
     std::vector<std::pair<size_t, size_t>> words;  // of the current line, [begin, end) in text
