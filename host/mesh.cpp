@@ -450,6 +450,178 @@ void check_ply(const std::string& path, const std::string& text) {
   }
 }
 
+
+// The value of one binary PLY scalar of `size` bytes at p: signed, unsigned or floating (`type` its name).
+double ply_binary_value(const char* p, size_t size, const std::string& type, bool big) {
+  uint64_t bits = 0;
+  for (size_t i = 0; i < size; ++i) bits |= uint64_t(uint8_t(p[big ? size - 1 - i : i])) << (8 * i);
+  if (type == "float" || type == "float32") {
+    const uint32_t b = uint32_t(bits);
+    float f;
+    std::memcpy(&f, &b, 4);
+    return f;
+  }
+  if (type == "double" || type == "float64") {
+    double d;
+    std::memcpy(&d, &bits, 8);
+    return d;
+  }
+  const bool is_signed = type == "char" || type == "int8" || type == "short" || type == "int16" || type == "int" ||
+                         type == "int32";
+  if (is_signed && size < 8 && (bits >> (8 * size - 1)) & 1)
+    return double(int64_t(bits | (~uint64_t(0) << (8 * size))));
+  return double(bits);
+}
+
+// A PLY file read by this program, not by assimp (whose reader hangs or runs out of memory on damaged files: the
+// fuzz_mesh findings in docs/robustness.md). check_ply has accepted the header and the counts. The element
+// `vertex` gives the points (its properties x, y, z), the element `face` the polygons (its list vertex_indices or
+// vertex_index), split into triangles as fans; every other element and property is read and skipped. ASCII: an
+// item a line, as the format is written in practice.
+Mesh read_ply(const std::string& path, const std::string& text) {
+  check_ply(path, text);
+  struct Prop {
+    std::string name, type, count_type;  // count_type set: a list
+  };
+  struct Elem {
+    std::string name;
+    uint64_t count = 0;
+    std::vector<Prop> props;
+  };
+  std::vector<Elem> elems;
+  std::string format;
+  size_t pos = 0;
+  for (bool ended = false; !ended;) {
+    size_t next = text.find('\n', pos);
+    if (next == std::string::npos) next = text.size();
+    std::istringstream line(text.substr(pos, next - pos));
+    pos = std::min(next + 1, text.size());
+    std::string word, count;
+    line >> word;
+    if (word == "format") {
+      line >> format;
+    } else if (word == "element") {
+      Elem e;
+      line >> e.name >> count;
+      e.count = std::stoull(count);
+      elems.push_back(e);
+    } else if (word == "property") {
+      Prop pr;
+      line >> pr.type;
+      if (pr.type == "list") line >> pr.count_type >> pr.type;
+      line >> pr.name;
+      elems.back().props.push_back(pr);
+    } else if (word == "end_header") {
+      ended = true;
+    }
+  }
+  const bool ascii = format == "ascii", big = format == "binary_big_endian";
+  const Elem* vertex = nullptr;
+  const Elem* face = nullptr;
+  int px = -1, py = -1, pz = -1, pf = -1;
+  for (const Elem& e : elems) {
+    if (e.name == "vertex" && !vertex) {
+      vertex = &e;
+      for (size_t i = 0; i < e.props.size(); ++i) {
+        if (!e.props[i].count_type.empty()) continue;
+        if (e.props[i].name == "x") px = int(i);
+        if (e.props[i].name == "y") py = int(i);
+        if (e.props[i].name == "z") pz = int(i);
+      }
+    }
+    if (e.name == "face" && !face) {
+      face = &e;
+      for (size_t i = 0; i < e.props.size(); ++i)
+        if (!e.props[i].count_type.empty() &&
+            (e.props[i].name == "vertex_indices" || e.props[i].name == "vertex_index"))
+          pf = int(i);
+    }
+  }
+  if (!vertex || px < 0 || py < 0 || pz < 0)
+    throw MeshError(path + ": the PLY file has no element 'vertex' with properties x, y and z");
+  if (!face || pf < 0)
+    throw MeshError(path + ": the PLY file has no element 'face' with a list vertex_indices");
+  Mesh m;
+  m.name = path;
+  m.vertices.reserve(size_t(vertex->count));
+  std::vector<uint64_t> poly;   // every face's indices, one after the other
+  std::vector<uint32_t> sizes;  // and each face's count
+  const size_t size = text.size();
+  size_t at = pos;  // binary: the next byte; ASCII: the start of the next line
+  for (const Elem& e : elems) {
+    const bool is_vertex = &e == vertex, is_face = &e == face;
+    std::vector<std::string> words;
+    for (uint64_t k = 0; k < e.count; ++k) {
+      const std::string where = "item " + std::to_string(k) + " of element '" + e.name + "'";
+      double xyz[3] = {0, 0, 0};
+      size_t w = 0;
+      if (ascii) {
+        if (at >= size) throw MeshError(path + ": the file ends before " + where + " (is the file truncated?)");
+        size_t eol = text.find('\n', at);
+        if (eol == std::string::npos) eol = size;
+        std::istringstream line(text.substr(at, eol - at));
+        at = eol + 1;
+        words.clear();
+        for (std::string word; line >> word;) words.push_back(word);
+      }
+      // The next value of the item: a word (ASCII) or `type`'s bytes (binary).
+      auto value = [&](const std::string& type, const std::string& what) -> double {
+        if (ascii) {
+          if (w >= words.size())
+            throw MeshError(path + ": " + where + " ends before its " + what + " (is the file truncated?)");
+          const std::string& word = words[w++];
+          char* end = nullptr;
+          errno = 0;
+          const double v = std::strtod(word.c_str(), &end);
+          if (end == word.c_str() || *end != '\0')
+            throw MeshError(path + ": " + where + ": its " + what + " '" + word.substr(0, 40) + "' is not a number");
+          return v;
+        }
+        const size_t n = ply_type_size(type);
+        if (at + n > size)
+          throw MeshError(path + ": the file ends inside " + where + " (is the file truncated?)");
+        const double v = ply_binary_value(text.data() + at, n, type, big);
+        at += n;
+        return v;
+      };
+      for (size_t i = 0; i < e.props.size(); ++i) {
+        const Prop& pr = e.props[i];
+        if (pr.count_type.empty()) {
+          const double v = value(pr.type, "property " + pr.name);
+          if (is_vertex && int(i) == px) xyz[0] = v;
+          if (is_vertex && int(i) == py) xyz[1] = v;
+          if (is_vertex && int(i) == pz) xyz[2] = v;
+          continue;
+        }
+        const double count = value(pr.count_type, "list length of " + pr.name);
+        if (!(count >= 0 && count == std::floor(count) && count <= double(size)))
+          throw MeshError(path + ": " + where + ": the list length of " + pr.name + " is " + std::to_string(count));
+        const bool indices = is_face && int(i) == pf;
+        if (indices && count < 3)
+          throw MeshError(path + ": face " + std::to_string(k) + " has " + std::to_string(uint64_t(count)) +
+                          " vertices (a face needs at least 3)");
+        for (uint64_t j = 0; j < uint64_t(count); ++j) {
+          const double v = value(pr.type, "value " + std::to_string(j) + " of " + pr.name);
+          if (!indices) continue;
+          if (!(v >= 0 && v == std::floor(v) && v < double(vertex->count)))
+            throw MeshError(path + ": face " + std::to_string(k) + " refers to vertex " + std::to_string(v) +
+                            " of " + std::to_string(vertex->count));
+          poly.push_back(uint64_t(v));
+        }
+        if (indices) sizes.push_back(uint32_t(count));
+      }
+      if (is_vertex) m.vertices.emplace_back(xyz[0], xyz[1], xyz[2]);
+    }
+  }
+  size_t q = 0;
+  for (uint32_t n : sizes) {
+    for (uint32_t j = 1; j + 1 < n; ++j)
+      m.triangles.push_back({uint32_t(poly[q]), uint32_t(poly[q + j]), uint32_t(poly[q + j + 1])});
+    q += n;
+  }
+  return m;
+}
+
 }  // namespace
 
 MeshReport prepare(Mesh& m) {
@@ -490,10 +662,11 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
         if (ply && !ended)
           throw MeshError(path + ": the PLY header has no end_header line in its first " +
                           std::to_string(head.size()) + " bytes (is the file truncated?)");
+        if (!ply) throw MeshError(path + ": not a PLY file (it does not start with 'ply')");
         probe.clear();
         probe.seekg(0);
         const std::string whole((std::istreambuf_iterator<char>(probe)), std::istreambuf_iterator<char>());
-        if (ply) check_ply(path, whole);
+        m = read_ply(path, whole);
       }
       // assimp's OFF reader allocates for the counts its header declares before reading them: refuse counts the file
       // cannot hold (a vertex takes at least 5 bytes, "0 0 0", a face at least 7, "3 0 1 2").
@@ -533,7 +706,7 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
                           " bytes can hold (is the file truncated?)");
       }
     }
-    m = load_assimp(path);
+    if (lower_ext(path) != "ply") m = load_assimp(path);
   }
   const MeshReport r = prepare(m);
   if (report) *report = r;
