@@ -1,4 +1,4 @@
-// Triangle meshes: loading (the paper's RAW triangles, and every format assimp reads), welding of exactly equal
+// Triangle meshes: loading (the paper's RAW triangles, PLY, and every other format assimp reads), welding of exactly equal
 // vertices, and validation (finite, non-degenerate, closed, edge-manifold, consistently oriented).
 #pragma once
 
@@ -37,8 +37,8 @@ struct MeshReport {
   bool flipped = false; // the mesh was inside out (negative volume) and every triangle was reversed
 };
 
-// Loads a mesh by file extension: .raw through load_raw, everything else through assimp. Then welds and
-// validates. Throws MeshError naming the file (and line or triangle) on any problem.
+// Loads a mesh by file extension: .raw through parse_raw, .ply through its own reader (assimp 5.2's hangs on
+// damaged files), everything else through assimp. Then welds and validates. Throws MeshError naming the file (and line or triangle) on any problem.
 Mesh load_mesh(const std::string& path, MeshReport* report = nullptr);
 
 // The paper's RAW triangle format: one triangle per line as nine numbers "x1 y1 z1 x2 y2 z2 x3 y3 z3";
