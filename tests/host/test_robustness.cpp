@@ -21,25 +21,13 @@
 #include "host/shapes.h"
 #include "host/voxelize.h"
 #include "ref/pipeline.h"
+#include "tests/error_text.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {
 namespace {
 
-// The text of the exception E that fn throws; a failure when it throws nothing or something else.
-template <class E, class Fn>
-std::string error_text(Fn&& fn) {
-  try {
-    fn();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw another type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "threw nothing";
-  return "";
-}
+using test::error_text;
 
 #define EXPECT_HAS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
 

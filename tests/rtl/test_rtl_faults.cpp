@@ -7,13 +7,21 @@
 #include <cstdio>
 #include <regex>
 #include <string>
+#include <utility>
 
 #include "host/device.h"
 #include "host/device_rtl.h"
 #include "ref/pipeline.h"
+#include "tests/error_text.h"
 
 namespace voxcd {
 namespace {
+
+// The text of the DeviceError fn throws (tests/error_text.h).
+template <class Fn>
+std::string device_error(Fn&& fn) {
+  return test::error_text<DeviceError>(std::forward<Fn>(fn));
+}
 
 // `points` shell points at the origin and a 4x4x4 voxmap of surface voxels: with M = 0 and t = 0 every point of a
 // job hits voxel (0, 0, 0), whatever the widths.
@@ -33,21 +41,6 @@ Job origin_job(uint32_t tag, Mode mode, uint32_t count) {
   j.shell_count = count;
   j.nx = j.ny = j.nz = 4;
   return j;
-}
-
-// The text of the DeviceError that fn throws; a failure when it throws nothing or something else.
-template <class Fn>
-std::string device_error(Fn&& fn) {
-  try {
-    fn();
-  } catch (const DeviceError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw another type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "threw nothing";
-  return "";
 }
 
 // What a caller holds from an earlier batch; no failed run may touch it.

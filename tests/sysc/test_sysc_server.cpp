@@ -17,13 +17,21 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "host/device.h"
 #include "host/device_sysc.h"
 #include "ref/pipeline.h"
+#include "tests/error_text.h"
 
 namespace voxcd {
 namespace {
+
+// The text of the DeviceError fn throws (tests/error_text.h).
+template <class Fn>
+std::string device_error(Fn&& fn) {
+  return test::error_text<DeviceError>(std::forward<Fn>(fn));
+}
 
 namespace fs = std::filesystem;
 
@@ -52,20 +60,6 @@ class Watchdog {
   Watchdog() { ::alarm(60); }
   ~Watchdog() { ::alarm(0); }
 };
-
-template <class Fn>
-std::string device_error(Fn&& fn) {
-  try {
-    fn();
-  } catch (const DeviceError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw another type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "threw nothing";
-  return "";
-}
 
 size_t open_descriptors() {
   size_t n = 0;
