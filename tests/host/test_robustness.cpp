@@ -13,9 +13,11 @@
 
 #include "host/broadphase.h"
 #include "host/collide.h"
+#include "host/conform_gen.h"
 #include "host/device.h"
 #include "host/object_file.h"
 #include "host/object_type.h"
+#include "host/png.h"
 #include "host/point_shell.h"
 #include "host/scene.h"
 #include "host/shapes.h"
@@ -207,6 +209,48 @@ TEST(Robustness, SceneSpecsOutOfRangeNameTheField) {
   EXPECT_TRUE(crowded == "scene: the objects do not fit the cube" ||
               crowded.rfind("scene: could not place object ", 0) == 0)
       << crowded;
+}
+
+// One object of the paper's polytope at 30% of the cube: its enclosing sphere is wider than the cube.
+TEST(Robustness, SceneWhoseObjectIsWiderThanTheCubeSaysSo) {
+  SceneSpec s;
+  s.objects = 1;
+  s.density = 0.3;
+  EXPECT_EQ(error_text<std::invalid_argument>([&] { make_scene(s); }), "scene: the objects do not fit the cube");
+}
+
+// write_object onto a directory: the rename into place fails, the temporary file goes, the directory stays.
+TEST(Robustness, ObjectFileThatCannotBeRenamedIntoPlaceLeavesNothingBehind) {
+  ObjectOptions o;
+  o.voxel = 0.5;
+  const ObjectFile obj = make_object(make_shape("cube"), "shape:cube", 1, o);
+  const std::string dir = test::tmp_path("object_in_the_way");
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(std::filesystem::create_directory(dir));
+  EXPECT_EQ(error_text<ObjectFileError>([&] { write_object(dir, obj); }),
+            dir + ": cannot rename " + dir + ".tmp into place");
+  EXPECT_FALSE(std::filesystem::exists(dir + ".tmp"));
+  EXPECT_TRUE(std::filesystem::is_directory(dir));
+  std::filesystem::remove_all(dir);
+}
+
+// A picture written where no file can be: the error names the path.
+TEST(Robustness, PictureThatCannotBeWrittenNamesThePath) {
+  const std::string dir = test::tmp_path("picture_in_the_way");
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(std::filesystem::create_directory(dir));
+  EXPECT_EQ(error_text<std::runtime_error>([&] { write_png(dir, Image(4, 3)); }), dir + ": cannot write the picture");
+  std::filesystem::remove_all(dir);
+}
+
+// Generated conformance vectors whose shell blocks do not fit 2^SAW words.
+TEST(Robustness, GeneratedVectorsLargerThanTheShellMemorySaySo) {
+  GenerateOptions g;
+  g.config.SAW = 6;  // 64 words
+  g.cloud_points = 100;
+  const std::string e = error_text<std::invalid_argument>([&] { generate_vectors(g); });
+  EXPECT_EQ(e.rfind("generated shell blocks need ", 0), 0u) << e;
+  EXPECT_NE(e.find("words; the shell memory holds 2^SAW = 64"), std::string::npos) << e;
 }
 
 TEST(Robustness, QueueBroadphaseRefusesMoreBodiesThanItKeeps) {
