@@ -288,17 +288,28 @@ size_t ply_type_size(const std::string& t) {
 // element NAME COUNT, property TYPE NAME, property list TYPE TYPE NAME, end_header), and the body is walked as it
 // describes: any count larger than what is left of the file can hold is refused. `text`: the whole file, whose
 // first line is "ply" and which has an end_header line (checked before).
-void check_ply(const std::string& path, const std::string& text) {
-  struct Property {
-    size_t size = 0, count_size = 0;  // count_size > 0: a list
-  };
-  struct Element {
-    std::string name;
-    uint64_t count = 0;
-    std::vector<Property> props;
-  };
-  std::vector<Element> elements;
+// A PLY header as check_ply accepted it.
+struct PlyProperty {
+  std::string name, type, count_type;  // count_type set: a list (its length's type, then the values' type)
+  size_t size = 0, count_size = 0;     // bytes of a value and of a list's length
+};
+struct PlyElement {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<PlyProperty> props;
+};
+struct PlyHeader {
   std::string format;
+  std::vector<PlyElement> elements;
+  size_t body = 0;  // the first byte after the end_header line
+};
+
+PlyHeader check_ply(const std::string& path, const std::string& text) {
+  using Property = PlyProperty;
+  using Element = PlyElement;
+  PlyHeader h;
+  std::vector<Element>& elements = h.elements;
+  std::string& format = h.format;
   size_t pos = 0;
   bool ended = false;
   for (int number = 1; pos < text.size() && !ended; ++number) {
@@ -346,15 +357,19 @@ void check_ply(const std::string& path, const std::string& text) {
       if (type == "list") {
         std::string ct, it;
         line >> ct >> it;
+        p.count_type = ct;
+        p.type = it;
         p.count_size = ply_type_size(ct);
         p.size = ply_type_size(it);
         if (!p.count_size || !p.size) bad("a list property needs two known types (char .. double, int8 .. float64)");
       } else {
+        p.type = type;
         p.size = ply_type_size(type);
         if (!p.size) bad("unknown property type '" + type + "'");
       }
       line >> name;
       if (name.empty()) bad("a property needs a name");
+      p.name = name;
       elements.back().props.push_back(p);
     } else if (word == "end_header") {
       ended = true;
@@ -362,8 +377,10 @@ void check_ply(const std::string& path, const std::string& text) {
       bad("not a PLY header line (ply, format, comment, obj_info, element, property, end_header)");
     }
   }
-  if (!ended || format.empty()) return;
+  if (!ended) throw MeshError(path + ": the PLY header has no end_header line (is the file truncated?)");
+  if (format.empty()) throw MeshError(path + ": the PLY header has no format line");
   pos = std::min(pos, text.size());  // an end_header line without a newline: no body
+  h.body = pos;
   const bool ascii = format == "ascii";
   const bool big = format == "binary_big_endian";
   auto refuse = [&](const Element& e, uint64_t count, const char* what, uint64_t room, const char* unit) {
@@ -421,7 +438,7 @@ void check_ply(const std::string& path, const std::string& text) {
         }
       }
     }
-    return;
+    return h;
   }
   uint64_t at = pos;
   const uint64_t size = text.size();
@@ -434,10 +451,10 @@ void check_ply(const std::string& path, const std::string& text) {
       for (const Property& p : e.props) {
         if (!p.count_size) {
           at += p.size;
-          if (at > size) return;
+          if (at > size) return h;
           continue;
         }
-        if (at + p.count_size > size) return;
+        if (at + p.count_size > size) return h;
         uint64_t n = 0;
         for (size_t i = 0; i < p.count_size; ++i) {
           const uint64_t byte = uint8_t(text[size_t(at + (big ? i : p.count_size - 1 - i))]);
@@ -448,6 +465,7 @@ void check_ply(const std::string& path, const std::string& text) {
         at += n * p.size;
       }
   }
+  return h;
 }
 
 
@@ -479,42 +497,12 @@ double ply_binary_value(const char* p, size_t size, const std::string& type, boo
 // vertex_index), split into triangles as fans; every other element and property is read and skipped. ASCII: an
 // item a line, as the format is written in practice.
 Mesh read_ply(const std::string& path, const std::string& text) {
-  check_ply(path, text);
-  struct Prop {
-    std::string name, type, count_type;  // count_type set: a list
-  };
-  struct Elem {
-    std::string name;
-    uint64_t count = 0;
-    std::vector<Prop> props;
-  };
-  std::vector<Elem> elems;
-  std::string format;
-  size_t pos = 0;
-  for (bool ended = false; !ended;) {
-    size_t next = text.find('\n', pos);
-    if (next == std::string::npos) next = text.size();
-    std::istringstream line(text.substr(pos, next - pos));
-    pos = std::min(next + 1, text.size());
-    std::string word, count;
-    line >> word;
-    if (word == "format") {
-      line >> format;
-    } else if (word == "element") {
-      Elem e;
-      line >> e.name >> count;
-      e.count = std::stoull(count);
-      elems.push_back(e);
-    } else if (word == "property") {
-      Prop pr;
-      line >> pr.type;
-      if (pr.type == "list") line >> pr.count_type >> pr.type;
-      line >> pr.name;
-      elems.back().props.push_back(pr);
-    } else if (word == "end_header") {
-      ended = true;
-    }
-  }
+  const PlyHeader h = check_ply(path, text);
+  using Prop = PlyProperty;
+  using Elem = PlyElement;
+  const std::vector<Elem>& elems = h.elements;
+  const std::string& format = h.format;
+  const size_t pos = h.body;
   const bool ascii = format == "ascii", big = format == "binary_big_endian";
   const Elem* vertex = nullptr;
   const Elem* face = nullptr;
