@@ -13,6 +13,7 @@
 #include "host/device_rtl.h"
 #include "ref/pipeline.h"
 #include "tests/error_text.h"
+#include "tests/origin_stimulus.h"
 
 namespace voxcd {
 namespace {
@@ -23,25 +24,8 @@ std::string device_error(Fn&& fn) {
   return test::error_text<DeviceError>(std::forward<Fn>(fn));
 }
 
-// `points` shell points at the origin and a 4x4x4 voxmap of surface voxels: with M = 0 and t = 0 every point of a
-// job hits voxel (0, 0, 0), whatever the widths.
-DeviceMemory origin_memory(const DeviceConfig& cfg, size_t points) {
-  DeviceMemory m;
-  m.shell.assign(points, ShellWord{});
-  const uint64_t per_word = uint64_t(cfg.MEMW) / 2;
-  const uint64_t surface = cfg.MEMW == 64 ? 0x5555555555555555ull : 0x5555555555555555ull & ((1ull << cfg.MEMW) - 1);
-  m.map.assign((64 + per_word - 1) / per_word, surface);
-  return m;
-}
-
-Job origin_job(uint32_t tag, Mode mode, uint32_t count) {
-  Job j;
-  j.tag = tag;
-  j.mode = mode;
-  j.shell_count = count;
-  j.nx = j.ny = j.nz = 4;
-  return j;
-}
+using test::origin_job;
+using test::origin_memory;
 
 // What a caller holds from an earlier batch; no failed run may touch it.
 const std::vector<Record> kEarlier = {Record::hit(7, 1, 2, 3, 0, 1), Record::done(7, 1, 42)};

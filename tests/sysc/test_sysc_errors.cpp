@@ -14,6 +14,7 @@
 #include "sysc/platform.h"
 #include "sysc/rtl_target.h"
 #include "tests/error_text.h"
+#include "tests/origin_stimulus.h"
 
 namespace voxcd::sysc {
 namespace {
@@ -34,25 +35,8 @@ std::unique_ptr<Platform> make_platform(const std::string& name, TargetKind k, c
   return std::make_unique<Platform>(name.c_str(), o);
 }
 
-// `points` shell points at the origin and a 4x4x4 voxmap of surface voxels: with M = 0 and t = 0 every point of a
-// job hits voxel (0, 0, 0).
-DeviceMemory origin_memory(const DeviceConfig& cfg, size_t points) {
-  DeviceMemory m;
-  m.shell.assign(points, ShellWord{});
-  const uint64_t per_word = uint64_t(cfg.MEMW) / 2;
-  const uint64_t surface = cfg.MEMW == 64 ? 0x5555555555555555ull : 0x5555555555555555ull & ((1ull << cfg.MEMW) - 1);
-  m.map.assign((64 + per_word - 1) / per_word, surface);
-  return m;
-}
-
-Job origin_job(uint32_t tag, Mode mode, uint32_t count) {
-  Job j;
-  j.tag = tag;
-  j.mode = mode;
-  j.shell_count = count;
-  j.nx = j.ny = j.nz = 4;
-  return j;
-}
+using test::origin_job;
+using test::origin_memory;
 
 void expect_stream(const std::vector<Record>& want, const std::vector<Record>& got, const std::string& what) {
   ASSERT_EQ(got.size(), want.size()) << what;
