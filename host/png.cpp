@@ -48,8 +48,9 @@ void write_png(const std::string& path, const Image& img) {
   chunk(out, "IHDR", ihdr);
   chunk(out, "IDAT", z);
   chunk(out, "IEND", "");
+  // The stream is closed and checked here: a picture that fits the stream's buffer reaches the file only then.
   std::ofstream f(path, std::ios::binary);
-  if (!f || !f.write(out.data(), std::streamsize(out.size())))
+  if (!f || !f.write(out.data(), std::streamsize(out.size())) || (f.close(), !f))
     throw std::runtime_error(path + ": cannot write the picture");
 }
 

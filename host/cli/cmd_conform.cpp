@@ -1,6 +1,6 @@
 // voxcd conform: run conformance vector files on a backend and compare, print the backend's stream, or generate
 // random vectors with expectations from ref/.
-#include <filesystem>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -64,9 +64,15 @@ int generate(const ConformArgs& a) {
     out << "\n";
     write_vectors(out, v.config, true, v.memory, v.jobs, recs);
     out.close();
-    if (!out) throw std::runtime_error("write error on " + tmp);
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error("write error on " + tmp + " (nothing written to " + a.output + ")");
+    }
   }
-  std::filesystem::rename(tmp, a.output);
+  if (std::rename(tmp.c_str(), a.output.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot rename " + tmp + " into place as " + a.output);
+  }
   size_t lookups = 0;
   for (const Job& j : v.jobs) lookups += j.shell_count;
   std::cout << "wrote " << a.output << ": " << v.jobs.size() << " jobs, " << v.memory.shell.size()

@@ -48,3 +48,22 @@ expect("${out}" "voxcd: error: pair 0 \\(cube, cube\\): T0 = -3999999999\\.[0-9]
 if(out MATCHES "contacts")
   message(FATAL_ERROR "a refused pose still printed a result:\n${out}")
 endif()
+
+# Files that cannot be written whole: generated vectors on a disk that fills up (a file-size limit stands in for
+# it), a --trace path that cannot be opened. Nothing is left behind, no temporary and no partial output.
+run(2 out sh -c "trap '' XFSZ && ulimit -f 4 && exec '${VOXCD}' conform --generate --seed 1 --jobs 200 -o '${WORK}/full.vec'")
+expect("${out}" "voxcd: error: write error on ${WORK}/full\\.vec\\.tmp \\(nothing written to ${WORK}/full\\.vec\\)")
+if(EXISTS ${WORK}/full.vec OR EXISTS ${WORK}/full.vec.tmp)
+  message(FATAL_ERROR "a failed write left ${WORK}/full.vec or its temporary behind")
+endif()
+file(MAKE_DIRECTORY ${WORK}/vec_in_the_way)
+run(2 out ${VOXCD} conform --generate --seed 1 --jobs 4 -o ${WORK}/vec_in_the_way)
+expect("${out}" "voxcd: error: cannot rename ${WORK}/vec_in_the_way\\.tmp into place as ${WORK}/vec_in_the_way")
+if(EXISTS ${WORK}/vec_in_the_way.tmp OR NOT IS_DIRECTORY ${WORK}/vec_in_the_way)
+  message(FATAL_ERROR "a failed rename left its temporary behind or touched the directory")
+endif()
+if(HAVE_RTL)
+  run(0 out ${VOXCD} conform --generate --seed 1 --jobs 4 -o ${WORK}/four.vec)
+  run(1 out ${VOXCD} conform --backend rtl --trace ${WORK}/no/such/dir/t.fst ${WORK}/four.vec)
+  expect("${out}" "FAIL ${WORK}/four\\.vec: rtl: cannot open trace file ${WORK}/no/such/dir/t\\.fst")
+endif()

@@ -5,7 +5,10 @@
 // the voxeliser without validation. Each error must say what is wrong and where (the name, the field, the value).
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -241,6 +244,71 @@ TEST(Robustness, PictureThatCannotBeWrittenNamesThePath) {
   ASSERT_TRUE(std::filesystem::create_directory(dir));
   EXPECT_EQ(error_text<std::runtime_error>([&] { write_png(dir, Image(4, 3)); }), dir + ": cannot write the picture");
   std::filesystem::remove_all(dir);
+}
+
+// A full disk, for the writes in its scope: the process may write no file beyond `bytes` (the write fails with
+// EFBIG; SIGXFSZ, which would end the process, is ignored meanwhile).
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    getrlimit(RLIMIT_FSIZE, &old_);
+    rlimit r = old_;
+    r.rlim_cur = bytes;
+    ok_ = setrlimit(RLIMIT_FSIZE, &r) == 0;
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &old_);
+    std::signal(SIGXFSZ, old_handler_);
+  }
+  bool ok() const { return ok_; }
+
+ private:
+  rlimit old_{};
+  void (*old_handler_)(int) = nullptr;
+  bool ok_ = false;
+};
+
+// An object file whose write fails part-way (the disk fills): the error names the path, the temporary is removed
+// and the file already at the path is left as it was.
+TEST(Robustness, ObjectFileOnAFullDiskLeavesTheOldFileAndNoTemporary) {
+  ObjectOptions o;
+  o.voxel = 0.5;
+  const ObjectFile small = make_object(make_shape("cube"), "shape:cube", 1, o);
+  o.voxel = 0.05;
+  const ObjectFile large = make_object(make_shape("torus"), "shape:torus", 2, o);
+  const std::string path = test::tmp_path("full_disk.vox");
+  std::filesystem::remove(path);
+  write_object(path, small);
+  const auto before = std::filesystem::file_size(path);
+  {
+    FileSizeLimit full(before + 4096);
+    ASSERT_TRUE(full.ok());
+    EXPECT_EQ(error_text<ObjectFileError>([&] { write_object(path, large); }), path + ": write failed");
+  }
+  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+  EXPECT_EQ(std::filesystem::file_size(path), before);
+  const ObjectFile back = read_object(path);
+  EXPECT_EQ(back.voxmap.words(), small.voxmap.words());
+  EXPECT_EQ(back.shell.size(), small.shell.size());
+  std::filesystem::remove(path);
+}
+
+// A picture on a full disk: small enough to sit in the stream's buffer until the file is closed, and the failure
+// of that last write is reported.
+TEST(Robustness, PictureOnAFullDiskIsAnError) {
+  EXPECT_EQ(error_text<std::runtime_error>([&] { write_png("/dev/full", Image(4, 3)); }),
+            "/dev/full: cannot write the picture");
+  const std::string path = test::tmp_path("full_disk.png");
+  std::filesystem::remove(path);
+  {
+    FileSizeLimit full(16);
+    ASSERT_TRUE(full.ok());
+    EXPECT_EQ(error_text<std::runtime_error>([&] { write_png(path, Image(4, 3)); }), path + ": cannot write the picture");
+  }
+  write_png(path, Image(4, 3));  // and it fits once there is room
+  EXPECT_GT(std::filesystem::file_size(path), 16u);
+  std::filesystem::remove(path);
 }
 
 // Generated conformance vectors whose shell blocks do not fit 2^SAW words.
