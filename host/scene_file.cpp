@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include "host/mesh.h"
@@ -103,6 +104,52 @@ class Reader {
   const std::string& where_;
 };
 
+// A key given twice in one object (JSON leaves it to the reader; nlohmann keeps the last one, which would silently
+// drop the first): found while parsing, with the path of the key in the same form as Reader's errors.
+class DuplicateKeys {
+ public:
+  explicit DuplicateKeys(const std::string& where) : where_(where) {}
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: stack_.push_back({false, 0, {}, {}}); break;
+      case json::parse_event_t::array_start: stack_.push_back({true, 0, {}, {}}); break;
+      case json::parse_event_t::key: {
+        Frame& f = stack_.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second) throw SceneFileError(where_ + ": " + path() + ": appears twice in one object");
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack_.pop_back();
+        if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+        break;
+      case json::parse_event_t::value:
+        if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    size_t index;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : stack_) {
+      if (f.array) p += "[" + std::to_string(f.index) + "]";
+      else p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
+  }
+  const std::string& where_;
+  std::vector<Frame> stack_;
+};
+
 }  // namespace
 
 double SceneFile::smallest_voxel() const {
@@ -122,7 +169,7 @@ uint64_t SceneFile::objects() const {
 SceneFile parse_scene_file(std::string_view text, const std::string& where) {
   json j;
   try {
-    j = json::parse(text.begin(), text.end());
+    j = json::parse(text.begin(), text.end(), DuplicateKeys(where));
   } catch (const json::exception& e) {
     // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."; a number too
     // large for a double is an out_of_range.406 ("number overflow parsing '1e999'"), not a parse_error.

@@ -1,6 +1,7 @@
 // voxcd: the command-line tool. One binary, one subcommand per job.
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "host/cli/commands.h"
 
@@ -22,6 +23,20 @@ int main(int argc, char** argv) {
   voxcd::cli::add_pair(app);
   voxcd::cli::add_simulate(app);
   voxcd::cli::add_size(app);
+  // CLI11 reports a first word that is no subcommand only as a missing subcommand: name it, and the known ones.
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      known |= sub->check_name(argv[1]);
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::cerr << "voxcd: '" << argv[1] << "' is not a subcommand (the subcommands: " << names << ")\n"
+                << "Run with --help or --help-all for more information.\n";
+      return int(CLI::ExitCodes::RequiredError);
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -57,6 +57,13 @@ TEST(SceneFile, ErrorsNameTheFileAndTheKey) {
       {R"([1, 2])", "s.json: (top level): must be an object, not array"},
       {"", "s.json: not valid JSON"},
       {R"({"types": [{"shape": "cube", "voxel": 1e999}]})", "s.json: not valid JSON: number overflow parsing '1e999'"},
+      // A key given twice in one object is refused wherever it is (the JSON reader would keep the last).
+      {R"({"types": [{"shape": "cube"}], "types": []})", "s.json: types: appears twice in one object"},
+      {R"({"types": [{"shape": "cube"}, {"shape": "torus", "count": [1, 2], "voxel": 1, "shape": "cube"}]})",
+       "s.json: types[1].shape: appears twice in one object"},
+      {R"({"types": [[{"a": 1}], {"count": 2, "count": 3}]})", "s.json: types[1].count: appears twice in one object"},
+      {R"({"types": [{"shape": "cube"}], "environment": {"side": 50, "seed": 2, "side": 60}})",
+       "s.json: environment.side: appears twice in one object"},
   };
   for (const auto& [text, want] : cases) {
     const std::string got = error_of(text);
