@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host/cull.h"
 #include "ref/fixed.h"
 
 namespace voxcd {
@@ -21,37 +22,6 @@ void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
       throw CapacityError("object '" + t.name + "': its voxmap is " + std::to_string(d[0]) + "x" +
                           std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels, above the device's 2^DW = " +
                           std::to_string(cfg.max_dim()) + " per axis");
-}
-
-// Bit k of `bits` = 1 when cluster k's box (centre, half) can land in [0, n) through p -> M p + t; |M| is aM: all
-// three axes of a cluster in one pass, without branches, the bits gathered in a register. The slack covers the
-// double arithmetic: the values stay below 2^40, where its rounding is far below 1e-4.
-inline void cull_clusters(const std::vector<double> (&centre)[3], const std::vector<double> (&half)[3], size_t nc,
-                          const double (&M)[3][3], const double (&aM)[3][3], const double (&t)[3], const double (&n)[3],
-                          uint64_t* __restrict bits) {
-  constexpr double kSlack = 1e-4;
-  const double* __restrict cx = centre[0].data();
-  const double* __restrict cy = centre[1].data();
-  const double* __restrict cz = centre[2].data();
-  const double* __restrict hx = half[0].data();
-  const double* __restrict hy = half[1].data();
-  const double* __restrict hz = half[2].data();
-  double lo[3], hi[3];
-  for (int i = 0; i < 3; ++i) lo[i] = -kSlack - t[i], hi[i] = n[i] + kSlack - t[i];
-  for (size_t w = 0; w * 64 < nc; ++w) {
-    uint64_t word = 0;
-    const size_t end = std::min(nc, w * 64 + 64);
-    for (size_t k = w * 64; k < end; ++k) {
-      bool in = true;
-      for (int i = 0; i < 3; ++i) {
-        const double c = M[i][0] * cx[k] + M[i][1] * cy[k] + M[i][2] * cz[k];
-        const double h = aM[i][0] * hx[k] + aM[i][1] * hy[k] + aM[i][2] * hz[k];
-        in &= (c + h >= lo[i]) & (c - h < hi[i]);
-      }
-      word |= uint64_t(in) << (k & 63);
-    }
-    bits[w] = word;
-  }
 }
 
 // The first index >= i whose bit equals `value` in bits (nbits of them), or nbits.
@@ -160,7 +130,10 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
   const Clusters& cl = clusters_[shell_type];
   const size_t nc = cl.first.size() - 1;
   bits_.resize((nc + 63) / 64);
-  cull_clusters(cl.centre, cl.half, nc, M, aM, t, n, bits_.data());
+  const detail::ClusterBoxes boxes{{cl.centre[0].data(), cl.centre[1].data(), cl.centre[2].data()},
+                                   {cl.half[0].data(), cl.half[1].data(), cl.half[2].data()},
+                                   nc};
+  detail::cull_clusters(boxes, M, aM, t, n, bits_.data());
   // Runs of kept clusters, found a run at a time in the bit mask (the keep pattern is hard to predict, so a branch
   // per cluster costs more than the whole cull); runs closer than kMergeGap points apart are one job (a job costs
   // more on the host than a few extra lookups).

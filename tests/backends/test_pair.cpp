@@ -9,6 +9,7 @@
 #include <random>
 
 #include "host/collide.h"
+#include "host/cull.h"
 #include "host/device_rtl.h"
 #include "host/shapes.h"
 #include "ref/float_model.h"
@@ -264,6 +265,60 @@ TEST(Pairs, CullingChangesLookupsButNoContact) {
                     (unsigned long long)lookups_off, (unsigned long long)hits);
     }
   }
+}
+
+// The cluster cull's two kernels (AVX-512 where the processor has it, the portable loop) keep the same boxes, and
+// keep every box with a point that lands in the map: its centre, its corners and random points inside it are tried.
+TEST(Pairs, CullKernelsAgreeAndKeepEveryBoxThatCanLand) {
+  std::printf("cull kernel: %s\n", detail::cull_is_vector() ? "avx512" : "portable");
+  std::mt19937_64 rng(seed() + 7);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double n[3] = {11, 9, 8};
+  uint64_t kept = 0, culled = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const size_t nb = 1 + size_t(u(rng) * 150);  // one box to three words, tails of every length
+    std::vector<double> centre[3], half[3];
+    for (int i = 0; i < 3; ++i)
+      for (size_t k = 0; k < nb; ++k) centre[i].push_back(40 * u(rng)), half[i].push_back(0.5 + 6 * u(rng));
+    const Eigen::Matrix3d R = random_rotation(rng).toRotationMatrix() * (0.5 + 1.5 * u(rng));
+    double M[3][3], aM[3][3], t[3];
+    // The middle of the boxes' region lands near the map's middle, within 12 cells.
+    const Eigen::Vector3d mid = R * Eigen::Vector3d(20, 20, 20);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) M[i][j] = R(i, j), aM[i][j] = std::abs(R(i, j));
+      t[i] = 0.5 * n[i] - mid[i] + 24 * u(rng) - 12;
+    }
+    const detail::ClusterBoxes boxes{{centre[0].data(), centre[1].data(), centre[2].data()},
+                                     {half[0].data(), half[1].data(), half[2].data()},
+                                     nb};
+    std::vector<uint64_t> vec((nb + 63) / 64, ~uint64_t(0)), port((nb + 63) / 64, ~uint64_t(0));
+    detail::cull_clusters(boxes, M, aM, t, n, vec.data(), true);
+    detail::cull_clusters(boxes, M, aM, t, n, port.data(), false);
+    ASSERT_EQ(vec, port) << "trial " << trial << ", " << nb << " boxes";
+    for (size_t k = 0; k < nb; ++k) {
+      const bool bit = (vec[k / 64] >> (k % 64)) & 1;
+      (bit ? kept : culled) += 1;
+      if (bit) continue;
+      for (int s = 0; s < 40; ++s) {
+        double p[3];
+        for (int i = 0; i < 3; ++i) {
+          // the centre, the eight corners, then random points of the box
+          const double f = s == 0 ? 0 : s <= 8 ? (((s - 1) >> i) & 1 ? 1 : -1) : 2 * u(rng) - 1;
+          p[i] = centre[i][k] + f * half[i][k];
+        }
+        bool inside = true;
+        for (int i = 0; i < 3; ++i) {
+          const double q = M[i][0] * p[0] + M[i][1] * p[1] + M[i][2] * p[2] + t[i];
+          inside &= q >= 0 && q < n[i];
+        }
+        ASSERT_FALSE(inside) << "trial " << trial << ": box " << k << " was culled but its point " << s
+                             << " lands in the map";
+      }
+    }
+  }
+  // Both outcomes are common, so the comparison above means something.
+  EXPECT_GT(kept, 1000u);
+  EXPECT_GT(culled, 1000u);
 }
 
 TEST(Pairs, BadPosesAndFullMemoryAreErrorsThatNameThePair) {
