@@ -71,11 +71,10 @@ struct PairOptions {
   Mode mode = Mode::All;
   uint8_t hit_mask = kDefaultHitMask;
   bool both_directions = false;  // also B's shell in A's voxmap (needed to see A deep inside B's hollow, ...)
-  // Submit only the shell points that can land in the other object's voxmap: the z-slices and, within them, the
-  // y-rows of the shell grid that the voxmap's box covers in the shell's frame (through the quantised pose, with
-  // the fixed-point error bound and one shell cell of margin). Each run of such points is one job. The points
-  // left out are outside the voxmap on the device, so contacts and hits never depend on it; lookups and device
-  // cycles do. docs/pairs.md.
+  // Submit only the shell points that can land in the other object's voxmap: the shell's clusters of up to
+  // kClusterPoints consecutive points whose box, through the quantised pose, meets the voxmap's grid (host/cull.h).
+  // Each run of kept clusters is one job. The points left out are outside the voxmap on the device, so contacts and
+  // hits never depend on it; lookups and device cycles do. docs/pairs.md.
   bool cull = true;
 };
 
