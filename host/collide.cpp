@@ -24,18 +24,6 @@ void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
                           std::to_string(cfg.max_dim()) + " per axis");
 }
 
-// The first index >= i whose bit equals `value` in bits (nbits of them), or nbits.
-inline size_t next_bit(const std::vector<uint64_t>& bits, size_t nbits, size_t i, bool value) {
-  while (i < nbits) {
-    uint64_t w = bits[i >> 6];
-    if (!value) w = ~w;
-    w &= ~uint64_t(0) << (i & 63);
-    if (w) return std::min(nbits, (i & ~size_t(63)) + size_t(__builtin_ctzll(w)));
-    i = (i | 63) + 1;
-  }
-  return nbits;
-}
-
 }  // namespace
 
 uint32_t DeviceImage::add(const ObjectType& t) {
@@ -110,11 +98,10 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
                             std::vector<JobSource>& sources) const {
   const DeviceConfig& cfg = device_->config();
   auto emit = [&](uint32_t first, uint32_t end) {
-    Job j = whole;
+    Job& j = out.emplace_back(whole);
     j.shell_base = whole.shell_base + first;
     j.shell_count = end - first;
-    j.tag = uint32_t(out.size() & cfg.max_tag());
-    out.push_back(j);
+    j.tag = uint32_t((out.size() - 1) & cfg.max_tag());
     sources.push_back({src.pair, src.a_in_b, first});
   };
   // A cluster's box (centre c, half-extent h, in the shell's grid) lands in the voxmap grid inside the box of
@@ -137,20 +124,25 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
   // Runs of kept clusters, found a run at a time in the bit mask (the keep pattern is hard to predict, so a branch
   // per cluster costs more than the whole cull); runs closer than kMergeGap points apart are one job (a job costs
   // more on the host than a few extra lookups).
+  // A run split by a word boundary comes out as two adjacent runs, which the gap rule joins again.
   uint32_t run_first = 0, run_end = 0;
   bool open = false;
-  for (size_t k = next_bit(bits_, nc, 0, true); k < nc;) {
-    const size_t e = next_bit(bits_, nc, k, false);
-    const uint32_t first = cl.first[k], end = cl.first[e];
-    if (open && first - run_end <= kMergeGap) {
-      run_end = end;
-    } else {
-      if (open) emit(run_first, run_end);
-      run_first = first;
-      run_end = end;
-      open = true;
+  for (size_t w = 0; w < bits_.size(); ++w) {
+    for (uint64_t x = bits_[w]; x;) {
+      const unsigned s = unsigned(__builtin_ctzll(x));
+      const uint64_t zeros = ~(x >> s);  // 0 only when the run fills the word from bit 0 up
+      const unsigned len = zeros ? unsigned(__builtin_ctzll(zeros)) : 64u;
+      x = s + len >= 64 ? 0 : x & (~uint64_t(0) << (s + len));
+      const uint32_t first = cl.first[w * 64 + s], end = cl.first[w * 64 + s + len];
+      if (open && first - run_end <= kMergeGap) {
+        run_end = end;
+      } else {
+        if (open) emit(run_first, run_end);
+        run_first = first;
+        run_end = end;
+        open = true;
+      }
     }
-    k = next_bit(bits_, nc, e, true);
   }
   if (open) emit(run_first, run_end);
 }
