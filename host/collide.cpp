@@ -121,10 +121,10 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
                                    {cl.half[0].data(), cl.half[1].data(), cl.half[2].data()},
                                    nc};
   detail::cull_clusters(boxes, M, aM, t, n, bits_.data());
-  // Runs of kept clusters, found a run at a time in the bit mask (the keep pattern is hard to predict, so a branch
-  // per cluster costs more than the whole cull); runs closer than kMergeGap points apart are one job (a job costs
-  // more on the host than a few extra lookups).
-  // A run split by a word boundary comes out as two adjacent runs, which the gap rule joins again.
+  // Runs of kept clusters, a run at a time from the bit mask (ctz of the word, then of its complement: the keep
+  // pattern is hard to predict, so a branch per cluster costs more than the whole cull); runs closer than kMergeGap
+  // points apart are one job (a job costs more on the host than a few extra lookups), which also joins the two
+  // halves of a run split by a word boundary.
   uint32_t run_first = 0, run_end = 0;
   bool open = false;
   for (size_t w = 0; w < bits_.size(); ++w) {
