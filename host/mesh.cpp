@@ -84,6 +84,14 @@ Mesh load_assimp(const std::string& path) {
 void Mesh::bounds(Eigen::Vector3d& lo, Eigen::Vector3d& hi) const {
   lo = Eigen::Vector3d::Constant(HUGE_VAL);
   hi = Eigen::Vector3d::Constant(-HUGE_VAL);
+  if (points_only()) {
+    for (const auto& p : vertices)
+      if (p.allFinite()) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    return;
+  }
   for (const auto& t : triangles)
     for (uint32_t v : t) {
       lo = lo.cwiseMin(vertices[v]);
@@ -620,7 +628,7 @@ MeshReport prepare(Mesh& m) {
   return r;
 }
 
-Mesh load_mesh(const std::string& path, MeshReport* report) {
+Mesh load_mesh(const std::string& path, MeshReport* report, const LoadOptions& opt) {
   Mesh m;
   if (lower_ext(path) == "raw") {
     std::ifstream in(path, std::ios::binary);
@@ -696,7 +704,17 @@ Mesh load_mesh(const std::string& path, MeshReport* report) {
     }
     if (lower_ext(path) != "ply") m = load_assimp(path);
   }
-  const MeshReport r = prepare(m);
+  if (m.name.empty()) m.name = path;
+  MeshReport r;
+  if (opt.strict) {
+    const size_t in_v = m.vertices.size(), in_t = m.triangles.size();
+    r = prepare(m);
+    r.input_vertices = in_v;
+    r.input_triangles = in_t;
+    r.closed = true;
+  } else {
+    r = repair(m);
+  }
   if (report) *report = r;
   return m;
 }

@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -17,7 +18,24 @@ namespace voxcd {
 namespace {
 
 constexpr char kMagic[8] = {'V', 'O', 'X', 'C', 'D', 'O', 'B', 'J'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // version 1 (no report section) is still read
+// The report section's fields (version 2), in file order.
+constexpr int kReportCounts = 19;
+constexpr uint32_t kClosed = 1, kFlipped = 2, kPointsOnly = 4, kSurfaceOnly = 8, kReportFlags = 15;
+
+std::array<uint64_t*, kReportCounts> report_fields(MeshReport& m, VoxelizeReport& v) {
+  return {reinterpret_cast<uint64_t*>(&m.input_vertices), reinterpret_cast<uint64_t*>(&m.input_triangles),
+          reinterpret_cast<uint64_t*>(&m.vertices), reinterpret_cast<uint64_t*>(&m.triangles),
+          reinterpret_cast<uint64_t*>(&m.welded), reinterpret_cast<uint64_t*>(&m.welded_near),
+          reinterpret_cast<uint64_t*>(&m.dropped_nonfinite),
+          reinterpret_cast<uint64_t*>(&m.dropped_repeated), reinterpret_cast<uint64_t*>(&m.dropped_collinear),
+          reinterpret_cast<uint64_t*>(&m.dropped_duplicate), reinterpret_cast<uint64_t*>(&m.reoriented),
+          reinterpret_cast<uint64_t*>(&m.open_edges), reinterpret_cast<uint64_t*>(&m.nonmanifold_edges),
+          reinterpret_cast<uint64_t*>(&m.inconsistent_edges), reinterpret_cast<uint64_t*>(&m.components),
+          reinterpret_cast<uint64_t*>(&m.closed_components), reinterpret_cast<uint64_t*>(&m.sheet_components),
+          &v.uncertain, &v.evaluated};
+}
+static_assert(sizeof(size_t) == sizeof(uint64_t), "report counts are stored as u64");
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the object file is little-endian; add byte swaps here");
 
 struct Writer {
@@ -116,10 +134,11 @@ uint64_t hash_file(const std::string& path) {
   return hash_bytes(bytes);
 }
 
-Mesh load_source(const std::string& mesh_or_shape, std::string* source, uint64_t* hash) {
+Mesh load_source(const std::string& mesh_or_shape, std::string* source, uint64_t* hash, MeshReport* report,
+                 const LoadOptions& opt) {
   std::error_code ec;
   if (std::filesystem::is_regular_file(mesh_or_shape, ec)) {
-    Mesh m = load_mesh(mesh_or_shape);
+    Mesh m = load_mesh(mesh_or_shape, report, opt);
     if (source) *source = mesh_or_shape;
     if (hash) *hash = hash_file(mesh_or_shape);
     return m;
@@ -127,7 +146,15 @@ Mesh load_source(const std::string& mesh_or_shape, std::string* source, uint64_t
   if (is_shape(mesh_or_shape)) {
     if (source) *source = "shape:" + mesh_or_shape;
     if (hash) *hash = hash_bytes("shape:" + mesh_or_shape);
-    return make_shape(mesh_or_shape);
+    Mesh m = make_shape(mesh_or_shape);
+    if (report) {
+      *report = MeshReport{};
+      report->input_vertices = report->vertices = m.vertices.size();
+      report->input_triangles = report->triangles = m.size();
+      report->components = report->closed_components = 1;
+      report->closed = true;
+    }
+    return m;
   }
   std::string known;
   for (const auto& n : shape_names()) known += (known.empty() ? "" : ", ") + n;
@@ -136,20 +163,26 @@ Mesh load_source(const std::string& mesh_or_shape, std::string* source, uint64_t
   throw MeshError(mesh_or_shape + ": no such file, and not a built-in shape (" + known + ")");
 }
 
-ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt) {
+ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt,
+                       const MeshReport* report) {
   ObjectFile obj;
+  const double voxel = opt.resolution ? voxel_for_resolution(mesh, opt.resolution) : opt.voxel;
   obj.source = source;
   obj.source_hash = source_hash;
   obj.shell_ratio = opt.shell_ratio;
   obj.shift = opt.shift;
   VoxelizeOptions vo;
-  vo.voxel = opt.voxel;
+  vo.voxel = voxel;
   vo.shift = opt.shift;
   vo.max_dim = opt.max_dim;
   vo.threads = opt.threads;
-  obj.voxmap = voxelize(mesh, vo);
+  obj.voxmap = voxelize(mesh, vo, &obj.voxelize_report);
+  if (report) {
+    obj.has_report = true;
+    obj.mesh_report = *report;
+  }
   ShellOptions so;
-  so.target_voxel = opt.voxel;
+  so.target_voxel = voxel;
   so.ratio = opt.shell_ratio;
   so.shift = opt.shift;
   so.threads = opt.threads;
@@ -192,6 +225,18 @@ void write_object(const std::string& path, const ObjectFile& obj) {
     for (int a = 0; a < 3; ++a) w.put(int32_t((2 * int64_t(s.cells[k][a]) + 1) << (kObjectShellFrac - 1)));
   for (size_t k = 0; k < s.size(); ++k) put_vec(w, s.points[k]);
   for (size_t k = 0; k < s.size(); ++k) put_vec(w, s.normals[k]);
+  // Report (version 2): flags, weld tolerance, counts; all zero when the object has none.
+  {
+    MeshReport m = obj.has_report ? obj.mesh_report : MeshReport{};
+    VoxelizeReport v = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
+    uint32_t flags = 0;
+    if (obj.has_report)
+      flags = 16 | (m.closed ? kClosed : 0) | (m.flipped ? kFlipped : 0) | (m.points_only ? kPointsOnly : 0) |
+              (m.surface_only ? kSurfaceOnly : 0);
+    w.put(flags);
+    w.put(m.weld_tolerance);
+    for (uint64_t* f : report_fields(m, v)) w.put(*f);
+  }
   const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
   w.put(crc);
 
@@ -221,8 +266,8 @@ ObjectFile read_object(const std::string& path) {
   if (std::memcmp(buf.data(), kMagic, 8) != 0) r.bad("not a voxcd object file (bad magic)");
   r.pos = 8;
   const uint32_t version = r.get<uint32_t>("the version");
-  if (version != kVersion)
-    r.bad("object file version " + std::to_string(version) + " is not supported (this reader knows version " +
+  if (version != 1 && version != kVersion)
+    r.bad("object file version " + std::to_string(version) + " is not supported (this reader knows versions 1 and " +
           std::to_string(kVersion) + ")");
   const uint32_t stored_crc = [&] {
     uint32_t v;
@@ -294,6 +339,19 @@ ObjectFile read_object(const std::string& path) {
   for (uint64_t k = 0; k < n; ++k) {
     s.normals[k] = get_vec(r, "a shell normal");
     if (!s.normals[k].allFinite()) r.bad("shell normal " + std::to_string(k) + " is not finite");
+  }
+  if (version >= 2) {
+    const uint32_t flags = r.get<uint32_t>("the report flags");
+    if (flags & ~uint32_t(16 | kReportFlags)) r.bad("unknown report flags " + std::to_string(flags));
+    obj.has_report = flags & 16;
+    MeshReport& m = obj.mesh_report;
+    m.closed = flags & kClosed;
+    m.flipped = flags & kFlipped;
+    m.points_only = flags & kPointsOnly;
+    m.surface_only = flags & kSurfaceOnly;
+    m.weld_tolerance = r.get<double>("the weld tolerance");
+    if (!(std::isfinite(m.weld_tolerance) && m.weld_tolerance >= 0)) r.bad("the weld tolerance is not a finite number >= 0");
+    for (uint64_t* f : report_fields(m, obj.voxelize_report)) *f = r.get<uint64_t>("the report counts");
   }
   r.get<uint32_t>("the checksum");
   if (r.pos != buf.size()) {

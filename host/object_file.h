@@ -24,11 +24,16 @@ struct ObjectFile {
   Eigen::Vector3d shift = Eigen::Vector3d::Constant(0.5);  // VoxelizeOptions::shift used for both grids
   Voxmap voxmap;
   PointShell shell;              // built for target voxel = voxmap.voxel()
+  // What loading, repair and voxelising found (file version 2; a version 1 file has none: has_report false).
+  bool has_report = false;
+  MeshReport mesh_report;
+  VoxelizeReport voxelize_report;
 };
 
 // What make_object builds: the voxmap at `voxel`, the shell for target voxel `voxel` at spacing voxel / shell_ratio.
 struct ObjectOptions {
-  double voxel = 0;                                        // finite, > 0
+  double voxel = 0;                                        // finite, > 0; or resolution > 0
+  uint32_t resolution = 0;                                 // > 0: voxel = longest side / resolution
   double shell_ratio = std::sqrt(2.0);                     // the paper's rule
   Eigen::Vector3d shift = Eigen::Vector3d::Constant(0.5);  // VoxelizeOptions::shift, for both grids
   uint32_t max_dim = 1024;                                 // voxmap grid per axis (VoxelizeOptions::max_dim)
@@ -38,10 +43,15 @@ struct ObjectOptions {
 // The mesh named by `mesh_or_shape`: an existing file (load_mesh: RAW or any assimp format), else a built-in shape.
 // Sets *source ("shape:NAME" or the path) and *hash (hash_file or hash_bytes of the source string). MeshError when
 // it is neither, naming the argument and listing the shapes; MeshError from load_mesh for a bad file.
-Mesh load_source(const std::string& mesh_or_shape, std::string* source = nullptr, uint64_t* hash = nullptr);
+// *report gets what loading and repair found (for a shape: a closed mesh, nothing repaired). opt.strict refuses
+// any defect (load_mesh).
+Mesh load_source(const std::string& mesh_or_shape, std::string* source = nullptr, uint64_t* hash = nullptr,
+                 MeshReport* report = nullptr, const LoadOptions& opt = {});
 
-// Voxmap and shell of a validated mesh. MeshError as voxelize and point_shell throw them.
-ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt);
+// Voxmap and shell of a mesh as load_source left it; `report` (what loading found) is kept in the object file.
+// MeshError as voxelize and point_shell throw them.
+ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt,
+                       const MeshReport* report = nullptr);
 
 // FNV-1a 64 of a file's bytes (ObjectFileError when unreadable) and of a string.
 uint64_t hash_file(const std::string& path);

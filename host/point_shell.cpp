@@ -1,6 +1,9 @@
 #include "host/point_shell.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
+#include <unordered_map>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -33,6 +36,58 @@ double dist2_point_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, 
     return (bp - (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))).squaredNorm();
   const double denom = 1 / (va + vb + vc);
   return (ap - ab * (vb * denom) - ac * (vc * denom)).squaredNorm();
+}
+
+// Normals of a point cloud's shell points: the direction of least spread of the cloud's points within two shell
+// spacings of the point (principal components), turned away from the cloud's centroid (+z when at right angles);
+// with fewer than three neighbours, the direction from the centroid.
+std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh, const PointShell& s) {
+  const double h = s.grid.voxel;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> cells;
+  auto key = [](int64_t x, int64_t y, int64_t z) {
+    return (uint64_t(x) & 0x1fffff) | (uint64_t(y) & 0x1fffff) << 21 | (uint64_t(z) & 0x1fffff) << 42;
+  };
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  size_t n = 0;
+  for (uint32_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Eigen::Vector3d& p = mesh.vertices[v];
+    if (!p.allFinite()) continue;
+    const Eigen::Vector3d g = (p - s.grid.origin) / h;
+    cells[key(int64_t(std::floor(g.x())), int64_t(std::floor(g.y())), int64_t(std::floor(g.z())))].push_back(v);
+    centroid += p;
+    ++n;
+  }
+  centroid /= double(std::max<size_t>(n, 1));
+  std::vector<Eigen::Vector3d> normals(s.size());
+  for (size_t k = 0; k < s.size(); ++k) {
+    const Eigen::Vector3d& c = s.points[k];
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> near;
+    for (int64_t dz = -2; dz <= 2; ++dz)
+      for (int64_t dy = -2; dy <= 2; ++dy)
+        for (int64_t dx = -2; dx <= 2; ++dx) {
+          const auto it = cells.find(key(int64_t(s.cells[k][0]) + dx, int64_t(s.cells[k][1]) + dy,
+                                         int64_t(s.cells[k][2]) + dz));
+          if (it == cells.end()) continue;
+          for (uint32_t v : it->second)
+            if ((mesh.vertices[v] - c).norm() <= 2 * h) {
+              near.push_back(mesh.vertices[v]);
+              mean += mesh.vertices[v];
+            }
+        }
+    Eigen::Vector3d nrm = c - centroid;
+    if (near.size() >= 3) {
+      mean /= double(near.size());
+      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+      for (const auto& p : near) cov += (p - mean) * (p - mean).transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+      nrm = es.eigenvectors().col(0);
+      if (nrm.dot(c - centroid) < 0) nrm = -nrm;
+    }
+    if (!(nrm.norm() > 0) || !nrm.allFinite()) nrm = Eigen::Vector3d::UnitZ();
+    normals[k] = nrm.normalized();
+  }
+  return normals;
 }
 
 }  // namespace
@@ -80,6 +135,10 @@ PointShell point_shell(const Mesh& mesh, const ShellOptions& opt) {
     return size_t(rank[v >> 6] + uint64_t(__builtin_popcountll(bits[v >> 6] & ((uint64_t{1} << (v & 63)) - 1))));
   };
 
+  if (mesh.points_only()) {
+    s.normals = cloud_normals(mesh, s);
+    return s;
+  }
   // Nearest passing triangle per point: each worker keeps its own best, merged by (distance, triangle).
   ThreadPool pool(opt.threads);
   const size_t parts = std::max<size_t>(1, std::min<size_t>(mesh.size(), pool.size()));

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "host/thread_pool.h"
+#include "host/winding.h"
 
 namespace voxcd {
 
@@ -59,12 +60,17 @@ struct Crossing {
   double x;      // along the ray, in voxels
 };
 
-// Every crossing of triangle t with the rays along x through the voxel-column centres.
-void triangle_crossings(const GridMesh& gm, const Mesh& m, size_t t, const GridPlacement& gp,
-                        std::vector<Crossing>& out) {
-  const auto& A = gm.q[m.triangles[t][0]];
-  const auto& B = gm.q[m.triangles[t][1]];
-  const auto& C = gm.q[m.triangles[t][2]];
+struct SignedCrossing {
+  uint32_t col;  // y + ny * z
+  int32_t sign;  // +1 where the ray leaves the side the normal points away from (normal x > 0), times the weight
+  double x;      // along the ray, in voxels
+};
+
+// Every crossing of triangle ABC with the rays along x through the voxel-column centres; calls
+// emit(column, x, front) for each, front when the triangle's normal has a positive x component.
+template <class Emit>
+void crossings_of(const std::array<int64_t, 3>& A, const std::array<int64_t, 3>& B, const std::array<int64_t, 3>& C,
+                  const GridPlacement& gp, Emit&& emit) {
   const i128 area = i128(B[1] - A[1]) * (C[2] - A[2]) - i128(B[2] - A[2]) * (C[1] - A[1]);
   if (area == 0) return;  // parallel to the rays: no perturbed ray meets it
   const bool front = area > 0;
@@ -85,9 +91,16 @@ void triangle_crossings(const GridMesh& gm, const Mesh& m, size_t t, const GridP
       if (positive_side(A, B, py, pz, wc) != front) continue;
       const double da = double(wa), db = double(wb), dc = double(wc);
       const double x = (da * double(A[0]) + db * double(B[0]) + dc * double(C[0])) / (da + db + dc);
-      out.push_back({uint32_t(j + int64_t(gp.dims[1]) * k), std::ldexp(x, -kFrac)});
+      emit(uint32_t(j + int64_t(gp.dims[1]) * k), std::ldexp(x, -kFrac), front);
     }
   }
+}
+
+// Every crossing of triangle t with the rays along x through the voxel-column centres.
+void triangle_crossings(const GridMesh& gm, const Mesh& m, size_t t, const GridPlacement& gp,
+                        std::vector<Crossing>& out) {
+  crossings_of(gm.q[m.triangles[t][0]], gm.q[m.triangles[t][1]], gm.q[m.triangles[t][2]], gp,
+               [&](uint32_t col, double x, bool) { out.push_back({col, x}); });
 }
 
 // Calls fn(x, y, z) for every voxel of the grid whose cube grown by kGrow meets triangle t. Walks the columns
@@ -190,6 +203,37 @@ void fill_interior(std::vector<uint64_t>& w, uint64_t b, uint64_t e) {
   }
 }
 
+// Bit i set for every voxel whose cube, grown by kGrow, holds a vertex (a point cloud's surface).
+std::vector<uint64_t> point_bits(const Mesh& m, const GridPlacement& gp) {
+  std::vector<uint64_t> bits((gp.size() + 63) / 64, 0);
+  const uint64_t nx = gp.dims[0], nxy = nx * gp.dims[1];
+  for (const Eigen::Vector3d& p : m.vertices) {
+    if (!p.allFinite()) continue;
+    const Eigen::Vector3d g = (p - gp.origin) / gp.voxel;
+    int64_t i0[3], i1[3];
+    for (int a = 0; a < 3; ++a) {
+      i0[a] = std::max<int64_t>(0, int64_t(std::floor(g[a] - kGrow)));
+      i1[a] = std::min<int64_t>(int64_t(gp.dims[a]) - 1, int64_t(std::floor(g[a] + kGrow)));
+    }
+    for (int64_t z = i0[2]; z <= i1[2]; ++z)
+      for (int64_t y = i0[1]; y <= i1[1]; ++y)
+        for (int64_t x = i0[0]; x <= i1[0]; ++x) {
+          const uint64_t i = uint64_t(x) + nx * uint64_t(y) + nxy * uint64_t(z);
+          bits[i >> 6] |= uint64_t{1} << (i & 63);
+        }
+  }
+  return bits;
+}
+
+// Surface voxels override whatever the fill gave.
+void apply_surface(Voxmap& vm, const std::vector<uint64_t>& sb) {
+  auto& w = vm.words();
+  for (size_t i = 0; i < w.size(); ++i) {
+    const uint64_t s = spread(sb[i >> 1] >> (32 * (i & 1)));
+    w[i] = (w[i] & ~(s | (s << 1))) | s;
+  }
+}
+
 }  // namespace
 
 Voxmap::Voxmap(const GridPlacement& g) : grid_(g), words_((g.size() + 31) / 32, 0) {}
@@ -217,31 +261,59 @@ std::vector<uint64_t> Voxmap::device_words(int memw) const {
   return out;
 }
 
+double voxel_for_resolution(const Mesh& mesh, uint32_t resolution) {
+  if (resolution < kMinVoxelsAcross)
+    throw MeshError(mesh.name + ": a resolution of " + std::to_string(resolution) + " voxels is too coarse; at least " +
+                    std::to_string(kMinVoxelsAcross) + " voxels must span the longest side");
+  if (mesh.triangles.empty() && mesh.vertices.empty()) throw MeshError(mesh.name + ": the mesh has no triangles and no points");
+  Eigen::Vector3d lo, hi;
+  mesh.bounds(lo, hi);
+  const double longest = (hi - lo).maxCoeff();
+  if (!std::isfinite(longest)) throw MeshError(mesh.name + ": vertex coordinates are not finite");
+  if (!(longest > 0)) throw MeshError(mesh.name + ": the model has no extent (all its points coincide)");
+  return longest / resolution;
+}
+
 GridPlacement place_grid(const Mesh& mesh, const VoxelizeOptions& opt) {
-  if (!(std::isfinite(opt.voxel) && opt.voxel > 0))
-    throw MeshError(mesh.name + ": the voxel size must be a positive finite number, got " + std::to_string(opt.voxel));
+  if (mesh.triangles.empty() && mesh.vertices.empty())
+    throw MeshError(mesh.name + ": the mesh has no triangles and no points");
+  const double voxel = opt.resolution ? voxel_for_resolution(mesh, opt.resolution) : opt.voxel;
+  if (!(std::isfinite(voxel) && voxel > 0))
+    throw MeshError(mesh.name + ": the voxel size must be a positive finite number, got " + std::to_string(voxel));
   for (int a = 0; a < 3; ++a)
     if (!(opt.shift[a] >= 1.0 / 1024 && opt.shift[a] <= 1))
       throw MeshError(mesh.name + ": grid shift components must lie in [1/1024, 1], got " + std::to_string(opt.shift[a]));
-  if (mesh.triangles.empty()) throw MeshError(mesh.name + ": the mesh has no triangles");
   Eigen::Vector3d lo, hi;
   mesh.bounds(lo, hi);
   if (!lo.allFinite() || !hi.allFinite()) throw MeshError(mesh.name + ": vertex coordinates are not finite");
+  const double longest = (hi - lo).maxCoeff();
+  if (!(longest >= kMinVoxelsAcross * voxel)) {
+    std::ostringstream s;
+    s.precision(9);
+    if (!(longest > 0)) {
+      s << mesh.name << ": the model has no extent (all its points coincide)";
+    } else {
+      s << mesh.name << ": voxel size " << voxel << " leaves " << longest / voxel
+        << " voxels along the model's longest side (" << longest << "); at least " << kMinVoxelsAcross
+        << " are needed: use a voxel size of at most " << longest / kMinVoxelsAcross << " (or --resolution)";
+    }
+    throw MeshError(s.str());
+  }
   GridPlacement g;
-  g.voxel = opt.voxel;
-  g.origin = lo - opt.voxel * (Eigen::Vector3d::Ones() + opt.shift);
+  g.voxel = voxel;
+  g.origin = lo - voxel * (Eigen::Vector3d::Ones() + opt.shift);
   bool too_big = false;
   double dd[3];
   for (int a = 0; a < 3; ++a) {
-    const double ghi = (hi[a] - g.origin[a]) / opt.voxel;
+    const double ghi = (hi[a] - g.origin[a]) / voxel;
     dd[a] = std::floor(ghi + 4 * kGrow) + 2;
     if (!(dd[a] <= opt.max_dim)) too_big = true;
   }
   if (too_big) {
     std::ostringstream s;
-    s << mesh.name << ": at voxel size " << opt.voxel << " the voxmap would be " << dd[0] << "x" << dd[1] << "x"
+    s << mesh.name << ": at voxel size " << voxel << " the voxmap would be " << dd[0] << "x" << dd[1] << "x"
       << dd[2] << " voxels; at most " << opt.max_dim << " per axis are allowed (use a voxel size of at least "
-      << (hi - lo).maxCoeff() / (opt.max_dim - 4) << ")";
+      << longest / (opt.max_dim - 4) << ")";
     throw MeshError(s.str());
   }
   for (int a = 0; a < 3; ++a) g.dims[a] = uint32_t(dd[a]);
@@ -249,6 +321,7 @@ GridPlacement place_grid(const Mesh& mesh, const VoxelizeOptions& opt) {
 }
 
 std::vector<uint64_t> surface_bits(const Mesh& mesh, const GridPlacement& g, unsigned threads) {
+  if (mesh.points_only()) return point_bits(mesh, g);
   ThreadPool pool(threads);
   return surface_bits_grid(to_grid(mesh, g), mesh, g, pool);
 }
@@ -260,7 +333,7 @@ void for_each_overlap(const Mesh& mesh, const GridPlacement& g, size_t t0, size_
     triangle_voxels(gm, mesh, t, g, [&](uint32_t x, uint32_t y, uint32_t z) { fn(t, x, y, z); });
 }
 
-Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt) {
+Voxmap voxelize_raycast(const Mesh& mesh, const VoxelizeOptions& opt) {
   const GridPlacement gp = place_grid(mesh, opt);
   const GridMesh gm = to_grid(mesh, gp);
   ThreadPool pool(opt.threads);
@@ -308,12 +381,134 @@ Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt) {
   xs.shrink_to_fit();
 
   // 3. Surface voxels override.
-  const std::vector<uint64_t> sb = surface_bits_grid(gm, mesh, gp, pool);
-  auto& w = vm.words();
-  for (size_t i = 0; i < w.size(); ++i) {
-    const uint64_t s = spread(sb[i >> 1] >> (32 * (i & 1)));
-    w[i] = (w[i] & ~(s | (s << 1))) | s;
+  apply_surface(vm, surface_bits_grid(gm, mesh, gp, pool));
+  return vm;
+}
+
+Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt, VoxelizeReport* report) {
+  const GridPlacement gp = place_grid(mesh, opt);
+  Voxmap vm(gp);
+  VoxelizeReport rep;
+  if (mesh.points_only()) {
+    apply_surface(vm, point_bits(mesh, gp));
+    if (report) *report = rep;
+    return vm;
   }
+  const GridMesh gm = to_grid(mesh, gp);
+  ThreadPool pool(opt.threads);
+  const std::vector<uint64_t> sb = surface_bits_grid(gm, mesh, gp, pool);
+
+  // 1. The closed chain: the triangles that bound the solid (sheets excluded) minus the caps of their boundary.
+  std::vector<std::array<uint32_t, 3>> solid;
+  solid.reserve(mesh.size());
+  for (size_t t = 0; t < mesh.size(); ++t)
+    if (!mesh.is_sheet(t)) solid.push_back(mesh.triangles[t]);
+  const std::vector<detail::ChainTriangle> caps = detail::boundary_caps(gm.q, solid, kFrac);
+
+  // 2. Signed crossings of the chain with every column ray, bucketed by column and sorted along it.
+  const size_t n_items = solid.size() + caps.size();
+  const auto parts = chunks(n_items, pool.size());
+  std::vector<std::vector<SignedCrossing>> found(parts.size());
+  pool.parallel_for(parts.size(), [&](size_t p) {
+    for (size_t i = parts[p].first; i < parts[p].second; ++i) {
+      if (i < solid.size()) {
+        const auto& t = solid[i];
+        crossings_of(gm.q[t[0]], gm.q[t[1]], gm.q[t[2]], gp, [&](uint32_t col, double x, bool front) {
+          found[p].push_back({col, front ? 1 : -1, x});
+        });
+      } else {
+        const auto& c = caps[i - solid.size()];
+        crossings_of(c.a, c.b, c.c, gp, [&](uint32_t col, double x, bool front) {
+          found[p].push_back({col, (front ? -1 : 1) * c.weight, x});
+        });
+      }
+    }
+  });
+  const size_t cols = size_t(gp.dims[1]) * gp.dims[2];
+  std::vector<uint32_t> start(cols + 1, 0);
+  for (const auto& f : found)
+    for (const SignedCrossing& c : f) ++start[c.col + 1];
+  for (size_t c = 0; c < cols; ++c) start[c + 1] += start[c];
+  std::vector<std::pair<double, int32_t>> xs(start[cols]);
+  {
+    std::vector<uint32_t> at(start.begin(), start.end() - 1);
+    for (const auto& f : found)
+      for (const SignedCrossing& c : f) xs[at[c.col]++] = {c.x, c.sign};
+  }
+  found.clear();
+  found.shrink_to_fit();
+
+  // 3. The integer part W (the chain's winding number: the signed crossings beyond the centre) fills every voxel
+  // where W >= 1; W is constant between crossings.
+  const uint64_t nx = gp.dims[0];
+  pool.parallel_for(std::min<size_t>(cols, 64), [&](size_t part) {
+    for (size_t c = cols * part / std::min<size_t>(cols, 64); c < cols * (part + 1) / std::min<size_t>(cols, 64); ++c)
+      std::sort(xs.begin() + start[c], xs.begin() + start[c + 1]);
+  });
+  for (size_t c = 0; c < cols; ++c) {
+    const auto* b = xs.data() + start[c];
+    const auto* e = xs.data() + start[c + 1];
+    if (b == e) continue;
+    int64_t prefix = 0;  // signs of the crossings at or before the current one; W = -prefix after it
+    for (const auto* p = b; p < e; ++p) {
+      prefix += p->second;
+      if (-prefix < 1 || p + 1 == e) continue;
+      // Voxels whose centre lies in [p->first, next crossing).
+      const double lo_i = std::max(0.0, std::ceil(p->first - 0.5));
+      const double hi_i = std::min(double(nx), std::ceil(p[1].first - 0.5));
+      if (lo_i >= hi_i) continue;
+      const uint64_t base = uint64_t(c) * nx;
+      fill_interior(vm.words(), base + uint64_t(lo_i), base + uint64_t(hi_i));
+    }
+    if (prefix != 0)
+      throw std::logic_error(mesh.name + ": the closed chain's crossings along column (y " +
+                             std::to_string(c % gp.dims[1]) + ", z " + std::to_string(c / gp.dims[1]) +
+                             ") do not sum to zero");
+  }
+
+  // 4. The caps' winding number moves W only near the holes: voxels where it could reach kUncertainLow are
+  // evaluated one by one (W + caps >= 1/2), every other voxel keeps W's answer.
+  if (!caps.empty()) {
+    const detail::CapField field(caps, kFrac);
+    constexpr uint32_t kBlock = 8;
+    const uint32_t bx = (gp.dims[0] + kBlock - 1) / kBlock, by = (gp.dims[1] + kBlock - 1) / kBlock,
+                   bz = (gp.dims[2] + kBlock - 1) / kBlock;
+    struct Change {
+      uint64_t index;
+      bool inside;
+    };
+    std::vector<std::vector<Change>> changes(size_t(bx) * by * bz);
+    std::vector<uint64_t> evaluated(changes.size(), 0), uncertain(changes.size(), 0);
+    pool.parallel_for(changes.size(), [&](size_t blk) {
+      const uint32_t x0 = uint32_t(blk % bx) * kBlock, y0 = uint32_t(blk / bx % by) * kBlock,
+                     z0 = uint32_t(blk / (size_t(bx) * by)) * kBlock;
+      const std::array<uint32_t, 3> lo = {x0, y0, z0};
+      const std::array<uint32_t, 3> hi = {std::min(x0 + kBlock, gp.dims[0]), std::min(y0 + kBlock, gp.dims[1]),
+                                          std::min(z0 + kBlock, gp.dims[2])};
+      field.uncertain_voxels(lo, hi, kUncertainLow, [&](uint32_t x, uint32_t y, uint32_t z) {
+        const uint64_t i = vm.index(x, y, z);
+        if ((sb[i >> 6] >> (i & 63)) & 1) return;
+        ++evaluated[blk];
+        const size_t c = size_t(y) + size_t(gp.dims[1]) * z;
+        const double cx = x + 0.5;
+        int64_t prefix = 0;
+        for (uint32_t k = start[c]; k < start[c + 1] && xs[k].first <= cx; ++k) prefix += xs[k].second;
+        const double w = double(-prefix) + field.value(Eigen::Vector3d(cx, y + 0.5, z + 0.5));
+        if (w >= kUncertainLow && w <= kUncertainHigh) ++uncertain[blk];
+        const bool inside = w >= 0.5;
+        if (inside != (vm.at(i) == kInterior)) changes[blk].push_back({i, inside});
+      });
+    });
+    for (size_t b = 0; b < changes.size(); ++b) {
+      for (const Change& ch : changes[b]) vm.set(ch.index, ch.inside ? kInterior : kEmpty);
+      rep.evaluated += evaluated[b];
+      rep.uncertain += uncertain[b];
+    }
+  }
+
+  // 5. Surface voxels override.
+  apply_surface(vm, sb);
+  if (report) *report = rep;
   return vm;
 }
 

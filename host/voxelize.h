@@ -1,5 +1,6 @@
-// The voxmap (2-bit states on a regular grid, packed as the device stores them) and the ray-casting voxeliser:
-// exact parity along rays through voxel-column centres, plus every voxel the surface passes through.
+// The voxmap (2-bit states on a regular grid, packed as the device stores them) and the voxeliser: the solid is
+// where the generalized winding number of the surface is at least 1/2 (host/winding.cpp), plus every voxel the
+// surface passes through.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,7 +26,9 @@ struct GridPlacement {
 };
 
 struct VoxelizeOptions {
-  double voxel = 0;  // voxel edge length in mesh units; must be finite and > 0
+  double voxel = 0;  // voxel edge length in mesh units; must be finite and > 0 (or resolution set)
+  // When > 0, the voxel is the model's longest bounding-box side / resolution (voxel_for_resolution).
+  uint32_t resolution = 0;
   // Grid placement: the mesh's AABB minimum lies at grid coordinate 1 + shift (each component in (0, 1]), so at
   // least one empty voxel pads every side. Tests move the grid with it.
   Eigen::Vector3d shift = Eigen::Vector3d::Constant(0.5);
@@ -71,14 +74,38 @@ class Voxmap {
   std::vector<uint64_t> words_;
 };
 
-// The grid voxelize uses for `mesh`: see VoxelizeOptions. Throws MeshError for a bad voxel size, shift, or a
-// grid larger than max_dim on some axis (naming the dimensions and the smallest voxel size that fits).
+// Fewest voxels voxelize accepts along the model's longest side.
+constexpr uint32_t kMinVoxelsAcross = 4;
+
+// The voxel edge that puts `resolution` voxels along the longest side of the mesh's bounding box (of its points
+// for a point cloud). MeshError when resolution < kMinVoxelsAcross or the mesh is empty or flat in every axis.
+double voxel_for_resolution(const Mesh& mesh, uint32_t resolution);
+
+// The grid voxelize uses for `mesh`: see VoxelizeOptions. Throws MeshError for a bad voxel size or shift, a voxel
+// that leaves fewer than kMinVoxelsAcross voxels along the longest side (naming the size that gives that many),
+// or a grid larger than max_dim on some axis (naming the dimensions and the smallest voxel size that fits).
 GridPlacement place_grid(const Mesh& mesh, const VoxelizeOptions& opt);
 
-// Voxelises a validated mesh (see prepare()). A voxel is Surface when its closed cube, grown by 2^-19 voxel on
-// every side, meets a triangle; otherwise Interior when its centre is inside the mesh (exact parity along the
-// ray), else Empty. So interior voxels lie inside the solid and the solid lies in interior + surface voxels.
-Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt);
+// What voxelize found besides the voxmap.
+struct VoxelizeReport {
+  // Voxels neither surface nor certain: their centre's winding number lies in [kUncertainLow, kUncertainHigh].
+  uint64_t uncertain = 0;
+  // Voxels whose winding number was evaluated one by one (the rest were decided by the integer part alone).
+  uint64_t evaluated = 0;
+};
+constexpr double kUncertainLow = 0.1, kUncertainHigh = 0.9;
+
+// Voxelises a mesh as repair() or prepare() left it. A voxel is Surface when its closed cube, grown by 2^-19
+// voxel on every side, meets a triangle (or holds a point of a point cloud); otherwise Interior when the
+// generalized winding number of the non-sheet triangles at its centre is at least 1/2, else Empty. On a closed,
+// consistently oriented mesh that is exact (an integer from signed ray crossings) and equals voxelize_raycast
+// wherever the mesh does not overlap itself; so interior voxels lie inside the solid and the solid lies in
+// interior + surface voxels.
+Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt, VoxelizeReport* report = nullptr);
+
+// The paper's ray-casting voxeliser (exact parity along rays through voxel-column centres): the reference the
+// winding-number voxeliser is measured and tested against. MeshError for an odd crossing count (an open mesh).
+Voxmap voxelize_raycast(const Mesh& mesh, const VoxelizeOptions& opt);
 
 // Bit i (word i / 64, bit i % 64) set when voxel i is a surface voxel as voxelize defines it.
 std::vector<uint64_t> surface_bits(const Mesh& mesh, const GridPlacement& g, unsigned threads = 0);

@@ -27,6 +27,8 @@ const CLI::Validator kPositive(
 struct VoxelizeArgs {
   std::string input;
   double voxel = 0;
+  uint32_t resolution = 0;
+  bool strict = false;
   std::string output;
   std::string png;
   double shell_ratio = std::sqrt(2.0);
@@ -37,12 +39,14 @@ struct VoxelizeArgs {
 int voxelize_cmd(const VoxelizeArgs& a) {
   std::string source;
   uint64_t hash = 0;
-  const Mesh mesh = load_source(a.input, &source, &hash);
+  MeshReport report;
+  const Mesh mesh = load_source(a.input, &source, &hash, &report, LoadOptions{a.strict});
   ObjectOptions opt;
   opt.voxel = a.voxel;
+  opt.resolution = a.resolution;
   opt.shell_ratio = a.shell_ratio;
   opt.threads = a.threads;
-  const ObjectFile obj = make_object(mesh, source, hash, opt);
+  const ObjectFile obj = make_object(mesh, source, hash, opt, &report);
   write_object(a.output, obj);
   if (!a.png.empty()) write_object_picture(a.png, obj, &mesh);
   std::cout << (a.json ? object_json(a.output, obj) : object_text(a.output, obj));
@@ -61,7 +65,14 @@ void add_voxelize(CLI::App& app) {
                 "MESH|SHAPE: a mesh file (.raw, or any format assimp reads: OBJ, STL, PLY, OFF, glTF, ...) or a "
                 "built-in shape (" + shapes + ")")
       ->required();
-  c->add_option("--voxel", a->voxel, "Voxel edge length in mesh units")->required()->check(kPositive);
+  CLI::Option* voxel = c->add_option("--voxel", a->voxel, "Voxel edge length in mesh units")->check(kPositive);
+  CLI::Option* res = c->add_option("--resolution", a->resolution,
+                                   "Voxels along the model's longest side (instead of --voxel; at least 4)")
+                         ->check(CLI::Range(1u, 1u << 20));
+  voxel->excludes(res);
+  res->excludes(voxel);
+  c->add_flag("--strict", a->strict,
+              "Refuse any mesh that is not a closed, edge-manifold, consistently oriented surface (no repair)");
   c->add_option("-o,--output", a->output, "Object file to write")->required();
   c->add_option("--png", a->png, "Also write a picture: voxmap slices and the shell over the mesh");
   c->add_option("--shell-ratio", a->shell_ratio, "Voxel size / shell spacing (the paper's rule: sqrt(2))")
@@ -69,7 +80,10 @@ void add_voxelize(CLI::App& app) {
       ->capture_default_str();
   c->add_option("--threads", a->threads, "Worker threads (0: one per hardware thread)")->capture_default_str();
   c->add_flag("--json", a->json, "Describe the written object as JSON (as `voxcd info --json`)");
-  c->callback([a] { exit_code() = voxelize_cmd(*a); });
+  c->callback([a, voxel, res] {
+    if (!*voxel && !*res) throw CLI::RequiredError("--voxel or --resolution");
+    exit_code() = voxelize_cmd(*a);
+  });
 }
 
 }  // namespace voxcd::cli

@@ -57,6 +57,53 @@ inline std::string num(double v) {
   return s.str();
 }
 
+// What loading and repair did, as JSON (null for a version 1 object file, which has no report).
+inline std::string repair_json(const ObjectFile& obj) {
+  if (!obj.has_report) return "null";
+  const MeshReport& r = obj.mesh_report;
+  std::ostringstream j;
+  j << "{\"closed\": " << (r.closed ? "true" : "false") << ", \"surface_only\": " << (r.surface_only ? "true" : "false")
+    << ", \"points_only\": " << (r.points_only ? "true" : "false") << ", \"flipped\": " << (r.flipped ? "true" : "false")
+    << ", \"input_vertices\": " << r.input_vertices << ", \"input_triangles\": " << r.input_triangles
+    << ", \"vertices\": " << r.vertices << ", \"triangles\": " << r.triangles << ", \"welded\": " << r.welded
+    << ", \"welded_near\": " << r.welded_near << ", \"weld_tolerance\": " << num(r.weld_tolerance)
+    << ", \"dropped\": {\"nonfinite\": " << r.dropped_nonfinite << ", \"repeated_vertex\": " << r.dropped_repeated
+    << ", \"collinear\": " << r.dropped_collinear << ", \"duplicate\": " << r.dropped_duplicate << "}"
+    << ", \"reoriented\": " << r.reoriented << ", \"open_edges\": " << r.open_edges
+    << ", \"nonmanifold_edges\": " << r.nonmanifold_edges << ", \"inconsistent_edges\": " << r.inconsistent_edges
+    << ", \"components\": " << r.components << ", \"closed_components\": " << r.closed_components
+    << ", \"sheet_components\": " << r.sheet_components
+    << ", \"uncertain_voxels\": " << obj.voxelize_report.uncertain
+    << ", \"evaluated_voxels\": " << obj.voxelize_report.evaluated << "}";
+  return j.str();
+}
+
+// The same as lines of text: what was found, what was done, how certain the result is.
+inline std::string repair_text(const ObjectFile& obj) {
+  if (!obj.has_report) return "  repair   not recorded (object file version 1)\n";
+  const MeshReport& r = obj.mesh_report;
+  std::ostringstream t;
+  t << "  input    " << r.input_triangles << " triangles, " << r.input_vertices << " vertices; ";
+  if (r.points_only)
+    t << "a point cloud (no triangles): surface only, no interior\n";
+  else if (r.closed)
+    t << "closed, manifold and consistently oriented" << (r.flipped ? " (inside out: reversed)" : "") << "\n";
+  else
+    t << "not closed: " << r.open_edges << " open edges, " << r.nonmanifold_edges << " non-manifold edges, "
+      << r.inconsistent_edges << " inconsistently oriented edges after repair\n";
+  t << "  repair   welded " << r.welded << " vertices (" << r.welded_near << " within " << r.weld_tolerance
+    << ", the rest exactly equal); dropped " << r.dropped_nonfinite << " non-finite, " << r.dropped_repeated
+    << " with a repeated vertex, " << r.dropped_collinear << " collinear, " << r.dropped_duplicate
+    << " duplicate triangles; reoriented " << r.reoriented << " triangles" << (r.flipped ? "; reversed the whole mesh" : "")
+    << "\n";
+  if (!r.points_only)
+    t << "  parts    " << r.components << " components, " << r.closed_components << " closed, " << r.sheet_components
+      << " sheets (surface only)" << (r.surface_only ? "; nothing encloses a volume: no interior" : "") << "\n";
+  t << "  solid    " << obj.voxelize_report.uncertain << " uncertain voxels (winding number in [" << kUncertainLow << ", "
+    << kUncertainHigh << "]), " << obj.voxelize_report.evaluated << " evaluated one by one\n";
+  return t.str();
+}
+
 inline std::string object_json(const std::string& path, const ObjectFile& obj) {
   const Voxmap& vm = obj.voxmap;
   const auto c = vm.counts();
@@ -84,7 +131,8 @@ inline std::string object_json(const std::string& path, const ObjectFile& obj) {
     << "  \"voxmap_bytes\": " << mem.voxmap_bytes << ",\n"
     << "  \"shell_bytes\": " << mem.shell_bytes << ",\n"
     << "  \"memory_bytes\": " << mem.voxmap_bytes + mem.shell_bytes << ",\n"
-    << "  \"memory_config\": " << json_string(cfg.to_string()) << "\n"
+    << "  \"memory_config\": " << json_string(cfg.to_string()) << ",\n"
+    << "  \"repair\": " << repair_json(obj) << "\n"
     << "}\n";
   return j.str();
 }
@@ -106,7 +154,8 @@ inline std::string object_text(const std::string& path, const ObjectFile& obj) {
     << obj.shell_ratio << "), grid " << sd[0] << " x " << sd[1] << " x " << sd[2] << "\n"
     << "  memory   voxmap " << mem.voxmap_bytes << " bytes (MEMW " << cfg.MEMW << "), shell " << mem.shell_bytes
     << " bytes (3 x PW " << cfg.PW << " bits per point), total " << mem.voxmap_bytes + mem.shell_bytes
-    << " bytes\n";
+    << " bytes\n"
+    << repair_text(obj);
   return t.str();
 }
 

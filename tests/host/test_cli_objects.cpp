@@ -156,9 +156,30 @@ TEST(Cli, ErrorsNameWhatAndWhere) {
   Mesh m = make_shape("cube");
   m.triangles.pop_back();
   test::write_obj(m, open);
-  r = run("voxelize " + open + " --voxel 0.1 -o " + vox);
+  r = run("voxelize " + open + " --voxel 0.1 --strict -o " + vox);
   EXPECT_NE(r.rc, 0);
   EXPECT_NE(r.out.find(open + ": the mesh is open: edge"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::ifstream(vox).good()) << "no object file after an error";
+  // Without --strict it is repaired and voxelised, and the report says what was open.
+  r = run("voxelize " + open + " --voxel 0.1 -o " + vox + " --json");
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("\"closed\": false"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"open_edges\": 3"), std::string::npos) << r.out;
+  std::remove(vox.c_str());
+  // Neither --voxel nor --resolution, both, and a resolution below 4.
+  r = run("voxelize cube -o " + vox);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("--voxel or --resolution"), std::string::npos) << r.out;
+  r = run("voxelize cube --voxel 0.1 --resolution 64 -o " + vox);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("excludes"), std::string::npos) << r.out;
+  r = run("voxelize cube --resolution 3 -o " + vox);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("at least 4 voxels must span the longest side"), std::string::npos) << r.out;
+  r = run("voxelize cube --voxel 0.6 -o " + vox);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("use a voxel size of at most 0.5"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::ifstream(vox).good()) << "no object file after an error";
   // Bad voxel sizes, a grid too large.
   for (const char* bad : {"0", "-1", "nan", "abc"}) {
     r = run(std::string("voxelize cube --voxel ") + bad + " -o " + vox);

@@ -169,8 +169,14 @@ TEST(Mesh, ErrorsNameTheProblem) {
       text = ss.str();
     }
     test::write_file(p, text.substr(0, text.size() / 2));
-    const std::string e = error_of([&] { load_mesh(p); });
+    const std::string e = error_of([&] { load_mesh(p, nullptr, LoadOptions{true}); });
     EXPECT_NE(e, "");
+    // Without --strict the triangles that arrived are kept, and the report says the surface is open.
+    MeshReport r;
+    const Mesh m = load_mesh(p, &r);
+    EXPECT_LT(m.size(), 12u);
+    EXPECT_GT(r.open_edges, 0u);
+    EXPECT_FALSE(r.closed);
     std::remove(p.c_str());
   }
   // An inside-out mesh is reversed, not rejected.
@@ -217,8 +223,9 @@ std::string file_bytes(const std::string& path) {
   return ss.str();
 }
 
-// Files cut short anywhere, in every format: a MeshError that names the file, or (cut in trailing whitespace)
-// the whole mesh; never a crash (a crash fails the whole test program).
+// Files cut short anywhere, in every format: strictly, a MeshError that names the file, or (cut in trailing
+// whitespace) the whole mesh; repaired, the same error or the triangles that arrived, reported open when some are
+// missing; never a crash (a crash fails the whole test program).
 TEST(Mesh, TruncatedFilesAreErrors) {
   const uint64_t seed = test::seed();
   std::printf("seed %llu (VOXCD_SEED)\n", (unsigned long long)seed);
@@ -235,11 +242,22 @@ TEST(Mesh, TruncatedFilesAreErrors) {
     for (size_t n : lengths) {
       test::write_file(p, bytes.substr(0, n));
       try {
-        const Mesh m = load_mesh(p);
+        const Mesh m = load_mesh(p, nullptr, LoadOptions{true});
         EXPECT_EQ(m.size(), src.size()) << fmt << " cut at " << n << " seed " << seed;
       } catch (const MeshError& e) {
         ++errors;
         EXPECT_EQ(std::string(e.what()).rfind(p + ":", 0), 0u) << e.what();  // "file: " or "file:line: "
+      }
+      try {
+        MeshReport r;
+        const Mesh m = load_mesh(p, &r);
+        EXPECT_LE(m.size(), src.size()) << fmt << " cut at " << n;
+        // (A cut inside the last number can also change a vertex or an index: the count stays, the surface opens.)
+        if (m.size() < src.size()) {
+          EXPECT_GT(r.open_edges, 0u) << fmt << " cut at " << n;
+        }
+      } catch (const MeshError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(p + ":", 0), 0u) << e.what();
       }
     }
     EXPECT_GE(errors, 50) << fmt;  // nearly every cut loses a triangle
@@ -321,7 +339,7 @@ TEST(Mesh, PlyHeadersAndCountsAreCheckedAndValidFilesLoad) {
 TEST(Mesh, BadMeshFilesNameTheFile) {
   auto load_error = [](const std::string& path, const std::string& text) {
     test::write_file(path, text);
-    const std::string e = error_of([&] { load_mesh(path); });
+    const std::string e = error_of([&] { load_mesh(path, nullptr, LoadOptions{true}); });
     std::remove(path.c_str());
     return e;
   };
@@ -349,6 +367,30 @@ TEST(Mesh, BadMeshFilesNameTheFile) {
                       "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
                       "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n");
   EXPECT_EQ(e.rfind(ply + ": ", 0), 0u) << e;
+  // Without --strict the same defects are repaired and reported; files that hold nothing still fail.
+  auto repaired = [](const std::string& path, const std::string& text) {
+    test::write_file(path, text);
+    MeshReport rep;
+    load_mesh(path, &rep);
+    std::remove(path.c_str());
+    return rep;
+  };
+  MeshReport rr = repaired(p, "v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\n" + tet_f);
+  EXPECT_EQ(rr.dropped_nonfinite, 3u);  // vertex 3 is a corner of three faces
+  EXPECT_EQ(rr.triangles, 1u);
+  EXPECT_TRUE(rr.surface_only);  // one triangle encloses nothing
+  rr = repaired(p, "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 1\n" + tet_f);
+  EXPECT_EQ(rr.dropped_collinear, 1u);
+  rr = repaired(p, tet_v + "f 1 3 2\nf 1 2 4\nf 2 3 4\n");
+  EXPECT_EQ(rr.open_edges, 3u);
+  EXPECT_FALSE(rr.closed);
+  EXPECT_FALSE(rr.surface_only);  // the hole is 27% of the area left: below the 40% that makes a sheet
+  rr = repaired(p, tet_v + tet_f);
+  EXPECT_TRUE(rr.closed);
+  EXPECT_FALSE(rr.repaired());
+  test::write_file(r, "# no triangles\n");
+  EXPECT_EQ(error_of([&] { load_mesh(r); }), r + ": the file holds no triangles and no points");
+  std::remove(r.c_str());
 }
 
 }  // namespace

@@ -27,7 +27,9 @@ ObjectFile small_object(const std::string& shape, double voxel) {
   ObjectOptions o;
   o.voxel = voxel;
   o.shift = Eigen::Vector3d(0.3, 0.7, 0.55);
-  return make_object(make_shape(shape), "shape:" + shape, hash_bytes("shape:" + shape), o);
+  MeshReport rep;
+  const Mesh m = load_source(shape, nullptr, nullptr, &rep);
+  return make_object(m, "shape:" + shape, hash_bytes("shape:" + shape), o, &rep);
 }
 
 // The message of the ObjectFileError that reading `path` throws ("" when it reads).
@@ -104,7 +106,7 @@ TEST(ObjectFile, ByteLayoutIsTheDocumentedOne) {
   LayoutReader r{b};
   EXPECT_EQ(b.substr(0, 8), "VOXCDOBJ");
   r.pos = 8;
-  EXPECT_EQ(r.get<uint32_t>(), 1u);  // version
+  EXPECT_EQ(r.get<uint32_t>(), 2u);  // version
   EXPECT_EQ(r.get<uint32_t>(), 0u);  // flags
   EXPECT_EQ(r.get<uint64_t>(), a.source_hash);
   const uint32_t len = r.get<uint32_t>();
@@ -140,6 +142,18 @@ TEST(ObjectFile, ByteLayoutIsTheDocumentedOne) {
     for (int i = 0; i < 3; ++i) ASSERT_EQ(r.get<double>(), a.shell.points[k][i]);
   for (uint64_t k = 0; k < n; ++k)
     for (int i = 0; i < 3; ++i) ASSERT_EQ(r.get<double>(), a.shell.normals[k][i]);
+  // The report (version 2): flags (16: present, 1: closed), weld tolerance, 19 counts.
+  const MeshReport& m = a.mesh_report;
+  ASSERT_TRUE(a.has_report);
+  EXPECT_EQ(r.get<uint32_t>(), 16u | 1u);
+  EXPECT_EQ(r.get<double>(), m.weld_tolerance);
+  for (uint64_t v : {m.input_vertices, m.input_triangles, m.vertices, m.triangles, m.welded, m.welded_near, m.dropped_nonfinite,
+                     m.dropped_repeated, m.dropped_collinear, m.dropped_duplicate, m.reoriented, m.open_edges,
+                     m.nonmanifold_edges, m.inconsistent_edges, m.components, m.closed_components,
+                     m.sheet_components, a.voxelize_report.uncertain, a.voxelize_report.evaluated})
+    EXPECT_EQ(r.get<uint64_t>(), v);
+  EXPECT_EQ(m.input_triangles, 20u);
+  EXPECT_EQ(m.components, 1u);
   const uint32_t crc = uint32_t(crc32(0, reinterpret_cast<const Bytef*>(b.data()), uInt(r.pos)));
   EXPECT_EQ(r.get<uint32_t>(), crc);
   EXPECT_EQ(r.pos, b.size());
@@ -185,9 +199,9 @@ TEST(ObjectFile, DamagedFilesNameTheFileAndTheByte) {
     c[0] = 'W';
     EXPECT_EQ(expect_error(c, "bad magic", "magic"), where + "not a voxcd object file (bad magic) (byte 0)");
     c = b;
-    c[8] = 2;
-    EXPECT_EQ(expect_error(c, "version 2 is not supported", "version"),
-              where + "object file version 2 is not supported (this reader knows version 1) (byte 8)");
+    c[8] = 3;
+    EXPECT_EQ(expect_error(c, "version 3 is not supported", "version"),
+              where + "object file version 3 is not supported (this reader knows versions 1 and 2) (byte 8)");
     c = b;
     c[12] = 1;
     expect_error(c, "unknown flags 1", "flags");
