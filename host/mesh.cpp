@@ -64,9 +64,14 @@ Mesh load_assimp(const std::string& path) {
   if (!sc) throw MeshError(path + ": cannot load: " + imp.GetErrorString());
   Mesh m;
   m.name = path;
+  std::vector<Eigen::Vector3d> points;  // of meshes without triangles: a point cloud when there are no triangles
   for (unsigned i = 0; i < sc->mNumMeshes; ++i) {
     const aiMesh* am = sc->mMeshes[i];
-    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) {
+      for (unsigned v = 0; v < am->mNumVertices; ++v)
+        points.emplace_back(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
+      continue;
+    }
     const uint32_t base = uint32_t(m.vertices.size());
     for (unsigned v = 0; v < am->mNumVertices; ++v)
       m.vertices.emplace_back(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
@@ -76,7 +81,34 @@ Mesh load_assimp(const std::string& path) {
       m.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
     }
   }
+  if (m.triangles.empty()) m.vertices = std::move(points);
   return m;
+}
+
+// The vertices of a Wavefront OBJ file that has vertex lines and no face lines (assimp finds no mesh in it):
+// a point cloud. Returns false when the file has faces or no vertices.
+bool read_obj_points(const std::string& path, Mesh& m) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::vector<Eigen::Vector3d> pts;
+  size_t lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key == "f" || key == "l" || key == "p") return false;
+    if (key != "v") continue;
+    double x, y, z;
+    if (!(ls >> x >> y >> z))
+      throw MeshError(path + ":" + std::to_string(lineno) + ": a vertex line needs three numbers");
+    pts.emplace_back(x, y, z);
+  }
+  if (pts.empty()) return false;
+  m.name = path;
+  m.vertices = std::move(pts);
+  m.triangles.clear();
+  return true;
 }
 
 }  // namespace
@@ -535,8 +567,8 @@ Mesh read_ply(const std::string& path, const std::string& text) {
   }
   if (!vertex || px < 0 || py < 0 || pz < 0)
     throw MeshError(path + ": the PLY file has no element 'vertex' with properties x, y and z");
-  if (!face || pf < 0)
-    throw MeshError(path + ": the PLY file has no element 'face' with a list vertex_indices");
+  // No face element: a point cloud.
+  if (face && pf < 0) throw MeshError(path + ": the PLY file's element 'face' has no list vertex_indices");
   Mesh m;
   m.name = path;
   m.vertices.reserve(size_t(vertex->count));
@@ -702,7 +734,15 @@ Mesh load_mesh(const std::string& path, MeshReport* report, const LoadOptions& o
                           " bytes can hold (is the file truncated?)");
       }
     }
-    if (lower_ext(path) != "ply") m = load_assimp(path);
+    if (lower_ext(path) == "obj") {
+      try {
+        m = load_assimp(path);
+      } catch (const MeshError&) {
+        if (!read_obj_points(path, m)) throw;
+      }
+    } else if (lower_ext(path) != "ply") {
+      m = load_assimp(path);
+    }
   }
   if (m.name.empty()) m.name = path;
   MeshReport r;

@@ -16,6 +16,10 @@ namespace {
 
 // A hole whose fill has more than this fraction of its part's area makes the part a sheet (docs/objects.md).
 constexpr double kSheetRatio = 0.4;
+// Open parts whose boundaries come this close (relative to the model's size) close each other (cracks).
+constexpr double kCrackRelative = 1e-2;
+// Nesting is tested between every two parts up to this many parts.
+constexpr size_t kMaxNestingParts = 4096;
 
 struct UnionFind {
   std::vector<uint32_t> parent;
@@ -314,9 +318,9 @@ MeshReport repair(Mesh& m) {
     i = j;
   }
 
-  // Outward: a closed patch of negative volume that lies in no other closed patch is turned (an inside-out
-  // part); one that lies inside another is a cavity and keeps its orientation. Open patches: the same, with the
-  // volume closed by the cone from their centroid.
+  // Outward, nested parts alternating: a patch inside d closed patches (its box inside theirs, and sampled
+  // vertices inside by parity) faces outward when d is even and inward when d is odd, so a cavity stays empty
+  // whichever way its surface was given. Open patches use the volume closed by the cone from their centroid.
   std::vector<double> vol(patches.size());
   std::vector<Eigen::Vector3d> plo(patches.size()), phi(patches.size());
   for (size_t p = 0; p < patches.size(); ++p) {
@@ -329,8 +333,9 @@ MeshReport repair(Mesh& m) {
         phi[p] = phi[p].cwiseMax(m.vertices[v]);
       }
   }
-  auto nested = [&](size_t p) {
-    // Up to 8 of its vertices spread through the patch must all lie inside one closed patch whose box holds it.
+  auto depth = [&](size_t p) {
+    size_t d = 0;
+    if (patches.size() > kMaxNestingParts) return d;  // (pairs too many to test: every part outward)
     for (size_t q = 0; q < patches.size(); ++q) {
       if (q == p || !patch_closed[q]) continue;
       if ((plo[p].array() <= plo[q].array()).any() || (phi[p].array() >= phi[q].array()).any()) continue;
@@ -338,13 +343,14 @@ MeshReport repair(Mesh& m) {
       const size_t step = std::max<size_t>(1, patches[p].size() / 8);
       for (size_t k = 0; k < patches[p].size() && all; k += step)
         all = inside_part(m, patches[q], m.corner(patches[p][k], 0));
-      if (all) return true;
+      d += all ? 1 : 0;
     }
-    return false;
+    return d;
   };
   size_t reversed = 0;
   for (size_t p = 0; p < patches.size(); ++p) {
-    if (vol[p] < 0 && !nested(p)) {
+    const bool inward = depth(p) % 2 == 1;
+    if (vol[p] != 0 && (vol[p] < 0) != inward) {
       for (uint32_t t : patches[p]) {
         std::swap(m.triangles[t][1], m.triangles[t][2]);
         flip[t] ^= 1;
@@ -358,12 +364,12 @@ MeshReport repair(Mesh& m) {
     r.reoriented = reversed;
   }
 
-  // Sheets: patches grouped with the open patches whose boundary vertices come within 10^-3 of the model's size
+  // Sheets: patches grouped with the open patches whose boundary vertices come within kCrackRelative of the model's size
   // of theirs (parts split by cracks close each other); a group whose boundary encloses more than kSheetRatio of
   // its area (the vector area of its boundary loops, origin-independent for closed loops) encloses nothing.
   UnionFind group{patches.size()};
   {
-    const double gap = 1e-3 * (hi - lo).norm();
+    const double gap = kCrackRelative * (hi - lo).norm();
     struct KeyHash {
       size_t operator()(const std::array<int64_t, 3>& k) const {
         return size_t((uint64_t(k[0]) * 0x9e3779b97f4a7c15ull) ^ (uint64_t(k[1]) * 0xc2b2ae3d27d4eb4full) ^

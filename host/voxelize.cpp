@@ -21,6 +21,8 @@ constexpr int kFrac = 20;
 constexpr int64_t kOne = int64_t{1} << kFrac;
 constexpr int64_t kHalf = kOne / 2;
 constexpr double kGrow = 1.0 / (1 << 19);
+// Bound on the far caps' winding number below which the near caps' exact part stands for the whole.
+constexpr double kNearEnough = 0.02;
 
 struct GridMesh {
   std::vector<std::array<int64_t, 3>> q;  // snapped grid coordinates, kFrac fraction bits
@@ -399,10 +401,11 @@ Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt, VoxelizeReport* re
   const std::vector<uint64_t> sb = surface_bits_grid(gm, mesh, gp, pool);
 
   // 1. The closed chain: the triangles that bound the solid (sheets excluded) minus the caps of their boundary.
-  std::vector<std::array<uint32_t, 3>> solid;
-  solid.reserve(mesh.size());
-  for (size_t t = 0; t < mesh.size(); ++t)
-    if (!mesh.is_sheet(t)) solid.push_back(mesh.triangles[t]);
+  std::vector<std::array<uint32_t, 3>> solid_copy;
+  if (!mesh.sheet.empty())
+    for (size_t t = 0; t < mesh.size(); ++t)
+      if (!mesh.is_sheet(t)) solid_copy.push_back(mesh.triangles[t]);
+  const std::vector<std::array<uint32_t, 3>>& solid = mesh.sheet.empty() ? mesh.triangles : solid_copy;
   const std::vector<detail::ChainTriangle> caps = detail::boundary_caps(gm.q, solid, kFrac);
 
   // 2. Signed crossings of the chain with every column ray, bucketed by column and sorted along it.
@@ -485,7 +488,7 @@ Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt, VoxelizeReport* re
       const std::array<uint32_t, 3> lo = {x0, y0, z0};
       const std::array<uint32_t, 3> hi = {std::min(x0 + kBlock, gp.dims[0]), std::min(y0 + kBlock, gp.dims[1]),
                                           std::min(z0 + kBlock, gp.dims[2])};
-      field.uncertain_voxels(lo, hi, kUncertainLow, [&](uint32_t x, uint32_t y, uint32_t z) {
+      field.uncertain_voxels(lo, hi, kUncertainLow, [&](uint32_t x, uint32_t y, uint32_t z, double near, double bound) {
         const uint64_t i = vm.index(x, y, z);
         if ((sb[i >> 6] >> (i & 63)) & 1) return;
         ++evaluated[blk];
@@ -493,7 +496,11 @@ Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt, VoxelizeReport* re
         const double cx = x + 0.5;
         int64_t prefix = 0;
         for (uint32_t k = start[c]; k < start[c + 1] && xs[k].first <= cx; ++k) prefix += xs[k].second;
-        const double w = double(-prefix) + field.value(Eigen::Vector3d(cx, y + 0.5, z + 0.5));
+        // The near caps' exact part with the bound on the rest decides, unless 1/2 lies within the bound (or the
+        // bound is too loose to say how certain the voxel is): then the whole field is evaluated.
+        double w = double(-prefix) + near;
+        if (!(bound <= kNearEnough && std::abs(w - 0.5) > bound))
+          w = double(-prefix) + field.value(Eigen::Vector3d(cx, y + 0.5, z + 0.5));
         if (w >= kUncertainLow && w <= kUncertainHigh) ++uncertain[blk];
         const bool inside = w >= 0.5;
         if (inside != (vm.at(i) == kInterior)) changes[blk].push_back({i, inside});

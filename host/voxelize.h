@@ -93,7 +93,7 @@ struct VoxelizeReport {
   // Voxels whose winding number was evaluated one by one (the rest were decided by the integer part alone).
   uint64_t evaluated = 0;
 };
-constexpr double kUncertainLow = 0.1, kUncertainHigh = 0.9;
+constexpr double kUncertainLow = 0.25, kUncertainHigh = 0.75;
 
 // Voxelises a mesh as repair() or prepare() left it. A voxel is Surface when its closed cube, grown by 2^-19
 // voxel on every side, meets a triangle (or holds a point of a point cloud); otherwise Interior when the

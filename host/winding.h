@@ -39,11 +39,14 @@ class CapField {
   bool empty() const { return tris_.empty(); }
   // The winding number of the caps at p: exact for nodes nearer than kFar times their radius, dipole beyond.
   double value(const Eigen::Vector3d& p) const;
-  // Calls need(x, y, z) for each voxel in [lo, hi) (voxel indices; centre at index + 1/2) where the caps'
-  // winding number may reach `limit` in magnitude. Everywhere else it is proved below `limit` (a rigorous
-  // bound: area / (4 pi distance^2) per far node).
+  // need(x, y, z, near, bound): near is the exact winding number of the caps close to the voxel's centre and
+  // bound a rigorous bound on the rest (area / (4 pi distance^2) per far node), so the caps' winding number lies
+  // in [near - bound, near + bound]; near is NaN when the rest was not bounded below the limit.
+  using NeedFn = std::function<void(uint32_t, uint32_t, uint32_t, double, double)>;
+  // Calls need for each voxel in [lo, hi) (voxel indices; centre at index + 1/2) where the caps' winding number
+  // may reach `limit` in magnitude. Everywhere else it is proved below `limit`.
   void uncertain_voxels(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, double limit,
-                        const std::function<void(uint32_t, uint32_t, uint32_t)>& need) const;
+                        const NeedFn& need) const;
 
  private:
   struct Tri {
@@ -61,7 +64,7 @@ class CapField {
   };
   uint32_t build(uint32_t first, uint32_t count);
   void certify(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, std::vector<uint32_t> nodes,
-               double bound, double limit, const std::function<void(uint32_t, uint32_t, uint32_t)>& need) const;
+               double bound, double limit, const NeedFn& need) const;
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;
 };
