@@ -227,7 +227,7 @@ class CoherentSweep final : public BroadphaseBase {
     }
     uint64_t tests = 0;
     if (n != n_ || !started_) {
-      restart(n, tests);
+      restart(bodies, frame, tests);
     } else {
       for (int a = 0; a < 3; ++a) {
         auto& e = ends_[a];
@@ -263,8 +263,10 @@ class CoherentSweep final : public BroadphaseBase {
   };
   static bool before(const End& x, const End& y) { return x.v < y.v || (x.v == y.v && (x.id & 1) < (y.id & 1)); }
 
-  // Sorts the endpoints from scratch and finds the pairs by one sweep along x.
-  void restart(uint32_t n, uint64_t& tests) {
+  // Sorts the endpoints from scratch and finds the pairs by sort and sweep (one sweep along x with a list of open
+  // boxes would be quadratic for many bodies: n times the boxes that span a point of x).
+  void restart(const std::vector<BodyBounds>& bodies, uint64_t frame, uint64_t& tests) {
+    const uint32_t n = uint32_t(bodies.size());
     n_ = n;
     started_ = true;
     set_.clear();
@@ -279,26 +281,16 @@ class CoherentSweep final : public BroadphaseBase {
         return before(x, y) || (!before(y, x) && x.id < y.id);
       });
     }
-    open_.clear();
-    for (const End& p : ends_[0]) {
-      const uint32_t b = p.id >> 1;
-      if (p.id & 1) {
-        open_.erase(std::find(open_.begin(), open_.end(), b));
-      } else {
-        for (uint32_t o : open_) {
-          ++tests;
-          if (overlaps(box_[b], box_[o])) set_.insert(pair_key(b, o));
-        }
-        open_.push_back(b);
-      }
-    }
+    SortAndSweep sweep;
+    sweep.update(bodies, frame);
+    tests += sweep.stats().overlap_tests;
+    for (const BodyPair& p : sweep.pairs()) set_.insert(pair_key(p.first, p.second));
   }
 
   uint32_t n_ = 0;
   bool started_ = false;
   std::vector<FlatBox> box_;
   std::vector<End> ends_[3];
-  std::vector<uint32_t> open_;
   PairSet set_;
   std::vector<uint64_t> found_, tmp_;
 };

@@ -1,5 +1,7 @@
 #include "host/scene.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +11,7 @@
 
 #include "host/mesh.h"
 #include "host/shapes.h"
+#include "host/voxelize.h"
 
 namespace voxcd {
 
@@ -82,6 +85,34 @@ BodyBounds body_bounds(const ObjectType& t, const Body& b, const Eigen::Matrix3d
   return bb;
 }
 
+double default_voxel(double volume, double extent) {
+  double v = std::cbrt(volume / kPaperObjectVolume);
+  if (!(v >= extent / kDefaultMostAcross)) v = extent / kDefaultMostAcross;  // also a volume that is not positive
+  if (v > extent / kDefaultFewestAcross) v = extent / kDefaultFewestAcross;
+  return v;
+}
+
+namespace {
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+// The largest radius of spheres of which the lattice fits `count` in the cube (0 when not even one fits).
+double largest_radius_for(double side, uint64_t count) {
+  double lo = 0, hi = side / 2;
+  if (lattice_capacity(side, hi * (1 - 1e-12)) >= count) return hi;
+  for (int i = 0; i < 80; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (lattice_capacity(side, mid) >= count ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+}  // namespace
+
 Scene make_scene(const SceneSpec& spec) {
   if (spec.objects == 0) throw std::invalid_argument("scene: objects must be at least 1");
   if (!(spec.side > 0) || !std::isfinite(spec.side)) throw std::invalid_argument("scene: side must be positive");
@@ -89,29 +120,48 @@ Scene make_scene(const SceneSpec& spec) {
     throw std::invalid_argument("scene: density " + std::to_string(spec.density) + " is outside (0, 0.3]");
   if (!(spec.speed >= 0) || !std::isfinite(spec.speed)) throw std::invalid_argument("scene: speed must be >= 0");
   if (!(spec.spin >= 0) || !std::isfinite(spec.spin)) throw std::invalid_argument("scene: spin must be >= 0");
-  if (!(spec.voxel > 0) || !std::isfinite(spec.voxel)) throw std::invalid_argument("scene: voxel must be > 0");
+  if (spec.voxel_given() && spec.resolution > 0)
+    throw std::invalid_argument("scene: give a voxel size or a resolution, not both");
+  if (spec.voxel_given() && (!(spec.voxel > 0) || !std::isfinite(spec.voxel)))
+    throw std::invalid_argument("scene: voxel must be > 0");
+  if (spec.resolution > 0 && (spec.resolution < kMinVoxelsAcross || spec.resolution > 1020))
+    throw std::invalid_argument("scene: resolution " + std::to_string(spec.resolution) + " is outside [" +
+                                std::to_string(kMinVoxelsAcross) +
+                                ", 1020] (voxels along the object's longest side)");
   std::string source;
   uint64_t hash = 0;
   Mesh mesh = load_source(spec.shape, &source, &hash);
   // Scale so that the objects fill `density` of the cube, and centre the mesh on its box's centre.
+  const double each = spec.density * spec.side * spec.side * spec.side / double(spec.objects);  // one's volume
   const double volume = mesh.volume();
-  const double s = std::cbrt(spec.density * spec.side * spec.side * spec.side / double(spec.objects) / volume);
+  const double s = std::cbrt(each / volume);
   Eigen::Vector3d lo, hi;
   mesh.bounds(lo, hi);
   const Eigen::Vector3d mid = 0.5 * (lo + hi);
   for (auto& v : mesh.vertices) v = (v - mid) * s;
   const double extent = (hi - lo).maxCoeff() * s;
-  if (extent / spec.voxel > 1020) {
+  // The voxel: given, from the resolution, or the paper's scaled with the object (1 for the paper's scene).
+  const double voxel = spec.voxel_given()  ? spec.voxel
+                       : spec.resolution ? voxel_for_resolution(mesh, spec.resolution)
+                                         : default_voxel(each, extent);
+  const std::string what = spec.voxel_given() ? "voxel " + std::to_string(voxel)
+                                              : spec.resolution ? "resolution " + std::to_string(spec.resolution)
+                                                                : "the default voxel " + num(voxel);
+  if (extent / voxel > 1020) {
     char across[32];  // as a double: a tiny voxel makes the count too large for an int, or infinite
-    std::snprintf(across, sizeof across, "%.6g", extent / spec.voxel);
-    throw std::invalid_argument("scene: voxel " + std::to_string(spec.voxel) + " makes each object " + across +
-                                " voxels across, above 2^10");
+    std::snprintf(across, sizeof across, "%.6g", extent / voxel);
+    throw std::invalid_argument("scene: " + what + " makes each object " + across + " voxels across, above 2^10");
   }
-  if (extent / spec.voxel < 2)
-    throw std::invalid_argument("scene: voxel " + std::to_string(spec.voxel) + " is larger than half the object (" +
-                                std::to_string(extent) + " across); objects would be a voxel or two");
+  if (extent / voxel < 2)
+    throw std::invalid_argument("scene: " + what + " is larger than half the object (" + std::to_string(extent) +
+                                " across); objects would be a voxel or two");
+  if (extent / voxel < kMinVoxelsAcross)
+    throw std::invalid_argument("scene: " + what + " leaves " + num(extent / voxel) +
+                                " voxels along the object's longest side (" + num(extent) + "); at least " +
+                                std::to_string(kMinVoxelsAcross) + " are needed: a voxel of at most " +
+                                num(extent / kMinVoxelsAcross) + ", or a resolution");
   ObjectOptions oo;
-  oo.voxel = spec.voxel;
+  oo.voxel = voxel;
   Scene scene;
   scene.side = spec.side;
   auto type = std::make_shared<ObjectType>(
@@ -122,44 +172,206 @@ Scene make_scene(const SceneSpec& spec) {
   try {
     place_bodies(scene, {spec.objects}, spec.speed, spec.spin, spec.seed);
   } catch (const PlacementError& e) {
-    throw std::invalid_argument("scene: could not place object " + std::to_string(e.instance) + " without overlap");
+    // Object size (and with the default voxel, bounding radius) goes with the cube root of the density.
+    const double r_fit = largest_radius_for(spec.side, spec.objects);
+    const double most = spec.density * std::pow(r_fit / e.radius, 3);
+    throw std::invalid_argument("scene: could not place object " + std::to_string(e.instance) + " of " +
+                                std::to_string(spec.objects) + " without overlapping bounding spheres: at density " +
+                                num(spec.density) + " each object's bounding sphere has radius " + num(e.radius) +
+                                ", and even packed on a lattice only " + std::to_string(e.capacity) +
+                                " such spheres fit the cube; " + std::to_string(spec.objects) +
+                                " objects of this shape fit up to a density of about " + num(most));
   }
   return scene;
 }
 
+namespace {
+
+// The bodies placed so far by their sphere's centre, in a uniform grid of cells at least as wide as the largest
+// sphere (two overlapping spheres are in the same or neighbouring cells), at most about 4 cells a body.
+class PlacementGrid {
+ public:
+  PlacementGrid(double side, double rmax, uint64_t bodies) {
+    const double by_size = std::floor(side / (2 * rmax * (1 + 1e-6)));
+    const double by_count = std::floor(std::cbrt(4.0 * double(bodies) + 64));
+    n_ = int(std::max(1.0, std::min(by_size, by_count)));
+    inv_ = double(n_) / side;
+    head_.assign(size_t(n_) * size_t(n_) * size_t(n_), -1);
+  }
+  // Does a sphere at c of radius r overlap none of the placed ones (the test place_bodies always made)?
+  bool free(const Eigen::Vector3d& c, double r, const std::vector<Eigen::Vector3d>& centres,
+            const std::vector<double>& radii) const {
+    const int x = coord(c.x()), y = coord(c.y()), z = coord(c.z());
+    for (int k = std::max(z - 1, 0); k <= std::min(z + 1, n_ - 1); ++k)
+      for (int j = std::max(y - 1, 0); j <= std::min(y + 1, n_ - 1); ++j)
+        for (int i = std::max(x - 1, 0); i <= std::min(x + 1, n_ - 1); ++i)
+          for (int32_t o = head_[cell(i, j, k)]; o >= 0; o = next_[size_t(o)])
+            if ((centres[size_t(o)] - c).squaredNorm() < (r + radii[size_t(o)]) * (r + radii[size_t(o)]))
+              return false;
+    return true;
+  }
+  void insert(const Eigen::Vector3d& c, int32_t id) {
+    int32_t& h = head_[cell(coord(c.x()), coord(c.y()), coord(c.z()))];
+    if (next_.size() <= size_t(id)) next_.resize(size_t(id) + 1, -1);
+    next_[size_t(id)] = h;
+    h = id;
+  }
+
+ private:
+  int coord(double x) const {
+    const double f = x * inv_;
+    if (!(f > 0)) return 0;
+    return f >= n_ - 1 ? n_ - 1 : int(f);
+  }
+  size_t cell(int i, int j, int k) const { return size_t(i) + size_t(n_) * (size_t(j) + size_t(n_) * size_t(k)); }
+  int n_ = 1;
+  double inv_ = 0;
+  std::vector<int32_t> head_, next_;
+};
+
+// place_bodies' lattice: sites at least d apart with room for every sphere and its jitter inside the cube. A
+// body of radius r at a site moves by up to d/2 - r (a jitter of (d/2 - r)/sqrt(3) per axis), so two bodies stay
+// r_a + r_b apart; the sites keep w = rmax (1 - 1/sqrt(3)) + d / (2 sqrt(3)) from the walls, which leaves every body
+// its radius from them. Face-centred cubic (grid step d/sqrt(2), sites of even coordinate sum) or simple cubic
+// (step d), whichever has more sites in the cube.
+struct Lattice {
+  bool fcc = true;
+  uint64_t m = 0;     // grid points per axis
+  double step = 0;    // between grid points
+  double start = 0;   // coordinate of grid point 0 on every axis
+  uint64_t sites = 0;
+
+  static uint64_t cube(uint64_t m) { return m * m * m; }
+  Lattice(double side, double rmax, double d) {
+    const double s3 = std::sqrt(3.0);
+    const double w = rmax * (1 - 1 / s3) + d / (2 * s3);
+    const double extent = side - 2 * w;
+    if (!(extent >= 0)) return;
+    auto points = [&](double h) { return uint64_t(std::min(std::floor(extent / h), double(1 << 20))) + 1; };
+    const uint64_t mf = points(d / std::sqrt(2.0)), ms = points(d);
+    const uint64_t nf = (cube(mf) + 1) / 2, ns = cube(ms);
+    fcc = nf >= ns;
+    m = fcc ? mf : ms;
+    step = fcc ? d / std::sqrt(2.0) : d;
+    sites = fcc ? nf : ns;
+    start = w + 0.5 * (extent - double(m - 1) * step);  // centred in the cube
+  }
+};
+
+// The closest spacing: a hair above touching, so that rounding never makes two spheres overlap.
+constexpr double kLatticeSlack = 1e-9;
+
+}  // namespace
+
+uint64_t lattice_capacity(double side, double r) { return Lattice(side, r, 2 * r * (1 + kLatticeSlack)).sites; }
+
 void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Eigen::Vector3d> centres;
-  std::vector<double> radii;
   const double side = scene.side;
+  uint64_t total = 0;
+  double rmax = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (counts[i] == 0) continue;
+    total += counts[i];
+    rmax = std::max(rmax, scene.types.at(i)->radius);
+  }
+  if (total == 0) return;
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Body> bodies;
+  bodies.reserve(total);
+
+  // At random: up to 10,000 uniform tries a body (the draws of the scenes before the lattice existed, so the same
+  // bodies wherever they found places), within a budget of tries for the whole scene.
+  {
+    std::mt19937_64 rng(seed);
+    std::vector<Eigen::Vector3d> centres;
+    std::vector<double> radii;
+    centres.reserve(total);
+    radii.reserve(total);
+    PlacementGrid grid(side, rmax, total);
+    const uint64_t budget = 1000000 + 4 * total;
+    uint64_t tries = 0;
+    bool failed = false;
+    for (size_t i = 0; i < counts.size() && !failed; ++i) {
+      const ObjectType& type = *scene.types.at(i);
+      const double r = type.radius;
+      for (uint64_t k = 0; k < counts[i]; ++k) {
+        Body b;
+        b.type = uint32_t(i);
+        b.pose.rotation = scene_rotation(rng);
+        Eigen::Vector3d c;
+        bool placed = false;
+        for (int attempt = 0; attempt < 10000 && !placed && tries < budget; ++attempt, ++tries) {
+          c = Eigen::Vector3d(r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r));
+          placed = grid.free(c, r, centres, radii);
+        }
+        if (!placed) {
+          failed = true;
+          break;
+        }
+        grid.insert(c, int32_t(centres.size()));
+        centres.push_back(c);
+        radii.push_back(r);
+        b.pose.translation = c - b.pose.rotation * type.centre;
+        b.velocity = scene_direction(rng) * (speed * r * u(rng));
+        b.spin = scene_direction(rng) * (spin * u(rng));
+        bodies.push_back(b);
+      }
+    }
+    if (!failed) {
+      scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
+      return;
+    }
+    bodies.clear();
+  }
+
+  // On a lattice: the widest spacing d whose lattice has a site for every body (its site count falls as d grows).
+  const double dmin = 2 * rmax * (1 + kLatticeSlack);
+  const Lattice closest(side, rmax, dmin);
+  if (closest.sites < total) {
+    uint64_t k = closest.sites;  // the first body without a site: which type's, which instance
+    size_t t = 0;
+    while (t < counts.size() && k >= counts[t]) k -= counts[t++];
+    throw PlacementError(uint32_t(t), k, closest.sites, rmax);
+  }
+  double lo = dmin, hi = dmin;
+  while (Lattice(side, rmax, hi).sites >= total) lo = hi, hi *= 2;
+  for (int i = 0; i < 60 && hi - lo > 1e-12 * lo; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (Lattice(side, rmax, mid).sites >= total ? lo : hi) = mid;
+  }
+  const double d = lo;
+  const Lattice lat(side, rmax, d);
+  // Every site, then `total` of them at random (a partial Fisher-Yates shuffle).
+  std::vector<std::array<uint32_t, 3>> sites;
+  sites.reserve(lat.sites);
+  for (uint32_t z = 0; z < lat.m; ++z)
+    for (uint32_t y = 0; y < lat.m; ++y)
+      for (uint32_t x = 0; x < lat.m; ++x)
+        if (!lat.fcc || (x + y + z) % 2 == 0) sites.push_back({x, y, z});
+  std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ull);
+  for (uint64_t k = 0; k < total; ++k) {
+    std::uniform_int_distribution<uint64_t> pick(k, sites.size() - 1);
+    std::swap(sites[k], sites[pick(rng)]);
+  }
+  uint64_t next = 0;
   for (size_t i = 0; i < counts.size(); ++i) {
     const ObjectType& type = *scene.types.at(i);
     const double r = type.radius;
+    const double jitter = std::max(0.0, (0.5 * d - r) / std::sqrt(3.0) * (1 - kLatticeSlack));
     for (uint64_t k = 0; k < counts[i]; ++k) {
       Body b;
       b.type = uint32_t(i);
       b.pose.rotation = scene_rotation(rng);
+      const auto& g = sites[next++];
       Eigen::Vector3d c;
-      bool placed = false;
-      for (int attempt = 0; attempt < 10000 && !placed; ++attempt) {
-        c = Eigen::Vector3d(r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r));
-        placed = true;
-        for (size_t o = 0; o < centres.size(); ++o)
-          if ((centres[o] - c).squaredNorm() < (r + radii[o]) * (r + radii[o])) {
-            placed = false;
-            break;
-          }
-      }
-      if (!placed) throw PlacementError(uint32_t(i), k);
-      centres.push_back(c);
-      radii.push_back(r);
+      for (int a = 0; a < 3; ++a) c[a] = lat.start + lat.step * double(g[size_t(a)]) + jitter * (2 * u(rng) - 1);
       b.pose.translation = c - b.pose.rotation * type.centre;
       b.velocity = scene_direction(rng) * (speed * r * u(rng));
       b.spin = scene_direction(rng) * (spin * u(rng));
-      scene.bodies.push_back(b);
+      bodies.push_back(b);
     }
   }
+  scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
 }
 
 Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(scene)), opt_(opt) {

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <random>
@@ -31,9 +33,11 @@ struct Scene {
 };
 
 // The paper's environment (Section 7): `objects` copies of one shape (a built-in name or a mesh file) scaled so
-// that they fill `density` of the cube, voxelised at `voxel` world units (the paper's accuracy: one unit), placed
-// at random without overlapping bounding spheres, with random orientations, random velocities of up to `speed`
-// times the object's bounding radius per frame and random spins of up to `spin` radians per frame.
+// that they fill `density` of the cube, voxelised at `voxel` world units or at `resolution` voxels along the
+// object's longest side (by default at default_voxel: the paper's accuracy of one unit at the paper's object size,
+// scaled with the object), placed without overlapping bounding spheres (place_bodies), with random orientations,
+// random velocities of up to `speed` times the object's bounding radius per frame and random spins of up to
+// `spin` radians per frame.
 struct SceneSpec {
   std::string shape = "polytope36";
   size_t objects = 64;
@@ -41,12 +45,28 @@ struct SceneSpec {
   double density = 0.025;
   double speed = 0.1;
   double spin = 0.02;
-  double voxel = 1.0;
+  // World units; NaN (the default): not given. At most one of voxel and resolution; neither: default_voxel.
+  double voxel = std::numeric_limits<double>::quiet_NaN();
+  uint32_t resolution = 0;  // voxels along the object's longest side (voxel_for_resolution); 0: not given
   uint64_t seed = 1;
+  bool voxel_given() const { return !std::isnan(voxel); }
 };
 
+// The paper's scene: 64 objects filling 2.5% of a cube of side 100, so 390.625 cubic units each, at voxel 1.
+constexpr double kPaperObjectVolume = 0.025 * 100 * 100 * 100 / 64;
+
+// The default voxel of an object of `volume` cubic world units and longest side `extent`: the paper's voxel (1)
+// scaled with the object, cbrt(volume / kPaperObjectVolume), so that an object has as many voxels at every size
+// as at the paper's (the 36-face polytope: 12.26 along its longest side; any solid at least 7.31, a cube's).
+// Exactly 1 for the paper's scene. Bounded to [extent / kDefaultMostAcross, extent / kDefaultFewestAcross], so
+// that a flat or thin object, whose volume says little of its size, still gets a usable voxmap.
+constexpr double kDefaultFewestAcross = 4, kDefaultMostAcross = 64;
+double default_voxel(double volume, double extent);
+
 // Throws std::invalid_argument naming the field for a value out of range (no objects, density outside (0, 0.3],
-// a voxel size that makes the object larger than 2^10 voxels or smaller than 2 across), MeshError for the shape.
+// both voxel and resolution, a voxel size that makes the object larger than 2^10 voxels or fewer than 4 across, a
+// resolution outside [4, 1020]), for objects whose bounding spheres do not fit the cube at that density (naming
+// the density and the largest that fits), MeshError for the shape.
 Scene make_scene(const SceneSpec& spec);
 
 struct SimOptions {
@@ -115,21 +135,34 @@ class Simulation {
 };
 
 // Places counts[i] bodies of scene.types[i] in the cube [0, scene.side]^3, type by type, appending them to
-// scene.bodies: random non-overlapping enclosing spheres (up to 10,000 tries each), random orientations, velocities
-// of up to `speed` times the type's radius per frame in a random direction and spins of up to `spin` radians per
-// frame. Deterministic for a seed. PlacementError names the body that found no place.
+// scene.bodies, with non-overlapping enclosing spheres, random orientations, velocities of up to `speed` times the
+// type's radius per frame in a random direction and spins of up to `spin` radians per frame. Deterministic for a
+// seed. First at random (random sequential addition: up to 10,000 uniform tries a body, checked against the
+// bodies placed so far through a uniform grid of cells at least as wide as the largest sphere, so O(1) a try);
+// if a body finds no place, or the tries of all bodies pass 10^6 + 4 per body, again from the start on a
+// lattice: the densest of a face-centred cubic and a simple cubic lattice in the cube, spread as wide as the
+// count allows, N of its sites taken at random and each body jittered within the spacing's slack. The lattice
+// treats every sphere as the largest. PlacementError when even the lattice at the closest spacing has too few
+// sites (`capacity` of them).
 struct PlacementError : std::runtime_error {
-  PlacementError(uint32_t t, uint64_t k)
-      : std::runtime_error("could not place instance " + std::to_string(k) + " of type " + std::to_string(t)),
-        type(t), instance(k) {}
+  PlacementError(uint32_t t, uint64_t k, uint64_t cap, double r)
+      : std::runtime_error("could not place instance " + std::to_string(k) + " of type " + std::to_string(t) +
+                           ": bounding spheres of radius " + std::to_string(r) + " fit at most " +
+                           std::to_string(cap) + " in the cube"),
+        type(t), instance(k), capacity(cap), radius(r) {}
   uint32_t type;
-  uint64_t instance;
+  uint64_t instance;   // the first body the lattice has no site for
+  uint64_t capacity;   // sites of the densest lattice for spheres of `radius`
+  double radius;       // the largest bounding radius
 };
 void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed);
 
 // The scenes' random draws (a uniform rotation; a uniform unit direction), one definition so that scene files
 // place bodies exactly as the built-in scene does.
 Eigen::Quaterniond scene_rotation(std::mt19937_64& rng);
+// How many spheres of radius r place_bodies' lattice fits in the cube [0, side]^3 at the closest spacing (2r)
+// (0 when one does not fit); the most bodies it places whatever the seed.
+uint64_t lattice_capacity(double side, double r);
 Eigen::Vector3d scene_direction(std::mt19937_64& rng);
 
 // A body's world bounds: its type's smallest enclosing sphere and the world box of its type's local box.

@@ -12,6 +12,7 @@
 #include "host/mesh.h"
 #include "host/object_file.h"
 #include "host/shapes.h"
+#include "host/voxelize.h"
 
 namespace voxcd {
 
@@ -154,11 +155,21 @@ class DuplicateKeys {
 
 double SceneFile::smallest_voxel() const {
   double v = 0;
-  for (const auto& t : types) v = v == 0 ? t.voxel : std::min(v, t.voxel);
+  for (const auto& t : types) {
+    const double tv = t.voxel > 0 ? t.voxel : 1.0;
+    v = v == 0 ? tv : std::min(v, tv);
+  }
   return v;
 }
 
 double SceneFile::accuracy_or_default() const { return accuracy > 0 ? accuracy : smallest_voxel() / 50; }
+
+double SceneFile::accuracy_or_default(const Scene& scene) const {
+  if (accuracy > 0) return accuracy;
+  double v = 0;
+  for (const auto& t : scene.types) v = v == 0 ? t->voxmap().voxel() : std::min(v, t->voxmap().voxel());
+  return v > 0 ? v / 50 : accuracy_or_default();
+}
 
 uint64_t SceneFile::objects() const {
   uint64_t n = 0;
@@ -191,7 +202,7 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
     SceneTypeSpec t;
     t.key = "types[" + std::to_string(i) + "]";
     const Reader r(types[i], t.key, where);
-    r.only({"name", "shape", "mesh", "size", "scale", "voxel", "count"});
+    r.only({"name", "shape", "mesh", "size", "scale", "voxel", "resolution", "count"});
     const bool has_shape = r.string("shape", t.shape), has_mesh = r.string("mesh", t.mesh);
     if (has_shape == has_mesh) r.fail(t.key, "needs exactly one of \"shape\" (a built-in name) and \"mesh\" (a file)");
     if (has_shape) r.one_of("shape", t.shape, shape_names());
@@ -205,7 +216,11 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
     r.number("size", t.size, 0, 1e12, true);
     r.number("scale", t.scale, 0, 1e12, true);
     if (t.size > 0 && t.scale > 0) r.fail(t.key, "give \"size\" or \"scale\", not both");
-    r.number("voxel", t.voxel, 0, 1e12, true);
+    const bool has_voxel = r.number("voxel", t.voxel, 0, 1e12, true);
+    uint64_t resolution = 0;
+    if (r.integer("resolution", resolution, kMinVoxelsAcross, 1020)) t.resolution = uint32_t(resolution);
+    if (has_voxel && t.resolution > 0)
+      r.fail(t.key, "give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), not both");
     r.integer("count", t.count, 1, uint64_t{1} << 20);
     f.types.push_back(t);
   }
@@ -298,24 +313,50 @@ Scene make_scene(const SceneFile& f) {
   } else if (fixed_volume > 0.3 * cube) {
     throw fail("types", "the objects fill " + num_text(fixed_volume / cube) + " of the cube, above 0.3");
   }
-  // Every shell is fine enough for the smallest voxmap of the scene (the paper's sqrt(2) rule against it).
-  const double vmin = f.smallest_voxel();
-  Scene scene;
-  scene.side = f.side;
+  // Each type's voxel: given, from its resolution, or the default (make_scene(SceneSpec)'s rule, evaluated alike so
+  // that one auto-scaled type gets exactly the built-in scene's voxel).
+  std::vector<double> voxel(f.types.size());
   for (size_t i = 0; i < f.types.size(); ++i) {
     const SceneTypeSpec& t = f.types[i];
     Loaded& l = loaded[i];
     for (auto& v : l.mesh.vertices) v *= l.s;
     const double extent = l.extent * l.s;
-    if (extent / t.voxel > 1020)
-      throw fail(t.key + ".voxel", num_text(t.voxel) + " makes the object " + num_text(std::ceil(extent / t.voxel)) +
-                                       " voxels across (" + num_text(extent) + " world units), above 2^10");
-    if (extent / t.voxel < 2)
-      throw fail(t.key + ".voxel", num_text(t.voxel) + " is larger than half the object (" + num_text(extent) +
-                                       " across); it would be a voxel or two");
+    const double one = t.auto_scaled() ? (f.density * f.side * f.side * f.side - fixed_volume) / double(auto_count)
+                                       : l.volume * l.s * l.s * l.s;
+    try {
+      voxel[i] = t.voxel > 0 ? t.voxel : t.resolution > 0 ? voxel_for_resolution(l.mesh, t.resolution)
+                                                          : default_voxel(one, extent);
+    } catch (const std::exception& e) {
+      throw fail(t.key + ".resolution", e.what());
+    }
+    // The key at fault, and what it asked.
+    const std::string key = t.key + (t.voxel > 0 ? ".voxel" : t.resolution > 0 ? ".resolution" : "");
+    const std::string what = t.voxel > 0        ? num_text(t.voxel)
+                              : t.resolution > 0 ? "resolution " + std::to_string(t.resolution) + " (voxel " +
+                                                       num_text(voxel[i]) + ")"
+                                                 : "the default voxel " + num_text(voxel[i]);
+    if (extent / voxel[i] > 1020)
+      throw fail(key, what + " makes the object " + num_text(std::ceil(extent / voxel[i])) + " voxels across (" +
+                          num_text(extent) + " world units), above 2^10");
+    if (extent / voxel[i] < 2)
+      throw fail(key, what + " is larger than half the object (" + num_text(extent) +
+                          " across); it would be a voxel or two");
+    if (extent / voxel[i] < kMinVoxelsAcross)
+      throw fail(key, what + " leaves " + num_text(extent / voxel[i]) + " voxels along the object's longest side (" +
+                          num_text(extent) + " world units); at least " + std::to_string(kMinVoxelsAcross) +
+                          " are needed: a voxel of at most " + num_text(extent / kMinVoxelsAcross) +
+                          ", or a \"resolution\"");
+  }
+  // Every shell is fine enough for the smallest voxmap of the scene (the paper's sqrt(2) rule against it).
+  const double vmin = *std::min_element(voxel.begin(), voxel.end());
+  Scene scene;
+  scene.side = f.side;
+  for (size_t i = 0; i < f.types.size(); ++i) {
+    const SceneTypeSpec& t = f.types[i];
+    Loaded& l = loaded[i];
     ObjectOptions oo;
-    oo.voxel = t.voxel;
-    oo.shell_ratio = std::sqrt(2.0) * (t.voxel / vmin);
+    oo.voxel = voxel[i];
+    oo.shell_ratio = std::sqrt(2.0) * (voxel[i] / vmin);
     try {
       scene.types.push_back(
           std::make_shared<ObjectType>(make_object_type(make_object(l.mesh, l.source, l.hash, oo), t.name)));
@@ -334,7 +375,13 @@ Scene make_scene(const SceneFile& f) {
   } catch (const PlacementError& e) {
     const auto& t = f.types[e.type];
     throw fail(t.key + ".count", "could not place instance " + std::to_string(e.instance) + " of " +
-                                     std::to_string(t.count) + " without overlapping another (the cube is too full)");
+                                     std::to_string(t.count) + " without overlapping another (the cube is too full): " +
+                                     "even packed on a lattice, bounding spheres of radius " + num_text(e.radius) +
+                                     " (the scene's largest) fit at most " + std::to_string(e.capacity) + " of the " +
+                                     std::to_string(f.objects()) + " objects" +
+                                     (auto_count > 0 ? "; lower environment.density (" + num_text(f.density) +
+                                                           ") or the counts"
+                                                     : "; lower the counts or sizes"));
   }
   return scene;
 }

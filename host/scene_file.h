@@ -27,7 +27,8 @@ struct SceneTypeSpec {
   std::string mesh;     // a mesh file, resolved against the scene file's directory
   double size = 0;      // largest extent of the object's box, world units (0: not given)
   double scale = 0;     // factor on the mesh's coordinates (0: not given)
-  double voxel = 1.0;   // voxmap voxel size, world units
+  double voxel = 0;     // voxmap voxel size, world units (0: not given)
+  uint32_t resolution = 0;  // or voxels along the object's longest side (0: not given); neither: default_voxel
   uint64_t count = 1;   // instances
   bool auto_scaled() const { return size == 0 && scale == 0; }
 };
@@ -53,9 +54,12 @@ struct SceneFile {
   std::string mode = "ALL";
   bool both_directions = false;
 
-  // The requested accuracy, or by default 1/50 of the smallest voxel of the scene's types.
+  // The requested accuracy, or by default 1/50 of the smallest voxel of the scene's types: of the scene made from
+  // the file (make_scene resolves the types' resolutions and default voxels), or without it of the voxels the file
+  // gives (1 where a type gives none: the paper's).
+  double accuracy_or_default(const Scene& scene) const;
   double accuracy_or_default() const;
-  double smallest_voxel() const;
+  double smallest_voxel() const;  // of the voxels the file gives (1 for a type that gives none)
   uint64_t objects() const;
 };
 
@@ -66,8 +70,8 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where);
 // Reads and parses a file; SceneFileError when it cannot be read.
 SceneFile read_scene_file(const std::string& path);
 
-// The scene of a scene file: its types voxelised (each shell fine enough for the smallest voxmap of the scene),
-// scaled as asked, and their instances placed at random without overlapping bounding spheres, as make_scene
+// The scene of a scene file: its types scaled as asked and voxelised at their voxel, their resolution or by default
+// at default_voxel of one object's volume (each shell fine enough for the smallest voxmap of the scene), and their instances placed at random without overlapping bounding spheres, as make_scene
 // places one type's. SceneFileError naming the key for a missing or unreadable mesh, a size that does not fit the
 // cube or a voxel that makes an object too large or too small for a voxmap.
 Scene make_scene(const SceneFile& f);

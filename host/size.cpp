@@ -275,7 +275,7 @@ uint64_t SizeReport::map_bits() const { return config.map_depth() * uint64_t(con
 SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest& req) {
   SizeReport r;
   r.scene = f.where;
-  r.accuracy = req.accuracy > 0 ? req.accuracy : f.accuracy_or_default();
+  r.accuracy = req.accuracy > 0 ? req.accuracy : f.accuracy_or_default(scene);
   r.rate = req.rate > 0 ? req.rate : f.rate;
   r.clock = req.clock > 0 ? req.clock : f.clock;
   r.frames = req.frames > 0 ? req.frames : f.frames;

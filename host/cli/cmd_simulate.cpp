@@ -2,6 +2,7 @@
 // a broadphase and pair tests on a device backend; a summary of rates, counts, time per stage and device cycles.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "host/cli/object_report.h"
 #include "host/scene.h"
 #include "host/scene_file.h"
+#include "host/voxelize.h"
 #include "ref/vectors.h"
 
 namespace voxcd::cli {
@@ -47,20 +49,27 @@ int simulate_cmd(SimulateArgs a) {
   const auto mode = parse_mode(a.mode);
   if (!mode) throw CLI::ValidationError("--mode", "'" + a.mode + "' is not ALL, FIRST or COUNT");
   a.sim.mode = *mode;
+  auto given = [&](const char* opt) { return a.app->count(opt) > 0; };
+  if (given("--voxel") && given("--resolution"))
+    throw CLI::ValidationError("--voxel, --resolution",
+                               "give the voxel size in world units (--voxel) or the voxels along an object's longest "
+                               "side (--resolution), not both");
+  if (given("--voxel") && !(a.scene.voxel > 0 && std::isfinite(a.scene.voxel)))
+    throw CLI::ValidationError("--voxel", "must be a positive number of world units");
   Scene scene;
   std::string description;
   if (!a.file.empty()) {
     SceneFile f = read_scene_file(a.file);
     // Options given on the command line override the file.
-    auto given = [&](const char* opt) { return a.app->count(opt) > 0; };
-    if (given("--objects") || given("--shape") || given("--voxel")) {
+    if (given("--objects") || given("--shape") || given("--voxel") || given("--resolution")) {
       if (f.types.size() != 1)
-        throw CLI::ValidationError("--objects, --shape, --voxel",
+        throw CLI::ValidationError("--objects, --shape, --voxel, --resolution",
                                    "apply only to a scene file with one object type; " + a.file + " has " +
                                        std::to_string(f.types.size()));
       if (given("--objects")) f.types[0].count = a.scene.objects;
       if (given("--shape")) f.types[0].shape = a.scene.shape, f.types[0].mesh.clear(), f.types[0].name = a.scene.shape;
-      if (given("--voxel")) f.types[0].voxel = a.scene.voxel;
+      if (given("--voxel")) f.types[0].voxel = a.scene.voxel, f.types[0].resolution = 0;
+      if (given("--resolution")) f.types[0].resolution = a.scene.resolution, f.types[0].voxel = 0;
     }
     if (given("--density")) f.density = a.scene.density, f.density_given = true;
     if (given("--speed")) f.speed = a.scene.speed;
@@ -86,7 +95,6 @@ int simulate_cmd(SimulateArgs a) {
                     return o.str();
                   }();
     a.scene.shape = f.types[0].shape.empty() ? f.types[0].mesh : f.types[0].shape;
-    a.scene.voxel = f.types[0].voxel;
   } else {
     scene = make_scene(a.scene);
   }
@@ -98,6 +106,7 @@ int simulate_cmd(SimulateArgs a) {
   }
   if (a.sim.device) a.sim.lanes = a.sim.device->LANES;
   const ObjectType& type = *scene.types[0];
+  a.scene.voxel = type.voxmap().voxel();  // as given, from --resolution, or the default
   const std::vector<std::shared_ptr<const ObjectType>> types = scene.types;
   Simulation sim(std::move(scene), a.sim);
   const bool bar = a.progress && !a.json && isatty(STDERR_FILENO) && a.frames >= 100;
@@ -197,7 +206,12 @@ void add_simulate(CLI::App& app) {
                 "--lanes overrides its LANES");
   c->add_option("--objects", a->scene.objects, "Number of objects")->capture_default_str()->check(CLI::Range(1, 1 << 20));
   c->add_option("--shape", a->scene.shape, "A built-in shape name or a mesh file")->capture_default_str();
-  c->add_option("--voxel", a->scene.voxel, "Voxel size in world units (the paper: 1)")->capture_default_str();
+  c->add_option("--voxel", a->scene.voxel,
+                "Voxel size in world units (default: the paper's 1 scaled with the object, so 1 for its 64 objects at "
+                "2.5% and (64/N)^(1/3) for N; docs/simulate.md)");
+  c->add_option("--resolution", a->scene.resolution,
+                "Or the voxels along an object's longest side (voxel = longest side / N)")
+      ->check(CLI::Range(uint32_t(kMinVoxelsAcross), uint32_t(1020)));
   c->add_option("--density", a->scene.density, "Fraction of the cube the objects fill")->capture_default_str();
   c->add_option("--speed", a->scene.speed, "Largest initial speed per frame, as a fraction of the object's radius")
       ->capture_default_str();
