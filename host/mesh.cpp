@@ -159,6 +159,22 @@ Mesh parse_raw(std::istream& in, const std::string& name) {
     std::istringstream ls(line);
     std::vector<std::string> tok;
     for (std::string w; ls >> w;) tok.push_back(w);
+    // assimp's RAW variants: a colour before the corners (r g b, or r g b a), or a texture name after them.
+    if (tok.size() == 10 || tok.size() == 12 || tok.size() == 13) {
+      bool all = true;
+      for (const std::string& w : tok) {
+        char* end = nullptr;
+        std::strtod(w.c_str(), &end);
+        all = all && end != w.c_str() && *end == '\0';
+      }
+      if (tok.size() == 10 && !all) {
+        char* end = nullptr;
+        std::strtod(tok[9].c_str(), &end);
+        if (end == tok[9].c_str() || *end != '\0') tok.pop_back();  // a texture name
+      } else if (tok.size() != 10 && all) {
+        tok.erase(tok.begin(), tok.begin() + long(tok.size() - 9));  // a colour
+      }
+    }
     double v[9];
     bool numeric = true;
     for (size_t i = 0; i < tok.size() && i < 9; ++i) {
@@ -413,7 +429,9 @@ PlyHeader check_ply(const std::string& path, const std::string& text) {
       elements.back().props.push_back(p);
     } else if (word == "end_header") {
       ended = true;
-    } else {
+    } else if (!elements.empty()) {
+      // Before the first element, a line that is no PLY keyword is taken as a comment (old exporters, Blender 2.4's
+      // among them, wrote "Created by ..." without the word); after it, it would change how the body is read.
       bad("not a PLY header line (ply, format, comment, obj_info, element, property, end_header)");
     }
   }

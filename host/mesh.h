@@ -80,7 +80,8 @@ struct LoadOptions {
 // or holds neither triangles nor points, and in strict mode for any defect.
 Mesh load_mesh(const std::string& path, MeshReport* report = nullptr, const LoadOptions& opt = {});
 
-// The paper's RAW triangle format: one triangle per line as nine numbers "x1 y1 z1 x2 y2 z2 x3 y3 z3";
+// The paper's RAW triangle format: one triangle per line as nine numbers "x1 y1 z1 x2 y2 z2 x3 y3 z3" (as assimp reads
+// it, also preceded by a colour "r g b" or "r g b a", or followed by a texture name);
 // blank lines and lines starting with '#' are ignored, a line holding a single word names the next object.
 // Only parses (no welding or validation); MeshError names `name` and the line.
 Mesh parse_raw(std::istream& in, const std::string& name);

@@ -243,11 +243,23 @@ MeshReport repair(Mesh& m) {
     m.sheet.clear();
     return r;
   }
+  std::vector<uint32_t> dropped_corners;  // corners of every triangle, in case none survives
+  for (const auto& t : m.triangles) dropped_corners.insert(dropped_corners.end(), t.begin(), t.end());
   drop_degenerate_and_duplicates(m, r);
   r.dropped_nonfinite = nonfinite;
-  if (m.triangles.empty())
-    throw MeshError(m.name + ": all " + std::to_string(r.input_triangles) +
-                    " triangles are degenerate or repeat another (nothing is left to voxelise)");
+  if (m.triangles.empty()) {
+    // Every triangle was a point or a segment: what is left is its corners, a point cloud.
+    std::vector<char> used(m.vertices.size(), 0);
+    for (const auto& t : dropped_corners) used[t] = 1;
+    std::vector<Eigen::Vector3d> pts;
+    for (size_t v = 0; v < m.vertices.size(); ++v)
+      if (used[v]) pts.push_back(m.vertices[v]);
+    m.vertices = std::move(pts);
+    r.points_only = r.surface_only = true;
+    r.vertices = m.vertices.size();
+    m.sheet.clear();
+    return r;
+  }
 
   // Orientation: breadth-first over edges shared by exactly two triangles, each neighbour turned to run the
   // shared edge the other way. Each patch then takes the orientation most of its triangles were given.
