@@ -21,6 +21,7 @@ struct PairArgs {
   size_t random = 0;
   uint64_t seed = 1;
   double voxel = 0;
+  uint32_t resolution = 0;
   std::string backend = "cpu";
   int lanes = 4;
   std::string mode = "ALL";
@@ -56,7 +57,7 @@ RigidPose parse_pose(const std::string& s) {
   return p;
 }
 
-// Without --voxel: 1/32 of the longest side of the larger mesh, shared by both objects.
+// Without --voxel: the longest side of the larger mesh / --resolution (32 by default), shared by both objects.
 double auto_voxel(const PairArgs& a) {
   double side = 0;
   for (const std::string& s : {a.a, a.b}) {
@@ -66,7 +67,7 @@ double auto_voxel(const PairArgs& a) {
     m.bounds(lo, hi);
     side = std::max(side, (hi - lo).maxCoeff());
   }
-  return side / 32;
+  return side / (a.resolution ? a.resolution : 32);
 }
 
 std::string vec_json(const Eigen::Vector3d& v) {
@@ -194,7 +195,13 @@ void add_pair(CLI::App& app) {
   c->add_option("--pose", a->pose, "B's pose in A's frame: tx,ty,tz[,rx,ry,rz] (rotation in degrees about x, y, z)");
   c->add_option("--random", a->random, "Test N random poses where the bounding spheres overlap instead");
   c->add_option("--seed", a->seed, "Seed of --random")->capture_default_str();
-  c->add_option("--voxel", a->voxel, "Voxel size for meshes and shapes (default: 1/32 of the larger one's longest side)");
+  CLI::Option* voxel =
+      c->add_option("--voxel", a->voxel, "Voxel size for meshes and shapes (default: 1/32 of the larger one's longest side)");
+  CLI::Option* res = c->add_option("--resolution", a->resolution,
+                                   "Voxels along the larger mesh's longest side, shared by both (instead of --voxel)")
+                         ->check(CLI::Range(4u, 1u << 20));
+  voxel->excludes(res);
+  res->excludes(voxel);
   c->add_option("--backend", a->backend, "Device backend: " + [] {
     std::string s;
     for (const auto& b : device_backends()) s += (s.empty() ? "" : ", ") + b;
