@@ -9,7 +9,8 @@ mode="${1:-run}"
 [ $# -gt 0 ] && shift
 
 pkgs=(cmake ninja-build g++ pkg-config ccache verilator libsystemc-dev libgtest-dev libeigen3-dev libcli11-dev
-      zlib1g-dev libassimp-dev libfcl-dev libbullet-dev nlohmann-json3-dev)
+      zlib1g-dev libassimp-dev libfcl-dev libbullet-dev nlohmann-json3-dev libopenvdb-dev libboost-iostreams-dev
+      assimp-testmodels)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

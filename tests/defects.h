@@ -1,0 +1,738 @@
+// Defective meshes with known intended solids, for tests and benchmarks (tests/host/test_defects.cpp,
+// bench/bench_voxelize.cpp): the defects real exports have (holes, flipped and duplicated triangles, degenerate
+// triangles, overlapping closed parts, a non-manifold edge, cracks, cavities given the wrong orientation, sheets,
+// point clouds), each built from closed meshes whose solid is known, with what repair() must report for it.
+//
+// The intended solid of a defect is the solid of the mesh before the defect was introduced: the union of the
+// insides of `solid`'s closed meshes (each by its own parity, so a mesh with an inward inner shell has a cavity).
+// Generators keep the repaired mesh's bounding box equal to the intended solid's wherever they can (holes never
+// take every triangle of an extreme vertex; cracks move copies towards the centre and keep one copy of every vertex
+// in place), so that both are voxelised on the same grid.
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "host/mesh.h"
+#include "host/shapes.h"
+#include "host/voxelize.h"
+
+namespace voxcd::test {
+
+// What repair() must report for a defect; -1 (or, for the flags, -1) leaves a field unchecked.
+struct ExpectedReport {
+  long long open_edges = -1, nonmanifold_edges = -1, dropped_duplicate = -1, dropped_repeated = -1,
+            dropped_collinear = -1, reoriented = -1, welded = -1, components = -1, closed_components = -1,
+            sheet_components = -1, triangles = -1, vertices = -1;
+  int closed = -1, flipped = -1, surface_only = -1, points_only = -1;
+};
+
+struct Defect {
+  std::string name;
+  Mesh mesh;                // the defective mesh as a file would hold it (neither welded nor repaired)
+  std::vector<Mesh> solid;  // the intended solid: the union of these closed meshes' insides; empty: surface only
+  double volume = std::numeric_limits<double>::quiet_NaN();  // the intended solid's exact volume, when known
+  Mesh removed;             // punched meshes: the triangles taken out, on the intended mesh's vertices
+  // The repaired mesh is the intended closed mesh itself (same vertices and triangles up to order): its voxmap must
+  // equal the intended mesh's exactly.
+  bool repairs_to_intended = false;
+  ExpectedReport expect;
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// Closed meshes.
+
+// An icosphere of any subdivision level (20 * 4^level triangles: level 8 = 1,310,720), outward.
+inline Mesh icosphere(int level, double radius = 1, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+  Mesh m = make_icosphere(centre, radius, level);
+  m.name = "icosphere level " + std::to_string(level);
+  return m;
+}
+
+// Appends b's vertices and triangles to a.
+inline void append(Mesh& a, const Mesh& b) {
+  const uint32_t base = uint32_t(a.vertices.size());
+  a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (const auto& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+}
+
+inline Mesh reversed(Mesh m) {
+  for (auto& t : m.triangles) std::swap(t[1], t[2]);
+  return m;
+}
+
+// A ball with a spherical cavity: outer icosphere outward, inner (radius `inner`, off centre) inward.
+inline Mesh hollow_sphere(int level, double inner = 0.5) {
+  Mesh m = icosphere(level);
+  append(m, reversed(icosphere(std::max(level - 1, 0), inner, Eigen::Vector3d(0.1, -0.05, 0.08))));
+  m.name = "hollow sphere";
+  return m;
+}
+
+// Vertices rounded to single precision (so that every format, including the float ones, stores them exactly).
+inline Mesh to_float(Mesh m) {
+  for (auto& v : m.vertices) v = v.cast<float>().cast<double>();
+  return m;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Topology of a mesh as given (vertex indices, no welding): the expected values of the report.
+
+struct Topology {
+  size_t open_edges = 0, nonmanifold_edges = 0, components = 0, used_vertices = 0;
+};
+
+inline Topology topology(const Mesh& m) {
+  Topology r;
+  std::vector<std::pair<uint64_t, uint32_t>> uses;
+  uses.reserve(3 * m.size());
+  for (size_t t = 0; t < m.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(t)});
+    }
+  std::sort(uses.begin(), uses.end());
+  std::vector<uint32_t> parent(m.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (auto i = uses.begin(); i != uses.end();) {
+    auto j = i;
+    while (j != uses.end() && j->first == i->first) ++j;
+    if (j - i == 1) ++r.open_edges;
+    if (j - i > 2) ++r.nonmanifold_edges;
+    for (auto k = i + 1; k != j; ++k) parent[find(k->second)] = find(i->second);
+    i = j;
+  }
+  for (size_t t = 0; t < parent.size(); ++t) r.components += find(uint32_t(t)) == uint32_t(t);
+  std::vector<char> used(m.vertices.size(), 0);
+  for (const auto& t : m.triangles)
+    for (uint32_t v : t) used[v] = 1;
+  r.used_vertices = size_t(std::count(used.begin(), used.end(), 1));
+  return r;
+}
+
+// Vertices that attain the bounding box on some axis: a hole must leave each of them a triangle, or the grid moves.
+inline std::vector<char> extreme_vertices(const Mesh& m) {
+  Eigen::Vector3d lo, hi;
+  m.bounds(lo, hi);
+  std::vector<char> ext(m.vertices.size(), 0);
+  for (size_t v = 0; v < m.vertices.size(); ++v)
+    for (int a = 0; a < 3; ++a) ext[v] |= m.vertices[v][a] == lo[a] || m.vertices[v][a] == hi[a];
+  return ext;
+}
+
+// How deep the removed surface of a punched mesh lies below the rim of its hole: for each edge-connected patch of
+// removed triangles, the largest distance of its vertices from the plane through its boundary vertices' centroid
+// normal to its vector area (the plane the winding number's fill of that hole roughly takes); the largest over the
+// patches. 0 for a hole of one triangle.
+inline double hole_depth(const Mesh& removed) {
+  if (removed.triangles.empty()) return 0;
+  std::vector<std::pair<uint64_t, uint32_t>> uses;
+  for (size_t t = 0; t < removed.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = removed.triangles[t][k], b = removed.triangles[t][(k + 1) % 3];
+      uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(t)});
+    }
+  std::sort(uses.begin(), uses.end());
+  std::vector<uint32_t> parent(removed.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::vector<std::pair<uint64_t, uint32_t>> boundary;  // edges used once: edge, triangle
+  for (auto i = uses.begin(); i != uses.end();) {
+    auto j = i;
+    while (j != uses.end() && j->first == i->first) ++j;
+    if (j - i == 1) boundary.push_back(*i);
+    for (auto k = i + 1; k != j; ++k) parent[find(k->second)] = find(i->second);
+    i = j;
+  }
+  const size_t n = removed.size();
+  std::vector<Eigen::Vector3d> normal(n, Eigen::Vector3d::Zero()), rim(n, Eigen::Vector3d::Zero());
+  std::vector<double> rim_n(n, 0);
+  for (size_t t = 0; t < n; ++t)
+    normal[find(uint32_t(t))] += (removed.corner(t, 1) - removed.corner(t, 0)).cross(removed.corner(t, 2) - removed.corner(t, 0));
+  for (const auto& [e, t] : boundary) {
+    const uint32_t r = find(t);
+    rim[r] += removed.vertices[uint32_t(e >> 32)] + removed.vertices[uint32_t(e)];
+    rim_n[r] += 2;
+  }
+  double depth = 0;
+  for (size_t t = 0; t < n; ++t) {
+    const uint32_t r = find(uint32_t(t));
+    if (rim_n[r] == 0 || normal[r].norm() == 0) continue;
+    const Eigen::Vector3d c = rim[r] / rim_n[r], u = normal[r].normalized();
+    for (int k = 0; k < 3; ++k) depth = std::max(depth, std::abs(u.dot(removed.corner(t, k) - c)));
+  }
+  return depth;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Defects of one closed mesh.
+
+inline Defect clean(const Mesh& closed) {
+  Defect d;
+  d.name = closed.name + ", clean";
+  d.mesh = closed;
+  d.solid = {closed};
+  d.volume = closed.volume();
+  d.repairs_to_intended = true;
+  const Topology t = topology(closed);
+  d.expect.closed = 1;
+  d.expect.open_edges = d.expect.nonmanifold_edges = d.expect.dropped_duplicate = d.expect.dropped_repeated =
+      d.expect.dropped_collinear = d.expect.reoriented = d.expect.welded = 0;
+  d.expect.components = (long long)t.components;
+  d.expect.closed_components = (long long)t.components;
+  d.expect.sheet_components = 0;
+  d.expect.triangles = (long long)closed.size();
+  d.expect.vertices = (long long)t.used_vertices;
+  d.expect.flipped = 0;
+  d.expect.surface_only = 0;
+  return d;
+}
+
+// `n` triangles removed: scattered at random, or (contiguous) one hole grown from a random triangle across edges.
+// No removed triangle touches a vertex on the bounding box, so the grid stays the intended mesh's.
+inline Defect punched(const Mesh& closed, size_t n, uint64_t seed, bool contiguous = false) {
+  std::mt19937_64 rng(seed);
+  const std::vector<char> ext = extreme_vertices(closed);
+  auto allowed = [&](size_t t) {
+    return !ext[closed.triangles[t][0]] && !ext[closed.triangles[t][1]] && !ext[closed.triangles[t][2]];
+  };
+  std::vector<char> take(closed.size(), 0);
+  if (!contiguous) {
+    std::vector<uint32_t> order(closed.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::shuffle(order.begin(), order.end(), rng);
+    size_t got = 0;
+    for (size_t i = 0; i < order.size() && got < n; ++i)
+      if (allowed(order[i])) {
+        take[order[i]] = 1;
+        ++got;
+      }
+  } else {
+    // Triangles by edge: neighbours across each edge.
+    std::vector<std::pair<uint64_t, uint32_t>> uses;
+    for (size_t t = 0; t < closed.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = closed.triangles[t][k], b = closed.triangles[t][(k + 1) % 3];
+        uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(t)});
+      }
+    std::sort(uses.begin(), uses.end());
+    std::vector<std::vector<uint32_t>> adj(closed.size());
+    for (size_t i = 0; i + 1 < uses.size(); ++i)
+      if (uses[i].first == uses[i + 1].first) {
+        adj[uses[i].second].push_back(uses[i + 1].second);
+        adj[uses[i + 1].second].push_back(uses[i].second);
+      }
+    std::uniform_int_distribution<size_t> pick(0, closed.size() - 1);
+    size_t start = pick(rng);
+    while (!allowed(start)) start = pick(rng);
+    std::vector<uint32_t> queue = {uint32_t(start)};
+    take[start] = 1;
+    for (size_t q = 0; q < queue.size() && queue.size() < n; ++q)
+      for (uint32_t u : adj[queue[q]])
+        if (!take[u] && allowed(u) && queue.size() < n) {
+          take[u] = 1;
+          queue.push_back(u);
+        }
+  }
+  Defect d;
+  d.name = closed.name + ", " + std::to_string(n) + (contiguous ? " triangles removed in one hole" : " triangles removed");
+  d.mesh = closed;
+  d.mesh.triangles.clear();
+  d.removed.vertices = closed.vertices;
+  d.removed.name = "removed";
+  for (size_t t = 0; t < closed.size(); ++t) (take[t] ? d.removed.triangles : d.mesh.triangles).push_back(closed.triangles[t]);
+  d.mesh.name = d.name;
+  d.solid = {closed};
+  d.volume = closed.volume();
+  const Topology t = topology(d.mesh);
+  d.expect.open_edges = (long long)t.open_edges;
+  d.expect.nonmanifold_edges = 0;
+  d.expect.components = (long long)t.components;
+  d.expect.closed_components = 0;
+  d.expect.sheet_components = 0;  // a few holes leave a solid, not a sheet
+  d.expect.reoriented = 0;
+  d.expect.closed = 0;
+  d.expect.surface_only = 0;
+  d.expect.triangles = (long long)d.mesh.size();
+  return d;
+}
+
+// A fraction of the triangles (at least one) reversed at random.
+inline Defect flipped(const Mesh& closed, double fraction, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<uint32_t> order(closed.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::shuffle(order.begin(), order.end(), rng);
+  const size_t n = std::max<size_t>(1, size_t(std::llround(fraction * double(closed.size()))));
+  Defect d;
+  d.mesh = closed;
+  for (size_t i = 0; i < n; ++i) std::swap(d.mesh.triangles[order[i]][1], d.mesh.triangles[order[i]][2]);
+  d.name = closed.name + ", " + std::to_string(n) + " triangles flipped";
+  d.mesh.name = d.name;
+  d.solid = {closed};
+  d.volume = closed.volume();
+  d.repairs_to_intended = true;
+  d.expect.reoriented = (long long)n;
+  d.expect.flipped = 0;
+  d.expect.open_edges = d.expect.nonmanifold_edges = 0;
+  d.expect.closed_components = 1;
+  d.expect.closed = 0;
+  d.expect.triangles = (long long)closed.size();
+  return d;
+}
+
+// Every triangle given twice: the copy follows the original, on its own copies of the vertices (as STL and RAW
+// repeat them), so welding must merge them before the duplicates show.
+inline Defect duplicated(const Mesh& closed) {
+  Defect d;
+  d.mesh.vertices = closed.vertices;
+  const uint32_t base = uint32_t(closed.vertices.size());
+  d.mesh.vertices.insert(d.mesh.vertices.end(), closed.vertices.begin(), closed.vertices.end());
+  for (const auto& t : closed.triangles) {
+    d.mesh.triangles.push_back(t);
+    d.mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  d.name = closed.name + ", every triangle duplicated";
+  d.mesh.name = d.name;
+  d.solid = {closed};
+  d.volume = closed.volume();
+  d.repairs_to_intended = true;
+  d.expect.dropped_duplicate = (long long)closed.size();
+  d.expect.welded = (long long)topology(closed).used_vertices;
+  d.expect.open_edges = d.expect.nonmanifold_edges = 0;
+  d.expect.reoriented = 0;
+  d.expect.closed = 0;
+  d.expect.triangles = (long long)closed.size();
+  return d;
+}
+
+// Degenerate triangles sprinkled at random places of the triangle list, `per_kind` of each kind, on the mesh's
+// edges (so that they add nothing to the surface): a repeated vertex index (a, a, b); a repeated vertex by
+// coordinates (a, a', b) with a' a new vertex equal to a; collinear corners (a, midpoint of ab, b); and a zero-area
+// sliver (a, b, a + 0.3 (b - a)).
+inline Defect degenerate(const Mesh& closed, size_t per_kind, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Defect d;
+  d.mesh = closed;
+  std::uniform_int_distribution<size_t> pick(0, closed.size() - 1);
+  std::vector<std::array<uint32_t, 3>> extra;
+  for (int kind = 0; kind < 4; ++kind)
+    for (size_t i = 0; i < per_kind; ++i) {
+      const auto& t = closed.triangles[pick(rng)];
+      const int k = int(rng() % 3);
+      const uint32_t a = t[k], b = t[(k + 1) % 3];
+      const Eigen::Vector3d pa = closed.vertices[a], pb = closed.vertices[b];
+      const uint32_t nv = uint32_t(d.mesh.vertices.size());
+      if (kind == 0) {
+        extra.push_back({a, a, b});
+      } else if (kind == 1) {
+        d.mesh.vertices.push_back(pa);
+        extra.push_back({a, nv, b});
+      } else if (kind == 2) {
+        d.mesh.vertices.push_back((pa + pb) / 2);
+        extra.push_back({a, nv, b});
+      } else {
+        d.mesh.vertices.push_back(pa + 0.3 * (pb - pa));
+        extra.push_back({a, b, nv});
+      }
+    }
+  std::shuffle(extra.begin(), extra.end(), rng);
+  for (const auto& e : extra) {
+    const size_t at = std::uniform_int_distribution<size_t>(0, d.mesh.triangles.size())(rng);
+    d.mesh.triangles.insert(d.mesh.triangles.begin() + long(at), e);
+  }
+  d.name = closed.name + ", " + std::to_string(4 * per_kind) + " degenerate triangles";
+  d.mesh.name = d.name;
+  d.solid = {closed};
+  d.volume = closed.volume();
+  d.repairs_to_intended = true;
+  d.expect.dropped_repeated = (long long)(2 * per_kind);
+  d.expect.dropped_collinear = (long long)(2 * per_kind);
+  d.expect.welded = (long long)per_kind;  // the coordinate copies a'
+  d.expect.dropped_duplicate = 0;
+  d.expect.open_edges = d.expect.nonmanifold_edges = 0;
+  d.expect.reoriented = 0;
+  d.expect.closed = 0;
+  d.expect.triangles = (long long)closed.size();
+  return d;
+}
+
+// The mesh split into four parts (by the sign of x and z of each triangle's centroid, about a point off the
+// centre), each part given its own copies of its vertices; copies of vertices shared with a lower-numbered part are
+// moved towards the bounding box's centre by `relative` x the box's diagonal x (1 + part / 8), so that the parts no
+// longer meet: hairline cracks. Every vertex keeps one copy in place (the bounding box does not change). Below the
+// weld tolerance (kWeldRelative) repair closes them; above it they stay open and only the winding number copes.
+inline Defect cracked(const Mesh& closed, double relative) {
+  Eigen::Vector3d lo, hi;
+  closed.bounds(lo, hi);
+  const Eigen::Vector3d centre = (lo + hi) / 2, size = hi - lo;
+  const double step = relative * size.norm();
+  const double sx = centre.x() + 0.1 * size.x(), sz = centre.z() - 0.07 * size.z();
+  std::vector<int> part(closed.size());
+  std::vector<uint8_t> users(closed.vertices.size(), 0);  // bit p: part p uses the vertex
+  for (size_t t = 0; t < closed.size(); ++t) {
+    const Eigen::Vector3d c = (closed.corner(t, 0) + closed.corner(t, 1) + closed.corner(t, 2)) / 3;
+    part[t] = (c.x() > sx ? 1 : 0) + (c.z() > sz ? 2 : 0);
+    for (uint32_t v : closed.triangles[t]) users[v] |= uint8_t(1u << part[t]);
+  }
+  Defect d;
+  d.mesh.vertices = closed.vertices;  // part 0 keeps the original vertices
+  // Copies made part by part, so that the copy left in place (the lowest part's) precedes the moved ones.
+  std::vector<std::vector<uint32_t>> copy(4, std::vector<uint32_t>(closed.vertices.size(), UINT32_MAX));
+  for (int p = 1; p < 4; ++p)
+    for (size_t t = 0; t < closed.size(); ++t) {
+      if (part[t] != p) continue;
+      for (uint32_t v : closed.triangles[t]) {
+        if (copy[p][v] != UINT32_MAX) continue;
+        copy[p][v] = uint32_t(d.mesh.vertices.size());
+        Eigen::Vector3d q = closed.vertices[v];
+        if (users[v] & ((1u << p) - 1)) q += (centre - q).normalized() * step * (1 + p / 8.0);
+        d.mesh.vertices.push_back(q);
+      }
+    }
+  for (size_t t = 0; t < closed.size(); ++t) {
+    const int p = part[t];
+    std::array<uint32_t, 3> out = closed.triangles[t];
+    if (p > 0)
+      for (uint32_t& v : out) v = copy[p][v];
+    d.mesh.triangles.push_back(out);
+  }
+  char b[32];
+  std::snprintf(b, sizeof b, "%.0e", relative);
+  d.name = closed.name + ", 4 parts with cracks of " + b + " x the diagonal";
+  d.mesh.name = d.name;
+  d.solid = {closed};
+  d.volume = closed.volume();
+  d.expect.nonmanifold_edges = 0;
+  d.expect.closed = 0;
+  d.expect.sheet_components = 0;
+  d.expect.surface_only = 0;
+  const Topology cut = topology(d.mesh), whole = topology(closed);
+  if (relative * (1 + 3 / 8.0) < kWeldRelative) {
+    // Every crack is narrower than the weld tolerance: the repaired mesh is the closed one again.
+    d.repairs_to_intended = true;
+    d.expect.open_edges = 0;
+    d.expect.components = d.expect.closed_components = (long long)whole.components;
+    d.expect.welded = (long long)(cut.used_vertices - whole.used_vertices);
+    d.expect.triangles = (long long)closed.size();
+    d.expect.vertices = (long long)whole.used_vertices;
+  } else {
+    d.expect.open_edges = (long long)cut.open_edges;
+    d.expect.components = (long long)cut.components;
+    d.expect.closed_components = 0;
+    d.expect.welded = 0;
+  }
+  return d;
+}
+
+// The mesh with every triangle reversed (an inside-out export): repair must turn it all back.
+inline Defect inside_out(const Mesh& closed) {
+  Defect d;
+  d.mesh = reversed(closed);
+  d.name = closed.name + ", inside out";
+  d.mesh.name = d.name;
+  d.solid = {closed};
+  d.volume = closed.volume();
+  d.repairs_to_intended = true;
+  d.expect.flipped = 1;
+  d.expect.reoriented = 0;
+  d.expect.open_edges = d.expect.nonmanifold_edges = 0;
+  return d;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Defects of several parts.
+
+// Two closed boxes that overlap (no coplanar faces): the intended solid is their union, of exactly known volume.
+inline Defect overlapping_boxes() {
+  const Eigen::Vector3d a0(-1, -1, -1), a1(1, 1, 1), b0(0, -0.5, 0.25), b1(2, 1.5, 1.75);
+  Defect d;
+  d.mesh = make_box(a0, a1);
+  append(d.mesh, make_box(b0, b1));
+  d.name = "two overlapping boxes";
+  d.mesh.name = d.name;
+  d.solid = {make_box(a0, a1), make_box(b0, b1)};
+  const Eigen::Vector3d o = (a1.cwiseMin(b1) - a0.cwiseMax(b0)).cwiseMax(0.0);
+  d.volume = (a1 - a0).prod() + (b1 - b0).prod() - o.prod();
+  d.expect.components = d.expect.closed_components = 2;
+  d.expect.open_edges = d.expect.nonmanifold_edges = 0;
+  d.expect.reoriented = 0;
+  d.expect.closed = 1;  // closed, manifold and oriented: the overlap is geometric, not topological
+  return d;
+}
+
+// Two icospheres that overlap: union (volume not known exactly; the tests compare voxel by voxel).
+inline Defect overlapping_spheres(int level) {
+  Defect d;
+  const Mesh a = icosphere(level, 1.0), b = icosphere(level, 0.7, Eigen::Vector3d(0.9, 0.35, -0.2));
+  d.mesh = a;
+  append(d.mesh, b);
+  d.name = "two overlapping icospheres (level " + std::to_string(level) + ")";
+  d.mesh.name = d.name;
+  d.solid = {a, b};
+  d.expect.components = d.expect.closed_components = 2;
+  d.expect.open_edges = d.expect.nonmanifold_edges = 0;
+  d.expect.reoriented = 0;
+  d.expect.closed = 1;
+  return d;
+}
+
+// Two cubes that share one edge and nothing else: after welding, that edge has four triangles.
+inline Defect edge_sharing_cubes() {
+  const Eigen::Vector3d a0(0, 0, 0), a1(1, 1, 1), b0(1, 1, 0), b1(2, 2, 1);
+  Defect d;
+  d.mesh = make_box(a0, a1);
+  append(d.mesh, make_box(b0, b1));
+  d.name = "two cubes sharing an edge";
+  d.mesh.name = d.name;
+  d.solid = {make_box(a0, a1), make_box(b0, b1)};
+  d.volume = 2;
+  d.expect.nonmanifold_edges = 1;
+  d.expect.open_edges = 0;
+  d.expect.welded = 2;
+  d.expect.components = 1;  // connected through the edge
+  d.expect.closed = 0;
+  d.expect.reoriented = 0;
+  d.expect.surface_only = 0;
+  return d;
+}
+
+// A ball with a cavity, given three ways: right (outer outward, inner inward), inside out (every triangle reversed),
+// and with the cavity's shell outward like the outer one. The intended solid is the shell each time: nested closed
+// parts alternate in orientation, so the cavity stays empty.
+inline Defect hollow(int level, int variant) {
+  const Mesh right = hollow_sphere(level);
+  Defect d;
+  d.solid = {right};
+  d.volume = right.volume();
+  d.expect.components = d.expect.closed_components = 2;
+  d.expect.open_edges = d.expect.nonmanifold_edges = 0;
+  const size_t outer = icosphere(level).size();
+  if (variant == 0) {
+    d.mesh = right;
+    d.name = "hollow sphere";
+    d.expect.closed = 1;
+    d.expect.reoriented = 0;
+    d.expect.flipped = 0;
+  } else if (variant == 1) {
+    d.mesh = reversed(right);
+    d.name = "hollow sphere, inside out";
+    d.expect.flipped = 1;
+    d.expect.reoriented = 0;
+  } else {
+    d.mesh = right;
+    for (size_t t = outer; t < d.mesh.size(); ++t) std::swap(d.mesh.triangles[t][1], d.mesh.triangles[t][2]);
+    d.name = "hollow sphere, cavity outward";
+    d.expect.reoriented = (long long)(right.size() - outer);
+    d.expect.closed = 0;
+  }
+  d.repairs_to_intended = true;
+  d.mesh.name = d.name;
+  return d;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Surface only.
+
+// A square in a slanted plane, two triangles: encloses nothing.
+inline Defect square_sheet() {
+  Defect d;
+  const Eigen::Vector3d o(-1, -1, -0.2), u(2, 0, 0.3), v(0, 2, 0.15);
+  d.mesh.vertices = {o, o + u, o + u + v, o + v};
+  d.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  d.name = "a square sheet";
+  d.mesh.name = d.name;
+  d.expect.surface_only = 1;
+  d.expect.sheet_components = 1;
+  d.expect.closed_components = 0;
+  d.expect.open_edges = 4;
+  d.expect.closed = 0;
+  return d;
+}
+
+// A terrain patch: z = f(x, y) on an n x n grid over [-1, 1]^2, seeded bumps.
+inline Defect terrain(int n, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double a[4];
+  for (double& x : a) x = u(rng);
+  Defect d;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = -1 + 2.0 * i / n, y = -1 + 2.0 * j / n;
+      const double z = 0.25 * (a[0] * std::sin(3 * x + a[1]) * std::cos(2 * y + a[2]) + 0.3 * a[3] * x * y) +
+                       0.01 * u(rng);
+      d.mesh.vertices.emplace_back(x, y, z);
+    }
+  auto id = [&](int i, int j) { return uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      d.mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      d.mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  d.name = "a terrain patch " + std::to_string(n) + " x " + std::to_string(n);
+  d.mesh.name = d.name;
+  d.expect.surface_only = 1;
+  d.expect.sheet_components = 1;
+  d.expect.closed_components = 0;
+  d.expect.open_edges = 4 * n;
+  d.expect.closed = 0;
+  return d;
+}
+
+// The vertices of a mesh and no triangles.
+inline Defect point_cloud(const Mesh& m) {
+  Defect d;
+  d.mesh.vertices = m.vertices;
+  d.name = "point cloud (" + std::to_string(m.vertices.size()) + " points)";
+  d.mesh.name = d.name;
+  d.expect.points_only = 1;
+  d.expect.surface_only = 1;
+  d.expect.closed = 0;
+  d.expect.welded = 0;
+  d.expect.vertices = (long long)m.vertices.size();
+  return d;
+}
+
+// A closed icosphere and a separate square sheet beside it: interior from the ball only.
+inline Defect sphere_and_sheet(int level) {
+  const Mesh ball = icosphere(level);
+  Defect d;
+  d.mesh = ball;
+  Mesh sq;
+  sq.vertices = {{1.4, -1, -1}, {1.5, 1, -1}, {1.5, 1, 1}, {1.4, -1, 1}};
+  sq.triangles = {{0, 1, 2}, {0, 2, 3}};
+  append(d.mesh, sq);
+  d.name = "icosphere and a sheet beside it";
+  d.mesh.name = d.name;
+  d.solid = {ball};
+  d.volume = ball.volume();
+  d.expect.sheet_components = 1;
+  d.expect.closed_components = 1;
+  d.expect.components = 2;
+  d.expect.surface_only = 0;
+  d.expect.open_edges = 4;
+  d.expect.closed = 0;
+  return d;
+}
+
+// A closed icosphere with a square partition wall through it (a sheet inside the solid, as CAD exports leave
+// them): the interior is the ball's.
+inline Defect sphere_with_inner_sheet(int level) {
+  const Mesh ball = icosphere(level);
+  Defect d;
+  d.mesh = ball;
+  Mesh sq;
+  sq.vertices = {{-0.5, -0.45, 0.1}, {0.5, -0.45, 0.13}, {0.5, 0.55, 0.16}, {-0.5, 0.55, 0.12}};
+  sq.triangles = {{0, 1, 2}, {0, 2, 3}};
+  append(d.mesh, sq);
+  d.name = "icosphere with a sheet inside";
+  d.mesh.name = d.name;
+  d.solid = {ball};
+  d.volume = ball.volume();
+  d.expect.sheet_components = 1;
+  d.expect.closed_components = 1;
+  d.expect.components = 2;
+  d.expect.surface_only = 0;
+  d.expect.open_edges = 4;
+  d.expect.closed = 0;
+  return d;
+}
+
+// Every defect kind on an icosphere of `level` (and the fixed multi-part cases), seeded.
+inline std::vector<Defect> all_defects(int level, uint64_t seed) {
+  const Mesh s = icosphere(level);
+  std::vector<Defect> v;
+  v.push_back(clean(s));
+  for (size_t n : {1, 10, 100}) v.push_back(punched(s, n, seed + n));
+  v.push_back(punched(s, 100, seed + 7, true));
+  v.push_back(flipped(s, 0.01, seed + 11));
+  v.push_back(inside_out(s));
+  v.push_back(duplicated(s));
+  v.push_back(degenerate(s, 5, seed + 13));
+  v.push_back(cracked(s, 1e-9));
+  v.push_back(cracked(s, 1e-4));
+  v.push_back(cracked(s, 1e-3));
+  v.push_back(overlapping_boxes());
+  v.push_back(overlapping_spheres(std::max(level - 1, 1)));
+  v.push_back(edge_sharing_cubes());
+  for (int k = 0; k < 3; ++k) v.push_back(hollow(std::max(level - 1, 1), k));
+  v.push_back(sphere_and_sheet(std::max(level - 1, 1)));
+  v.push_back(sphere_with_inner_sheet(std::max(level - 1, 1)));
+  v.push_back(square_sheet());
+  v.push_back(terrain(24, seed + 17));
+  v.push_back(point_cloud(icosphere(std::max(level - 1, 1))));
+  return v;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The intended solid on a voxmap's grid.
+
+// A closed tetrahedron with corner p and edges e along +/- each axis (sign s).
+inline Mesh corner_tet(const Eigen::Vector3d& p, double e, double s) {
+  Mesh t;
+  t.vertices = {p, p + Eigen::Vector3d(s * e, 0, 0), p + Eigen::Vector3d(0, s * e, 0), p + Eigen::Vector3d(0, 0, s * e)};
+  t.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  if (s < 0) t = reversed(t);
+  return t;
+}
+
+// States of the intended solid on the grid of `vm` (voxelised from a mesh with bounding box [lo, hi]): Interior
+// where some closed mesh of `solid` has an interior voxel (by the exact ray-casting voxeliser), else Surface where
+// some has a surface voxel, else Empty. Each closed mesh is voxelised with two tiny tetrahedra (1/1000 voxel) added
+// at lo and hi, so that its grid is the voxmap's exactly; they only add surface voxels at the box's corners.
+// Throws std::logic_error when a closed mesh does not fit in [lo, hi].
+inline std::vector<uint8_t> intended_states(const std::vector<Mesh>& solid, const Voxmap& vm,
+                                            const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                            const Eigen::Vector3d& shift, unsigned threads = 0) {
+  std::vector<uint8_t> st(vm.size(), kEmpty);
+  for (const Mesh& part : solid) {
+    Mesh aug = part;
+    append(aug, corner_tet(lo, 1e-3 * vm.voxel(), 1));
+    append(aug, corner_tet(hi, 1e-3 * vm.voxel(), -1));
+    aug.name = part.name + " (on the defect's grid)";
+    VoxelizeOptions o;
+    o.voxel = vm.voxel();
+    o.shift = shift;
+    o.threads = threads;
+    o.max_dim = std::max({vm.dims()[0], vm.dims()[1], vm.dims()[2], 1024u});
+    const Voxmap ref = voxelize_raycast(aug, o);
+    if (ref.dims() != vm.dims() || ref.origin() != vm.origin())
+      throw std::logic_error(part.name + ": the intended solid does not fit in the defective mesh's bounding box");
+    for (uint64_t i = 0; i < vm.size(); ++i) {
+      const VoxelState s = ref.at(i);
+      if (s == kInterior) st[i] = kInterior;
+      else if (s == kSurface && st[i] == kEmpty) st[i] = kSurface;
+    }
+  }
+  return st;
+}
+
+// Voxels that are surface in neither map and disagree: the defect's voxmap against the intended states.
+inline uint64_t wrong_voxels(const Voxmap& vm, const std::vector<uint8_t>& intended) {
+  uint64_t n = 0;
+  for (uint64_t i = 0; i < vm.size(); ++i) {
+    const VoxelState s = vm.at(i);
+    if (s != kSurface && intended[i] != kSurface && s != intended[i]) ++n;
+  }
+  return n;
+}
+
+}  // namespace voxcd::test
