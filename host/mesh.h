@@ -69,6 +69,9 @@ struct MeshReport {
 
 // Vertices closer than this fraction of the bounding box's diagonal are welded by repair().
 constexpr double kWeldRelative = 1e-7;
+// Vertices on open edges of different edge-connected parts closer than this fraction of the diagonal are joined by
+// repair(): cracks between parts close.
+constexpr double kCrackCloseRelative = 2e-3;
 
 struct LoadOptions {
   bool strict = false;  // refuse anything that is not a closed, edge-manifold, consistently oriented mesh
@@ -101,7 +104,7 @@ void validate(Mesh& m, MeshReport* report = nullptr);
 MeshReport prepare(Mesh& m);
 
 // Repairs a triangle soup (host/repair.cpp): drops non-finite and degenerate triangles and exact duplicates, welds
-// vertices within kWeldRelative of the model's size, orients each part consistently where the surface allows
+// vertices within kWeldRelative of the model's size, closes cracks between parts (kCrackCloseRelative), orients each part consistently where the surface allows
 // it (outward, nested closed parts alternating, so cavities stay empty), marks sheets, and reports it all.
 // MeshError only when nothing is left: no triangle and no finite point.
 MeshReport repair(Mesh& m);

@@ -170,6 +170,75 @@ std::vector<EdgeUse> edge_uses(const Mesh& m) {
   return uses;
 }
 
+// Closes cracks: a vertex on an open edge moves onto the nearest vertex on an open edge of another edge-connected
+// part within `tol` (one that comes earlier in index order, so that no two vertices trade places). Returns how
+// many vertices moved; the triangles are remapped.
+size_t close_cracks(Mesh& m, double tol) {
+  const std::vector<EdgeUse> uses = edge_uses(m);
+  UnionFind parts{m.size()};
+  std::vector<char> boundary(m.vertices.size(), 0);
+  bool any = false;
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    for (size_t k = i + 1; k < j; ++k) parts.unite(uses[i].tri, uses[k].tri);
+    if (j - i == 1) {
+      boundary[uses[i].key >> 32] = boundary[uint32_t(uses[i].key)] = 1;
+      any = true;
+    }
+    i = j;
+  }
+  if (!any || !(tol > 0)) return 0;
+  std::vector<uint32_t> part_of(m.vertices.size(), UINT32_MAX);
+  for (size_t t = 0; t < m.size(); ++t)
+    for (uint32_t v : m.triangles[t]) part_of[v] = parts.find(uint32_t(t));
+  struct KeyHash {
+    size_t operator()(const std::array<int64_t, 3>& k) const {
+      return size_t((uint64_t(k[0]) * 0x9e3779b97f4a7c15ull) ^ (uint64_t(k[1]) * 0xc2b2ae3d27d4eb4full) ^
+                    (uint64_t(k[2]) * 0x165667b19e3779f9ull));
+    }
+  };
+  std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, KeyHash> cells;
+  auto key_of = [&](const Eigen::Vector3d& p) {
+    std::array<int64_t, 3> k{};
+    for (int a = 0; a < 3; ++a) k[a] = int64_t(std::floor(p[a] / tol));
+    return k;
+  };
+  std::vector<uint32_t> to(m.vertices.size());
+  std::iota(to.begin(), to.end(), 0u);
+  size_t moved = 0;
+  for (uint32_t v = 0; v < m.vertices.size(); ++v) {
+    if (!boundary[v]) continue;
+    const Eigen::Vector3d& p = m.vertices[v];
+    const auto k = key_of(p);
+    uint32_t best = UINT32_MAX;
+    double best_d = tol;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = cells.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == cells.end()) continue;
+          for (uint32_t u : it->second) {
+            const double d = (m.vertices[u] - p).norm();
+            if (part_of[u] != part_of[v] && (d < best_d || (d == best_d && u < best))) {
+              best = u;
+              best_d = d;
+            }
+          }
+        }
+    if (best != UINT32_MAX) {
+      to[v] = to[best];
+      ++moved;
+    } else {
+      cells[k].push_back(v);
+    }
+  }
+  if (moved)
+    for (auto& t : m.triangles)
+      for (uint32_t& v : t) v = to[v];
+  return moved;
+}
+
 // Signed volume of a part closed by the cone from its centroid (positive when its triangles face outward).
 double part_volume(const Mesh& m, const std::vector<uint32_t>& tris) {
   Eigen::Vector3d o = Eigen::Vector3d::Zero();
@@ -259,6 +328,15 @@ MeshReport repair(Mesh& m) {
     r.vertices = m.vertices.size();
     m.sheet.clear();
     return r;
+  }
+
+  // Cracks between parts: open edges of different parts within kCrackCloseRelative of the model's size are
+  // joined (counted as welded within tolerance), and what that makes degenerate or duplicate is dropped.
+  if (const size_t moved = close_cracks(m, kCrackCloseRelative * (hi - lo).norm())) {
+    r.welded += moved;
+    r.welded_near += moved;
+    near += moved;
+    drop_degenerate_and_duplicates(m, r);
   }
 
   // Orientation: breadth-first over edges shared by exactly two triangles, each neighbour turned to run the
@@ -449,6 +527,21 @@ MeshReport repair(Mesh& m) {
   std::vector<char> root(n, 0);
   for (size_t t = 0; t < n; ++t) root[parts.find(uint32_t(t))] = 1;
   r.components = size_t(std::count(root.begin(), root.end(), 1));
+  // Vertices no triangle uses any more (of dropped triangles, or moved by welding) are dropped.
+  {
+    std::vector<uint32_t> to(m.vertices.size(), UINT32_MAX);
+    for (const auto& t : m.triangles)
+      for (uint32_t v : t) to[v] = 0;
+    std::vector<Eigen::Vector3d> kept;
+    for (size_t v = 0; v < m.vertices.size(); ++v)
+      if (to[v] == 0) {
+        to[v] = uint32_t(kept.size());
+        kept.push_back(m.vertices[v]);
+      }
+    for (auto& t : m.triangles)
+      for (uint32_t& v : t) v = to[v];
+    m.vertices = std::move(kept);
+  }
   r.vertices = m.vertices.size();
   r.triangles = m.triangles.size();
   r.closed = near == 0 && nonfinite == 0 && r.dropped_repeated == 0 && r.dropped_collinear == 0 &&
