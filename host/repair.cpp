@@ -5,6 +5,7 @@
 // cavities), and mark the parts that enclose nothing as sheets.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <unordered_map>
 
@@ -51,52 +52,103 @@ size_t drop_nonfinite(Mesh& m) {
   return dropped;
 }
 
-// Welds vertices within `tol` (Chebyshev distance, to the first vertex of a cluster in index order) on a hash grid
-// of cells `tol` wide; vertices no triangle uses are dropped (all finite vertices are kept for a point cloud).
+// Welds vertices within `tol` (Chebyshev distance, to the first vertex of a cluster in index order, after exactly
+// equal vertices are merged); vertices no triangle uses are dropped (all finite vertices are kept for a point cloud).
 // Returns the vertices merged, and in *near those not exactly equal to their representative.
 size_t weld_near(Mesh& m, double tol, size_t* near) {
   const bool cloud = m.triangles.empty();
-  std::vector<char> used(m.vertices.size(), cloud ? 1 : 0);
-  if (cloud)
-    for (size_t v = 0; v < m.vertices.size(); ++v) used[v] = m.vertices[v].allFinite();
-  for (const auto& t : m.triangles)
-    for (uint32_t v : t) used[v] = 1;
+  size_t exact = 0;
+  if (cloud) {
+    // A point cloud keeps every finite point (weld() keeps what triangles use).
+    std::vector<Eigen::Vector3d> pts;
+    for (const auto& p : m.vertices)
+      if (p.allFinite()) pts.push_back(p);
+    m.vertices = std::move(pts);
+  } else {
+    // Exactly equal vertices first, keeping index order (weld() numbers them by first use instead).
+    std::vector<char> used(m.vertices.size(), 0);
+    for (const auto& t : m.triangles)
+      for (uint32_t v : t) used[v] = 1;
+    struct Hash {
+      size_t operator()(const Eigen::Vector3d& p) const {
+        uint64_t h = 1469598103934665603ull;
+        for (int i = 0; i < 3; ++i) {
+          const double d = p[i] == 0 ? 0.0 : p[i];  // -0 and +0 are the same point
+          uint64_t b;
+          std::memcpy(&b, &d, 8);
+          h = (h ^ b) * 1099511628211ull;
+          h ^= h >> 29;
+        }
+        return size_t(h);
+      }
+    };
+    std::unordered_map<Eigen::Vector3d, uint32_t, Hash> index;
+    index.reserve(m.vertices.size());
+    std::vector<uint32_t> to(m.vertices.size(), UINT32_MAX);
+    std::vector<Eigen::Vector3d> kept;
+    size_t n_used = 0;
+    for (size_t v = 0; v < m.vertices.size(); ++v) {
+      if (!used[v]) continue;
+      ++n_used;
+      auto [it, fresh] = index.emplace(m.vertices[v], uint32_t(kept.size()));
+      if (fresh) kept.push_back(m.vertices[v]);
+      to[v] = it->second;
+    }
+    for (auto& t : m.triangles)
+      for (uint32_t& v : t) v = to[v];
+    m.vertices = std::move(kept);
+    exact = n_used - m.vertices.size();
+  }
+  // Within tol: cells 4 tol wide, so a vertex looks into a neighbouring cell only on an axis where it lies within
+  // tol of the cell's side. Each cell keeps a list of representatives through `next`.
+  const double cell = 4 * tol;
   struct KeyHash {
     size_t operator()(const std::array<int64_t, 3>& k) const {
       return size_t((uint64_t(k[0]) * 0x9e3779b97f4a7c15ull) ^ (uint64_t(k[1]) * 0xc2b2ae3d27d4eb4full) ^
                     (uint64_t(k[2]) * 0x165667b19e3779f9ull));
     }
   };
-  std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, KeyHash> cells;
-  const double inv = tol > 0 ? 1 / tol : 0;
-  auto key_of = [&](const Eigen::Vector3d& p) {
-    std::array<int64_t, 3> k{};
-    for (int a = 0; a < 3; ++a) k[a] = tol > 0 ? int64_t(std::floor(p[a] * inv)) : 0;
-    return k;
-  };
+  std::unordered_map<std::array<int64_t, 3>, uint32_t, KeyHash> head;
+  head.reserve(m.vertices.size());
+  std::vector<uint32_t> next(m.vertices.size(), UINT32_MAX), remap(m.vertices.size());
   std::vector<Eigen::Vector3d> out;
-  std::vector<uint32_t> remap(m.vertices.size(), UINT32_MAX);
-  size_t n_used = 0, n_near = 0;
+  out.reserve(m.vertices.size());
+  size_t n_near = 0;
   for (size_t v = 0; v < m.vertices.size(); ++v) {
-    if (!used[v]) continue;
-    ++n_used;
     const Eigen::Vector3d& p = m.vertices[v];
-    const auto k = key_of(p);
     uint32_t found = UINT32_MAX;
-    for (int dz = -1; dz <= 1 && found == UINT32_MAX; ++dz)
-      for (int dy = -1; dy <= 1 && found == UINT32_MAX; ++dy)
-        for (int dx = -1; dx <= 1 && found == UINT32_MAX; ++dx) {
-          const auto it = cells.find({k[0] + dx, k[1] + dy, k[2] + dz});
-          if (it == cells.end()) continue;
-          for (uint32_t r : it->second)
-            if ((out[r] - p).cwiseAbs().maxCoeff() <= tol && (found == UINT32_MAX || r < found)) found = r;
+    if (tol > 0 && p.allFinite()) {
+      std::array<int64_t, 3> k{};
+      int lo[3], hi[3];
+      for (int a = 0; a < 3; ++a) {
+        const double g = p[a] / cell;
+        k[a] = int64_t(std::floor(g));
+        const double f = (g - double(k[a])) * 4;  // position in the cell, in units of tol
+        lo[a] = f < 1 ? -1 : 0;
+        hi[a] = f > 3 ? 1 : 0;
+      }
+      for (int dz = lo[2]; dz <= hi[2]; ++dz)
+        for (int dy = lo[1]; dy <= hi[1]; ++dy)
+          for (int dx = lo[0]; dx <= hi[0]; ++dx) {
+            const auto it = head.find({k[0] + dx, k[1] + dy, k[2] + dz});
+            if (it == head.end()) continue;
+            for (uint32_t r = it->second; r != UINT32_MAX; r = next[r])
+              if ((out[r] - p).cwiseAbs().maxCoeff() <= tol && r < found) found = r;
+          }
+      if (found == UINT32_MAX) {
+        found = uint32_t(out.size());
+        out.push_back(p);
+        auto [it, fresh] = head.emplace(k, found);
+        if (!fresh) {
+          next[found] = it->second;
+          it->second = found;
         }
-    if (found == UINT32_MAX) {
+      } else {
+        ++n_near;
+      }
+    } else {
       found = uint32_t(out.size());
       out.push_back(p);
-      cells[k].push_back(found);
-    } else if (out[found] != p) {
-      ++n_near;
     }
     remap[v] = found;
   }
@@ -104,7 +156,7 @@ size_t weld_near(Mesh& m, double tol, size_t* near) {
     for (uint32_t& v : t) v = remap[v];
   m.vertices = std::move(out);
   if (near) *near = n_near;
-  return n_used - m.vertices.size();
+  return exact + n_near;
 }
 
 bool zero_area(const Mesh& m, const std::array<uint32_t, 3>& t) {
@@ -173,8 +225,7 @@ std::vector<EdgeUse> edge_uses(const Mesh& m) {
 // Closes cracks: a vertex on an open edge moves onto the nearest vertex on an open edge of another edge-connected
 // part within `tol` (one that comes earlier in index order, so that no two vertices trade places). Returns how
 // many vertices moved; the triangles are remapped.
-size_t close_cracks(Mesh& m, double tol) {
-  const std::vector<EdgeUse> uses = edge_uses(m);
+size_t close_cracks(Mesh& m, const std::vector<EdgeUse>& uses, double tol) {
   UnionFind parts{m.size()};
   std::vector<char> boundary(m.vertices.size(), 0);
   bool any = false;
@@ -332,27 +383,33 @@ MeshReport repair(Mesh& m) {
 
   // Cracks between parts: open edges of different parts within kCrackCloseRelative of the model's size are
   // joined (counted as welded within tolerance), and what that makes degenerate or duplicate is dropped.
-  if (const size_t moved = close_cracks(m, kCrackCloseRelative * (hi - lo).norm())) {
+  std::vector<EdgeUse> uses = edge_uses(m);
+  if (const size_t moved = close_cracks(m, uses, kCrackCloseRelative * (hi - lo).norm())) {
     r.welded += moved;
     r.welded_near += moved;
     near += moved;
     drop_degenerate_and_duplicates(m, r);
+    uses = edge_uses(m);
   }
 
   // Orientation: breadth-first over edges shared by exactly two triangles, each neighbour turned to run the
   // shared edge the other way. Each patch then takes the orientation most of its triangles were given.
   const size_t n = m.size();
-  const std::vector<EdgeUse> uses = edge_uses(m);
-  std::vector<std::vector<std::pair<uint32_t, bool>>> adj(n);  // neighbour, same direction in the input
+  // At most one neighbour across each of a triangle's three edges (an edge of exactly two triangles); bit k of
+  // same[t]: the neighbour runs that edge the same way in the input.
+  std::vector<std::array<uint32_t, 3>> adj(n, {UINT32_MAX, UINT32_MAX, UINT32_MAX});
+  std::vector<uint8_t> degree(n, 0), same(n, 0);
   UnionFind parts{size_t(n)};
   for (size_t i = 0; i < uses.size();) {
     size_t j = i;
     while (j < uses.size() && uses[j].key == uses[i].key) ++j;
     for (size_t k = i + 1; k < j; ++k) parts.unite(uses[i].tri, uses[k].tri);
     if (j - i == 2) {
-      const bool same = uses[i].forward == uses[i + 1].forward;
-      adj[uses[i].tri].push_back({uses[i + 1].tri, same});
-      adj[uses[i + 1].tri].push_back({uses[i].tri, same});
+      const bool s2 = uses[i].forward == uses[i + 1].forward;
+      for (const auto& [a, b] : {std::make_pair(uses[i].tri, uses[i + 1].tri), std::make_pair(uses[i + 1].tri, uses[i].tri)}) {
+        same[a] = uint8_t(same[a] | (s2 ? 1u << degree[a] : 0u));
+        adj[a][degree[a]++] = b;
+      }
     }
     i = j;
   }
@@ -368,10 +425,11 @@ MeshReport repair(Mesh& m) {
     for (size_t q = 0; q < queue.size(); ++q) {
       const uint32_t t = queue[q];
       patches[id].push_back(t);
-      for (const auto& [u, same] : adj[t]) {
+      for (int e = 0; e < degree[t]; ++e) {
+        const uint32_t u = adj[t][e];
         if (patch[u] != UINT32_MAX) continue;
         patch[u] = id;
-        flip[u] = char(flip[t] ^ (same ? 1 : 0));
+        flip[u] = char(flip[t] ^ ((same[t] >> e) & 1));
         queue.push_back(u);
       }
     }
@@ -385,7 +443,8 @@ MeshReport repair(Mesh& m) {
 
   // Edges after orientation; a patch is closed when each of its edges is used by two of its triangles, once
   // each way.
-  const std::vector<EdgeUse> after = edge_uses(m);
+  std::vector<EdgeUse> after = std::move(uses);  // the same edges; a reversed triangle runs each the other way
+  for (EdgeUse& u : after) u.forward = u.forward != bool(flip[u.tri]);
   std::vector<char> patch_closed(patches.size(), 1);
   for (size_t i = 0; i < after.size();) {
     size_t j = i;
