@@ -19,7 +19,7 @@
 #include <sstream>
 
 #include "bench/bench_common.h"
-#include "host/broadphase.h"
+#include "voxcd/host/broadphase/broadphase.h"
 
 using namespace voxcd;
 

@@ -12,8 +12,8 @@
 #include <sstream>
 
 #include "bench/bench_common.h"
-#include "host/device.h"
-#include "ref/float_model.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/ref/float_model.h"
 
 using namespace voxcd;
 

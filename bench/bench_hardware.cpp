@@ -15,8 +15,8 @@
 
 #include "Vvoxcd_l4.h"
 #include "bench/bench_common.h"
-#include "host/device.h"
-#include "ref/timing.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/ref/timing.h"
 
 using namespace voxcd;
 

@@ -13,8 +13,8 @@
 #include <sstream>
 
 #include "bench/bench_common.h"
-#include "host/collide.h"
-#include "host/shapes.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/object/shapes.h"
 #include "tests/exact_geometry.h"
 
 using namespace voxcd;

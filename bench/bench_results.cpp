@@ -28,10 +28,10 @@
 #include <stdexcept>
 
 #include "bench/bench_common.h"
-#include "host/collide.h"
-#include "host/shapes.h"
-#include "ref/float_model.h"
-#include "ref/pipeline.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/ref/float_model.h"
+#include "voxcd/ref/pipeline.h"
 
 using namespace voxcd;
 

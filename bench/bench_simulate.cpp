@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "bench/bench_common.h"
-#include "host/scene.h"
+#include "voxcd/host/scene/scene.h"
 
 using namespace voxcd;
 

@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "host/conform_gen.h"
-#include "host/device.h"
-#include "host/device_sysc.h"
-#include "ref/pipeline.h"
-#include "ref/timing.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/device/detail/sysc.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
 
 using namespace voxcd;
 

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "host/conform_gen.h"
-#include "ref/pipeline.h"
-#include "ref/timing.h"
-#include "sysc/address_map.h"
-#include "sysc/platform.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
+#include "voxcd/sysc/address_map.h"
+#include "voxcd/sysc/platform.h"
 
 using namespace voxcd;
 using namespace voxcd::sysc;

@@ -15,10 +15,10 @@
 #include <thread>
 
 #include "bench/bench_common.h"
-#include "host/point_shell.h"
-#include "host/shapes.h"
-#include "host/voxelize.h"
-#include "ref/config.h"
+#include "voxcd/host/object/point_shell.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/object/voxelize.h"
+#include "voxcd/ref/config.h"
 #include "tests/defects.h"
 
 using namespace voxcd;

@@ -1,4 +1,4 @@
-#include "ref/config.h"
+#include "voxcd/ref/config.h"
 
 #include <algorithm>
 #include <sstream>

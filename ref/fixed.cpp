@@ -1,4 +1,4 @@
-#include "ref/fixed.h"
+#include "voxcd/ref/fixed.h"
 
 #include <cmath>
 #include <cstring>

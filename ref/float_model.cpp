@@ -1,4 +1,4 @@
-#include "ref/float_model.h"
+#include "voxcd/ref/float_model.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,9 +2,9 @@
 // bound on how far the fixed-point path can be from exact arithmetic (docs/contract.md derives it).
 #pragma once
 
-#include "ref/config.h"
-#include "ref/fixed.h"
-#include "ref/types.h"
+#include "voxcd/ref/config.h"
+#include "voxcd/ref/fixed.h"
+#include "voxcd/ref/types.h"
 
 namespace voxcd {
 

@@ -1,8 +1,8 @@
-#include "ref/pipeline.h"
+#include "voxcd/ref/pipeline.h"
 
 #include <sstream>
 
-#include "ref/fixed.h"
+#include "voxcd/ref/fixed.h"
 
 namespace voxcd {
 

@@ -1,4 +1,4 @@
-#include "ref/timing.h"
+#include "voxcd/ref/timing.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "ref/config.h"
-#include "ref/types.h"
+#include "voxcd/ref/config.h"
+#include "voxcd/ref/types.h"
 
 namespace voxcd {
 

@@ -1,4 +1,4 @@
-#include "ref/types.h"
+#include "voxcd/ref/types.h"
 
 #include <sstream>
 

@@ -1,4 +1,4 @@
-#include "ref/vectors.h"
+#include "voxcd/ref/vectors.h"
 
 #include <charconv>
 #include <fstream>
@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "ref/fixed.h"
-#include "ref/pipeline.h"
+#include "voxcd/ref/fixed.h"
+#include "voxcd/ref/pipeline.h"
 
 namespace voxcd {
 

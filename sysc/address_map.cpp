@@ -1,4 +1,4 @@
-#include "sysc/address_map.h"
+#include "voxcd/sysc/address_map.h"
 
 #include <cstring>
 

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <string>
 
-#include "ref/vectors.h"
-#include "sysc/address_map.h"
-#include "sysc/platform.h"
+#include "voxcd/ref/vectors.h"
+#include "voxcd/sysc/address_map.h"
+#include "voxcd/sysc/platform.h"
 
 using namespace voxcd;
 using namespace voxcd::sysc;

@@ -1,9 +1,9 @@
-#include "sysc/host_cpu.h"
+#include "voxcd/sysc/host_cpu.h"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "sysc/address_map.h"
+#include "voxcd/sysc/address_map.h"
 
 namespace voxcd::sysc {
 

@@ -1,7 +1,7 @@
-#include "sysc/platform.h"
+#include "voxcd/sysc/platform.h"
 
-#include "sysc/rtl_target.h"
-#include "sysc/tlm_target.h"
+#include "voxcd/sysc/rtl_target.h"
+#include "voxcd/sysc/tlm_target.h"
 
 namespace voxcd::sysc {
 

@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "sysc/host_cpu.h"
-#include "sysc/target.h"
+#include "voxcd/sysc/host_cpu.h"
+#include "voxcd/sysc/target.h"
 
 namespace voxcd::sysc {
 

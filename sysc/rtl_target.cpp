@@ -1,4 +1,4 @@
-#include "sysc/rtl_target.h"
+#include "voxcd/sysc/rtl_target.h"
 
 #include <verilated.h>
 #include <verilated_fst_sc.h>

@@ -1,6 +1,6 @@
 // RtlTarget: the Verilated RTL (rtl/voxcd_device.sv, --sc) behind the device's TLM-2.0 socket. A clocked method
 // (the only writer of the model's input pins) writes memories through the write ports, feeds launched jobs back
-// to back and takes every output record (an always-ready consumer), as host/device_rtl.cpp does in C++.
+// to back and takes every output record (an always-ready consumer), as host/device/rtl.cpp does in C++.
 //
 // b_transport waits: it first waits out its annotated delay (the pins must be driven at the transaction's time),
 // then until the clocked method has done the access (a memory write, or the records a result read asks for).
@@ -12,7 +12,7 @@
 #include <memory>
 #include <string>
 
-#include "sysc/target.h"
+#include "voxcd/sysc/target.h"
 
 class VerilatedContext;
 class VerilatedFstSc;

@@ -6,10 +6,10 @@
 #include <cstring>
 #include <string>
 
-#include "ref/vectors.h"
-#include "sysc/address_map.h"
-#include "sysc/platform.h"
-#include "sysc/server_protocol.h"
+#include "voxcd/ref/vectors.h"
+#include "voxcd/sysc/address_map.h"
+#include "voxcd/sysc/platform.h"
+#include "voxcd/sysc/server_protocol.h"
 
 using namespace voxcd;
 using namespace voxcd::sysc;

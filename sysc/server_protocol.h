@@ -1,4 +1,4 @@
-// The byte protocol between a host-side Device (host/device_sysc.cpp) and voxcd_sysc_server, which runs the
+// The byte protocol between a host-side Device (host/device/sysc.cpp) and voxcd_sysc_server, which runs the
 // SystemC platform in its own process (SystemC elaborates once per process; a Device may be made many times).
 // Every number is a little-endian u64. The server reads requests from file descriptor kServerFd and answers on it.
 //

@@ -1,10 +1,10 @@
-#include "sysc/target.h"
+#include "voxcd/sysc/target.h"
 
 #include <algorithm>
 #include <cstring>
 
-#include "ref/pipeline.h"
-#include "sysc/address_map.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/sysc/address_map.h"
 
 namespace voxcd::sysc {
 

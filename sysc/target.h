@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "ref/config.h"
-#include "ref/types.h"
-#include "sysc/address_map.h"
+#include "voxcd/ref/config.h"
+#include "voxcd/ref/types.h"
+#include "voxcd/sysc/address_map.h"
 
 namespace voxcd::sysc {
 

@@ -1,8 +1,8 @@
-#include "sysc/tlm_target.h"
+#include "voxcd/sysc/tlm_target.h"
 
 #include <algorithm>
 
-#include "ref/timing.h"
+#include "voxcd/ref/timing.h"
 
 namespace voxcd::sysc {
 

@@ -1,4 +1,4 @@
-// TlmTarget: the device as a loosely-timed TLM-2.0 model: results from ref/fast.h's FastRunner (bit-exact with
+// TlmTarget: the device as a loosely-timed TLM-2.0 model: results from ref/fast/fast.h's FastRunner (bit-exact with
 // ref/pipeline.h, the specification), time from ref/timing.h (cycle-exact). b_transport never waits: it computes
 // when the access would be done on the RTL target and annotates the delay. Assumes its initiators' transactions
 // come in time order (one initiator, or initiators kept in order by their quantum).
@@ -6,8 +6,8 @@
 
 #include <vector>
 
-#include "ref/fast.h"
-#include "sysc/target.h"
+#include "voxcd/ref/fast/fast.h"
+#include "voxcd/sysc/target.h"
 
 namespace voxcd::sysc {
 

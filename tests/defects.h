@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
-#include "host/mesh.h"
-#include "host/shapes.h"
-#include "host/voxelize.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/object/voxelize.h"
 
 namespace voxcd::test {
 

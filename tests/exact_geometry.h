@@ -8,8 +8,8 @@
 #include <limits>
 #include <vector>
 
-#include "host/mesh.h"
-#include "host/voxelize.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/voxelize.h"
 
 namespace voxcd::test {
 

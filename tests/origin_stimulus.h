@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "ref/pipeline.h"
+#include "voxcd/ref/pipeline.h"
 
 namespace voxcd::test {
 

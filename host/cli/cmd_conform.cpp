@@ -6,15 +6,12 @@
 #include <optional>
 #include <sstream>
 
-#include "host/cli/commands.h"
-#include "host/conform_gen.h"
-#include "host/device.h"
-#include "ref/pipeline.h"
-#include "ref/vectors.h"
-#if __has_include("ref/timing.h")
-#include "ref/timing.h"
-#define VOXCD_HAVE_TIMING 1
-#endif
+#include "voxcd/host/cli/commands.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/vectors.h"
+#include "voxcd/ref/timing.h"
 
 namespace voxcd::cli {
 
@@ -38,9 +35,7 @@ struct ConformArgs {
 // Expected records for generated jobs: ref/'s stream, with the timing model's cycles.
 std::vector<Record> reference_stream(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs) {
   std::vector<Record> recs = run_stream(cfg, mem, jobs);
-#ifdef VOXCD_HAVE_TIMING
   annotate_cycles(cfg, jobs, recs);
-#endif
   return recs;
 }
 

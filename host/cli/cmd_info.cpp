@@ -2,10 +2,10 @@
 // and optionally its picture.
 #include <iostream>
 
-#include "host/cli/commands.h"
-#include "host/cli/object_report.h"
-#include "host/object_file.h"
-#include "host/shapes.h"
+#include "voxcd/host/cli/commands.h"
+#include "voxcd/host/cli/object_report.h"
+#include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/shapes.h"
 
 namespace voxcd::cli {
 

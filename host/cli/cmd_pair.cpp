@@ -6,10 +6,10 @@
 #include <random>
 #include <sstream>
 
-#include "host/cli/commands.h"
-#include "host/cli/object_report.h"
-#include "host/collide.h"
-#include "host/mesh.h"
+#include "voxcd/host/cli/commands.h"
+#include "voxcd/host/cli/object_report.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/object/mesh.h"
 
 namespace voxcd::cli {
 

@@ -4,15 +4,12 @@
 #include <cstdio>
 #include <iostream>
 
-#include "host/cli/commands.h"
-#include "host/conform_gen.h"
-#include "host/device.h"
-#include "ref/pipeline.h"
-#include "ref/vectors.h"
-#if __has_include("ref/timing.h")
-#include "ref/timing.h"
-#define VOXCD_HAVE_TIMING 1
-#endif
+#include "voxcd/host/cli/commands.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/vectors.h"
+#include "voxcd/ref/timing.h"
 
 namespace voxcd::cli {
 
@@ -35,9 +32,7 @@ int selftest(const SelftestArgs& a) {
     g.config.LANES = lanes;
     const GeneratedVectors v = generate_vectors(g);
     std::vector<Record> expect = run_stream(v.config, v.memory, v.jobs);
-#ifdef VOXCD_HAVE_TIMING
     annotate_cycles(v.config, v.jobs, expect);
-#endif
     VectorFile f;
     f.path = "generated";
     f.config = v.config;

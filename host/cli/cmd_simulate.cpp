@@ -7,12 +7,12 @@
 #include <iostream>
 #include <sstream>
 
-#include "host/cli/commands.h"
-#include "host/cli/object_report.h"
-#include "host/scene.h"
-#include "host/scene_file.h"
-#include "host/voxelize.h"
-#include "ref/vectors.h"
+#include "voxcd/host/cli/commands.h"
+#include "voxcd/host/cli/object_report.h"
+#include "voxcd/host/scene/scene.h"
+#include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/object/voxelize.h"
+#include "voxcd/ref/vectors.h"
 
 namespace voxcd::cli {
 

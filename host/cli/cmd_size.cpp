@@ -2,8 +2,8 @@
 // lanes), with its predicted error, cycles per frame, memory and, with --cost, its yosys cost. docs/size.md.
 #include <iostream>
 
-#include "host/cli/commands.h"
-#include "host/size.h"
+#include "voxcd/host/cli/commands.h"
+#include "voxcd/host/sizing/size.h"
 
 namespace voxcd::cli {
 
@@ -53,7 +53,7 @@ void add_size(CLI::App& app) {
   c->add_flag("--cost", a->cost,
               "Also synthesise the configuration, and the default widths at its LANES, SAW and MAW, with yosys "
               "(synth_xilinx) for LUTs, FFs, DSPs and block RAMs; about 10 s each");
-  c->add_option("--rtl", a->rtl_dir, "The rtl/ directory for --cost")->capture_default_str();
+  c->add_option("--rtl", a->rtl_dir, "The directory of the RTL file list voxcd.f for --cost (default: the installed package's)")->capture_default_str();
   c->add_flag("--json", a->json, "Print the report as JSON");
   c->callback([a] { exit_code() = size_cmd(*a); });
 }

@@ -3,7 +3,7 @@
 #include <iostream>
 #include <string>
 
-#include "host/cli/commands.h"
+#include "voxcd/host/cli/commands.h"
 
 namespace voxcd::cli {
 int& exit_code() {

@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "host/object_file.h"
-#include "host/png.h"
-#include "ref/config.h"
+#include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/png.h"
+#include "voxcd/ref/config.h"
 
 namespace voxcd::cli {
 

@@ -5,9 +5,9 @@
 
 #include <cstdlib>
 
-#include "host/conform_gen.h"
-#include "host/device.h"
-#include "ref/pipeline.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/ref/pipeline.h"
 #include "tests/ref/directed_cases.h"
 
 namespace voxcd {

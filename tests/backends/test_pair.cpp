@@ -8,11 +8,11 @@
 #include <cmath>
 #include <random>
 
-#include "host/collide.h"
-#include "host/cull.h"
-#include "host/device_rtl.h"
-#include "host/shapes.h"
-#include "ref/float_model.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/detail/cull.h"
+#include "voxcd/host/device/detail/rtl.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/ref/float_model.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {

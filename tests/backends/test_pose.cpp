@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "host/pose.h"
-#include "ref/fixed.h"
+#include "voxcd/host/pairs/pose.h"
+#include "voxcd/ref/fixed.h"
 
 namespace voxcd {
 namespace {

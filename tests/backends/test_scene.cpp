@@ -5,10 +5,10 @@
 
 #include <random>
 
-#include "host/bounds.h"
-#include "host/device_rtl.h"
-#include "host/scene.h"
-#include "host/shapes.h"
+#include "voxcd/host/object/bounds.h"
+#include "voxcd/host/device/detail/rtl.h"
+#include "voxcd/host/scene/scene.h"
+#include "voxcd/host/object/shapes.h"
 
 namespace voxcd {
 namespace {

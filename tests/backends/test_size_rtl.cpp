@@ -5,13 +5,13 @@
 
 #include <fstream>
 
-#include "host/conform_gen.h"
-#include "host/device.h"
-#include "host/device_rtl.h"
-#include "host/scene_file.h"
-#include "ref/pipeline.h"
-#include "ref/timing.h"
-#include "ref/vectors.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/device/detail/rtl.h"
+#include "voxcd/host/scene/scene_file.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
+#include "voxcd/ref/vectors.h"
 
 namespace voxcd {
 namespace {

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "host/mesh.h"
-#include "host/object_file.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/object_file.h"
 #include "tests/fuzz/fuzz_common.h"
 
 namespace voxcd::fuzz {

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "host/object_file.h"
+#include "voxcd/host/object/object_file.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace voxcd;

@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "host/mesh.h"
-#include "host/scene.h"
-#include "host/shapes.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/scene/scene.h"
+#include "voxcd/host/object/shapes.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace voxcd;

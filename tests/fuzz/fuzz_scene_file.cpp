@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "host/scene_file.h"
+#include "voxcd/host/scene/scene_file.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace voxcd;

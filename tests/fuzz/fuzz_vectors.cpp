@@ -4,8 +4,8 @@
 // not: the parser has already checked every job against the memory).
 #include <string>
 
-#include "ref/pipeline.h"
-#include "ref/vectors.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/vectors.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace voxcd;

@@ -8,7 +8,7 @@
 #include <random>
 #include <sstream>
 
-#include "host/broadphase.h"
+#include "voxcd/host/broadphase/broadphase.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {

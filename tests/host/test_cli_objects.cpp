@@ -8,9 +8,9 @@
 #include <regex>
 #include <sstream>
 
-#include "host/object_file.h"
-#include "host/shapes.h"
-#include "ref/config.h"
+#include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/ref/config.h"
 #include "tests/host/test_util.h"
 
 #ifndef VOXCD_BIN

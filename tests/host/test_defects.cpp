@@ -12,9 +12,9 @@
 #include <random>
 #include <sstream>
 
-#include "host/mesh.h"
-#include "host/shapes.h"
-#include "host/voxelize.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/object/voxelize.h"
 #include "tests/defects.h"
 #include "tests/host/test_util.h"
 

@@ -8,8 +8,8 @@
 #include <random>
 #include <sstream>
 
-#include "host/mesh.h"
-#include "host/shapes.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/shapes.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {

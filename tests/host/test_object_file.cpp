@@ -9,8 +9,8 @@
 #include <random>
 #include <sstream>
 
-#include "host/object_file.h"
-#include "host/shapes.h"
+#include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/shapes.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {

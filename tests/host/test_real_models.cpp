@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-#include "host/object_file.h"
+#include "voxcd/host/object/object_file.h"
 
 namespace voxcd {
 namespace {

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "host/mesh.h"
-#include "host/scene.h"
-#include "host/scene_file.h"
-#include "host/shapes.h"
-#include "host/voxelize.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/scene/scene.h"
+#include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/object/voxelize.h"
 #include "tests/error_text.h"
 
 namespace voxcd {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <random>
 
-#include "host/point_shell.h"
-#include "host/shapes.h"
-#include "ref/float_model.h"
+#include "voxcd/host/object/point_shell.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/ref/float_model.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {

@@ -10,11 +10,11 @@
 #include <random>
 #include <sstream>
 
-#include "host/collide.h"
-#include "host/scene_file.h"
-#include "host/size.h"
-#include "ref/fixed.h"
-#include "ref/pipeline.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/sizing/size.h"
+#include "voxcd/ref/fixed.h"
+#include "voxcd/ref/pipeline.h"
 
 namespace voxcd {
 namespace {

@@ -10,8 +10,8 @@
 #include <random>
 #include <string>
 
-#include "host/mesh.h"
-#include "host/voxelize.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/voxelize.h"
 #include "tests/exact_geometry.h"
 
 namespace voxcd::test {

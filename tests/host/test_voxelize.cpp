@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "host/shapes.h"
-#include "host/voxelize.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/object/voxelize.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "ref/config.h"
-#include "ref/types.h"
+#include "voxcd/ref/config.h"
+#include "voxcd/ref/types.h"
 
 namespace voxcd::testing {
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "ref/vectors.h"
+#include "voxcd/ref/vectors.h"
 #include "tests/ref/directed_cases.h"
 
 int main(int argc, char** argv) {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "ref/config.h"
-#include "ref/fixed.h"
-#include "ref/float_model.h"
+#include "voxcd/ref/config.h"
+#include "voxcd/ref/fixed.h"
+#include "voxcd/ref/float_model.h"
 
 namespace voxcd {
 namespace {

@@ -1,7 +1,7 @@
 // The directed cases against their hand-derived expectations, and the pipeline stages one by one.
 #include <gtest/gtest.h>
 
-#include "ref/pipeline.h"
+#include "voxcd/ref/pipeline.h"
 #include "tests/ref/directed_cases.h"
 
 namespace voxcd {

@@ -1,4 +1,4 @@
-// FastRunner (ref/fast.h) against the specification: the same record stream as run_stream, with annotate_cycles'
+// FastRunner (ref/fast/fast.h) against the specification: the same record stream as run_stream, with annotate_cycles'
 // cycles, on generated vectors for every arithmetic path (double, int64, 128-bit), for 1 to 3 threads; memories
 // written piecewise and rewritten between runs; invalid input refused before anything runs or is written.
 // Seed: printed at start; VOXCD_SEED replays it.
@@ -8,10 +8,10 @@
 #include <cstdlib>
 #include <random>
 
-#include "host/conform_gen.h"
-#include "ref/fast.h"
-#include "ref/pipeline.h"
-#include "ref/timing.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/ref/fast/fast.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
 #include "tests/ref/directed_cases.h"
 
 namespace voxcd {

@@ -10,8 +10,8 @@
 #include <cstdlib>
 #include <random>
 
-#include "ref/float_model.h"
-#include "ref/pipeline.h"
+#include "voxcd/ref/float_model.h"
+#include "voxcd/ref/pipeline.h"
 
 namespace voxcd {
 namespace {

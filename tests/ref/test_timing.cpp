@@ -6,7 +6,7 @@
 
 #include <stdexcept>
 
-#include "ref/timing.h"
+#include "voxcd/ref/timing.h"
 
 namespace voxcd {
 namespace {

@@ -5,9 +5,9 @@
 #include <random>
 #include <sstream>
 
-#include "host/conform_gen.h"
-#include "ref/pipeline.h"
-#include "ref/vectors.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/vectors.h"
 
 namespace voxcd {
 namespace {

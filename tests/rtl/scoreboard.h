@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "ref/types.h"
+#include "voxcd/ref/types.h"
 
 namespace voxcd::test {
 

@@ -9,11 +9,11 @@
 #include <cstdlib>
 #include <random>
 
-#include "host/conform_gen.h"
-#include "host/device.h"
-#include "host/device_rtl.h"
-#include "ref/pipeline.h"
-#include "ref/timing.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/device/detail/rtl.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
 #include "tests/rtl/scoreboard.h"
 
 namespace voxcd {

@@ -7,9 +7,9 @@
 #include <regex>
 #include <sstream>
 
-#include "ref/config.h"
-#include "ref/timing.h"
-#include "ref/types.h"
+#include "voxcd/ref/config.h"
+#include "voxcd/ref/timing.h"
+#include "voxcd/ref/types.h"
 
 namespace voxcd {
 namespace {

@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "host/conform_gen.h"
-#include "host/device.h"
-#include "host/device_rtl.h"
-#include "ref/pipeline.h"
-#include "ref/timing.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/device/detail/rtl.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
 #include "tests/ref/directed_cases.h"
 #include "tests/rtl/scoreboard.h"
 

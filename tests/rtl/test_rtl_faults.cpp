@@ -1,6 +1,6 @@
 // The rtl backend's checks on a device that misbehaves: a failed RTL assertion, no progress, and records or
 // activity after the last completion record. A correct device and host never do these, so all but the timeout are
-// made with the test-only RtlFaults of host/device_rtl.h (the timeout only needs consumers that are never ready).
+// made with the test-only RtlFaults of host/device/detail/rtl.h (the timeout only needs consumers that are never ready).
 // Each error must say what happened, leave the caller's records as they were, and belong to the device that failed.
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <string>
 #include <utility>
 
-#include "host/device.h"
-#include "host/device_rtl.h"
-#include "ref/pipeline.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/device/detail/rtl.h"
+#include "voxcd/ref/pipeline.h"
 #include "tests/error_text.h"
 #include "tests/origin_stimulus.h"
 

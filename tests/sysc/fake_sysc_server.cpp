@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "sysc/address_map.h"
-#include "sysc/server_protocol.h"
+#include "voxcd/sysc/address_map.h"
+#include "voxcd/sysc/server_protocol.h"
 
 using namespace voxcd;
 using namespace voxcd::sysc;

@@ -9,13 +9,13 @@
 #include <memory>
 #include <random>
 
-#include "host/conform_gen.h"
-#include "ref/pipeline.h"
-#include "ref/timing.h"
-#include "ref/vectors.h"
-#include "sysc/address_map.h"
-#include "sysc/platform.h"
-#include "sysc/rtl_target.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
+#include "voxcd/ref/vectors.h"
+#include "voxcd/sysc/address_map.h"
+#include "voxcd/sysc/platform.h"
+#include "voxcd/sysc/rtl_target.h"
 #include "tests/ref/directed_cases.h"
 
 namespace voxcd::sysc {

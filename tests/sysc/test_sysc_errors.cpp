@@ -9,10 +9,10 @@
 #include <string>
 #include <utility>
 
-#include "ref/pipeline.h"
-#include "sysc/address_map.h"
-#include "sysc/platform.h"
-#include "sysc/rtl_target.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/sysc/address_map.h"
+#include "voxcd/sysc/platform.h"
+#include "voxcd/sysc/rtl_target.h"
 #include "tests/error_text.h"
 #include "tests/origin_stimulus.h"
 

@@ -1,4 +1,4 @@
-// The host's sysc backends (host/device_sysc.cpp) when their server process fails: missing, ended at any point,
+// The host's sysc backends (host/device/sysc.cpp) when their server process fails: missing, ended at any point,
 // started with bad arguments, or answering with an empty record; and an unknown target. Each must be a DeviceError
 // that says what happened, never a hang or a crash, and a failed start leaves no descriptor or child behind.
 // The misbehaving servers are tests/sysc/fake_sysc_server.cpp, chosen by VOXCD_SYSC_SERVER; no test here elaborates
@@ -19,9 +19,9 @@
 #include <string>
 #include <utility>
 
-#include "host/device.h"
-#include "host/device_sysc.h"
-#include "ref/pipeline.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/device/detail/sysc.h"
+#include "voxcd/ref/pipeline.h"
 #include "tests/error_text.h"
 
 namespace voxcd {

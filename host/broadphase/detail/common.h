@@ -1,0 +1,71 @@
+// Internal to the broadphases (host/broadphase*.cpp): input checks, pair sorting, the shared base class and
+// the factories of each implementation.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "voxcd/host/broadphase/broadphase.h"
+
+namespace voxcd::detail {
+
+inline uint64_t pair_key(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
+
+[[noreturn]] void throw_bad_body(const std::string& who, size_t i, uint64_t frame, const char* what);
+
+// Checked in the one pass each broadphase makes over its input anyway: a box must be finite with lo <= hi
+// (which NaN fails), a sphere finite with radius >= 0, the motion bounds finite and >= 0.
+inline void check_body(const BodyBounds& b, const std::string& who, size_t i, uint64_t frame) {
+  const auto& lo = b.box.lo;
+  const auto& hi = b.box.hi;
+  if (!(lo.x() <= hi.x() && lo.y() <= hi.y() && lo.z() <= hi.z()))
+    throw_bad_body(who, i, frame, "box with lo > hi or NaN");
+  if (!(std::isfinite(lo.x()) && std::isfinite(lo.y()) && std::isfinite(lo.z()) && std::isfinite(hi.x()) &&
+        std::isfinite(hi.y()) && std::isfinite(hi.z())))
+    throw_bad_body(who, i, frame, "box not finite");
+  if (!(std::isfinite(b.centre.x()) && std::isfinite(b.centre.y()) && std::isfinite(b.centre.z()) &&
+        b.radius >= 0 && std::isfinite(b.radius)))
+    throw_bad_body(who, i, frame, "sphere not finite or negative radius");
+  if (!(b.max_speed >= 0 && std::isfinite(b.max_speed) && b.max_accel >= 0 && std::isfinite(b.max_accel)))
+    throw_bad_body(who, i, frame, "motion bound not finite or negative");
+}
+
+// keys: pair_key()s of bodies below n, sorted ascending in place (O(k) radix sort for large k).
+void sort_keys(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint32_t n);
+// keys: distinct pair_key()s of bodies below n, in any order (reordered here). out: the pairs ascending.
+void sort_pairs(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint32_t n,
+                std::vector<BodyPair>& out);
+
+// Exact box overlap on flat boxes (lo xyz, hi xyz), the same comparisons as Aabb::overlaps.
+struct FlatBox {
+  double lo[3], hi[3];
+};
+inline bool overlaps(const FlatBox& a, const FlatBox& b) {
+  return (a.lo[0] <= b.hi[0]) & (b.lo[0] <= a.hi[0]) & (a.lo[1] <= b.hi[1]) & (b.lo[1] <= a.hi[1]) &
+         (a.lo[2] <= b.hi[2]) & (b.lo[2] <= a.hi[2]);
+}
+inline FlatBox flat(const Aabb& b) {
+  return {{b.lo.x(), b.lo.y(), b.lo.z()}, {b.hi.x(), b.hi.y(), b.hi.z()}};
+}
+
+class BroadphaseBase : public Broadphase {
+ public:
+  const std::vector<BodyPair>& pairs() const override { return pairs_; }
+  BroadphaseStats stats() const override { return stats_; }
+
+ protected:
+  std::vector<BodyPair> pairs_;
+  BroadphaseStats stats_;
+};
+
+std::unique_ptr<Broadphase> make_sap();
+std::unique_ptr<Broadphase> make_coherent();
+std::unique_ptr<Broadphase> make_queue();
+std::unique_ptr<Broadphase> make_tree();
+std::unique_ptr<Broadphase> make_grid();
+
+}  // namespace voxcd::detail

@@ -1,0 +1,32 @@
+// The cpu backend: the device contract computed on the host by ref/fast/fast.h's FastRunner (bit-exact with ref/, three
+// arithmetic paths chosen by the widths, vector kernels chosen at run time, chunks over a thread pool), with the
+// device's cycles from ref/'s exact timing model.
+#include "voxcd/host/device/detail/cpu.h"
+
+#include "voxcd/ref/fast/fast.h"
+
+namespace voxcd {
+
+namespace {
+
+class CpuDevice final : public Device {
+ public:
+  CpuDevice(const DeviceConfig& cfg, const DeviceOptions& opt) : runner_(cfg, opt.threads) {}
+  std::string name() const override { return "cpu"; }
+  const DeviceConfig& config() const override { return runner_.config(); }
+  bool models_cycles() const override { return true; }
+  void load(const DeviceMemory& mem) override { runner_.load(mem); }
+  std::vector<Record> run(const std::vector<Job>& jobs) override { return runner_.run(jobs); }
+  void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) override { runner_.run_into(jobs, out); }
+
+ private:
+  FastRunner runner_;
+};
+
+}  // namespace
+
+std::unique_ptr<Device> make_cpu_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
+  return std::make_unique<CpuDevice>(cfg, opt);
+}
+
+}  // namespace voxcd

@@ -1,0 +1,31 @@
+// The `rtl` backend: the Verilated device (rtl/voxcd_device.sv) driven through its pins, cycle by cycle. Not part
+// of the public API: make_device("rtl", ...) returns it.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "voxcd/host/device/device.h"
+
+namespace voxcd {
+
+// Lane counts this build has RTL models for (empty when it has none).
+std::vector<int> rtl_lanes();
+// Configurations beyond the default widths that this build has RTL models for (VOXCD_RTL_CONFIGS).
+std::vector<DeviceConfig> rtl_configs();
+// Throws DeviceError when there is no model for cfg (its lane count or widths), naming what there is.
+std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt);
+
+// Test-only fault injection: the backend misbehaves on purpose so that tests can reach the checks that guard
+// against a misbehaving device (tests/rtl/test_rtl_faults.cpp). make_device never sets any; with none set the
+// backend is the one above.
+struct RtlFaults {
+  // Drive one voxmap write while the device is busy with a job: the RTL's assertion against it fails.
+  bool write_while_busy = false;
+  // Take one completion record fewer than there are jobs before the run ends, as a host that miscounted would:
+  // the last job's records then come after what the run takes for the last completion.
+  bool miss_last_completion = false;
+};
+std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt, const RtlFaults& faults);
+
+}  // namespace voxcd

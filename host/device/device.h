@@ -1,0 +1,51 @@
+// Device: the one interface through which the host talks to a device backend (ref, rtl, sysc, cpu).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "voxcd/ref/config.h"
+#include "voxcd/ref/types.h"
+
+namespace voxcd {
+
+// Thrown when a backend cannot be made or cannot run what it was given; the message says why.
+struct DeviceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct DeviceOptions {
+  std::string trace_path;       // rtl: write an FST waveform here ("" = none)
+  double hit_stall_prob = 0.0;  // rtl: probability that the hit stream's consumer is not ready in a cycle
+  double done_stall_prob = 0.0; // rtl: the same for the completion stream
+  uint64_t stall_seed = 1;      // rtl: seed of the back-pressure pattern
+  unsigned threads = 0;         // cpu: worker threads (0 = one per hardware thread); results never depend on it
+};
+
+class Device {
+ public:
+  virtual ~Device() = default;
+  virtual std::string name() const = 0;
+  virtual const DeviceConfig& config() const = 0;
+  // True when completion records carry the job's device cycles.
+  virtual bool models_cycles() const = 0;
+  // Loads a memory image through the device's write port, replacing the previous contents.
+  virtual void load(const DeviceMemory& mem) = 0;
+  // Runs the jobs back to back and returns the output stream in order. Throws JobError for an invalid job
+  // before running any.
+  virtual std::vector<Record> run(const std::vector<Job>& jobs) = 0;
+  // The same stream into `out` (replacing its contents and reusing its capacity), for callers that run many
+  // batches: a backend may keep its working buffers between calls too.
+  virtual void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) { out = run(jobs); }
+};
+
+// The backends this build has, by name.
+std::vector<std::string> device_backends();
+// Makes a backend by name for cfg; throws DeviceError naming the backend and what it lacks.
+std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg,
+                                    const DeviceOptions& opt = {});
+
+}  // namespace voxcd

@@ -1,0 +1,59 @@
+// The backend registry and the `ref` backend.
+#include <algorithm>
+
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/device/detail/cpu.h"
+#include "voxcd/host/device/detail/rtl.h"
+#include "voxcd/host/device/detail/sysc.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
+
+namespace voxcd {
+
+namespace {
+
+// The reference as a device: the executable specification, one point at a time, with the cycles of the exact
+// timing model.
+class RefDevice final : public Device {
+ public:
+  explicit RefDevice(const DeviceConfig& cfg) : cfg_(cfg) { cfg_.validate(); }
+  std::string name() const override { return "ref"; }
+  const DeviceConfig& config() const override { return cfg_; }
+  bool models_cycles() const override { return true; }
+  void load(const DeviceMemory& mem) override {
+    validate_memory(cfg_, mem);
+    mem_ = mem;
+  }
+  std::vector<Record> run(const std::vector<Job>& jobs) override {
+    std::vector<Record> out = run_stream(cfg_, mem_, jobs);
+    annotate_cycles(cfg_, jobs, out);
+    return out;
+  }
+
+ private:
+  DeviceConfig cfg_;
+  DeviceMemory mem_;
+};
+
+}  // namespace
+
+std::vector<std::string> device_backends() {
+  std::vector<std::string> b = {"ref", "cpu"};
+  if (!rtl_lanes().empty()) b.push_back("rtl");
+  if (have_sysc()) b.insert(b.end(), {"sysc-rtl", "sysc-tlm"});
+  return b;
+}
+
+std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions& opt) {
+  if (backend == "ref") return std::make_unique<RefDevice>(cfg);
+  if (backend == "cpu") return make_cpu_device(cfg, opt);
+  if (backend == "rtl") return make_rtl_device(cfg, opt);
+  if (backend == "sysc-rtl") return make_sysc_device("rtl", cfg, opt);
+  if (backend == "sysc-tlm") return make_sysc_device("tlm", cfg, opt);
+  const auto all = device_backends();
+  std::string list;
+  for (const auto& b : all) list += (list.empty() ? "" : ", ") + b;
+  throw DeviceError("unknown backend '" + backend + "' (this build has: " + list + ")");
+}
+
+}  // namespace voxcd

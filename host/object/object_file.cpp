@@ -1,0 +1,374 @@
+#include "voxcd/host/object/object_file.h"
+
+#include <zlib.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "voxcd/host/object/shapes.h"
+
+namespace voxcd {
+
+namespace {
+
+constexpr char kMagic[8] = {'V', 'O', 'X', 'C', 'D', 'O', 'B', 'J'};
+constexpr uint32_t kVersion = 2;  // version 1 (no report section) is still read
+// The report section's fields (version 2), in file order.
+constexpr int kReportCounts = 19;
+constexpr uint32_t kClosed = 1, kFlipped = 2, kPointsOnly = 4, kSurfaceOnly = 8, kReportFlags = 15;
+
+std::array<uint64_t*, kReportCounts> report_fields(MeshReport& m, VoxelizeReport& v) {
+  return {reinterpret_cast<uint64_t*>(&m.input_vertices), reinterpret_cast<uint64_t*>(&m.input_triangles),
+          reinterpret_cast<uint64_t*>(&m.vertices), reinterpret_cast<uint64_t*>(&m.triangles),
+          reinterpret_cast<uint64_t*>(&m.welded), reinterpret_cast<uint64_t*>(&m.welded_near),
+          reinterpret_cast<uint64_t*>(&m.dropped_nonfinite),
+          reinterpret_cast<uint64_t*>(&m.dropped_repeated), reinterpret_cast<uint64_t*>(&m.dropped_collinear),
+          reinterpret_cast<uint64_t*>(&m.dropped_duplicate), reinterpret_cast<uint64_t*>(&m.reoriented),
+          reinterpret_cast<uint64_t*>(&m.open_edges), reinterpret_cast<uint64_t*>(&m.nonmanifold_edges),
+          reinterpret_cast<uint64_t*>(&m.inconsistent_edges), reinterpret_cast<uint64_t*>(&m.components),
+          reinterpret_cast<uint64_t*>(&m.closed_components), reinterpret_cast<uint64_t*>(&m.sheet_components),
+          &v.uncertain, &v.evaluated};
+}
+static_assert(sizeof(size_t) == sizeof(uint64_t), "report counts are stored as u64");
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the object file is little-endian; add byte swaps here");
+
+struct Writer {
+  std::string buf;
+  template <class T>
+  void put(T v) {
+    static_assert(std::is_trivially_copyable<T>::value, "plain values only");
+    char b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));  // the file is little-endian, as is every machine this runs on
+    buf.append(b, sizeof(T));
+  }
+  void str(const std::string& s) {
+    put(uint32_t(s.size()));
+    buf += s;
+  }
+};
+
+// Errors name the byte offset where the field that is wrong begins.
+struct Reader {
+  const std::string& buf;
+  const std::string& path;
+  size_t pos = 0;
+  size_t field = 0;  // offset of the last field read
+  template <class T>
+  T get(const char* what) {
+    need(sizeof(T), what);
+    field = pos;
+    T v;
+    std::memcpy(&v, buf.data() + pos, sizeof(T));
+    pos += sizeof(T);
+    return v;
+  }
+  // count items of `size` bytes each must follow (no overflow for any count).
+  void need(uint64_t n, const char* what, uint64_t size = 1) {
+    const uint64_t left = buf.size() - pos;
+    if (n > left / size)
+      throw ObjectFileError(path + ": truncated at byte " + std::to_string(pos) + " while reading " + what + " (" +
+                            (n <= UINT64_MAX / size ? std::to_string(n * size) : std::to_string(n) + " x " +
+                                                                                     std::to_string(size)) +
+                            " bytes needed, " + std::to_string(left) + " left)");
+  }
+  std::string str(const char* what) {
+    const uint32_t n = get<uint32_t>(what);
+    need(n, what);
+    field = pos;
+    std::string s = buf.substr(pos, n);
+    pos += n;
+    return s;
+  }
+  [[noreturn]] void bad(const std::string& msg) const {
+    throw ObjectFileError(path + ": " + msg + " (byte " + std::to_string(field) + ")");
+  }
+};
+
+void put_vec(Writer& w, const Eigen::Vector3d& v) {
+  for (int i = 0; i < 3; ++i) w.put(v[i]);
+}
+Eigen::Vector3d get_vec(Reader& r, const char* what) {
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) v[i] = r.get<double>(what);
+  return v;
+}
+void put_grid(Writer& w, const GridPlacement& g) {
+  w.put(g.voxel);
+  put_vec(w, g.origin);
+  for (uint32_t d : g.dims) w.put(d);
+}
+GridPlacement get_grid(Reader& r, const char* what) {
+  GridPlacement g;
+  g.voxel = r.get<double>(what);
+  if (!(std::isfinite(g.voxel) && g.voxel > 0))
+    r.bad(std::string(what) + ": the voxel size " + std::to_string(g.voxel) + " is not a positive finite number");
+  g.origin = get_vec(r, what);
+  if (!g.origin.allFinite()) r.bad(std::string(what) + ": the origin is not finite");
+  for (auto& d : g.dims) {
+    d = r.get<uint32_t>(what);
+    if (d == 0 || d > kObjectMaxDim)
+      r.bad(std::string(what) + ": dimension " + std::to_string(d) + " is out of range (1.." +
+            std::to_string(kObjectMaxDim) + ")");
+  }
+  return g;
+}
+
+}  // namespace
+
+uint64_t hash_bytes(const std::string& bytes) {
+  uint64_t h = 14695981039346656037ull;  // FNV-1a 64 offset basis
+  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+uint64_t hash_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ObjectFileError(path + ": cannot open");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return hash_bytes(bytes);
+}
+
+Mesh load_source(const std::string& mesh_or_shape, std::string* source, uint64_t* hash, MeshReport* report,
+                 const LoadOptions& opt) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(mesh_or_shape, ec)) {
+    Mesh m = load_mesh(mesh_or_shape, report, opt);
+    if (source) *source = mesh_or_shape;
+    if (hash) *hash = hash_file(mesh_or_shape);
+    return m;
+  }
+  if (is_shape(mesh_or_shape)) {
+    if (source) *source = "shape:" + mesh_or_shape;
+    if (hash) *hash = hash_bytes("shape:" + mesh_or_shape);
+    Mesh m = make_shape(mesh_or_shape);
+    if (report) {
+      *report = MeshReport{};
+      report->input_vertices = report->vertices = m.vertices.size();
+      report->input_triangles = report->triangles = m.size();
+      report->components = report->closed_components = 1;
+      report->closed = true;
+    }
+    return m;
+  }
+  std::string known;
+  for (const auto& n : shape_names()) known += (known.empty() ? "" : ", ") + n;
+  if (std::filesystem::exists(mesh_or_shape, ec))
+    throw MeshError(mesh_or_shape + ": not a regular file");
+  throw MeshError(mesh_or_shape + ": no such file, and not a built-in shape (" + known + ")");
+}
+
+ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt,
+                       const MeshReport* report) {
+  ObjectFile obj;
+  const double voxel = opt.resolution ? voxel_for_resolution(mesh, opt.resolution) : opt.voxel;
+  obj.source = source;
+  obj.source_hash = source_hash;
+  obj.shell_ratio = opt.shell_ratio;
+  obj.shift = opt.shift;
+  VoxelizeOptions vo;
+  vo.voxel = voxel;
+  vo.shift = opt.shift;
+  vo.max_dim = opt.max_dim;
+  vo.threads = opt.threads;
+  obj.voxmap = voxelize(mesh, vo, &obj.voxelize_report);
+  if (report) {
+    obj.has_report = true;
+    obj.mesh_report = *report;
+  }
+  ShellOptions so;
+  so.target_voxel = voxel;
+  so.ratio = opt.shell_ratio;
+  so.shift = opt.shift;
+  so.threads = opt.threads;
+  obj.shell = point_shell(mesh, so);
+  return obj;
+}
+
+void write_object(const std::string& path, const ObjectFile& obj) {
+  const PointShell& sh = obj.shell;
+  if (sh.points.size() != sh.size() || sh.normals.size() != sh.size())
+    throw ObjectFileError(path + ": the shell's cells, points and normals differ in number");
+  for (const GridPlacement* g : {&obj.voxmap.grid(), &sh.grid})
+    for (uint32_t d : g->dims)
+      if (d == 0 || d > kObjectMaxDim)
+        throw ObjectFileError(path + ": grid dimension " + std::to_string(d) + " does not fit an object file");
+  Writer w;
+  w.buf.append(kMagic, 8);
+  w.put(kVersion);
+  w.put(uint32_t{0});  // flags
+  w.put(obj.source_hash);
+  w.str(obj.source);
+  w.put(obj.shell_ratio);
+  put_vec(w, obj.shift);
+  // Voxmap.
+  const Voxmap& vm = obj.voxmap;
+  put_grid(w, vm.grid());
+  const auto c = vm.counts();
+  w.put(c[kEmpty]);
+  w.put(c[kSurface]);
+  w.put(c[kInterior]);
+  w.put(uint32_t{64});  // MEMW of the image below
+  w.put(uint64_t(vm.words().size()));
+  for (uint64_t word : vm.words()) w.put(word);
+  // Shell.
+  const PointShell& s = obj.shell;
+  put_grid(w, s.grid);
+  w.put(uint32_t(kObjectShellFrac));
+  w.put(uint64_t(s.size()));
+  for (size_t k = 0; k < s.size(); ++k)
+    for (int a = 0; a < 3; ++a) w.put(int32_t((2 * int64_t(s.cells[k][a]) + 1) << (kObjectShellFrac - 1)));
+  for (size_t k = 0; k < s.size(); ++k) put_vec(w, s.points[k]);
+  for (size_t k = 0; k < s.size(); ++k) put_vec(w, s.normals[k]);
+  // Report (version 2): flags, weld tolerance, counts; all zero when the object has none.
+  {
+    MeshReport m = obj.has_report ? obj.mesh_report : MeshReport{};
+    VoxelizeReport v = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
+    uint32_t flags = 0;
+    if (obj.has_report)
+      flags = 16 | (m.closed ? kClosed : 0) | (m.flipped ? kFlipped : 0) | (m.points_only ? kPointsOnly : 0) |
+              (m.surface_only ? kSurfaceOnly : 0);
+    w.put(flags);
+    w.put(m.weld_tolerance);
+    for (uint64_t* f : report_fields(m, v)) w.put(*f);
+  }
+  const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
+  w.put(crc);
+
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw ObjectFileError(path + ": cannot write " + tmp);
+    out.write(w.buf.data(), std::streamsize(w.buf.size()));
+    if (!out.flush()) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw ObjectFileError(path + ": write failed");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw ObjectFileError(path + ": cannot rename " + tmp + " into place");
+  }
+}
+
+ObjectFile read_object(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ObjectFileError(path + ": cannot open");
+  const std::string buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Reader r{buf, path};
+  r.need(8, "the magic number");
+  if (std::memcmp(buf.data(), kMagic, 8) != 0) r.bad("not a voxcd object file (bad magic)");
+  r.pos = 8;
+  const uint32_t version = r.get<uint32_t>("the version");
+  if (version != 1 && version != kVersion)
+    r.bad("object file version " + std::to_string(version) + " is not supported (this reader knows versions 1 and " +
+          std::to_string(kVersion) + ")");
+  const uint32_t stored_crc = [&] {
+    uint32_t v;
+    std::memcpy(&v, buf.data() + buf.size() - 4, 4);
+    return v;
+  }();
+  const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(buf.data()), buf.size() - 4));
+  if (const uint32_t flags = r.get<uint32_t>("the flags"))
+    r.bad("unknown flags " + std::to_string(flags) + " (must be 0)");
+  ObjectFile obj;
+  obj.source_hash = r.get<uint64_t>("the source hash");
+  obj.source = r.str("the source name");
+  obj.shell_ratio = r.get<double>("the shell ratio");
+  if (!(std::isfinite(obj.shell_ratio) && obj.shell_ratio > 0)) r.bad("the shell ratio is not a positive number");
+  obj.shift = get_vec(r, "the grid shift");
+  if (!obj.shift.allFinite()) r.bad("the grid shift is not finite");
+  const GridPlacement g = get_grid(r, "the voxmap grid");
+  uint64_t counts[3];
+  const size_t counts_at = r.pos;
+  for (auto& c : counts) c = r.get<uint64_t>("the state counts");
+  if (const uint32_t memw = r.get<uint32_t>("the voxmap word width"); memw != 64)
+    r.bad("voxmap word width " + std::to_string(memw) + " is not 64");
+  const uint64_t nwords = r.get<uint64_t>("the voxmap word count");
+  if (nwords != (g.size() + 31) / 32)
+    r.bad("voxmap word count " + std::to_string(nwords) + " does not match its dimensions (" +
+          std::to_string((g.size() + 31) / 32) + ")");
+  r.need(nwords, "the voxmap words", 8);
+  obj.voxmap = Voxmap(g);
+  const size_t voxmap_at = r.pos;
+  std::memcpy(obj.voxmap.words().data(), buf.data() + r.pos, nwords * 8);
+  r.field = r.pos;
+  r.pos += nwords * 8;
+  if (const uint64_t used = g.size() % 32; used && (obj.voxmap.words().back() >> (2 * used)) != 0) {
+    r.field = r.pos - 8;
+    r.bad("the voxmap's last word has bits set beyond its last voxel");
+  }
+  const GridPlacement sg = get_grid(r, "the shell grid");
+  if (r.get<uint32_t>("the shell word format") != uint32_t(kObjectShellFrac)) r.bad("unexpected shell word format");
+  const uint64_t n = r.get<uint64_t>("the shell point count");
+  r.need(n, "the shell points", 12 + 24 + 24);
+  PointShell& s = obj.shell;
+  s.grid = sg;
+  s.cells.resize(n);
+  s.points.resize(n);
+  s.normals.resize(n);
+  const size_t shell_words_at = r.pos;
+  for (uint64_t k = 0; k < n; ++k)
+    for (int a = 0; a < 3; ++a) {
+      const int32_t w = r.get<int32_t>("a shell word");
+      const int32_t unit = 1 << (kObjectShellFrac - 1);
+      if (w < 0 || w % unit != 0 || (w / unit) % 2 != 1 || uint32_t(w / unit / 2) >= sg.dims[a])
+        r.bad("shell word " + std::to_string(k) + " is not a voxel centre of the shell grid");
+      s.cells[k][a] = uint32_t(w / unit / 2);
+    }
+  for (uint64_t k = 1; k < n; ++k) {
+    auto lin = [&](uint64_t i) {
+      return s.cells[i][0] + uint64_t(sg.dims[0]) * (s.cells[i][1] + uint64_t(sg.dims[1]) * s.cells[i][2]);
+    };
+    if (lin(k) <= lin(k - 1)) {
+      r.field = shell_words_at + 12 * k;
+      r.bad("shell word " + std::to_string(k) + " is not after shell word " + std::to_string(k - 1) +
+            " in linear-index order");
+    }
+  }
+  for (uint64_t k = 0; k < n; ++k) {
+    s.points[k] = get_vec(r, "a shell point");
+    if (!s.points[k].allFinite()) r.bad("shell point " + std::to_string(k) + " is not finite");
+  }
+  for (uint64_t k = 0; k < n; ++k) {
+    s.normals[k] = get_vec(r, "a shell normal");
+    if (!s.normals[k].allFinite()) r.bad("shell normal " + std::to_string(k) + " is not finite");
+  }
+  if (version >= 2) {
+    const uint32_t flags = r.get<uint32_t>("the report flags");
+    if (flags & ~uint32_t(16 | kReportFlags)) r.bad("unknown report flags " + std::to_string(flags));
+    obj.has_report = flags & 16;
+    MeshReport& m = obj.mesh_report;
+    m.closed = flags & kClosed;
+    m.flipped = flags & kFlipped;
+    m.points_only = flags & kPointsOnly;
+    m.surface_only = flags & kSurfaceOnly;
+    m.weld_tolerance = r.get<double>("the weld tolerance");
+    if (!(std::isfinite(m.weld_tolerance) && m.weld_tolerance >= 0)) r.bad("the weld tolerance is not a finite number >= 0");
+    for (uint64_t* f : report_fields(m, obj.voxelize_report)) *f = r.get<uint64_t>("the report counts");
+  }
+  r.get<uint32_t>("the checksum");
+  if (r.pos != buf.size()) {
+    r.field = r.pos;
+    r.bad(std::to_string(buf.size() - r.pos) + " unexpected bytes after the checksum");
+  }
+  if (crc != stored_crc) r.bad("checksum mismatch: the file is corrupt");
+  const auto c = obj.voxmap.counts();
+  if (c[kReserved] != 0) {
+    r.field = voxmap_at;
+    r.bad("the voxmap holds " + std::to_string(c[kReserved]) + " voxels in the reserved state 3");
+  }
+  if (c[kEmpty] != counts[0] || c[kSurface] != counts[1] || c[kInterior] != counts[2]) {
+    r.field = counts_at;
+    r.bad("state counts do not match the voxmap");
+  }
+  return obj;
+}
+
+}  // namespace voxcd

@@ -1,0 +1,40 @@
+// An object type as a scene uses it: the object file (voxmap and point shell) plus what collision queries derive
+// from it once: the penetration depth of every voxel and bounding volumes in the object's frame.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "voxcd/host/object/object_file.h"
+
+namespace voxcd {
+
+struct ObjectType {
+  std::string name;
+  ObjectFile object;
+  // Per voxel (linear index), in voxels: the distance from the voxel's centre to the centre of the nearest surface
+  // voxel; 0 for surface and empty voxels. The penetration estimate of a contact (docs/pairs.md bounds its error).
+  std::vector<float> depth;
+  // Bounds in the object's frame of everything that can take part in a contact: the voxmap's non-empty voxels and
+  // the shell points.
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // of the smallest enclosing sphere (host/object/bounds.h)
+  double radius = 0;
+
+  const Voxmap& voxmap() const { return object.voxmap; }
+  const PointShell& shell() const { return object.shell; }
+};
+
+// Derives depth and bounds. MeshError when the voxmap has no surface voxel (nothing to collide with).
+ObjectType make_object_type(ObjectFile obj, const std::string& name);
+
+// An object type from an object file (recognised by its magic, whatever its name), a mesh file or a built-in
+// shape name; meshes and shapes are voxelised at `voxel` (which must then be > 0). Errors name the argument.
+ObjectType load_object_type(const std::string& file_or_shape, double voxel);
+
+// True when the file starts with the object file's magic.
+bool is_object_file(const std::string& path);
+
+}  // namespace voxcd

@@ -1,0 +1,612 @@
+// repair(): a triangle soup as real exports give it, made into the best surface it allows, and reported. The
+// steps, in order (docs/objects.md, "Repair"): drop triangles with a non-finite corner, weld vertices within
+// kWeldRelative of the model's size, drop degenerate triangles and exact duplicates, orient each part
+// consistently, orient parts outward (nested closed parts keep the orientation they were given, so cavities stay
+// cavities), and mark the parts that enclose nothing as sheets.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <unordered_map>
+
+#include "voxcd/host/object/mesh.h"
+
+namespace voxcd {
+
+namespace {
+
+// A hole whose fill has more than this fraction of its part's area makes the part a sheet (docs/objects.md).
+constexpr double kSheetRatio = 0.4;
+// Open parts whose boundaries come this close (relative to the model's size) close each other (cracks).
+constexpr double kCrackRelative = 1e-2;
+// Nesting is tested between every two parts up to this many parts.
+constexpr size_t kMaxNestingParts = 4096;
+
+struct UnionFind {
+  std::vector<uint32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Drops vertices no triangle uses and triangles with a non-finite corner; the finite vertices of a triangle-less
+// mesh are kept (a point cloud).
+size_t drop_nonfinite(Mesh& m) {
+  size_t dropped = 0;
+  std::vector<std::array<uint32_t, 3>> kept;
+  kept.reserve(m.triangles.size());
+  for (const auto& t : m.triangles) {
+    if (m.vertices[t[0]].allFinite() && m.vertices[t[1]].allFinite() && m.vertices[t[2]].allFinite())
+      kept.push_back(t);
+    else
+      ++dropped;
+  }
+  m.triangles = std::move(kept);
+  return dropped;
+}
+
+// Welds vertices within `tol` (Chebyshev distance, to the first vertex of a cluster in index order, after exactly
+// equal vertices are merged); vertices no triangle uses are dropped (all finite vertices are kept for a point cloud).
+// Returns the vertices merged, and in *near those not exactly equal to their representative.
+size_t weld_near(Mesh& m, double tol, size_t* near) {
+  const bool cloud = m.triangles.empty();
+  size_t exact = 0;
+  if (cloud) {
+    // A point cloud keeps every finite point (weld() keeps what triangles use).
+    std::vector<Eigen::Vector3d> pts;
+    for (const auto& p : m.vertices)
+      if (p.allFinite()) pts.push_back(p);
+    m.vertices = std::move(pts);
+  } else {
+    // Exactly equal vertices first, keeping index order (weld() numbers them by first use instead).
+    std::vector<char> used(m.vertices.size(), 0);
+    for (const auto& t : m.triangles)
+      for (uint32_t v : t) used[v] = 1;
+    struct Hash {
+      size_t operator()(const Eigen::Vector3d& p) const {
+        uint64_t h = 1469598103934665603ull;
+        for (int i = 0; i < 3; ++i) {
+          const double d = p[i] == 0 ? 0.0 : p[i];  // -0 and +0 are the same point
+          uint64_t b;
+          std::memcpy(&b, &d, 8);
+          h = (h ^ b) * 1099511628211ull;
+          h ^= h >> 29;
+        }
+        return size_t(h);
+      }
+    };
+    std::unordered_map<Eigen::Vector3d, uint32_t, Hash> index;
+    index.reserve(m.vertices.size());
+    std::vector<uint32_t> to(m.vertices.size(), UINT32_MAX);
+    std::vector<Eigen::Vector3d> kept;
+    size_t n_used = 0;
+    for (size_t v = 0; v < m.vertices.size(); ++v) {
+      if (!used[v]) continue;
+      ++n_used;
+      auto [it, fresh] = index.emplace(m.vertices[v], uint32_t(kept.size()));
+      if (fresh) kept.push_back(m.vertices[v]);
+      to[v] = it->second;
+    }
+    for (auto& t : m.triangles)
+      for (uint32_t& v : t) v = to[v];
+    m.vertices = std::move(kept);
+    exact = n_used - m.vertices.size();
+  }
+  // Within tol: cells 4 tol wide, so a vertex looks into a neighbouring cell only on an axis where it lies within
+  // tol of the cell's side. Each cell keeps a list of representatives through `next`.
+  const double cell = 4 * tol;
+  struct KeyHash {
+    size_t operator()(const std::array<int64_t, 3>& k) const {
+      return size_t((uint64_t(k[0]) * 0x9e3779b97f4a7c15ull) ^ (uint64_t(k[1]) * 0xc2b2ae3d27d4eb4full) ^
+                    (uint64_t(k[2]) * 0x165667b19e3779f9ull));
+    }
+  };
+  std::unordered_map<std::array<int64_t, 3>, uint32_t, KeyHash> head;
+  head.reserve(m.vertices.size());
+  std::vector<uint32_t> next(m.vertices.size(), UINT32_MAX), remap(m.vertices.size());
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(m.vertices.size());
+  size_t n_near = 0;
+  for (size_t v = 0; v < m.vertices.size(); ++v) {
+    const Eigen::Vector3d& p = m.vertices[v];
+    uint32_t found = UINT32_MAX;
+    if (tol > 0 && p.allFinite()) {
+      std::array<int64_t, 3> k{};
+      int lo[3], hi[3];
+      for (int a = 0; a < 3; ++a) {
+        const double g = p[a] / cell;
+        k[a] = int64_t(std::floor(g));
+        const double f = (g - double(k[a])) * 4;  // position in the cell, in units of tol
+        lo[a] = f < 1 ? -1 : 0;
+        hi[a] = f > 3 ? 1 : 0;
+      }
+      for (int dz = lo[2]; dz <= hi[2]; ++dz)
+        for (int dy = lo[1]; dy <= hi[1]; ++dy)
+          for (int dx = lo[0]; dx <= hi[0]; ++dx) {
+            const auto it = head.find({k[0] + dx, k[1] + dy, k[2] + dz});
+            if (it == head.end()) continue;
+            for (uint32_t r = it->second; r != UINT32_MAX; r = next[r])
+              if ((out[r] - p).cwiseAbs().maxCoeff() <= tol && r < found) found = r;
+          }
+      if (found == UINT32_MAX) {
+        found = uint32_t(out.size());
+        out.push_back(p);
+        auto [it, fresh] = head.emplace(k, found);
+        if (!fresh) {
+          next[found] = it->second;
+          it->second = found;
+        }
+      } else {
+        ++n_near;
+      }
+    } else {
+      found = uint32_t(out.size());
+      out.push_back(p);
+    }
+    remap[v] = found;
+  }
+  for (auto& t : m.triangles)
+    for (uint32_t& v : t) v = remap[v];
+  m.vertices = std::move(out);
+  if (near) *near = n_near;
+  return exact + n_near;
+}
+
+bool zero_area(const Mesh& m, const std::array<uint32_t, 3>& t) {
+  const Eigen::Vector3d a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+  const double l2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return (b - a).cross(c - a).squaredNorm() <= 1e-26 * l2 * l2;
+}
+
+// Drops degenerate triangles (counted by cause) and exact duplicates (the same three vertices in either
+// orientation; the first is kept).
+void drop_degenerate_and_duplicates(Mesh& m, MeshReport& r) {
+  std::vector<std::array<uint32_t, 3>> kept;
+  kept.reserve(m.triangles.size());
+  for (const auto& t : m.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      ++r.dropped_repeated;
+    else if (zero_area(m, t))
+      ++r.dropped_collinear;
+    else
+      kept.push_back(t);
+  }
+  std::vector<uint32_t> order(kept.size());
+  std::iota(order.begin(), order.end(), 0u);
+  auto key = [&](uint32_t i) {
+    auto k = kept[i];
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  std::vector<std::array<uint32_t, 3>> keys(kept.size());
+  for (size_t i = 0; i < kept.size(); ++i) keys[i] = key(uint32_t(i));
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return keys[a] != keys[b] ? keys[a] < keys[b] : a < b; });
+  std::vector<char> dup(kept.size(), 0);
+  for (size_t i = 1; i < order.size(); ++i)
+    if (keys[order[i]] == keys[order[i - 1]]) dup[order[i]] = 1;
+  std::vector<std::array<uint32_t, 3>> out;
+  out.reserve(kept.size());
+  for (size_t i = 0; i < kept.size(); ++i) {
+    if (dup[i])
+      ++r.dropped_duplicate;
+    else
+      out.push_back(kept[i]);
+  }
+  m.triangles = std::move(out);
+}
+
+// One use of an undirected edge by a triangle.
+struct EdgeUse {
+  uint64_t key;  // lo << 32 | hi
+  uint32_t tri;
+  bool forward;  // lo -> hi in the triangle's winding
+};
+
+std::vector<EdgeUse> edge_uses(const Mesh& m) {
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * m.size());
+  for (size_t t = 0; t < m.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(t), a < b});
+    }
+  std::sort(uses.begin(), uses.end(),
+            [](const EdgeUse& x, const EdgeUse& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
+  return uses;
+}
+
+// Closes cracks: a vertex on an open edge moves onto the nearest vertex on an open edge of another edge-connected
+// part within `tol` (one that comes earlier in index order, so that no two vertices trade places). Returns how
+// many vertices moved; the triangles are remapped.
+size_t close_cracks(Mesh& m, const std::vector<EdgeUse>& uses, double tol) {
+  UnionFind parts{m.size()};
+  std::vector<char> boundary(m.vertices.size(), 0);
+  bool any = false;
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    for (size_t k = i + 1; k < j; ++k) parts.unite(uses[i].tri, uses[k].tri);
+    if (j - i == 1) {
+      boundary[uses[i].key >> 32] = boundary[uint32_t(uses[i].key)] = 1;
+      any = true;
+    }
+    i = j;
+  }
+  if (!any || !(tol > 0)) return 0;
+  std::vector<uint32_t> part_of(m.vertices.size(), UINT32_MAX);
+  for (size_t t = 0; t < m.size(); ++t)
+    for (uint32_t v : m.triangles[t]) part_of[v] = parts.find(uint32_t(t));
+  struct KeyHash {
+    size_t operator()(const std::array<int64_t, 3>& k) const {
+      return size_t((uint64_t(k[0]) * 0x9e3779b97f4a7c15ull) ^ (uint64_t(k[1]) * 0xc2b2ae3d27d4eb4full) ^
+                    (uint64_t(k[2]) * 0x165667b19e3779f9ull));
+    }
+  };
+  std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, KeyHash> cells;
+  auto key_of = [&](const Eigen::Vector3d& p) {
+    std::array<int64_t, 3> k{};
+    for (int a = 0; a < 3; ++a) k[a] = int64_t(std::floor(p[a] / tol));
+    return k;
+  };
+  std::vector<uint32_t> to(m.vertices.size());
+  std::iota(to.begin(), to.end(), 0u);
+  size_t moved = 0;
+  for (uint32_t v = 0; v < m.vertices.size(); ++v) {
+    if (!boundary[v]) continue;
+    const Eigen::Vector3d& p = m.vertices[v];
+    const auto k = key_of(p);
+    uint32_t best = UINT32_MAX;
+    double best_d = tol;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = cells.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == cells.end()) continue;
+          for (uint32_t u : it->second) {
+            const double d = (m.vertices[u] - p).norm();
+            if (part_of[u] != part_of[v] && (d < best_d || (d == best_d && u < best))) {
+              best = u;
+              best_d = d;
+            }
+          }
+        }
+    if (best != UINT32_MAX) {
+      to[v] = to[best];
+      ++moved;
+    } else {
+      cells[k].push_back(v);
+    }
+  }
+  if (moved)
+    for (auto& t : m.triangles)
+      for (uint32_t& v : t) v = to[v];
+  return moved;
+}
+
+// Signed volume of a part closed by the cone from its centroid (positive when its triangles face outward).
+double part_volume(const Mesh& m, const std::vector<uint32_t>& tris) {
+  Eigen::Vector3d o = Eigen::Vector3d::Zero();
+  for (uint32_t t : tris) o += (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3;
+  o /= double(tris.size());
+  double v = 0;
+  for (uint32_t t : tris) v += (m.corner(t, 0) - o).dot((m.corner(t, 1) - o).cross(m.corner(t, 2) - o));
+  return v / 6;
+}
+
+// Parity of the crossings of the ray from p along a fixed irrational direction with the triangles `tris`.
+bool inside_part(const Mesh& m, const std::vector<uint32_t>& tris, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d d = Eigen::Vector3d(0.5773502691896258, 0.5780821362, 0.5766176874).normalized();
+  int n = 0;
+  for (uint32_t t : tris) {
+    const Eigen::Vector3d a = m.corner(t, 0), e1 = m.corner(t, 1) - a, e2 = m.corner(t, 2) - a;
+    const Eigen::Vector3d h = d.cross(e2);
+    const double det = e1.dot(h);
+    if (det == 0) continue;
+    const Eigen::Vector3d s = p - a;
+    const double u = s.dot(h) / det;
+    if (u < 0 || u > 1) continue;
+    const Eigen::Vector3d q = s.cross(e1);
+    const double v = d.dot(q) / det;
+    if (v < 0 || u + v > 1) continue;
+    if (e2.dot(q) / det > 0) ++n;
+  }
+  return n % 2 == 1;
+}
+
+}  // namespace
+
+MeshReport repair(Mesh& m) {
+  MeshReport r;
+  r.input_vertices = m.vertices.size();
+  r.input_triangles = m.triangles.size();
+  for (size_t t = 0; t < m.size(); ++t)
+    for (uint32_t v : m.triangles[t])
+      if (v >= m.vertices.size())
+        throw MeshError(m.name + ": triangle " + std::to_string(t) + " has vertex index " + std::to_string(v) +
+                        " out of range (" + std::to_string(m.vertices.size()) + " vertices)");
+  const size_t nonfinite = drop_nonfinite(m);
+  const bool had_triangles = !m.triangles.empty();
+  // Weld tolerance from the bounding box of what is left.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  auto grow = [&](const Eigen::Vector3d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  };
+  if (had_triangles) {
+    for (const auto& t : m.triangles)
+      for (uint32_t v : t) grow(m.vertices[v]);
+  } else {
+    for (const auto& p : m.vertices)
+      if (p.allFinite()) grow(p);
+  }
+  if (!lo.allFinite()) {
+    if (r.input_triangles)
+      throw MeshError(m.name + ": none of the mesh's " + std::to_string(r.input_triangles) +
+                      " triangles has finite corners");
+    throw MeshError(m.name + (m.vertices.empty() ? ": the file holds no triangles and no points"
+                                                 : ": the file holds no triangles and no finite points"));
+  }
+  r.weld_tolerance = kWeldRelative * (hi - lo).norm();
+  size_t near = 0;
+  r.welded = weld_near(m, r.weld_tolerance, &near);
+  r.welded_near = near;
+  if (!had_triangles) {
+    r.points_only = r.surface_only = true;
+    r.vertices = m.vertices.size();
+    m.sheet.clear();
+    return r;
+  }
+  std::vector<uint32_t> dropped_corners;  // corners of every triangle, in case none survives
+  for (const auto& t : m.triangles) dropped_corners.insert(dropped_corners.end(), t.begin(), t.end());
+  drop_degenerate_and_duplicates(m, r);
+  r.dropped_nonfinite = nonfinite;
+  if (m.triangles.empty()) {
+    // Every triangle was a point or a segment: what is left is its corners, a point cloud.
+    std::vector<char> used(m.vertices.size(), 0);
+    for (const auto& t : dropped_corners) used[t] = 1;
+    std::vector<Eigen::Vector3d> pts;
+    for (size_t v = 0; v < m.vertices.size(); ++v)
+      if (used[v]) pts.push_back(m.vertices[v]);
+    m.vertices = std::move(pts);
+    r.points_only = r.surface_only = true;
+    r.vertices = m.vertices.size();
+    m.sheet.clear();
+    return r;
+  }
+
+  // Cracks between parts: open edges of different parts within kCrackCloseRelative of the model's size are
+  // joined (counted as welded within tolerance), and what that makes degenerate or duplicate is dropped.
+  std::vector<EdgeUse> uses = edge_uses(m);
+  if (const size_t moved = close_cracks(m, uses, kCrackCloseRelative * (hi - lo).norm())) {
+    r.welded += moved;
+    r.welded_near += moved;
+    near += moved;
+    drop_degenerate_and_duplicates(m, r);
+    uses = edge_uses(m);
+  }
+
+  // Orientation: breadth-first over edges shared by exactly two triangles, each neighbour turned to run the
+  // shared edge the other way. Each patch then takes the orientation most of its triangles were given.
+  const size_t n = m.size();
+  // At most one neighbour across each of a triangle's three edges (an edge of exactly two triangles); bit k of
+  // same[t]: the neighbour runs that edge the same way in the input.
+  std::vector<std::array<uint32_t, 3>> adj(n, {UINT32_MAX, UINT32_MAX, UINT32_MAX});
+  std::vector<uint8_t> degree(n, 0), same(n, 0);
+  UnionFind parts{size_t(n)};
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    for (size_t k = i + 1; k < j; ++k) parts.unite(uses[i].tri, uses[k].tri);
+    if (j - i == 2) {
+      const bool s2 = uses[i].forward == uses[i + 1].forward;
+      for (const auto& [a, b] : {std::make_pair(uses[i].tri, uses[i + 1].tri), std::make_pair(uses[i + 1].tri, uses[i].tri)}) {
+        same[a] = uint8_t(same[a] | (s2 ? 1u << degree[a] : 0u));
+        adj[a][degree[a]++] = b;
+      }
+    }
+    i = j;
+  }
+  std::vector<uint32_t> patch(n, UINT32_MAX);
+  std::vector<char> flip(n, 0);
+  std::vector<std::vector<uint32_t>> patches;
+  for (uint32_t s = 0; s < n; ++s) {
+    if (patch[s] != UINT32_MAX) continue;
+    const uint32_t id = uint32_t(patches.size());
+    patches.emplace_back();
+    std::vector<uint32_t> queue = {s};
+    patch[s] = id;
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const uint32_t t = queue[q];
+      patches[id].push_back(t);
+      for (int e = 0; e < degree[t]; ++e) {
+        const uint32_t u = adj[t][e];
+        if (patch[u] != UINT32_MAX) continue;
+        patch[u] = id;
+        flip[u] = char(flip[t] ^ ((same[t] >> e) & 1));
+        queue.push_back(u);
+      }
+    }
+    size_t flipped = 0;
+    for (uint32_t t : patches[id]) flipped += size_t(flip[t]);
+    if (2 * flipped > patches[id].size() || (2 * flipped == patches[id].size() && flip[patches[id][0]]))
+      for (uint32_t t : patches[id]) flip[t] ^= 1;
+  }
+  for (size_t t = 0; t < n; ++t)
+    if (flip[t]) std::swap(m.triangles[t][1], m.triangles[t][2]);
+
+  // Edges after orientation; a patch is closed when each of its edges is used by two of its triangles, once
+  // each way.
+  std::vector<EdgeUse> after = std::move(uses);  // the same edges; a reversed triangle runs each the other way
+  for (EdgeUse& u : after) u.forward = u.forward != bool(flip[u.tri]);
+  std::vector<char> patch_closed(patches.size(), 1);
+  for (size_t i = 0; i < after.size();) {
+    size_t j = i;
+    while (j < after.size() && after[j].key == after[i].key) ++j;
+    const size_t k = j - i;
+    if (k == 1) ++r.open_edges;
+    if (k > 2) ++r.nonmanifold_edges;
+    if (k == 2 && after[i].forward == after[i + 1].forward) ++r.inconsistent_edges;
+    // Per patch: count this edge's uses by each patch.
+    for (size_t a = i; a < j; ++a) {
+      const uint32_t p = patch[after[a].tri];
+      int uses_in_p = 0, fwd = 0;
+      for (size_t b = i; b < j; ++b)
+        if (patch[after[b].tri] == p) {
+          ++uses_in_p;
+          fwd += after[b].forward ? 1 : 0;
+        }
+      if (uses_in_p != 2 || fwd != 1) patch_closed[p] = 0;
+    }
+    i = j;
+  }
+
+  // Outward, nested parts alternating: a patch inside d closed patches (its box inside theirs, and sampled
+  // vertices inside by parity) faces outward when d is even and inward when d is odd, so a cavity stays empty
+  // whichever way its surface was given. Open patches use the volume closed by the cone from their centroid.
+  std::vector<double> vol(patches.size());
+  std::vector<Eigen::Vector3d> plo(patches.size()), phi(patches.size());
+  for (size_t p = 0; p < patches.size(); ++p) {
+    vol[p] = part_volume(m, patches[p]);
+    plo[p] = Eigen::Vector3d::Constant(HUGE_VAL);
+    phi[p] = -plo[p];
+    for (uint32_t t : patches[p])
+      for (uint32_t v : m.triangles[t]) {
+        plo[p] = plo[p].cwiseMin(m.vertices[v]);
+        phi[p] = phi[p].cwiseMax(m.vertices[v]);
+      }
+  }
+  auto depth = [&](size_t p) {
+    size_t d = 0;
+    if (patches.size() > kMaxNestingParts) return d;  // (pairs too many to test: every part outward)
+    for (size_t q = 0; q < patches.size(); ++q) {
+      if (q == p || !patch_closed[q]) continue;
+      if ((plo[p].array() <= plo[q].array()).any() || (phi[p].array() >= phi[q].array()).any()) continue;
+      bool all = true;
+      const size_t step = std::max<size_t>(1, patches[p].size() / 8);
+      for (size_t k = 0; k < patches[p].size() && all; k += step)
+        all = inside_part(m, patches[q], m.corner(patches[p][k], 0));
+      d += all ? 1 : 0;
+    }
+    return d;
+  };
+  size_t reversed = 0;
+  for (size_t p = 0; p < patches.size(); ++p) {
+    const bool inward = depth(p) % 2 == 1;
+    if (vol[p] != 0 && (vol[p] < 0) != inward) {
+      for (uint32_t t : patches[p]) {
+        std::swap(m.triangles[t][1], m.triangles[t][2]);
+        flip[t] ^= 1;
+      }
+    }
+  }
+  for (size_t t = 0; t < n; ++t) reversed += size_t(flip[t]);
+  if (reversed == n) {
+    r.flipped = true;
+  } else {
+    r.reoriented = reversed;
+  }
+
+  // Sheets: patches grouped with the open patches whose boundary vertices come within kCrackRelative of the model's size
+  // of theirs (parts split by cracks close each other); a group whose boundary encloses more than kSheetRatio of
+  // its area (the vector area of its boundary loops, origin-independent for closed loops) encloses nothing.
+  UnionFind group{patches.size()};
+  {
+    const double gap = kCrackRelative * (hi - lo).norm();
+    struct KeyHash {
+      size_t operator()(const std::array<int64_t, 3>& k) const {
+        return size_t((uint64_t(k[0]) * 0x9e3779b97f4a7c15ull) ^ (uint64_t(k[1]) * 0xc2b2ae3d27d4eb4full) ^
+                      (uint64_t(k[2]) * 0x165667b19e3779f9ull));
+      }
+    };
+    std::unordered_map<std::array<int64_t, 3>, std::vector<std::pair<uint32_t, uint32_t>>, KeyHash> cells;
+    auto key_of = [&](const Eigen::Vector3d& p) {
+      std::array<int64_t, 3> k{};
+      for (int a = 0; a < 3; ++a) k[a] = int64_t(std::floor(p[a] / gap));
+      return k;
+    };
+    for (size_t i = 0; i < after.size();) {
+      size_t j = i;
+      while (j < after.size() && after[j].key == after[i].key) ++j;
+      if (j - i == 1) {
+        const uint32_t p = patch[after[i].tri];
+        for (uint32_t v : {uint32_t(after[i].key >> 32), uint32_t(after[i].key)}) {
+          const auto k = key_of(m.vertices[v]);
+          for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                const auto it = cells.find({k[0] + dx, k[1] + dy, k[2] + dz});
+                if (it == cells.end()) continue;
+                for (const auto& [w, q] : it->second)
+                  if (q != p && (m.vertices[w] - m.vertices[v]).norm() <= gap) group.unite(p, q);
+              }
+          cells[k].push_back({v, p});
+        }
+      }
+      i = j;
+    }
+  }
+  std::vector<Eigen::Vector3d> loop_area(patches.size(), Eigen::Vector3d::Zero());
+  std::vector<double> area(patches.size(), 0);
+  const Eigen::Vector3d centre = (lo + hi) / 2;
+  for (size_t t = 0; t < n; ++t) {
+    const uint32_t g = group.find(patch[t]);
+    const Eigen::Vector3d a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
+    area[g] += (b - a).cross(c - a).norm() / 2;
+    // The vector area of the triangle's edges as part of the boundary chain: the boundary's is the sum over every
+    // triangle of its own (inner edges cancel).
+    loop_area[g] += ((a - centre).cross(b - centre) + (b - centre).cross(c - centre) + (c - centre).cross(a - centre)) / 2;
+  }
+  m.sheet.assign(n, 0);
+  bool any_solid = false;
+  std::vector<char> sheet_group(patches.size(), 0);
+  for (size_t p = 0; p < patches.size(); ++p) {
+    const uint32_t g = group.find(uint32_t(p));
+    if (g != p) continue;
+    // The triangles' own vector areas sum to the boundary's: for a closed group it is zero up to rounding.
+    sheet_group[g] = loop_area[g].norm() > kSheetRatio * area[g];
+  }
+  for (size_t t = 0; t < n; ++t) {
+    const uint32_t g = group.find(patch[t]);
+    m.sheet[t] = sheet_group[g];
+    any_solid |= !sheet_group[g];
+  }
+  for (size_t p = 0; p < patches.size(); ++p) {
+    if (patch_closed[p]) ++r.closed_components;
+    if (sheet_group[group.find(uint32_t(p))]) ++r.sheet_components;
+  }
+  if (!any_solid) r.surface_only = true;
+  if (std::none_of(m.sheet.begin(), m.sheet.end(), [](uint8_t s) { return s != 0; })) m.sheet.clear();
+  std::vector<char> root(n, 0);
+  for (size_t t = 0; t < n; ++t) root[parts.find(uint32_t(t))] = 1;
+  r.components = size_t(std::count(root.begin(), root.end(), 1));
+  // Vertices no triangle uses any more (of dropped triangles, or moved by welding) are dropped.
+  {
+    std::vector<uint32_t> to(m.vertices.size(), UINT32_MAX);
+    for (const auto& t : m.triangles)
+      for (uint32_t v : t) to[v] = 0;
+    std::vector<Eigen::Vector3d> kept;
+    for (size_t v = 0; v < m.vertices.size(); ++v)
+      if (to[v] == 0) {
+        to[v] = uint32_t(kept.size());
+        kept.push_back(m.vertices[v]);
+      }
+    for (auto& t : m.triangles)
+      for (uint32_t& v : t) v = to[v];
+    m.vertices = std::move(kept);
+  }
+  r.vertices = m.vertices.size();
+  r.triangles = m.triangles.size();
+  r.closed = near == 0 && nonfinite == 0 && r.dropped_repeated == 0 && r.dropped_collinear == 0 &&
+             r.dropped_duplicate == 0 && r.open_edges == 0 && r.nonmanifold_edges == 0 &&
+             r.inconsistent_edges == 0 && r.reoriented == 0;
+  return r;
+}
+
+}  // namespace voxcd

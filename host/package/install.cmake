@@ -1,0 +1,74 @@
+# cmake --install build --prefix P:
+#   P/include/voxcd/       the public headers (<voxcd/voxcd.h> and what it includes, <voxcd/sysc/...>)
+#   P/lib/                 libvoxcd (voxcd::host), libvoxcd_ref (voxcd::ref), libvoxcd_ref_fast (voxcd::fast),
+#                          libvoxcd_sysc (voxcd::sysc), libvoxcd_dpi (voxcd::dpi) and the Verilated models they load
+#   P/lib/cmake/voxcd/     the CMake package: find_package(voxcd CONFIG REQUIRED)
+#   P/lib/pkgconfig/       voxcd.pc
+#   P/bin/voxcd            the tool; P/libexec/voxcd/voxcd_sysc_server, the sysc backends' platform
+#   P/share/voxcd/rtl/     the RTL, its file list voxcd.f and the DPI package voxcd_dpi_pkg.sv
+#   P/lib/python3/dist-packages/  the Python module (import voxcd)
+# Included last by the top-level CMakeLists.txt, when every target exists.
+include(CMakePackageConfigHelpers)
+
+# Public headers: every header of ref/, host/ and sysc/ except those under detail/, the tool's and the server's.
+foreach(part ref host sysc)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd/${part}
+          FILES_MATCHING PATTERN "*.h"
+          PATTERN "detail" EXCLUDE PATTERN "cli" EXCLUDE PATTERN "python" EXCLUDE PATTERN "dpi" EXCLUDE
+          PATTERN "server_protocol.h" EXCLUDE PATTERN "voxcd.h" EXCLUDE)
+endforeach()
+install(FILES ${PROJECT_SOURCE_DIR}/host/voxcd.h ${VOXCD_INCLUDE_ROOT}/voxcd/version.h
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd)
+
+# The Verilated models are loaded by voxcd::host and voxcd::sysc but never linked by a consumer: their usage
+# requirements (Verilator's headers, the build tree's generated headers) stay in the build tree.
+function(voxcd_build_only_interface target)
+  foreach(prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES INTERFACE_LINK_LIBRARIES
+               INTERFACE_COMPILE_DEFINITIONS)
+    get_target_property(values ${target} ${prop})
+    if(values)
+      set(wrapped "")
+      foreach(v ${values})
+        list(APPEND wrapped "$<BUILD_INTERFACE:${v}>")
+      endforeach()
+      set_property(TARGET ${target} PROPERTY ${prop} "${wrapped}")
+    endif()
+  endforeach()
+endfunction()
+
+get_property(voxcd_targets GLOBAL PROPERTY VOXCD_EXPORTED_TARGETS)
+foreach(models voxcd_rtl_models voxcd_sysc_models)
+  if(TARGET ${models})
+    voxcd_build_only_interface(${models})
+    list(APPEND voxcd_targets ${models})
+  endif()
+endforeach()
+set(VOXCD_HAVE_SYSC_PACKAGE OFF)
+if(TARGET voxcd_sysc)
+  set(VOXCD_HAVE_SYSC_PACKAGE ON)
+endif()
+install(TARGETS ${voxcd_targets} EXPORT voxcdTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT voxcdTargets NAMESPACE voxcd:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/voxcd)
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/voxcd-config.cmake.in
+  ${CMAKE_BINARY_DIR}/package/voxcd-config.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/voxcd)
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/package/voxcd-config-version.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/package/voxcd-config.cmake ${CMAKE_BINARY_DIR}/package/voxcd-config-version.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/voxcd)
+
+# pkg-config: the host library and what its headers need (Eigen).
+configure_file(${CMAKE_CURRENT_LIST_DIR}/voxcd.pc.in ${CMAKE_BINARY_DIR}/package/voxcd.pc @ONLY)
+install(FILES ${CMAKE_BINARY_DIR}/package/voxcd.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# The tool and the sysc backends' server.
+install(TARGETS voxcd RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET voxcd_sysc_server)
+  install(TARGETS voxcd_sysc_server RUNTIME DESTINATION ${CMAKE_INSTALL_LIBEXECDIR}/voxcd)
+endif()
+
+# The RTL with its file list (and the DPI package, ref/dpi/CMakeLists.txt adds it).
+install(FILES ${PROJECT_SOURCE_DIR}/rtl/voxcd.f ${VOXCD_RTL_SOURCES} DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd/rtl)

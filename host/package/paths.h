@@ -1,0 +1,23 @@
+// Where the package's own files are at run time: found from the directory of the loaded host library, so that an
+// installed package works wherever it was installed (`cmake --install build --prefix P`) and the build tree works
+// the same way. Nothing here refers to the source tree.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace voxcd {
+
+// The directory of the RTL and its file list (P/share/voxcd/rtl; build/share/voxcd/rtl in the build tree).
+// Throws std::runtime_error naming the places it looked when neither holds voxcd.f.
+std::string rtl_dir();
+
+// The SystemC platform server of the sysc backends: $VOXCD_SYSC_SERVER, else P/libexec/voxcd/voxcd_sysc_server,
+// else next to the library (the build tree). Throws std::runtime_error naming the places it looked.
+std::string sysc_server_path();
+
+// The files of an RTL file list (voxcd.f: one file per line relative to the list, // comments), as full paths.
+// Throws std::runtime_error when the list cannot be read or names no file.
+std::vector<std::string> rtl_files(const std::string& dir);
+
+}  // namespace voxcd

@@ -1,0 +1,303 @@
+#include "voxcd/host/pairs/collide.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "voxcd/host/pairs/detail/cull.h"
+#include "voxcd/ref/fixed.h"
+
+namespace voxcd {
+
+namespace {
+
+uint64_t map_words(const DeviceConfig& cfg, const Voxmap& vm) {
+  const uint64_t spw = uint64_t(cfg.states_per_word());
+  return (vm.size() + spw - 1) / spw;
+}
+
+void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
+  const auto& d = t.voxmap().dims();
+  for (int i = 0; i < 3; ++i)
+    if (d[i] > cfg.max_dim())
+      throw CapacityError("object '" + t.name + "': its voxmap is " + std::to_string(d[0]) + "x" +
+                          std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels, above the device's 2^DW = " +
+                          std::to_string(cfg.max_dim()) + " per axis");
+}
+
+}  // namespace
+
+uint32_t DeviceImage::add(const ObjectType& t) {
+  check_dims(cfg_, t);
+  const uint64_t shell = t.shell().size(), words = map_words(cfg_, t.voxmap());
+  const uint64_t shell_free = cfg_.shell_depth() - mem_.shell.size(), map_free = cfg_.map_depth() - mem_.map.size();
+  if (shell > shell_free || words > map_free)
+    throw CapacityError("object '" + t.name + "' needs " + std::to_string(shell) + " shell words and " +
+                        std::to_string(words) + " voxmap words; the device has " + std::to_string(shell_free) +
+                        " of 2^SAW = " + std::to_string(cfg_.shell_depth()) + " shell words and " +
+                        std::to_string(map_free) + " of 2^MAW = " + std::to_string(cfg_.map_depth()) +
+                        " voxmap words free");
+  std::vector<ShellWord> sw = t.shell().words(cfg_);
+  std::vector<uint64_t> mw = t.voxmap().device_words(cfg_.MEMW);
+  Placement p;
+  p.shell_base = uint32_t(mem_.shell.size());
+  p.shell_count = uint32_t(shell);
+  p.map_base = uint32_t(mem_.map.size());
+  p.map_words = uint32_t(words);
+  p.dims = t.voxmap().dims();
+  mem_.shell.insert(mem_.shell.end(), sw.begin(), sw.end());
+  mem_.map.insert(mem_.map.end(), mw.begin(), mw.end());
+  placements_.push_back(p);
+  return uint32_t(placements_.size() - 1);
+}
+
+DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& types) {
+  uint64_t shell = 0, words = 0;
+  for (const ObjectType* t : types) {
+    check_dims(cfg, *t);
+    shell += t->shell().size();
+    words += map_words(cfg, t->voxmap());
+  }
+  while (cfg.shell_depth() < shell && cfg.SAW < 24) ++cfg.SAW;
+  while (cfg.map_depth() < words && cfg.MAW < 28) ++cfg.MAW;
+  if (cfg.shell_depth() < shell || cfg.map_depth() < words)
+    throw CapacityError("the object types need " + std::to_string(shell) + " shell words and " +
+                        std::to_string(words) + " voxmap words; the largest device memories hold 2^24 and 2^28");
+  return cfg;
+}
+
+PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types)
+    : device_(std::move(device)), types_(std::move(types)), image_(device_->config()) {
+  for (const auto& t : types_) {
+    image_.add(*t);
+    // Clusters of up to kClusterPoints consecutive points, never across a z-slice of the shell grid (cells come
+    // in linear-index order, z slowest): small boxes, since consecutive points of one slice are near each other.
+    const auto& cells = t->shell().cells;
+    Clusters cl;
+    for (uint32_t k = 0; k < cells.size();) {
+      uint32_t end = k + 1;
+      std::array<uint32_t, 3> lo = cells[k], hi = cells[k];
+      while (end < cells.size() && end - k < kClusterPoints && cells[end][2] == cells[k][2]) {
+        for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], cells[end][i]), hi[i] = std::max(hi[i], cells[end][i]);
+        ++end;
+      }
+      cl.first.push_back(k);
+      for (int i = 0; i < 3; ++i) {
+        // Point k is at cells[k] + 0.5 exactly (within half a cell more when PF = 0: the margin of 0.5).
+        cl.centre[i].push_back(0.5 * (double(lo[i]) + double(hi[i])) + 0.5);
+        cl.half[i].push_back(0.5 * (double(hi[i]) - double(lo[i])) + 0.5);
+      }
+      k = end;
+    }
+    cl.first.push_back(uint32_t(cells.size()));
+    clusters_.push_back(std::move(cl));
+  }
+  device_->load(image_.memory());
+}
+
+void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
+                            std::vector<JobSource>& sources) const {
+  const DeviceConfig& cfg = device_->config();
+  auto emit = [&](uint32_t first, uint32_t end) {
+    Job& j = out.emplace_back(whole);
+    j.shell_base = whole.shell_base + first;
+    j.shell_count = end - first;
+    j.tag = uint32_t((out.size() - 1) & cfg.max_tag());
+    sources.push_back({src.pair, src.a_in_b, first});
+  };
+  // A cluster's box (centre c, half-extent h, in the shell's grid) lands in the voxmap grid inside the box of
+  // centre Mq c + tq and half-extent |Mq| h, exactly; the cluster is kept when that box meets [0, n) on every
+  // axis (with a slack for the double arithmetic far below the spacing of the fixed-point values).
+  const double mscale = detail::pow2(-cfg.MF), tscale = detail::pow2(-cfg.TF());
+  double M[3][3], aM[3][3], t[3];
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) M[i][k] = double(whole.M[i][k]) * mscale, aM[i][k] = std::abs(M[i][k]);
+    t[i] = double(whole.t[i]) * tscale;
+  }
+  const double n[3] = {double(whole.nx), double(whole.ny), double(whole.nz)};
+  const Clusters& cl = clusters_[shell_type];
+  const size_t nc = cl.first.size() - 1;
+  bits_.resize((nc + 63) / 64);
+  const detail::ClusterBoxes boxes{{cl.centre[0].data(), cl.centre[1].data(), cl.centre[2].data()},
+                                   {cl.half[0].data(), cl.half[1].data(), cl.half[2].data()},
+                                   nc};
+  detail::cull_clusters(boxes, M, aM, t, n, bits_.data());
+  // Runs of kept clusters, a run at a time from the bit mask (ctz of the word, then of its complement: the keep
+  // pattern is hard to predict, so a branch per cluster costs more than the whole cull); runs closer than kMergeGap
+  // points apart are one job (a job costs more on the host than a few extra lookups), which also joins the two
+  // halves of a run split by a word boundary.
+  uint32_t run_first = 0, run_end = 0;
+  bool open = false;
+  for (size_t w = 0; w < bits_.size(); ++w) {
+    for (uint64_t x = bits_[w]; x;) {
+      const unsigned s = unsigned(__builtin_ctzll(x));
+      const uint64_t zeros = ~(x >> s);  // 0 only when the run fills the word from bit 0 up
+      const unsigned len = zeros ? unsigned(__builtin_ctzll(zeros)) : 64u;
+      x = s + len >= 64 ? 0 : x & (~uint64_t(0) << (s + len));
+      const uint32_t first = cl.first[w * 64 + s], end = cl.first[w * 64 + s + len];
+      if (open && first - run_end <= kMergeGap) {
+        run_end = end;
+      } else {
+        if (open) emit(run_first, run_end);
+        run_first = first;
+        run_end = end;
+        open = true;
+      }
+    }
+  }
+  if (open) emit(run_first, run_end);
+}
+
+std::vector<Job> PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt) const {
+  std::vector<Job> out;
+  std::vector<JobSource> sources;
+  jobs(pairs, opt, out, sources);
+  return out;
+}
+
+void PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out,
+                        std::vector<JobSource>& sources) const {
+  const DeviceConfig& cfg = device_->config();
+  out.clear();
+  sources.clear();
+  out.reserve(pairs.size() * (opt.both_directions ? 2 : 1));
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const PairRequest& r = pairs[i];
+    if (r.a >= types_.size() || r.b >= types_.size())
+      throw std::out_of_range("pair " + std::to_string(i) + " names object type " +
+                              std::to_string(std::max(r.a, r.b)) + " of " + std::to_string(types_.size()));
+    for (int dir = 0; dir < (opt.both_directions ? 2 : 1); ++dir) {
+      const uint32_t s = dir == 0 ? r.a : r.b, m = dir == 0 ? r.b : r.a;
+      const RigidPose& ps = dir == 0 ? r.pose_a : r.pose_b;
+      const RigidPose& pm = dir == 0 ? r.pose_b : r.pose_a;
+      const DeviceImage::Placement& sp = image_.placement(s);
+      const DeviceImage::Placement& mp = image_.placement(m);
+      Job j;
+      j.tag = uint32_t(out.size() & cfg.max_tag());
+      j.mode = opt.mode;
+      j.hit_mask = opt.hit_mask;
+      j.shell_base = sp.shell_base;
+      j.shell_count = sp.shell_count;
+      j.map_base = mp.map_base;
+      j.nx = mp.dims[0];
+      j.ny = mp.dims[1];
+      j.nz = mp.dims[2];
+      try {
+        pose_job(cfg, ps, types_[s]->shell().frame(), pm, types_[m]->voxmap().grid().frame(), j);
+      } catch (const RangeError& e) {
+        throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
+                         "): " + e.what());
+      }
+      const JobSource src{uint32_t(i), dir == 0, 0};
+      if (opt.cull) {
+        add_runs(j, s, src, out, sources);
+      } else {
+        out.push_back(j);
+        sources.push_back(src);
+      }
+    }
+  }
+}
+
+std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt) {
+  std::vector<PairResult> out;
+  collide(pairs, opt, out);
+  return out;
+}
+
+void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt,
+                           std::vector<PairResult>& out) {
+  jobs(pairs, opt, jobs_, sources_);
+  device_->run_into(jobs_, records_);
+  const std::vector<Job>& js = jobs_;
+  // The stream is checked whole before `out` is touched, so a misbehaving device leaves the caller's results as
+  // they were. Each pair's contacts then go in one allocation (or none, when the capacity is there already).
+  counts_.assign(pairs.size(), 0);
+  {
+    size_t job = 0;
+    for (const Record& rec : records_) {
+      if (job == js.size())
+        throw DeviceError("the device returned records after the completions of all " + std::to_string(js.size()) +
+                          " jobs");
+      if (rec.kind == Record::Done) ++job;
+      else ++counts_[sources_[job].pair];
+    }
+    if (job != js.size())
+      throw DeviceError("the device returned fewer completions than the " + std::to_string(js.size()) +
+                        " jobs it was given");
+  }
+  out.resize(pairs.size());
+  // The pose of each pair's objects as matrices, once, for the pairs with contacts.
+  rot_a_.resize(pairs.size());
+  rot_b_.resize(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    PairResult& r = out[i];
+    r.contacts.clear();
+    r.contacts.reserve(counts_[i]);
+    r.hits = 0;
+    r.lookups = 0;
+    r.cycles = 0;
+    if (counts_[i] == 0) continue;
+    rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
+    rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
+  }
+  // Contacts, job by job. The depth lookups land all over B's depth field (4 bytes per voxel, often larger than
+  // the cache), so the loop prefetches the depth of the hit a few records ahead. A direction of a pair can have
+  // several jobs (runs of its shell, ascending); in FIRST mode only the first hit among them is the direction's.
+  constexpr size_t kAhead = 16;
+  const size_t nrec = records_.size();
+  const bool first_only = opt.mode == Mode::First;
+  size_t r = 0;
+  bool found = false;  // FIRST: the current direction has its hit
+  for (size_t j = 0; j < js.size(); ++j) {
+    const JobSource& src = sources_[j];
+    if (j == 0 || src.pair != sources_[j - 1].pair || src.a_in_b != sources_[j - 1].a_in_b) found = false;
+    const size_t pair = src.pair;
+    const bool a_in_b = src.a_in_b;
+    PairResult& res = out[pair];
+    const PairRequest& req = pairs[pair];
+    const ObjectType& shell_t = *types_[a_in_b ? req.a : req.b];
+    const ObjectType& map_t = *types_[a_in_b ? req.b : req.a];
+    const RigidPose& pose = a_in_b ? req.pose_a : req.pose_b;
+    const Eigen::Matrix3d& R = a_in_b ? rot_a_[pair] : rot_b_[pair];
+    const auto& points = shell_t.shell().points;
+    const auto& normals = shell_t.shell().normals;
+    const Voxmap& vm = map_t.voxmap();
+    const float* depth = map_t.depth.data();
+    const size_t nvox = map_t.depth.size();
+    const double voxel = vm.voxel();
+    for (; r < nrec && records_[r].kind != Record::Done; ++r) {
+      if (r + kAhead < nrec) {
+        const Record& ahead = records_[r + kAhead];
+        if (ahead.kind == Record::Hit) {
+          const uint64_t i = vm.index(ahead.x, ahead.y, ahead.z);
+          if (i < nvox) __builtin_prefetch(depth + i);
+        }
+      }
+      if (first_only && found) continue;
+      const Record& rec = records_[r];
+      const uint32_t point = rec.point + src.first;
+      Contact c;
+      c.pair = uint32_t(pair);
+      c.a_in_b = a_in_b;
+      c.point = point;
+      c.position = R * points[point] + pose.translation;
+      c.normal = R * normals[point];
+      c.voxel = {rec.x, rec.y, rec.z};
+      c.state = rec.state;
+      c.depth = double(depth[vm.index(rec.x, rec.y, rec.z)]) * voxel;
+      res.contacts.push_back(c);
+    }
+    if (r == nrec) throw DeviceError("the device returned fewer completions than the " + std::to_string(js.size()) +
+                                     " jobs it was given");
+    const Record& done = records_[r++];
+    if (first_only) {
+      if (!found && done.hits) ++res.hits, found = true;
+    } else {
+      res.hits += done.hits;
+    }
+    res.lookups += js[j].shell_count;
+    if (done.cycles) res.cycles += *done.cycles;
+  }
+}
+
+}  // namespace voxcd

@@ -1,0 +1,145 @@
+// Pair tests on a device: object types placed in the device's memories, the relative pose of each pair quantised
+// into jobs (A's shell in B's voxmap, and B's shell in A's on request), the jobs run back to back, and the hits
+// routed back to their pairs as contacts in world coordinates. docs/pairs.md states the error bounds.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/object/object_type.h"
+#include "voxcd/host/pairs/pose.h"
+
+namespace voxcd {
+
+// Object types that do not fit the device's memories or formats; names the type and the sizes.
+struct CapacityError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The memory image of a set of object types, each type's shell words and voxmap words placed after the previous
+// type's. Only the types added are loaded.
+class DeviceImage {
+ public:
+  struct Placement {
+    uint32_t shell_base = 0, shell_count = 0;
+    uint32_t map_base = 0, map_words = 0;
+    std::array<uint32_t, 3> dims = {1, 1, 1};
+  };
+
+  explicit DeviceImage(const DeviceConfig& cfg) : cfg_(cfg) {}
+  // Places a type and returns its index. CapacityError naming the type and what it needs against what is left,
+  // or a dimension above 2^DW; RangeError from the shell's quantisation into PW/PF.
+  uint32_t add(const ObjectType& t);
+  const Placement& placement(uint32_t i) const { return placements_.at(i); }
+  size_t size() const { return placements_.size(); }
+  const DeviceMemory& memory() const { return mem_; }
+  const DeviceConfig& config() const { return cfg_; }
+
+ private:
+  DeviceConfig cfg_;
+  DeviceMemory mem_;
+  std::vector<Placement> placements_;
+};
+
+// cfg with SAW and MAW grown (never shrunk) until the types fit; CapacityError naming the sizes when even the
+// largest memories allowed (SAW 24, MAW 28) are too small, or a voxmap exceeds 2^DW voxels on an axis.
+DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& types);
+
+// One contact: a shell point of one object that lies in a voxel of the other whose state is in the hit mask.
+struct Contact {
+  uint32_t pair = 0;          // index of the request
+  bool a_in_b = true;         // the shell is A's and the voxmap B's (else the reverse)
+  uint32_t point = 0;         // index of the shell point in its object's shell
+  Eigen::Vector3d position;   // the shell point, world coordinates
+  Eigen::Vector3d normal;     // its object's outward surface normal there, world coordinates
+  std::array<uint32_t, 3> voxel = {0, 0, 0};  // the voxel of the other object's voxmap it lies in
+  uint8_t state = 0;          // that voxel's state
+  double depth = 0;           // penetration estimate into the other object, world units
+};
+
+struct PairRequest {
+  uint32_t a = 0, b = 0;  // object types, as PairCollider numbers them
+  RigidPose pose_a, pose_b;
+};
+
+struct PairOptions {
+  Mode mode = Mode::All;
+  uint8_t hit_mask = kDefaultHitMask;
+  bool both_directions = false;  // also B's shell in A's voxmap (needed to see A deep inside B's hollow, ...)
+  // Submit only the shell points that can land in the other object's voxmap: the shell's clusters of up to
+  // kClusterPoints consecutive points whose box, through the quantised pose, meets the voxmap's grid (host/pairs/detail/cull.h).
+  // Each run of kept clusters is one job. The points left out are outside the voxmap on the device, so contacts and
+  // hits never depend on it; lookups and device cycles do. docs/pairs.md.
+  bool cull = true;
+};
+
+// Where a job came from: its pair, its direction, and the index in the shell of its first point (a hit's point
+// index is relative to that).
+struct JobSource {
+  uint32_t pair = 0;
+  bool a_in_b = true;
+  uint32_t first = 0;
+};
+
+struct PairResult {
+  std::vector<Contact> contacts;  // A in B first, then B in A; each in ascending point order
+  uint32_t hits = 0;              // over both directions (COUNT: the count; FIRST: up to 1 per direction)
+  uint64_t lookups = 0;           // shell points submitted
+  uint64_t cycles = 0;            // device cycles of the pair's jobs, where the backend models them
+};
+
+class PairCollider {
+ public:
+  // Loads the types into the device (its config must fit them: see fit_memory).
+  PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types);
+
+  // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked; one job per
+  // direction without opt.cull, zero or more (runs of the shell in ascending order) with it. RangeError naming
+  // the pair when a pose is not finite or does not fit the fixed-point formats.
+  std::vector<Job> jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt = {}) const;
+  void jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out,
+            std::vector<JobSource>& sources) const;
+  // Runs every pair's jobs back to back on the device and routes the hits to their pairs.
+  std::vector<PairResult> collide(const std::vector<PairRequest>& pairs, const PairOptions& opt = {});
+  // The same into `out`, reusing its capacity (and the collider's buffers): for callers that query every frame.
+  void collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
+
+  Device& device() { return *device_; }
+  const ObjectType& type(uint32_t i) const { return *types_.at(i); }
+  size_t types() const { return types_.size(); }
+  const DeviceImage& image() const { return image_; }
+
+ private:
+  std::unique_ptr<Device> device_;
+  std::vector<std::shared_ptr<const ObjectType>> types_;
+  // The culled runs of one direction of one pair, appended to out and sources.
+  void add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
+                std::vector<JobSource>& sources) const;
+
+  // Per type, its shell in clusters of consecutive points: the first point of each (one past the end last), and
+  // each cluster's box in the shell's grid (centre and half-extent per axis).
+  struct Clusters {
+    std::vector<uint32_t> first;
+    std::vector<double> centre[3], half[3];
+  };
+  static constexpr uint32_t kClusterPoints = 32;
+  static constexpr uint32_t kMergeGap = 32;
+
+  DeviceImage image_;
+  std::vector<Clusters> clusters_;
+  // Scratch of add_runs (which clusters survive), kept to avoid an allocation per pair: jobs() is const but, like
+  // collide(), not to be called on one collider from two threads at once.
+  mutable std::vector<uint64_t> bits_;
+  std::vector<Job> jobs_;
+  std::vector<JobSource> sources_;
+  std::vector<Record> records_;
+  std::vector<size_t> counts_;
+  std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
+};
+
+}  // namespace voxcd

@@ -1,0 +1,100 @@
+#include "voxcd/host/pairs/detail/cull.h"
+
+#include <algorithm>
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#define VOXCD_CULL_AVX512 1
+#endif
+
+namespace voxcd::detail {
+
+namespace {
+
+constexpr double kSlack = 1e-4;
+
+// All three axes of a box in one pass, without branches, the bits gathered in a register.
+void cull_portable(const ClusterBoxes& b, const double (&M)[3][3], const double (&aM)[3][3], const double (&lo)[3],
+                   const double (&hi)[3], uint64_t* __restrict bits) {
+  const double* __restrict cx = b.centre[0];
+  const double* __restrict cy = b.centre[1];
+  const double* __restrict cz = b.centre[2];
+  const double* __restrict hx = b.half[0];
+  const double* __restrict hy = b.half[1];
+  const double* __restrict hz = b.half[2];
+  for (size_t w = 0; w * 64 < b.n; ++w) {
+    uint64_t word = 0;
+    const size_t end = std::min(b.n, w * 64 + 64);
+    for (size_t k = w * 64; k < end; ++k) {
+      bool in = true;
+      for (int i = 0; i < 3; ++i) {
+        const double c = M[i][0] * cx[k] + M[i][1] * cy[k] + M[i][2] * cz[k];
+        const double h = aM[i][0] * hx[k] + aM[i][1] * hy[k] + aM[i][2] * hz[k];
+        in &= (c + h >= lo[i]) & (c - h < hi[i]);
+      }
+      word |= uint64_t(in) << (k & 63);
+    }
+    bits[w] = word;
+  }
+}
+
+#ifdef VOXCD_CULL_AVX512
+bool have_avx512f() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f");
+}
+
+// Eight boxes a step (the portable loop was a tenth of a frame of `voxcd simulate`).
+__attribute__((target("avx512f"))) void cull_avx512(const ClusterBoxes& b, const double (&M)[3][3],
+                                                    const double (&aM)[3][3], const double (&lo)[3],
+                                                    const double (&hi)[3], uint64_t* __restrict bits) {
+  __m512d m[3][3], a[3][3], vlo[3], vhi[3];
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) m[i][k] = _mm512_set1_pd(M[i][k]), a[i][k] = _mm512_set1_pd(aM[i][k]);
+    vlo[i] = _mm512_set1_pd(lo[i]);
+    vhi[i] = _mm512_set1_pd(hi[i]);
+  }
+  std::fill(bits, bits + (b.n + 63) / 64, uint64_t(0));
+  for (size_t k = 0; k < b.n; k += 8) {
+    const __mmask8 live = b.n - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (b.n - k)) - 1);
+    __m512d c[3], h[3];
+    for (int i = 0; i < 3; ++i) {
+      c[i] = _mm512_maskz_loadu_pd(live, b.centre[i] + k);
+      h[i] = _mm512_maskz_loadu_pd(live, b.half[i] + k);
+    }
+    __mmask8 in = live;
+    for (int i = 0; i < 3; ++i) {
+      const __m512d ci = _mm512_fmadd_pd(m[i][2], c[2], _mm512_fmadd_pd(m[i][1], c[1], _mm512_mul_pd(m[i][0], c[0])));
+      const __m512d hi_ = _mm512_fmadd_pd(a[i][2], h[2], _mm512_fmadd_pd(a[i][1], h[1], _mm512_mul_pd(a[i][0], h[0])));
+      in = _mm512_mask_cmp_pd_mask(in, _mm512_add_pd(ci, hi_), vlo[i], _CMP_GE_OQ);
+      in = _mm512_mask_cmp_pd_mask(in, _mm512_sub_pd(ci, hi_), vhi[i], _CMP_LT_OQ);
+    }
+    bits[k >> 6] |= uint64_t(in) << (k & 63);
+  }
+}
+#endif
+
+}  // namespace
+
+bool cull_is_vector() {
+#ifdef VOXCD_CULL_AVX512
+  static const bool have = have_avx512f();
+  return have;
+#else
+  return false;
+#endif
+}
+
+void cull_clusters(const ClusterBoxes& boxes, const double (&M)[3][3], const double (&aM)[3][3], const double (&t)[3],
+                   const double (&n)[3], uint64_t* bits, bool vector) {
+  double lo[3], hi[3];
+  for (int i = 0; i < 3; ++i) lo[i] = -kSlack - t[i], hi[i] = n[i] + kSlack - t[i];
+#ifdef VOXCD_CULL_AVX512
+  if (vector && cull_is_vector()) return cull_avx512(boxes, M, aM, lo, hi, bits);
+#else
+  (void)vector;
+#endif
+  cull_portable(boxes, M, aM, lo, hi, bits);
+}
+
+}  // namespace voxcd::detail

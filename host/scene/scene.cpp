@@ -1,0 +1,527 @@
+#include "voxcd/host/scene/scene.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <stdexcept>
+
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/object/voxelize.h"
+
+namespace voxcd {
+
+namespace {
+
+// Do the two bodies' oriented boxes meet? Each box is its type's contact bounds (lo..hi in the type's frame:
+// every non-empty voxel and shell point) grown by one of its voxels, which covers the fixed-point error of a job
+// (a small fraction of a voxel) and rounding here. Gottschalk's separating-axis test: 3 + 3 face axes and 9 edge
+// cross products, with a relative slack on the near-parallel cross products.
+// Ra, ca: A's rotation and the centre of its box in the world (as compute_bounds keeps them for every body).
+bool boxes_overlap(const ObjectType& ta, const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca, const ObjectType& tb,
+                   const Eigen::Matrix3d& Rb, const Eigen::Vector3d& cb) {
+  const double ga = ta.voxmap().voxel(), gb = tb.voxmap().voxel();
+  const Eigen::Vector3d ea = 0.5 * (ta.hi - ta.lo) + Eigen::Vector3d::Constant(ga);
+  const Eigen::Vector3d eb = 0.5 * (tb.hi - tb.lo) + Eigen::Vector3d::Constant(gb);
+  // B's axes and centre in A's frame.
+  const Eigen::Matrix3d R = Ra.transpose() * Rb;
+  const Eigen::Vector3d t = Ra.transpose() * (cb - ca);
+  Eigen::Matrix3d AbsR;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) AbsR(i, j) = std::abs(R(i, j)) + 1e-9;
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(t[i]) > ea[i] + eb.dot(AbsR.row(i))) return false;
+  for (int j = 0; j < 3; ++j)
+    if (std::abs(t.dot(R.col(j))) > ea.dot(AbsR.col(j)) + eb[j]) return false;
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra = ea[i1] * AbsR(i2, j) + ea[i2] * AbsR(i1, j);
+      const double rb = eb[j1] * AbsR(i, j2) + eb[j2] * AbsR(i, j1);
+      if (std::abs(t[i2] * R(i1, j) - t[i1] * R(i2, j)) > ra + rb) return false;
+    }
+  }
+  return true;
+}
+
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+}  // namespace
+
+Eigen::Quaterniond scene_rotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0, 1);
+  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+}
+
+Eigen::Vector3d scene_direction(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0, 1);
+  Eigen::Vector3d d;
+  do d = Eigen::Vector3d(n(rng), n(rng), n(rng));
+  while (d.squaredNorm() < 1e-12);
+  return d.normalized();
+}
+
+BodyBounds body_bounds(const ObjectType& t, const Body& b) {
+  const Eigen::Matrix3d R = b.pose.rotation.toRotationMatrix();
+  return body_bounds(t, b, R, R * (0.5 * (t.lo + t.hi)) + b.pose.translation);
+}
+
+BodyBounds body_bounds(const ObjectType& t, const Body& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& c) {
+  BodyBounds bb;
+  bb.centre = R * t.centre + b.pose.translation;
+  bb.radius = t.radius;
+  const Eigen::Vector3d e = R.cwiseAbs() * (0.5 * (t.hi - t.lo));
+  bb.box.lo = c - e;
+  bb.box.hi = c + e;
+  // No point of the body is farther than |centre| + radius from its origin.
+  bb.max_speed = b.velocity.norm() + b.spin.norm() * (t.centre.norm() + t.radius);
+  bb.max_accel = 0;  // velocities change only in responses, which flag the body
+  return bb;
+}
+
+double default_voxel(double volume, double extent) {
+  double v = std::cbrt(volume / kPaperObjectVolume);
+  if (!(v >= extent / kDefaultMostAcross)) v = extent / kDefaultMostAcross;  // also a volume that is not positive
+  if (v > extent / kDefaultFewestAcross) v = extent / kDefaultFewestAcross;
+  return v;
+}
+
+namespace {
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+// The largest radius of spheres of which the lattice fits `count` in the cube (0 when not even one fits).
+double largest_radius_for(double side, uint64_t count) {
+  double lo = 0, hi = side / 2;
+  if (lattice_capacity(side, hi * (1 - 1e-12)) >= count) return hi;
+  for (int i = 0; i < 80; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (lattice_capacity(side, mid) >= count ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+}  // namespace
+
+Scene make_scene(const SceneSpec& spec) {
+  if (spec.objects == 0) throw std::invalid_argument("scene: objects must be at least 1");
+  if (!(spec.side > 0) || !std::isfinite(spec.side)) throw std::invalid_argument("scene: side must be positive");
+  if (!(spec.density > 0 && spec.density <= 0.3))
+    throw std::invalid_argument("scene: density " + std::to_string(spec.density) + " is outside (0, 0.3]");
+  if (!(spec.speed >= 0) || !std::isfinite(spec.speed)) throw std::invalid_argument("scene: speed must be >= 0");
+  if (!(spec.spin >= 0) || !std::isfinite(spec.spin)) throw std::invalid_argument("scene: spin must be >= 0");
+  if (spec.voxel_given() && spec.resolution > 0)
+    throw std::invalid_argument("scene: give a voxel size or a resolution, not both");
+  if (spec.voxel_given() && (!(spec.voxel > 0) || !std::isfinite(spec.voxel)))
+    throw std::invalid_argument("scene: voxel must be > 0");
+  if (spec.resolution > 0 && (spec.resolution < kMinVoxelsAcross || spec.resolution > 1020))
+    throw std::invalid_argument("scene: resolution " + std::to_string(spec.resolution) + " is outside [" +
+                                std::to_string(kMinVoxelsAcross) +
+                                ", 1020] (voxels along the object's longest side)");
+  std::string source;
+  uint64_t hash = 0;
+  Mesh mesh = load_source(spec.shape, &source, &hash);
+  // Scale so that the objects fill `density` of the cube, and centre the mesh on its box's centre.
+  const double each = spec.density * spec.side * spec.side * spec.side / double(spec.objects);  // one's volume
+  const double volume = mesh.volume();
+  const double s = std::cbrt(each / volume);
+  Eigen::Vector3d lo, hi;
+  mesh.bounds(lo, hi);
+  const Eigen::Vector3d mid = 0.5 * (lo + hi);
+  for (auto& v : mesh.vertices) v = (v - mid) * s;
+  const double extent = (hi - lo).maxCoeff() * s;
+  // The voxel: given, from the resolution, or the paper's scaled with the object (1 for the paper's scene).
+  const double voxel = spec.voxel_given()  ? spec.voxel
+                       : spec.resolution ? voxel_for_resolution(mesh, spec.resolution)
+                                         : default_voxel(each, extent);
+  const std::string what = spec.voxel_given() ? "voxel " + std::to_string(voxel)
+                                              : spec.resolution ? "resolution " + std::to_string(spec.resolution)
+                                                                : "the default voxel " + num(voxel);
+  if (extent / voxel > 1020) {
+    char across[32];  // as a double: a tiny voxel makes the count too large for an int, or infinite
+    std::snprintf(across, sizeof across, "%.6g", extent / voxel);
+    throw std::invalid_argument("scene: " + what + " makes each object " + across + " voxels across, above 2^10");
+  }
+  if (extent / voxel < 2)
+    throw std::invalid_argument("scene: " + what + " is larger than half the object (" + std::to_string(extent) +
+                                " across); objects would be a voxel or two");
+  if (extent / voxel < kMinVoxelsAcross)
+    throw std::invalid_argument("scene: " + what + " leaves " + num(extent / voxel) +
+                                " voxels along the object's longest side (" + num(extent) + "); at least " +
+                                std::to_string(kMinVoxelsAcross) + " are needed: a voxel of at most " +
+                                num(extent / kMinVoxelsAcross) + ", or a resolution");
+  ObjectOptions oo;
+  oo.voxel = voxel;
+  Scene scene;
+  scene.side = spec.side;
+  auto type = std::make_shared<ObjectType>(
+      make_object_type(make_object(mesh, source, hash, oo), spec.shape + " x" + std::to_string(s)));
+  scene.types.push_back(type);
+  const double r = type->radius;
+  if (2 * r >= spec.side) throw std::invalid_argument("scene: the objects do not fit the cube");
+  try {
+    place_bodies(scene, {spec.objects}, spec.speed, spec.spin, spec.seed);
+  } catch (const PlacementError& e) {
+    // Object size (and with the default voxel, bounding radius) goes with the cube root of the density.
+    const double r_fit = largest_radius_for(spec.side, spec.objects);
+    const double most = spec.density * std::pow(r_fit / e.radius, 3);
+    throw std::invalid_argument("scene: could not place object " + std::to_string(e.instance) + " of " +
+                                std::to_string(spec.objects) + " without overlapping bounding spheres: at density " +
+                                num(spec.density) + " each object's bounding sphere has radius " + num(e.radius) +
+                                ", and even packed on a lattice only " + std::to_string(e.capacity) +
+                                " such spheres fit the cube; " + std::to_string(spec.objects) +
+                                " objects of this shape fit up to a density of about " + num(most));
+  }
+  return scene;
+}
+
+namespace {
+
+// The bodies placed so far by their sphere's centre, in a uniform grid of cells at least as wide as the largest
+// sphere (two overlapping spheres are in the same or neighbouring cells), at most about 4 cells a body.
+class PlacementGrid {
+ public:
+  PlacementGrid(double side, double rmax, uint64_t bodies) {
+    const double by_size = std::floor(side / (2 * rmax * (1 + 1e-6)));
+    const double by_count = std::floor(std::cbrt(4.0 * double(bodies) + 64));
+    n_ = int(std::max(1.0, std::min(by_size, by_count)));
+    inv_ = double(n_) / side;
+    head_.assign(size_t(n_) * size_t(n_) * size_t(n_), -1);
+  }
+  // Does a sphere at c of radius r overlap none of the placed ones (the test place_bodies always made)?
+  bool free(const Eigen::Vector3d& c, double r, const std::vector<Eigen::Vector3d>& centres,
+            const std::vector<double>& radii) const {
+    const int x = coord(c.x()), y = coord(c.y()), z = coord(c.z());
+    for (int k = std::max(z - 1, 0); k <= std::min(z + 1, n_ - 1); ++k)
+      for (int j = std::max(y - 1, 0); j <= std::min(y + 1, n_ - 1); ++j)
+        for (int i = std::max(x - 1, 0); i <= std::min(x + 1, n_ - 1); ++i)
+          for (int32_t o = head_[cell(i, j, k)]; o >= 0; o = next_[size_t(o)])
+            if ((centres[size_t(o)] - c).squaredNorm() < (r + radii[size_t(o)]) * (r + radii[size_t(o)]))
+              return false;
+    return true;
+  }
+  void insert(const Eigen::Vector3d& c, int32_t id) {
+    int32_t& h = head_[cell(coord(c.x()), coord(c.y()), coord(c.z()))];
+    if (next_.size() <= size_t(id)) next_.resize(size_t(id) + 1, -1);
+    next_[size_t(id)] = h;
+    h = id;
+  }
+
+ private:
+  int coord(double x) const {
+    const double f = x * inv_;
+    if (!(f > 0)) return 0;
+    return f >= n_ - 1 ? n_ - 1 : int(f);
+  }
+  size_t cell(int i, int j, int k) const { return size_t(i) + size_t(n_) * (size_t(j) + size_t(n_) * size_t(k)); }
+  int n_ = 1;
+  double inv_ = 0;
+  std::vector<int32_t> head_, next_;
+};
+
+// place_bodies' lattice: sites at least d apart with room for every sphere and its jitter inside the cube. A
+// body of radius r at a site moves by up to d/2 - r (a jitter of (d/2 - r)/sqrt(3) per axis), so two bodies stay
+// r_a + r_b apart; the sites keep w = rmax (1 - 1/sqrt(3)) + d / (2 sqrt(3)) from the walls, which leaves every body
+// its radius from them. Face-centred cubic (grid step d/sqrt(2), sites of even coordinate sum) or simple cubic
+// (step d), whichever has more sites in the cube.
+struct Lattice {
+  bool fcc = true;
+  uint64_t m = 0;     // grid points per axis
+  double step = 0;    // between grid points
+  double start = 0;   // coordinate of grid point 0 on every axis
+  uint64_t sites = 0;
+
+  static uint64_t cube(uint64_t m) { return m * m * m; }
+  Lattice(double side, double rmax, double d) {
+    const double s3 = std::sqrt(3.0);
+    const double w = rmax * (1 - 1 / s3) + d / (2 * s3);
+    const double extent = side - 2 * w;
+    if (!(extent >= 0)) return;
+    auto points = [&](double h) { return uint64_t(std::min(std::floor(extent / h), double(1 << 20))) + 1; };
+    const uint64_t mf = points(d / std::sqrt(2.0)), ms = points(d);
+    const uint64_t nf = (cube(mf) + 1) / 2, ns = cube(ms);
+    fcc = nf >= ns;
+    m = fcc ? mf : ms;
+    step = fcc ? d / std::sqrt(2.0) : d;
+    sites = fcc ? nf : ns;
+    start = w + 0.5 * (extent - double(m - 1) * step);  // centred in the cube
+  }
+};
+
+// The closest spacing: a hair above touching, so that rounding never makes two spheres overlap.
+constexpr double kLatticeSlack = 1e-9;
+
+}  // namespace
+
+uint64_t lattice_capacity(double side, double r) { return Lattice(side, r, 2 * r * (1 + kLatticeSlack)).sites; }
+
+void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed) {
+  const double side = scene.side;
+  uint64_t total = 0;
+  double rmax = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (counts[i] == 0) continue;
+    total += counts[i];
+    rmax = std::max(rmax, scene.types.at(i)->radius);
+  }
+  if (total == 0) return;
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Body> bodies;
+  bodies.reserve(total);
+
+  // At random: up to 10,000 uniform tries a body (the draws of the scenes before the lattice existed, so the same
+  // bodies wherever they found places), within a budget of tries for the whole scene.
+  {
+    std::mt19937_64 rng(seed);
+    std::vector<Eigen::Vector3d> centres;
+    std::vector<double> radii;
+    centres.reserve(total);
+    radii.reserve(total);
+    PlacementGrid grid(side, rmax, total);
+    const uint64_t budget = 1000000 + 4 * total;
+    uint64_t tries = 0;
+    bool failed = false;
+    for (size_t i = 0; i < counts.size() && !failed; ++i) {
+      const ObjectType& type = *scene.types.at(i);
+      const double r = type.radius;
+      for (uint64_t k = 0; k < counts[i]; ++k) {
+        Body b;
+        b.type = uint32_t(i);
+        b.pose.rotation = scene_rotation(rng);
+        Eigen::Vector3d c;
+        bool placed = false;
+        for (int attempt = 0; attempt < 10000 && !placed && tries < budget; ++attempt, ++tries) {
+          c = Eigen::Vector3d(r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r));
+          placed = grid.free(c, r, centres, radii);
+        }
+        if (!placed) {
+          failed = true;
+          break;
+        }
+        grid.insert(c, int32_t(centres.size()));
+        centres.push_back(c);
+        radii.push_back(r);
+        b.pose.translation = c - b.pose.rotation * type.centre;
+        b.velocity = scene_direction(rng) * (speed * r * u(rng));
+        b.spin = scene_direction(rng) * (spin * u(rng));
+        bodies.push_back(b);
+      }
+    }
+    if (!failed) {
+      scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
+      return;
+    }
+    bodies.clear();
+  }
+
+  // On a lattice: the widest spacing d whose lattice has a site for every body (its site count falls as d grows).
+  const double dmin = 2 * rmax * (1 + kLatticeSlack);
+  const Lattice closest(side, rmax, dmin);
+  if (closest.sites < total) {
+    uint64_t k = closest.sites;  // the first body without a site: which type's, which instance
+    size_t t = 0;
+    while (t < counts.size() && k >= counts[t]) k -= counts[t++];
+    throw PlacementError(uint32_t(t), k, closest.sites, rmax);
+  }
+  double lo = dmin, hi = dmin;
+  while (Lattice(side, rmax, hi).sites >= total) lo = hi, hi *= 2;
+  for (int i = 0; i < 60 && hi - lo > 1e-12 * lo; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (Lattice(side, rmax, mid).sites >= total ? lo : hi) = mid;
+  }
+  const double d = lo;
+  const Lattice lat(side, rmax, d);
+  // Every site, then `total` of them at random (a partial Fisher-Yates shuffle).
+  std::vector<std::array<uint32_t, 3>> sites;
+  sites.reserve(lat.sites);
+  for (uint32_t z = 0; z < lat.m; ++z)
+    for (uint32_t y = 0; y < lat.m; ++y)
+      for (uint32_t x = 0; x < lat.m; ++x)
+        if (!lat.fcc || (x + y + z) % 2 == 0) sites.push_back({x, y, z});
+  std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ull);
+  for (uint64_t k = 0; k < total; ++k) {
+    std::uniform_int_distribution<uint64_t> pick(k, sites.size() - 1);
+    std::swap(sites[k], sites[pick(rng)]);
+  }
+  uint64_t next = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    const ObjectType& type = *scene.types.at(i);
+    const double r = type.radius;
+    const double jitter = std::max(0.0, (0.5 * d - r) / std::sqrt(3.0) * (1 - kLatticeSlack));
+    for (uint64_t k = 0; k < counts[i]; ++k) {
+      Body b;
+      b.type = uint32_t(i);
+      b.pose.rotation = scene_rotation(rng);
+      const auto& g = sites[next++];
+      Eigen::Vector3d c;
+      for (int a = 0; a < 3; ++a) c[a] = lat.start + lat.step * double(g[size_t(a)]) + jitter * (2 * u(rng) - 1);
+      b.pose.translation = c - b.pose.rotation * type.centre;
+      b.velocity = scene_direction(rng) * (speed * r * u(rng));
+      b.spin = scene_direction(rng) * (spin * u(rng));
+      bodies.push_back(b);
+    }
+  }
+  scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
+}
+
+Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(scene)), opt_(opt) {
+  broadphase_ = make_broadphase(opt.pruning);
+  DeviceConfig cfg;
+  cfg.LANES = opt.lanes;
+  std::vector<const ObjectType*> types;
+  for (const auto& t : scene_.types) types.push_back(t.get());
+  if (opt.device)
+    cfg = *opt.device;
+  else if (opt.backend != "rtl")
+    cfg = fit_memory(cfg, types);
+  DeviceOptions dopt;
+  dopt.threads = opt.threads;
+  collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types);
+  moved_.assign(scene_.bodies.size(), true);
+}
+
+void Simulation::compute_bounds() {
+  const size_t n = scene_.bodies.size();
+  bounds_.resize(n);
+  rot_.resize(n);
+  box_centre_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Body& b = scene_.bodies[i];
+    const ObjectType& t = *scene_.types[b.type];
+    rot_[i] = b.pose.rotation.toRotationMatrix();
+    box_centre_[i] = rot_[i] * (0.5 * (t.lo + t.hi)) + b.pose.translation;
+    bounds_[i] = body_bounds(t, b, rot_[i], box_centre_[i]);
+    bounds_[i].moved_unexpectedly = moved_[i];
+  }
+}
+
+FrameStats Simulation::step() {
+  FrameStats st;
+  st.frame = frame_;
+  const size_t n = scene_.bodies.size();
+  std::fill(moved_.begin(), moved_.end(), false);
+
+  // Integrate (explicit Euler), renormalising the orientation; bounce off the walls by the bounding sphere.
+  double t0 = now();
+  for (size_t i = 0; i < n; ++i) {
+    Body& b = scene_.bodies[i];
+    b.pose.translation += b.velocity;
+    const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
+    Eigen::Quaterniond q = b.pose.rotation;
+    q.coeffs() += 0.5 * (w * q).coeffs();
+    b.pose.rotation = q.normalized();
+    const ObjectType& t = *scene_.types[b.type];
+    const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
+    for (int a = 0; a < 3; ++a) {
+      if ((c[a] - t.radius < 0 && b.velocity[a] < 0) || (c[a] + t.radius > scene_.side && b.velocity[a] > 0)) {
+        b.velocity[a] = -b.velocity[a];
+        moved_[i] = true;
+        ++st.wall_hits;
+      }
+    }
+  }
+  double t1 = now();
+  st.t_integrate = t1 - t0;
+
+  compute_bounds();
+  double t2 = now();
+  st.t_bounds = t2 - t1;
+
+  broadphase_->update(bounds_, frame_);
+  const std::vector<BodyPair>& pairs = broadphase_->pairs();
+  double t3 = now();
+  st.t_broadphase = t3 - t2;
+
+  // Mid-phase: the enclosing spheres, then the oriented boxes of the two bodies (separating-axis test over the 15
+  // axes), then the device.
+  requests_.clear();
+  tested_.clear();
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const uint32_t ia = pairs[k].first, ib = pairs[k].second;
+    const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
+    if (opt_.midphase && (!spheres_overlap(bounds_[ia], bounds_[ib]) ||
+                          !boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia], *scene_.types[b.type],
+                                         rot_[ib], box_centre_[ib])))
+      continue;
+    PairRequest r;
+    r.a = a.type;
+    r.b = b.type;
+    r.pose_a = a.pose;
+    r.pose_b = b.pose;
+    requests_.push_back(r);
+    tested_.push_back(uint32_t(k));
+  }
+  PairOptions po;
+  po.mode = opt_.mode;
+  po.both_directions = opt_.both_directions;
+  po.cull = opt_.cull;
+  collider_->collide(requests_, po, results_);
+  double t4 = now();
+  st.t_narrow = t4 - t3;
+  st.pairs = pairs.size();
+  st.tested = requests_.size();
+
+  // Response, in the broadphase's order (deterministic): for a touching pair that is approaching along the contact
+  // normal, exchange the velocity components along it (an elastic impulse between equal masses) and reverse both
+  // spins (the paper's rotation response). A pair already separating is left alone, so it cannot stick.
+  for (size_t q = 0; q < requests_.size(); ++q) {
+    const PairResult& r = results_[q];
+    const size_t k = tested_[q];
+    st.lookups += r.lookups;
+    st.hits += r.hits;
+    st.contacts += r.contacts.size();
+    st.device_cycles += r.cycles;
+    if (r.hits == 0) continue;
+    ++st.touching;
+    Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
+    // The normal from A towards B: A's outward normals where A's shell is in B, minus B's where B's is in A; the
+    // line between the bounding spheres' centres when the contacts give none (COUNT, or normals that cancel).
+    Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
+    for (const Contact& c : r.contacts) nrm += c.a_in_b ? c.normal : -c.normal;
+    if (nrm.squaredNorm() < 1e-12) nrm = bounds_[pairs[k].second].centre - bounds_[pairs[k].first].centre;
+    if (nrm.squaredNorm() < 1e-24) nrm = Eigen::Vector3d::UnitX();
+    nrm.normalize();
+    const double closing = (b.velocity - a.velocity).dot(nrm);
+    if (closing >= 0) continue;  // separating already
+    a.velocity += closing * nrm;
+    b.velocity -= closing * nrm;
+    a.spin = -a.spin;
+    b.spin = -b.spin;
+    moved_[pairs[k].first] = moved_[pairs[k].second] = true;
+    ++st.responses;
+  }
+  // The stream of the frame is taken one cycle after its last completion record.
+  if (st.tested > 0 && collider_->device().models_cycles()) st.device_cycles += 1;
+  st.t_response = now() - t4;
+  ++frame_;
+  return st;
+}
+
+uint64_t Simulation::state_hash() const {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](double v) {
+    uint64_t bits;
+    std::memcpy(&bits, &v, 8);
+    for (int i = 0; i < 8; ++i) {
+      h ^= (bits >> (8 * i)) & 0xff;
+      h *= 1099511628211ull;
+    }
+  };
+  for (const Body& b : scene_.bodies) {
+    for (int i = 0; i < 3; ++i) mix(b.pose.translation[i]), mix(b.velocity[i]), mix(b.spin[i]);
+    for (int i = 0; i < 4; ++i) mix(b.pose.rotation.coeffs()[i]);
+  }
+  return h;
+}
+
+}  // namespace voxcd

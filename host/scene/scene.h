@@ -1,0 +1,173 @@
+// N-body scenes: instances of object types with rigid state, and the paper's simulation environment (a cube of side
+// 100 at a density of 2.5%, random momentum, Euler integration, wall and object-object response), stepped frame by
+// frame with a broadphase and pair tests on a device backend. docs/simulate.md describes it.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "voxcd/host/broadphase/broadphase.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/object/object_type.h"
+
+namespace voxcd {
+
+struct Body {
+  uint32_t type = 0;
+  RigidPose pose;                                    // world = rotation * local + translation
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // world units per frame
+  Eigen::Vector3d spin = Eigen::Vector3d::Zero();      // angular velocity, radians per frame, world axes
+};
+
+struct Scene {
+  double side = 100;  // the environment: the cube [0, side]^3, walls on its faces
+  std::vector<std::shared_ptr<const ObjectType>> types;
+  std::vector<Body> bodies;
+};
+
+// The paper's environment (Section 7): `objects` copies of one shape (a built-in name or a mesh file) scaled so
+// that they fill `density` of the cube, voxelised at `voxel` world units or at `resolution` voxels along the
+// object's longest side (by default at default_voxel: the paper's accuracy of one unit at the paper's object size,
+// scaled with the object), placed without overlapping bounding spheres (place_bodies), with random orientations,
+// random velocities of up to `speed` times the object's bounding radius per frame and random spins of up to
+// `spin` radians per frame.
+struct SceneSpec {
+  std::string shape = "polytope36";
+  size_t objects = 64;
+  double side = 100;
+  double density = 0.025;
+  double speed = 0.1;
+  double spin = 0.02;
+  // World units; NaN (the default): not given. At most one of voxel and resolution; neither: default_voxel.
+  double voxel = std::numeric_limits<double>::quiet_NaN();
+  uint32_t resolution = 0;  // voxels along the object's longest side (voxel_for_resolution); 0: not given
+  uint64_t seed = 1;
+  bool voxel_given() const { return !std::isnan(voxel); }
+};
+
+// The paper's scene: 64 objects filling 2.5% of a cube of side 100, so 390.625 cubic units each, at voxel 1.
+constexpr double kPaperObjectVolume = 0.025 * 100 * 100 * 100 / 64;
+
+// The default voxel of an object of `volume` cubic world units and longest side `extent`: the paper's voxel (1)
+// scaled with the object, cbrt(volume / kPaperObjectVolume), so that an object has as many voxels at every size
+// as at the paper's (the 36-face polytope: 12.26 along its longest side; any solid at least 7.31, a cube's).
+// Exactly 1 for the paper's scene. Bounded to [extent / kDefaultMostAcross, extent / kDefaultFewestAcross], so
+// that a flat or thin object, whose volume says little of its size, still gets a usable voxmap.
+constexpr double kDefaultFewestAcross = 4, kDefaultMostAcross = 64;
+double default_voxel(double volume, double extent);
+
+// Throws std::invalid_argument naming the field for a value out of range (no objects, density outside (0, 0.3],
+// both voxel and resolution, a voxel size that makes the object larger than 2^10 voxels or fewer than 4 across, a
+// resolution outside [4, 1020]), for objects whose bounding spheres do not fit the cube at that density (naming
+// the density and the largest that fits), MeshError for the shape.
+Scene make_scene(const SceneSpec& spec);
+
+struct SimOptions {
+  std::string pruning = "grid";  // a broadphase name (host/broadphase/broadphase.h): the fastest at every N measured
+  std::string backend = "cpu";   // a device backend
+  int lanes = 4;                 // lanes of the modelled device
+  // The device's whole configuration (e.g. one `voxcd size` derived); it replaces `lanes` and the memories grown
+  // to fit. Unset: the default widths with `lanes`.
+  std::optional<DeviceConfig> device;
+  Mode mode = Mode::All;         // ALL reports every contact; FIRST only tells whether a pair touches
+  bool both_directions = false;  // also test B's shell in A's voxmap
+  unsigned threads = 0;          // cpu backend threads (0: all); results never depend on it
+  // Before the device, drop broadphase pairs whose oriented boxes (each type's contact bounds in its own frame,
+  // grown by one voxel) are disjoint: such a pair can have no hit, so results never depend on it.
+  bool midphase = true;
+  // Submit only the shell points whose clusters can land in the other object's voxmap (PairOptions::cull):
+  // results never depend on it, lookups and device cycles do.
+  bool cull = true;
+};
+
+struct FrameStats {
+  uint64_t frame = 0;
+  uint64_t pairs = 0;       // from the broadphase
+  uint64_t tested = 0;      // of those, tested on the device (the others' oriented boxes are disjoint)
+  uint64_t touching = 0;    // pairs with at least one hit
+  uint64_t responses = 0;   // pairs whose velocities the response changed (they were approaching)
+  uint64_t wall_hits = 0;   // body-wall bounces
+  uint64_t lookups = 0;     // shell points submitted
+  uint64_t hits = 0;
+  uint64_t contacts = 0;
+  uint64_t device_cycles = 0;  // of the frame's job stream (measured on rtl, the timing model on ref and cpu)
+  // Seconds per stage.
+  double t_integrate = 0, t_bounds = 0, t_broadphase = 0, t_narrow = 0, t_response = 0;
+  double seconds() const { return t_integrate + t_bounds + t_broadphase + t_narrow + t_response; }
+};
+
+class Simulation {
+ public:
+  // The device is configured from the scene: only its object types are loaded, with memories grown to fit them.
+  Simulation(Scene scene, const SimOptions& opt);
+  // One frame: integrate, bounce off the walls, bounds, broadphase, pair tests, response.
+  FrameStats step();
+  const Scene& scene() const { return scene_; }
+  const Broadphase& broadphase() const { return *broadphase_; }
+  const DeviceConfig& device_config() const { return collider_->device().config(); }
+  uint64_t frame() const { return frame_; }
+  // A hash of every body's state (bit patterns of positions, orientations and velocities): equal runs, equal hash.
+  uint64_t state_hash() const;
+
+ private:
+  void compute_bounds();
+
+  Scene scene_;
+  SimOptions opt_;
+  std::unique_ptr<Broadphase> broadphase_;
+  std::unique_ptr<PairCollider> collider_;
+  std::vector<BodyBounds> bounds_;
+  // Each body's rotation matrix and the world centre of its contact box, this frame (for the mid-phase).
+  std::vector<Eigen::Matrix3d> rot_;
+  std::vector<Eigen::Vector3d> box_centre_;
+  std::vector<bool> moved_;
+  std::vector<PairRequest> requests_;
+  std::vector<uint32_t> tested_;  // the broadphase index of each request
+  std::vector<PairResult> results_;
+  uint64_t frame_ = 0;
+};
+
+// Places counts[i] bodies of scene.types[i] in the cube [0, scene.side]^3, type by type, appending them to
+// scene.bodies, with non-overlapping enclosing spheres, random orientations, velocities of up to `speed` times the
+// type's radius per frame in a random direction and spins of up to `spin` radians per frame. Deterministic for a
+// seed. First at random (random sequential addition: up to 10,000 uniform tries a body, checked against the
+// bodies placed so far through a uniform grid of cells at least as wide as the largest sphere, so O(1) a try);
+// if a body finds no place, or the tries of all bodies pass 10^6 + 4 per body, again from the start on a
+// lattice: the densest of a face-centred cubic and a simple cubic lattice in the cube, spread as wide as the
+// count allows, N of its sites taken at random and each body jittered within the spacing's slack. The lattice
+// treats every sphere as the largest. PlacementError when even the lattice at the closest spacing has too few
+// sites (`capacity` of them).
+struct PlacementError : std::runtime_error {
+  PlacementError(uint32_t t, uint64_t k, uint64_t cap, double r)
+      : std::runtime_error("could not place instance " + std::to_string(k) + " of type " + std::to_string(t) +
+                           ": bounding spheres of radius " + std::to_string(r) + " fit at most " +
+                           std::to_string(cap) + " in the cube"),
+        type(t), instance(k), capacity(cap), radius(r) {}
+  uint32_t type;
+  uint64_t instance;   // the first body the lattice has no site for
+  uint64_t capacity;   // sites of the densest lattice for spheres of `radius`
+  double radius;       // the largest bounding radius
+};
+void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed);
+
+// The scenes' random draws (a uniform rotation; a uniform unit direction), one definition so that scene files
+// place bodies exactly as the built-in scene does.
+Eigen::Quaterniond scene_rotation(std::mt19937_64& rng);
+// How many spheres of radius r place_bodies' lattice fits in the cube [0, side]^3 at the closest spacing (2r)
+// (0 when one does not fit); the most bodies it places whatever the seed.
+uint64_t lattice_capacity(double side, double r);
+Eigen::Vector3d scene_direction(std::mt19937_64& rng);
+
+// A body's world bounds: its type's smallest enclosing sphere and the world box of its type's local box.
+BodyBounds body_bounds(const ObjectType& t, const Body& b);
+// The same, given R = b's rotation matrix and c = R * (t.lo + t.hi) / 2 + b's translation (its box's centre).
+BodyBounds body_bounds(const ObjectType& t, const Body& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& c);
+
+}  // namespace voxcd

@@ -1,0 +1,389 @@
+#include "voxcd/host/scene/scene_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/object/voxelize.h"
+
+namespace voxcd {
+
+namespace {
+
+using json = nlohmann::json;
+
+std::string num_text(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+// Reads one JSON object's keys with their checks, naming the file and the JSON path in every error.
+class Reader {
+ public:
+  Reader(const json& j, std::string path, const std::string& where) : j_(j), path_(std::move(path)), where_(where) {
+    if (!j_.is_object()) fail(path_, std::string("must be an object, not ") + j_.type_name());
+  }
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw SceneFileError(where_ + ": " + (path.empty() ? std::string("(top level)") : path) + ": " + what);
+  }
+  std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  bool has(const std::string& key) const { return j_.contains(key); }
+  const json& at(const std::string& key) const { return j_.at(key); }
+
+  // Every key of the object must be one of `known`.
+  void only(std::initializer_list<const char*> known) const {
+    for (const auto& [k, v] : j_.items()) {
+      if (std::none_of(known.begin(), known.end(), [&key = k](const char* n) { return key == n; })) {
+        std::string list;
+        for (const char* n : known) list += (list.empty() ? "" : ", ") + std::string(n);
+        fail(key_path(k), "unknown key (known here: " + list + ")");
+      }
+    }
+  }
+
+  // A number in [lo, hi] (or (lo, hi] when lo_open); false when the key is absent.
+  bool number(const std::string& key, double& out, double lo, double hi, bool lo_open) const {
+    if (!has(key)) return false;
+    const json& v = at(key);
+    if (!v.is_number()) fail(key_path(key), std::string("must be a number, not ") + v.type_name());
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || (lo_open ? !(d > lo) : !(d >= lo)) || !(d <= hi))
+      fail(key_path(key), num_text(d) + " is outside " + (lo_open ? "(" : "[") + num_text(lo) + ", " +
+                              num_text(hi) + "]");
+    out = d;
+    return true;
+  }
+  bool integer(const std::string& key, uint64_t& out, uint64_t lo, uint64_t hi) const {
+    if (!has(key)) return false;
+    const json& v = at(key);
+    if (!v.is_number_integer() && !(v.is_number_float() && std::floor(v.get<double>()) == v.get<double>()))
+      fail(key_path(key), std::string("must be an integer, not ") + (v.is_number() ? v.dump() : v.type_name()));
+    if (v.is_number_integer() && !v.is_number_unsigned() && v.get<int64_t>() < 0)
+      fail(key_path(key), v.dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    const double d = v.get<double>();
+    if (d < double(lo) || d > double(hi))
+      fail(key_path(key), v.dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    out = v.is_number_unsigned() ? v.get<uint64_t>() : uint64_t(d);
+    return true;
+  }
+  bool string(const std::string& key, std::string& out) const {
+    if (!has(key)) return false;
+    const json& v = at(key);
+    if (!v.is_string()) fail(key_path(key), std::string("must be a string, not ") + v.type_name());
+    out = v.get<std::string>();
+    if (out.empty()) fail(key_path(key), "must not be empty");
+    return true;
+  }
+  bool boolean(const std::string& key, bool& out) const {
+    if (!has(key)) return false;
+    const json& v = at(key);
+    if (!v.is_boolean()) fail(key_path(key), std::string("must be true or false, not ") + v.type_name());
+    out = v.get<bool>();
+    return true;
+  }
+  void one_of(const std::string& key, const std::string& value, const std::vector<std::string>& names) const {
+    if (std::find(names.begin(), names.end(), value) != names.end()) return;
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    fail(key_path(key), "'" + value + "' is not one of " + list);
+  }
+
+ private:
+  const json& j_;
+  std::string path_;
+  const std::string& where_;
+};
+
+// A key given twice in one object (JSON leaves it to the reader; nlohmann keeps the last one, which would silently
+// drop the first): found while parsing, with the path of the key in the same form as Reader's errors.
+class DuplicateKeys {
+ public:
+  explicit DuplicateKeys(const std::string& where) : where_(where) {}
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: stack_.push_back({false, 0, {}, {}}); break;
+      case json::parse_event_t::array_start: stack_.push_back({true, 0, {}, {}}); break;
+      case json::parse_event_t::key: {
+        Frame& f = stack_.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second) throw SceneFileError(where_ + ": " + path() + ": appears twice in one object");
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack_.pop_back();
+        if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+        break;
+      case json::parse_event_t::value:
+        if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    size_t index;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : stack_) {
+      if (f.array) p += "[" + std::to_string(f.index) + "]";
+      else p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
+  }
+  const std::string& where_;
+  std::vector<Frame> stack_;
+};
+
+}  // namespace
+
+double SceneFile::smallest_voxel() const {
+  double v = 0;
+  for (const auto& t : types) {
+    const double tv = t.voxel > 0 ? t.voxel : 1.0;
+    v = v == 0 ? tv : std::min(v, tv);
+  }
+  return v;
+}
+
+double SceneFile::accuracy_or_default() const { return accuracy > 0 ? accuracy : smallest_voxel() / 50; }
+
+double SceneFile::accuracy_or_default(const Scene& scene) const {
+  if (accuracy > 0) return accuracy;
+  double v = 0;
+  for (const auto& t : scene.types) v = v == 0 ? t->voxmap().voxel() : std::min(v, t->voxmap().voxel());
+  return v > 0 ? v / 50 : accuracy_or_default();
+}
+
+uint64_t SceneFile::objects() const {
+  uint64_t n = 0;
+  for (const auto& t : types) n += t.count;
+  return n;
+}
+
+SceneFile parse_scene_file(std::string_view text, const std::string& where) {
+  json j;
+  try {
+    j = json::parse(text.begin(), text.end(), DuplicateKeys(where));
+  } catch (const json::exception& e) {
+    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."; a number too
+    // large for a double is an out_of_range.406 ("number overflow parsing '1e999'"), not a parse_error.
+    std::string what = e.what();
+    const auto p = what.find("] ");
+    throw SceneFileError(where + ": not valid JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
+  }
+  SceneFile f;
+  f.where = where;
+  const Reader top(j, "", where);
+  top.only({"types", "environment", "accuracy", "rate", "clock", "frames", "broadphase", "backend", "mode",
+            "both_directions"});
+  if (!top.has("types")) top.fail("types", "missing: a scene needs at least one object type");
+  const json& types = top.at("types");
+  if (!types.is_array()) top.fail("types", std::string("must be an array of object types, not ") + types.type_name());
+  if (types.empty()) top.fail("types", "is empty: a scene needs at least one object type");
+  const std::filesystem::path dir = std::filesystem::path(where).parent_path();
+  for (size_t i = 0; i < types.size(); ++i) {
+    SceneTypeSpec t;
+    t.key = "types[" + std::to_string(i) + "]";
+    const Reader r(types[i], t.key, where);
+    r.only({"name", "shape", "mesh", "size", "scale", "voxel", "resolution", "count"});
+    const bool has_shape = r.string("shape", t.shape), has_mesh = r.string("mesh", t.mesh);
+    if (has_shape == has_mesh) r.fail(t.key, "needs exactly one of \"shape\" (a built-in name) and \"mesh\" (a file)");
+    if (has_shape) r.one_of("shape", t.shape, shape_names());
+    if (has_mesh) {
+      t.name = std::filesystem::path(t.mesh).filename().string();
+      if (std::filesystem::path(t.mesh).is_relative()) t.mesh = (dir / t.mesh).lexically_normal().string();
+    } else {
+      t.name = t.shape;
+    }
+    r.string("name", t.name);
+    r.number("size", t.size, 0, 1e12, true);
+    r.number("scale", t.scale, 0, 1e12, true);
+    if (t.size > 0 && t.scale > 0) r.fail(t.key, "give \"size\" or \"scale\", not both");
+    const bool has_voxel = r.number("voxel", t.voxel, 0, 1e12, true);
+    uint64_t resolution = 0;
+    if (r.integer("resolution", resolution, kMinVoxelsAcross, 1020)) t.resolution = uint32_t(resolution);
+    if (has_voxel && t.resolution > 0)
+      r.fail(t.key, "give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), not both");
+    r.integer("count", t.count, 1, uint64_t{1} << 20);
+    f.types.push_back(t);
+  }
+  if (top.has("environment")) {
+    const Reader e(top.at("environment"), "environment", where);
+    e.only({"side", "density", "speed", "spin", "seed"});
+    e.number("side", f.side, 0, 1e12, true);
+    f.density_given = e.number("density", f.density, 0, 0.3, true);
+    e.number("speed", f.speed, 0, 1e6, false);
+    e.number("spin", f.spin, 0, 1e6, false);
+    e.integer("seed", f.seed, 0, ~uint64_t{0});
+    if (f.density_given && std::none_of(f.types.begin(), f.types.end(), [](auto& t) { return t.auto_scaled(); }))
+      e.fail("environment.density", "sizes only the types with no \"size\" or \"scale\", and every type has one");
+  }
+  top.number("accuracy", f.accuracy, 0, 1e12, true);
+  top.number("rate", f.rate, 0, 1e12, true);
+  top.number("clock", f.clock, 0, 1e6, true);
+  top.integer("frames", f.frames, 1, 1000000);
+  if (top.string("broadphase", f.broadphase)) top.one_of("broadphase", f.broadphase, broadphase_names());
+  if (top.string("backend", f.backend)) top.one_of("backend", f.backend, device_backends());
+  if (top.string("mode", f.mode)) top.one_of("mode", f.mode, {"ALL", "FIRST", "COUNT"});
+  top.boolean("both_directions", f.both_directions);
+  return f;
+}
+
+SceneFile read_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneFileError(path + ": cannot open the scene file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw SceneFileError(path + ": cannot read the scene file");
+  return parse_scene_file(s.str(), path);
+}
+
+Scene make_scene(const SceneFile& f) {
+  auto fail = [&](const std::string& path, const std::string& what) -> SceneFileError {
+    return SceneFileError(f.where + ": " + path + ": " + what);
+  };
+  if (f.types.empty()) throw fail("types", "is empty: a scene needs at least one object type");
+  const double cube = f.side * f.side * f.side;
+  // Meshes, centred on their boxes' centres; the explicitly sized types' volumes.
+  struct Loaded {
+    Mesh mesh;
+    std::string source;
+    uint64_t hash = 0;
+    double extent = 0, volume = 0, s = 0;
+  };
+  std::vector<Loaded> loaded(f.types.size());
+  double fixed_volume = 0;
+  uint64_t auto_count = 0;
+  for (size_t i = 0; i < f.types.size(); ++i) {
+    const SceneTypeSpec& t = f.types[i];
+    Loaded& l = loaded[i];
+    if (!t.mesh.empty()) {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(t.mesh, ec))
+        throw fail(t.key + ".mesh", "'" + t.mesh + "' is not a readable file");
+    }
+    try {
+      l.mesh = t.mesh.empty() ? load_source(t.shape, &l.source, &l.hash) : load_mesh(t.mesh);
+      if (!t.mesh.empty()) {
+        l.source = t.mesh;
+        l.hash = hash_file(t.mesh);
+      }
+    } catch (const std::exception& e) {
+      throw fail(t.key + (t.mesh.empty() ? ".shape" : ".mesh"), e.what());
+    }
+    Eigen::Vector3d lo, hi;
+    l.mesh.bounds(lo, hi);
+    const Eigen::Vector3d mid = 0.5 * (lo + hi);
+    for (auto& v : l.mesh.vertices) v -= mid;
+    l.extent = (hi - lo).maxCoeff();
+    l.volume = l.mesh.volume();
+    if (t.size > 0) l.s = t.size / l.extent;
+    if (t.scale > 0) l.s = t.scale;
+    if (l.s > 0)
+      fixed_volume += double(t.count) * l.volume * l.s * l.s * l.s;
+    else
+      auto_count += t.count;
+  }
+  if (auto_count > 0) {
+    // Evaluated as make_scene does, so that one auto-scaled type gets exactly its scale.
+    const double left = f.density * f.side * f.side * f.side - fixed_volume;
+    if (!(left > 0))
+      throw fail("environment.density", num_text(f.density) + " of the cube is " + num_text(f.density * cube) +
+                                            ", and the types with a size or scale already fill " +
+                                            num_text(fixed_volume));
+    for (size_t i = 0; i < f.types.size(); ++i)
+      if (f.types[i].auto_scaled()) loaded[i].s = std::cbrt(left / double(auto_count) / loaded[i].volume);
+  } else if (fixed_volume > 0.3 * cube) {
+    throw fail("types", "the objects fill " + num_text(fixed_volume / cube) + " of the cube, above 0.3");
+  }
+  // Each type's voxel: given, from its resolution, or the default (make_scene(SceneSpec)'s rule, evaluated alike so
+  // that one auto-scaled type gets exactly the built-in scene's voxel).
+  std::vector<double> voxel(f.types.size());
+  for (size_t i = 0; i < f.types.size(); ++i) {
+    const SceneTypeSpec& t = f.types[i];
+    Loaded& l = loaded[i];
+    for (auto& v : l.mesh.vertices) v *= l.s;
+    const double extent = l.extent * l.s;
+    const double one = t.auto_scaled() ? (f.density * f.side * f.side * f.side - fixed_volume) / double(auto_count)
+                                       : l.volume * l.s * l.s * l.s;
+    try {
+      voxel[i] = t.voxel > 0 ? t.voxel : t.resolution > 0 ? voxel_for_resolution(l.mesh, t.resolution)
+                                                          : default_voxel(one, extent);
+    } catch (const std::exception& e) {
+      throw fail(t.key + ".resolution", e.what());
+    }
+    // The key at fault, and what it asked.
+    const std::string key = t.key + (t.voxel > 0 ? ".voxel" : t.resolution > 0 ? ".resolution" : "");
+    const std::string what = t.voxel > 0        ? num_text(t.voxel)
+                              : t.resolution > 0 ? "resolution " + std::to_string(t.resolution) + " (voxel " +
+                                                       num_text(voxel[i]) + ")"
+                                                 : "the default voxel " + num_text(voxel[i]);
+    if (extent / voxel[i] > 1020)
+      throw fail(key, what + " makes the object " + num_text(std::ceil(extent / voxel[i])) + " voxels across (" +
+                          num_text(extent) + " world units), above 2^10");
+    if (extent / voxel[i] < 2)
+      throw fail(key, what + " is larger than half the object (" + num_text(extent) +
+                          " across); it would be a voxel or two");
+    if (extent / voxel[i] < kMinVoxelsAcross)
+      throw fail(key, what + " leaves " + num_text(extent / voxel[i]) + " voxels along the object's longest side (" +
+                          num_text(extent) + " world units); at least " + std::to_string(kMinVoxelsAcross) +
+                          " are needed: a voxel of at most " + num_text(extent / kMinVoxelsAcross) +
+                          ", or a \"resolution\"");
+  }
+  // Every shell is fine enough for the smallest voxmap of the scene (the paper's sqrt(2) rule against it).
+  const double vmin = *std::min_element(voxel.begin(), voxel.end());
+  Scene scene;
+  scene.side = f.side;
+  for (size_t i = 0; i < f.types.size(); ++i) {
+    const SceneTypeSpec& t = f.types[i];
+    Loaded& l = loaded[i];
+    ObjectOptions oo;
+    oo.voxel = voxel[i];
+    oo.shell_ratio = std::sqrt(2.0) * (voxel[i] / vmin);
+    try {
+      scene.types.push_back(
+          std::make_shared<ObjectType>(make_object_type(make_object(l.mesh, l.source, l.hash, oo), t.name)));
+    } catch (const std::exception& e) {
+      throw fail(t.key, e.what());
+    }
+    if (2 * scene.types.back()->radius >= f.side)
+      throw fail(t.key, "the object (radius " + num_text(scene.types.back()->radius) +
+                            ") does not fit the cube of side " + num_text(f.side));
+  }
+  // With one type, the same draws as make_scene(SceneSpec), so the same bodies.
+  std::vector<uint64_t> counts;
+  for (const auto& t : f.types) counts.push_back(t.count);
+  try {
+    place_bodies(scene, counts, f.speed, f.spin, f.seed);
+  } catch (const PlacementError& e) {
+    const auto& t = f.types[e.type];
+    throw fail(t.key + ".count", "could not place instance " + std::to_string(e.instance) + " of " +
+                                     std::to_string(t.count) + " without overlapping another (the cube is too full): " +
+                                     "even packed on a lattice, bounding spheres of radius " + num_text(e.radius) +
+                                     " (the scene's largest) fit at most " + std::to_string(e.capacity) + " of the " +
+                                     std::to_string(f.objects()) + " objects" +
+                                     (auto_count > 0 ? "; lower environment.density (" + num_text(f.density) +
+                                                           ") or the counts"
+                                                     : "; lower the counts or sizes"));
+  }
+  return scene;
+}
+
+}  // namespace voxcd

@@ -1,0 +1,425 @@
+#include "voxcd/host/sizing/size.h"
+#include "voxcd/host/package/paths.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/ref/fixed.h"
+#include "voxcd/ref/types.h"
+
+
+namespace voxcd {
+
+namespace {
+
+std::string fmt(double v, int precision = 4) {
+  std::ostringstream s;
+  s.precision(precision);
+  s << v;
+  return s.str();
+}
+
+bool fits(double v, int width, int frac) {
+  int64_t raw;
+  return width >= 2 && width <= 64 && try_quantize(v, FixedFormat{width, frac}, &raw) &&
+         try_quantize(-v, FixedFormat{width, frac}, &raw);
+}
+
+// Smallest signed width (from 2) that holds +-v with `frac` fraction bits; 65 when none up to 64 does.
+int width_for(double v, int frac) {
+  for (int w = std::max(2, frac + 1); w <= 64; ++w)
+    if (fits(v, w, frac)) return w;
+  return 65;
+}
+
+// The smallest MW for MF (entries up to +-ratio; an entry of a rotation can be exactly +-1 times the ratio).
+int mw_for(const SceneExtents& e, int mf) { return std::max(mf + 1, width_for(e.max_ratio, mf)); }
+
+// The smallest TW for TF, at least one integer bit above TF, and with an accumulator that holds the index range.
+int tw_for(const SceneExtents& e, DeviceConfig cfg) {
+  cfg.TW = std::max(cfg.TF() + 1, width_for(e.max_translation, cfg.TF()));
+  while (cfg.TW <= 64 && cfg.index_width() < cfg.DW + 1) ++cfg.TW;
+  return cfg.TW;
+}
+
+}  // namespace
+
+SceneExtents scene_extents(const Scene& scene) {
+  SceneExtents e;
+  const size_t n = scene.types.size();
+  std::vector<uint64_t> bodies(n, 0);
+  for (const Body& b : scene.bodies) ++bodies.at(b.type);
+  std::vector<double> max_point(n, 0);
+  double rmax = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const ObjectType& t = *scene.types[i];
+    for (const auto& c : t.shell().cells)
+      for (int j = 0; j < 3; ++j) max_point[i] = std::max(max_point[i], c[j] + 0.5);
+    e.max_point = std::max(e.max_point, max_point[i]);
+    for (uint32_t d : t.voxmap().dims()) e.max_dim = std::max(e.max_dim, d);
+    rmax = std::max(rmax, t.radius);
+  }
+  // Two bodies' sphere centres lie in the cube grown by the largest radius (the walls turn a body back once its
+  // sphere crosses one), so their distance is at most sqrt(3) (side + 2 rmax).
+  const double span = std::sqrt(3.0) * (scene.side + 2 * rmax);
+  for (uint32_t a = 0; a < n; ++a)
+    for (uint32_t b = 0; b < n; ++b) {
+      if (bodies[a] == 0 || bodies[b] == 0 || (a == b && bodies[a] < 2)) continue;
+      const ObjectType &ta = *scene.types[a], &tb = *scene.types[b];
+      const GridFrame sa = ta.shell().frame(), mb = tb.voxmap().grid().frame();
+      SceneExtents::Pair p{a, b, mb.voxel, max_point[a], sa.voxel / mb.voxel};
+      e.pairs.push_back(p);
+      e.max_ratio = std::max(e.max_ratio, sa.voxel / mb.voxel);
+      // t = (R_B^T (R_A o_A + x_A - x_B) - o_B) / v_B with x = c - R centre: |t_i| <= |t|.
+      const double t = (sa.origin.norm() + mb.origin.norm() + ta.centre.norm() + tb.centre.norm() + span) / mb.voxel;
+      e.max_translation = std::max(e.max_translation, t);
+    }
+  return e;
+}
+
+double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* worst) {
+  double err = 0;
+  for (size_t k = 0; k < e.pairs.size(); ++k) {
+    const auto& p = e.pairs[k];
+    double v = 3 * std::ldexp(1.0, -(cfg.MF + 1)) * p.max_point_a + std::ldexp(1.0, -(cfg.TF() + 1));
+    if (cfg.PF < 1) v += 3 * (p.ratio + std::ldexp(1.0, -(cfg.MF + 1))) * std::ldexp(1.0, -(cfg.PF + 1));
+    v *= p.voxel_b;
+    if (v > err || k == 0) {
+      err = v;
+      if (worst) *worst = k;
+    }
+  }
+  return err;
+}
+
+DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig cfg) {
+  if (!(accuracy > 0) || !std::isfinite(accuracy))
+    throw std::invalid_argument("accuracy must be a positive number of world units");
+  // Shell words are voxel centres, half-integers of the shell spacing: PF 1 holds them exactly.
+  cfg.PF = 1;
+  cfg.PW = width_for(e.max_point, cfg.PF);
+  if (cfg.PW > 32)
+    throw SizeError("extent", e.max_point / std::ldexp(1.0, 30),
+                    "shell coordinates up to " + fmt(e.max_point) + " spacings need PW " + std::to_string(cfg.PW) +
+                        " bits, above the largest 32");
+  cfg.DW = 1;
+  while ((uint64_t{1} << cfg.DW) < e.max_dim) ++cfg.DW;
+  // The smallest MF whose bound meets the accuracy, among those whose MW and TW exist.
+  int best_mf = -1;
+  double best_err = 0;
+  for (int mf = 0; mf <= 31; ++mf) {
+    cfg.MF = mf;
+    cfg.MW = mw_for(e, mf);
+    if (cfg.MW > 32) break;
+    cfg.TW = tw_for(e, cfg);
+    if (cfg.TW > 64) break;
+    best_mf = mf;
+    best_err = size_error_bound(cfg, e);
+    if (best_err <= accuracy) return cfg;
+  }
+  if (best_mf < 0)
+    throw SizeError("extent", e.max_translation,
+                    "translations up to " + fmt(e.max_translation) + " voxels need more than TW 64 bits");
+  throw SizeError("accuracy", best_err / accuracy,
+                  "the widest formats (MF " + std::to_string(best_mf) + ", limited by MW <= 32 and TW <= 64) bound the "
+                  "error at " + fmt(best_err) + " world units; " + fmt(accuracy) + " requested is " +
+                  fmt(best_err / accuracy) + " times finer");
+}
+
+DeviceConfig derive_memory(DeviceConfig cfg, const Scene& scene) {
+  // Count what the host's packing needs (DeviceImage places types back to back), then check it with the packing.
+  uint64_t shell = 0, words = 0;
+  const uint64_t spw = uint64_t(cfg.states_per_word());
+  for (const auto& t : scene.types) {
+    shell += t->shell().size();
+    words += (t->voxmap().size() + spw - 1) / spw;
+  }
+  cfg.SAW = 1;
+  while (cfg.SAW < 24 && (cfg.shell_depth() < shell || (1 << cfg.SAW) < cfg.LANES)) ++cfg.SAW;
+  cfg.MAW = 1;
+  while (cfg.MAW < 28 && cfg.map_depth() < words) ++cfg.MAW;
+  if (cfg.shell_depth() < shell)
+    throw SizeError("memory", double(shell) / double(cfg.shell_depth()),
+                    "the object types need " + std::to_string(shell) + " shell words; the largest shell memory "
+                    "(SAW 24) holds " + std::to_string(cfg.shell_depth()) + ", " +
+                        fmt(double(shell) / double(cfg.shell_depth())) + " times too few");
+  if (cfg.map_depth() < words)
+    throw SizeError("memory", double(words) / double(cfg.map_depth()),
+                    "the object types need " + std::to_string(words) + " voxmap words; the largest voxmap memory "
+                    "(MAW 28) holds " + std::to_string(cfg.map_depth()) + ", " +
+                        fmt(double(words) / double(cfg.map_depth())) + " times too few");
+  DeviceImage image(cfg);
+  for (const auto& t : scene.types) image.add(*t);  // CapacityError here would be a bug in the counts above
+  return cfg;
+}
+
+LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg, uint64_t frames) {
+  SimOptions opt;
+  opt.pruning = f.broadphase;
+  opt.backend = "cpu";
+  opt.device = cfg;
+  opt.lanes = cfg.LANES;
+  opt.mode = *parse_mode(f.mode);
+  opt.both_directions = f.both_directions;
+  Simulation sim(scene, opt);
+  LaneMeasure m;
+  m.lanes = cfg.LANES;
+  uint64_t total = 0, pairs = 0, tested = 0, lookups = 0, hits = 0;
+  for (uint64_t k = 0; k < frames; ++k) {
+    const FrameStats s = sim.step();
+    total += s.device_cycles;
+    m.max_cycles = std::max(m.max_cycles, s.device_cycles);
+    pairs += s.pairs, tested += s.tested, lookups += s.lookups, hits += s.hits;
+  }
+  const double F = double(frames);
+  m.mean_cycles = double(total) / F;
+  m.pairs = double(pairs) / F, m.tested = double(tested) / F, m.lookups = double(lookups) / F;
+  m.hits = double(hits) / F;
+  return m;
+}
+
+std::string default_rtl_dir() {
+  try {
+    return rtl_dir();
+  } catch (const std::runtime_error&) {
+    return "";  // yosys_cost looks again and says where
+  }
+}
+
+YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& dir) {
+  const std::string rtl = dir.empty() ? rtl_dir() : dir;
+  namespace fs = std::filesystem;
+  char tmpl[] = "/tmp/voxcd-size-XXXXXX";
+  if (!mkdtemp(tmpl)) throw std::runtime_error("yosys: cannot make a temporary directory");
+  const fs::path tmp = tmpl;
+  struct Cleanup {
+    fs::path p;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    }
+  } cleanup{tmp};
+  std::string read = "read_verilog -sv";
+  for (const std::string& src : rtl_files(rtl)) {
+    const fs::path f = fs::path(src).filename();
+    std::error_code ec;
+    fs::copy_file(src, tmp / f, ec);
+    if (ec) throw std::runtime_error("yosys: cannot copy " + src + ": " + ec.message());
+    read += " " + f.string();
+  }
+  std::ostringstream chparam;
+  chparam << "chparam -set PW " << cfg.PW << " -set PF " << cfg.PF << " -set MW " << cfg.MW << " -set MF " << cfg.MF
+          << " -set TW " << cfg.TW << " -set DW " << cfg.DW << " -set MEMW " << cfg.MEMW << " -set LANES "
+          << cfg.LANES << " -set SAW " << cfg.SAW << " -set MAW " << cfg.MAW << " -set TAGW " << cfg.TAGW
+          << " voxcd_device";
+  YosysCost c;
+  // The same method as bench/rtl_cost.sh's xilinx rows.
+  c.command = read + "; " + chparam.str() + "; synth_xilinx -noiopad -top voxcd_device; flatten; tee -q -o stat.json stat -json";
+  const std::string cmd = "cd '" + tmp.string() + "' && yosys -q -l yosys.log -p '" + c.command + "' >/dev/null 2>&1";
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = std::system(cmd.c_str());
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (rc != 0) {
+    std::ifstream log(tmp / "yosys.log");
+    std::string line, tail;
+    std::vector<std::string> lines;
+    while (std::getline(log, line)) lines.push_back(line);
+    for (size_t i = lines.size() > 10 ? lines.size() - 10 : 0; i < lines.size(); ++i) tail += "\n  " + lines[i];
+    throw std::runtime_error("yosys failed (is the Debian package yosys installed?); the end of its log:" + tail);
+  }
+  std::ifstream in(tmp / "stat.json");
+  nlohmann::json stat;
+  try {
+    in >> stat;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("yosys: cannot read its statistics: ") + e.what());
+  }
+  const nlohmann::json& cells = stat.contains("design") ? stat["design"]["num_cells_by_type"]
+                                                        : stat["modules"].begin().value()["num_cells_by_type"];
+  for (const auto& [name, n] : cells.items()) {
+    const uint64_t k = n.get<uint64_t>();
+    if (name.size() == 4 && name.rfind("LUT", 0) == 0 && name[3] >= '1' && name[3] <= '6') c.luts += k;
+    if (name.rfind("FD", 0) == 0) c.ffs += k;
+    if (name == "DSP48E1") c.dsps += k;
+    if (name == "RAMB36E1") c.brams += double(k);
+    if (name == "RAMB18E1") c.brams += 0.5 * double(k);
+  }
+  FILE* v = popen("yosys -V 2>&1", "r");
+  if (v) {
+    char buf[256] = {0};
+    if (fgets(buf, sizeof buf, v)) c.version = buf;
+    pclose(v);
+    while (!c.version.empty() && (c.version.back() == '\n' || c.version.back() == '\r')) c.version.pop_back();
+  }
+  return c;
+}
+
+double SizeReport::modelled_rate() const {
+  return chosen().max_cycles ? clock * 1e6 / double(chosen().max_cycles) : 0;
+}
+DeviceConfig SizeReport::default_widths() const {
+  DeviceConfig d;
+  d.LANES = config.LANES;
+  d.SAW = config.SAW;
+  d.MAW = config.MAW;
+  return d;
+}
+uint64_t SizeReport::shell_bits() const { return config.shell_depth() * uint64_t(3 * config.PW); }
+uint64_t SizeReport::map_bits() const { return config.map_depth() * uint64_t(config.MEMW) * uint64_t(config.LANES); }
+
+SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest& req) {
+  SizeReport r;
+  r.scene = f.where;
+  r.accuracy = req.accuracy > 0 ? req.accuracy : f.accuracy_or_default(scene);
+  r.rate = req.rate > 0 ? req.rate : f.rate;
+  r.clock = req.clock > 0 ? req.clock : f.clock;
+  r.frames = req.frames > 0 ? req.frames : f.frames;
+  r.objects = scene.bodies.size();
+  r.extents = scene_extents(scene);
+  DeviceConfig cfg = derive_widths(r.extents, r.accuracy);
+  r.error = size_error_bound(cfg, r.extents, &r.worst_pair);
+  // Lanes: the fewest (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget.
+  const double budget = r.clock * 1e6 / r.rate;
+  r.budget = uint64_t(std::floor(budget));
+  for (int lanes = 1; lanes <= 64; lanes *= 2) {
+    cfg.LANES = lanes;
+    cfg = derive_memory(cfg, scene);
+    r.lanes.push_back(measure_frames(scene, f, cfg, r.frames));
+    if (double(r.lanes.back().max_cycles) <= budget) break;
+    if (lanes == 64) {
+      const LaneMeasure& m = r.lanes.back();
+      const double best = r.clock * 1e6 / double(m.max_cycles);
+      throw SizeError("rate", r.rate / best,
+                      "64 lanes take " + std::to_string(m.max_cycles) + " cycles for the largest of " +
+                          std::to_string(r.frames) + " frames, " + fmt(best) + " frames per second at " +
+                          fmt(r.clock) + " MHz; " + fmt(r.rate, 8) + " requested is " + fmt(r.rate / best) +
+                          " times faster");
+    }
+  }
+  r.config = cfg;
+  r.config.validate();
+  uint64_t spw = uint64_t(cfg.states_per_word());
+  for (const auto& t : scene.types) {
+    r.shell_words += t->shell().size();
+    r.map_words += (t->voxmap().size() + spw - 1) / spw;
+  }
+  return r;
+}
+
+namespace {
+std::string bits_text(uint64_t b) {
+  if (b >= (uint64_t{1} << 20)) return fmt(double(b) / double(uint64_t{1} << 20), 4) + " Mbit";
+  if (b >= (uint64_t{1} << 10)) return fmt(double(b) / 1024.0, 4) + " kbit";
+  return std::to_string(b) + " bit";
+}
+}  // namespace
+
+std::string size_text(const SizeReport& r, const Scene& scene) {
+  std::ostringstream o;
+  const DeviceConfig& c = r.config;
+  const LaneMeasure& m = r.chosen();
+  const auto& wp = r.extents.pairs.at(r.worst_pair);
+  o << "voxcd size: " << r.scene << ": " << r.objects << " objects of " << scene.types.size() << " type"
+    << (scene.types.size() > 1 ? "s" : "") << "; accuracy " << fmt(r.accuracy) << " world units, " << fmt(r.rate, 8)
+    << " frames/s at " << fmt(r.clock) << " MHz\n";
+  for (const auto& t : scene.types) {
+    const auto& d = t->voxmap().dims();
+    o << "  type " << t->name << ": voxel " << fmt(t->voxmap().voxel()) << ", voxmap " << d[0] << "x" << d[1] << "x"
+      << d[2] << ", " << t->shell().size() << " shell points at spacing " << fmt(t->shell().frame().voxel) << "\n";
+  }
+  o << "configuration   " << c.to_string() << "\n";
+  o << "widths          PW " << c.PW << " PF " << c.PF << ": shell coordinates up to " << fmt(r.extents.max_point)
+    << " spacings, exact (half-integers); MW " << c.MW << " MF " << c.MF << ": matrix entries up to "
+    << fmt(r.extents.max_ratio) << "; TW " << c.TW << ": translations up to " << fmt(r.extents.max_translation)
+    << " voxels; DW " << c.DW << ": voxmaps up to " << r.extents.max_dim << " voxels\n";
+  o << "error           " << fmt(r.error) << " world units at most (" << fmt(r.accuracy) << " requested; worst pair "
+    << scene.types[wp.a]->name << " in " << scene.types[wp.b]->name << ": voxel_B * (3 * 2^-" << c.MF + 1 << " * "
+    << fmt(wp.max_point_a) << " + 2^-" << c.TF() + 1 << "))\n";
+  o << "per frame       " << fmt(m.pairs) << " broadphase pairs, " << fmt(m.tested) << " tested, " << fmt(m.lookups)
+    << " lookups, " << fmt(m.hits) << " hits (mean of " << r.frames << " frames on the cpu backend)\n";
+  o << "cycles          ";
+  for (size_t i = 0; i < r.lanes.size(); ++i)
+    o << (i ? ", " : "") << "LANES " << r.lanes[i].lanes << ": " << r.lanes[i].max_cycles;
+  o << " (largest frame; budget " << r.budget << " at " << fmt(r.rate, 8) << " frames/s)\n";
+  o << "frame rate      " << fmt(r.modelled_rate(), 6) << " frames/s at " << fmt(r.clock) << " MHz with LANES "
+    << c.LANES << " (largest frame " << m.max_cycles << " cycles, mean " << fmt(m.mean_cycles, 6) << ")\n";
+  o << "memory          shell 2^" << c.SAW << " x " << 3 * c.PW << " bit = " << bits_text(r.shell_bits())
+    << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.LANES
+    << " lane copies = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
+    << bits_text(r.shell_bits() + r.map_bits()) << "\n";
+  if (r.cost)
+    o << "cost            " << r.cost->luts << " LUTs, " << r.cost->ffs << " FFs, " << r.cost->dsps << " DSPs, "
+      << fmt(r.cost->brams) << " block RAMs (RAMB36) for Xilinx 7-series (yosys synth_xilinx, " << r.cost->version
+      << ", " << fmt(r.cost->seconds, 3) << " s)\n";
+  else
+    o << "cost            not synthesised (add --cost to run yosys)\n";
+  if (r.default_cost) {
+    const DeviceConfig d = r.default_widths();
+    o << "default widths  " << r.default_cost->luts << " LUTs, " << r.default_cost->ffs << " FFs, "
+      << r.default_cost->dsps << " DSPs, " << fmt(r.default_cost->brams) << " block RAMs for " << d.to_string()
+      << " (shell 2^" << d.SAW << " x " << 3 * d.PW << " bit); derived/default LUTs "
+      << fmt(double(r.cost->luts) / double(std::max<uint64_t>(1, r.default_cost->luts)), 3) << ", DSPs "
+      << fmt(double(r.cost->dsps) / double(std::max<uint64_t>(1, r.default_cost->dsps)), 3) << ", block RAMs "
+      << fmt(r.cost->brams / std::max(0.5, r.default_cost->brams), 3) << "\n";
+  }
+  return o.str();
+}
+
+std::string size_json(const SizeReport& r, const Scene& scene) {
+  nlohmann::ordered_json j;
+  const DeviceConfig& c = r.config;
+  j["scene"] = r.scene;
+  j["objects"] = r.objects;
+  j["accuracy"] = r.accuracy;
+  j["rate_hz"] = r.rate;
+  j["clock_mhz"] = r.clock;
+  j["frames"] = r.frames;
+  for (const auto& t : scene.types)
+    j["types"].push_back({{"name", t->name},
+                          {"voxel", t->voxmap().voxel()},
+                          {"voxmap", t->voxmap().dims()},
+                          {"shell_points", t->shell().size()},
+                          {"shell_spacing", t->shell().frame().voxel}});
+  j["config"] = {{"PW", c.PW}, {"PF", c.PF},     {"MW", c.MW},   {"MF", c.MF},   {"TW", c.TW},    {"DW", c.DW},
+                 {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW}};
+  j["config_text"] = c.to_string();
+  j["extents"] = {{"max_point", r.extents.max_point},
+                  {"max_ratio", r.extents.max_ratio},
+                  {"max_translation", r.extents.max_translation},
+                  {"max_dim", r.extents.max_dim}};
+  j["error"] = r.error;
+  const auto& wp = r.extents.pairs.at(r.worst_pair);
+  j["worst_pair"] = {scene.types[wp.a]->name, scene.types[wp.b]->name};
+  j["cycle_budget"] = r.budget;
+  for (const auto& m : r.lanes)
+    j["lanes_measured"].push_back({{"lanes", m.lanes}, {"max_cycles", m.max_cycles}, {"mean_cycles", m.mean_cycles}});
+  const LaneMeasure& m = r.chosen();
+  j["per_frame"] = {{"pairs", m.pairs}, {"tested", m.tested}, {"lookups", m.lookups}, {"hits", m.hits}};
+  j["cycles_per_frame"] = {{"max", m.max_cycles}, {"mean", m.mean_cycles}};
+  j["modelled_rate_hz"] = r.modelled_rate();
+  j["memory_bits"] = {{"shell", r.shell_bits()}, {"voxmap", r.map_bits()}, {"total", r.shell_bits() + r.map_bits()}};
+  j["words_used"] = {{"shell", r.shell_words}, {"voxmap", r.map_words}};
+  if (r.cost)
+    j["cost"] = {{"target", "xilinx 7-series (synth_xilinx)"}, {"luts", r.cost->luts}, {"ffs", r.cost->ffs},
+                 {"dsps", r.cost->dsps}, {"brams", r.cost->brams}, {"yosys", r.cost->version},
+                 {"seconds", r.cost->seconds}};
+  else
+    j["cost"] = nullptr;
+  if (r.default_cost)
+    j["default_widths_cost"] = {{"config", r.default_widths().to_string()}, {"luts", r.default_cost->luts},
+                                {"ffs", r.default_cost->ffs}, {"dsps", r.default_cost->dsps},
+                                {"brams", r.default_cost->brams}};
+  return j.dump(2) + "\n";
+}
+
+}  // namespace voxcd

@@ -1,0 +1,117 @@
+// Sizing a device for a scene (`voxcd size`): the smallest widths that hold the scene's extents and meet the
+// requested accuracy through the error bound of docs/contract.md, the smallest memories that hold the scene's
+// object types as the host packs them (DeviceImage), and the fewest lanes that meet the requested frame rate
+// through ref/'s cycle model on the scene's measured frames; with the cost of that configuration from yosys.
+// docs/size.md derives each step.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "voxcd/host/scene/scene.h"
+#include "voxcd/host/scene/scene_file.h"
+#include "voxcd/ref/config.h"
+
+namespace voxcd {
+
+// A request no device can meet. `constraint` is "accuracy", "rate", "memory" or "extent"; the message says by
+// how much it fails (`factor`: how many times finer, faster or larger than the best device allows).
+struct SizeError : std::runtime_error {
+  SizeError(const std::string& constraint_, double factor_, const std::string& what)
+      : std::runtime_error(constraint_ + ": " + what), constraint(constraint_), factor(factor_) {}
+  std::string constraint;
+  double factor = 0;
+};
+
+// What the widths must hold, measured from the scene's object types.
+struct SceneExtents {
+  double max_point = 0;        // largest shell coordinate of any type, in its shell spacings (max_j |p_j|)
+  double max_ratio = 0;        // largest shell spacing of A over voxel of B, any ordered pair: the largest |M_ij|
+  double max_translation = 0;  // bound on |t_i| in B's voxels for any two bodies in the cube (grown by a radius)
+  uint32_t max_dim = 1;        // largest voxmap dimension
+  // Per ordered pair (A's shell in B's map): B's voxel, A's largest shell coordinate and A's shell spacing over
+  // B's voxel (the bound's inputs).
+  struct Pair {
+    uint32_t a = 0, b = 0;
+    double voxel_b = 0, max_point_a = 0, ratio = 0;
+  };
+  std::vector<Pair> pairs;
+};
+SceneExtents scene_extents(const Scene& scene);
+
+// The fixed-point path's error bound for the scene's pairs on cfg, in world units: the largest over ordered pairs of
+// voxel_B * (3 * 2^-(MF+1) * max|p_A| + 2^-(TF+1)): shell words are exact half-integers from PF 1 on, so the
+// point term is 0; with PF 0 it is added (|Mq_i|_1 * 2^-(PF+1), |Mq_i|_1 <= 3 (ratio + 2^-(MF+1))). `worst` gets
+// the index of the pair that gives it.
+double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* worst = nullptr);
+
+// The smallest PW, PF, MW, MF, TW, DW for the extents and accuracy (world units); MEMW, TAGW, LANES, SAW and MAW
+// as in `base`. SizeError "accuracy" when even the widest formats (MW 32, TW 64) cannot meet it, "extent" when
+// the scene's coordinates need more than PW 32 or TW 64.
+DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig base = {});
+
+// cfg with the smallest SAW and MAW into which DeviceImage packs the types (SAW at least log2(LANES), one row per
+// shell bank); SizeError "memory" naming the amount when the largest memories (SAW 24, MAW 28) are too small.
+DeviceConfig derive_memory(DeviceConfig cfg, const Scene& scene);
+
+// The scene's frames measured on the cpu backend at one lane count (ref/'s cycle model).
+struct LaneMeasure {
+  int lanes = 0;
+  uint64_t max_cycles = 0;  // the largest frame
+  double mean_cycles = 0;
+  double pairs = 0, tested = 0, lookups = 0, hits = 0;  // per frame
+};
+LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg, uint64_t frames);
+
+// yosys synth_xilinx (7-series) of voxcd_device with every parameter of cfg set by chparam, from the files of
+// rtl_dir's voxcd.f ("" = the package's RTL, host/package/paths.h).
+struct YosysCost {
+  uint64_t luts = 0, ffs = 0, dsps = 0;
+  double brams = 0;  // RAMB36 units (a RAMB18 is a half)
+  double seconds = 0;
+  std::string version, command;
+};
+// Throws std::runtime_error when yosys is missing or fails (with the end of its log).
+YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& rtl_dir = "");
+// The package's RTL directory (share/voxcd/rtl), or "" when it cannot be found (yosys_cost then says where it looked).
+std::string default_rtl_dir();
+
+struct SizeRequest {
+  double accuracy = 0;  // world units; 0: the scene file's (or its default)
+  double rate = 0;      // Hz; 0: the scene file's
+  double clock = 0;     // MHz; 0: the scene file's
+  uint64_t frames = 0;  // measured frames; 0: the scene file's
+};
+
+struct SizeReport {
+  std::string scene;
+  double accuracy = 0, rate = 0, clock = 0;
+  uint64_t frames = 0, objects = 0;
+  DeviceConfig config;
+  SceneExtents extents;
+  double error = 0;          // predicted worst-case error, world units (size_error_bound)
+  size_t worst_pair = 0;     // index into extents.pairs
+  uint64_t shell_words = 0, map_words = 0;  // the packed image
+  uint64_t budget = 0;       // cycles per frame the rate allows at the clock
+  std::vector<LaneMeasure> lanes;  // every lane count measured, ascending; the last is config.LANES
+  const LaneMeasure& chosen() const { return lanes.back(); }
+  double modelled_rate() const;   // clock / largest frame's cycles
+  uint64_t shell_bits() const;    // 2^SAW x 3 PW
+  uint64_t map_bits() const;      // 2^MAW x MEMW, one copy per lane
+  std::optional<YosysCost> cost;
+  // The same LANES, SAW and MAW at the default widths, synthesised the same way (the peer for the cost).
+  std::optional<YosysCost> default_cost;
+  DeviceConfig default_widths() const;
+};
+
+// The whole derivation. SizeError when a constraint cannot be met; SceneFileError from the scene.
+SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest& req);
+
+// The text and JSON reports of `voxcd size`.
+std::string size_text(const SizeReport& r, const Scene& scene);
+std::string size_json(const SizeReport& r, const Scene& scene);
+
+}  // namespace voxcd

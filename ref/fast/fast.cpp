@@ -1,0 +1,470 @@
+#include "voxcd/ref/fast/fast.h"
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "voxcd/ref/fixed.h"
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/timing.h"
+
+namespace voxcd {
+
+namespace {
+
+constexpr size_t kChunk = 4096;  // points per task
+constexpr size_t kBlock = 256;   // points per vector block inside a task
+constexpr size_t kProbeBlock = 64;  // points of a task's first block with the skipping kernel (run_chunk)
+// Below this many points in a batch the pool's wake-up costs more than the second core saves (bench_pair: a
+// 6,000-point pair query took 67 us on one thread and 89 us on two), so the batch runs on the calling thread.
+constexpr size_t kParallelMinPoints = 65536;
+
+// The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
+// bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
+// state | hit << 2; returns the number of hits. Outside points read the map's first word and are masked.
+// Compiled three times (AVX-512 with 512-bit vectors, AVX2 with FMA, baseline) and chosen once at run time.
+#define VOXCD_BLOCK_DOUBLE_FETCH_BODY                                                                           \
+  {                                                                                                             \
+    const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6],            \
+                 m7 = mp[7], m8 = mp[8];                                                                        \
+    const double t0 = tp[0], t1 = tp[1], t2 = tp[2];                                                            \
+    const double nx = dp[0], ny = dp[1], nz = dp[2];                                                            \
+    const int32_t slot_mask = (int32_t{1} << slot_bits) - 1;                                                    \
+    uint32_t count = 0;                                                                                         \
+    for (size_t k = 0; k < n; ++k) {                                                                            \
+      const double px = double(x[k]), py = double(y[k]), pz = double(z[k]);                                      \
+      const double ax = std::floor(m0 * px + m1 * py + m2 * pz + t0);                                           \
+      const double ay = std::floor(m3 * px + m4 * py + m5 * pz + t1);                                           \
+      const double az = std::floor(m6 * px + m7 * py + m8 * pz + t2);                                           \
+      const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);                \
+      const int32_t li = int32_t(inside ? ax + nx * (ay + ny * az) : 0.0);                                      \
+      const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;                        \
+      const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;                                                \
+      lin[k] = li;                                                                                              \
+      state[k] = uint8_t(st | (hit << 2));                                                                      \
+      count += hit;                                                                                             \
+    }                                                                                                           \
+    return count;                                                                                               \
+  }
+#define VOXCD_BLOCK_DOUBLE_FETCH_ARGS                                                                           \
+  const Coord *__restrict x, const Coord *__restrict y, const Coord *__restrict z, size_t n,                    \
+      const double *__restrict mp, const double *__restrict tp, const double *__restrict dp,                    \
+      const uint64_t *__restrict map, int slot_bits, uint32_t mask, int32_t *__restrict lin,                    \
+      uint8_t *__restrict state
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+bool have_avx512() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
+}
+
+// The block lookup for blocks whose points mostly land outside the map, written for AVX-512 by hand, eight points
+// at a time: it skips the fetch (the dearest step, a gather) for eight points none of which is inside, and tests the
+// bounds on the exact accumulator (for an integer n, floor(a) is in [0, n) exactly when a is, and for such an a
+// truncation is the floor, so it needs no floor instruction). Outputs as the generic body for the hits; a point that
+// is no hit has state 0 and an unspecified linear index. *kept: the groups of eight that had a point inside. Where
+// most of them do, the generic kernel is faster (run_chunk switches to it).
+// GCC 12's intrinsics fill unused lanes from a self-initialised "undefined" vector, which -Wmaybe-uninitialized
+// reports once inlined here.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block_sparse_avx512(
+    const int32_t* __restrict x, const int32_t* __restrict y, const int32_t* __restrict z, size_t n,
+    const double* __restrict mp, const double* __restrict tp, const double* __restrict dp,
+    const uint64_t* __restrict map, int slot_bits, uint32_t mask, int32_t* __restrict lin,
+    uint8_t* __restrict state, uint32_t* kept) {
+  const __m512d m0 = _mm512_set1_pd(mp[0]), m1 = _mm512_set1_pd(mp[1]), m2 = _mm512_set1_pd(mp[2]);
+  const __m512d m3 = _mm512_set1_pd(mp[3]), m4 = _mm512_set1_pd(mp[4]), m5 = _mm512_set1_pd(mp[5]);
+  const __m512d m6 = _mm512_set1_pd(mp[6]), m7 = _mm512_set1_pd(mp[7]), m8 = _mm512_set1_pd(mp[8]);
+  const __m512d t0 = _mm512_set1_pd(tp[0]), t1 = _mm512_set1_pd(tp[1]), t2 = _mm512_set1_pd(tp[2]);
+  const __m512d nx = _mm512_set1_pd(dp[0]), ny = _mm512_set1_pd(dp[1]), nz = _mm512_set1_pd(dp[2]);
+  const __m512d zero = _mm512_setzero_pd();
+  const __m256i inx = _mm256_set1_epi32(int32_t(dp[0])), iny = _mm256_set1_epi32(int32_t(dp[1]));
+  const __m256i slot_mask = _mm256_set1_epi32((int32_t{1} << slot_bits) - 1);
+  const __m128i word_shift = _mm_cvtsi32_si128(slot_bits);
+  const __m512i hit_mask = _mm512_set1_epi64(int64_t(mask)), three = _mm512_set1_epi64(3);
+  const __m512i one = _mm512_set1_epi64(1), four = _mm512_set1_epi64(4);
+  uint32_t count = 0, groups = 0;
+  for (size_t k = 0; k < n; k += 8) {
+    const __mmask8 live = n - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (n - k)) - 1);
+    const __m512d px = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, x + k));
+    const __m512d py = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, y + k));
+    const __m512d pz = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, z + k));
+    const __m512d ax = _mm512_fmadd_pd(m0, px, _mm512_fmadd_pd(m1, py, _mm512_fmadd_pd(m2, pz, t0)));
+    __mmask8 in = _mm512_mask_cmp_pd_mask(live, ax, zero, _CMP_GE_OQ);
+    in = _mm512_mask_cmp_pd_mask(in, ax, nx, _CMP_LT_OQ);
+    __m512d ay = zero, az = zero;
+    if (in != 0) {  // y and z only where a point is inside along x
+      ay = _mm512_fmadd_pd(m3, px, _mm512_fmadd_pd(m4, py, _mm512_fmadd_pd(m5, pz, t1)));
+      az = _mm512_fmadd_pd(m6, px, _mm512_fmadd_pd(m7, py, _mm512_fmadd_pd(m8, pz, t2)));
+      in = _mm512_mask_cmp_pd_mask(in, ay, zero, _CMP_GE_OQ);
+      in = _mm512_mask_cmp_pd_mask(in, ay, ny, _CMP_LT_OQ);
+      in = _mm512_mask_cmp_pd_mask(in, az, zero, _CMP_GE_OQ);
+      in = _mm512_mask_cmp_pd_mask(in, az, nz, _CMP_LT_OQ);
+    }
+    if (in == 0) {
+      _mm_mask_storeu_epi8(state + k, live, _mm_setzero_si128());
+      continue;
+    }
+    ++groups;
+    // Inside lanes: below 2^31 voxels, so the index fits int32; outside lanes are masked from here on.
+    const __m256i ix = _mm512_cvttpd_epi32(ax), iy = _mm512_cvttpd_epi32(ay), iz = _mm512_cvttpd_epi32(az);
+    const __m256i li = _mm256_maskz_mov_epi32(
+        in, _mm256_add_epi32(ix, _mm256_mullo_epi32(inx, _mm256_add_epi32(iy, _mm256_mullo_epi32(iny, iz)))));
+    // The eight words by scalar loads (outside lanes read word 0): faster here than the gather instruction.
+    alignas(32) int32_t wi[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(wi), _mm256_srl_epi32(li, word_shift));
+    const __m256i w0 = _mm256_set_epi64x(int64_t(map[wi[3]]), int64_t(map[wi[2]]), int64_t(map[wi[1]]),
+                                         int64_t(map[wi[0]]));
+    const __m256i w1 = _mm256_set_epi64x(int64_t(map[wi[7]]), int64_t(map[wi[6]]), int64_t(map[wi[5]]),
+                                         int64_t(map[wi[4]]));
+    const __m512i word = _mm512_inserti64x4(_mm512_castsi256_si512(w0), w1, 1);
+    const __m512i shift = _mm512_slli_epi64(_mm512_cvtepi32_epi64(_mm256_and_si256(li, slot_mask)), 1);
+    const __m512i st = _mm512_and_si512(_mm512_srlv_epi64(word, shift), three);
+    const __mmask8 hit = _mm512_mask_test_epi64_mask(in, _mm512_srlv_epi64(hit_mask, st), one);
+    count += uint32_t(__builtin_popcount(hit));
+    _mm_mask_storeu_epi8(state + k, live, _mm512_cvtepi64_epi8(_mm512_maskz_or_epi64(hit, st, four)));
+    _mm256_mask_storeu_epi32(lin + k, live, li);
+  }
+  *kept = groups;
+  return count;
+}
+#pragma GCC diagnostic pop
+#endif
+
+template <class Coord>
+struct BlockKernel {
+  using Fn = uint32_t (*)(VOXCD_BLOCK_DOUBLE_FETCH_ARGS);
+  static uint32_t base(VOXCD_BLOCK_DOUBLE_FETCH_ARGS) VOXCD_BLOCK_DOUBLE_FETCH_BODY
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  __attribute__((target("arch=haswell"))) static uint32_t avx2(VOXCD_BLOCK_DOUBLE_FETCH_ARGS)
+      VOXCD_BLOCK_DOUBLE_FETCH_BODY
+  __attribute__((target("arch=skylake-avx512,prefer-vector-width=512"))) static uint32_t
+      avx512(VOXCD_BLOCK_DOUBLE_FETCH_ARGS) VOXCD_BLOCK_DOUBLE_FETCH_BODY
+#endif
+  struct Choice {
+    Fn fn;
+    const char* name;
+  };
+  static Choice choose() {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_init();
+    if (have_avx512()) return {avx512, "avx512"};
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return {avx2, "avx2"};
+#endif
+    return {base, "baseline"};
+  }
+};
+
+// Coordinates are int32 on the double path: DeviceConfig::validate keeps PW within 2..32.
+const BlockKernel<int32_t>::Choice block_fetch = BlockKernel<int32_t>::choose();
+using SparseFn = uint32_t (*)(const int32_t*, const int32_t*, const int32_t*, size_t, const double*, const double*,
+                              const double*, const uint64_t*, int, uint32_t, int32_t*, uint8_t*, uint32_t*);
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+const SparseFn block_sparse = have_avx512() ? block_sparse_avx512 : nullptr;
+#else
+const SparseFn block_sparse = nullptr;
+#endif
+
+void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n, const Job& j, int tf,
+                 int64_t* lin) {
+  const int64_t nx = j.nx, ny = j.ny, nz = j.nz;
+  for (size_t k = 0; k < n; ++k) {
+    const int64_t ix = (j.M[0][0] * x[k] + j.M[0][1] * y[k] + j.M[0][2] * z[k] + j.t[0]) >> tf;
+    const int64_t iy = (j.M[1][0] * x[k] + j.M[1][1] * y[k] + j.M[1][2] * z[k] + j.t[1]) >> tf;
+    const int64_t iz = (j.M[2][0] * x[k] + j.M[2][1] * y[k] + j.M[2][2] * z[k] + j.t[2]) >> tf;
+    const bool inside = uint64_t(ix) < uint64_t(nx) && uint64_t(iy) < uint64_t(ny) && uint64_t(iz) < uint64_t(nz);
+    lin[k] = inside ? ix + nx * (iy + ny * iz) : -1;
+  }
+}
+
+// Quotients by a job's nx and ny without a hardware divide (tens of cycles per hit): a double reciprocal gives the
+// quotient within one for dividends below 2^53 (every map that fits memory), and the correction makes it exact.
+struct Divider {
+  uint64_t d;
+  double inv;
+  explicit Divider(uint64_t den) : d(den), inv(1.0 / double(den)) {}
+  uint64_t operator()(uint64_t v) const {
+    uint64_t q = uint64_t(double(v) * inv);
+    while (q * d > v) --q;
+    while ((q + 1) * d <= v) ++q;
+    return q;
+  }
+};
+
+struct Dividers {
+  Divider x, y;
+  explicit Dividers(const Job& j) : x(j.nx), y(j.ny) {}
+};
+
+// A record appended in place: a Record returned by value and then copied costs a store-forwarding stall per hit.
+Record& push_record(std::vector<Record>& out, Record::Kind kind, uint32_t tag) {
+  Record& r = out.emplace_back();
+  r.kind = kind;
+  r.tag = tag;
+  return r;
+}
+
+// Appends the block's hit records; true when FIRST has its answer. Walks the states eight at a time: most of a
+// block's points are no hit.
+template <class Lin>
+bool emit_hits(const Job& j, uint32_t b, size_t n, const Lin* lin, const uint8_t* state, std::vector<Record>& hits,
+               uint32_t& count) {
+  const Dividers div(j);
+  for (size_t k0 = 0; k0 < n; k0 += 8) {
+    // State k0 + i in byte i of `word`, so the lowest set bit is the next hit in point order.
+    uint64_t word = 0;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    if (n - k0 >= 8)
+      std::memcpy(&word, state + k0, 8);
+    else
+#endif
+      for (size_t i = 0; i < std::min<size_t>(8, n - k0); ++i) word |= uint64_t(state[k0 + i]) << (8 * i);
+    uint64_t flags = word & 0x0404040404040404ull;
+    while (flags) {
+      const size_t k = k0 + size_t(__builtin_ctzll(flags) / 8);
+      flags &= flags - 1;
+      ++count;
+      const uint64_t li = uint64_t(lin[k]);
+      const uint64_t yz = div.x(li), z = div.y(yz);
+      Record& r = push_record(hits, Record::Hit, j.tag);
+      r.point = b + uint32_t(k);
+      r.x = uint32_t(li - yz * j.nx);
+      r.y = uint32_t(yz - z * j.ny);
+      r.z = uint32_t(z);
+      r.state = uint8_t(state[k] & 3u);
+      if (j.mode == Mode::First) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+FastRunner::FastRunner(const DeviceConfig& cfg, unsigned threads) : cfg_(cfg) {
+  cfg_.validate();
+  if (cfg_.acc_width() <= 53)
+    path_ = Path::Double;
+  else if (cfg_.acc_width() <= 63)
+    path_ = Path::Int64;
+  else
+    path_ = Path::Wide;
+  keep_int64_ = path_ == Path::Int64 || (path_ == Path::Double && 3 * cfg_.DW >= 31);
+  while ((1 << slot_bits_) < cfg_.states_per_word()) ++slot_bits_;
+  tf_scale_ = std::ldexp(1.0, -cfg_.TF());
+  pool_ = std::make_unique<ThreadPool>(threads);
+}
+
+FastRunner::~FastRunner() = default;
+
+const char* FastRunner::path_name(Path p) {
+  switch (p) {
+    case Path::Double: return "double";
+    case Path::Int64: return "int64";
+    case Path::Wide: return "wide";
+  }
+  return "?";
+}
+
+const char* FastRunner::double_kernel() { return block_fetch.name; }
+
+unsigned FastRunner::threads() const { return pool_->size(); }
+
+void FastRunner::set_shell_word(size_t k, const ShellWord& w) {
+  shell_[k] = w;
+  if (path_ == Path::Double) sx_[k] = int32_t(w.x), sy_[k] = int32_t(w.y), sz_[k] = int32_t(w.z);
+  if (keep_int64_) ix_[k] = w.x, iy_[k] = w.y, iz_[k] = w.z;
+}
+
+void FastRunner::load(const DeviceMemory& mem) {
+  validate_memory(cfg_, mem);
+  shell_.clear();
+  map_.clear();
+  write_shell(0, mem.shell.data(), mem.shell.size());
+  write_map(0, mem.map.data(), mem.map.size());
+}
+
+void FastRunner::write_shell(uint64_t first, const ShellWord* words, size_t n) {
+  if (first + n > cfg_.shell_depth())
+    throw JobError("shell words [" + std::to_string(first) + ", " + std::to_string(first + n) +
+                   ") do not fit the shell memory of 2^SAW = " + std::to_string(cfg_.shell_depth()) + " words");
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!fits_signed(words[i][c], cfg_.PW))
+        throw JobError("shell word " + std::to_string(first + i) + " coordinate " + std::to_string(c) + " = " +
+                       std::to_string(words[i][c]) + " does not fit PW = " + std::to_string(cfg_.PW) + " bits");
+  const size_t end = size_t(first + n);
+  if (shell_.size() < end) {
+    shell_.resize(end);
+    if (path_ == Path::Double) sx_.resize(end), sy_.resize(end), sz_.resize(end);
+    if (keep_int64_) ix_.resize(end), iy_.resize(end), iz_.resize(end);
+  }
+  for (size_t i = 0; i < n; ++i) set_shell_word(size_t(first) + i, words[i]);
+}
+
+void FastRunner::write_map(uint64_t first, const uint64_t* words, size_t n) {
+  if (first + n > cfg_.map_depth())
+    throw JobError("voxmap words [" + std::to_string(first) + ", " + std::to_string(first + n) +
+                   ") do not fit the voxmap memory of 2^MAW = " + std::to_string(cfg_.map_depth()) + " words");
+  for (size_t i = 0; i < n; ++i)
+    if (!fits_unsigned(words[i], cfg_.MEMW))
+      throw JobError("voxmap word " + std::to_string(first + i) + " has bits above MEMW = " +
+                     std::to_string(cfg_.MEMW));
+  const size_t end = size_t(first + n);
+  if (map_.size() < end) map_.resize(end);
+  std::copy(words, words + n, map_.begin() + std::ptrdiff_t(first));
+}
+
+std::vector<Record> FastRunner::run(const std::vector<Job>& jobs, bool cycles) {
+  std::vector<Record> out;
+  run_into(jobs, out, cycles);
+  return out;
+}
+
+void FastRunner::run_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) {
+  for (const Job& j : jobs) validate_job(cfg_, j, shell_.size(), map_.size());
+  run_validated_into(jobs, out, cycles);
+}
+
+void FastRunner::run_validated_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) {
+  // Tasks: (job, first point, end point).
+  tasks_.clear();
+  first_task_.assign(jobs.size() + 1, 0);
+  size_t points = 0;
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    first_task_[j] = tasks_.size();
+    const uint32_t n = jobs[j].shell_count;
+    points += n;
+    for (uint32_t b = 0; b < n; b += uint32_t(kChunk))
+      tasks_.push_back({j, b, uint32_t(std::min<size_t>(n, b + kChunk))});
+  }
+  first_task_[jobs.size()] = tasks_.size();
+  if (tasks_.size() <= 1 || pool_->size() <= 1 || points < kParallelMinPoints) {
+    // One thread: chunks in order, hits straight into `out`; FIRST skips the chunks after its hit.
+    out.clear();
+    out.reserve(2 * jobs.size());
+    for (size_t j = 0; j < jobs.size(); ++j) {
+      uint32_t hits = 0;
+      for (size_t i = first_task_[j]; i < first_task_[j + 1]; ++i) {
+        run_chunk(jobs[j], tasks_[i].begin, tasks_[i].end, out, hits);
+        if (jobs[j].mode == Mode::First && hits) break;
+      }
+      push_record(out, Record::Done, jobs[j].tag).hits = hits;
+    }
+  } else {
+    if (results_.size() < tasks_.size()) results_.resize(tasks_.size());
+    for (size_t i = 0; i < tasks_.size(); ++i) {
+      results_[i].hits.clear();
+      results_[i].count = 0;
+    }
+    pool_->parallel_for(tasks_.size(), [&](size_t i) {
+      run_chunk(jobs[tasks_[i].job], tasks_[i].begin, tasks_[i].end, results_[i].hits, results_[i].count);
+    });
+    // Merge in order.
+    size_t total = jobs.size();
+    for (size_t i = 0; i < tasks_.size(); ++i) total += results_[i].hits.size();
+    out.clear();
+    out.reserve(total);
+    for (size_t j = 0; j < jobs.size(); ++j) {
+      uint32_t hits = 0;
+      for (size_t i = first_task_[j]; i < first_task_[j + 1]; ++i) {
+        ChunkResult& r = results_[i];
+        if (jobs[j].mode == Mode::First) {
+          if (hits == 0 && r.count) {
+            out.push_back(r.hits.front());
+            hits = 1;
+          }
+        } else {
+          hits += r.count;
+          out.insert(out.end(), r.hits.begin(), r.hits.end());
+        }
+      }
+      push_record(out, Record::Done, jobs[j].tag).hits = hits;
+    }
+  }
+  if (cycles) annotate_cycles(cfg_, jobs, out);
+}
+
+void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
+                           uint32_t& hit_count) const {
+  int64_t lin[kBlock];
+  int32_t lin32[kBlock];
+  uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit
+  const bool fused = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
+  // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is every
+  // product and sum after it (multiples of 2^-TF below 2^(53-TF)).
+  double ms[9], ts[3];
+  const double dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
+  if (fused) {
+    const double scale = tf_scale_;
+    for (int i = 0; i < 9; ++i) ms[i] = double(j.M[i / 3][i % 3]) * scale;
+    for (int i = 0; i < 3; ++i) ts[i] = double(j.t[i]) * scale;
+  }
+  const uint64_t slot_mask = (uint64_t{1} << slot_bits_) - 1;
+  const uint64_t* map = map_.data() + j.map_base;
+  // The skipping kernel while a block's points mostly land outside the map, the generic one from the first block
+  // where most groups of eight had a point inside (the points of a job tend to stay on one side or the other). The
+  // first block is short, so that a job whose points land inside pays little for finding out.
+  bool sparse = fused && block_sparse != nullptr;
+  size_t n = 0;
+  for (uint32_t b = begin; b < end; b += uint32_t(n)) {
+    n = std::min<size_t>(b == begin && sparse ? kProbeBlock : kBlock, end - b);
+    const size_t base = size_t(j.shell_base) + b;
+    if (fused) {
+      uint32_t count = 0;
+      if (sparse) {
+        uint32_t kept = 0;
+        count = block_sparse(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_, j.hit_mask, lin32,
+                             state, &kept);
+        sparse = 2 * size_t(kept) * 8 <= n;
+      } else {
+        count = block_fetch.fn(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_, j.hit_mask, lin32,
+                               state);
+      }
+      if (count == 0) continue;
+      if (j.mode == Mode::Count) {
+        hit_count += count;
+        continue;
+      }
+      if (emit_hits(j, b, n, lin32, state, hits, hit_count)) return;
+      continue;
+    }
+    switch (path_) {
+      case Path::Double:  // a map of 2^31 voxels or more: the accumulator fits 53 bits, so int64 is exact
+      case Path::Int64: block_int64(&ix_[base], &iy_[base], &iz_[base], n, j, cfg_.TF(), lin); break;
+      case Path::Wide:
+        for (size_t k = 0; k < n; ++k) {
+          const Located l = locate(cfg_, j, transform(cfg_, j, shell_[base + k]));
+          lin[k] = l.inside ? int64_t(l.linear) : -1;
+        }
+        break;
+    }
+    // Fetch, select and test without branches (outside points read the map's first word and are masked); then
+    // walk only the hits.
+    const uint32_t mask = j.hit_mask;
+    uint32_t count = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const bool inside = lin[k] >= 0;
+      const uint64_t li = inside ? uint64_t(lin[k]) : 0;
+      const uint32_t st = uint32_t(map[li >> slot_bits_] >> (2 * (li & slot_mask))) & 3u;
+      const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;
+      state[k] = uint8_t(st | (hit << 2));
+      count += hit;
+    }
+    if (count == 0) continue;
+    if (j.mode == Mode::Count) {
+      hit_count += count;
+      continue;
+    }
+    if (emit_hits(j, b, n, lin, state, hits, hit_count)) return;
+  }
+}
+
+}  // namespace voxcd

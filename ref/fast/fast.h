@@ -1,0 +1,98 @@
+// FastRunner: the device contract computed fast, bit-exact with ref/. ref/pipeline.h remains the specification;
+// this is an implementation checked against it (tests/ref/test_fast.cpp compares its streams with run_stream's
+// on every arithmetic path below). The cpu backend (host/device/cpu.cpp) and the SystemC loosely-timed model
+// (sysc/tlm_target.cpp) both compute jobs with it.
+//
+// Three arithmetic paths, chosen by the widths, give the same bits as ref/:
+//  - double: when the accumulator fits 53 bits (the default widths: 49), every product M*p and every partial sum
+//    is an integer below 2^53, so double arithmetic is exact (fused multiply-adds included), and so is
+//    floor(acc * 2^-TF). This path vectorises (AVX-512, or AVX2 and FMA, where the processor has them, chosen at
+//    run time).
+//  - int64: when the accumulator fits 63 bits.
+//  - wide: otherwise, ref/'s own stage functions on 128-bit integers.
+// Jobs are split into chunks of points spread over a thread pool; chunk results are merged in order, so the
+// stream is the same for any thread count.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "voxcd/ref/config.h"
+#include "voxcd/ref/types.h"
+
+namespace voxcd {
+
+class ThreadPool;
+
+class FastRunner {
+ public:
+  enum class Path { Double, Int64, Wide };
+
+  // threads: workers including the calling thread (0 = one per hardware thread, 1 = the caller alone). Results
+  // never depend on it. Throws ConfigError for an invalid configuration.
+  explicit FastRunner(const DeviceConfig& cfg, unsigned threads = 1);
+  ~FastRunner();
+  FastRunner(const FastRunner&) = delete;
+  FastRunner& operator=(const FastRunner&) = delete;
+
+  const DeviceConfig& config() const { return cfg_; }
+  Path path() const { return path_; }
+  static const char* path_name(Path p);  // "double", "int64", "wide"
+  // The double path's kernel on this processor: "avx512", "avx2" or "baseline".
+  static const char* double_kernel();
+  unsigned threads() const;
+
+  // Replaces both memories (validate_memory first: throws JobError, leaving the memories as they were).
+  void load(const DeviceMemory& mem);
+  // Writes words [first, first + n) of one memory, growing it (new words in between are zero), as the write port
+  // does. Throws JobError, writing nothing, when a word does not fit its format or the memory's depth.
+  void write_shell(uint64_t first, const ShellWord* words, size_t n);
+  void write_map(uint64_t first, const uint64_t* words, size_t n);
+  uint64_t shell_words() const { return shell_.size(); }
+  uint64_t map_words() const { return map_.size(); }
+
+  // Validates every job against the loaded memories (throws JobError before running any), runs them in order
+  // and replaces `out` (reusing its capacity) with the stream run_stream gives. With `cycles`, every completion
+  // record carries annotate_cycles' cycles, points and stalls (ref/timing.h). The working buffers live on between
+  // calls: a caller that runs batch after batch allocates nothing once they have grown.
+  void run_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles = true);
+  // run_into without the validation, for a caller that has validated every job (validate_job) against the memories
+  // as they are now, as the SystemC target does when a descriptor arrives. An invalid job is undefined behaviour.
+  void run_validated_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles = true);
+  std::vector<Record> run(const std::vector<Job>& jobs, bool cycles = true);
+
+ private:
+  struct ChunkResult {
+    std::vector<Record> hits;  // ALL: every hit; FIRST: at most the first
+    uint32_t count = 0;
+  };
+  struct Task {
+    size_t job;
+    uint32_t begin, end;
+  };
+
+  void set_shell_word(size_t k, const ShellWord& w);
+  // Looks up points [begin, end) of job j: appends their hit records (ALL: every one; FIRST: the first, then stops)
+  // to `hits` and adds their number to `count`.
+  void run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits, uint32_t& count) const;
+
+  DeviceConfig cfg_;
+  Path path_ = Path::Double;
+  int slot_bits_ = 0;
+  double tf_scale_ = 1;  // 2^-TF (std::ldexp is a library call; run_chunk needs it per job)
+  bool keep_int64_ = false;  // the int64 arrays serve the int64 path and the double path's maps of 2^31 voxels
+  std::unique_ptr<ThreadPool> pool_;
+  std::vector<ShellWord> shell_;
+  std::vector<uint64_t> map_;
+  // The double path's coordinates as int32 (PW <= 32): half the memory traffic of doubles; the kernel converts
+  // them exactly.
+  std::vector<int32_t> sx_, sy_, sz_;
+  std::vector<int64_t> ix_, iy_, iz_;
+  std::vector<Task> tasks_;
+  std::vector<size_t> first_task_;
+  std::vector<ChunkResult> results_;
+};
+
+}  // namespace voxcd

@@ -1,0 +1,276 @@
+#include "voxcd/ref/vector_gen.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "voxcd/ref/fixed.h"
+#include "voxcd/ref/float_model.h"
+
+namespace voxcd {
+
+namespace {
+
+struct MapDesc {
+  uint32_t base, nx, ny, nz;
+};
+struct Block {
+  uint32_t base, count;
+  double centre[3];
+  double extent;  // largest axis extent, in voxels
+};
+
+class Generator {
+ public:
+  explicit Generator(const GenerateOptions& o) : opt_(o), cfg_(o.config), rng_(o.seed) { cfg_.validate(); }
+
+  GeneratedVectors run() {
+    GeneratedVectors g;
+    g.config = cfg_;
+    make_maps(g.memory);
+    make_shell(g.memory);
+    for (size_t k = 0; k < opt_.jobs; ++k) g.jobs.push_back(make_job(uint32_t(k)));
+    return g;
+  }
+
+ private:
+  uint64_t uni(uint64_t lo, uint64_t hi) { return std::uniform_int_distribution<uint64_t>(lo, hi)(rng_); }
+  int64_t sint(int64_t lo, int64_t hi) { return std::uniform_int_distribution<int64_t>(lo, hi)(rng_); }
+  double real(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  bool chance(double p) { return std::bernoulli_distribution(p)(rng_); }
+
+  uint32_t dim_max() const { return uint32_t(std::min<uint64_t>(cfg_.max_dim(), 1u << 20)); }
+  uint32_t clip_dim(uint64_t d) const { return uint32_t(std::max<uint64_t>(1, std::min<uint64_t>(d, dim_max()))); }
+
+  void make_maps(DeviceMemory& mem) {
+    const uint64_t spw = uint64_t(cfg_.states_per_word());
+    std::vector<std::array<uint64_t, 3>> dims = {
+        {1, 1, 1}, {37, 5, 3}, {16, 16, 16}, {33, 17, 9}, {uni(1, 40), uni(1, 40), uni(1, 40)},
+        {uni(1, 12), uni(1, 12), uni(1, 12)}, {cfg_.max_dim(), 2, 1}, {1, cfg_.max_dim(), 1}};
+    uint64_t next = uni(0, 5);  // maps do not start at word 0
+    for (auto& d : dims) {
+      MapDesc m{0, clip_dim(d[0]), clip_dim(d[1]), clip_dim(d[2])};
+      const uint64_t words = (uint64_t(m.nx) * m.ny * m.nz + spw - 1) / spw;
+      if (next + words > cfg_.map_depth()) continue;
+      m.base = uint32_t(next);
+      maps_.push_back(m);
+      next += words + uni(0, 3);
+    }
+    next = std::min<uint64_t>(next, cfg_.map_depth());
+    // Garbage everywhere first, so a read of a wrong word shows.
+    const uint64_t word_mask = cfg_.MEMW >= 64 ? ~uint64_t{0} : (uint64_t{1} << cfg_.MEMW) - 1;
+    mem.map.resize(next);
+    for (auto& w : mem.map) w = rng_() & word_mask;
+    // Every fill pattern appears in every run; which map gets which varies with the seed.
+    const int shift = int(uni(0, 4));
+    for (size_t k = 0; k < maps_.size(); ++k) fill_map(mem, maps_[k], int((k + size_t(shift)) % 5));
+  }
+
+  void fill_map(DeviceMemory& mem, const MapDesc& m, int pattern) {
+    const uint64_t spw = uint64_t(cfg_.states_per_word());
+    const uint64_t n = uint64_t(m.nx) * m.ny * m.nz;
+    for (uint64_t i = 0; i < n; ++i) {
+      const uint64_t x = i % m.nx, y = (i / m.nx) % m.ny, z = i / (uint64_t(m.nx) * m.ny);
+      uint64_t s = 0;
+      switch (pattern) {
+        case 0: s = uni(0, 3); break;                       // every state, reserved included
+        case 1: s = chance(0.05) ? uni(1, 2) : 0; break;    // sparse
+        case 2: {                                           // a solid box: surface around interior
+          const bool edge = x == 0 || y == 0 || z == 0 || x + 1 == m.nx || y + 1 == m.ny || z + 1 == m.nz;
+          s = edge ? kSurface : kInterior;
+          break;
+        }
+        case 3: s = (x + y + z) % 2 ? kSurface : kEmpty; break;  // checkerboard
+        default: s = chance(0.5) ? kInterior : kReserved; break;
+      }
+      const uint64_t word = m.base + i / spw, shift = 2 * (i % spw);
+      mem.map[word] = (mem.map[word] & ~(uint64_t{3} << shift)) | (s << shift);
+    }
+  }
+
+  // Raw shell coordinate for a real value, clipped into PW.
+  int64_t raw(double v) const {
+    const FixedFormat f = point_format(cfg_);
+    const double c = std::clamp(v, f.min_value(), f.max_value());
+    return quantize(c, f, "generated point");
+  }
+
+  void add_block(DeviceMemory& mem, const std::vector<ShellWord>& pts) {
+    if (pts.empty()) return;
+    if (mem.shell.size() + pts.size() > cfg_.shell_depth())
+      throw std::invalid_argument("generated shell blocks need " + std::to_string(mem.shell.size() + pts.size()) +
+                                  " words; the shell memory holds 2^SAW = " + std::to_string(cfg_.shell_depth()));
+    Block b{uint32_t(mem.shell.size()), uint32_t(pts.size()), {0, 0, 0}, 0};
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (const ShellWord& w : pts) {
+      for (int i = 0; i < 3; ++i) {
+        const double v = to_double(w[i], cfg_.PF);
+        b.centre[i] += v / double(pts.size());
+        lo[i] = std::min(lo[i], v);
+        hi[i] = std::max(hi[i], v);
+      }
+      mem.shell.push_back(w);
+    }
+    for (int i = 0; i < 3; ++i) b.extent = std::max(b.extent, hi[i] - lo[i]);
+    blocks_.push_back(b);
+  }
+
+  void make_shell(DeviceMemory& mem) {
+    const int64_t one = int64_t{1} << cfg_.PF;
+    const FixedFormat pf = point_format(cfg_);
+    // A cloud around a map of up to ~40 voxels.
+    std::vector<ShellWord> cloud;
+    for (size_t k = 0; k < opt_.cloud_points; ++k)
+      cloud.push_back({raw(real(-3, 43)), raw(real(-3, 43)), raw(real(-3, 43))});
+    add_block(mem, cloud);
+    // Voxel faces and their neighbours: integers, +-1 ulp, +-1/4, +-1/2.
+    std::vector<ShellWord> faces;
+    const int64_t offs[] = {0, 1, -1, one / 4, -one / 4, one / 2, -one / 2};
+    for (int k = 0; k < 400; ++k) {
+      ShellWord w;
+      int64_t c[3];
+      for (int i = 0; i < 3; ++i) {
+        const int64_t v = sint(-1, 17) * one + offs[uni(0, 6)];
+        c[i] = std::clamp(v, pf.min_raw(), pf.max_raw());
+      }
+      w = {c[0], c[1], c[2]};
+      faces.push_back(w);
+    }
+    add_block(mem, faces);
+    // Full-range coordinates.
+    std::vector<ShellWord> extremes;
+    const int64_t ex[] = {pf.min_raw(), pf.max_raw(), 0, -1, 1, pf.min_raw() + 1, pf.max_raw() - 1, -one / 4};
+    for (int k = 0; k < 64; ++k) extremes.push_back({ex[uni(0, 7)], ex[uni(0, 7)], ex[uni(0, 7)]});
+    add_block(mem, extremes);
+    // A wide cloud across the whole 2^DW range.
+    std::vector<ShellWord> wide;
+    const double span = double(cfg_.max_dim());
+    for (int k = 0; k < 800; ++k) wide.push_back({raw(real(-10, span + 10)), raw(real(-2, 4)), raw(real(-2, 3))});
+    add_block(mem, wide);
+  }
+
+  static void rotation(std::mt19937_64& rng, double R[3][3]) {
+    // A uniformly random rotation from a random unit quaternion.
+    std::normal_distribution<double> n(0, 1);
+    double q[4];
+    double len = 0;
+    do {
+      for (double& c : q) c = n(rng);
+      len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    } while (len < 1e-9);
+    for (double& c : q) c /= len;
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                            {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                            {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) R[i][j] = r[i][j];
+  }
+
+  void random_pose(const Block& b, const MapDesc& m, Job& j) {
+    FloatPose pose;
+    const int kind = int(uni(0, 9));
+    double R[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    double s = 1.0;
+    if (kind <= 1) {
+      // Identity or a signed axis permutation: quarter and half turns, entries exactly +-1.
+      if (kind == 1) {
+        int perm[3] = {0, 1, 2};
+        std::shuffle(perm, perm + 3, rng_);
+        for (int i = 0; i < 3; ++i)
+          for (int k = 0; k < 3; ++k) R[i][k] = perm[i] == k ? (chance(0.5) ? 1.0 : -1.0) : 0.0;
+      }
+    } else {
+      rotation(rng_, R);
+      // Mostly shrink the block to about the map's size, so that many points land inside.
+      const double md = double(std::min({m.nx, m.ny, m.nz})) + 1.0;
+      const double fit = std::clamp(md / std::max(1.0, b.extent), 0.02, 1.0);
+      s = chance(0.2) ? 1.0 : real(0.6, 1.4) * (chance(0.8) ? fit : 1.0);
+    }
+    // Within the matrix format: a narrow one (MW = MF + 1, as voxcd size derives when scale ratios are below 1)
+    // cannot hold +1, so a turn's +1 entries become its largest value there. Unchanged for MW >= MF + 2.
+    const FixedFormat mfmt = matrix_format(cfg_);
+    const double mlo = std::max(-1.95, mfmt.min_value()), mhi = std::min(1.95, mfmt.max_value());
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) pose.M[i][k] = std::clamp(R[i][k] * s, mlo, mhi);
+    // Bring the block's centre near the map's centre, with jitter, or place it exactly on faces / -1/4.
+    const double mc[3] = {m.nx / 2.0, m.ny / 2.0, m.nz / 2.0};
+    for (int i = 0; i < 3; ++i) {
+      double mb = 0;
+      for (int k = 0; k < 3; ++k) mb += pose.M[i][k] * b.centre[k];
+      if (kind == 0)
+        pose.t[i] = double(sint(-2, 2)) + (chance(0.3) ? -0.25 : 0.0);
+      else
+        pose.t[i] = mc[i] - mb + real(-0.3, 0.3) * std::max(1.0, double(i == 0 ? m.nx : i == 1 ? m.ny : m.nz));
+    }
+    if (kind == 2 && chance(0.5)) {
+      // Far away, or a whole multiple of 2^DW away: would alias into the grid if indices were truncated.
+      const int axis = int(uni(0, 2));
+      pose.t[axis] += double(cfg_.max_dim()) * double(sint(1, 3)) * (chance(0.5) ? 1 : -1);
+    }
+    const FixedFormat tf = translation_format(cfg_);
+    for (double& v : pose.t) v = std::clamp(v, tf.min_value(), tf.max_value());
+    quantize_pose(cfg_, pose, j);
+  }
+
+  void extreme_pose(Job& j) {
+    const FixedFormat mf = matrix_format(cfg_), tf = translation_format(cfg_);
+    const int64_t mv[] = {mf.min_raw(), mf.max_raw(), 0, int64_t{1} << cfg_.MF, -(int64_t{1} << cfg_.MF), 1, -1};
+    std::vector<int64_t> tv = {tf.min_raw(), tf.max_raw(), 0, -1};
+    const int64_t far = int64_t(cfg_.max_dim()) << std::min(cfg_.TF(), 40);
+    if (fits_signed(far, cfg_.TW)) tv.push_back(far);  // exactly 2^DW voxels: aliases if truncated to DW bits
+    if (cfg_.TF() >= 2) tv.push_back(-(int64_t{1} << (cfg_.TF() - 2)));  // -1/4 voxel
+    for (auto& row : j.M)
+      for (auto& e : row) {
+        const int64_t v = mv[uni(0, 6)];
+        e = fits_signed(v, cfg_.MW) ? v : 0;
+      }
+    for (auto& e : j.t) e = tv[uni(0, tv.size() - 1)];
+  }
+
+  Job make_job(uint32_t index) {
+    Job j;
+    j.tag = uint32_t(index & cfg_.max_tag());
+    const uint64_t mr = uni(0, 7);
+    j.mode = mr < 4 ? Mode::All : mr < 6 ? Mode::First : Mode::Count;
+    j.hit_mask = chance(0.5) ? kDefaultHitMask : uint8_t(uni(0, 15));
+    const MapDesc& m = maps_[uni(0, maps_.size() - 1)];
+    j.map_base = m.base;
+    j.nx = m.nx;
+    j.ny = m.ny;
+    j.nz = m.nz;
+    const Block& b = blocks_[uni(0, blocks_.size() - 1)];
+    // Shell window: empty, one point, around a lane boundary, or random.
+    const uint64_t L = uint64_t(cfg_.LANES);
+    uint64_t count = 0;
+    switch (uni(0, 5)) {
+      case 0: count = chance(0.5) ? 0 : 1; break;
+      case 1: count = std::min<uint64_t>(b.count, L * uni(1, 4) + uint64_t(sint(-1, 1))); break;
+      case 2: count = b.count; break;
+      default: count = uni(0, std::min<uint64_t>(b.count, 300)); break;
+    }
+    count = std::min<uint64_t>(count, b.count);
+    j.shell_base = uint32_t(b.base + uni(0, b.count - count));
+    j.shell_count = uint32_t(count);
+    if (chance(0.08))
+      extreme_pose(j);
+    else
+      random_pose(b, m, j);
+    return j;
+  }
+
+  GenerateOptions opt_;
+  DeviceConfig cfg_;
+  std::mt19937_64 rng_;
+  std::vector<MapDesc> maps_;
+  std::vector<Block> blocks_;
+};
+
+}  // namespace
+
+GeneratedVectors generate_vectors(const GenerateOptions& opt) { return Generator(opt).run(); }
+
+}  // namespace voxcd

@@ -1,0 +1,7 @@
+// The device's RTL, in compilation order (the package first), one file per line relative to this list. Every tool
+// reads this list: CMake (rtl/CMakeLists.txt), the yosys scripts (bench/rtl_cost.sh, bench/results.sh),
+// `voxcd size --cost`, and Verilator as `-F voxcd.f`. Lines starting with // are comments.
+voxcd_pkg.sv
+voxcd_ram.sv
+voxcd_lane.sv
+voxcd_device.sv
