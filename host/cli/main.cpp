@@ -4,6 +4,7 @@
 #include <string>
 
 #include "voxcd/host/cli/commands.h"
+#include "voxcd/version.h"
 
 namespace voxcd::cli {
 int& exit_code() {
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   CLI::App app{"voxcd: voxel collision detection on a modelled point-lookup accelerator"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
+  app.set_version_flag("--version", std::string("voxcd ") + VOXCD_VERSION);
   voxcd::cli::add_conform(app);
   voxcd::cli::add_selftest(app);
   voxcd::cli::add_voxelize(app);

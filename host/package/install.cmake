@@ -54,7 +54,8 @@ install(TARGETS ${voxcd_targets} EXPORT voxcdTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT voxcdTargets NAMESPACE voxcd:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/voxcd)
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/voxcd-config.cmake.in
-  ${CMAKE_BINARY_DIR}/package/voxcd-config.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/voxcd)
+  ${CMAKE_BINARY_DIR}/package/voxcd-config.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/voxcd
+  PATH_VARS CMAKE_INSTALL_DATADIR)
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/package/voxcd-config-version.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_BINARY_DIR}/package/voxcd-config.cmake ${CMAKE_BINARY_DIR}/package/voxcd-config-version.cmake

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The installed package as its users meet it: installs the build into a fresh prefix, moves the prefix elsewhere
+# (nothing may refer to the build or source tree), then builds and runs every example of docs/examples against it,
+# out of tree: the C++ program (CMake and pkg-config), the SystemC sc_main, the DPI-C testbench and the Python
+# script, and runs the installed tool. Exits non-zero at the first failure, saying which.
+#   bash tests/install/consumers.sh BUILD_DIR WORK_DIR
+set -euo pipefail
+build=$(cd "$1" && pwd)
+work=$2
+src=$(cd "$(dirname "$0")/../.." && pwd)
+rm -rf "$work" && mkdir -p "$work"
+work=$(cd "$work" && pwd)
+step() { echo "== consumers: $*"; }
+fail() { echo "consumers: FAILED: $*" >&2; exit 1; }
+export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
+
+step "cmake --install $build --prefix $work/staging, then moved to $work/prefix"
+cmake --install "$build" --prefix "$work/staging" >/dev/null
+mv "$work/staging" "$work/prefix"
+P=$work/prefix
+# The package's text files must not name the build tree, the source tree or the staging prefix.
+if grep -rlI -e "$build" -e "$src/" -e "$work/staging" "$P/lib/cmake" "$P/lib/pkgconfig" "$P/include" "$P/share"; then
+  fail "the files above refer to the build or source tree"
+fi
+[ -e "$P/include/voxcd/voxcd.h" ] || fail "no umbrella header include/voxcd/voxcd.h"
+if find "$P/include" -path '*detail*' -o -name server_protocol.h -o -path '*/cli/*' | grep -q .; then
+  fail "internal headers were installed: $(find "$P/include" -path '*detail*' -o -name server_protocol.h -o -path '*/cli/*')"
+fi
+
+step "the installed tool"
+"$P/bin/voxcd" --version
+"$P/bin/voxcd" simulate --frames 3 --objects 32 | grep -q "state hash" || fail "voxcd simulate"
+if "$P/bin/voxcd" conform --help >/dev/null 2>&1 && [ -x "$P/libexec/voxcd/voxcd_sysc_server" ]; then
+  "$P/bin/voxcd" simulate --frames 2 --objects 16 --backend sysc-tlm | grep -q "state hash" ||
+    fail "voxcd simulate --backend sysc-tlm (the server in libexec/voxcd)"
+fi
+
+step "C++ example with CMake (find_package(voxcd), voxcd::host)"
+cmake -S "$src/docs/examples/cpp" -B "$work/cpp" -G Ninja -DCMAKE_PREFIX_PATH="$P" >/dev/null
+cmake --build "$work/cpp" >/dev/null
+"$work/cpp/contacts"
+
+step "C++ example with pkg-config"
+export PKG_CONFIG_PATH="$P/lib/pkgconfig"
+# shellcheck disable=SC2046
+c++ -std=c++17 -O1 -o "$work/contacts_pc" "$src/docs/examples/cpp/contacts.cpp" $(pkg-config --cflags --libs voxcd)
+"$work/contacts_pc" >/dev/null
+
+if [ -e "$P/lib/cmake/voxcd/voxcdTargets.cmake" ] && grep -q "voxcd::sysc" "$P/lib/cmake/voxcd/voxcdTargets.cmake"; then
+  step "SystemC example (voxcd::sysc, the TLM target through the address map)"
+  cmake -S "$src/docs/examples/systemc" -B "$work/systemc" -G Ninja -DCMAKE_PREFIX_PATH="$P" >/dev/null
+  cmake --build "$work/systemc" >/dev/null
+  "$work/systemc/platform"
+fi
+
+if [ -e "$src/docs/examples/dpi/CMakeLists.txt" ] && grep -q "voxcd::dpi" "$P/lib/cmake/voxcd/voxcdTargets.cmake"; then
+  step "DPI-C testbench (voxcd::dpi, share/voxcd/rtl)"
+  cmake -S "$src/docs/examples/dpi" -B "$work/dpi" -G Ninja -DCMAKE_PREFIX_PATH="$P" >/dev/null
+  cmake --build "$work/dpi" -j2 >/dev/null
+  ran=0
+  for tb in "$work"/dpi/tb_*; do
+    [ -x "$tb" ] && [ -f "$tb" ] || continue
+    "$tb" && ran=1
+  done
+  [ $ran = 1 ] || fail "no DPI testbench was built in $work/dpi"
+fi
+
+pydir=$(find "$P" -type d -name dist-packages | head -n 1)
+if [ -n "$pydir" ]; then
+  step "Python module from $pydir"
+  PYTHONPATH="$pydir" /usr/bin/python3 -c "import voxcd; print(voxcd.__version__, voxcd.backends())"
+  for script in "$src"/docs/examples/python/*.py; do
+    [ -e "$script" ] || continue
+    (cd "$work" && PYTHONPATH="$pydir" /usr/bin/python3 "$script" >/dev/null) || fail "$script"
+  done
+fi
+echo "consumers: every example built and ran against $P"
