@@ -97,7 +97,8 @@ echo "results.sh: yosys at widths ${cost_widths[*]} ($((SECONDS - start)) s)" >&
 load="$(cut -d' ' -f1 /proc/loadavg)"
 ys="$(mktemp -d)"
 trap 'rm -rf "$ys"' EXIT
-rtl_files=(voxcd_pkg.sv voxcd_ram.sv voxcd_lane.sv voxcd_device.sv)
+# The RTL, in the order of its one file list (rtl/voxcd.f; // lines are comments).
+mapfile -t rtl_files < <(grep -v -e "^[[:space:]]*//" -e "^[[:space:]]*$" "$root/rtl/voxcd.f")
 for f in "${rtl_files[@]}"; do cp "rtl/$f" "$ys/$f"; done
 pids=()
 for w in "${cost_widths[@]}"; do

@@ -15,7 +15,8 @@ set -euo pipefail
 JOBS="${JOBS:-2}"
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-rtl_files=(voxcd_pkg.sv voxcd_ram.sv voxcd_lane.sv voxcd_device.sv)
+# The RTL, in the order of its one file list (rtl/voxcd.f; // lines are comments).
+mapfile -t rtl_files < <(grep -v -e "^[[:space:]]*//" -e "^[[:space:]]*$" "$root/rtl/voxcd.f")
 
 missing=0
 need() {  # tool debian-package

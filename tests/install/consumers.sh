@@ -3,10 +3,13 @@
 # (nothing may refer to the build or source tree), then builds and runs every example of docs/examples against it,
 # out of tree: the C++ program (CMake and pkg-config), the SystemC sc_main, the DPI-C testbench and the Python
 # script, and runs the installed tool. Exits non-zero at the first failure, saying which.
-#   bash tests/install/consumers.sh BUILD_DIR WORK_DIR
+#   bash tests/install/consumers.sh BUILD_DIR WORK_DIR [--cost]
+# --cost also synthesises a scene's device with the installed tool (`voxcd size --cost`, yosys; about a minute):
+# the RTL must come from the installed share/voxcd/rtl.
 set -euo pipefail
 build=$(cd "$1" && pwd)
 work=$2
+cost=${3:-}
 src=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work" && mkdir -p "$work"
 work=$(cd "$work" && pwd)
@@ -33,6 +36,12 @@ step "the installed tool"
 if "$P/bin/voxcd" conform --help >/dev/null 2>&1 && [ -x "$P/libexec/voxcd/voxcd_sysc_server" ]; then
   "$P/bin/voxcd" simulate --frames 2 --objects 16 --backend sysc-tlm | grep -q "state hash" ||
     fail "voxcd simulate --backend sysc-tlm (the server in libexec/voxcd)"
+fi
+
+if [ "$cost" = --cost ]; then
+  step "voxcd size --cost with the installed RTL"
+  out=$("$P/bin/voxcd" size "$src/tests/scenes/small.json" --cost)
+  echo "$out" | grep -E "^cost .*LUTs" || fail "voxcd size --cost printed no cost: $out"
 fi
 
 step "C++ example with CMake (find_package(voxcd), voxcd::host)"
