@@ -1,0 +1,27 @@
+// Runs the Verilated testbench tb_voxcd_dpi: drives its clock until it finishes and exits with 1 when it failed
+// ($fatal, a failed assertion in the device) and 0 when it passed. Plusargs go to the testbench (+seed=S ...).
+#include <verilated.h>
+
+#include <memory>
+
+#include "Vtb_voxcd_dpi.h"
+// The prototypes Verilator derives from voxcd_dpi_pkg.sv's imports, then the library's own declarations: a
+// function whose SystemVerilog and C signatures disagree does not compile.
+#include "Vtb_voxcd_dpi__Dpi.h"
+#include "voxcd_dpi.h"
+
+int main(int argc, char** argv) {
+  const auto ctx = std::make_unique<VerilatedContext>();
+  ctx->commandArgs(argc, argv);
+  ctx->fatalOnError(false);  // $fatal ends the run with an error status instead of abort()
+  const auto tb = std::make_unique<Vtb_voxcd_dpi>(ctx.get(), "tb");
+  tb->clk_i = 0;
+  tb->eval();
+  while (!ctx->gotFinish()) {
+    ctx->timeInc(1);
+    tb->clk_i = !tb->clk_i;
+    tb->eval();
+  }
+  tb->final();
+  return ctx->gotError() ? 1 : 0;
+}
