@@ -26,7 +26,8 @@
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
 
-// Devices: the interface and the backend registry (device_backends, make_device).
+// Devices: the interface and the backend registry (device_backends, make_device), conformance vectors on them.
+#include "voxcd/host/device/conform.h"
 #include "voxcd/host/device/device.h"
 
 // Pair tests: poses, the device image, contacts.
@@ -37,6 +38,7 @@
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/scene/simulate.h"
 #include "voxcd/host/sizing/size.h"
 
 // Where the installed package keeps its RTL and programs.

@@ -46,28 +46,8 @@ RigidPose parse_pose(const std::string& s) {
   if (v.size() != 3 && v.size() != 6)
     throw CLI::ValidationError("--pose", "'" + s + "' has " + std::to_string(v.size()) +
                                              " numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz");
-  RigidPose p;
-  p.translation = Eigen::Vector3d(v[0], v[1], v[2]);
-  if (v.size() == 6) {
-    const double k = M_PI / 180.0;
-    p.rotation = Eigen::AngleAxisd(v[5] * k, Eigen::Vector3d::UnitZ()) *
-                 Eigen::AngleAxisd(v[4] * k, Eigen::Vector3d::UnitY()) *
-                 Eigen::AngleAxisd(v[3] * k, Eigen::Vector3d::UnitX());
-  }
-  return p;
-}
-
-// Without --voxel: the longest side of the larger mesh / --resolution (32 by default), shared by both objects.
-double auto_voxel(const PairArgs& a) {
-  double side = 0;
-  for (const std::string& s : {a.a, a.b}) {
-    if (is_object_file(s)) continue;
-    const Mesh m = load_source(s);
-    Eigen::Vector3d lo, hi;
-    m.bounds(lo, hi);
-    side = std::max(side, (hi - lo).maxCoeff());
-  }
-  return side / (a.resolution ? a.resolution : 32);
+  const Eigen::Vector3d t(v[0], v[1], v[2]);
+  return v.size() == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t);
 }
 
 std::string vec_json(const Eigen::Vector3d& v) {
@@ -77,12 +57,11 @@ std::string vec_json(const Eigen::Vector3d& v) {
 }
 
 int pair_cmd(const PairArgs& a) {
-  const double voxel = a.voxel > 0 ? a.voxel : auto_voxel(a);
+  // Without --voxel: the longest side of the larger mesh / --resolution (32 by default), shared by both objects.
+  const double voxel = a.voxel > 0 ? a.voxel : shared_voxel({a.a, a.b}, a.resolution ? a.resolution : 32);
   auto ta = std::make_shared<ObjectType>(load_object_type(a.a, voxel));
   auto tb = std::make_shared<ObjectType>(load_object_type(a.b, voxel));
-  DeviceConfig cfg;
-  cfg.LANES = a.lanes;
-  if (a.backend != "rtl") cfg = fit_memory(cfg, {ta.get(), tb.get()});
+  const DeviceConfig cfg = device_config_for(a.backend, a.lanes, {ta.get(), tb.get()});
   PairCollider collider(make_device(a.backend, cfg), {ta, tb});
   PairOptions opt;
   const auto mode = parse_mode(a.mode);

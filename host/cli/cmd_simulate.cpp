@@ -9,9 +9,8 @@
 
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/cli/object_report.h"
-#include "voxcd/host/scene/scene.h"
-#include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/object/voxelize.h"
+#include "voxcd/host/scene/simulate.h"
 #include "voxcd/ref/vectors.h"
 
 namespace voxcd::cli {
@@ -31,148 +30,107 @@ struct SimulateArgs {
   bool progress = true;
 };
 
-struct Totals {
-  uint64_t pairs = 0, tested = 0, touching = 0, responses = 0, wall_hits = 0, lookups = 0, hits = 0, contacts = 0, cycles = 0;
-  uint64_t max_cycles = 0;
-  double t_integrate = 0, t_bounds = 0, t_broadphase = 0, t_narrow = 0, t_response = 0;
-  double seconds() const { return t_integrate + t_bounds + t_broadphase + t_narrow + t_response; }
-  void add(const FrameStats& f) {
-    pairs += f.pairs, tested += f.tested, touching += f.touching, responses += f.responses, wall_hits += f.wall_hits;
-    lookups += f.lookups, hits += f.hits, contacts += f.contacts, cycles += f.device_cycles;
-    max_cycles = std::max(max_cycles, f.device_cycles);
-    t_integrate += f.t_integrate, t_bounds += f.t_bounds, t_broadphase += f.t_broadphase;
-    t_narrow += f.t_narrow, t_response += f.t_response;
-  }
-};
-
-int simulate_cmd(SimulateArgs a) {
-  const auto mode = parse_mode(a.mode);
-  if (!mode) throw CLI::ValidationError("--mode", "'" + a.mode + "' is not ALL, FIRST or COUNT");
-  a.sim.mode = *mode;
+// The request of the options given (the others take the scene file's values or the defaults).
+SimulateRequest request(const SimulateArgs& a) {
   auto given = [&](const char* opt) { return a.app->count(opt) > 0; };
-  if (given("--voxel") && given("--resolution"))
-    throw CLI::ValidationError("--voxel, --resolution",
-                               "give the voxel size in world units (--voxel) or the voxels along an object's longest "
-                               "side (--resolution), not both");
-  if (given("--voxel") && !(a.scene.voxel > 0 && std::isfinite(a.scene.voxel)))
-    throw CLI::ValidationError("--voxel", "must be a positive number of world units");
-  Scene scene;
-  std::string description;
-  if (!a.file.empty()) {
-    SceneFile f = read_scene_file(a.file);
-    // Options given on the command line override the file.
-    if (given("--objects") || given("--shape") || given("--voxel") || given("--resolution")) {
-      if (f.types.size() != 1)
-        throw CLI::ValidationError("--objects, --shape, --voxel, --resolution",
-                                   "apply only to a scene file with one object type; " + a.file + " has " +
-                                       std::to_string(f.types.size()));
-      if (given("--objects")) f.types[0].count = a.scene.objects;
-      if (given("--shape")) f.types[0].shape = a.scene.shape, f.types[0].mesh.clear(), f.types[0].name = a.scene.shape;
-      if (given("--voxel")) f.types[0].voxel = a.scene.voxel, f.types[0].resolution = 0;
-      if (given("--resolution")) f.types[0].resolution = a.scene.resolution, f.types[0].voxel = 0;
-    }
-    if (given("--density")) f.density = a.scene.density, f.density_given = true;
-    if (given("--speed")) f.speed = a.scene.speed;
-    if (given("--seed")) f.seed = a.scene.seed;
-    if (!given("--pruning")) a.sim.pruning = f.broadphase;
-    if (!given("--backend")) a.sim.backend = f.backend;
-    if (!given("--mode")) {
-      a.mode = f.mode;
-      a.sim.mode = *parse_mode(f.mode);
-    }
-    if (!given("--both")) a.sim.both_directions = f.both_directions;
-    if (!given("--frames")) a.frames = f.frames;
-    if (!given("--clock")) a.clock_mhz = f.clock;
-    a.scene.objects = f.objects();
-    a.scene.side = f.side;
-    a.scene.density = f.density;
-    a.scene.seed = f.seed;
-    scene = make_scene(f);
-    description = a.file + ": " + std::to_string(f.objects()) + " objects of " + std::to_string(f.types.size()) +
-                  " type" + (f.types.size() > 1 ? "s" : "") + " in a cube of side " + [&] {
-                    std::ostringstream o;
-                    o << f.side;
-                    return o.str();
-                  }();
-    a.scene.shape = f.types[0].shape.empty() ? f.types[0].mesh : f.types[0].shape;
-  } else {
-    scene = make_scene(a.scene);
+  SimulateRequest r;
+  r.file = a.file;
+  if (given("--objects")) r.objects = a.scene.objects;
+  if (given("--shape")) r.shape = a.scene.shape;
+  if (given("--voxel")) r.voxel = a.scene.voxel;
+  if (given("--resolution")) r.resolution = a.scene.resolution;
+  if (given("--density")) r.density = a.scene.density;
+  if (given("--speed")) r.speed = a.scene.speed;
+  if (given("--seed")) r.seed = a.scene.seed;
+  if (given("--pruning")) r.pruning = a.sim.pruning;
+  if (given("--backend")) r.backend = a.sim.backend;
+  if (given("--mode")) r.mode = a.mode;
+  if (given("--both")) r.both_directions = a.sim.both_directions;
+  if (given("--frames")) r.frames = a.frames;
+  if (given("--clock")) r.clock = a.clock_mhz;
+  if (given("--lanes")) r.lanes = a.sim.lanes;
+  if (!a.config.empty()) r.device = parse_config_pairs(a.config, "--config");
+  r.threads = a.sim.threads;
+  r.midphase = a.sim.midphase;
+  r.cull = a.sim.cull;
+  return r;
+}
+
+int simulate_cmd(const SimulateArgs& a) {
+  const bool progress = a.progress && !a.json && isatty(STDERR_FILENO);
+  SimulationSummary s;
+  try {
+    s = simulate(request(a), [&](uint64_t done, uint64_t frames) {
+      if (!progress || frames < 100 || ((done - 1) % 25 != 0 && done != frames)) return;
+      const int width = 40, bar = int(width * done / frames);
+      std::fprintf(stderr, "\r[%s%s] %llu/%llu frames", std::string(size_t(bar), '#').c_str(),
+                   std::string(size_t(width - bar), '.').c_str(), (unsigned long long)done,
+                   (unsigned long long)frames);
+      if (done == frames) std::fprintf(stderr, "\n");
+    });
+  } catch (const SimulateOptionError& e) {
+    std::string names;
+    for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
+    throw CLI::ValidationError(names, e.message);
   }
-  if (!a.config.empty()) {
-    DeviceConfig cfg = parse_config_pairs(a.config, "--config");
-    cfg.validate();
-    if (a.app->count("--lanes")) cfg.LANES = a.sim.lanes;
-    a.sim.device = cfg;
-  }
-  if (a.sim.device) a.sim.lanes = a.sim.device->LANES;
-  const ObjectType& type = *scene.types[0];
-  a.scene.voxel = type.voxmap().voxel();  // as given, from --resolution, or the default
-  const std::vector<std::shared_ptr<const ObjectType>> types = scene.types;
-  Simulation sim(std::move(scene), a.sim);
-  const bool bar = a.progress && !a.json && isatty(STDERR_FILENO) && a.frames >= 100;
-  Totals tot;
-  for (uint64_t f = 0; f < a.frames; ++f) {
-    tot.add(sim.step());
-    if (bar && (f % 25 == 0 || f + 1 == a.frames)) {
-      const int width = 40, done = int(width * (f + 1) / a.frames);
-      std::fprintf(stderr, "\r[%s%s] %llu/%llu frames", std::string(size_t(done), '#').c_str(),
-                   std::string(size_t(width - done), '.').c_str(), (unsigned long long)(f + 1),
-                   (unsigned long long)a.frames);
-      if (f + 1 == a.frames) std::fprintf(stderr, "\n");
-    }
-  }
-  const double F = double(a.frames);
-  const double rate = tot.seconds() > 0 ? F / tot.seconds() : 0;
-  const double cyc_per_frame = double(tot.cycles) / F;
-  const double device_rate = cyc_per_frame > 0 ? a.clock_mhz * 1e6 / cyc_per_frame : 0;
+  const SimulationTotals& tot = s.totals;
+  const ObjectType& type = *s.types[0];
+  const double F = double(s.frames);
+  const double rate = s.frame_rate();
+  const double cyc_per_frame = s.cycles_per_frame();
+  const double device_rate = s.device_rate();
   const auto& d = type.voxmap().dims();
   if (a.json) {
     std::ostringstream o;
     o << "{";
-    if (!a.file.empty()) {
-      o << "\"scene\": " << json_string(a.file) << ", \"types\": [";
-      for (size_t i = 0; i < types.size(); ++i)
-        o << (i ? ", " : "") << "{\"name\": " << json_string(types[i]->name) << ", \"voxel\": "
-          << types[i]->voxmap().voxel() << ", \"shell_points\": " << types[i]->shell().size() << "}";
+    if (!s.file.empty()) {
+      o << "\"scene\": " << json_string(s.file) << ", \"types\": [";
+      for (size_t i = 0; i < s.types.size(); ++i)
+        o << (i ? ", " : "") << "{\"name\": " << json_string(s.types[i]->name) << ", \"voxel\": "
+          << s.types[i]->voxmap().voxel() << ", \"shell_points\": " << s.types[i]->shell().size() << "}";
       o << "], ";
     }
-    o << "\"device\": " << json_string(sim.device_config().to_string()) << ", ";
-    o << "\"shape\": " << json_string(a.scene.shape) << ", \"objects\": " << a.scene.objects
-      << ", \"voxel\": " << a.scene.voxel << ", \"shell_points\": " << type.shell().size() << ", \"voxmap\": ["
-      << d[0] << ", " << d[1] << ", " << d[2] << "], \"pruning\": " << json_string(a.sim.pruning)
-      << ", \"backend\": " << json_string(a.sim.backend) << ", \"mode\": " << json_string(a.mode)
-      << ", \"both_directions\": " << (a.sim.both_directions ? "true" : "false") << ", \"frames\": " << a.frames
-      << ", \"seed\": " << a.scene.seed << ", \"seconds\": " << tot.seconds() << ", \"frame_rate_hz\": " << rate
+    o << "\"device\": " << json_string(s.device.to_string()) << ", ";
+    o << "\"shape\": " << json_string(s.shape) << ", \"objects\": " << s.objects
+      << ", \"voxel\": " << s.voxel << ", \"shell_points\": " << type.shell().size() << ", \"voxmap\": ["
+      << d[0] << ", " << d[1] << ", " << d[2] << "], \"pruning\": " << json_string(s.pruning)
+      << ", \"backend\": " << json_string(s.backend) << ", \"mode\": " << json_string(s.mode)
+      << ", \"both_directions\": " << (s.both_directions ? "true" : "false") << ", \"frames\": " << s.frames
+      << ", \"seed\": " << s.seed << ", \"seconds\": " << tot.seconds() << ", \"frame_rate_hz\": " << rate
       << ", \"broadphase_pairs\": " << tot.pairs << ", \"pairs_tested\": " << tot.tested
       << ", \"touching_pairs\": " << tot.touching
       << ", \"responses\": " << tot.responses << ", \"wall_bounces\": " << tot.wall_hits
       << ", \"lookups\": " << tot.lookups << ", \"hits\": " << tot.hits << ", \"contacts\": " << tot.contacts
       << ", \"stage_seconds\": {\"integrate\": " << tot.t_integrate << ", \"bounds\": " << tot.t_bounds
       << ", \"broadphase\": " << tot.t_broadphase << ", \"narrow\": " << tot.t_narrow
-      << ", \"response\": " << tot.t_response << "}, \"lanes\": " << a.sim.lanes
+      << ", \"response\": " << tot.t_response << "}, \"lanes\": " << s.lanes
       << ", \"device_cycles\": " << tot.cycles << ", \"device_cycles_per_frame\": " << cyc_per_frame
-      << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"clock_mhz\": " << a.clock_mhz
-      << ", \"device_frame_rate_hz\": " << device_rate << ", \"state_hash\": \"" << std::hex << sim.state_hash()
+      << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"clock_mhz\": " << s.clock
+      << ", \"device_frame_rate_hz\": " << device_rate << ", \"state_hash\": \"" << std::hex << s.state_hash
       << std::dec << "\"}\n";
     std::cout << o.str();
     return 0;
   }
-  if (a.file.empty()) {
-    std::printf("voxcd simulate: %zu x %s in a cube of side %g at density %g, voxel %g (%zu shell points, voxmap "
+  if (s.file.empty()) {
+    std::printf("voxcd simulate: %llu x %s in a cube of side %g at density %g, voxel %g (%zu shell points, voxmap "
                 "%ux%ux%u), seed %llu\n",
-                a.scene.objects, a.scene.shape.c_str(), a.scene.side, a.scene.density, a.scene.voxel,
-                type.shell().size(), d[0], d[1], d[2], (unsigned long long)a.scene.seed);
+                (unsigned long long)s.objects, s.shape.c_str(), s.side, s.density, s.voxel, type.shell().size(), d[0],
+                d[1], d[2], (unsigned long long)s.seed);
   } else {
-    std::printf("voxcd simulate: %s, seed %llu\n", description.c_str(), (unsigned long long)a.scene.seed);
-    for (const auto& t : types) {
+    std::ostringstream side;
+    side << s.side;
+    std::printf("voxcd simulate: %s: %llu objects of %zu type%s in a cube of side %s, seed %llu\n", s.file.c_str(),
+                (unsigned long long)s.objects, s.types.size(), s.types.size() > 1 ? "s" : "", side.str().c_str(),
+                (unsigned long long)s.seed);
+    for (const auto& t : s.types) {
       const auto& td = t->voxmap().dims();
       std::printf("  type %-20s voxel %g, %zu shell points, voxmap %ux%ux%u\n", t->name.c_str(), t->voxmap().voxel(),
                   t->shell().size(), td[0], td[1], td[2]);
     }
   }
-  if (a.sim.device) std::printf("device          %s\n", sim.device_config().to_string().c_str());
-  std::printf("pruning %s, backend %s, mode %s%s, %llu frames\n", a.sim.pruning.c_str(), a.sim.backend.c_str(),
-              a.mode.c_str(), a.sim.both_directions ? ", both directions" : "", (unsigned long long)a.frames);
+  if (s.device_given) std::printf("device          %s\n", s.device.to_string().c_str());
+  std::printf("pruning %s, backend %s, mode %s%s, %llu frames\n", s.pruning.c_str(), s.backend.c_str(),
+              s.mode.c_str(), s.both_directions ? ", both directions" : "", (unsigned long long)s.frames);
   std::printf("frame rate      %.1f Hz (%.3f ms per frame, one process)\n", rate, 1e3 * tot.seconds() / F);
   std::printf("per frame       %.2f broadphase pairs, %.2f tested (bounding spheres and oriented boxes meet), %.2f touching, %.1f lookups, "
               "%.1f contacts, %.3f responses, %.3f wall bounces\n",
@@ -183,11 +141,11 @@ int simulate_cmd(SimulateArgs a) {
               1e6 * tot.t_integrate / F, 1e6 * tot.t_bounds / F, 1e6 * tot.t_broadphase / F, 1e6 * tot.t_narrow / F,
               1e6 * tot.t_response / F);
   std::printf("device          %.0f cycles per frame (largest %llu) at %d lanes (%s): %.0f Hz at %g MHz\n",
-              cyc_per_frame, (unsigned long long)tot.max_cycles, a.sim.lanes,
-              a.sim.backend == "rtl" || a.sim.backend == "sysc-rtl" ? "measured on the RTL"
-                                                                     : "the exact timing model of ref/",
-              device_rate, a.clock_mhz);
-  std::printf("state hash      %016llx\n", (unsigned long long)sim.state_hash());
+              cyc_per_frame, (unsigned long long)tot.max_cycles, s.lanes,
+              s.backend == "rtl" || s.backend == "sysc-rtl" ? "measured on the RTL"
+                                                             : "the exact timing model of ref/",
+              device_rate, s.clock);
+  std::printf("state hash      %016llx\n", (unsigned long long)s.state_hash);
   return 0;
 }
 

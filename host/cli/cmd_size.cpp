@@ -13,23 +13,20 @@ struct SizeArgs {
   std::string file;
   SizeRequest req;
   bool json = false;
-  bool cost = false;
   std::string rtl_dir = default_rtl_dir();
 };
 
 int size_cmd(const SizeArgs& a) {
   const SceneFile f = read_scene_file(a.file);
   const Scene scene = make_scene(f);
+  SizeRequest req = a.req;
+  req.rtl_dir = a.rtl_dir;
   SizeReport r;
   try {
-    r = derive_size(f, scene, a.req);
+    r = derive_size(f, scene, req);
   } catch (const SizeError& e) {
     std::cerr << "voxcd size: " << a.file << ": cannot be met: " << e.what() << '\n';
     return 3;
-  }
-  if (a.cost) {
-    r.cost = yosys_cost(r.config, a.rtl_dir);
-    r.default_cost = yosys_cost(r.default_widths(), a.rtl_dir);
   }
   std::cout << (a.json ? size_json(r, scene) : size_text(r, scene));
   return 0;
@@ -50,7 +47,7 @@ void add_size(CLI::App& app) {
   c->add_option("--clock", a->req.clock, "Device clock, MHz (default: the scene file's)")->check(CLI::PositiveNumber);
   c->add_option("--frames", a->req.frames, "Frames simulated to measure cycles (default: the scene file's)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1000000}));
-  c->add_flag("--cost", a->cost,
+  c->add_flag("--cost", a->req.cost,
               "Also synthesise the configuration, and the default widths at its LANES, SAW and MAW, with yosys "
               "(synth_xilinx) for LUTs, FFs, DSPs and block RAMs; about 10 s each");
   c->add_option("--rtl", a->rtl_dir, "The directory of the RTL file list voxcd.f for --cost (default: the installed package's)")->capture_default_str();

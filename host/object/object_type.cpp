@@ -1,5 +1,6 @@
 #include "voxcd/host/object/object_type.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -131,6 +132,21 @@ ObjectType load_object_type(const std::string& file_or_shape, double voxel) {
   ObjectOptions opt;
   opt.voxel = voxel;
   return make_object_type(make_object(mesh, source, hash, opt), file_or_shape);
+}
+
+double shared_voxel(const std::vector<std::string>& sources, uint32_t resolution) {
+  if (resolution < kMinVoxelsAcross)
+    throw MeshError("a resolution of " + std::to_string(resolution) + " voxels is too coarse; at least " +
+                    std::to_string(kMinVoxelsAcross) + " voxels must span the longest side");
+  double side = 0;
+  for (const std::string& s : sources) {
+    if (is_object_file(s)) continue;
+    const Mesh m = load_source(s);
+    Eigen::Vector3d lo, hi;
+    m.bounds(lo, hi);
+    side = std::max(side, (hi - lo).maxCoeff());
+  }
+  return side / resolution;
 }
 
 }  // namespace voxcd

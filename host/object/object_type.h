@@ -34,6 +34,12 @@ ObjectType make_object_type(ObjectFile obj, const std::string& name);
 // shape name; meshes and shapes are voxelised at `voxel` (which must then be > 0). Errors name the argument.
 ObjectType load_object_type(const std::string& file_or_shape, double voxel);
 
+// The voxel that puts `resolution` voxels along the longest side of the largest mesh or shape among `sources`
+// (its bounding box's longest side / resolution); object files are left out (they have their voxel), and with
+// nothing else it is 0. `voxcd pair`'s voxel when none is given (resolution 32 by default). MeshError from
+// load_source, or for a resolution below kMinVoxelsAcross.
+double shared_voxel(const std::vector<std::string>& sources, uint32_t resolution);
+
 // True when the file starts with the object file's magic.
 bool is_object_file(const std::string& path);
 

@@ -65,6 +65,12 @@ DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& 
   return cfg;
 }
 
+DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types) {
+  DeviceConfig cfg;
+  cfg.LANES = lanes;
+  return backend == "rtl" ? cfg : fit_memory(cfg, types);
+}
+
 PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types)
     : device_(std::move(device)), types_(std::move(types)), image_(device_->config()) {
   for (const auto& t : types_) {

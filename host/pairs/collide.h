@@ -50,6 +50,11 @@ class DeviceImage {
 // largest memories allowed (SAW 24, MAW 28) are too small, or a voxmap exceeds 2^DW voxels on an axis.
 DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& types);
 
+// The device configuration for testing `types` on `backend`: the default widths at `lanes`, memories grown to fit
+// the types (fit_memory) on every backend but rtl, whose models are built for the default depths. `voxcd pair` and
+// Simulation (without a whole configuration) use it.
+DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types);
+
 // One contact: a shell point of one object that lies in a voxel of the other whose state is in the hit mask.
 struct Contact {
   uint32_t pair = 0;          // index of the request

@@ -41,4 +41,14 @@ void pose_job(const DeviceConfig& cfg, const RigidPose& a, const GridFrame& shel
   quantize_pose(cfg, relative_pose(a, shell_a, b, map_b), job);
 }
 
+RigidPose euler_pose(const Eigen::Vector3d& translation, const Eigen::Vector3d& degrees) {
+  RigidPose p;
+  p.translation = translation;
+  const double k = M_PI / 180.0;
+  p.rotation = Eigen::AngleAxisd(degrees[2] * k, Eigen::Vector3d::UnitZ()) *
+               Eigen::AngleAxisd(degrees[1] * k, Eigen::Vector3d::UnitY()) *
+               Eigen::AngleAxisd(degrees[0] * k, Eigen::Vector3d::UnitX());
+  return p;
+}
+
 }  // namespace voxcd

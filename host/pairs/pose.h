@@ -10,6 +10,10 @@
 
 namespace voxcd {
 
+// A pose from a translation and a rotation in degrees about x, then y, then z (world axes): R = Rz Ry Rx, as
+// `voxcd pair --pose tx,ty,tz,rx,ry,rz` gives B's pose in A's frame.
+RigidPose euler_pose(const Eigen::Vector3d& translation, const Eigen::Vector3d& degrees = Eigen::Vector3d::Zero());
+
 // The pose of A's shell grid in B's voxmap grid: g_B = M g_A + t, with M = R_B^T R_A * (vA / vB). Throws
 // RangeError when a pose is not finite (NaN or infinite rotation or translation) naming which.
 FloatPose relative_pose(const RigidPose& a, const GridFrame& shell_a, const RigidPose& b, const GridFrame& map_b);

@@ -376,14 +376,9 @@ void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double spee
 
 Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(scene)), opt_(opt) {
   broadphase_ = make_broadphase(opt.pruning);
-  DeviceConfig cfg;
-  cfg.LANES = opt.lanes;
   std::vector<const ObjectType*> types;
   for (const auto& t : scene_.types) types.push_back(t.get());
-  if (opt.device)
-    cfg = *opt.device;
-  else if (opt.backend != "rtl")
-    cfg = fit_memory(cfg, types);
+  const DeviceConfig cfg = opt.device ? *opt.device : device_config_for(opt.backend, opt.lanes, types);
   DeviceOptions dopt;
   dopt.threads = opt.threads;
   collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types);

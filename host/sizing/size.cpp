@@ -313,6 +313,10 @@ SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest
     r.shell_words += t->shell().size();
     r.map_words += (t->voxmap().size() + spw - 1) / spw;
   }
+  if (req.cost) {
+    r.cost = yosys_cost(r.config, req.rtl_dir);
+    r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
+  }
   return r;
 }
 

@@ -84,6 +84,10 @@ struct SizeRequest {
   double rate = 0;      // Hz; 0: the scene file's
   double clock = 0;     // MHz; 0: the scene file's
   uint64_t frames = 0;  // measured frames; 0: the scene file's
+  // Also synthesise the configuration and its default widths (SizeReport::cost, default_cost) from the RTL of
+  // rtl_dir ("" = the package's); yosys_cost's errors.
+  bool cost = false;
+  std::string rtl_dir;
 };
 
 struct SizeReport {
@@ -107,7 +111,8 @@ struct SizeReport {
   DeviceConfig default_widths() const;
 };
 
-// The whole derivation. SizeError when a constraint cannot be met; SceneFileError from the scene.
+// The whole derivation (with the costs when req.cost). SizeError when a constraint cannot be met; SceneFileError
+// from the scene.
 SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest& req);
 
 // The text and JSON reports of `voxcd size`.

@@ -1,0 +1,77 @@
+// import voxcd: the module, its version, the library's lists (backends, shapes, broadphases) and how the library's
+// errors reach Python (docs/python.md, "Errors").
+#include <stdexcept>
+
+#include "voxcd/host/broadphase/broadphase.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/python/bindings.h"
+#include "voxcd/host/scene/scene.h"
+#include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/sizing/size.h"
+#include "voxcd/ref/fixed.h"
+#include "voxcd/ref/vectors.h"
+#include "voxcd/version.h"
+
+namespace voxcd::python {
+
+std::string path_arg(const py::handle& h, const char* what) {
+  if (py::isinstance<py::str>(h)) return h.cast<std::string>();
+  const py::object os = py::module_::import("os");
+  if (py::isinstance(h, os.attr("PathLike"))) {
+    const py::object p = os.attr("fspath")(h);
+    if (py::isinstance<py::str>(p)) return p.cast<std::string>();
+  }
+  throw py::type_error(std::string(what) + " must be a str or an os.PathLike naming a file, not " +
+                       py::str(py::type::handle_of(h).attr("__name__")).cast<std::string>());
+}
+
+void value_error(const std::string& message) { throw py::value_error(message); }
+
+}  // namespace voxcd::python
+
+PYBIND11_MODULE(voxcd, m) {
+  namespace py = pybind11;
+  using namespace voxcd;
+  m.doc() = "voxcd: voxel collision detection on a modelled point-lookup accelerator (docs/python.md)";
+  m.attr("__version__") = VOXCD_VERSION;
+
+  // Bad input (the values given, or the files they name) is a ValueError; a backend that cannot run, or anything
+  // else the library raises, a RuntimeError. The message is the library's.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const DeviceError& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    } catch (const MeshError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const ObjectFileError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const SceneFileError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const VectorError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const RangeError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const CapacityError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const PlacementError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  m.def("backends", &device_backends, "The device backends of this build, by name (for backend=...).");
+  m.def("shapes", &shape_names, "The built-in shapes, by name (for voxelize, pair and simulate).");
+  m.def("broadphases", &broadphase_names, "The broadphases, by name (for simulate(pruning=...)).");
+  m.attr("EMPTY") = int(kEmpty);
+  m.attr("SURFACE") = int(kSurface);
+  m.attr("INTERIOR") = int(kInterior);
+
+  voxcd::python::bind_objects(m);
+  voxcd::python::bind_pairs(m);
+  voxcd::python::bind_scenes(m);
+  voxcd::python::bind_conformance(m);
+}

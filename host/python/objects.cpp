@@ -1,0 +1,193 @@
+// Objects: voxcd.voxelize (a mesh file or a built-in shape, as `voxcd voxelize`), voxcd.read_object and the
+// voxcd.Object they give: the voxmap's states, its grid, the point shell and the repair report as numpy arrays and
+// dicts, and save(path) (an object file).
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+
+#include "voxcd/host/object/object_file.h"
+#include "voxcd/host/python/bindings.h"
+
+namespace voxcd::python {
+
+namespace {
+
+using ObjectPtr = std::shared_ptr<ObjectFile>;
+
+py::array_t<double> vec3(const Eigen::Vector3d& v) {
+  py::array_t<double> a(3);
+  auto w = a.mutable_unchecked<1>();
+  for (int i = 0; i < 3; ++i) w(i) = v[i];
+  return a;
+}
+
+py::tuple dims3(const std::array<uint32_t, 3>& d) { return py::make_tuple(d[0], d[1], d[2]); }
+
+// (N, 3) rows of the vectors.
+py::array_t<double> rows(const std::vector<Eigen::Vector3d>& v) {
+  py::array_t<double> a({py::ssize_t(v.size()), py::ssize_t(3)});
+  auto w = a.mutable_unchecked<2>();
+  for (size_t k = 0; k < v.size(); ++k)
+    for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = v[k][i];
+  return a;
+}
+
+// The voxmap's states indexed [x, y, z]: Fortran order, so that element (x, y, z) sits at the voxmap's linear
+// index x + nx * (y + ny * z).
+py::array_t<uint8_t> states(const Voxmap& vm) {
+  const auto& d = vm.dims();
+  const py::ssize_t nx = d[0], ny = d[1], nz = d[2];
+  py::array_t<uint8_t, py::array::f_style> a({nx, ny, nz});
+  uint8_t* out = a.mutable_data();
+  for (uint64_t i = 0; i < vm.size(); ++i) out[i] = uint8_t(vm.at(i));
+  return a;
+}
+
+py::object repair_dict(const ObjectFile& obj) {
+  if (!obj.has_report) return py::none();
+  const MeshReport& r = obj.mesh_report;
+  py::dict d;
+  d["closed"] = r.closed;
+  d["surface_only"] = r.surface_only;
+  d["points_only"] = r.points_only;
+  d["flipped"] = r.flipped;
+  d["input_vertices"] = r.input_vertices;
+  d["input_triangles"] = r.input_triangles;
+  d["vertices"] = r.vertices;
+  d["triangles"] = r.triangles;
+  d["welded"] = r.welded;
+  d["welded_near"] = r.welded_near;
+  d["weld_tolerance"] = r.weld_tolerance;
+  py::dict dropped;
+  dropped["nonfinite"] = r.dropped_nonfinite;
+  dropped["repeated_vertex"] = r.dropped_repeated;
+  dropped["collinear"] = r.dropped_collinear;
+  dropped["duplicate"] = r.dropped_duplicate;
+  d["dropped"] = dropped;
+  d["reoriented"] = r.reoriented;
+  d["open_edges"] = r.open_edges;
+  d["nonmanifold_edges"] = r.nonmanifold_edges;
+  d["inconsistent_edges"] = r.inconsistent_edges;
+  d["components"] = r.components;
+  d["closed_components"] = r.closed_components;
+  d["sheet_components"] = r.sheet_components;
+  d["uncertain_voxels"] = obj.voxelize_report.uncertain;
+  d["evaluated_voxels"] = obj.voxelize_report.evaluated;
+  return std::move(d);
+}
+
+ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel, std::optional<int64_t> resolution,
+                          double shell_ratio, bool strict, unsigned threads) {
+  const std::string input = path_arg(source, "source");
+  if (voxel.has_value() == resolution.has_value())
+    value_error("give voxel (the voxel edge in mesh units) or resolution (voxels along the longest side), " +
+                std::string(voxel ? "not both" : "one of them"));
+  if (resolution && (*resolution < 1 || *resolution > int64_t(UINT32_MAX)))
+    value_error("resolution: " + std::to_string(*resolution) + " is not a positive count of voxels");
+  if (!(std::isfinite(shell_ratio) && shell_ratio > 0))
+    value_error("shell_ratio: " + std::to_string(shell_ratio) + " is not a positive finite number");
+  ObjectOptions opt;
+  opt.voxel = voxel.value_or(0);
+  opt.resolution = uint32_t(resolution.value_or(0));
+  opt.shell_ratio = shell_ratio;
+  opt.threads = threads;
+  py::gil_scoped_release unlocked;
+  std::string src;
+  uint64_t hash = 0;
+  MeshReport report;
+  const Mesh mesh = load_source(input, &src, &hash, &report, LoadOptions{strict});
+  return std::make_shared<ObjectFile>(make_object(mesh, src, hash, opt, &report));
+}
+
+}  // namespace
+
+void bind_objects(py::module_& m) {
+  py::class_<ObjectFile, ObjectPtr>(m, "Object", R"(An object: a voxmap (2-bit states on a regular grid) and a point
+shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made by voxelize() or read_object().)")
+      .def_readonly("source", &ObjectFile::source, "The mesh file as given, or 'shape:NAME' for a built-in shape.")
+      .def_readonly("source_hash", &ObjectFile::source_hash, "FNV-1a 64 of the source file's bytes (of the shape's name).")
+      .def_property_readonly("voxel", [](const ObjectFile& o) { return o.voxmap.voxel(); }, "Voxel edge, mesh units.")
+      .def_property_readonly("origin", [](const ObjectFile& o) { return vec3(o.voxmap.origin()); },
+                             "Corner of voxel (0, 0, 0) in the object's frame: voxel (x, y, z) covers origin + "
+                             "voxel * ([x, x+1] x [y, y+1] x [z, z+1]).")
+      .def_property_readonly("dims", [](const ObjectFile& o) { return dims3(o.voxmap.dims()); },
+                             "Voxels along x, y and z.")
+      .def_property_readonly("states", [](const ObjectFile& o) { return states(o.voxmap); },
+                             "The voxmap's states as a new uint8 array of shape dims, indexed [x, y, z]: EMPTY (0), "
+                             "SURFACE (1) or INTERIOR (2).")
+      .def_property_readonly(
+          "counts",
+          [](const ObjectFile& o) {
+            const auto c = o.voxmap.counts();
+            py::dict d;
+            d["empty"] = c[kEmpty];
+            d["surface"] = c[kSurface];
+            d["interior"] = c[kInterior];
+            return d;
+          },
+          "Voxels in each state: {'empty': ..., 'surface': ..., 'interior': ...}.")
+      .def_property_readonly("shell_points", [](const ObjectFile& o) { return rows(o.shell.points); },
+                             "The point shell in the object's frame, an (N, 3) float64 array.")
+      .def_property_readonly("shell_normals", [](const ObjectFile& o) { return rows(o.shell.normals); },
+                             "Each shell point's outward unit normal, an (N, 3) float64 array.")
+      .def_property_readonly(
+          "shell_cells",
+          [](const ObjectFile& o) {
+            py::array_t<uint32_t> a({py::ssize_t(o.shell.size()), py::ssize_t(3)});
+            auto w = a.mutable_unchecked<2>();
+            for (size_t k = 0; k < o.shell.size(); ++k)
+              for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = o.shell.cells[k][size_t(i)];
+            return a;
+          },
+          "Each shell point's cell of the shell grid, an (N, 3) uint32 array (the point is the cell's centre).")
+      .def_property_readonly("shell_spacing", [](const ObjectFile& o) { return o.shell.grid.voxel; },
+                             "The shell grid's spacing: voxel / shell_ratio.")
+      .def_property_readonly("shell_origin", [](const ObjectFile& o) { return vec3(o.shell.grid.origin); },
+                             "Corner of the shell grid's cell (0, 0, 0) in the object's frame.")
+      .def_property_readonly("shell_dims", [](const ObjectFile& o) { return dims3(o.shell.grid.dims); },
+                             "Cells of the shell grid along x, y and z.")
+      .def_readonly("shell_ratio", &ObjectFile::shell_ratio, "Voxel / shell spacing the shell was built with.")
+      .def_property_readonly("repair", &repair_dict,
+                             "What loading, repair and voxelising found, as `voxcd info --json` gives it under "
+                             "'repair'; None for an object file of version 1.")
+      .def(
+          "save",
+          [](const ObjectFile& o, const py::object& path) {
+            const std::string p = path_arg(path, "path");
+            try {
+              py::gil_scoped_release unlocked;
+              write_object(p, o);
+            } catch (const ObjectFileError& e) {
+              PyErr_SetString(PyExc_OSError, e.what());  // the file could not be written
+              throw py::error_already_set();
+            }
+          },
+          py::arg("path"), "Writes the object file (as `voxcd voxelize -o`), atomically. OSError when it cannot.")
+      .def("__repr__", [](const ObjectFile& o) {
+        const auto& d = o.voxmap.dims();
+        return "<voxcd.Object " + o.source + ": " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
+               std::to_string(d[2]) + " voxels of " + py::repr(py::float_(o.voxmap.voxel())).cast<std::string>() +
+               ", " + std::to_string(o.shell.size()) + " shell points>";
+      });
+
+  m.def("voxelize", &voxelize_source, py::arg("source"), py::kw_only(), py::arg("voxel") = py::none(),
+        py::arg("resolution") = py::none(), py::arg("shell_ratio") = std::sqrt(2.0), py::arg("strict") = false,
+        py::arg("threads") = 0u,
+        R"(Voxelises a mesh file (any format `voxcd voxelize` reads; repaired unless strict) or a built-in shape
+(voxcd.shapes()) at `voxel` (mesh units) or at `resolution` voxels along its longest side: exactly one of the two.
+Returns an Object, the same as `voxcd voxelize SOURCE --voxel V | --resolution R` writes.)");
+  m.def(
+      "read_object",
+      [](const py::object& path) {
+        const std::string p = path_arg(path, "path");
+        return with_file(p, [&] {
+          py::gil_scoped_release unlocked;
+          return std::make_shared<ObjectFile>(read_object(p));
+        });
+      },
+      py::arg("path"), "Reads an object file (written by `voxcd voxelize` or Object.save). ValueError naming the "
+                       "problem for a file that is not one; FileNotFoundError when there is none.");
+}
+
+}  // namespace voxcd::python

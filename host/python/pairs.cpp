@@ -1,0 +1,203 @@
+// Pair tests: voxcd.Pair (two objects loaded into a device, as `voxcd pair` loads them) and voxcd.pair; the contacts
+// at each pose as numpy arrays, the same as `voxcd pair --json` gives.
+#include <cstdint>
+#include <memory>
+#include <mutex>
+
+#include "voxcd/host/object/object_type.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/python/bindings.h"
+
+namespace voxcd::python {
+
+namespace {
+
+struct Pair {
+  std::shared_ptr<ObjectType> a, b;
+  double voxel = 0;
+  std::string backend;
+  std::unique_ptr<PairCollider> collider;
+  std::mutex busy;  // one query at a time: the collider reuses its buffers
+};
+
+// An object argument: an Object, or an object file, a mesh file or a built-in shape (voxelised at `voxel`).
+std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const char* which) {
+  if (py::isinstance<ObjectFile>(o)) {
+    const ObjectFile obj = o.cast<const ObjectFile&>();
+    py::gil_scoped_release unlocked;
+    return std::make_shared<ObjectType>(make_object_type(obj, obj.source));
+  }
+  const std::string s = path_arg(o, which);
+  py::gil_scoped_release unlocked;
+  return std::make_shared<ObjectType>(load_object_type(s, voxel));
+}
+
+std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::optional<double> voxel,
+                                std::optional<int64_t> resolution, const std::string& backend, int lanes) {
+  if (voxel && resolution) value_error("give voxel (world units) or resolution (voxels along the longest side), not both");
+  if (resolution && (*resolution < 0 || *resolution > int64_t(UINT32_MAX)))
+    value_error("resolution: " + std::to_string(*resolution) + " is not a count of voxels");
+  auto p = std::make_unique<Pair>();
+  p->backend = backend;
+  if (voxel) {
+    p->voxel = *voxel;
+  } else {
+    // As `voxcd pair` without --voxel: the larger mesh's longest side / resolution (32), shared by both.
+    std::vector<std::string> sources;
+    for (const py::object* o : {&a, &b})
+      if (!py::isinstance<ObjectFile>(*o)) sources.push_back(path_arg(*o, o == &a ? "a" : "b"));
+    py::gil_scoped_release unlocked;
+    p->voxel = shared_voxel(sources, uint32_t(resolution.value_or(32)));
+  }
+  p->a = object_type(a, p->voxel, "a");
+  p->b = object_type(b, p->voxel, "b");
+  py::gil_scoped_release unlocked;
+  const DeviceConfig cfg = device_config_for(backend, lanes, {p->a.get(), p->b.get()});
+  p->collider = std::make_unique<PairCollider>(make_device(backend, cfg), std::vector<std::shared_ptr<const ObjectType>>{p->a, p->b});
+  return p;
+}
+
+// B's poses in A's frame: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z,
+// as `voxcd pair --pose`), or an (N, 3) or (N, 6) array of them. `many` tells whether it was an array of rows.
+std::vector<RigidPose> poses(const py::object& pose, bool& many) {
+  many = false;
+  if (pose.is_none()) return {RigidPose{}};
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
+  try {
+    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pose);
+  } catch (const py::error_already_set&) {
+    a = {};
+  }
+  if (!a) value_error("pose: not numbers: " + py::repr(pose).cast<std::string>());
+  const bool flat = a.ndim() == 1;
+  const py::ssize_t n = flat ? 1 : a.shape(0), w = flat ? a.shape(0) : (a.ndim() == 2 ? a.shape(1) : 0);
+  if ((a.ndim() != 1 && a.ndim() != 2) || (w != 3 && w != 6)) {
+    std::string shape;
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
+    value_error("pose: give tx, ty, tz or tx, ty, tz, rx, ry, rz (degrees), or an (N, 3) or (N, 6) array of them; "
+                "got shape (" + shape + ")");
+  }
+  many = !flat;
+  std::vector<RigidPose> out;
+  const double* v = a.data();
+  for (py::ssize_t k = 0; k < n; ++k, v += w) {
+    const Eigen::Vector3d t(v[0], v[1], v[2]);
+    out.push_back(w == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t));
+  }
+  return out;
+}
+
+py::dict result_dict(const PairResult& r, bool cycles) {
+  const py::ssize_t k = py::ssize_t(r.contacts.size());
+  py::array_t<bool> a_in_b(k);
+  py::array_t<uint32_t> points(k);
+  py::array_t<double> positions({k, py::ssize_t(3)}), normals({k, py::ssize_t(3)});
+  py::array_t<uint32_t> voxels({k, py::ssize_t(3)});
+  py::array_t<uint8_t> states(k);
+  py::array_t<double> depths(k);
+  auto ab = a_in_b.mutable_unchecked<1>();
+  auto pt = points.mutable_unchecked<1>();
+  auto ps = positions.mutable_unchecked<2>();
+  auto nm = normals.mutable_unchecked<2>();
+  auto vx = voxels.mutable_unchecked<2>();
+  auto st = states.mutable_unchecked<1>();
+  auto dp = depths.mutable_unchecked<1>();
+  for (py::ssize_t i = 0; i < k; ++i) {
+    const Contact& c = r.contacts[size_t(i)];
+    ab(i) = c.a_in_b;
+    pt(i) = c.point;
+    for (int j = 0; j < 3; ++j) {
+      ps(i, j) = c.position[j];
+      nm(i, j) = c.normal[j];
+      vx(i, j) = c.voxel[size_t(j)];
+    }
+    st(i) = c.state;
+    dp(i) = c.depth;
+  }
+  py::dict d;
+  d["hits"] = r.hits;
+  d["lookups"] = r.lookups;
+  d["device_cycles"] = cycles ? py::object(py::int_(r.cycles)) : py::none();
+  d["a_in_b"] = a_in_b;
+  d["points"] = points;
+  d["positions"] = positions;
+  d["normals"] = normals;
+  d["voxels"] = voxels;
+  d["states"] = states;
+  d["depths"] = depths;
+  return d;
+}
+
+py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
+  const auto m = parse_mode(mode);
+  if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
+  bool many = false;
+  std::vector<PairRequest> reqs;
+  for (const RigidPose& b : poses(pose, many)) {
+    PairRequest r;
+    r.a = 0;
+    r.b = 1;
+    r.pose_b = b;
+    reqs.push_back(r);
+  }
+  PairOptions opt;
+  opt.mode = *m;
+  opt.both_directions = both;
+  opt.cull = cull;
+  std::vector<PairResult> res;
+  {
+    py::gil_scoped_release unlocked;
+    const std::lock_guard<std::mutex> one_at_a_time(p.busy);
+    res = p.collider->collide(reqs, opt);
+  }
+  const bool cycles = p.collider->device().models_cycles();
+  if (!many) return result_dict(res.at(0), cycles);
+  py::list out;
+  for (const PairResult& r : res) out.append(result_dict(r, cycles));
+  return std::move(out);
+}
+
+const char* kQueryDoc = R"(The contacts of B at `pose` in A's frame (A at the origin): None (the identity), 3 or 6 numbers
+(tx, ty, tz[, rx, ry, rz]: rotation in degrees about x, then y, then z, as `voxcd pair --pose`), or an (N, 3) or
+(N, 6) array of poses, run in one batch. mode is ALL, FIRST or COUNT; both also tests B's shell in A's voxmap; cull
+submits only the shell clusters that can land in the other voxmap (the contacts are the same). Returns, per pose, a
+dict: hits, lookups, device_cycles (None where the backend models none) and the contacts as arrays: a_in_b (bool:
+A's shell point in B's voxmap), points (index in its shell), positions and normals ((K, 3), world), voxels ((K, 3),
+of the other voxmap), states, depths (penetration estimates, world units). A list of such dicts for an array of
+poses.)";
+
+}  // namespace
+
+void bind_pairs(py::module_& m) {
+  py::class_<Pair>(m, "Pair", R"(Two objects loaded into a device for pair tests, as `voxcd pair A B` loads them
+(docs/pairs.md). a and b: Objects, or object files, mesh files or built-in shape names (voxelised at voxel, or
+by default at the larger one's longest side / resolution, 32 unless given).)")
+      .def(py::init(&make_pair), py::arg("a"), py::arg("b"), py::kw_only(), py::arg("voxel") = py::none(),
+           py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4)
+      .def("query", &query, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
+           py::arg("both") = false, py::arg("cull") = true, kQueryDoc)
+      .def_readonly("voxel", &Pair::voxel, "The voxel meshes and shapes were voxelised at (0 if both were objects).")
+      .def_readonly("backend", &Pair::backend)
+      .def_property_readonly("device", [](const Pair& p) { return p.collider->device().config().to_string(); },
+                             "The device's configuration, NAME VALUE pairs.")
+      .def_property_readonly("a", [](const Pair& p) { return std::shared_ptr<ObjectFile>(p.a, &p.a->object); },
+                             "Object A.")
+      .def_property_readonly("b", [](const Pair& p) { return std::shared_ptr<ObjectFile>(p.b, &p.b->object); },
+                             "Object B.");
+
+  m.def(
+      "pair",
+      [](const py::object& a, const py::object& b, const py::object& pose, std::optional<double> voxel,
+         std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode, bool both,
+         bool cull) {
+        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes);
+        return query(*p, pose, mode, both, cull);
+      },
+      py::arg("a"), py::arg("b"), py::arg("pose") = py::none(), py::kw_only(), py::arg("voxel") = py::none(),
+      py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL",
+      py::arg("both") = false, py::arg("cull") = true,
+      "Pair(a, b, voxel=, resolution=, backend=, lanes=).query(pose, mode=, both=, cull=): the contacts of one "
+      "call, the same as `voxcd pair A B --pose ... --json`.");
+}
+
+}  // namespace voxcd::python

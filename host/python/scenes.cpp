@@ -1,0 +1,197 @@
+// Scenes: voxcd.simulate (the built-in scene, a scene file or a scene as a dict, run as `voxcd simulate` runs it,
+// with the same summary) and voxcd.size (the smallest device for a scene, the report of `voxcd size --json`).
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+
+#include "voxcd/host/python/bindings.h"
+#include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/scene/simulate.h"
+#include "voxcd/host/sizing/size.h"
+#include "voxcd/ref/vectors.h"
+
+namespace voxcd::python {
+
+namespace {
+
+// An optional non-negative integer argument (a Python int or anything with __index__).
+std::optional<uint64_t> count_arg(const py::object& o, const char* name) {
+  if (o.is_none()) return std::nullopt;
+  if (py::isinstance<py::bool_>(o) || !PyIndex_Check(o.ptr()))
+    throw py::type_error(std::string(name) + " must be an int, not " +
+                         py::str(py::type::handle_of(o).attr("__name__")).cast<std::string>());
+  const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(o.ptr()));
+  const unsigned long long v = PyLong_AsUnsignedLongLong(i.ptr());
+  if (PyErr_Occurred()) {
+    PyErr_Clear();
+    value_error(std::string(name) + ": " + py::repr(i).cast<std::string>() + " is not an integer in [0, 2^64)");
+  }
+  return uint64_t(v);
+}
+
+// A scene argument: a scene file (path), or a dict with a scene file's keys (docs/scenes.md), named "scene" in
+// messages and with mesh paths relative to the working directory. Sets `file` and, for a dict, `text`.
+void scene_arg(const py::object& scene, std::string& file, std::optional<std::string>& text) {
+  if (py::isinstance<py::dict>(scene)) {
+    file = "scene";
+    text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+  } else {
+    file = path_arg(scene, "scene");
+  }
+}
+
+py::dict summary_dict(const SimulationSummary& s) {
+  const SimulationTotals& t = s.totals;
+  const ObjectType& type = *s.types[0];
+  const auto& d = type.voxmap().dims();
+  py::dict r;
+  if (!s.file.empty()) {
+    r["scene"] = s.file;
+    py::list types;
+    for (const auto& ty : s.types) {
+      py::dict e;
+      e["name"] = ty->name;
+      e["voxel"] = ty->voxmap().voxel();
+      e["shell_points"] = ty->shell().size();
+      types.append(e);
+    }
+    r["types"] = types;
+  }
+  r["device"] = s.device.to_string();
+  r["shape"] = s.shape;
+  r["objects"] = s.objects;
+  r["voxel"] = s.voxel;
+  r["shell_points"] = type.shell().size();
+  r["voxmap"] = py::make_tuple(d[0], d[1], d[2]);
+  r["pruning"] = s.pruning;
+  r["backend"] = s.backend;
+  r["mode"] = s.mode;
+  r["both_directions"] = s.both_directions;
+  r["frames"] = s.frames;
+  r["seed"] = s.seed;
+  r["seconds"] = t.seconds();
+  r["frame_rate_hz"] = s.frame_rate();
+  r["broadphase_pairs"] = t.pairs;
+  r["pairs_tested"] = t.tested;
+  r["touching_pairs"] = t.touching;
+  r["responses"] = t.responses;
+  r["wall_bounces"] = t.wall_hits;
+  r["lookups"] = t.lookups;
+  r["hits"] = t.hits;
+  r["contacts"] = t.contacts;
+  py::dict stages;
+  stages["integrate"] = t.t_integrate;
+  stages["bounds"] = t.t_bounds;
+  stages["broadphase"] = t.t_broadphase;
+  stages["narrow"] = t.t_narrow;
+  stages["response"] = t.t_response;
+  r["stage_seconds"] = stages;
+  r["lanes"] = s.lanes;
+  r["device_cycles"] = t.cycles;
+  r["device_cycles_per_frame"] = s.cycles_per_frame();
+  r["device_cycles_max_frame"] = t.max_cycles;
+  r["clock_mhz"] = s.clock;
+  r["device_frame_rate_hz"] = s.device_rate();
+  char hash[24];
+  std::snprintf(hash, sizeof hash, "%llx", static_cast<unsigned long long>(s.state_hash));
+  r["state_hash"] = std::string(hash);
+  return r;
+}
+
+py::dict simulate_scene(const py::object& scene, const py::object& frames, const py::object& objects,
+                        std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
+                        std::optional<double> density, std::optional<double> speed, const py::object& seed,
+                        std::optional<std::string> pruning, std::optional<std::string> backend,
+                        std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
+                        std::optional<double> clock, std::optional<std::string> config, unsigned threads,
+                        bool midphase, bool cull) {
+  SimulateRequest req;
+  if (!scene.is_none()) scene_arg(scene, req.file, req.text);
+  req.frames = count_arg(frames, "frames");
+  req.objects = count_arg(objects, "objects");
+  req.shape = std::move(shape);
+  req.voxel = voxel;
+  if (const auto r = count_arg(resolution, "resolution")) {
+    if (*r > UINT32_MAX) value_error("resolution: " + std::to_string(*r) + " is outside [4, 1020]");
+    req.resolution = uint32_t(*r);
+  }
+  req.density = density;
+  req.speed = speed;
+  req.seed = count_arg(seed, "seed");
+  req.pruning = std::move(pruning);
+  req.backend = std::move(backend);
+  req.lanes = lanes;
+  req.mode = std::move(mode);
+  req.both_directions = both;
+  req.clock = clock;
+  if (config) req.device = parse_config_pairs(*config, "config");
+  req.threads = threads;
+  req.midphase = midphase;
+  req.cull = cull;
+  return with_file(req.text ? "" : req.file, [&] {
+    SimulationSummary s;
+    {
+      py::gil_scoped_release unlocked;
+      s = simulate(req);
+    }
+    return summary_dict(s);
+  });
+}
+
+py::object size_scene(const py::object& scene, std::optional<double> accuracy, std::optional<double> rate,
+                      std::optional<double> clock, const py::object& frames, bool cost,
+                      const std::optional<py::object>& rtl) {
+  std::string file;
+  std::optional<std::string> text;
+  scene_arg(scene, file, text);
+  SizeRequest req;
+  for (const auto& [v, name] : {std::pair{accuracy, "accuracy"}, {rate, "rate"}, {clock, "clock"}})
+    if (v && !(*v > 0)) value_error(std::string(name) + ": " + py::repr(py::float_(*v)).cast<std::string>() +
+                                    " is not a positive number");
+  req.accuracy = accuracy.value_or(0);
+  req.rate = rate.value_or(0);
+  req.clock = clock.value_or(0);
+  if (const auto f = count_arg(frames, "frames")) {
+    if (*f < 1 || *f > 1000000) value_error("frames: " + std::to_string(*f) + " is outside [1, 1000000]");
+    req.frames = *f;
+  }
+  req.cost = cost;
+  if (rtl && !rtl->is_none()) req.rtl_dir = path_arg(*rtl, "rtl");
+  std::string json;
+  with_file(text ? "" : file, [&] {
+    py::gil_scoped_release unlocked;
+    const SceneFile f = text ? parse_scene_file(*text, file) : read_scene_file(file);
+    const Scene sc = make_scene(f);
+    try {
+      json = size_json(derive_size(f, sc, req), sc);
+    } catch (const SizeError& e) {
+      throw std::invalid_argument(file + ": cannot be met: " + e.what());
+    }
+  });
+  return py::module_::import("json").attr("loads")(json);
+}
+
+}  // namespace
+
+void bind_scenes(py::module_& m) {
+  m.def("simulate", &simulate_scene, py::arg("scene") = py::none(), py::kw_only(), py::arg("frames") = py::none(),
+        py::arg("objects") = py::none(), py::arg("shape") = py::none(), py::arg("voxel") = py::none(),
+        py::arg("resolution") = py::none(), py::arg("density") = py::none(), py::arg("speed") = py::none(),
+        py::arg("seed") = py::none(), py::arg("pruning") = py::none(), py::arg("backend") = py::none(),
+        py::arg("lanes") = py::none(), py::arg("mode") = py::none(), py::arg("both") = py::none(),
+        py::arg("clock") = py::none(), py::arg("config") = py::none(), py::arg("threads") = 0u,
+        py::arg("midphase") = true, py::arg("cull") = true,
+        R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
+`voxcd simulate --json` (the state hash as a hex string). scene: None (the paper's built-in scene), a scene file,
+or a dict with a scene file's keys (docs/scenes.md). Each option given (not None) overrides the scene file, as the
+tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs.)");
+  m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
+        py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),
+        py::arg("cost") = false, py::arg("rtl") = py::none(),
+        R"(The smallest device for a scene file (or a dict with a scene file's keys), as `voxcd size --json` reports
+it, as a dict. The options override the file's accuracy (world units), rate (Hz), clock (MHz) and frames; cost
+also synthesises the configuration with yosys (about 10 s each; rtl: the directory of the RTL's voxcd.f).
+ValueError '<scene>: cannot be met: ...' when no device meets the request.)");
+}
+
+}  // namespace voxcd::python

@@ -1,0 +1,150 @@
+#include "voxcd/host/scene/simulate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "voxcd/host/scene/scene_file.h"
+#include "voxcd/ref/types.h"
+
+namespace voxcd {
+
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+}  // namespace
+
+SimulateOptionError::SimulateOptionError(std::vector<std::string> options_, const std::string& message_)
+    : std::invalid_argument(joined(options_) + ": " + message_), options(std::move(options_)), message(message_) {}
+
+void SimulationTotals::add(const FrameStats& f) {
+  pairs += f.pairs, tested += f.tested, touching += f.touching, responses += f.responses, wall_hits += f.wall_hits;
+  lookups += f.lookups, hits += f.hits, contacts += f.contacts, cycles += f.device_cycles;
+  max_cycles = std::max(max_cycles, f.device_cycles);
+  t_integrate += f.t_integrate, t_bounds += f.t_bounds, t_broadphase += f.t_broadphase;
+  t_narrow += f.t_narrow, t_response += f.t_response;
+}
+
+double SimulationSummary::frame_rate() const {
+  return totals.seconds() > 0 ? double(frames) / totals.seconds() : 0;
+}
+
+double SimulationSummary::cycles_per_frame() const { return double(totals.cycles) / double(frames); }
+
+double SimulationSummary::device_rate() const {
+  const double c = cycles_per_frame();
+  return c > 0 ? clock * 1e6 / c : 0;
+}
+
+SimulationSummary simulate(const SimulateRequest& req, const std::function<void(uint64_t, uint64_t)>& progress) {
+  SimulationSummary s;
+  SceneSpec spec;
+  SimOptions sim;
+  std::string mode = req.mode.value_or("ALL");
+  const auto parsed_mode = parse_mode(mode);
+  if (!parsed_mode) throw SimulateOptionError({"mode"}, "'" + mode + "' is not ALL, FIRST or COUNT");
+  sim.mode = *parsed_mode;
+  if (req.voxel && req.resolution)
+    throw SimulateOptionError({"voxel", "resolution"},
+                              "give the voxel size in world units (--voxel) or the voxels along an object's longest "
+                              "side (--resolution), not both");
+  if (req.voxel && !(*req.voxel > 0 && std::isfinite(*req.voxel)))
+    throw SimulateOptionError({"voxel"}, "must be a positive number of world units");
+  if (req.objects && (*req.objects < 1 || *req.objects > (uint64_t{1} << 20)))
+    throw SimulateOptionError({"objects"}, std::to_string(*req.objects) + " is outside [1, 1048576]");
+  if (req.resolution && (*req.resolution < kMinVoxelsAcross || *req.resolution > 1020))
+    throw SimulateOptionError({"resolution"}, std::to_string(*req.resolution) + " is outside [" +
+                                                  std::to_string(kMinVoxelsAcross) + ", 1020]");
+  if (req.objects) spec.objects = *req.objects;
+  if (req.shape) spec.shape = *req.shape;
+  if (req.voxel) spec.voxel = *req.voxel;
+  if (req.resolution) spec.resolution = *req.resolution;
+  if (req.density) spec.density = *req.density;
+  if (req.speed) spec.speed = *req.speed;
+  if (req.seed) spec.seed = *req.seed;
+  if (req.pruning) sim.pruning = *req.pruning;
+  if (req.backend) sim.backend = *req.backend;
+  if (req.both_directions) sim.both_directions = *req.both_directions;
+  if (req.lanes) sim.lanes = *req.lanes;
+  sim.threads = req.threads;
+  sim.midphase = req.midphase;
+  sim.cull = req.cull;
+  uint64_t frames = req.frames.value_or(1000);
+  double clock = req.clock.value_or(200);
+
+  Scene scene;
+  if (!req.file.empty() || req.text) {
+    SceneFile f = req.text ? parse_scene_file(*req.text, req.file.empty() ? "scene" : req.file) : read_scene_file(req.file);
+    // The options given override the file.
+    if (req.objects || req.shape || req.voxel || req.resolution) {
+      if (f.types.size() != 1)
+        throw SimulateOptionError({"objects", "shape", "voxel", "resolution"},
+                                  "apply only to a scene file with one object type; " + f.where + " has " +
+                                      std::to_string(f.types.size()));
+      if (req.objects) f.types[0].count = spec.objects;
+      if (req.shape) f.types[0].shape = spec.shape, f.types[0].mesh.clear(), f.types[0].name = spec.shape;
+      if (req.voxel) f.types[0].voxel = spec.voxel, f.types[0].resolution = 0;
+      if (req.resolution) f.types[0].resolution = spec.resolution, f.types[0].voxel = 0;
+    }
+    if (req.density) f.density = spec.density, f.density_given = true;
+    if (req.speed) f.speed = spec.speed;
+    if (req.seed) f.seed = spec.seed;
+    if (!req.pruning) sim.pruning = f.broadphase;
+    if (!req.backend) sim.backend = f.backend;
+    if (!req.mode) {
+      mode = f.mode;
+      sim.mode = *parse_mode(f.mode);
+    }
+    if (!req.both_directions) sim.both_directions = f.both_directions;
+    if (!req.frames) frames = f.frames;
+    if (!req.clock) clock = f.clock;
+    spec.objects = f.objects();
+    spec.side = f.side;
+    spec.density = f.density;
+    spec.seed = f.seed;
+    scene = make_scene(f);
+    spec.shape = f.types[0].shape.empty() ? f.types[0].mesh : f.types[0].shape;
+    s.file = f.where;
+  } else {
+    scene = make_scene(spec);
+  }
+  if (req.device) {
+    DeviceConfig cfg = *req.device;
+    cfg.validate();
+    if (req.lanes) cfg.LANES = *req.lanes;
+    sim.device = cfg;
+  }
+  if (sim.device) sim.lanes = sim.device->LANES;
+
+  s.shape = spec.shape;
+  s.objects = spec.objects;
+  s.side = spec.side;
+  s.density = spec.density;
+  s.voxel = scene.types[0]->voxmap().voxel();  // as given, from the resolution, or the default
+  s.seed = spec.seed;
+  s.types = scene.types;
+  s.device_given = sim.device.has_value();
+  s.pruning = sim.pruning;
+  s.backend = sim.backend;
+  s.mode = mode;
+  s.both_directions = sim.both_directions;
+  s.frames = frames;
+  s.clock = clock;
+  s.lanes = sim.lanes;
+
+  Simulation run(std::move(scene), sim);
+  s.device = run.device_config();
+  for (uint64_t f = 0; f < frames; ++f) {
+    s.totals.add(run.step());
+    if (progress) progress(f + 1, frames);
+  }
+  s.state_hash = run.state_hash();
+  return s;
+}
+
+}  // namespace voxcd

@@ -1,0 +1,25 @@
+"""The example scripts of docs/examples/python run and print what they say."""
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import voxcd
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "docs" / "examples" / "python"
+
+
+@pytest.mark.parametrize("script, expect", [
+    ("pairs.py", ["torus: 57x57x17 voxels of 0.05", " hits, ", "torus in cube: point "]),
+    ("sweep.py", ["x = -3.00:     0 hits", "x = +0.00: "]),
+])
+def test_example_runs(tmp_path, script, expect):
+    env = dict(os.environ, PYTHONPATH=str(Path(voxcd.__file__).resolve().parent))  # the module under test
+    proc = subprocess.run([sys.executable, str(EXAMPLES / script)], capture_output=True, text=True, cwd=tmp_path,
+                          env=env)
+    assert proc.returncode == 0, proc.stderr
+    for text in expect:
+        assert text in proc.stdout, proc.stdout
+    assert not list(tmp_path.iterdir()), "an example wrote into the working directory"

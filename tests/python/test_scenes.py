@@ -1,0 +1,97 @@
+"""voxcd.simulate and voxcd.size against `voxcd simulate --json` and `voxcd size --json`: the same numbers, the same
+state hash."""
+import json
+
+import pytest
+
+import voxcd
+
+# Host times differ from run to run; everything else is deterministic.
+TIMES = {"seconds", "frame_rate_hz", "stage_seconds"}
+
+
+def assert_same_summary(got, want):
+    assert set(got) == set(want)
+    for key, value in want.items():
+        if key in TIMES:
+            continue
+        if key == "voxmap":
+            assert list(got[key]) == value
+        elif key == "types":
+            assert [t["name"] for t in got[key]] == [t["name"] for t in value]
+            assert [t["shell_points"] for t in got[key]] == [t["shell_points"] for t in value]
+            assert [t["voxel"] for t in got[key]] == pytest.approx([t["voxel"] for t in value], rel=1e-5)
+        elif isinstance(value, float) or isinstance(got[key], float):
+            # The tool prints 6 significant digits.
+            assert got[key] == pytest.approx(value, rel=1e-5), key
+        else:
+            assert got[key] == value, key
+    assert got["stage_seconds"].keys() == want["stage_seconds"].keys()
+    assert got["seconds"] == pytest.approx(sum(got["stage_seconds"].values()), rel=1e-9)
+
+
+def test_the_default_scene(cli_json):
+    want = cli_json("simulate", "--frames", "20")
+    got = voxcd.simulate(frames=20)
+    assert_same_summary(got, want)
+    assert got["state_hash"] == want["state_hash"] == "de188b9acc918936"
+    assert got["objects"] == 64 and got["pairs_tested"] > 0 and got["device_cycles"] > 0
+
+
+def test_a_scene_file(cli_json, scenes):
+    want = cli_json("simulate", scenes / "mixed.json", "--frames", "10")
+    got = voxcd.simulate(scenes / "mixed.json", frames=10)
+    assert_same_summary(got, want)
+    assert got["state_hash"] == want["state_hash"]
+    assert got["scene"] == str(scenes / "mixed.json") and len(got["types"]) == 3
+
+
+def test_options_override_the_file_as_the_tools_do(cli_json, scenes):
+    want = cli_json("simulate", scenes / "small.json", "--frames", "6", "--seed", "11", "--mode", "FIRST", "--both",
+                    "--pruning", "sap", "--lanes", "2", "--backend", "ref", "--speed", "0.2", "--clock", "150")
+    got = voxcd.simulate(str(scenes / "small.json"), frames=6, seed=11, mode="FIRST", both=True, pruning="sap",
+                         lanes=2, backend="ref", speed=0.2, clock=150)
+    assert_same_summary(got, want)
+    assert (got["mode"], got["pruning"], got["lanes"], got["clock_mhz"]) == ("FIRST", "sap", 2, 150)
+
+
+def test_a_whole_configuration(cli_json, scenes):
+    config = "PW 20 PF 1 MW 16 MF 14 TW 40 DW 8 MEMW 64 LANES 2 SAW 14 MAW 12"
+    want = cli_json("simulate", scenes / "small.json", "--frames", "5", "--config", config)
+    got = voxcd.simulate(scenes / "small.json", frames=5, config=config)
+    assert_same_summary(got, want)
+    assert got["device"].startswith(config)
+
+
+def test_the_built_in_scene_with_options(cli_json):
+    want = cli_json("simulate", "--objects", "40", "--shape", "torus", "--resolution", "12", "--density", "0.02",
+                    "--frames", "5", "--seed", "3")
+    got = voxcd.simulate(objects=40, shape="torus", resolution=12, density=0.02, frames=5, seed=3)
+    assert_same_summary(got, want)
+    assert got["shape"] == "torus" and got["objects"] == 40
+
+
+def test_a_scene_as_a_dict_is_the_file(scenes):
+    text = json.loads((scenes / "mixed.json").read_text())
+    from_dict = voxcd.simulate(text, frames=4)
+    from_file = voxcd.simulate(scenes / "mixed.json", frames=4)
+    assert from_dict["state_hash"] == from_file["state_hash"]
+    assert from_dict["scene"] == "scene" and from_dict["lookups"] == from_file["lookups"]
+    with pytest.raises(ValueError, match=r"^scene: types\[0\]\.sise: unknown key"):
+        voxcd.simulate({"types": [{"shape": "cube", "sise": 2}]})
+
+
+def test_size_equals_the_tool(cli_json, scenes):
+    want = cli_json("size", scenes / "mixed.json")
+    got = voxcd.size(scenes / "mixed.json")
+    assert got == want
+    assert got["config_text"].startswith("PW ")
+    want = cli_json("size", scenes / "small.json", "--accuracy", "0.05", "--rate", "500", "--frames", "20")
+    assert voxcd.size(str(scenes / "small.json"), accuracy=0.05, rate=500, frames=20) == want
+
+
+def test_size_that_cannot_be_met(cli, scenes):
+    out = cli("size", scenes / "mixed.json", "--accuracy", "1e-12", expect=3)
+    assert out == ""
+    with pytest.raises(ValueError, match=r"mixed\.json: cannot be met: accuracy: "):
+        voxcd.size(scenes / "mixed.json", accuracy=1e-12)
