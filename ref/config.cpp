@@ -35,6 +35,14 @@ void DeviceConfig::validate() const {
   range("SAW", SAW, 1, 24);
   range("MAW", MAW, 1, 28);
   range("TAGW", TAGW, 1, 32);
+  require(SB == 2 || SB == 4 || SB == 8 || SB == 16, "SB = " + std::to_string(SB) + " is not 2, 4, 8 or 16");
+  require(SB <= MEMW, "SB = " + std::to_string(SB) + " is wider than a voxmap word (MEMW = " +
+                          std::to_string(MEMW) + ")");
+  range("WB", WB, 1, std::min(TF(), 16));
+  if (distance()) {
+    require(MAW >= 3, "MAW = " + std::to_string(MAW) + " leaves no row for the 8 banks of a distance voxmap (SB = " +
+                          std::to_string(SB) + " needs MAW >= 3)");
+  }
   // An index must be able to hold every in-grid value 0 .. 2^DW - 1 plus a sign.
   require(index_width() >= DW + 1, "the accumulator's integer part (" + std::to_string(index_width()) +
                                        " bits) cannot hold DW = " + std::to_string(DW));
@@ -44,12 +52,13 @@ std::string DeviceConfig::to_string() const {
   std::ostringstream s;
   s << "PW " << PW << " PF " << PF << " MW " << MW << " MF " << MF << " TW " << TW << " DW " << DW << " MEMW "
     << MEMW << " LANES " << LANES << " SAW " << SAW << " MAW " << MAW << " TAGW " << TAGW;
+  if (distance()) s << " SB " << SB << " WB " << WB;
   return s.str();
 }
 
 bool DeviceConfig::same_widths(const DeviceConfig& o) const {
   return PW == o.PW && PF == o.PF && MW == o.MW && MF == o.MF && TW == o.TW && DW == o.DW && MEMW == o.MEMW &&
-         SAW == o.SAW && MAW == o.MAW && TAGW == o.TAGW;
+         SAW == o.SAW && MAW == o.MAW && TAGW == o.TAGW && SB == o.SB && (!distance() || WB == o.WB);
 }
 
 }  // namespace voxcd

@@ -24,9 +24,16 @@ struct DeviceConfig {
   int SAW = 16;   // shell memory holds 2^SAW points
   int MAW = 18;   // voxmap memory holds 2^MAW words
   int TAGW = 16;  // job tag width (unsigned)
+  int SB = 2;     // voxmap value width: 2 = voxel states; 4, 8, 16 = a signed distance per grid node
+  int WB = 8;     // interpolation weight bits (distance voxmaps): the top WB fraction bits per coordinate
 
   int TF() const { return MF + PF; }
   int states_per_word() const { return MEMW / 2; }
+  // A distance device (SB > 2) holds signed node distances in 8 parity banks (docs/contract.md).
+  bool distance() const { return SB > 2; }
+  int nodes_per_word() const { return MEMW / SB; }
+  // Width of an interpolated distance, a job's threshold and a hit record's distance: SB + 3*WB.
+  int IW() const { return SB + 3 * WB; }
   uint64_t shell_depth() const { return uint64_t{1} << SAW; }
   uint64_t map_depth() const { return uint64_t{1} << MAW; }
   uint64_t max_dim() const { return uint64_t{1} << DW; }
@@ -38,7 +45,8 @@ struct DeviceConfig {
 
   // Throws ConfigError naming the parameter and the rule it breaks.
   void validate() const;
-  // "PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 LANES 4 SAW 16 MAW 18 TAGW 16"
+  // "PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 LANES 4 SAW 16 MAW 18 TAGW 16", then "SB 8 WB 8" on a
+  // distance device (a 2-bit device's text is the paper device's, unchanged).
   std::string to_string() const;
   // Same widths; LANES may differ (it changes timing, never results).
   bool same_widths(const DeviceConfig& o) const;

@@ -48,6 +48,65 @@ uint8_t fetch_state(const DeviceConfig& /*cfg*/, const std::vector<uint64_t>& ma
 bool hit_test(uint8_t hit_mask, bool inside, uint8_t state) { return inside && ((hit_mask >> state) & 1u); }
 
 namespace {
+uint64_t half_extent(uint32_t n) { return (uint64_t{n} >> 1) + 1; }
+uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+}  // namespace
+
+NodeAddress node_address(const DeviceConfig& cfg, const Job& job, uint64_t X, uint64_t Y, uint64_t Z) {
+  const uint64_t hx = half_extent(job.nx), hy = half_extent(job.ny);
+  const uint64_t bank = (X & 1) | (Y & 1) << 1 | (Z & 1) << 2;
+  const uint64_t h = (X >> 1) + hx * ((Y >> 1) + hy * (Z >> 1));
+  const uint64_t npw = uint64_t(cfg.nodes_per_word());
+  return {uint64_t(job.map_base) + 8 * (h / npw) + bank, uint32_t(h % npw)};
+}
+
+uint64_t map_words(const DeviceConfig& cfg, const Job& job) {
+  if (!cfg.distance()) {
+    const uint64_t spw = uint64_t(cfg.states_per_word());
+    return ceil_div(job.voxels(), spw);
+  }
+  const uint64_t halves = half_extent(job.nx) * half_extent(job.ny) * half_extent(job.nz);
+  return 8 * ceil_div(halves, uint64_t(cfg.nodes_per_word()));
+}
+
+Nodes fetch_nodes(const DeviceConfig& cfg, const std::vector<uint64_t>& map, const Job& job, const Located& l) {
+  Nodes n{};
+  const uint64_t mask = (uint64_t{1} << cfg.SB) - 1;
+  for (int c = 0; c < 8; ++c) {
+    const NodeAddress a = node_address(cfg, job, uint64_t(l.index[0]) + (c & 1), uint64_t(l.index[1]) + (c >> 1 & 1),
+                                       uint64_t(l.index[2]) + (c >> 2 & 1));
+    if (a.word >= map.size()) {
+      throw JobError("voxmap read at word " + std::to_string(a.word) + " is outside the loaded map of " +
+                     std::to_string(map.size()) + " words");
+    }
+    const uint64_t raw = (map[a.word] >> (uint64_t(cfg.SB) * a.slot)) & mask;
+    // Two's complement: the top bit of the SB-bit field is the sign.
+    n.q[c] = (raw >> (cfg.SB - 1)) ? int64_t(raw) - int64_t(mask) - 1 : int64_t(raw);
+  }
+  return n;
+}
+
+Fractions fractions(const DeviceConfig& cfg, const Transformed& t) {
+  Fractions f{};
+  const Acc one = Acc(1) << cfg.WB;
+  for (int i = 0; i < 3; ++i) f.f[i] = int64_t((t.acc[i] >> (cfg.TF() - cfg.WB)) & (one - 1));
+  return f;
+}
+
+int64_t interpolate(const DeviceConfig& cfg, const Nodes& n, const Fractions& f) {
+  const Acc one = Acc(1) << cfg.WB;
+  Acc d = 0;
+  for (int c = 0; c < 8; ++c) {
+    Acc w = 1;
+    for (int i = 0; i < 3; ++i) w *= ((c >> i) & 1) ? Acc(f.f[i]) : one - Acc(f.f[i]);
+    d += Acc(n.q[c]) * w;
+  }
+  return int64_t(d);  // |d| <= 2^(SB-1) * 2^(3*WB) <= 2^63: fits IW <= 64 bits
+}
+
+bool distance_hit(int64_t threshold, bool inside, int64_t dist) { return inside && dist <= threshold; }
+
+namespace {
 
 [[noreturn]] void job_fail(const Job& job, const std::string& what) {
   throw JobError("job tag " + std::to_string(job.tag) + ": " + what);
@@ -57,7 +116,7 @@ std::string dims_name(int i) { return i == 0 ? "nx" : i == 1 ? "ny" : "nz"; }
 
 }  // namespace
 
-void validate_job(const DeviceConfig& cfg, const Job& job, uint64_t shell_words, uint64_t map_words) {
+void validate_job(const DeviceConfig& cfg, const Job& job, uint64_t shell_words, uint64_t loaded_map_words) {
   if (!fits_unsigned(job.tag, cfg.TAGW))
     job_fail(job, "tag does not fit TAGW = " + std::to_string(cfg.TAGW) + " bits");
   if (job.mode != Mode::All && job.mode != Mode::First && job.mode != Mode::Count)
@@ -80,13 +139,22 @@ void validate_job(const DeviceConfig& cfg, const Job& job, uint64_t shell_words,
       job_fail(job, dims_name(i) + " = " + std::to_string(n[i]) + " is outside 1..2^DW = " +
                         std::to_string(cfg.max_dim()));
   }
-  const uint64_t spw = uint64_t(cfg.states_per_word());
-  const uint64_t map_end = uint64_t(job.map_base) + (job.voxels() + spw - 1) / spw;
-  if (map_end > map_words)
+  if (cfg.distance() && job.map_base % 8 != 0)
+    job_fail(job, "map_base " + std::to_string(job.map_base) +
+                      " of a distance voxmap is not on a bank boundary (a multiple of 8)");
+  const uint64_t map_end = uint64_t(job.map_base) + map_words(cfg, job);
+  if (map_end > loaded_map_words)
     job_fail(job, "voxmap words [" + std::to_string(job.map_base) + ", " + std::to_string(map_end) +
                       ") for a " + std::to_string(job.nx) + "x" + std::to_string(job.ny) + "x" +
-                      std::to_string(job.nz) + " map go past the " + std::to_string(map_words) +
-                      " loaded voxmap words");
+                      std::to_string(job.nz) + (cfg.distance() ? " distance" : "") + " map go past the " +
+                      std::to_string(loaded_map_words) + " loaded voxmap words");
+  if (cfg.distance()) {
+    if (!fits_signed(job.threshold, cfg.IW()))
+      job_fail(job, "threshold " + std::to_string(job.threshold) + " does not fit IW = SB + 3*WB = " +
+                        std::to_string(cfg.IW()) + " bits (signed)");
+  } else if (job.threshold != 0) {
+    job_fail(job, "threshold " + std::to_string(job.threshold) + " on a 2-bit voxmap (SB = 2): it must be 0");
+  }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       if (!fits_signed(job.M[i][j], cfg.MW))
@@ -125,12 +193,19 @@ void run_job(const DeviceConfig& cfg, const DeviceMemory& mem, const Job& job, s
   for (uint32_t k = 0; k < job.shell_count; ++k) {
     const Transformed tr = transform(cfg, job, mem.shell[job.shell_base + k]);
     const Located loc = locate(cfg, job, tr);
-    const uint8_t state = loc.inside ? fetch_state(cfg, mem.map, loc) : 0;
-    if (!hit_test(job.hit_mask, loc.inside, state)) continue;
+    uint8_t state = 0;
+    int64_t dist = 0;
+    if (cfg.distance()) {
+      if (loc.inside) dist = interpolate(cfg, fetch_nodes(cfg, mem.map, job, loc), fractions(cfg, tr));
+      if (!distance_hit(job.threshold, loc.inside, dist)) continue;
+    } else {
+      if (loc.inside) state = fetch_state(cfg, mem.map, loc);
+      if (!hit_test(job.hit_mask, loc.inside, state)) continue;
+    }
     ++hits;
     if (job.mode != Mode::Count) {
       out.push_back(Record::hit(job.tag, k, uint32_t(loc.index[0]), uint32_t(loc.index[1]),
-                                uint32_t(loc.index[2]), state));
+                                uint32_t(loc.index[2]), state, dist));
     }
     if (job.mode == Mode::First) break;
   }

@@ -44,10 +44,45 @@ uint8_t fetch_state(const DeviceConfig& cfg, const std::vector<uint64_t>& map, c
 // Stage 4, hit test: inside and the mask has the state's bit.
 bool hit_test(uint8_t hit_mask, bool inside, uint8_t state);
 
+// ---- Distance voxmaps (SB > 2, docs/contract.md "Distance voxmaps") ----
+
+// Where node (X, Y, Z) of a map of n_i cells per axis is stored: bank p = parity, half-index
+// h = (X>>1) + Hx*((Y>>1) + Hy*(Z>>1)) with H_i = (n_i>>1) + 1, word = map_base + 8*(h / NPW) + p,
+// slot h % NPW (bits [SB*slot + SB-1 : SB*slot]).
+struct NodeAddress {
+  uint64_t word;
+  uint32_t slot;
+};
+NodeAddress node_address(const DeviceConfig& cfg, const Job& job, uint64_t X, uint64_t Y, uint64_t Z);
+
+// Words a job's map takes: ceil(voxels / (MEMW/2)) for states, 8 * ceil(Hx*Hy*Hz / NPW) for distances.
+uint64_t map_words(const DeviceConfig& cfg, const Job& job);
+
+// Stage 3 (distance), node fetch: the values of the 8 nodes around an inside point's cell, q[dx | dy<<1 | dz<<2]
+// for node (x+dx, y+dy, z+dz), each SB-bit two's complement.
+struct Nodes {
+  int64_t q[8];
+};
+Nodes fetch_nodes(const DeviceConfig& cfg, const std::vector<uint64_t>& map, const Job& job, const Located& l);
+
+// The weights' fractions: f_i = (acc_i >> (TF - WB)) & (2^WB - 1).
+struct Fractions {
+  int64_t f[3];
+};
+Fractions fractions(const DeviceConfig& cfg, const Transformed& t);
+
+// Stage 4a (distance), interpolation: D = sum q(dx,dy,dz) * wx(dx) * wy(dy) * wz(dz), w(1) = f, w(0) = 2^WB - f;
+// exact, IW = SB + 3*WB bits signed.
+int64_t interpolate(const DeviceConfig& cfg, const Nodes& n, const Fractions& f);
+
+// Stage 4b (distance), hit test: inside and D <= threshold.
+bool distance_hit(int64_t threshold, bool inside, int64_t dist);
+
 // Throws JobError unless every field fits its format under cfg and the job reads only loaded words:
 // shell words [shell_base, shell_base + shell_count) < shell_words, map words
-// [map_base, map_base + ceil(nx*ny*nz / (MEMW/2))) < map_words.
-void validate_job(const DeviceConfig& cfg, const Job& job, uint64_t shell_words, uint64_t map_words);
+// [map_base, map_base + map_words(cfg, job)) < loaded_map_words; a distance map starts on a bank boundary
+// (map_base % 8 == 0) and its threshold fits IW bits; a 2-bit job's threshold is 0.
+void validate_job(const DeviceConfig& cfg, const Job& job, uint64_t shell_words, uint64_t loaded_map_words);
 
 // Throws JobError unless the memory image fits cfg: at most 2^SAW shell words with PW-bit coordinates, at most
 // 2^MAW map words of MEMW bits.

@@ -15,10 +15,10 @@ uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records) {
   const uint64_t L = uint64_t(cfg.LANES);
-  const uint64_t P = uint64_t(kPipelineSlots);
+  const uint64_t P = uint64_t(pipeline_slots(cfg));
   std::vector<JobTiming> out(jobs.size());
   // `t` is the cycle in which the next slot reaches the hit-test stage, counted from job 0's acceptance.
-  uint64_t t = kFirstSlotLatency;
+  uint64_t t = 1 + P;  // kFirstSlotLatency on a 2-bit device
   uint64_t prev_done = 0;
   size_t r = 0;
   for (size_t j = 0; j < jobs.size(); ++j) {

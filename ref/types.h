@@ -35,6 +35,7 @@ struct Job {
   uint32_t nx = 1, ny = 1, nz = 1;
   int64_t M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // MW-bit signed, MF fraction bits
   int64_t t[3] = {0, 0, 0};                             // TW-bit signed, TF = MF + PF fraction bits
+  int64_t threshold = 0;  // distance voxmaps: hit when the interpolated distance D <= threshold (IW-bit signed)
 
   uint64_t voxels() const { return uint64_t{nx} * ny * nz; }
 };
@@ -47,7 +48,8 @@ struct Record {
   // Hit: point index relative to shell_base, voxel coordinates and the voxel's state.
   uint32_t point = 0;
   uint32_t x = 0, y = 0, z = 0;
-  uint8_t state = 0;
+  uint8_t state = 0;   // 0 on a distance voxmap
+  int64_t dist = 0;    // the interpolated distance D on a distance voxmap (IW-bit signed), 0 on a 2-bit voxmap
   // Done: number of hits (FIRST: 0 or 1), and the job's cycles where the backend models time.
   uint32_t hits = 0;
   std::optional<uint64_t> cycles;
@@ -55,12 +57,14 @@ struct Record {
   std::optional<uint64_t> points;
   std::optional<uint64_t> stalls;
 
-  static Record hit(uint32_t tag, uint32_t point, uint32_t x, uint32_t y, uint32_t z, uint8_t state);
+  static Record hit(uint32_t tag, uint32_t point, uint32_t x, uint32_t y, uint32_t z, uint8_t state,
+                    int64_t dist = 0);
   static Record done(uint32_t tag, uint32_t hits, std::optional<uint64_t> cycles = std::nullopt);
   // Equal as the contract compares them: every field of a hit; tag and hits of a done, plus cycles if asked.
   bool same_as(const Record& o, bool compare_cycles) const;
-  // "hit TAG POINT X Y Z STATE" or "done TAG HITS [CYCLES]", the vector file syntax.
-  std::string to_string() const;
+  // "hit TAG POINT X Y Z STATE" or "done TAG HITS [CYCLES]", the vector file syntax of version 1; with_dist
+  // appends the hit's DIST (version 2).
+  std::string to_string(bool with_dist = false) const;
 };
 
 // The memories as the host loads them through the write port.

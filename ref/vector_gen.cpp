@@ -9,6 +9,7 @@
 
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/float_model.h"
+#include "voxcd/ref/pipeline.h"
 
 namespace voxcd {
 
@@ -45,7 +46,17 @@ class Generator {
   uint32_t dim_max() const { return uint32_t(std::min<uint64_t>(cfg_.max_dim(), 1u << 20)); }
   uint32_t clip_dim(uint64_t d) const { return uint32_t(std::max<uint64_t>(1, std::min<uint64_t>(d, dim_max()))); }
 
+  // Words of a map of these dimensions under cfg_ (states or distances).
+  uint64_t words_of(const MapDesc& m) const {
+    Job j;
+    j.nx = m.nx;
+    j.ny = m.ny;
+    j.nz = m.nz;
+    return map_words(cfg_, j);
+  }
+
   void make_maps(DeviceMemory& mem) {
+    if (cfg_.distance()) return make_distance_maps(mem);
     const uint64_t spw = uint64_t(cfg_.states_per_word());
     std::vector<std::array<uint64_t, 3>> dims = {
         {1, 1, 1}, {37, 5, 3}, {16, 16, 16}, {33, 17, 9}, {uni(1, 40), uni(1, 40), uni(1, 40)},
@@ -89,6 +100,71 @@ class Generator {
       const uint64_t word = m.base + i / spw, shift = 2 * (i % spw);
       mem.map[word] = (mem.map[word] & ~(uint64_t{3} << shift)) | (s << shift);
     }
+  }
+
+  // Distance maps: the same sizes, each on a bank boundary, filled with node values (docs/conformance.md).
+  void make_distance_maps(DeviceMemory& mem) {
+    std::vector<std::array<uint64_t, 3>> dims = {
+        {1, 1, 1}, {37, 5, 3}, {16, 16, 16}, {33, 17, 9}, {uni(1, 40), uni(1, 40), uni(1, 40)},
+        {uni(1, 12), uni(1, 12), uni(1, 12)}, {cfg_.max_dim(), 2, 1}, {1, cfg_.max_dim(), 1}};
+    uint64_t next = 8 * uni(0, 2);
+    for (auto& d : dims) {
+      MapDesc m{0, clip_dim(d[0]), clip_dim(d[1]), clip_dim(d[2])};
+      const uint64_t words = words_of(m);
+      if (next + words > cfg_.map_depth()) continue;
+      m.base = uint32_t(next);
+      maps_.push_back(m);
+      next += words + 8 * uni(0, 1);
+    }
+    next = std::min<uint64_t>(next, cfg_.map_depth());
+    if (maps_.empty())
+      throw std::invalid_argument("no distance map fits the voxmap memory of 2^MAW = " +
+                                  std::to_string(cfg_.map_depth()) + " words");
+    const uint64_t word_mask = cfg_.MEMW >= 64 ? ~uint64_t{0} : (uint64_t{1} << cfg_.MEMW) - 1;
+    mem.map.resize(next);
+    for (auto& w : mem.map) w = rng_() & word_mask;  // garbage, also in the slots that hold no node
+    const int shift = int(uni(0, 5));
+    for (size_t k = 0; k < maps_.size(); ++k) fill_distance_map(mem, maps_[k], int((k + size_t(shift)) % 6));
+  }
+
+  // Node values: 0 uniform over the whole SB range; 1 a sphere's distance, clamped to the band (far inside and
+  // far outside); 2 only the two clamped extremes; 3 a linear ramp through the band; 4 alternating extremes (the
+  // widest products); 5 the values around the band's edges (+-(max-1), max, min, min+1).
+  void fill_distance_map(DeviceMemory& mem, const MapDesc& m, int pattern) {
+    const int64_t qmax = (int64_t{1} << (cfg_.SB - 1)) - 1, qmin = -qmax - 1;
+    const uint64_t vmask = (uint64_t{1} << cfg_.SB) - 1;
+    Job j;
+    j.map_base = m.base;
+    j.nx = m.nx;
+    j.ny = m.ny;
+    j.nz = m.nz;
+    const double c[3] = {m.nx / 2.0, m.ny / 2.0, m.nz / 2.0};
+    const double r = std::max(0.5, std::min({m.nx, m.ny, m.nz}) / 3.0);
+    const double step = std::max(1.0, double(qmax) / 4.0);  // a band of about 4 voxels
+    for (uint64_t Z = 0; Z <= m.nz; ++Z)
+      for (uint64_t Y = 0; Y <= m.ny; ++Y)
+        for (uint64_t X = 0; X <= m.nx; ++X) {
+          int64_t q = 0;
+          switch (pattern) {
+            case 0: q = sint(qmin, qmax); break;
+            case 1: {
+              const double d = std::sqrt((X - c[0]) * (X - c[0]) + (Y - c[1]) * (Y - c[1]) + (Z - c[2]) * (Z - c[2]));
+              q = std::clamp<int64_t>(int64_t(std::llround((d - r) * step)), qmin, qmax);
+              break;
+            }
+            case 2: q = chance(0.5) ? qmin : qmax; break;
+            case 3: q = std::clamp<int64_t>(int64_t(X) + int64_t(Y) - int64_t(Z) - 8, qmin, qmax); break;
+            case 4: q = (X + Y + Z) % 2 ? qmax : qmin; break;
+            default: {
+              const int64_t v[] = {qmax, qmax - 1, qmin, qmin + 1, 0, -1};
+              q = v[uni(0, 5)];
+              break;
+            }
+          }
+          const NodeAddress a = node_address(cfg_, j, X, Y, Z);
+          const uint64_t sh = uint64_t(cfg_.SB) * a.slot;
+          mem.map[a.word] = (mem.map[a.word] & ~(vmask << sh)) | ((uint64_t(q) & vmask) << sh);
+        }
   }
 
   // Raw shell coordinate for a real value, clipped into PW.
@@ -150,6 +226,18 @@ class Generator {
     const double span = double(cfg_.max_dim());
     for (int k = 0; k < 800; ++k) wide.push_back({raw(real(-10, span + 10)), raw(real(-2, 4)), raw(real(-2, 3))});
     add_block(mem, wide);
+    if (cfg_.distance()) {
+      // Weights at their ends: points on nodes (fraction 0), one ulp above, and one ulp below the next node
+      // (fraction 2^WB - 1 under an identity pose).
+      std::vector<ShellWord> ends;
+      const int64_t fr[] = {0, 1, one - 1, one / 2, one - (one >> std::min(cfg_.PF, cfg_.WB))};
+      for (int k = 0; k < 400; ++k) {
+        int64_t c[3];
+        for (int i = 0; i < 3; ++i) c[i] = std::clamp(sint(-1, 17) * one + fr[uni(0, 4)], pf.min_raw(), pf.max_raw());
+        ends.push_back({c[0], c[1], c[2]});
+      }
+      add_block(mem, ends);
+    }
   }
 
   static void rotation(std::mt19937_64& rng, double R[3][3]) {
@@ -231,6 +319,31 @@ class Generator {
     for (auto& e : j.t) e = tv[uni(0, tv.size() - 1)];
   }
 
+  // A distance job's threshold and, sometimes, a translation one ulp below an integer (fractions of 2^WB - 1):
+  // 0, the extremes of IW, a node value's exact multiple, one unit either side, or random.
+  void distance_fields(Job& j) {
+    const int iw = cfg_.IW();
+    const int64_t tmax = iw >= 64 ? INT64_MAX : (int64_t{1} << (iw - 1)) - 1, tmin = -tmax - 1;
+    const int64_t unit = int64_t{1} << (3 * cfg_.WB);  // one node unit at full weight
+    const int64_t qmax = (int64_t{1} << (cfg_.SB - 1)) - 1;
+    switch (uni(0, 7)) {
+      case 0: j.threshold = 0; break;
+      case 1: j.threshold = tmax; break;
+      case 2: j.threshold = tmin; break;
+      case 3: j.threshold = sint(-qmax, qmax) * unit; break;
+      case 4: j.threshold = sint(-2, 2); break;
+      case 5: j.threshold = (qmax - 1) * unit + sint(-1, 1); break;
+      default: j.threshold = sint(tmin / 2, tmax / 2); break;
+    }
+    if (chance(0.15)) {
+      const FixedFormat tf = translation_format(cfg_);
+      for (auto& e : j.t) {
+        const int64_t v = (sint(-1, 8) << cfg_.TF()) - 1;  // one ulp below an integer
+        if (v >= tf.min_raw() && v <= tf.max_raw()) e = v;
+      }
+    }
+  }
+
   Job make_job(uint32_t index) {
     Job j;
     j.tag = uint32_t(index & cfg_.max_tag());
@@ -259,6 +372,7 @@ class Generator {
       extreme_pose(j);
     else
       random_pose(b, m, j);
+    if (cfg_.distance()) distance_fields(j);
     return j;
   }
 

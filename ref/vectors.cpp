@@ -26,9 +26,13 @@ class Parser {
     while (next_line()) {
       const std::string_view kw = tok_[0];
       if (!have_header) {
-        if (kw != "voxcd-vectors") fail("the file must start with 'voxcd-vectors 1', found '" + std::string(kw) + "'");
+        if (kw != "voxcd-vectors")
+          fail("the file must start with 'voxcd-vectors 1' or 'voxcd-vectors 2', found '" + std::string(kw) + "'");
         want(2);
-        if (tok_[1] != "1") fail("unsupported vector format version '" + std::string(tok_[1]) + "' (this reads 1)");
+        if (tok_[1] != "1" && tok_[1] != "2")
+          fail("unsupported vector format version '" + std::string(tok_[1]) + "' (this reads 1 and 2)");
+        version_ = tok_[1] == "1" ? 1 : 2;
+        f.version = version_;
         have_header = true;
       } else if (kw == "config") {
         if (have_config) fail("a second config line");
@@ -47,12 +51,13 @@ class Parser {
       } else if (kw == "job") {
         parse_job(f);
       } else if (kw == "hit") {
-        want(7);
+        want(version_ == 1 ? 7 : 8);
         const uint32_t tag = u32(1, "TAG", f.config.TAGW);
         const uint32_t point = u32(2, "POINT", 32);
         const uint32_t x = u32(3, "X", f.config.DW), y = u32(4, "Y", f.config.DW), z = u32(5, "Z", f.config.DW);
         const uint32_t st = u32(6, "STATE", 2);
-        f.expected.push_back(Record::hit(tag, point, x, y, z, uint8_t(st)));
+        const int64_t dist = version_ == 1 ? 0 : signed_field(7, "DIST", f.config.IW(), "IW");
+        f.expected.push_back(Record::hit(tag, point, x, y, z, uint8_t(st), dist));
         f.expected_lines.push_back(line_);
       } else if (kw == "done") {
         if (tok_.size() != 3 && tok_.size() != 4)
@@ -172,10 +177,13 @@ class Parser {
     std::map<std::string, int*> keys = {{"PW", &c.PW},     {"PF", &c.PF},   {"MW", &c.MW},   {"MF", &c.MF},
                                         {"TW", &c.TW},     {"DW", &c.DW},   {"MEMW", &c.MEMW}, {"LANES", &c.LANES},
                                         {"SAW", &c.SAW},   {"MAW", &c.MAW}, {"TAGW", &c.TAGW}};
+    if (version_ >= 2) keys.insert({{"SB", &c.SB}, {"WB", &c.WB}});
     std::map<std::string, bool> seen;
     for (size_t i = 1; i + 1 < tok_.size(); i += 2) {
       const std::string k(tok_[i]);
       auto it = keys.find(k);
+      if (it == keys.end() && version_ == 1 && (k == "SB" || k == "WB"))
+        fail("config parameter " + k + " needs format version 2 ('voxcd-vectors 2')");
       if (it == keys.end()) fail("unknown config parameter '" + k + "'");
       if (seen[k]) fail("config parameter " + k + " given twice");
       seen[k] = true;
@@ -233,7 +241,7 @@ class Parser {
   }
 
   void parse_job(VectorFile& f) {
-    want(22);
+    want(version_ == 1 ? 22 : 23);
     const DeviceConfig& c = f.config;
     Job j;
     j.tag = u32(1, "TAG", c.TAGW);
@@ -253,6 +261,7 @@ class Parser {
     for (int k = 0; k < 9; ++k) j.M[k / 3][k % 3] = signed_field(10 + k, mname[k], c.MW, "MW");
     static const char* tname[3] = {"T0", "T1", "T2"};
     for (int k = 0; k < 3; ++k) j.t[k] = signed_field(19 + k, tname[k], c.TW, "TW");
+    if (version_ >= 2) j.threshold = signed_field(22, "THRESHOLD", c.distance() ? c.IW() : 64, "IW");
     f.jobs.push_back(j);
     f.job_lines.push_back(line_);
   }
@@ -262,6 +271,7 @@ class Parser {
   size_t pos_ = 0;
   int line_ = 0;
   std::vector<std::string_view> tok_;
+  int version_ = 1;
 };
 
 }  // namespace
@@ -272,7 +282,7 @@ DeviceConfig parse_config_pairs(const std::string& pairs, const std::string& wha
   if (pairs.find('\n') != std::string::npos) throw VectorError(what + ": one line of NAME VALUE pairs expected");
   const std::string prefix = what + ":2: ";
   try {
-    return parse_vectors("voxcd-vectors 1\nconfig " + pairs + "\n", what).config;
+    return parse_vectors("voxcd-vectors 2\nconfig " + pairs + "\n", what).config;
   } catch (const VectorError& e) {
     const std::string m = e.what();
     throw VectorError(what + ": " + (m.rfind(prefix, 0) == 0 ? m.substr(prefix.size()) : m));
@@ -287,19 +297,23 @@ VectorFile read_vectors(const std::string& path) {
   return parse_vectors(text, path);
 }
 
-std::string job_line(const Job& j) {
+int vector_version(const DeviceConfig& cfg) { return cfg.distance() ? 2 : 1; }
+
+std::string job_line(const Job& j, int version) {
   std::ostringstream s;
   s << "job " << j.tag << ' ' << mode_name(j.mode) << ' ' << unsigned(j.hit_mask) << ' ' << j.shell_base << ' '
     << j.shell_count << ' ' << j.map_base << ' ' << j.nx << ' ' << j.ny << ' ' << j.nz;
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) s << ' ' << j.M[i][k];
   for (int i = 0; i < 3; ++i) s << ' ' << j.t[i];
+  if (version >= 2) s << ' ' << j.threshold;
   return s.str();
 }
 
 void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, const DeviceMemory& mem,
                    const std::vector<Job>& jobs, const std::vector<Record>& records) {
-  os << "voxcd-vectors 1\n";
+  const int version = vector_version(cfg);
+  os << "voxcd-vectors " << version << '\n';
   os << "config PW " << cfg.PW << " PF " << cfg.PF << " MW " << cfg.MW << " MF " << cfg.MF << " TW " << cfg.TW
      << " DW " << cfg.DW << " MEMW " << cfg.MEMW;
   if (write_lanes) os << " LANES " << cfg.LANES;
@@ -307,6 +321,7 @@ void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, 
   if (cfg.SAW != d.SAW) os << " SAW " << cfg.SAW;
   if (cfg.MAW != d.MAW) os << " MAW " << cfg.MAW;
   if (cfg.TAGW != d.TAGW) os << " TAGW " << cfg.TAGW;
+  if (cfg.distance()) os << " SB " << cfg.SB << " WB " << cfg.WB;
   os << '\n';
   std::string buf;
   os << "shell " << mem.shell.size() << '\n';
@@ -331,10 +346,10 @@ void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, 
   }
   size_t r = 0;
   for (const Job& j : jobs) {
-    os << job_line(j) << '\n';
+    os << job_line(j, version) << '\n';
     while (r < records.size()) {
       const Record& rec = records[r++];
-      os << rec.to_string() << '\n';
+      os << rec.to_string(version >= 2) << '\n';
       if (rec.kind == Record::Done) break;
     }
   }
@@ -364,8 +379,9 @@ std::string compare_streams(const VectorFile& file, const std::vector<Record>& g
     s << where(i) << ": ";
     if (e && e->kind == Record::Hit) s << "point " << e->point << ": ";
     else if (g && g->kind == Record::Hit) s << "point " << g->point << ": ";
-    s << "expected '" << (e ? e->to_string() : std::string("end of stream")) << "', got '"
-      << (g ? g->to_string() : std::string("end of stream")) << "'";
+    const bool with_dist = file.version >= 2;
+    s << "expected '" << (e ? e->to_string(with_dist) : std::string("end of stream")) << "', got '"
+      << (g ? g->to_string(with_dist) : std::string("end of stream")) << "'";
     if (compare_cycles && e && g && e->kind == Record::Done && g->kind == Record::Done && e->hits == g->hits)
       s << " (cycles differ)";
     return s.str();

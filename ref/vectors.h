@@ -1,10 +1,10 @@
 // Conformance vector files (docs/conformance.md is the normative description):
-//   voxcd-vectors 1
-//   config PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 [LANES 4] [SAW 16] [MAW 18] [TAGW 16]
+//   voxcd-vectors 1 | 2
+//   config PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 [LANES 4] [SAW 16] [MAW 18] [TAGW 16] [SB 8 WB 8 (v2)]
 //   shell N      then N lines "x y z"
 //   map N        then N lines of one hex word
-//   job TAG MODE MASK SHELL_BASE SHELL_COUNT MAP_BASE NX NY NZ M00 .. M22 T0 T1 T2
-//   hit TAG POINT X Y Z STATE
+//   job TAG MODE MASK SHELL_BASE SHELL_COUNT MAP_BASE NX NY NZ M00 .. M22 T0 T1 T2 [THRESHOLD (v2)]
+//   hit TAG POINT X Y Z STATE [DIST (v2)]
 //   done TAG HITS [CYCLES]
 #pragma once
 
@@ -26,6 +26,7 @@ struct VectorError : std::runtime_error {
 
 struct VectorFile {
   std::string path;
+  int version = 1;  // the header's format version
   DeviceConfig config;
   bool has_lanes = false;  // the config line named LANES
   DeviceMemory memory;
@@ -45,12 +46,16 @@ VectorFile read_vectors(const std::string& path);
 // VectorError naming `what` and the problem.
 DeviceConfig parse_config_pairs(const std::string& pairs, const std::string& what);
 
+// The format version a file of cfg is written in: 1 for a 2-bit device (the files of version 1 stay byte for
+// byte what they were), 2 for a distance device.
+int vector_version(const DeviceConfig& cfg);
+
 // Writes config, memories, then each job followed by its records from `records` (a stream as run_stream gives;
 // its done records split it into jobs). Done records carry CYCLES when the record has them.
 void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, const DeviceMemory& mem,
                    const std::vector<Job>& jobs, const std::vector<Record>& records);
-// One job line in the file syntax.
-std::string job_line(const Job& job);
+// One job line in the file syntax of `version` (2 adds THRESHOLD).
+std::string job_line(const Job& job, int version = 1);
 
 // Compares a backend's stream with the file's expectations. Returns "" when equal, else the first difference:
 // the job (tag and line), the point, what was expected and what came.

@@ -18,11 +18,12 @@ void encode_job(const Job& job, uint8_t* out) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) put_le(out + 0x20 + 4 * (3 * i + j), uint64_t(job.M[i][j]), 4);
   for (int i = 0; i < 3; ++i) put_le(out + 0x48 + 8 * i, uint64_t(job.t[i]), 8);
+  put_le(out + 0x60, uint64_t(job.threshold), 8);
 }
 
 bool decode_job(const uint8_t* in, Job& job, std::string& why) {
   // The reserved bytes as whole words first; the loops below name the first one that is set.
-  const uint64_t reserved = get_le(in + 0x06, 2) | get_le(in + 0x44, 4) | get_le(in + 0x60, 8) | get_le(in + 0x68, 8) |
+  const uint64_t reserved = get_le(in + 0x06, 2) | get_le(in + 0x44, 4) | get_le(in + 0x68, 8) |
                             get_le(in + 0x70, 8) | get_le(in + 0x78, 8);
   if (reserved != 0) {
     for (size_t b : {size_t{0x06}, size_t{0x07}, size_t{0x44}, size_t{0x45}, size_t{0x46}, size_t{0x47}})
@@ -30,7 +31,7 @@ bool decode_job(const uint8_t* in, Job& job, std::string& why) {
         why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
         return false;
       }
-    for (size_t b = 0x60; b < kJobBytes; ++b)
+    for (size_t b = 0x68; b < kJobBytes; ++b)
       if (in[b] != 0) {
         why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
         return false;
@@ -53,6 +54,7 @@ bool decode_job(const uint8_t* in, Job& job, std::string& why) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) job.M[i][j] = int32_t(uint32_t(get_le(in + 0x20 + 4 * (3 * i + j), 4)));
   for (int i = 0; i < 3; ++i) job.t[i] = int64_t(get_le(in + 0x48 + 8 * i, 8));
+  job.threshold = int64_t(get_le(in + 0x60, 8));
   return true;
 }
 
@@ -66,6 +68,7 @@ void encode_record(const Record& rec, uint8_t* out) {
     put_le(out + 0x0c, rec.x, 4);
     put_le(out + 0x10, rec.y, 4);
     put_le(out + 0x14, rec.z, 4);
+    put_le(out + 0x18, uint64_t(rec.dist), 8);
   } else {
     out[0] = kKindDone;
     put_le(out + 0x08, rec.hits, 4);
@@ -86,6 +89,7 @@ bool decode_record(const uint8_t* in, Record& rec) {
     rec.y = uint32_t(get_le(in + 0x10, 4));
     rec.z = uint32_t(get_le(in + 0x14, 4));
     rec.state = in[1];
+    rec.dist = int64_t(get_le(in + 0x18, 8));
     rec.hits = 0;
     rec.cycles.reset();
     rec.points.reset();
@@ -94,6 +98,7 @@ bool decode_record(const uint8_t* in, Record& rec) {
     rec.kind = Record::Done;
     rec.point = rec.x = rec.y = rec.z = 0;
     rec.state = 0;
+    rec.dist = 0;
     rec.hits = uint32_t(get_le(in + 0x08, 4));
     rec.points = get_le(in + 0x0c, 4);
     rec.cycles = get_le(in + 0x10, 8);
@@ -108,7 +113,7 @@ uint64_t config_word0(const DeviceConfig& c) {
 }
 
 uint64_t config_word1(const DeviceConfig& c) {
-  return uint64_t(c.SAW) | uint64_t(c.MAW) << 8 | uint64_t(c.TAGW) << 16;
+  return uint64_t(c.SAW) | uint64_t(c.MAW) << 8 | uint64_t(c.TAGW) << 16 | uint64_t(c.SB) << 24 | uint64_t(c.WB) << 32;
 }
 
 }  // namespace voxcd::sysc

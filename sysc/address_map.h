@@ -29,7 +29,7 @@ constexpr uint64_t kMapStride = 8;
 enum Reg : uint64_t {
   kRegId = 0x00,           // RO: kDeviceId
   kRegConfig0 = 0x08,      // RO: PW | PF<<8 | MW<<16 | MF<<24 | TW<<32 | DW<<40 | MEMW<<48 | LANES<<56
-  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16
+  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16 | SB<<24 | WB<<32
   kRegClockPs = 0x18,      // RO: clock period in picoseconds
   kRegStatus = 0x20,       // RO: kStatus* bits
   kRegStaged = 0x28,       // RO: jobs staged and not yet launched
@@ -53,11 +53,12 @@ constexpr uint64_t kStatusFault = 8;    // the RTL failed an assertion (RTL targ
 // Job descriptor: kJobBytes bytes.
 //   0x00 u32 tag      0x04 u8 mode (0 ALL, 1 FIRST, 2 COUNT)   0x05 u8 hit mask   0x06 u16 zero
 //   0x08 u32 shell_base   0x0c u32 shell_count   0x10 u32 map_base   0x14 u32 nx   0x18 u32 ny   0x1c u32 nz
-//   0x20 i32 M[3][3], row-major   0x44 u32 zero   0x48 i64 t[3]   0x60 .. 0x7f zero
+//   0x20 i32 M[3][3], row-major   0x44 u32 zero   0x48 i64 t[3]   0x60 i64 threshold (0 on a 2-bit device)
+//   0x68 .. 0x7f zero
 constexpr size_t kJobBytes = 128;
 // Result record: kRecordBytes bytes.
 //   0x00 u8 kind (0 none, 1 hit, 2 done)   0x01 u8 state (hit)   0x02 u16 zero   0x04 u32 tag
-//   hit:  0x08 u32 point   0x0c u32 x   0x10 u32 y   0x14 u32 z   0x18 u64 zero
+//   hit:  0x08 u32 point   0x0c u32 x   0x10 u32 y   0x14 u32 z   0x18 i64 dist (0 on a 2-bit device)
 //   done: 0x08 u32 hits    0x0c u32 points   0x10 u64 cycles   0x18 u64 stalls
 constexpr size_t kRecordBytes = 32;
 enum RecordKind : uint8_t { kKindNone = 0, kKindHit = 1, kKindDone = 2 };

@@ -67,7 +67,7 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
     const uint64_t lanes = uint64_t(cfg_.LANES);
     const uint64_t groups = last.shell_count == 0 ? 1 : (last.shell_count + lanes - 1) / lanes;
     const uint64_t f = batch_[last_first].point / lanes;
-    const uint64_t squashed = std::min(groups - 1, f + kPipelineSlots - 1) - f;
+    const uint64_t squashed = std::min(groups - 1, f + uint64_t(pipeline_slots(cfg_)) - 1) - f;
     drain = squashed > 0 ? squashed - 1 : 0;
   }
   idle_ = edge + 1 + drain;

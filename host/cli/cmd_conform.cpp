@@ -54,7 +54,7 @@ std::string run_file(const ConformArgs& a, const std::string& path, std::ostream
   print_to << "# " << path << " on " << a.backend << '\n';
   std::string buf;
   for (const Record& rec : r.stream) {
-    buf = rec.to_string();
+    buf = rec.to_string(r.version >= 2);
     buf += '\n';
     print_to << buf;
   }

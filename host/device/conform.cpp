@@ -24,6 +24,7 @@ ConformResult run_conformance(const std::string& path, const ConformOptions& opt
   }
   res.jobs = f.jobs.size();
   res.expected = f.expected.size();
+  res.version = f.version;
   DeviceConfig cfg = f.config;
   if (opt.lanes) {
     if (f.has_lanes && *opt.lanes != f.config.LANES && opt.cycles) {

@@ -27,6 +27,7 @@ struct ConformResult {
   std::string error;
   size_t jobs = 0;             // in the file
   size_t expected = 0;         // hit and done records the file expects
+  int version = 1;             // the file's format version (2: hit records carry DIST)
   std::vector<Record> stream;  // the backend's output, in order
   bool ok() const { return error.empty(); }
 };

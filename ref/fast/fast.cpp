@@ -394,6 +394,7 @@ void FastRunner::run_validated_into(const std::vector<Job>& jobs, std::vector<Re
 
 void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
                            uint32_t& hit_count) const {
+  if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count);
   int64_t lin[kBlock];
   int32_t lin32[kBlock];
   uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit

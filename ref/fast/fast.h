@@ -3,6 +3,7 @@
 // on every arithmetic path below). The cpu backend (host/device/cpu.cpp) and the SystemC loosely-timed model
 // (sysc/tlm_target.cpp) both compute jobs with it.
 //
+// Distance voxmaps (SB > 2) take fast/distance.cpp's integer path whatever the widths.
 // Three arithmetic paths, chosen by the widths, give the same bits as ref/:
 //  - double: when the accumulator fits 53 bits (the default widths: 49), every product M*p and every partial sum
 //    is an integer below 2^53, so double arithmetic is exact (fused multiply-adds included), and so is
@@ -77,6 +78,9 @@ class FastRunner {
   // Looks up points [begin, end) of job j: appends their hit records (ALL: every one; FIRST: the first, then stops)
   // to `hits` and adds their number to `count`.
   void run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits, uint32_t& count) const;
+  // run_chunk on a distance voxmap (SB > 2), in fast/distance.cpp.
+  void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
+                          uint32_t& count) const;
 
   DeviceConfig cfg_;
   Path path_ = Path::Double;

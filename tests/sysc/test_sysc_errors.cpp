@@ -126,7 +126,7 @@ TEST(SyscErrors, HostCpuHelpersRaiseBusErrorsNamingTheAccess) {
   }
 }
 
-// A shell word's bytes 12..15 and a descriptor's bytes 6, 7, 0x44..0x47 and 0x60..0x7f are reserved: a non-zero one
+// A shell word's bytes 12..15 and a descriptor's bytes 6, 7, 0x44..0x47 and 0x68..0x7f are reserved: a non-zero one
 // refuses the whole write, names the word or descriptor and the byte, and stages or writes nothing of it.
 TEST(SyscErrors, NonZeroReservedBytesAreRefusedWhole) {
   const DeviceConfig cfg;
@@ -144,7 +144,7 @@ TEST(SyscErrors, NonZeroReservedBytesAreRefusedWhole) {
       EXPECT_EQ(p->target().last_error(), who + ".device: shell word 1: reserved bytes not zero");
       EXPECT_EQ(cpu.read_reg(kRegShellWords), 64u) << who << ": nothing of the refused write is loaded";
       // Two descriptors, the second with one reserved byte set: neither is staged.
-      for (size_t byte : {size_t{0x06}, size_t{0x07}, size_t{0x44}, size_t{0x47}, size_t{0x60}, size_t{0x7f}}) {
+      for (size_t byte : {size_t{0x06}, size_t{0x07}, size_t{0x44}, size_t{0x47}, size_t{0x68}, size_t{0x7f}}) {
         uint8_t d[2 * kJobBytes];
         encode_job(origin_job(1, Mode::All, 64), d);
         encode_job(origin_job(2, Mode::All, 64), d + kJobBytes);
