@@ -1,0 +1,53 @@
+// The signed distance field of an object, sampled at the nodes of its voxmap's grid and quantised as a distance
+// device stores it (docs/contract.md, "Distance voxmaps"; docs/objects.md): node (X, Y, Z) sits at the voxel corner
+// origin + voxel * (X, Y, Z), its value is the exact distance to the mesh's surface in voxels, negative inside the
+// solid, divided by the step and rounded, clamped to the band.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/voxelize.h"
+#include "voxcd/ref/config.h"
+
+namespace voxcd {
+
+struct DistanceField {
+  int bits = 0;       // SB: 4, 8 or 16; 0 for an object without a field
+  double step = 0;    // voxels per unit of a node value: the band is +-2^(bits-1) * step voxels
+  std::array<uint32_t, 3> dims = {0, 0, 0};  // cells per axis (the voxmap's); nodes are dims + 1 per axis
+  std::vector<int16_t> q;                    // node (X, Y, Z) at X + (nx+1) * (Y + (ny+1) * Z)
+
+  bool empty() const { return bits == 0; }
+  int qmax() const { return (1 << (bits - 1)) - 1; }  // far outside (and every value the band clamps to it)
+  int qmin() const { return -(1 << (bits - 1)); }     // far inside
+  double band() const { return step * double(1 << (bits - 1)); }  // voxels
+  uint64_t node_index(uint64_t X, uint64_t Y, uint64_t Z) const {
+    return X + (uint64_t(dims[0]) + 1) * (Y + (uint64_t(dims[1]) + 1) * Z);
+  }
+  int at(uint64_t X, uint64_t Y, uint64_t Z) const { return q[node_index(X, Y, Z)]; }
+
+  // The trilinear interpolant of the node values at grid coordinates g (voxel units from the grid's origin),
+  // in voxels (value * step), with its gradient (per voxel) when `gradient` is not null. g outside the grid is
+  // clamped to it. The device computes the same interpolant in exact integers (with truncated weights).
+  double sample(const Eigen::Vector3d& g, Eigen::Vector3d* gradient = nullptr) const;
+
+  // The device's memory image of this field for cfg (cfg.distance(), cfg.SB == bits): the 8 parity banks of
+  // docs/contract.md, starting at a bank boundary; slots that hold no node are 0.
+  std::vector<uint64_t> device_words(const DeviceConfig& cfg) const;
+};
+
+struct DistanceOptions {
+  int bits = 8;            // SB: 4, 8 or 16
+  double band = 4.0;       // voxels: the step is band / 2^(bits-1)
+  unsigned threads = 0;    // 0: one per hardware thread; never changes the result
+};
+
+// The field of a mesh as repair() left it, on the voxmap's grid: each node's exact distance to the nearest
+// triangle (point-triangle distance), its sign from the solid voxelize computed (inside: negative). MeshError for
+// bits not 4, 8 or 16 or a band that is not finite and > 0.
+DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt);
+
+}  // namespace voxcd
