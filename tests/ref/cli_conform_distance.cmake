@@ -1,0 +1,42 @@
+# voxcd conform on distance voxmaps (vector format 2), as users run it: generated files at SB 4, 8 and 16 pass on
+# every backend named in BACKENDS with their cycles; a changed DIST fails naming the job and the point; --print
+# writes version 2 hit lines (with DIST); a version 1 file still runs.
+file(MAKE_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+
+foreach(cfg "SB 4 WB 3" "SB 8 WB 8" "SB 16 WB 16")
+  string(REPLACE " " "_" name "${cfg}")
+  run(0 out ${VOXCD} conform --generate --seed 11 --jobs 250 --config "${cfg}" -o ${WORK}/${name}.vec)
+  foreach(backend ${BACKENDS})
+    run(0 out ${VOXCD} conform ${WORK}/${name}.vec --backend ${backend} --cycles)
+    expect("${out}" "1 passed, 0 failed")
+  endforeach()
+endforeach()
+
+file(READ ${WORK}/SB_8_WB_8.vec text)
+expect("${text}" "^# generated[^\n]*\nvoxcd-vectors 2\nconfig [^\n]* SB 8 WB 8\n")
+string(REGEX MATCH "\nhit ([0-9]+) ([0-9]+) ([0-9]+ [0-9]+ [0-9]+ 0) (-?[0-9]+)\n" first "${text}")
+if(NOT first)
+  message(FATAL_ERROR "the SB 8 file has no hit record")
+endif()
+set(tag ${CMAKE_MATCH_1})
+set(point ${CMAKE_MATCH_2})
+set(rest ${CMAKE_MATCH_3})
+math(EXPR dist "${CMAKE_MATCH_4} + 1")
+string(REPLACE "${first}" "\nhit ${tag} ${point} ${rest} ${dist}\n" bad "${text}")
+file(WRITE ${WORK}/bad.vec "${bad}")
+foreach(backend ${BACKENDS})
+  run(1 out ${VOXCD} conform ${WORK}/bad.vec --backend ${backend})
+  expect("${out}" "FAIL ${WORK}/bad.vec: job tag ${tag} .*point ${point}: expected 'hit ${tag} ${point} ${rest} ${dist}'")
+endforeach()
+
+run(0 out ${VOXCD} conform --print ${WORK}/SB_8_WB_8.vec)
+expect("${out}" "\nhit ${tag} ${point} ${rest} [-0-9]+\n")
+
+run(0 out ${VOXCD} conform --generate --seed 11 --jobs 50 -o ${WORK}/two_bit.vec)
+file(READ ${WORK}/two_bit.vec text)
+expect("${text}" "\nvoxcd-vectors 1\n")
+foreach(backend ${BACKENDS})
+  run(0 out ${VOXCD} conform ${WORK}/two_bit.vec --backend ${backend} --cycles)
+  expect("${out}" "1 passed, 0 failed")
+endforeach()
