@@ -22,6 +22,9 @@ struct PairArgs {
   uint64_t seed = 1;
   double voxel = 0;
   uint32_t resolution = 0;
+  int distance_bits = 0;
+  double band = 4.0;
+  double margin = 0;
   std::string backend = "cpu";
   int lanes = 4;
   std::string mode = "ALL";
@@ -56,12 +59,18 @@ std::string vec_json(const Eigen::Vector3d& v) {
   return b;
 }
 
+std::string quat_json(const Eigen::Quaterniond& q) {
+  char b[160];
+  std::snprintf(b, sizeof b, "[%.17g, %.17g, %.17g, %.17g]", q.w(), q.x(), q.y(), q.z());
+  return b;
+}
+
 int pair_cmd(const PairArgs& a) {
   // Without --voxel: the longest side of the larger mesh / --resolution (32 by default), shared by both objects.
   const double voxel = a.voxel > 0 ? a.voxel : shared_voxel({a.a, a.b}, a.resolution ? a.resolution : 32);
-  auto ta = std::make_shared<ObjectType>(load_object_type(a.a, voxel));
-  auto tb = std::make_shared<ObjectType>(load_object_type(a.b, voxel));
-  const DeviceConfig cfg = device_config_for(a.backend, a.lanes, {ta.get(), tb.get()});
+  auto ta = std::make_shared<ObjectType>(load_object_type(a.a, voxel, a.distance_bits, a.band));
+  auto tb = std::make_shared<ObjectType>(load_object_type(a.b, voxel, a.distance_bits, a.band));
+  const DeviceConfig cfg = device_config_for(a.backend, a.lanes, {ta.get(), tb.get()}, a.distance_bits);
   PairCollider collider(make_device(a.backend, cfg), {ta, tb});
   PairOptions opt;
   const auto mode = parse_mode(a.mode);
@@ -69,6 +78,7 @@ int pair_cmd(const PairArgs& a) {
   opt.mode = *mode;
   opt.both_directions = a.both;
   opt.cull = a.cull;
+  opt.margin = a.margin;
 
   std::vector<PairRequest> reqs;
   if (a.random > 0) {
@@ -117,10 +127,19 @@ int pair_cmd(const PairArgs& a) {
       << ", \"touching\": " << touching << ", \"hits\": " << hits << ", \"lookups\": " << lookups
       << ", \"seconds\": " << secs;
     if (has_cycles) o << ", \"device_cycles\": " << cycles;
+    if (cfg.distance())
+      o << ", \"distance_bits\": " << cfg.SB << ", \"band\": [" << ta->object.distance.band() * ta->voxmap().voxel()
+        << ", " << tb->object.distance.band() * tb->voxmap().voxel() << "], \"margin\": " << a.margin;
     o << ", \"results\": [";
     for (size_t i = 0; i < res.size(); ++i) {
       const PairResult& r = res[i];
+      auto pose_json = [](const RigidPose& p) {
+        char t[160];
+        std::snprintf(t, sizeof t, "[%.17g, %.17g, %.17g]", p.translation.x(), p.translation.y(), p.translation.z());
+        return "{\"translation\": " + std::string(t) + ", \"rotation_wxyz\": " + quat_json(p.rotation) + "}";
+      };
       o << (i ? ", " : "") << "{\"pose_b_translation\": " << vec_json(reqs[i].pose_b.translation)
+        << ", \"pose_a\": " << pose_json(reqs[i].pose_a) << ", \"pose_b\": " << pose_json(reqs[i].pose_b)
         << ", \"hits\": " << r.hits << ", \"lookups\": " << r.lookups;
       if (has_cycles) o << ", \"device_cycles\": " << r.cycles;
       o << ", \"contacts\": [";
@@ -181,6 +200,16 @@ void add_pair(CLI::App& app) {
                          ->check(CLI::Range(4u, 1u << 20));
   voxel->excludes(res);
   res->excludes(voxel);
+  c->add_option("--distance-bits", a->distance_bits,
+                "Distance voxmaps of B bits (4, 8 or 16) on a distance device instead of 2-bit states "
+                "(meshes and shapes get a distance field; object files must have one)")
+      ->check(CLI::IsMember({4, 8, 16}));
+  c->add_option("--band", a->band, "Band of the distance fields, voxels (with --distance-bits)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  c->add_option("--margin", a->margin,
+                "Distance device: contacts where the other object's distance is at most this, world units")
+      ->capture_default_str();
   c->add_option("--backend", a->backend, "Device backend: " + [] {
     std::string s;
     for (const auto& b : device_backends()) s += (s.empty() ? "" : ", ") + b;

@@ -26,6 +26,9 @@ struct SimulateArgs {
   std::string mode = "ALL";
   uint64_t frames = 1000;
   double clock_mhz = 200;
+  int distance_bits = 0;
+  double band = 4.0, margin = 0;
+  bool ccd = false;
   bool json = false;
   bool progress = true;
 };
@@ -49,6 +52,10 @@ SimulateRequest request(const SimulateArgs& a) {
   if (given("--frames")) r.frames = a.frames;
   if (given("--clock")) r.clock = a.clock_mhz;
   if (given("--lanes")) r.lanes = a.sim.lanes;
+  if (given("--distance-bits")) r.distance_bits = a.distance_bits;
+  if (given("--band")) r.band = a.band;
+  if (given("--margin")) r.margin = a.margin;
+  if (given("--ccd")) r.ccd = a.ccd;
   if (!a.config.empty()) r.device = parse_config_pairs(a.config, "--config");
   r.threads = a.sim.threads;
   r.midphase = a.sim.midphase;
@@ -95,7 +102,11 @@ int simulate_cmd(const SimulateArgs& a) {
       << ", \"voxel\": " << s.voxel << ", \"shell_points\": " << type.shell().size() << ", \"voxmap\": ["
       << d[0] << ", " << d[1] << ", " << d[2] << "], \"pruning\": " << json_string(s.pruning)
       << ", \"backend\": " << json_string(s.backend) << ", \"mode\": " << json_string(s.mode)
-      << ", \"both_directions\": " << (s.both_directions ? "true" : "false") << ", \"frames\": " << s.frames
+      << ", \"both_directions\": " << (s.both_directions ? "true" : "false");
+    if (s.distance_bits)
+      o << ", \"distance_bits\": " << s.distance_bits << ", \"band\": " << s.band << ", \"margin\": " << s.margin
+        << ", \"ccd\": " << (s.ccd ? "true" : "false");
+    o << ", \"frames\": " << s.frames
       << ", \"seed\": " << s.seed << ", \"seconds\": " << tot.seconds() << ", \"frame_rate_hz\": " << rate
       << ", \"broadphase_pairs\": " << tot.pairs << ", \"pairs_tested\": " << tot.tested
       << ", \"touching_pairs\": " << tot.touching
@@ -131,6 +142,9 @@ int simulate_cmd(const SimulateArgs& a) {
   if (s.device_given) std::printf("device          %s\n", s.device.to_string().c_str());
   std::printf("pruning %s, backend %s, mode %s%s, %llu frames\n", s.pruning.c_str(), s.backend.c_str(),
               s.mode.c_str(), s.both_directions ? ", both directions" : "", (unsigned long long)s.frames);
+  if (s.distance_bits)
+    std::printf("distance        %d-bit fields over +-%g voxels, margin %g%s\n", s.distance_bits, s.band, s.margin,
+                s.ccd ? ", continuous collision" : "");
   std::printf("frame rate      %.1f Hz (%.3f ms per frame, one process)\n", rate, 1e3 * tot.seconds() / F);
   std::printf("per frame       %.2f broadphase pairs, %.2f tested (bounding spheres and oriented boxes meet), %.2f touching, %.1f lookups, "
               "%.1f contacts, %.3f responses, %.3f wall bounces\n",
@@ -186,6 +200,14 @@ void add_simulate(CLI::App& app) {
   c->add_option("--lanes", a->sim.lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
   c->add_option("--mode", a->mode, "ALL (every contact) or FIRST (whether a pair touches)")->capture_default_str();
   c->add_flag("--both", a->sim.both_directions, "Test both directions of every pair");
+  c->add_option("--distance-bits", a->distance_bits,
+                "Distance voxmaps of B bits (4, 8 or 16): objects carry signed distance fields, contacts the "
+                "interpolated depth and the field's gradient")
+      ->check(CLI::IsMember({4, 8, 16}));
+  c->add_option("--band", a->band, "Band of the distance fields, voxels")->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--margin", a->margin, "Distance voxmaps: contacts within this distance, world units")->capture_default_str();
+  c->add_flag("--ccd", a->ccd, "Continuous collision: no body passes through another or a wall between frames "
+                               "(needs --distance-bits)");
   c->add_option("--frames", a->frames, "Frames to simulate")->capture_default_str();
   c->add_option("--seed", a->scene.seed, "Seed of the scene")->capture_default_str();
   c->add_option("--clock", a->clock_mhz, "Device clock in MHz for the modelled frame rate")->capture_default_str();

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "voxcd/host/object/distance_field.h"
 #include "voxcd/host/object/point_shell.h"
 #include "voxcd/host/object/voxelize.h"
 
@@ -24,6 +25,7 @@ struct ObjectFile {
   Eigen::Vector3d shift = Eigen::Vector3d::Constant(0.5);  // VoxelizeOptions::shift used for both grids
   Voxmap voxmap;
   PointShell shell;              // built for target voxel = voxmap.voxel()
+  DistanceField distance;        // the signed distance field on the voxmap's grid (empty unless asked for)
   // What loading, repair and voxelising found (file version 2; a version 1 file has none: has_report false).
   bool has_report = false;
   MeshReport mesh_report;
@@ -38,6 +40,8 @@ struct ObjectOptions {
   Eigen::Vector3d shift = Eigen::Vector3d::Constant(0.5);  // VoxelizeOptions::shift, for both grids
   uint32_t max_dim = 1024;                                 // voxmap grid per axis (VoxelizeOptions::max_dim)
   unsigned threads = 0;                                    // 0: every hardware thread; never changes the result
+  int distance_bits = 0;                                   // 4, 8 or 16: also build the distance field; 0: none
+  double band = 4.0;                                       // the field's band, voxels (DistanceOptions::band)
 };
 
 // The mesh named by `mesh_or_shape`: an existing file (load_mesh: RAW or any assimp format), else a built-in shape.

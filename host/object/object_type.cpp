@@ -122,8 +122,17 @@ bool is_object_file(const std::string& path) {
   return in.read(magic, 8) && std::memcmp(magic, "VOXCDOBJ", 8) == 0;
 }
 
-ObjectType load_object_type(const std::string& file_or_shape, double voxel) {
-  if (is_object_file(file_or_shape)) return make_object_type(read_object(file_or_shape), file_or_shape);
+ObjectType load_object_type(const std::string& file_or_shape, double voxel, int distance_bits, double band) {
+  if (is_object_file(file_or_shape)) {
+    ObjectFile obj = read_object(file_or_shape);
+    if (distance_bits > 0 && obj.distance.bits != distance_bits)
+      throw MeshError(file_or_shape + ": the object file has " +
+                      (obj.distance.empty() ? std::string("no distance field")
+                                            : "a distance field of " + std::to_string(obj.distance.bits) + " bits") +
+                      "; " + std::to_string(distance_bits) + " bits were asked for (voxcd voxelize --distance-bits " +
+                      std::to_string(distance_bits) + ")");
+    return make_object_type(std::move(obj), file_or_shape);
+  }
   if (!(std::isfinite(voxel) && voxel > 0))
     throw MeshError(file_or_shape + ": a mesh or shape needs a positive voxel size (--voxel) to be voxelised");
   std::string source;
@@ -131,6 +140,8 @@ ObjectType load_object_type(const std::string& file_or_shape, double voxel) {
   const Mesh mesh = load_source(file_or_shape, &source, &hash);
   ObjectOptions opt;
   opt.voxel = voxel;
+  opt.distance_bits = distance_bits;
+  opt.band = band;
   return make_object_type(make_object(mesh, source, hash, opt), file_or_shape);
 }
 

@@ -31,8 +31,11 @@ struct ObjectType {
 ObjectType make_object_type(ObjectFile obj, const std::string& name);
 
 // An object type from an object file (recognised by its magic, whatever its name), a mesh file or a built-in
-// shape name; meshes and shapes are voxelised at `voxel` (which must then be > 0). Errors name the argument.
-ObjectType load_object_type(const std::string& file_or_shape, double voxel);
+// shape name; meshes and shapes are voxelised at `voxel` (which must then be > 0), with a distance field of
+// `distance_bits` (4, 8, 16; 0: none) over `band` voxels. An object file must have a field of distance_bits when
+// distance_bits > 0. Errors name the argument.
+ObjectType load_object_type(const std::string& file_or_shape, double voxel, int distance_bits = 0,
+                            double band = 4.0);
 
 // The voxel that puts `resolution` voxels along the longest side of the largest mesh or shape among `sources`
 // (its bounding box's longest side / resolution); object files are left out (they have their voxel), and with

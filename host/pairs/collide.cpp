@@ -5,14 +5,26 @@
 
 #include "voxcd/host/pairs/detail/cull.h"
 #include "voxcd/ref/fixed.h"
+#include "voxcd/ref/pipeline.h"
 
 namespace voxcd {
 
 namespace {
 
-uint64_t map_words(const DeviceConfig& cfg, const Voxmap& vm) {
+uint64_t state_map_words(const DeviceConfig& cfg, const Voxmap& vm) {
   const uint64_t spw = uint64_t(cfg.states_per_word());
   return (vm.size() + spw - 1) / spw;
+}
+
+void check_distance(const DeviceConfig& cfg, const ObjectType& t) {
+  if (!cfg.distance()) return;
+  const DistanceField& f = t.object.distance;
+  if (f.empty())
+    throw CapacityError("object '" + t.name + "' has no distance field, and the device holds distance voxmaps (SB = " +
+                        std::to_string(cfg.SB) + "): voxelise it with --distance-bits " + std::to_string(cfg.SB));
+  if (f.bits > cfg.SB)
+    throw CapacityError("object '" + t.name + "' has a distance field of " + std::to_string(f.bits) +
+                        " bits, wider than the device's SB = " + std::to_string(cfg.SB));
 }
 
 void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
@@ -26,9 +38,21 @@ void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
 
 }  // namespace
 
+uint64_t type_map_words(const DeviceConfig& cfg, const ObjectType& t) {
+  if (!cfg.distance()) return state_map_words(cfg, t.voxmap());
+  Job j;
+  j.nx = t.voxmap().dims()[0];
+  j.ny = t.voxmap().dims()[1];
+  j.nz = t.voxmap().dims()[2];
+  return voxcd::map_words(cfg, j);
+}
+
 uint32_t DeviceImage::add(const ObjectType& t) {
   check_dims(cfg_, t);
-  const uint64_t shell = t.shell().size(), words = map_words(cfg_, t.voxmap());
+  check_distance(cfg_, t);
+  // A distance map starts on a bank boundary: the words before it up to one are padding.
+  const uint64_t pad = cfg_.distance() ? (8 - mem_.map.size() % 8) % 8 : 0;
+  const uint64_t shell = t.shell().size(), words = type_map_words(cfg_, t) + pad;
   const uint64_t shell_free = cfg_.shell_depth() - mem_.shell.size(), map_free = cfg_.map_depth() - mem_.map.size();
   if (shell > shell_free || words > map_free)
     throw CapacityError("object '" + t.name + "' needs " + std::to_string(shell) + " shell words and " +
@@ -37,12 +61,13 @@ uint32_t DeviceImage::add(const ObjectType& t) {
                         std::to_string(map_free) + " of 2^MAW = " + std::to_string(cfg_.map_depth()) +
                         " voxmap words free");
   std::vector<ShellWord> sw = t.shell().words(cfg_);
-  std::vector<uint64_t> mw = t.voxmap().device_words(cfg_.MEMW);
+  std::vector<uint64_t> mw = cfg_.distance() ? t.object.distance.device_words(cfg_) : t.voxmap().device_words(cfg_.MEMW);
+  mem_.map.resize(mem_.map.size() + pad, 0);
   Placement p;
   p.shell_base = uint32_t(mem_.shell.size());
   p.shell_count = uint32_t(shell);
   p.map_base = uint32_t(mem_.map.size());
-  p.map_words = uint32_t(words);
+  p.map_words = uint32_t(words - pad);
   p.dims = t.voxmap().dims();
   mem_.shell.insert(mem_.shell.end(), sw.begin(), sw.end());
   mem_.map.insert(mem_.map.end(), mw.begin(), mw.end());
@@ -54,8 +79,9 @@ DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& 
   uint64_t shell = 0, words = 0;
   for (const ObjectType* t : types) {
     check_dims(cfg, *t);
+    check_distance(cfg, *t);
     shell += t->shell().size();
-    words += map_words(cfg, t->voxmap());
+    words += type_map_words(cfg, *t) + (cfg.distance() ? 7 : 0);  // at most 7 words of padding before a map
   }
   while (cfg.shell_depth() < shell && cfg.SAW < 24) ++cfg.SAW;
   while (cfg.map_depth() < words && cfg.MAW < 28) ++cfg.MAW;
@@ -65,9 +91,11 @@ DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& 
   return cfg;
 }
 
-DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types) {
+DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types,
+                               int distance_bits) {
   DeviceConfig cfg;
   cfg.LANES = lanes;
+  if (distance_bits > 0) cfg.SB = distance_bits;
   return backend == "rtl" ? cfg : fit_memory(cfg, types);
 }
 
@@ -189,6 +217,8 @@ void PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions
       j.nz = mp.dims[2];
       try {
         pose_job(cfg, ps, types_[s]->shell().frame(), pm, types_[m]->voxmap().grid().frame(), j);
+        if (cfg.distance())
+          j.threshold = distance_threshold(cfg, opt.margin, types_[m]->voxmap().voxel(), types_[m]->object.distance.step);
       } catch (const RangeError& e) {
         throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
                          "): " + e.what());
@@ -271,6 +301,11 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     const float* depth = map_t.depth.data();
     const size_t nvox = map_t.depth.size();
     const double voxel = vm.voxel();
+    const bool distance = device_->config().distance();
+    const DistanceField& field = map_t.object.distance;
+    const double dist_unit = distance ? voxel * field.step / std::ldexp(1.0, 3 * device_->config().WB) : 0.0;
+    const RigidPose& map_pose = a_in_b ? req.pose_b : req.pose_a;
+    const Eigen::Matrix3d& Rm = a_in_b ? rot_b_[pair] : rot_a_[pair];
     for (; r < nrec && records_[r].kind != Record::Done; ++r) {
       if (r + kAhead < nrec) {
         const Record& ahead = records_[r + kAhead];
@@ -290,7 +325,18 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
       c.normal = R * normals[point];
       c.voxel = {rec.x, rec.y, rec.z};
       c.state = rec.state;
-      c.depth = double(depth[vm.index(rec.x, rec.y, rec.z)]) * voxel;
+      if (distance) {
+        c.depth = -double(rec.dist) * dist_unit;
+        // The field's gradient at the point, in the map's grid, to the world; negated, it points the way the
+        // shell object's outward normal does at a contact.
+        const Eigen::Vector3d g = (Rm.transpose() * (c.position - map_pose.translation) - vm.origin()) / voxel;
+        Eigen::Vector3d grad;
+        field.sample(g, &grad);
+        const Eigen::Vector3d n = -(Rm * grad);
+        if (n.squaredNorm() > 1e-24) c.normal = n.normalized();
+      } else {
+        c.depth = double(depth[vm.index(rec.x, rec.y, rec.z)]) * voxel;
+      }
       res.contacts.push_back(c);
     }
     if (r == nrec) throw DeviceError("the device returned fewer completions than the " + std::to_string(js.size()) +

@@ -22,7 +22,8 @@ struct CapacityError : std::runtime_error {
 };
 
 // The memory image of a set of object types, each type's shell words and voxmap words placed after the previous
-// type's. Only the types added are loaded.
+// type's. Only the types added are loaded. On a distance device (cfg.distance()) a type's map is its distance field
+// in parity banks, starting on a bank boundary.
 class DeviceImage {
  public:
   struct Placement {
@@ -33,7 +34,8 @@ class DeviceImage {
 
   explicit DeviceImage(const DeviceConfig& cfg) : cfg_(cfg) {}
   // Places a type and returns its index. CapacityError naming the type and what it needs against what is left,
-  // or a dimension above 2^DW; RangeError from the shell's quantisation into PW/PF.
+  // a dimension above 2^DW, or (on a distance device) a type without a distance field of at most SB bits;
+  // RangeError from the shell's quantisation into PW/PF.
   uint32_t add(const ObjectType& t);
   const Placement& placement(uint32_t i) const { return placements_.at(i); }
   size_t size() const { return placements_.size(); }
@@ -50,21 +52,32 @@ class DeviceImage {
 // largest memories allowed (SAW 24, MAW 28) are too small, or a voxmap exceeds 2^DW voxels on an axis.
 DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& types);
 
-// The device configuration for testing `types` on `backend`: the default widths at `lanes`, memories grown to fit
-// the types (fit_memory) on every backend but rtl, whose models are built for the default depths. `voxcd pair` and
-// Simulation (without a whole configuration) use it.
-DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types);
+// The device configuration for testing `types` on `backend`: the default widths at `lanes` (and SB =
+// distance_bits when > 0: a distance device), memories grown to fit the types (fit_memory) on every backend but
+// rtl, whose models are built for the default depths. `voxcd pair` and Simulation (without a whole configuration)
+// use it.
+DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types,
+                               int distance_bits = 0);
 
-// One contact: a shell point of one object that lies in a voxel of the other whose state is in the hit mask.
+// Voxmap words a type takes on cfg's device: its states, or its distance field in parity banks (a multiple of 8).
+uint64_t type_map_words(const DeviceConfig& cfg, const ObjectType& t);
+
+// One contact: a shell point of one object that lies in a voxel of the other whose state is in the hit mask, or
+// (distance device) where the other's interpolated distance is at most the margin.
 struct Contact {
   uint32_t pair = 0;          // index of the request
   bool a_in_b = true;         // the shell is A's and the voxmap B's (else the reverse)
   uint32_t point = 0;         // index of the shell point in its object's shell
   Eigen::Vector3d position;   // the shell point, world coordinates
-  Eigen::Vector3d normal;     // its object's outward surface normal there, world coordinates
-  std::array<uint32_t, 3> voxel = {0, 0, 0};  // the voxel of the other object's voxmap it lies in
-  uint8_t state = 0;          // that voxel's state
-  double depth = 0;           // penetration estimate into the other object, world units
+  // Its object's outward surface normal there, world coordinates. Distance device: the other object's field
+  // gradient there, negated and normalised (the direction that outward normal has at a contact; the shell's own
+  // normal where the gradient vanishes).
+  Eigen::Vector3d normal;
+  std::array<uint32_t, 3> voxel = {0, 0, 0};  // the voxel (cell) of the other object's voxmap it lies in
+  uint8_t state = 0;          // that voxel's state (0 on a distance device)
+  // Penetration into the other object, world units: the voxel estimate (docs/pairs.md); on a distance device the
+  // interpolated distance negated (positive inside, negative for a contact within the margin outside).
+  double depth = 0;
 };
 
 struct PairRequest {
@@ -81,6 +94,9 @@ struct PairOptions {
   // Each run of kept clusters is one job. The points left out are outside the voxmap on the device, so contacts and
   // hits never depend on it; lookups and device cycles do. docs/pairs.md.
   bool cull = true;
+  // Distance device: a point is a contact where the other object's interpolated distance is at most `margin`
+  // world units (0: touching or inside). RangeError when it does not fit the job's threshold (beyond the band).
+  double margin = 0;
 };
 
 // Where a job came from: its pair, its direction, and the index in the shell of its first point (a hit's point

@@ -41,6 +41,19 @@ void pose_job(const DeviceConfig& cfg, const RigidPose& a, const GridFrame& shel
   quantize_pose(cfg, relative_pose(a, shell_a, b, map_b), job);
 }
 
+int64_t distance_threshold(const DeviceConfig& cfg, double margin, double voxel, double step) {
+  const double unit = voxel * step / std::ldexp(1.0, 3 * cfg.WB);  // world units per unit of D
+  const double lim = std::ldexp(1.0, cfg.IW() - 1);
+  const double v = std::floor(margin / unit);
+  if (!std::isfinite(margin) || !(v >= -lim && v < lim)) {
+    throw RangeError("margin = " + std::to_string(margin) + " does not fit a distance job's threshold (signed " +
+                     std::to_string(cfg.IW()) + "-bit in units of " + std::to_string(unit) +
+                     " world units): it must lie in [" + std::to_string(-lim * unit) + ", " +
+                     std::to_string((lim - 1) * unit) + "]");
+  }
+  return int64_t(v);
+}
+
 RigidPose euler_pose(const Eigen::Vector3d& translation, const Eigen::Vector3d& degrees) {
   RigidPose p;
   p.translation = translation;

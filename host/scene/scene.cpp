@@ -162,6 +162,8 @@ Scene make_scene(const SceneSpec& spec) {
                                 num(extent / kMinVoxelsAcross) + ", or a resolution");
   ObjectOptions oo;
   oo.voxel = voxel;
+  oo.distance_bits = spec.distance_bits;
+  oo.band = spec.band;
   Scene scene;
   scene.side = spec.side;
   auto type = std::make_shared<ObjectType>(
@@ -378,7 +380,8 @@ Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(sc
   broadphase_ = make_broadphase(opt.pruning);
   std::vector<const ObjectType*> types;
   for (const auto& t : scene_.types) types.push_back(t.get());
-  const DeviceConfig cfg = opt.device ? *opt.device : device_config_for(opt.backend, opt.lanes, types);
+  const DeviceConfig cfg =
+      opt.device ? *opt.device : device_config_for(opt.backend, opt.lanes, types, opt.distance_bits);
   DeviceOptions dopt;
   dopt.threads = opt.threads;
   collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types);
@@ -460,6 +463,7 @@ FrameStats Simulation::step() {
   po.mode = opt_.mode;
   po.both_directions = opt_.both_directions;
   po.cull = opt_.cull;
+  po.margin = opt_.margin;
   collider_->collide(requests_, po, results_);
   double t4 = now();
   st.t_narrow = t4 - t3;

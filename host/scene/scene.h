@@ -49,6 +49,8 @@ struct SceneSpec {
   double voxel = std::numeric_limits<double>::quiet_NaN();
   uint32_t resolution = 0;  // voxels along the object's longest side (voxel_for_resolution); 0: not given
   uint64_t seed = 1;
+  int distance_bits = 0;    // 4, 8, 16: objects carry a distance field of that many bits (ObjectOptions); 0: none
+  double band = 4.0;        // the field's band, voxels
   bool voxel_given() const { return !std::isnan(voxel); }
 };
 
@@ -76,6 +78,14 @@ struct SimOptions {
   // The device's whole configuration (e.g. one `voxcd size` derived); it replaces `lanes` and the memories grown
   // to fit. Unset: the default widths with `lanes`.
   std::optional<DeviceConfig> device;
+  // A distance device of SB = distance_bits (every type must carry a field of at most that many bits); 0: the 2-bit
+  // device. Ignored when `device` is given (its SB decides).
+  int distance_bits = 0;
+  // Distance device: contacts where the other object's distance is at most `margin` world units (PairOptions).
+  double margin = 0;
+  // Continuous collision: no body passes through another or through a wall between frames (docs/simulate.md,
+  // "No tunnelling"); needs a distance device.
+  bool ccd = false;
   Mode mode = Mode::All;         // ALL reports every contact; FIRST only tells whether a pair touches
   bool both_directions = false;  // also test B's shell in A's voxmap
   unsigned threads = 0;          // cpu backend threads (0: all); results never depend on it

@@ -192,7 +192,7 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
   f.where = where;
   const Reader top(j, "", where);
   top.only({"types", "environment", "accuracy", "rate", "clock", "frames", "broadphase", "backend", "mode",
-            "both_directions"});
+            "both_directions", "distance_bits", "band", "ccd"});
   if (!top.has("types")) top.fail("types", "missing: a scene needs at least one object type");
   const json& types = top.at("types");
   if (!types.is_array()) top.fail("types", std::string("must be an array of object types, not ") + types.type_name());
@@ -243,6 +243,16 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
   if (top.string("backend", f.backend)) top.one_of("backend", f.backend, device_backends());
   if (top.string("mode", f.mode)) top.one_of("mode", f.mode, {"ALL", "FIRST", "COUNT"});
   top.boolean("both_directions", f.both_directions);
+  uint64_t bits = 0;
+  if (top.integer("distance_bits", bits, 4, 16)) {
+    if (bits != 4 && bits != 8 && bits != 16) top.fail("distance_bits", std::to_string(bits) + " is not 4, 8 or 16");
+    f.distance_bits = int(bits);
+  }
+  if (top.number("band", f.band, 0, 1e6, true) && f.distance_bits == 0)
+    top.fail("band", "is the band of distance fields: it needs \"distance_bits\"");
+  top.boolean("ccd", f.ccd);
+  if (f.ccd && f.distance_bits == 0)
+    top.fail("ccd", "continuous collision bounds each step by the distance fields: it needs \"distance_bits\"");
   return f;
 }
 
@@ -357,6 +367,8 @@ Scene make_scene(const SceneFile& f) {
     ObjectOptions oo;
     oo.voxel = voxel[i];
     oo.shell_ratio = std::sqrt(2.0) * (voxel[i] / vmin);
+    oo.distance_bits = f.distance_bits;
+    oo.band = f.band;
     try {
       scene.types.push_back(
           std::make_shared<ObjectType>(make_object_type(make_object(l.mesh, l.source, l.hash, oo), t.name)));

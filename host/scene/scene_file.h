@@ -53,6 +53,9 @@ struct SceneFile {
   std::string backend = "cpu";
   std::string mode = "ALL";
   bool both_directions = false;
+  int distance_bits = 0;  // "distance_bits": 4, 8 or 16 (distance voxmaps); 0: not given (2-bit states)
+  double band = 4.0;      // "band": the distance fields' band, voxels
+  bool ccd = false;       // "ccd": continuous collision (needs distance_bits)
 
   // The requested accuracy, or by default 1/50 of the smallest voxel of the scene's types: of the scene made from
   // the file (make_scene resolves the types' resolutions and default voxels), or without it of the voxels the file

@@ -60,6 +60,12 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
   if (req.resolution && (*req.resolution < kMinVoxelsAcross || *req.resolution > 1020))
     throw SimulateOptionError({"resolution"}, std::to_string(*req.resolution) + " is outside [" +
                                                   std::to_string(kMinVoxelsAcross) + ", 1020]");
+  if (req.distance_bits && *req.distance_bits != 0 && *req.distance_bits != 4 && *req.distance_bits != 8 &&
+      *req.distance_bits != 16)
+    throw SimulateOptionError({"distance_bits"}, std::to_string(*req.distance_bits) + " is not 4, 8 or 16");
+  if (req.band && !(*req.band > 0 && std::isfinite(*req.band)))
+    throw SimulateOptionError({"band"}, "must be a positive number of voxels");
+  if (req.margin && !std::isfinite(*req.margin)) throw SimulateOptionError({"margin"}, "must be a finite number");
   if (req.objects) spec.objects = *req.objects;
   if (req.shape) spec.shape = *req.shape;
   if (req.voxel) spec.voxel = *req.voxel;
@@ -67,6 +73,12 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
   if (req.density) spec.density = *req.density;
   if (req.speed) spec.speed = *req.speed;
   if (req.seed) spec.seed = *req.seed;
+  if (req.distance_bits) spec.distance_bits = sim.distance_bits = *req.distance_bits;
+  // A whole distance configuration without --distance-bits: the objects' fields take its SB.
+  if (!req.distance_bits && req.device && req.device->distance()) spec.distance_bits = req.device->SB;
+  if (req.band) spec.band = *req.band;
+  if (req.margin) sim.margin = *req.margin;
+  if (req.ccd) sim.ccd = *req.ccd;
   if (req.pruning) sim.pruning = *req.pruning;
   if (req.backend) sim.backend = *req.backend;
   if (req.both_directions) sim.both_directions = *req.both_directions;
@@ -103,6 +115,12 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
     if (!req.both_directions) sim.both_directions = f.both_directions;
     if (!req.frames) frames = f.frames;
     if (!req.clock) clock = f.clock;
+    if (req.distance_bits) f.distance_bits = *req.distance_bits;
+    else if (req.device && req.device->distance()) f.distance_bits = req.device->SB;
+    if (req.band) f.band = *req.band;
+    if (!req.ccd) sim.ccd = f.ccd;
+    spec.distance_bits = sim.distance_bits = f.distance_bits;
+    spec.band = f.band;
     spec.objects = f.objects();
     spec.side = f.side;
     spec.density = f.density;
@@ -120,6 +138,9 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
     sim.device = cfg;
   }
   if (sim.device) sim.lanes = sim.device->LANES;
+  if (sim.ccd && (sim.device ? !sim.device->distance() : sim.distance_bits == 0))
+    throw SimulateOptionError({"ccd"}, "continuous collision bounds each step by the distance fields: it needs "
+                                       "distance voxmaps (--distance-bits 4, 8 or 16)");
 
   s.shape = spec.shape;
   s.objects = spec.objects;
@@ -133,6 +154,10 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
   s.backend = sim.backend;
   s.mode = mode;
   s.both_directions = sim.both_directions;
+  s.distance_bits = sim.device ? (sim.device->distance() ? sim.device->SB : 0) : sim.distance_bits;
+  s.band = spec.band;
+  s.margin = sim.margin;
+  s.ccd = sim.ccd;
   s.frames = frames;
   s.clock = clock;
   s.lanes = sim.lanes;

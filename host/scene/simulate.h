@@ -39,6 +39,10 @@ struct SimulateRequest {
   std::optional<double> clock;         // MHz, for the modelled frame rate; default 200
   std::optional<int> lanes;            // default 4; overrides the LANES of `device`
   std::optional<DeviceConfig> device;  // the device's whole configuration (SimOptions::device)
+  std::optional<int> distance_bits;    // 4, 8, 16: distance voxmaps (SimOptions::distance_bits); default 0
+  std::optional<double> band;          // the distance fields' band, voxels; default 4
+  std::optional<double> margin;        // world units (SimOptions::margin); default 0
+  std::optional<bool> ccd;             // continuous collision (SimOptions::ccd); default off
   unsigned threads = 0;                // cpu backend threads (0: all); results never depend on it
   bool midphase = true;                // SimOptions::midphase
   bool cull = true;                    // SimOptions::cull
@@ -76,6 +80,9 @@ struct SimulationSummary {
   DeviceConfig device;        // the configuration the run used
   std::string pruning, backend, mode;
   bool both_directions = false;
+  int distance_bits = 0;  // 0: 2-bit voxmaps
+  double band = 0, margin = 0;
+  bool ccd = false;
   uint64_t frames = 0;
   double clock = 0;  // MHz
   int lanes = 0;
