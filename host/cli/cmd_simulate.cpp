@@ -114,7 +114,12 @@ int simulate_cmd(const SimulateArgs& a) {
       << ", \"lookups\": " << tot.lookups << ", \"hits\": " << tot.hits << ", \"contacts\": " << tot.contacts
       << ", \"stage_seconds\": {\"integrate\": " << tot.t_integrate << ", \"bounds\": " << tot.t_bounds
       << ", \"broadphase\": " << tot.t_broadphase << ", \"narrow\": " << tot.t_narrow
-      << ", \"response\": " << tot.t_response << "}, \"lanes\": " << s.lanes
+      << ", \"response\": " << tot.t_response << "}";
+    if (s.ccd)
+      o << ", \"ccd\": {\"iterations\": " << tot.ccd_iterations << ", \"queries\": " << tot.ccd_queries
+        << ", \"pairs_limited\": " << tot.ccd_limited << ", \"time_of_impact_events\": " << tot.ccd_toi
+        << ", \"bodies_dropped\": " << tot.ccd_dropped << ", \"lookups\": " << tot.ccd_lookups << "}";
+    o << ", \"lanes\": " << s.lanes
       << ", \"device_cycles\": " << tot.cycles << ", \"device_cycles_per_frame\": " << cyc_per_frame
       << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"clock_mhz\": " << s.clock
       << ", \"device_frame_rate_hz\": " << device_rate << ", \"state_hash\": \"" << std::hex << s.state_hash
@@ -150,6 +155,11 @@ int simulate_cmd(const SimulateArgs& a) {
               "%.1f contacts, %.3f responses, %.3f wall bounces\n",
               double(tot.pairs) / F, double(tot.tested) / F, double(tot.touching) / F, double(tot.lookups) / F, double(tot.contacts) / F,
               double(tot.responses) / F, double(tot.wall_hits) / F);
+  if (s.ccd)
+    std::printf("no tunnelling   per frame %.2f advancement steps, %.2f pair queries (%.1f lookups), %.3f pairs limited, "
+                "%.3f time-of-impact events, %.3f bodies whose rest of the frame the cap dropped\n",
+                double(tot.ccd_iterations) / F, double(tot.ccd_queries) / F, double(tot.ccd_lookups) / F,
+                double(tot.ccd_limited) / F, double(tot.ccd_toi) / F, double(tot.ccd_dropped) / F);
   std::printf("time per stage  integrate %.1f us, bounds %.1f us, broadphase %.1f us, pair tests %.1f us, "
               "response %.1f us\n",
               1e6 * tot.t_integrate / F, 1e6 * tot.t_bounds / F, 1e6 * tot.t_broadphase / F, 1e6 * tot.t_narrow / F,

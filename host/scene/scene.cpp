@@ -85,6 +85,16 @@ BodyBounds body_bounds(const ObjectType& t, const Body& b, const Eigen::Matrix3d
   return bb;
 }
 
+bool respond(Body& a, Body& b, const Eigen::Vector3d& n) {
+  const double closing = (b.velocity - a.velocity).dot(n);
+  if (closing >= 0) return false;
+  a.velocity += closing * n;
+  b.velocity -= closing * n;
+  a.spin = -a.spin;
+  b.spin = -b.spin;
+  return true;
+}
+
 double default_voxel(double volume, double extent) {
   double v = std::cbrt(volume / kPaperObjectVolume);
   if (!(v >= extent / kDefaultMostAcross)) v = extent / kDefaultMostAcross;  // also a volume that is not positive
@@ -386,6 +396,12 @@ Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(sc
   dopt.threads = opt.threads;
   collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types);
   moved_.assign(scene_.bodies.size(), true);
+  if (opt.ccd) {
+    if (!cfg.distance())
+      throw std::invalid_argument("ccd: continuous collision bounds each step by the distance fields: it needs a "
+                                  "distance device (distance_bits 4, 8 or 16)");
+    ccd_ = std::make_unique<ContinuousCollision>(scene_.types, cfg, opt.ccd_max_iterations, opt.cull);
+  }
 }
 
 void Simulation::compute_bounds() {
@@ -411,7 +427,18 @@ FrameStats Simulation::step() {
 
   // Integrate (explicit Euler), renormalising the orientation; bounce off the walls by the bounding sphere.
   double t0 = now();
-  for (size_t i = 0; i < n; ++i) {
+  if (ccd_) {
+    const CcdStats c = ccd_->advance(scene_, *collider_, moved_, st.wall_hits);
+    st.ccd_iterations = c.iterations;
+    st.ccd_queries = c.queries;
+    st.ccd_limited = c.limited;
+    st.ccd_toi = c.toi;
+    st.ccd_dropped = c.dropped;
+    st.ccd_lookups = c.lookups;
+    st.responses += c.pair_toi;
+    st.device_cycles += c.cycles;
+  }
+  for (size_t i = 0; i < n && !ccd_; ++i) {
     Body& b = scene_.bodies[i];
     b.pose.translation += b.velocity;
     const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
@@ -490,12 +517,7 @@ FrameStats Simulation::step() {
     if (nrm.squaredNorm() < 1e-12) nrm = bounds_[pairs[k].second].centre - bounds_[pairs[k].first].centre;
     if (nrm.squaredNorm() < 1e-24) nrm = Eigen::Vector3d::UnitX();
     nrm.normalize();
-    const double closing = (b.velocity - a.velocity).dot(nrm);
-    if (closing >= 0) continue;  // separating already
-    a.velocity += closing * nrm;
-    b.velocity -= closing * nrm;
-    a.spin = -a.spin;
-    b.spin = -b.spin;
+    if (!respond(a, b, nrm)) continue;  // separating already
     moved_[pairs[k].first] = moved_[pairs[k].second] = true;
     ++st.responses;
   }

@@ -15,6 +15,7 @@
 
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/scene/ccd.h"
 #include "voxcd/host/object/object_type.h"
 
 namespace voxcd {
@@ -86,6 +87,9 @@ struct SimOptions {
   // Continuous collision: no body passes through another or through a wall between frames (docs/simulate.md,
   // "No tunnelling"); needs a distance device.
   bool ccd = false;
+  // Continuous collision: advancement steps per frame; at the cap the bodies still limited keep their place for
+  // the rest of the frame (counted in FrameStats::ccd_dropped).
+  uint32_t ccd_max_iterations = 64;
   Mode mode = Mode::All;         // ALL reports every contact; FIRST only tells whether a pair touches
   bool both_directions = false;  // also test B's shell in A's voxmap
   unsigned threads = 0;          // cpu backend threads (0: all); results never depend on it
@@ -107,7 +111,11 @@ struct FrameStats {
   uint64_t lookups = 0;     // shell points submitted
   uint64_t hits = 0;
   uint64_t contacts = 0;
-  uint64_t device_cycles = 0;  // of the frame's job stream (measured on rtl, the timing model on ref and cpu)
+  uint64_t device_cycles = 0;  // of the frame's job streams (measured on rtl, the timing model on ref and cpu)
+  // Continuous collision (SimOptions::ccd; all 0 without it): advancement steps, pair queries, distinct pairs whose
+  // bound cut a step short, time-of-impact events (pair responses and wall reflections, also counted in responses
+  // and wall_hits), bodies whose remaining motion the iteration cap dropped, shell points the queries submitted.
+  uint64_t ccd_iterations = 0, ccd_queries = 0, ccd_limited = 0, ccd_toi = 0, ccd_dropped = 0, ccd_lookups = 0;
   // Seconds per stage.
   double t_integrate = 0, t_bounds = 0, t_broadphase = 0, t_narrow = 0, t_response = 0;
   double seconds() const { return t_integrate + t_bounds + t_broadphase + t_narrow + t_response; }
@@ -117,7 +125,9 @@ class Simulation {
  public:
   // The device is configured from the scene: only its object types are loaded, with memories grown to fit them.
   Simulation(Scene scene, const SimOptions& opt);
-  // One frame: integrate, bounce off the walls, bounds, broadphase, pair tests, response.
+  // One frame: integrate, bounce off the walls (with ccd: advance without tunnelling, ContinuousCollision), bounds,
+  // broadphase, pair tests, response. std::invalid_argument from the constructor when ccd is asked of a device
+  // without distance voxmaps.
   FrameStats step();
   const Scene& scene() const { return scene_; }
   const Broadphase& broadphase() const { return *broadphase_; }
@@ -133,6 +143,7 @@ class Simulation {
   SimOptions opt_;
   std::unique_ptr<Broadphase> broadphase_;
   std::unique_ptr<PairCollider> collider_;
+  std::unique_ptr<ContinuousCollision> ccd_;  // when opt.ccd
   std::vector<BodyBounds> bounds_;
   // Each body's rotation matrix and the world centre of its contact box, this frame (for the mid-phase).
   std::vector<Eigen::Matrix3d> rot_;
@@ -174,6 +185,11 @@ Eigen::Quaterniond scene_rotation(std::mt19937_64& rng);
 // (0 when one does not fit); the most bodies it places whatever the seed.
 uint64_t lattice_capacity(double side, double r);
 Eigen::Vector3d scene_direction(std::mt19937_64& rng);
+
+// The response to a touching pair, n the unit normal from A towards B: when they approach along n, the velocity
+// components along n are exchanged (an elastic impulse between equal masses) and both spins reversed; false, and
+// nothing changed, when they separate already.
+bool respond(Body& a, Body& b, const Eigen::Vector3d& n);
 
 // A body's world bounds: its type's smallest enclosing sphere and the world box of its type's local box.
 BodyBounds body_bounds(const ObjectType& t, const Body& b);

@@ -26,6 +26,8 @@ void SimulationTotals::add(const FrameStats& f) {
   pairs += f.pairs, tested += f.tested, touching += f.touching, responses += f.responses, wall_hits += f.wall_hits;
   lookups += f.lookups, hits += f.hits, contacts += f.contacts, cycles += f.device_cycles;
   max_cycles = std::max(max_cycles, f.device_cycles);
+  ccd_iterations += f.ccd_iterations, ccd_queries += f.ccd_queries, ccd_limited += f.ccd_limited;
+  ccd_toi += f.ccd_toi, ccd_dropped += f.ccd_dropped, ccd_lookups += f.ccd_lookups;
   t_integrate += f.t_integrate, t_bounds += f.t_bounds, t_broadphase += f.t_broadphase;
   t_narrow += f.t_narrow, t_response += f.t_response;
 }

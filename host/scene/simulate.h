@@ -62,6 +62,8 @@ struct SimulationTotals {
   uint64_t pairs = 0, tested = 0, touching = 0, responses = 0, wall_hits = 0, lookups = 0, hits = 0, contacts = 0;
   uint64_t cycles = 0;      // device cycles of every frame
   uint64_t max_cycles = 0;  // of the largest frame
+  // Continuous collision (FrameStats::ccd_*).
+  uint64_t ccd_iterations = 0, ccd_queries = 0, ccd_limited = 0, ccd_toi = 0, ccd_dropped = 0, ccd_lookups = 0;
   double t_integrate = 0, t_bounds = 0, t_broadphase = 0, t_narrow = 0, t_response = 0;  // seconds
   double seconds() const { return t_integrate + t_bounds + t_broadphase + t_narrow + t_response; }
   void add(const FrameStats& f);

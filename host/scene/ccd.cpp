@@ -1,0 +1,293 @@
+#include "voxcd/host/scene/ccd.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "voxcd/host/pairs/pose.h"
+#include "voxcd/host/scene/scene.h"
+
+namespace voxcd {
+
+namespace {
+
+const double kSqrt3 = std::sqrt(3.0);
+
+// No point of a body of type t moves faster: its linear speed plus its spin times the farthest point's distance
+// from the rotation centre (the body's origin), as body_bounds' max_speed.
+double motion_bound(const ObjectType& t, const Body& b) {
+  return b.velocity.norm() + b.spin.norm() * (t.centre.norm() + t.radius);
+}
+
+}  // namespace
+
+DistanceBound::DistanceBound(const std::vector<std::shared_ptr<const ObjectType>>& types, const DeviceConfig& cfg) {
+  if (!cfg.distance())
+    throw std::invalid_argument("continuous collision bounds distances with a distance device (SB 4, 8 or 16)");
+  const double wb = std::ldexp(1.0, -cfg.WB), scale = std::ldexp(1.0, 3 * cfg.WB);
+  margin_ = std::numeric_limits<double>::infinity();
+  for (const auto& tp : types) {
+    const ObjectType& t = *tp;
+    const DistanceField& f = t.object.distance;
+    if (f.empty() || f.bits > cfg.SB)
+      throw std::invalid_argument("continuous collision: object '" + t.name + "' has no distance field of at most " +
+                                  std::to_string(cfg.SB) + " bits");
+    const double s = f.step;
+    // A field that is clamped within the interpolation's error of the surface cannot tell a far point from a near one.
+    if (!(f.band() > s + kSqrt3 + ContinuousCollision::kTolerance))
+      throw std::invalid_argument("continuous collision: object '" + t.name + "' has a distance band of " +
+                                  std::to_string(f.band()) + " voxels; at least " +
+                                  std::to_string(s + kSqrt3 + ContinuousCollision::kTolerance) + " are needed");
+    margin_ = std::min(margin_, double(f.qmax()) * s * t.voxmap().voxel());
+  }
+  // Per axis, in voxels of the map, per unit of the shell's largest coordinate (the matrix term) and the translation's.
+  fixed_unit_ = 3 * std::ldexp(1.0, -(cfg.MF + 1));
+  const double t_err = std::ldexp(1.0, -(cfg.TF() + 1));
+  for (const auto& tp : types) {
+    const ObjectType& t = *tp;
+    const DistanceField& f = t.object.distance;
+    const Voxmap& vm = t.voxmap();
+    Type y;
+    y.voxel = vm.voxel();
+    y.field_error = y.voxel * (f.step / 2 + kSqrt3 / 2 + kSqrt3 * wb);
+    y.fixed_error = kSqrt3 * t_err * y.voxel;
+    y.shell_gap = kSqrt3 / 2 * t.shell().grid.voxel;
+    const Eigen::Vector3d lo = vm.origin();
+    const Eigen::Vector3d hi = lo + y.voxel * Eigen::Vector3d(vm.dims()[0], vm.dims()[1], vm.dims()[2]);
+    y.pad = std::min((t.lo - lo).minCoeff(), (hi - t.hi).minCoeff());
+    const int64_t thr = distance_threshold(cfg, margin_, y.voxel, f.step);
+    y.none = y.voxel * f.step * double(thr + 1) / scale - y.field_error;
+    for (const auto& c : t.shell().cells)
+      for (int i = 0; i < 3; ++i) y.pmax = std::max(y.pmax, double(c[size_t(i)]) + 1);
+    y.half = 0.5 * (t.hi - t.lo);
+    y.mid = 0.5 * (t.hi + t.lo);
+    y.radius = t.radius;
+    y.centre = t.centre;
+    types_.push_back(y);
+  }
+}
+
+double DistanceBound::direction(const Type& shell, const Type& map, double min_distance, bool any) const {
+  // The fixed-point path puts the point within this of its exact place (Euclidean, world units).
+  const double fix = kSqrt3 * fixed_unit_ * shell.pmax * map.voxel + map.fixed_error;
+  // A point that reports nothing is outside the map's grid (at least the pad from its solid) or inside with a
+  // distance above the threshold.
+  double lb = std::min(map.pad, map.none) - fix;
+  if (any) lb = std::min(lb, min_distance - map.field_error - fix);
+  return lb - shell.shell_gap;
+}
+
+double DistanceBound::device(uint32_t ta, uint32_t tb, const PairResult& r) const {
+  double dab = std::numeric_limits<double>::infinity(), dba = dab;
+  bool ab = false, ba = false;
+  for (const Contact& c : r.contacts) {
+    if (c.a_in_b) dab = std::min(dab, -c.depth), ab = true;
+    else dba = std::min(dba, -c.depth), ba = true;
+  }
+  const Type &a = types_.at(ta), &b = types_.at(tb);
+  return std::min(direction(a, b, dab, ab), direction(b, a, dba, ba));
+}
+
+double DistanceBound::geometric(uint32_t ta, const Eigen::Matrix3d& Ra, const Eigen::Vector3d& Ta, uint32_t tb,
+                                const Eigen::Matrix3d& Rb, const Eigen::Vector3d& Tb) const {
+  const Type &a = types_.at(ta), &b = types_.at(tb);
+  // The enclosing spheres.
+  double lb = (Ra * a.centre + Ta - Rb * b.centre - Tb).norm() - a.radius - b.radius;
+  // The contact boxes, on each box's face axes: a projected gap never exceeds the distance.
+  const Eigen::Vector3d d = (Rb * b.mid + Tb) - (Ra * a.mid + Ta);
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d u = Ra.col(i);
+    const double ga = std::abs(d.dot(u)) - a.half[i] - (Rb.transpose() * u).cwiseAbs().dot(b.half);
+    const Eigen::Vector3d w = Rb.col(i);
+    const double gb = std::abs(d.dot(w)) - b.half[i] - (Ra.transpose() * w).cwiseAbs().dot(a.half);
+    lb = std::max(lb, std::max(ga, gb));
+  }
+  return lb;
+}
+
+ContinuousCollision::ContinuousCollision(const std::vector<std::shared_ptr<const ObjectType>>& types,
+                                         const DeviceConfig& cfg, uint32_t max_iterations, bool cull)
+    : bound_(types, cfg), max_iterations_(max_iterations), cull_(cull), swept_(make_broadphase("sap")) {}
+
+void ContinuousCollision::pose_at(size_t i, double t, Body& b) const {
+  // The integration of Simulation::step over the time since the segment's start: at h = 1 exactly its arithmetic.
+  const double h = t - s0_[i];
+  b.pose.translation = t0_[i] + b.velocity * h;
+  const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
+  Eigen::Quaterniond q = q0_[i];
+  q.coeffs() += (0.5 * h) * (w * q0_[i]).coeffs();
+  b.pose.rotation = q.normalized();
+}
+
+void ContinuousCollision::candidates(const Scene& scene, double t) {
+  // Every body's sphere grown by what its motion bound allows over the rest of the frame.
+  const size_t n = scene.bodies.size();
+  sweep_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Body& b = scene.bodies[i];
+    const ObjectType& ty = *scene.types[b.type];
+    BodyBounds& s = sweep_[i];
+    s.centre = b.pose.rotation * ty.centre + b.pose.translation;
+    s.radius = ty.radius + speed_[i] * (1 - t);
+    s.box.lo = s.centre - Eigen::Vector3d::Constant(s.radius);
+    s.box.hi = s.centre + Eigen::Vector3d::Constant(s.radius);
+  }
+  swept_->update(sweep_, calls_++);
+  cand_.clear();
+  for (const BodyPair& p : swept_->pairs())
+    if (spheres_overlap(sweep_[p.first], sweep_[p.second])) cand_.push_back(p);
+}
+
+CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std::vector<bool>& moved,
+                                      uint64_t& wall_hits) {
+  CcdStats st;
+  const size_t n = scene.bodies.size();
+  t0_.resize(n);
+  q0_.resize(n);
+  s0_.assign(n, 0.0);
+  speed_.resize(n);
+  rot_.resize(n);
+  limit_.assign(n, 0);
+  limited_.clear();
+  for (size_t i = 0; i < n; ++i) {
+    const Body& b = scene.bodies[i];
+    t0_[i] = b.pose.translation;
+    q0_[i] = b.pose.rotation;
+    speed_[i] = motion_bound(*scene.types[b.type], b);
+  }
+  auto restart = [&](size_t i, double t) {  // a new segment: the body's velocity changes at t
+    t0_[i] = scene.bodies[i].pose.translation;
+    q0_[i] = scene.bodies[i].pose.rotation;
+    s0_[i] = t;
+  };
+  PairOptions po;
+  po.mode = Mode::All;
+  po.both_directions = true;
+  po.cull = cull_;
+  po.margin = bound_.margin();
+  const bool cycles = collider.device().models_cycles();
+  double now = 0;
+  bool rebuild = true;
+  for (uint32_t iter = 0; now < 1; ++iter) {
+    if (iter == max_iterations_) {
+      // The cap: the bodies that limited the last step keep their place for the rest of the frame; the others
+      // could not reach them, another body or a wall before the frame's end, so they finish it.
+      for (size_t i = 0; i < n; ++i) {
+        if (limit_[i]) ++st.dropped;
+        else pose_at(i, 1.0, scene.bodies[i]);
+      }
+      break;
+    }
+    if (rebuild) candidates(scene, now);
+    rebuild = false;
+    ++st.iterations;
+    const double rest = 1 - now;
+    std::fill(limit_.begin(), limit_.end(), 0);
+    for (size_t i = 0; i < n; ++i) rot_[i] = scene.bodies[i].pose.rotation.toRotationMatrix();
+
+    // The pairs that could close their gap before the frame's end, by spheres and boxes, go to the device.
+    requests_.clear();
+    queried_.clear();
+    geo_.resize(cand_.size());
+    for (size_t k = 0; k < cand_.size(); ++k) {
+      const uint32_t ia = cand_[k].first, ib = cand_[k].second;
+      const Body &a = scene.bodies[ia], &b = scene.bodies[ib];
+      geo_[k] = bound_.geometric(a.type, rot_[ia], a.pose.translation, b.type, rot_[ib], b.pose.translation);
+      const double tol = kTolerance * std::min(scene.types[a.type]->voxmap().voxel(),
+                                               scene.types[b.type]->voxmap().voxel());
+      if (geo_[k] > tol && geo_[k] >= (speed_[ia] + speed_[ib]) * rest) continue;
+      PairRequest r;
+      r.a = a.type;
+      r.b = b.type;
+      r.pose_a = a.pose;
+      r.pose_b = b.pose;
+      requests_.push_back(r);
+      queried_.push_back(uint32_t(k));
+    }
+    if (!requests_.empty()) collider.collide(requests_, po, results_);
+    st.queries += requests_.size();
+    if (cycles && !requests_.empty()) st.cycles += 1;
+
+    bool responded = false;
+    double dt = rest;
+    for (size_t q = 0; q < requests_.size(); ++q) {
+      const PairResult& r = results_[q];
+      st.lookups += r.lookups;
+      st.cycles += r.cycles;
+      const uint32_t ia = cand_[queried_[q]].first, ib = cand_[queried_[q]].second;
+      Body &a = scene.bodies[ia], &b = scene.bodies[ib];
+      const double va = scene.types[a.type]->voxmap().voxel(), vb = scene.types[b.type]->voxmap().voxel();
+      const double lb = std::max(geo_[queried_[q]], bound_.device(a.type, b.type, r));
+      if (lb <= kTolerance * std::min(va, vb)) {
+        // Contact: the normal from A towards B over the contacts nearest the surfaces (the field's gradients), the
+        // line between the spheres' centres when they give none.
+        double dmin = std::numeric_limits<double>::infinity();
+        for (const Contact& c : r.contacts) dmin = std::min(dmin, -c.depth);
+        Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
+        for (const Contact& c : r.contacts)
+          if (-c.depth <= dmin + std::max(va, vb)) nrm += c.a_in_b ? c.normal : -c.normal;
+        if (nrm.squaredNorm() < 1e-12)
+          nrm = (b.pose.rotation * scene.types[b.type]->centre + b.pose.translation) -
+                (a.pose.rotation * scene.types[a.type]->centre + a.pose.translation);
+        if (nrm.squaredNorm() < 1e-24) nrm = Eigen::Vector3d::UnitX();
+        nrm.normalize();
+        if (respond(a, b, nrm)) {
+          restart(ia, now);
+          restart(ib, now);
+          speed_[ia] = motion_bound(*scene.types[a.type], a);
+          speed_[ib] = motion_bound(*scene.types[b.type], b);
+          moved[ia] = moved[ib] = true;
+          limit_[ia] = limit_[ib] = 1;
+          ++st.toi;
+          ++st.pair_toi;
+          responded = true;
+        }
+        continue;  // touching and separating: it does not limit the step
+      }
+      const double vs = speed_[ia] + speed_[ib];
+      if (vs > 0 && lb < vs * rest) {
+        dt = std::min(dt, lb / vs);
+        limit_[ia] = limit_[ib] = 1;
+        limited_.push_back(uint64_t(ia) << 32 | ib);
+      }
+    }
+
+    // Walls, by the bounding sphere: its centre moves along an axis at most that velocity component plus the spin
+    // times the centre's distance from the rotation centre.
+    for (size_t i = 0; i < n; ++i) {
+      Body& b = scene.bodies[i];
+      const ObjectType& t = *scene.types[b.type];
+      const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
+      const double tol = kTolerance * t.voxmap().voxel(), swing = b.spin.norm() * t.centre.norm();
+      for (int ax = 0; ax < 3; ++ax) {
+        const double low = c[ax] - t.radius, high = scene.side - c[ax] - t.radius;
+        if ((low <= tol && b.velocity[ax] < 0) || (high <= tol && b.velocity[ax] > 0)) {
+          restart(i, now);
+          b.velocity[ax] = -b.velocity[ax];
+          moved[i] = true;
+          limit_[i] = 1;
+          ++st.toi;
+          ++wall_hits;
+        }
+        const double rate_low = std::max(0.0, -b.velocity[ax]) + swing;
+        const double rate_high = std::max(0.0, b.velocity[ax]) + swing;
+        if (low > tol && rate_low > 0 && low < rate_low * rest) dt = std::min(dt, low / rate_low), limit_[i] = 1;
+        if (high > tol && rate_high > 0 && high < rate_high * rest) dt = std::min(dt, high / rate_high), limit_[i] = 1;
+      }
+    }
+    // A response can make a body faster than its swept sphere allowed: find the candidates again, then step.
+    if (responded) {
+      rebuild = true;
+      continue;
+    }
+    now = dt >= rest ? 1.0 : now + dt;
+    for (size_t i = 0; i < n; ++i) pose_at(i, now, scene.bodies[i]);
+  }
+  std::sort(limited_.begin(), limited_.end());
+  st.limited = uint64_t(std::unique(limited_.begin(), limited_.end()) - limited_.begin());
+  return st;
+}
+
+}  // namespace voxcd

@@ -1,0 +1,107 @@
+// Continuous collision by conservative advancement (docs/simulate.md, "No tunnelling"): a frame's motion is taken in
+// steps no longer than any candidate pair's lower bound on its distance (from the distance device) or any wall's gap
+// allows, so no body passes through another or through a wall between frames.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "voxcd/host/broadphase/broadphase.h"
+#include "voxcd/host/pairs/collide.h"
+
+namespace voxcd {
+
+struct Scene;
+struct Body;
+
+// What one frame of continuous collision did.
+struct CcdStats {
+  uint64_t iterations = 0;  // advancement steps (each one batch of pair queries)
+  uint64_t queries = 0;     // pair queries sent to the device, over all steps
+  uint64_t limited = 0;     // distinct pairs whose distance bound cut a step short of the frame's end
+  uint64_t toi = 0;         // time-of-impact events: pair responses and wall reflections during the advancement
+  uint64_t pair_toi = 0;    // of those, pair responses
+  uint64_t dropped = 0;     // bodies whose remaining motion the iteration cap dropped (0 unless the cap was reached)
+  uint64_t lookups = 0;     // shell points the queries submitted
+  uint64_t cycles = 0;      // device cycles of the queries' job streams
+};
+
+// A lower bound on the distance between two bodies' solids from one both-directions query (ALL mode, margin as
+// ContinuousCollision::margin()): the terms of docs/simulate.md, "The bound".
+class DistanceBound {
+ public:
+  // Per type, from the distance device cfg. std::invalid_argument naming the type when it has no distance field or
+  // its band is too narrow to bound a distance (at most the interpolation's error).
+  DistanceBound(const std::vector<std::shared_ptr<const ObjectType>>& types, const DeviceConfig& cfg);
+  // The query's margin, world units: the largest distance every type's field still represents.
+  double margin() const { return margin_; }
+  // World units, for bodies of types ta, tb and a result of the query of pair (A, B) (both directions); may be
+  // negative (touching or overlapping).
+  double device(uint32_t ta, uint32_t tb, const PairResult& r) const;
+  // The bound of the bounding spheres and oriented contact boxes (no device), for bodies of rotations Ra, Rb and
+  // translations Ta, Tb: world units, may be negative.
+  double geometric(uint32_t ta, const Eigen::Matrix3d& Ra, const Eigen::Vector3d& Ta, uint32_t tb,
+                   const Eigen::Matrix3d& Rb, const Eigen::Vector3d& Tb) const;
+
+ private:
+  struct Type {
+    double field_error = 0;  // world: rounding, interpolation and truncation of a looked-up distance
+    double fixed_error = 0;  // world per unit voxel of the map: sqrt(3) x the fixed-point path's bound, in voxels
+    double shell_gap = 0;    // world: every surface point is this close to a shell point
+    double pad = 0;          // world: the grid's margin around the contact box
+    double none = 0;         // world: the distance a point inside the grid that reports nothing has at least
+    double voxel = 0;
+    double pmax = 0;         // the largest shell coordinate, shell units
+    Eigen::Vector3d half = Eigen::Vector3d::Zero(), mid = Eigen::Vector3d::Zero();  // contact box
+    double radius = 0;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  };
+  double direction(const Type& shell, const Type& map, double min_distance, bool any) const;
+  std::vector<Type> types_;
+  double margin_ = 0, fixed_unit_ = 0;
+};
+
+class ContinuousCollision {
+ public:
+  // types, cfg: as DistanceBound. max_iterations: advancement steps per frame before the cap drops the remaining
+  // motion of the bodies still limited.
+  ContinuousCollision(const std::vector<std::shared_ptr<const ObjectType>>& types, const DeviceConfig& cfg,
+                      uint32_t max_iterations, bool cull);
+  // Moves every body through one frame (the integration of Simulation::step, cut into steps), responding at each
+  // time of impact; sets moved[i] for every body whose velocity changed. Deterministic whatever the device's threads.
+  CcdStats advance(Scene& scene, PairCollider& collider, std::vector<bool>& moved, uint64_t& wall_hits);
+  const DistanceBound& bound() const { return bound_; }
+
+  // Contact when a pair's bound is at most this fraction of the finer voxel (and a wall's gap at most this
+  // fraction of the body's voxel).
+  static constexpr double kTolerance = 0.5;
+
+ private:
+  void pose_at(size_t i, double t, Body& b) const;
+  void candidates(const Scene& scene, double t);
+
+  DistanceBound bound_;
+  uint32_t max_iterations_;
+  bool cull_;
+  std::unique_ptr<Broadphase> swept_;
+  // Per body: its motion since the start of its current segment (the frame's start or its last velocity change).
+  std::vector<Eigen::Vector3d> t0_;
+  std::vector<Eigen::Quaterniond> q0_;
+  std::vector<double> s0_;
+  std::vector<double> speed_;      // no point moves faster (world units per frame)
+  std::vector<BodyBounds> sweep_;
+  std::vector<BodyPair> cand_;
+  uint64_t calls_ = 0;             // updates of the swept broadphase
+  std::vector<Eigen::Matrix3d> rot_;
+  std::vector<double> geo_;        // each candidate's geometric bound this step
+  std::vector<PairRequest> requests_;
+  std::vector<uint32_t> queried_;  // candidate index of each request
+  std::vector<PairResult> results_;
+  std::vector<uint8_t> limit_;     // body limited the last step (dropped at the cap)
+  std::vector<uint64_t> limited_;  // pair keys that cut a step this frame
+};
+
+}  // namespace voxcd
