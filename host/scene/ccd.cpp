@@ -53,14 +53,22 @@ DistanceBound::DistanceBound(const std::vector<std::shared_ptr<const ObjectType>
     y.voxel = vm.voxel();
     y.field_error = y.voxel * (f.step / 2 + kSqrt3 / 2 + kSqrt3 * wb);
     y.fixed_error = kSqrt3 * t_err * y.voxel;
-    y.shell_gap = kSqrt3 / 2 * t.shell().grid.voxel;
+    // Every surface point lies in a surface voxel of the shell grid (spacing h), within sqrt(3)/2 h of its centre;
+    // a shell on the surface moves that centre to its closest surface point (no farther than the surface point)
+    // and rounds it to 2^-kShellFrac h per axis.
+    const PointShell& sh = t.shell();
+    const double h = sh.grid.voxel;
+    y.shell_gap = sh.on_surface ? kSqrt3 * h + kSqrt3 / 2 * std::ldexp(h, -kShellFrac) : kSqrt3 / 2 * h;
+    // Shell words are exact at PF >= kShellFrac (and voxel centres at PF >= 1); otherwise each coordinate is off by
+    // up to 2^-(PF+1) spacings.
+    const bool exact = cfg.PF >= kShellFrac || (!sh.on_surface && cfg.PF >= 1);
+    y.point_error = exact ? 0.0 : kSqrt3 * std::ldexp(h, -(cfg.PF + 1));
     const Eigen::Vector3d lo = vm.origin();
     const Eigen::Vector3d hi = lo + y.voxel * Eigen::Vector3d(vm.dims()[0], vm.dims()[1], vm.dims()[2]);
     y.pad = std::min((t.lo - lo).minCoeff(), (hi - t.hi).minCoeff());
     const int64_t thr = distance_threshold(cfg, margin_, y.voxel, f.step);
     y.none = y.voxel * f.step * double(thr + 1) / scale - y.field_error;
-    for (const auto& c : t.shell().cells)
-      for (int i = 0; i < 3; ++i) y.pmax = std::max(y.pmax, double(c[size_t(i)]) + 1);
+    for (size_t k = 0; k < sh.size(); ++k) y.pmax = std::max(y.pmax, sh.grid_point(k).cwiseAbs().maxCoeff());
     y.half = 0.5 * (t.hi - t.lo);
     y.mid = 0.5 * (t.hi + t.lo);
     y.radius = t.radius;
@@ -71,7 +79,7 @@ DistanceBound::DistanceBound(const std::vector<std::shared_ptr<const ObjectType>
 
 double DistanceBound::direction(const Type& shell, const Type& map, double min_distance, bool any) const {
   // The fixed-point path puts the point within this of its exact place (Euclidean, world units).
-  const double fix = kSqrt3 * fixed_unit_ * shell.pmax * map.voxel + map.fixed_error;
+  const double fix = kSqrt3 * fixed_unit_ * shell.pmax * map.voxel + map.fixed_error + shell.point_error;
   // A point that reports nothing is outside the map's grid (at least the pad from its solid) or inside with a
   // distance above the threshold.
   double lb = std::min(map.pad, map.none) - fix;

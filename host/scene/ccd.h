@@ -51,6 +51,7 @@ class DistanceBound {
     double field_error = 0;  // world: rounding, interpolation and truncation of a looked-up distance
     double fixed_error = 0;  // world per unit voxel of the map: sqrt(3) x the fixed-point path's bound, in voxels
     double shell_gap = 0;    // world: every surface point is this close to a shell point
+    double point_error = 0;  // world: the shell words' rounding (0 where they are exact)
     double pad = 0;          // world: the grid's margin around the contact box
     double none = 0;         // world: the distance a point inside the grid that reports nothing has at least
     double voxel = 0;

@@ -1,0 +1,327 @@
+// Continuous collision (SimOptions::ccd, host/scene/ccd.h): small bodies moving ten of their lengths a frame pass
+// through a thin plate, each other and the walls without it, and never with it; runs without it keep their hashes;
+// runs with it are the same on one and two threads; `voxcd simulate` takes "ccd" from a scene file and refuses --ccd
+// without distance voxmaps.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/shapes.h"
+#include "voxcd/host/scene/scene.h"
+
+namespace voxcd {
+namespace {
+
+uint64_t test_seed() {
+  const char* s = std::getenv("VOXCD_SEED");
+  return s ? std::strtoull(s, nullptr, 0) : 20261124;
+}
+
+constexpr double kSide = 20;
+constexpr double kCube = 0.4;     // the small bodies' side: 4 voxels of 0.1
+constexpr double kSpeed = 4;      // world units per frame: ten body lengths
+constexpr double kPlateHalf = 4;  // the plate is 8 x 8 x 0.1
+
+std::shared_ptr<const ObjectType> box_type(const std::string& name, const Eigen::Vector3d& half, double voxel) {
+  ObjectOptions o;
+  o.voxel = voxel;
+  o.distance_bits = 8;
+  o.band = 4;
+  return std::make_shared<const ObjectType>(
+      make_object_type(make_object(make_box(-half, half), "test:" + name, 0, o), name));
+}
+
+// The types every test shares (type 0 the plate, type 1 the small cube), built once.
+const std::vector<std::shared_ptr<const ObjectType>>& types() {
+  static const std::vector<std::shared_ptr<const ObjectType>> t = {
+      box_type("plate", Eigen::Vector3d(kPlateHalf, kPlateHalf, 0.05), 0.1),
+      box_type("cube", Eigen::Vector3d::Constant(kCube / 2), 0.1)};
+  return t;
+}
+
+Body body(uint32_t type, const Eigen::Vector3d& at, const Eigen::Quaterniond& q, const Eigen::Vector3d& v) {
+  Body b;
+  b.type = type;
+  b.pose.rotation = q;
+  b.pose.translation = at - q * types()[type]->centre;
+  b.velocity = v;
+  return b;
+}
+
+Eigen::Vector3d centre(const Scene& s, size_t i) {
+  const Body& b = s.bodies[i];
+  return b.pose.rotation * s.types[b.type]->centre + b.pose.translation;
+}
+
+SimOptions options(bool ccd, unsigned threads = 1) {
+  SimOptions o;
+  o.distance_bits = 8;
+  o.ccd = ccd;
+  o.threads = threads;
+  return o;
+}
+
+// A tilted plate in the middle of the cube and `count` small cubes on both sides heading straight at it.
+Scene plate_scene(uint64_t seed, int count) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Scene s;
+  s.side = kSide;
+  s.types = types();
+  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(0.35 * u(rng), Eigen::Vector3d(u(rng), u(rng), 0).normalized()));
+  const Eigen::Vector3d mid = Eigen::Vector3d::Constant(kSide / 2), n = tilt * Eigen::Vector3d::UnitZ();
+  s.bodies.push_back(body(0, mid, tilt, Eigen::Vector3d::Zero()));
+  std::vector<Eigen::Vector3d> local;
+  while (int(local.size()) < count) {
+    const double side = u(rng) < 0 ? -1 : 1;
+    const Eigen::Vector3d p(3 * u(rng), 3 * u(rng), side * (2.5 + 1.5 * std::abs(u(rng))));
+    bool clear = true;
+    for (const auto& q : local) clear = clear && (q - p).norm() > 2 * kCube;
+    if (!clear) continue;
+    local.push_back(p);
+    const Eigen::Quaterniond q(Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized());
+    s.bodies.push_back(body(1, mid + tilt * p, q, -side * kSpeed * n));
+  }
+  return s;
+}
+
+// Pass-throughs of the plate (body 0) between two frames: a small body's centre crosses the plate's plane strictly
+// inside the plate's extent (in the plate's frame, along the straight line between the two frames' centres).
+int plate_crossings(const Scene& before, const Scene& after) {
+  int k = 0;
+  auto local = [](const Scene& s, size_t i) {
+    const Body& p = s.bodies[0];
+    return Eigen::Vector3d(p.pose.rotation.inverse() * (centre(s, i) - centre(s, 0)));
+  };
+  for (size_t i = 1; i < after.bodies.size(); ++i) {
+    const Eigen::Vector3d a = local(before, i), b = local(after, i);
+    if ((a.z() < 0) == (b.z() < 0)) continue;
+    const Eigen::Vector3d x = a + (b - a) * (a.z() / (a.z() - b.z()));
+    if (std::abs(x.x()) < kPlateHalf && std::abs(x.y()) < kPlateHalf) ++k;
+  }
+  return k;
+}
+
+// Pass-throughs of two small bodies: along the line of their approach their order swaps while their centres come
+// closer than a cube's side (their inscribed spheres would overlap).
+int pair_crossings(const Scene& before, const Scene& after, size_t i, size_t j, const Eigen::Vector3d& line) {
+  const Eigen::Vector3d r0 = centre(before, j) - centre(before, i), r1 = centre(after, j) - centre(after, i);
+  if ((r0.dot(line) < 0) == (r1.dot(line) < 0)) return 0;
+  const double s = r0.dot(line) / (r0.dot(line) - r1.dot(line));
+  return (r0 + s * (r1 - r0)).norm() < kCube ? 1 : 0;
+}
+
+// Frames in which some small body has a corner outside the cube.
+int outside(const Scene& s) {
+  int k = 0;
+  for (size_t i = 0; i < s.bodies.size(); ++i) {
+    const Body& b = s.bodies[i];
+    const Eigen::Vector3d c = centre(s, i);
+    const double h = b.type == 0 ? 0 : kCube / 2;
+    if (b.type == 0) continue;
+    for (int m = 0; m < 8; ++m) {
+      const Eigen::Vector3d p = c + b.pose.rotation * Eigen::Vector3d(m & 1 ? h : -h, m & 2 ? h : -h, m & 4 ? h : -h);
+      if ((p.array() < -1e-9).any() || (p.array() > kSide + 1e-9).any()) ++k;
+    }
+  }
+  return k;
+}
+
+TEST(Ccd, SmallFastBodiesPassThroughAThinPlateOnlyWithoutIt) {
+  const uint64_t seed = test_seed();
+  std::printf("seed %llu (VOXCD_SEED replays)\n", (unsigned long long)seed);
+  int without = 0, with = 0;
+  for (uint64_t k = 0; k < 4; ++k) {
+    for (bool ccd : {false, true}) {
+      Simulation sim(plate_scene(seed + k, 10), options(ccd));
+      int crossings = 0, dropped = 0;
+      for (int f = 0; f < 25; ++f) {
+        const Scene before = sim.scene();
+        const FrameStats st = sim.step();
+        crossings += plate_crossings(before, sim.scene());
+        dropped += int(st.ccd_dropped);
+        if (!ccd) {
+          EXPECT_EQ(st.ccd_iterations, 0u);
+        }
+      }
+      (ccd ? with : without) += crossings;
+      if (ccd) {
+        EXPECT_EQ(crossings, 0) << "seed " << seed + k << ", " << dropped << " bodies dropped at the cap";
+      }
+    }
+  }
+  std::printf("plate pass-throughs in 4 scenes of 10 bodies, 25 frames: %d without ccd, %d with\n", without, with);
+  EXPECT_GT(without, 10) << "the scene must show tunnelling without ccd, seed " << seed;
+  EXPECT_EQ(with, 0);
+}
+
+TEST(Ccd, HeadOnBodiesPassThroughEachOtherOnlyWithoutIt) {
+  const uint64_t seed = test_seed();
+  std::printf("seed %llu (VOXCD_SEED replays)\n", (unsigned long long)seed);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  int without = 0, with = 0;
+  for (int k = 0; k < 4; ++k) {
+    // Three pairs on parallel lines, each pair closing at 8 units a frame (20 body lengths).
+    Scene s;
+    s.side = kSide;
+    s.types = types();
+    Eigen::Vector3d line(g(rng), g(rng), g(rng));
+    line.normalize();
+    const Eigen::Vector3d side = line.unitOrthogonal(), up = line.cross(side);
+    for (int p = 0; p < 3; ++p) {
+      const Eigen::Vector3d mid = Eigen::Vector3d::Constant(kSide / 2) + (p - 1) * 3.0 * side + 0.3 * g(rng) * up;
+      const double gap = 5 + g(rng) * 0.5;
+      auto q = [&] { return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(); };
+      s.bodies.push_back(body(1, mid - gap * line, q(), kSpeed * line));
+      s.bodies.push_back(body(1, mid + gap * line + 0.1 * g(rng) * up, q(), -kSpeed * line));
+    }
+    for (bool ccd : {false, true}) {
+      Simulation sim(s, options(ccd));
+      int crossings = 0;
+      // Until the first wall bounce: after it the bodies no longer travel along their line.
+      for (int f = 0; f < 3; ++f) {
+        const Scene before = sim.scene();
+        sim.step();
+        for (size_t i = 0; i + 1 < s.bodies.size(); i += 2) crossings += pair_crossings(before, sim.scene(), i, i + 1, line);
+      }
+      (ccd ? with : without) += crossings;
+    }
+  }
+  std::printf("head-on pass-throughs of 12 pairs: %d without ccd, %d with\n", without, with);
+  EXPECT_GT(without, 6);
+  EXPECT_EQ(with, 0);
+}
+
+TEST(Ccd, FastBodiesLeaveTheCubeOnlyWithoutIt) {
+  const uint64_t seed = test_seed();
+  std::printf("seed %llu (VOXCD_SEED replays)\n", (unsigned long long)seed);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  std::uniform_real_distribution<double> u(2, kSide - 2);
+  Scene s;
+  s.side = kSide;
+  s.types = types();
+  for (int i = 0; i < 12; ++i) {
+    Eigen::Vector3d v(g(rng), g(rng), g(rng));
+    s.bodies.push_back(body(1, Eigen::Vector3d(u(rng), u(rng), u(rng)),
+                            Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(), kSpeed * v.normalized()));
+  }
+  int without = 0, with = 0;
+  for (bool ccd : {false, true}) {
+    Simulation sim(s, options(ccd));
+    for (int f = 0; f < 40; ++f) {
+      sim.step();
+      (ccd ? with : without) += outside(sim.scene());
+    }
+  }
+  std::printf("corners outside the cube over 40 frames of 12 bodies: %d without ccd, %d with\n", without, with);
+  EXPECT_GT(without, 0);
+  EXPECT_EQ(with, 0);
+}
+
+TEST(Ccd, DeterministicOnOneAndTwoThreads) {
+  uint64_t h[2] = {0, 0};
+  for (unsigned threads : {1u, 2u}) {
+    Simulation sim(plate_scene(test_seed(), 10), options(true, threads));
+    uint64_t iterations = 0, events = 0;
+    for (int f = 0; f < 15; ++f) {
+      const FrameStats st = sim.step();
+      iterations += st.ccd_iterations;
+      events += st.ccd_toi;
+    }
+    EXPECT_GT(iterations, 15u);
+    EXPECT_GT(events, 0u);
+    h[threads - 1] = sim.state_hash();
+  }
+  EXPECT_EQ(h[0], h[1]);
+}
+
+TEST(Ccd, WithoutItTheRunIsUnchanged) {
+  // The paper's scene on the 2-bit device and the plate scene on a distance device, both without ccd: the hashes the
+  // stepper gave before continuous collision existed (its scene.cpp of commit e3ee135 linked against this library).
+  {
+    SceneSpec spec;
+    Simulation sim(make_scene(spec), SimOptions{});
+    for (int f = 0; f < 300; ++f) sim.step();
+    EXPECT_EQ(sim.state_hash(), 0xe535ccc7878ddda4ull) << std::hex << sim.state_hash();
+  }
+  {
+    Simulation sim(plate_scene(7, 10), options(false));
+    for (int f = 0; f < 40; ++f) sim.step();
+    EXPECT_EQ(sim.state_hash(), 0x519c3f6f68caa220ull) << std::hex << sim.state_hash();
+  }
+}
+
+TEST(Ccd, TheCapDropsTheRestOfTheFrameAndCountsIt) {
+  SimOptions o = options(true);
+  o.ccd_max_iterations = 1;
+  Simulation sim(plate_scene(test_seed(), 10), o);
+  uint64_t dropped = 0;
+  for (int f = 0; f < 10; ++f) {
+    const Scene before = sim.scene();
+    const FrameStats st = sim.step();
+    EXPECT_LE(st.ccd_iterations, 1u);
+    dropped += st.ccd_dropped;
+    EXPECT_EQ(plate_crossings(before, sim.scene()), 0);
+  }
+  EXPECT_GT(dropped, 0u);
+}
+
+TEST(Ccd, NeedsADistanceDevice) {
+  SimOptions o;
+  o.ccd = true;
+  Scene s;
+  s.side = kSide;
+  s.types = types();
+  s.bodies.push_back(body(1, Eigen::Vector3d::Constant(5), Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero()));
+  EXPECT_THROW(Simulation(s, o), std::invalid_argument);
+}
+
+std::string run(const std::string& args, int* status) {
+  const std::string cmd = std::string(VOXCD_BIN) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  *status = pclose(p);
+  return out;
+}
+
+TEST(CcdCli, SceneFileKeyRunsThroughSimulate) {
+  const std::string path = ::testing::TempDir() + "voxcd_ccd_scene.json";
+  std::ofstream(path) << R"({"types": [{"shape": "cube", "count": 8, "size": 1, "voxel": 0.25}],
+  "environment": {"side": 12, "speed": 3, "seed": 5}, "distance_bits": 8, "ccd": true, "frames": 6})";
+  int status = 0;
+  const std::string out = run("simulate " + path + " --json --threads 1", &status);
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("\"ccd\": true"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"time_of_impact_events\""), std::string::npos) << out;
+  const std::string text = run("simulate " + path + " --threads 1 --no-progress", &status);
+  ASSERT_EQ(status, 0) << text;
+  EXPECT_NE(text.find("no tunnelling"), std::string::npos) << text;
+  // Without ccd the summary has no such line.
+  const std::string off = run("simulate --distance-bits 8 --objects 4 --frames 2 --threads 1", &status);
+  ASSERT_EQ(status, 0) << off;
+  EXPECT_EQ(off.find("no tunnelling"), std::string::npos) << off;
+  EXPECT_EQ(off.find("time_of_impact"), std::string::npos) << off;
+}
+
+TEST(CcdCli, CcdWithoutDistanceBitsIsAClearError) {
+  int status = 0;
+  const std::string out = run("simulate --ccd --frames 1", &status);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("--ccd"), std::string::npos) << out;
+  EXPECT_NE(out.find("--distance-bits"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace voxcd
