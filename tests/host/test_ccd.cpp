@@ -93,8 +93,10 @@ Scene plate_scene(uint64_t seed, int count) {
   return s;
 }
 
-// Pass-throughs of the plate (body 0) between two frames: a small body's centre crosses the plate's plane strictly
-// inside the plate's extent (in the plate's frame, along the straight line between the two frames' centres).
+// Pass-throughs of the plate (body 0) between two frames: in the plate's frame, a small body's centre is over the
+// plate's face (strictly inside its extent) on one side at one frame and on the other side at the next, and the
+// straight line between the two crosses the plate's plane inside the extent too. (The plate moves when bodies hit
+// it, so the path in its frame is not straight: a body that went round the plate's edge ends outside the extent.)
 int plate_crossings(const Scene& before, const Scene& after) {
   int k = 0;
   auto local = [](const Scene& s, size_t i) {
@@ -105,7 +107,8 @@ int plate_crossings(const Scene& before, const Scene& after) {
     const Eigen::Vector3d a = local(before, i), b = local(after, i);
     if ((a.z() < 0) == (b.z() < 0)) continue;
     const Eigen::Vector3d x = a + (b - a) * (a.z() / (a.z() - b.z()));
-    if (std::abs(x.x()) < kPlateHalf && std::abs(x.y()) < kPlateHalf) ++k;
+    auto over = [](const Eigen::Vector3d& p) { return std::abs(p.x()) < kPlateHalf && std::abs(p.y()) < kPlateHalf; };
+    if (over(a) && over(b) && over(x)) ++k;
   }
   return k;
 }
