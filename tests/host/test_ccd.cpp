@@ -4,6 +4,7 @@
 // without distance voxmaps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/scene/scene.h"
@@ -136,6 +138,98 @@ int outside(const Scene& s) {
     }
   }
   return k;
+}
+
+// Exact distances between two disjoint boxes (half extents ha, hb; poses pa, pb): the least over vertex-box and
+// edge-edge pairs, where the closest points of two disjoint convex polyhedra lie.
+double point_box(const Eigen::Vector3d& p, const RigidPose& pose, const Eigen::Vector3d& h) {
+  const Eigen::Vector3d l = pose.rotation.inverse() * (p - pose.translation);
+  return (l - l.cwiseMax(-h).cwiseMin(h)).norm();
+}
+// Ericson, Real-Time Collision Detection, 5.1.9.
+double segment_segment(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
+                       const Eigen::Vector3d& q2) {
+  const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r), c = d1.dot(r), b = d1.dot(d2);
+  const double denom = a * e - b * b;
+  double s = denom > 1e-15 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  double t = (b * s + f) / e;
+  if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
+  else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
+  return ((p1 + d1 * s) - (p2 + d2 * t)).norm();
+}
+std::array<Eigen::Vector3d, 8> corners(const RigidPose& pose, const Eigen::Vector3d& h) {
+  std::array<Eigen::Vector3d, 8> c;
+  for (int m = 0; m < 8; ++m)
+    c[size_t(m)] = pose.rotation * Eigen::Vector3d(m & 1 ? h.x() : -h.x(), m & 2 ? h.y() : -h.y(), m & 4 ? h.z() : -h.z()) +
+                   pose.translation;
+  return c;
+}
+double box_distance(const RigidPose& pa, const Eigen::Vector3d& ha, const RigidPose& pb, const Eigen::Vector3d& hb) {
+  const auto ca = corners(pa, ha), cb = corners(pb, hb);
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& v : ca) d = std::min(d, point_box(v, pb, hb));
+  for (const auto& v : cb) d = std::min(d, point_box(v, pa, ha));
+  // The 12 edges of a box: corners differing in one bit.
+  for (int i = 0; i < 8; ++i)
+    for (int bi : {1, 2, 4})
+      if (!(i & bi))
+        for (int j = 0; j < 8; ++j)
+          for (int bj : {1, 2, 4})
+            if (!(j & bj))
+              d = std::min(d, segment_segment(ca[size_t(i)], ca[size_t(i | bi)], cb[size_t(j)], cb[size_t(j | bj)]));
+  return d;
+}
+
+TEST(Ccd, TheBoundNeverExceedsTheDistance) {
+  // A plate and a small cube at random orientations, separated by a random plane at gaps from 0 to past the band.
+  const uint64_t seed = test_seed();
+  std::printf("seed %llu (VOXCD_SEED replays)\n", (unsigned long long)seed);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<const ObjectType*> tp = {types()[0].get(), types()[1].get()};
+  const DeviceConfig cfg = device_config_for("cpu", 4, tp, 8);
+  PairCollider collider(make_device("cpu", cfg, DeviceOptions{}), types());
+  const DistanceBound bound(types(), cfg);
+  PairOptions po;
+  po.both_directions = true;
+  po.margin = bound.margin();
+  const Eigen::Vector3d ha(kPlateHalf, kPlateHalf, 0.05), hb = Eigen::Vector3d::Constant(kCube / 2);
+  std::vector<PairRequest> req;
+  std::vector<double> exact;
+  for (int k = 0; k < 400; ++k) {
+    PairRequest r;
+    r.a = 0;
+    r.b = 1;
+    r.pose_a.rotation = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized();
+    r.pose_a.translation = Eigen::Vector3d::Constant(10);
+    r.pose_b.rotation = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized();
+    // Over the plate's face or past its edge; then pushed along n until the plane n.x = c separates them by `gap`.
+    // Half of them across the plate's face, the others across a random plane (edges and corners).
+    const Eigen::Vector3d n = k % 2 ? Eigen::Vector3d(r.pose_a.rotation * Eigen::Vector3d::UnitZ() * (u(rng) < 0.5 ? -1 : 1))
+                                    : Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    r.pose_b.translation = r.pose_a.translation + r.pose_a.rotation * Eigen::Vector3d(5 * (2 * u(rng) - 1), 5 * (2 * u(rng) - 1), 0);
+    double top = -1e300, low = 1e300;
+    for (const auto& v : corners(r.pose_a, ha)) top = std::max(top, n.dot(v));
+    for (const auto& v : corners(r.pose_b, hb)) low = std::min(low, n.dot(v));
+    const double gap = 0.6 * u(rng) * u(rng);
+    r.pose_b.translation += n * (top + gap - low);
+    req.push_back(r);
+    exact.push_back(box_distance(r.pose_a, ha, r.pose_b, hb));
+  }
+  const std::vector<PairResult> res = collider.collide(req, po);
+  double slack = 0, worst = 1e300;
+  int close = 0;
+  for (size_t k = 0; k < req.size(); ++k) {
+    const double b = bound.device(0, 1, res[k]);
+    EXPECT_LE(b, exact[k]) << "pose " << k << ", seed " << seed;
+    worst = std::min(worst, exact[k] - b);
+    if (exact[k] < 0.3) slack += exact[k] - b, ++close;
+  }
+  std::printf("%d poses of 400 within 0.3 of contact: bound below the exact distance by %.3f on average (voxel 0.1); "
+              "least slack %.4f\n", close, slack / close, worst);
+  EXPECT_GT(close, 100);
 }
 
 TEST(Ccd, SmallFastBodiesPassThroughAThinPlateOnlyWithoutIt) {
