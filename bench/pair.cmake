@@ -4,7 +4,7 @@ voxcd_require_package(fcl_FOUND libfcl-dev "FCL (the peer of bench_pair)")
 add_executable(bench_pair ${CMAKE_CURRENT_LIST_DIR}/bench_pair.cpp)
 target_link_libraries(bench_pair PRIVATE voxcd_host fcl)
 voxcd_warnings(bench_pair)
-# bench_distance: 2-bit and distance voxmaps against exact geometry, beside FCL (docs/results.md, "Distance voxmaps").
-add_executable(bench_distance ${CMAKE_CURRENT_LIST_DIR}/bench_distance.cpp)
-target_link_libraries(bench_distance PRIVATE voxcd_host fcl)
-voxcd_warnings(bench_distance)
+# bench_distance_error: 2-bit and distance voxmaps against exact geometry, beside FCL (docs/results.md, "Distance voxmaps").
+add_executable(bench_distance_error ${CMAKE_CURRENT_LIST_DIR}/bench_distance_error.cpp)
+target_link_libraries(bench_distance_error PRIVATE voxcd_host fcl)
+voxcd_warnings(bench_distance_error)

@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--poses") && i + 1 < argc) poses = size_t(std::atol(argv[++i]));
     else if (!std::strcmp(argv[i], "--quick")) voxels = {0.08, 0.04}, fine = {0.02};
     else {
-      std::fprintf(stderr, "usage: bench_distance [--out FILE] [--repeats N] [--poses N] [--quick]\n");
+      std::fprintf(stderr, "usage: bench_distance_error [--out FILE] [--repeats N] [--poses N] [--quick]\n");
       return 2;
     }
   }
@@ -220,6 +220,30 @@ int main(int argc, char** argv) {
     else
       md << "none measured (the finest 2-bit row's worst is " << bench::fmt("%.4f", rows.back().worst) << ") | - | > "
          << bench::fmt("%.1f", rows.back().us / d.us) << " |\n";
+  }
+  // Beyond the finest 2-bit voxel measured: the 2-bit rows' own trends, worst error = k * voxel (k their mean) and
+  // time = c * voxel^b (least squares on the logarithms), give the voxel and the time that would match.
+  double k = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, m = 0;
+  for (const Row& r : rows) {
+    if (r.bits) continue;
+    k += r.worst / r.voxel;
+    const double x = std::log(r.voxel), y = std::log(r.us);
+    sx += x, sy += y, sxx += x * x, sxy += x * y, m += 1;
+  }
+  if (m >= 2) {
+    k /= m;
+    const double b = (m * sxy - sx * sy) / (m * sxx - sx * sx), c = std::exp((sy - b * sx) / m);
+    md << "\nExtrapolated from the " << int(m) << " 2-bit rows (worst error " << bench::fmt("%.2f", k)
+       << " voxel on average; time per query proportional to voxel^" << bench::fmt("%.2f", b)
+       << "): the 2-bit voxel whose worst error equals each distance row's, and its predicted time.\n\n"
+       << "| distance row | worst error | 2-bit voxel to match | predicted 2-bit us | predicted 2-bit / this |\n"
+          "|---|---|---|---|---|\n";
+    for (const Row& d : rows) {
+      if (!d.bits || d.worst <= 0) continue;
+      const double v = d.worst / k, t = c * std::pow(v, b);
+      md << "| " << d.kind << " at " << d.voxel << " | " << bench::fmt("%.2g", d.worst) << " | "
+         << bench::fmt("%.3g", v) << " | " << bench::fmt("%.3g", t) << " | " << bench::fmt("%.3g", t / d.us) << " |\n";
+    }
   }
   md << "\nMachine: " << bench::machine_description() << ".\n";
   std::cout << md.str();
