@@ -5,9 +5,10 @@
 // through the device's write ports, drives the jobs back to back with random ready on both output streams, and
 // checks every record. Monitors on the input ports tell the reference what the device takes (words written, jobs
 // accepted); each record the device hands over is compared with the next one the reference expects: hit records
-// on every field (the interpolated distance too, on a distance device: SB > 2), completion records on tag and hits, and (+timing=1) on cycles minus stalls and on points against
-// the cycle model. It ends with one summary line, "tb_voxcd_dpi: PASS: ..." or "tb_voxcd_dpi: FAIL: ...", and a
-// failure stops the simulation with $fatal (a non-zero exit status).
+// on every field (the interpolated distance too, on a distance device: SB > 2), completion records on tag and
+// hits, and (+timing=1) on cycles minus stalls and on points against the cycle model. It ends with one summary
+// line, "tb_voxcd_dpi: PASS: ..." or "tb_voxcd_dpi: FAIL: ...", and a failure stops the simulation with $fatal (a
+// non-zero exit status).
 //
 // The device is `VOXCD_DUT (voxcd_device unless defined otherwise): any implementation of docs/contract.md with
 // voxcd_device's parameters and ports can take its place. The clock is an input (the simulator's main drives it);
