@@ -259,8 +259,7 @@ for dev, name in (("hx8k", "iCE40 HX8K (ct256)"), ("up5k", "iCE40 UP5K (sg48)"))
 print()
 if distance:
     print(f"`synth_ice40 -dsp` would need {dsp_cells} SB_MAC16; the row uses `synth_ice40` without -dsp "
-          f"(multipliers in logic cells), as the 2-bit device's rows do. The UP5K (5280 logic cells) is too small "
-          f"for this configuration.")
+          f"(multipliers in logic cells), as the 2-bit device's rows do; only the HX8K is placed.")
 else:
     print(f"`synth_ice40 -dsp` would need {dsp_cells} SB_MAC16 (nine MWxPW products and two index products per "
           f"lane); the UP5K has 8, so both rows use `synth_ice40` without -dsp (multipliers in logic cells).")
