@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "voxcd/host/object/distance_field.h"
 #include "voxcd/host/object/point_shell.h"
 #include "voxcd/host/object/voxelize.h"
 
@@ -24,6 +25,7 @@ struct ObjectFile {
   Eigen::Vector3d shift = Eigen::Vector3d::Constant(0.5);  // VoxelizeOptions::shift used for both grids
   Voxmap voxmap;
   PointShell shell;              // built for target voxel = voxmap.voxel()
+  DistanceField distance;        // the signed distance field on the voxmap's grid (empty unless asked for)
   // What loading, repair and voxelising found (file version 2; a version 1 file has none: has_report false).
   bool has_report = false;
   MeshReport mesh_report;
@@ -38,6 +40,8 @@ struct ObjectOptions {
   Eigen::Vector3d shift = Eigen::Vector3d::Constant(0.5);  // VoxelizeOptions::shift, for both grids
   uint32_t max_dim = 1024;                                 // voxmap grid per axis (VoxelizeOptions::max_dim)
   unsigned threads = 0;                                    // 0: every hardware thread; never changes the result
+  int distance_bits = 0;                                   // 4, 8 or 16: also build the distance field; 0: none
+  double band = 4.0;                                       // the field's band, voxels (DistanceOptions::band)
 };
 
 // The mesh named by `mesh_or_shape`: an existing file (load_mesh: RAW or any assimp format), else a built-in shape.
@@ -49,7 +53,8 @@ Mesh load_source(const std::string& mesh_or_shape, std::string* source = nullptr
                  MeshReport* report = nullptr, const LoadOptions& opt = {});
 
 // Voxmap and shell of a mesh as load_source left it; `report` (what loading found) is kept in the object file.
-// MeshError as voxelize and point_shell throw them.
+// With distance_bits, also the distance field (distance_field) and the shell on the surface (surface_shell).
+// MeshError as voxelize, point_shell and distance_field throw them, and for distance bits not 0, 4, 8 or 16.
 ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt,
                        const MeshReport* report = nullptr);
 
@@ -57,14 +62,16 @@ ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t sou
 uint64_t hash_file(const std::string& path);
 uint64_t hash_bytes(const std::string& bytes);
 
-// Writes the object file (atomically: a temporary file renamed into place). ObjectFileError on I/O failure.
+// Writes the object file (atomically: a temporary file renamed into place): version 3 when the object has a distance
+// field or a shell on the surface, else version 2 exactly as before. ObjectFileError on I/O failure.
 void write_object(const std::string& path, const ObjectFile& obj);
 // Reads and checks an object file (magic, version, sizes, CRC-32). ObjectFileError naming the problem.
 ObjectFile read_object(const std::string& path);
 
 // Shell words in the file use this fixed format (grid coordinates, signed 32-bit with 8 fraction bits): exact,
-// because shell points are voxel centres (half-integers). PointShell::words gives them for any configuration.
-constexpr int kObjectShellFrac = 8;
+// because shell points are voxel centres (half-integers) or, on the surface, rounded to it. PointShell::words gives
+// them for any configuration.
+constexpr int kObjectShellFrac = kShellFrac;
 // Largest grid dimension an object file accepts on any axis.
 constexpr uint32_t kObjectMaxDim = 1u << 20;
 
