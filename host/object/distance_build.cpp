@@ -1,8 +1,8 @@
 // distance_field(): the exact signed distance of a mesh at the nodes of a voxmap's grid (host/object/distance_field.h).
 // The sign is the voxeliser's solid at each node, computed by the voxeliser itself on the grid of cells centred on
 // the nodes; the magnitude is the distance to the nearest triangle, searched in a tree only for nodes that can lie
-// within the band (the rest clamp), along each row of nodes with the previous node's distance + 1 as the radius
-// (the distance is 1-Lipschitz).
+// within the band (the rest clamp), along each row of nodes with the distance to the previous node's nearest
+// triangle as the radius.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -105,26 +105,30 @@ DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const Dista
     const uint64_t parts = std::min<uint64_t>(rows, 1024);
     for (uint64_t row = rows * part / parts; row < rows * (part + 1) / parts; ++row) {
       const uint64_t Y = row % n[1], Z = row / n[1];
-      double prev = HUGE_VAL;  // the previous node's distance in this row, when measured
+      uint32_t prev = UINT32_MAX;  // the previous node's nearest triangle in this row, when measured
       for (uint64_t X = 0; X < n[0]; ++X) {
         const uint64_t i = X + n[0] * row;
         const bool inside = bit(solid, i);
         if (!near[i]) {
           f.q[i] = int16_t(inside ? qmin : qmax);
-          prev = HUGE_VAL;
+          prev = UINT32_MAX;
           continue;
         }
         const Eigen::Vector3d p = Eigen::Vector3d(double(X), double(Y), double(Z));
-        const double r = std::min(radius, prev + 1 + 1e-9);
-        detail::Closest c = tree.closest(p, r * r);
-        if (!c.found() && r < radius) c = tree.closest(p, radius * radius);
+        // The previous node's nearest triangle is usually this one's too, or nearly as near: its distance bounds
+        // the search, which still returns the nearest of all (the same value whatever the bound).
+        double r2 = radius * radius;
+        if (prev != UINT32_MAX) {
+          const auto& t = mesh.triangles[prev];
+          r2 = std::min(r2, detail::closest_on_triangle(p, gv[t[0]], gv[t[1]], gv[t[2]]).d2);
+        }
+        const detail::Closest c = tree.closest(p, r2);
+        prev = c.triangle;
         if (!c.found()) {
           f.q[i] = int16_t(inside ? qmin : qmax);
-          prev = HUGE_VAL;
           continue;
         }
         const double d = std::sqrt(c.d2);
-        prev = d;
         const double v = std::round((inside ? -d : d) * inv_step);
         f.q[i] = int16_t(std::clamp(v, double(qmin), double(qmax)));
       }

@@ -78,23 +78,41 @@ struct Checked {
   uint64_t nodes = 0, in_band = 0, inside = 0, ties = 0, skipped = 0;
 };
 
+// The brute force at every node of vm's grid (node index order): distance in voxels and winding number.
+struct Brute {
+  std::vector<double> d, w;
+};
+
+Brute brute_force(const Mesh& m, const Voxmap& vm) {
+  Brute b;
+  for (uint64_t Z = 0; Z <= vm.dims()[2]; ++Z)
+    for (uint64_t Y = 0; Y <= vm.dims()[1]; ++Y)
+      for (uint64_t X = 0; X <= vm.dims()[0]; ++X) {
+        const Eigen::Vector3d p = node_position(vm, X, Y, Z);
+        b.d.push_back(mesh_distance(m, p) / vm.voxel());
+        b.w.push_back(winding_number(m, p));
+      }
+  return b;
+}
+
 // Every node against clamp(round(d / s)), d the brute-force signed distance in voxels; +-1 only where d / s is within
 // 1e-9 of a half-integer. Nodes whose winding number lies within `ambiguous` of 1/2 (only near holes) are skipped.
-Checked check_field(const Mesh& m, const Voxmap& vm, const DistanceField& f, double ambiguous = 0) {
+Checked check_field(const Mesh& m, const Voxmap& vm, const DistanceField& f, const Brute& b, double ambiguous = 0) {
   Checked c;
   EXPECT_EQ(f.dims, vm.dims());
   EXPECT_EQ(f.q.size(), uint64_t(vm.dims()[0] + 1) * (vm.dims()[1] + 1) * (vm.dims()[2] + 1));
+  EXPECT_EQ(f.q.size(), b.d.size());
   int failures = 0;
   for (uint64_t Z = 0; Z <= f.dims[2]; ++Z)
     for (uint64_t Y = 0; Y <= f.dims[1]; ++Y)
       for (uint64_t X = 0; X <= f.dims[0]; ++X) {
-        const Eigen::Vector3d p = node_position(vm, X, Y, Z);
-        const double w = winding_number(m, p);
+        const uint64_t i = f.node_index(X, Y, Z);
+        const double w = b.w[i];
         if (ambiguous > 0 && std::abs(w - 0.5) < ambiguous) {
           ++c.skipped;
           continue;
         }
-        const double d = mesh_distance(m, p) / vm.voxel();
+        const double d = b.d[i];
         const double sd = w >= 0.5 ? -d : d;
         const double x = sd / f.step;
         const double want = std::clamp(std::round(x), double(f.qmin()), double(f.qmax()));
@@ -145,11 +163,12 @@ TEST(DistanceField, CubeOnAndOffTheNodes) {
   // Shift 1 puts the faces exactly on nodes (d = 0 there), shift 0.5 half-way between.
   for (double shift : {1.0, 0.5, 0.3}) {
     const Voxmap vm = voxmap_of(m, 0.25, Eigen::Vector3d::Constant(shift));
+    const Brute b = brute_force(m, vm);
     for (int bits : {4, 8, 16}) {
       const DistanceField f = field_of(m, vm, bits, 2.5);
       EXPECT_EQ(f.bits, bits);
       EXPECT_DOUBLE_EQ(f.step, 2.5 / (1 << (bits - 1)));
-      const Checked c = check_field(m, vm, f);
+      const Checked c = check_field(m, vm, f, b);
       EXPECT_GT(c.inside, 0u);
       EXPECT_GT(c.in_band, 0u);
     }
@@ -160,13 +179,14 @@ TEST(DistanceField, SphereTorusAndStellated) {
   for (const char* name : {"sphere", "torus", "stellated"}) {
     SCOPED_TRACE(name);
     const Mesh m = make_shape(name);
-    const Voxmap vm = voxmap_of(m, longest(m) / 20);
+    const Voxmap vm = voxmap_of(m, longest(m) / 16);
+    const Brute b = brute_force(m, vm);
     const DistanceField f = field_of(m, vm, 8, 4);
-    const Checked c = check_field(m, vm, f);
+    const Checked c = check_field(m, vm, f, b);
     EXPECT_GT(c.inside, 100u);
     // Inside and outside both clamp somewhere at a band of 1.5 voxels.
     const DistanceField g = field_of(m, vm, 8, 1.5);
-    check_field(m, vm, g);
+    check_field(m, vm, g, b);
     EXPECT_NE(std::find(g.q.begin(), g.q.end(), int16_t(g.qmin())), g.q.end());
     EXPECT_NE(std::find(g.q.begin(), g.q.end(), int16_t(g.qmax())), g.q.end());
   }
@@ -184,8 +204,9 @@ TEST(DistanceField, RotatedBoxOffTheGrid) {
     for (auto& v : m.vertices) v = q * v + t;
     m.name = "rotated box " + std::to_string(round);
     const Voxmap vm = voxmap_of(m, 0.1, Eigen::Vector3d(0.1 + 0.3 * round, 0.77, 0.5));
-    check_field(m, vm, field_of(m, vm, 16, 3));
-    check_field(m, vm, field_of(m, vm, 4, 3));
+    const Brute b = brute_force(m, vm);
+    check_field(m, vm, field_of(m, vm, 16, 3), b);
+    check_field(m, vm, field_of(m, vm, 4, 3), b);
   }
 }
 
@@ -208,7 +229,7 @@ TEST(DistanceField, MeshWithAHoleAfterRepair) {
   ASSERT_GT(rep.open_edges, 0u);
   const Voxmap vm = voxmap_of(m, longest(m) / 16);
   const DistanceField f = field_of(m, vm, 8, 4);
-  const Checked c = check_field(m, vm, f, 0.02);
+  const Checked c = check_field(m, vm, f, brute_force(m, vm), 0.02);
   EXPECT_GT(c.inside, 100u);
   EXPECT_LT(c.skipped, 20u);
 }
@@ -224,7 +245,7 @@ TEST(DistanceField, SheetsAreUnsigned) {
   const Voxmap vm = voxmap_of(m, 0.1);
   const DistanceField f = field_of(m, vm, 8, 2);
   for (int16_t v : f.q) ASSERT_GE(v, 0);
-  const Checked c = check_field(m, vm, f);
+  const Checked c = check_field(m, vm, f, brute_force(m, vm));
   EXPECT_EQ(c.inside, 0u);
   EXPECT_GT(c.in_band, 0u);
 }
