@@ -2,9 +2,11 @@
 // between back-to-back jobs, pipeline latency, and the speed of the Verilated simulation beside the host
 // backends (ref, cpu) on the same stream. Every cycle count here is read from the RTL's own completion records
 // or pins, not from the timing model. Writes Markdown to stdout (and to --out FILE); bench/hardware.sh puts it
-// into docs/hardware.md.
+// into docs/hardware.md. --distance measures the distance devices (SB > 2) instead: the same throughput table on a
+// 64^3 distance map at SB 8, the SB 4 and SB 16 models, and their latency.
 #include <verilated.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,7 +17,9 @@
 
 #include "Vvoxcd_l4.h"
 #include "bench/bench_common.h"
+#include "voxcd/host/device/detail/rtl.h"
 #include "voxcd/host/device/device.h"
+#include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 
 using namespace voxcd;
@@ -42,8 +46,47 @@ DeviceMemory scene(uint64_t seed) {
   return mem;
 }
 
+// The same shell on a distance device: node values of a sphere's signed distance (radius 10 voxels, centred),
+// 2^(SB-1)/8 per voxel and clamped to the band (the host's kind of map).
+DeviceMemory distance_scene(const DeviceConfig& cfg, uint64_t seed) {
+  DeviceMemory mem = scene(seed);
+  Job m;
+  m.nx = m.ny = m.nz = kSide;
+  mem.map.assign(map_words(cfg, m), 0);
+  const int64_t qmax = (int64_t{1} << (cfg.SB - 1)) - 1, qmin = -qmax - 1;
+  const double step = double(int64_t{1} << (cfg.SB - 1)) / 8;
+  for (uint64_t Z = 0; Z <= kSide; ++Z)
+    for (uint64_t Y = 0; Y <= kSide; ++Y)
+      for (uint64_t X = 0; X <= kSide; ++X) {
+        const double c = kSide / 2.0;
+        const double d = std::sqrt((X - c) * (X - c) + (Y - c) * (Y - c) + (Z - c) * (Z - c)) - 10;
+        const int64_t q = std::clamp<int64_t>(std::llround(d * step), qmin, qmax);
+        const NodeAddress a = node_address(cfg, m, X, Y, Z);
+        const uint64_t mask = (uint64_t{1} << cfg.SB) - 1, shift = uint64_t(cfg.SB) * a.slot;
+        mem.map[a.word] |= (uint64_t(q) & mask) << shift;
+      }
+  return mem;
+}
+
+// The threshold below which `fraction` of the shell's points lie (their interpolated distances, from ref/).
+int64_t quantile_threshold(const DeviceConfig& cfg, const DeviceMemory& mem, double fraction) {
+  Job m;
+  m.nx = m.ny = m.nz = kSide;
+  m.M[0][0] = m.M[1][1] = m.M[2][2] = int64_t{1} << cfg.MF;
+  std::vector<int64_t> d;
+  for (const ShellWord& p : mem.shell) {
+    const Transformed t = transform(cfg, m, p);
+    d.push_back(interpolate(cfg, fetch_nodes(cfg, mem.map, m, locate(cfg, m, t)), fractions(cfg, t)));
+  }
+  std::nth_element(d.begin(), d.begin() + ptrdiff_t(fraction * double(d.size())), d.end());
+  return d[size_t(fraction * double(d.size()))];
+}
+
+int64_t g_threshold = 0;  // the threshold of the jobs job() makes (0 on a 2-bit device)
+
 Job job(uint32_t tag, Mode mode, uint32_t base, uint32_t count) {
   Job j;
+  j.threshold = g_threshold;
   j.tag = tag;
   j.mode = mode;
   j.shell_base = base;
@@ -135,18 +178,113 @@ Latency latency() {
   return l;
 }
 
+// Cycles the RTL counts for a one-point job that hits (its completion record's cycles: from its acceptance to the
+// record's emission into the output register), on the model of cfg.
+uint64_t one_point_cycles(const DeviceConfig& cfg, const DeviceMemory& mem) {
+  auto dev = make_device("rtl", cfg);
+  dev->load(mem);
+  Job j = job(0, Mode::All, 0, 1);
+  if (cfg.distance()) j.threshold = (cfg.IW() >= 64) ? INT64_MAX : (int64_t{1} << (cfg.IW() - 1)) - 1;
+  const std::vector<Record> r = dev->run({j});
+  return *r.back().cycles;
+}
+
+// The distance devices: sustained throughput of SB 8 at every lane count, the SB 4 and SB 16 models beside it,
+// latency. Every model is one of rtl_distance_configs().
+void distance_section(std::ostream& md) {
+  const uint32_t sizes[] = {16, 64, 256, 1024, 4096, 16384, 65536};
+  std::vector<DeviceConfig> sb8, other;
+  for (const DeviceConfig& c : rtl_distance_configs()) (c.SB == 8 && c.WB == 8 ? sb8 : other).push_back(c);
+  md << "### Distance devices: sustained throughput\n\n"
+     << "The same measurement on the distance devices (SB > 2): a 64^3-cell map of a sphere's signed distance "
+        "(radius 10 voxels, clamped to a band of 8 voxels), the same 65536 random points, and each job's threshold "
+        "at the 1st percentile of the points' interpolated distances, so about 1% of lookups hit (ALL) as above. "
+        "SB 8 WB 8 on every lane count the build has; goal: at least 0.95 x LANES from 256 points.\n\n"
+     << "| shell points |";
+  for (const DeviceConfig& c : sb8) md << " L=" << c.LANES << " ALL | L=" << c.LANES << " COUNT |";
+  md << "\n|---|";
+  for (size_t i = 0; i < sb8.size(); ++i) md << "---|---|";
+  md << "\n";
+  std::vector<std::unique_ptr<Device>> devs;
+  std::vector<int64_t> thresholds;
+  for (const DeviceConfig& c : sb8) {
+    const DeviceMemory mem = distance_scene(c, 11);
+    thresholds.push_back(quantile_threshold(c, mem, 0.01));
+    devs.push_back(make_device("rtl", c));
+    devs.back()->load(mem);
+  }
+  double worst_ratio = 1e9, hit_fraction = 0;
+  uint64_t worst_idle = 0;
+  for (uint32_t n : sizes) {
+    md << "| " << n << " |";
+    for (size_t i = 0; i < sb8.size(); ++i) {
+      g_threshold = thresholds[i];
+      const Sustained a = sustained(*devs[i], Mode::All, n, sb8[i].LANES);
+      const Sustained c = sustained(*devs[i], Mode::Count, n, sb8[i].LANES);
+      worst_idle = std::max(worst_idle, c.idle);
+      if (n >= 256) worst_ratio = std::min(worst_ratio, a.points_per_cycle / sb8[i].LANES);
+      if (n == 65536) hit_fraction = a.hit_fraction;
+      md << " " << bench::fmt("%.2f", a.points_per_cycle) << " | " << bench::fmt("%.2f", c.points_per_cycle) << " |";
+    }
+    md << "\n";
+    std::fprintf(stderr, "distance throughput: %u points done\n", n);
+  }
+  md << "\nFrom 256 points on, ALL sustains at least " << bench::fmt("%.3f", worst_ratio)
+     << " x LANES (the goal is 0.95; hits at 65536 points: " << bench::fmt("%.2f", 100 * hit_fraction)
+     << "%). Idle cycles between back-to-back COUNT jobs, largest over every row: " << worst_idle << ".\n\n";
+
+  md << "The other value widths, 4096-point jobs:\n\n| model | ALL | COUNT | x LANES (ALL) |\n|---|--:|--:|--:|\n";
+  for (const DeviceConfig& c : other) {
+    const DeviceMemory mem = distance_scene(c, 11);
+    g_threshold = quantile_threshold(c, mem, 0.01);
+    auto dev = make_device("rtl", c);
+    dev->load(mem);
+    const Sustained a = sustained(*dev, Mode::All, 4096, c.LANES);
+    const Sustained n = sustained(*dev, Mode::Count, 4096, c.LANES);
+    md << "| SB " << c.SB << " WB " << c.WB << " LANES " << c.LANES << " | " << bench::fmt("%.2f", a.points_per_cycle)
+       << " | " << bench::fmt("%.2f", n.points_per_cycle) << " | " << bench::fmt("%.3f", a.points_per_cycle / c.LANES)
+       << " |\n";
+  }
+  g_threshold = 0;
+
+  // ---- Latency ----
+  DeviceConfig two;
+  two.LANES = 4;
+  const DeviceMemory two_mem = scene(11);
+  md << "\n### Distance devices: latency\n\n"
+     << "A one-point job that hits, accepted with the consumer always ready: the cycles its completion record "
+        "carries (from its acceptance to the record's emission into the output register) are "
+     << one_point_cycles(two, two_mem) << " on the 2-bit device (LANES 4) and";
+  for (const DeviceConfig& c : rtl_distance_configs()) {
+    md << " " << one_point_cycles(c, distance_scene(c, 11)) << " (SB " << c.SB << ", LANES " << c.LANES << ")";
+  }
+  md << ": the three slot registers after the voxmap read (ref/timing.h: kDistanceSlots = " << kDistanceSlots
+     << ", pipeline_slots = " << kPipelineSlots + kDistanceSlots << ").\n\n";
+  md << "Machine: " << bench::machine_description() << ". Verilator " << Verilated::productVersion()
+     << ", models built with -O3.\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string out_path;
   int repeats = 5;
+  bool distance = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out_path = argv[++i];
     else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--distance")) distance = true;
     else {
-      std::fprintf(stderr, "usage: bench_hardware [--out FILE] [--repeats N]\n");
+      std::fprintf(stderr, "usage: bench_hardware [--out FILE] [--repeats N] [--distance]\n");
       return 2;
     }
+  }
+  if (distance) {
+    std::ostringstream md;
+    distance_section(md);
+    std::cout << md.str();
+    if (!out_path.empty()) std::ofstream(out_path) << md.str();
+    return 0;
   }
   const DeviceMemory mem = scene(11);
   std::ostringstream md;

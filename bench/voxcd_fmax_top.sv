@@ -17,7 +17,9 @@ module voxcd_fmax_top #(
   parameter int unsigned LANES = voxcd_pkg::LANES,
   parameter int unsigned SAW   = voxcd_pkg::SAW,
   parameter int unsigned MAW   = voxcd_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_pkg::TAGW
+  parameter int unsigned TAGW  = voxcd_pkg::TAGW,
+  parameter int unsigned SB    = voxcd_pkg::SB,
+  parameter int unsigned WB    = voxcd_pkg::WB
 ) (
   input  logic clk_i,
   input  logic rst_ni,
@@ -26,18 +28,23 @@ module voxcd_fmax_top #(
 );
 
   localparam int unsigned CW = voxcd_pkg::CW;
+  localparam int unsigned IW = SB + 3 * WB;
+  // The threshold and distance ports count only on a distance device (a 2-bit device leaves them unused).
+  localparam int unsigned DistW = SB > 2 ? IW : 0;
 
-  // Every device input but clk_i / rst_ni, in port order.
-  localparam int unsigned InW = 1 + SAW + 3 * PW           // shell write port
+  // Every device input but clk_i / rst_ni, in port order (the threshold last).
+  localparam int unsigned BaseInW = 1 + SAW + 3 * PW       // shell write port
                               + 1 + MAW + MEMW             // voxmap write port
                               + 1 + TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW  // job
                               + 1                          // hit_ready_i
                               + 1;                         // done_ready_i
-  // Every device output, in port order.
-  localparam int unsigned OutW = 1                                        // job_ready_o
+  localparam int unsigned InW = BaseInW + DistW;
+  // Every device output, in port order (the distance last).
+  localparam int unsigned BaseOutW = 1                                    // job_ready_o
                                + 1 + TAGW + SAW + 3 * DW + 2              // hit stream
                                + 1 + TAGW + (SAW + 1) + CW + (SAW + 1) + CW  // completion stream
                                + 1;                                       // busy_o
+  localparam int unsigned OutW = BaseOutW + DistW;
 
   // ---- Inputs: a shift register from din_i ----
   logic [InW-1:0] in_q;
@@ -60,6 +67,7 @@ module voxcd_fmax_top #(
   logic [MW-1:0]       job_m00, job_m01, job_m02, job_m10, job_m11, job_m12, job_m20, job_m21, job_m22;
   logic [TW-1:0]       job_t0, job_t1, job_t2;
   logic                hit_ready, done_ready;
+  logic [IW-1:0]       job_threshold;
 
   assign {shell_we, shell_waddr, shell_wdata,
           map_we, map_waddr, map_wdata,
@@ -67,7 +75,12 @@ module voxcd_fmax_top #(
           job_nx, job_ny, job_nz,
           job_m00, job_m01, job_m02, job_m10, job_m11, job_m12, job_m20, job_m21, job_m22,
           job_t0, job_t1, job_t2,
-          hit_ready, done_ready} = in_q;
+          hit_ready, done_ready} = in_q[InW-1 -: BaseInW];
+  if (SB > 2) begin : g_threshold
+    assign job_threshold = in_q[IW-1:0];
+  end else begin : g_no_threshold
+    assign job_threshold = '0;
+  end
 
   // ---- The device ----
   logic            job_ready;
@@ -76,6 +89,7 @@ module voxcd_fmax_top #(
   logic [SAW-1:0]  hit_point;
   logic [DW-1:0]   hit_x, hit_y, hit_z;
   logic [1:0]      hit_state;
+  logic [IW-1:0]   hit_dist;
   logic            done_valid;
   logic [TAGW-1:0] done_tag;
   logic [SAW:0]    done_hits;
@@ -86,7 +100,7 @@ module voxcd_fmax_top #(
 
   voxcd_device #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW)
+    .TAGW(TAGW), .SB(SB), .WB(WB)
   ) u_device (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),
@@ -119,6 +133,7 @@ module voxcd_fmax_top #(
     .job_t0_i          (job_t0),
     .job_t1_i          (job_t1),
     .job_t2_i          (job_t2),
+    .job_threshold_i   (job_threshold),
     .hit_valid_o       (hit_valid),
     .hit_ready_i       (hit_ready),
     .hit_tag_o         (hit_tag),
@@ -127,6 +142,7 @@ module voxcd_fmax_top #(
     .hit_y_o           (hit_y),
     .hit_z_o           (hit_z),
     .hit_state_o       (hit_state),
+    .hit_dist_o        (hit_dist),
     .done_valid_o      (done_valid),
     .done_ready_i      (done_ready),
     .done_tag_o        (done_tag),
@@ -138,13 +154,19 @@ module voxcd_fmax_top #(
   );
 
   // ---- Outputs: registered, XOR-reduced into one registered pin ----
-  logic [OutW-1:0] out_q;
-  always_ff @(posedge clk_i) begin
-    out_q  <= {job_ready,
-               hit_valid, hit_tag, hit_point, hit_x, hit_y, hit_z, hit_state,
-               done_valid, done_tag, done_hits, done_cycles, done_points, done_stalls,
-               busy};
-    dout_o <= ^out_q;
+  logic [OutW-1:0]     out_q;
+  logic [BaseOutW-1:0] out_base;
+  assign out_base = {job_ready,
+                     hit_valid, hit_tag, hit_point, hit_x, hit_y, hit_z, hit_state,
+                     done_valid, done_tag, done_hits, done_cycles, done_points, done_stalls,
+                     busy};
+  if (SB > 2) begin : g_dist_out
+    always_ff @(posedge clk_i) out_q <= {out_base, hit_dist};
+  end else begin : g_no_dist_out
+    always_ff @(posedge clk_i) out_q <= out_base;
+    logic unused_dist;
+    assign unused_dist = ^hit_dist;  // 0 on a 2-bit device
   end
+  always_ff @(posedge clk_i) dout_o <= ^out_q;
 
 endmodule

@@ -1,27 +1,31 @@
 // voxcd_device: the voxel collision detection accelerator (docs/hardware.md has the diagram).
 //
-// Contract (docs/contract.md): for each job {tag, mode, mask, shell_base, shell_count, map_base, n, M, t}, every
-// shell point p of the job is transformed exactly (acc = M*p + t), floored to a voxel index, bounds-checked at
-// full width and looked up in the voxmap; a point inside the map whose voxel state has its bit in the mask is a
-// hit. ALL reports every hit, FIRST the lowest-index one, COUNT none; then a completion record per job.
+// Contract (docs/contract.md): for each job {tag, mode, mask, shell_base, shell_count, map_base, n, M, t,
+// threshold}, every shell point p of the job is transformed exactly (acc = M*p + t), floored to a voxel index,
+// bounds-checked at full width and looked up in the voxmap; a point inside the map whose voxel state has its bit in
+// the mask is a hit. On a distance device (SB > 2) the voxmap holds signed node distances in 8 parity banks, the
+// lookup interpolates the eight nodes around the cell to D (SB + 3*WB bits, exact), and an inside point with
+// D <= threshold is a hit (the mask plays no part). ALL reports every hit, FIRST the lowest-index one, COUNT none;
+// then a completion record per job. With SB = 2 the threshold is unused and hit_dist_o is 0.
 //
 // Streams (valid/ready; a transfer happens in a cycle where both are high):
 //   job   in : one job per transfer, into a 2-entry queue (job_ready_o is low only when the queue is full).
-//   hit   out: {tag, point, x, y, z, state}, ascending point order within a job.
+//   hit   out: {tag, point, x, y, z, state, dist}, ascending point order within a job.
 //   done  out: {tag, hits, cycles, points, stalls} after the job's last hit record.
 // At most one of hit_valid_o / done_valid_o is high in a cycle, and records leave in stream order.
 //
 // Structure: an issue stage takes LANES consecutive points of the head job per cycle (one lane group, a "slot")
-// and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through registers R0..R5; the
-// hit-test stage at R5 emits the slot's records, one per cycle, into the output register. The whole pipeline
+// and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through registers R0..R5 (R0..R8
+// on a distance device: PipeSlots + DistSlots); the hit-test stage at the last register emits the slot's records,
+// one per cycle, into the output register. The whole pipeline
 // advances together: it holds (a) while the output register is full and its consumer is not ready (a stall, and
 // only those cycles count as stalls) and (b) while the R5 slot still has more than one record to emit. Jobs
 // follow each other with no drain: the slot after a job's last one is the next job's first.
 //
 // Timing (the exact model is ref/timing.h): a job of c points takes max(1, ceil(c / LANES)) slots; a slot takes
-// max(1, records) cycles at R5; the first slot of a job accepted in cycle a is at R5 in cycle a + 1 + PipeSlots.
-// FIRST stops issuing at its first hit: the PipeSlots - 1 slots already issued are squashed and the issue stage
-// leaves the job with one empty slot.
+// max(1, records) cycles at the hit test; the first slot of a job accepted in cycle a is there in cycle a + 1 + N,
+// N = PipeSlots (+ DistSlots on a distance device). FIRST stops issuing at its first hit: the N - 1 slots already
+// issued are squashed and the issue stage leaves the job with one empty slot.
 //
 // Memories are written through the two write ports while the device is idle (busy_o low).
 //
@@ -39,7 +43,9 @@ module voxcd_device #(
   parameter int unsigned LANES = voxcd_pkg::LANES,
   parameter int unsigned SAW   = voxcd_pkg::SAW,
   parameter int unsigned MAW   = voxcd_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_pkg::TAGW
+  parameter int unsigned TAGW  = voxcd_pkg::TAGW,
+  parameter int unsigned SB    = voxcd_pkg::SB,
+  parameter int unsigned WB    = voxcd_pkg::WB
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -69,6 +75,7 @@ module voxcd_device #(
   input  logic [MW-1:0]            job_m10_i, job_m11_i, job_m12_i,
   input  logic [MW-1:0]            job_m20_i, job_m21_i, job_m22_i,
   input  logic [TW-1:0]            job_t0_i, job_t1_i, job_t2_i,
+  input  logic [SB+3*WB-1:0]       job_threshold_i,    // signed; distance devices (SB > 2) only
 
   // Hit stream.
   output logic                     hit_valid_o,
@@ -79,6 +86,7 @@ module voxcd_device #(
   output logic [DW-1:0]            hit_y_o,
   output logic [DW-1:0]            hit_z_o,
   output logic [1:0]               hit_state_o,
+  output logic [SB+3*WB-1:0]       hit_dist_o,         // signed D; 0 on a 2-bit device
 
   // Completion stream.
   output logic                     done_valid_o,
@@ -94,7 +102,11 @@ module voxcd_device #(
 );
 
   localparam int unsigned CW    = voxcd_pkg::CW;
-  localparam int unsigned NumR  = voxcd_pkg::PipeSlots;          // slot registers R0 .. R5
+  localparam bit          Dist  = SB > 2;                        // a distance device
+  localparam int unsigned IW    = SB + 3 * WB;                   // D, the threshold
+  localparam int unsigned NumR  = voxcd_pkg::PipeSlots + (Dist ? voxcd_pkg::DistSlots : 0);  // R0 .. R5 (R8)
+  localparam int unsigned ThrW  = Dist ? IW : 1;                 // job fields a 2-bit device does not keep
+  localparam int unsigned HxyW  = Dist ? 2 * DW + 1 : 1;
   localparam int unsigned LgL   = $clog2(LANES);
   localparam int unsigned RotW  = LgL > 0 ? LgL : 1;
   localparam int unsigned RowW  = SAW - LgL;                      // rows of one shell bank
@@ -112,9 +124,12 @@ module voxcd_device #(
     logic [3*(DW+1)-1:0]    n;      // {nz, ny, nx}
     logic [9*MW-1:0]        m;      // {m22, m21, ..., m00}
     logic [3*TW-1:0]        t;      // {t2, t1, t0}
+    logic [ThrW-1:0]        thr;    // the threshold (distance devices; else 0)
+    logic [HxyW-1:0]        hxy;    // Hx*Hy = ((nx>>1)+1) * ((ny>>1)+1), the z step of a bank's half-index (else 0)
     logic [CW-1:0]          stamp;  // cycle in which the job was accepted
   } job_t;
-  localparam int unsigned JobW = TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW + CW;
+  localparam int unsigned JobW = TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW + ThrW +
+                                 HxyW + CW;
 
   typedef struct packed {
     logic              valid;   // a slot of a job (else an empty slot)
@@ -138,6 +153,9 @@ module voxcd_device #(
   logic [1:0]      fifo_cnt_q;
   logic            push, pop;
   job_t            job_in;
+  logic [DW:0]     hx_in, hy_in;  // H = (n>>1) + 1, the half-grid's extent
+  assign hx_in = (job_nx_i >> 1) + (DW + 1)'(1);
+  assign hy_in = (job_ny_i >> 1) + (DW + 1)'(1);
 
   always_comb begin
     job_in.tag         = job_tag_i;
@@ -150,6 +168,12 @@ module voxcd_device #(
     job_in.m           = {job_m22_i, job_m21_i, job_m20_i, job_m12_i, job_m11_i, job_m10_i,
                           job_m02_i, job_m01_i, job_m00_i};
     job_in.t           = {job_t2_i, job_t1_i, job_t0_i};
+    job_in.thr         = '0;
+    job_in.hxy         = '0;
+    if (Dist) begin
+      job_in.thr = ThrW'(job_threshold_i);
+      job_in.hxy = HxyW'(HxyW'(hx_in) * HxyW'(hy_in));
+    end
     job_in.stamp       = now_q;
   end
 
@@ -171,7 +195,7 @@ module voxcd_device #(
 
   // ---- Pipeline control ----
   logic            adv;       // every slot register advances
-  logic            kill;      // R5 holds the first hit of a FIRST job: stop issuing it
+  logic            kill;      // the last register holds the first hit of a FIRST job: stop issuing it
   logic [SeqW-1:0] kill_seq;
 
   // ---- Issue stage ----
@@ -219,7 +243,7 @@ module voxcd_device #(
     for (int i = 0; i < LANES; i++) issue.lanes[i] = (k_q + (SAW + 1)'(i)) < head.shell_count;
   end
 
-  // ---- Slot registers R0 .. R5: the slot's bookkeeping and its job ----
+  // ---- Slot registers R0 .. R5 (R8): the slot's bookkeeping and its job ----
   logic [MetaW-1:0] meta_q [NumR];
   logic [JobW-1:0]  sjob_q [NumR];
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -237,7 +261,7 @@ module voxcd_device #(
     end
   end
 
-  // What each stage reads of its slot.
+  // What each stage reads of its slot; m5 and j5 are the last register's (R5, or R8 on a distance device).
   meta_t m0, m5;
   job_t  j0, j1, j2, j3, j5;
   assign m0 = meta_q[0];
@@ -275,12 +299,13 @@ module voxcd_device #(
   logic [LANES-1:0]      lane_inside;
   logic [LANES*2-1:0]    lane_state;
   logic [LANES*3*DW-1:0] lane_voxel;
+  logic [LANES*IW-1:0]   lane_dist;
 
   for (genvar l = 0; l < LANES; l++) begin : g_lane
     logic [3*PW-1:0] point;
     assign point = bank_rdata[((32'(m0.rot) + l) % LANES) * 3 * PW +: 3 * PW];
     voxcd_lane #(
-      .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW)
+      .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB)
     ) u_lane (
       .clk_i      (clk_i),
       .en_i       (adv),
@@ -293,13 +318,15 @@ module voxcd_device #(
       .n_i        (j2.n),
       .nx_i       (j3.n[DW:0]),
       .map_base_i (j3.map_base),
+      .hxy_i      ((2 * DW + 1)'(j3.hxy)),
       .inside_o   (lane_inside[l]),
       .state_o    (lane_state[2*l +: 2]),
+      .dist_o     (lane_dist[IW*l +: IW]),
       .voxel_o    (lane_voxel[3*DW*l +: 3*DW])
     );
   end
 
-  // ---- Hit test and record emission at R5 ----
+  // ---- Hit test and record emission at the last register (R5, R8 on a distance device) ----
   logic [LANES-1:0] hit;        // lanes whose point is a hit
   logic [LANES-1:0] emitted_q;  // hit records of the R5 slot already emitted (ALL)
   logic             found_q;    // a FIRST job's hit has been emitted; its later slots are squashed
@@ -316,7 +343,8 @@ module voxcd_device #(
 
   always_comb begin
     for (int i = 0; i < LANES; i++) begin
-      hit[i] = m5.lanes[i] && lane_inside[i] && j5.mask[lane_state[2*i +: 2]];
+      if (Dist) hit[i] = m5.lanes[i] && lane_inside[i] && ($signed(lane_dist[IW*i +: IW]) <= $signed(IW'(j5.thr)));
+      else      hit[i] = m5.lanes[i] && lane_inside[i] && j5.mask[lane_state[2*i +: 2]];
     end
   end
 
@@ -416,6 +444,7 @@ module voxcd_device #(
       hit_y_o       <= lane_voxel[3*DW*sel + 1*DW +: DW];
       hit_z_o       <= lane_voxel[3*DW*sel + 2*DW +: DW];
       hit_state_o   <= lane_state[2*sel +: 2];
+      hit_dist_o    <= lane_dist[IW*sel +: IW];  // 0 on a 2-bit device
       done_tag_o    <= j5.tag;
       done_hits_o   <= hits_q + group_hits;
       done_points_o <= points_q + group_points;
@@ -434,7 +463,7 @@ module voxcd_device #(
 
   // Fields that only some stages read.
   logic unused;
-  assign unused = ^{m0, m5.rot, j0, j1, j2, j3, j5};
+  assign unused = ^{m0, m5.rot, j0, j1, j2, j3, j5, job_threshold_i, hx_in, hy_in};
 
 `ifndef SYNTHESIS
   // ---- Assertions (Verilator runs them with --assert) ----
@@ -454,13 +483,22 @@ module voxcd_device #(
   if (((MW + PW + 2 > TW) ? MW + PW + 2 : TW) + 1 - (MF + PF) < DW + 1) begin : g_bad_dw
     $error("the accumulator's integer part cannot hold DW = %0d", DW);
   end
+  if (SB != 2 && SB != 4 && SB != 8 && SB != 16) begin : g_bad_sb
+    $error("SB = %0d must be 2, 4, 8 or 16", SB);
+  end
+  if (Dist && (SB > MEMW || MAW < 3)) begin : g_bad_dist_mem
+    $error("a distance device needs SB = %0d <= MEMW = %0d and MAW = %0d >= 3 (8 banks)", SB, MEMW, MAW);
+  end
+  if (Dist && (WB < 1 || WB > MF + PF || WB > 16)) begin : g_bad_wb
+    $error("WB = %0d must be in 1..min(TF = %0d, 16)", WB, MF + PF);
+  end
   if (JobW != $bits(job_in) || MetaW != $bits(issue)) begin : g_bad_widths
     $error("JobW or MetaW does not match its struct");
   end
 
   // Records stay put while their consumer is not ready.
   logic                           hold_hit_q, hold_done_q;
-  logic [TAGW+SAW+3*DW+2-1:0]     hit_prev_q;
+  logic [TAGW+SAW+3*DW+2+IW-1:0]  hit_prev_q;
   logic [TAGW+2*(SAW+1)+2*CW-1:0] done_prev_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -469,10 +507,11 @@ module voxcd_device #(
     end else begin
       hold_hit_q  <= hit_valid_o && !hit_ready_i;
       hold_done_q <= done_valid_o && !done_ready_i;
-      hit_prev_q  <= {hit_tag_o, hit_point_o, hit_x_o, hit_y_o, hit_z_o, hit_state_o};
+      hit_prev_q  <= {hit_tag_o, hit_point_o, hit_x_o, hit_y_o, hit_z_o, hit_state_o, hit_dist_o};
       done_prev_q <= {done_tag_o, done_hits_o, done_cycles_o, done_points_o, done_stalls_o};
       if (hold_hit_q) begin
-        assert (hit_valid_o && hit_prev_q == {hit_tag_o, hit_point_o, hit_x_o, hit_y_o, hit_z_o, hit_state_o})
+        assert (hit_valid_o &&
+                hit_prev_q == {hit_tag_o, hit_point_o, hit_x_o, hit_y_o, hit_z_o, hit_state_o, hit_dist_o})
           else $error("hit record changed while stalled");
       end
       if (hold_done_q) begin

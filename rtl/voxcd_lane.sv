@@ -1,4 +1,4 @@
-// voxcd_lane: one lookup lane, from a shell point to the state of the voxel it lands in.
+// voxcd_lane: one lookup lane, from a shell point to the voxel it lands in and what the voxmap holds there.
 //
 // Stages (each a register, all advancing together when en_i is high, holding otherwise):
 //   R1  products    M[i][j] * p[j]                          (p: the point shown in R0, M of the R0 slot)
@@ -9,10 +9,23 @@
 //   R5  voxmap word (this lane's copy of the voxmap memory, read with the R4 address), slot, inside, x, y, z
 // Outputs show the R5 slot: inside_o, state_o (bits [2*slot+1 : 2*slot] of the word) and the voxel index.
 // Latency: 5 cycles from the point in R0 to its state at R5 (plus the shell RAM read before R0).
+//
+// A distance lane (SB > 2, docs/contract.md "Distance voxmaps") reads the eight nodes around the cell from eight
+// parity banks and interpolates them; R1 and R2 are the same, then:
+//   R3  index       as above; the weights f_i = acc_i[TF-1 -: WB]; yzh = (y>>1) + Hy*(z>>1), H_i = (n_i>>1) + 1
+//   R4  rows        per bank p: h_p = (x>>1) + Hx*yzh + dx_p + Hx*dy_p + HxHy*dz_p (d_p = 1 where the cell's
+//                   coordinate is odd and p's parity bit even), row_p = map_base/8 + h_p / NPW, slot h_p % NPW
+//   R5  bank words  (this lane's copy of the voxmap memory as 8 bank RAMs, each read at its row)
+//   R6  node select (bank p holds the node at offset (cell parity) ^ p) and the four x interpolations
+//   R7  the two y interpolations
+//   R8  the z interpolation: D, exact, SB + 3*WB bits signed
+// Each interpolation is a*2^WB + (b - a)*f, exact at its width; outputs show the R8 slot: inside_o, dist_o (D),
+// the voxel index, and state_o = 0. Latency: 8 cycles from the point in R0 to D at R8.
+//
 // Vectors of three coordinates hold x in the low bits: {z, y, x}; the matrix is {m22, m21, ..., m00} (entry
 // (i, j) at [(3i + j) * MW +: MW]). Written in the subset of SystemVerilog that Verilator and yosys both read.
 // Each lane owns a copy of the voxmap memory, written through the shared write port, so that every lane can
-// read one word in every cycle.
+// read one word (eight bank words on a distance device) in every cycle.
 module voxcd_lane #(
   parameter int unsigned PW   = voxcd_pkg::PW,
   parameter int unsigned PF   = voxcd_pkg::PF,
@@ -21,7 +34,9 @@ module voxcd_lane #(
   parameter int unsigned TW   = voxcd_pkg::TW,
   parameter int unsigned DW   = voxcd_pkg::DW,
   parameter int unsigned MEMW = voxcd_pkg::MEMW,
-  parameter int unsigned MAW  = voxcd_pkg::MAW
+  parameter int unsigned MAW  = voxcd_pkg::MAW,
+  parameter int unsigned SB   = voxcd_pkg::SB,
+  parameter int unsigned WB   = voxcd_pkg::WB
 ) (
   input  logic                  clk_i,
   input  logic                  en_i,
@@ -36,12 +51,14 @@ module voxcd_lane #(
   input  logic [3*TW-1:0]       t_i,
   // R2: the map dimensions of the job in R2
   input  logic [3*(DW+1)-1:0]   n_i,
-  // R3: the job in R3
+  // R3: the job in R3 (hxy_i = Hx*Hy: distance lanes only)
   input  logic [DW:0]           nx_i,
   input  logic [MAW-1:0]        map_base_i,
-  // R5: the result
+  input  logic [2*DW:0]         hxy_i,
+  // The result: R5 (SB = 2) or R8 (SB > 2)
   output logic                  inside_o,
   output logic [1:0]            state_o,
+  output logic [SB+3*WB-1:0]    dist_o,
   output logic [3*DW-1:0]       voxel_o
 );
 
@@ -50,10 +67,7 @@ module voxcd_lane #(
   localparam int unsigned AccW  = ((ProdW + 2 > TW) ? ProdW + 2 : TW) + 1;  // DeviceConfig::acc_width()
   localparam int unsigned IdxW  = AccW - TF;                                // signed voxel index
   localparam int unsigned CmpW  = (IdxW - 1 > DW + 1) ? IdxW - 1 : DW + 1;  // unsigned compare width
-  localparam int unsigned YzW   = 2 * DW + 1;                               // y + ny*z < 2^(2DW)
-  localparam int unsigned LinW  = 3 * DW + 2;                               // x + nx*yz < 2^(3DW)
-  localparam int unsigned SlotW = $clog2(MEMW / 2) > 0 ? $clog2(MEMW / 2) : 1;
-  localparam int unsigned SpwLg = $clog2(MEMW / 2);
+  localparam int unsigned IW    = SB + 3 * WB;                              // interpolated distance D
 
   // ---- R1: products ----
   logic [9*ProdW-1:0] prod_q;
@@ -71,7 +85,7 @@ module voxcd_lane #(
 
   // ---- R2: accumulator ----
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [3*AccW-1:0] acc_q;  // the floor drops each coordinate's TF fraction bits
+  logic [3*AccW-1:0] acc_q;  // the floor drops each coordinate's TF fraction bits (a distance lane keeps WB)
   /* verilator lint_on UNUSEDSIGNAL */
   always_ff @(posedge clk_i) begin
     if (en_i) begin
@@ -85,7 +99,7 @@ module voxcd_lane #(
     end
   end
 
-  // ---- R3: floor, bounds, y + ny*z ----
+  // ---- R3: floor and bounds (both kinds of voxmap) ----
   // The upper bits of a two's complement value are floor(acc / 2^TF).
   logic [IdxW-1:0] idx_x, idx_y, idx_z;
   logic [2:0]      in_axis;
@@ -98,62 +112,270 @@ module voxcd_lane #(
 
   logic            inside3_q;
   logic [3*DW-1:0] vox3_q;
-  logic [YzW-1:0]  yz3_q;
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       inside3_q <= &in_axis;
       vox3_q    <= {idx_z[DW-1:0], idx_y[DW-1:0], idx_x[DW-1:0]};
-      yz3_q     <= YzW'(idx_y[DW-1:0]) + YzW'(n_i[1*(DW+1) +: DW+1]) * YzW'(idx_z[DW-1:0]);
     end
   end
 
-  // ---- R4: linear index, word address and slot ----
-  logic [LinW-1:0] linear;
-  assign linear = LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q);
+  if (SB == 2) begin : g_states
+    // ---- 2-bit voxel states (the paper's device) ----
+    localparam int unsigned YzW   = 2 * DW + 1;                               // y + ny*z < 2^(2DW)
+    localparam int unsigned LinW  = 3 * DW + 2;                               // x + nx*yz < 2^(3DW)
+    localparam int unsigned SlotW = $clog2(MEMW / 2) > 0 ? $clog2(MEMW / 2) : 1;
+    localparam int unsigned SpwLg = $clog2(MEMW / 2);
 
-  logic             inside4_q;
-  logic [3*DW-1:0]  vox4_q;
-  logic [MAW-1:0]   addr4_q;
-  logic [SlotW-1:0] slot4_q;
-  always_ff @(posedge clk_i) begin
-    if (en_i) begin
-      inside4_q <= inside3_q;
-      vox4_q    <= vox3_q;
-      // Inside points of a valid job address loaded words only, so the MAW-bit sum is exact for them.
-      addr4_q   <= map_base_i + MAW'(linear >> SpwLg);
-      slot4_q   <= SlotW'(linear & LinW'((MEMW / 2) - 1));  // 0 when MEMW = 2
+    // ---- R3: y + ny*z ----
+    logic [YzW-1:0] yz3_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        yz3_q <= YzW'(idx_y[DW-1:0]) + YzW'(n_i[1*(DW+1) +: DW+1]) * YzW'(idx_z[DW-1:0]);
+      end
     end
-  end
 
-  // ---- R5: voxmap read, state select ----
-  logic [MEMW-1:0]  word5;
-  logic             inside5_q;
-  logic [3*DW-1:0]  vox5_q;
-  logic [SlotW-1:0] slot5_q;
+    // ---- R4: linear index, word address and slot ----
+    logic [LinW-1:0] linear;
+    assign linear = LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q);
 
-  voxcd_ram #(
-    .Width(MEMW),
-    .AddrW(MAW)
-  ) u_map (
-    .clk_i  (clk_i),
-    .we_i   (map_we_i),
-    .waddr_i(map_waddr_i),
-    .wdata_i(map_wdata_i),
-    .re_i   (en_i),
-    .raddr_i(addr4_q),
-    .rdata_o(word5)
-  );
-
-  always_ff @(posedge clk_i) begin
-    if (en_i) begin
-      inside5_q <= inside4_q;
-      vox5_q    <= vox4_q;
-      slot5_q   <= slot4_q;
+    logic             inside4_q;
+    logic [3*DW-1:0]  vox4_q;
+    logic [MAW-1:0]   addr4_q;
+    logic [SlotW-1:0] slot4_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        inside4_q <= inside3_q;
+        vox4_q    <= vox3_q;
+        // Inside points of a valid job address loaded words only, so the MAW-bit sum is exact for them.
+        addr4_q   <= map_base_i + MAW'(linear >> SpwLg);
+        slot4_q   <= SlotW'(linear & LinW'((MEMW / 2) - 1));  // 0 when MEMW = 2
+      end
     end
-  end
 
-  assign inside_o = inside5_q;
-  assign voxel_o  = vox5_q;
-  assign state_o  = word5[2 * slot5_q +: 2];
+    // ---- R5: voxmap read, state select ----
+    logic [MEMW-1:0]  word5;
+    logic             inside5_q;
+    logic [3*DW-1:0]  vox5_q;
+    logic [SlotW-1:0] slot5_q;
+
+    voxcd_ram #(
+      .Width(MEMW),
+      .AddrW(MAW)
+    ) u_map (
+      .clk_i  (clk_i),
+      .we_i   (map_we_i),
+      .waddr_i(map_waddr_i),
+      .wdata_i(map_wdata_i),
+      .re_i   (en_i),
+      .raddr_i(addr4_q),
+      .rdata_o(word5)
+    );
+
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        inside5_q <= inside4_q;
+        vox5_q    <= vox4_q;
+        slot5_q   <= slot4_q;
+      end
+    end
+
+    assign inside_o = inside5_q;
+    assign voxel_o  = vox5_q;
+    assign state_o  = word5[2 * slot5_q +: 2];
+    assign dist_o   = '0;  // a 2-bit voxmap has no distance
+
+    logic unused_dist;  // the distance inputs of a 2-bit lane
+    assign unused_dist = ^hxy_i;
+
+  end else begin : g_dist
+    // ---- Signed node distances in 8 parity banks ----
+    localparam int unsigned NPW   = MEMW / SB;                  // node values per word
+    localparam int unsigned NpwLg = $clog2(NPW);
+    localparam int unsigned NslW  = NpwLg > 0 ? NpwLg : 1;      // a slot within a word
+    localparam int unsigned RowW  = MAW > 3 ? MAW - 3 : 1;      // rows of one bank (one row at MAW = 3)
+    localparam int unsigned YzhW  = 2 * DW;                     // (y>>1) + Hy*(z>>1) < Hy*Hz <= 2^(2DW)
+    localparam int unsigned HW    = 3 * DW + 1;                 // a half-index h < Hx*Hy*Hz
+    localparam int unsigned XW    = SB + WB;                    // an x interpolation (between two values * 2^WB)
+    localparam int unsigned YW    = SB + 2 * WB;                // a y interpolation
+    localparam int unsigned XIW   = XW + 1;                     // b - a and (b - a)*f need one bit more
+    localparam int unsigned YIW   = YW + 1;
+    localparam int unsigned ZIW   = IW + 1;
+
+    // ---- R3: the weights, and (y>>1) + Hy*(z>>1) ----
+    logic [DW:0]     ny, hy;
+    logic [DW-1:0]   y_half, z_half;
+    logic [3*WB-1:0] frac3_q;  // {fz, fy, fx}: the top WB fraction bits of each coordinate
+    logic [YzhW-1:0] yzh3_q;
+    assign ny     = n_i[1*(DW+1) +: DW+1];
+    assign hy     = (ny >> 1) + (DW + 1)'(1);
+    assign y_half = idx_y[DW-1:0] >> 1;
+    assign z_half = idx_z[DW-1:0] >> 1;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        for (int i = 0; i < 3; i++) frac3_q[i*WB +: WB] <= acc_q[i*AccW + TF - WB +: WB];
+        yzh3_q <= YzhW'(y_half) + YzhW'(hy) * YzhW'(z_half);
+      end
+    end
+
+    // ---- R4: one row and slot per bank ----
+    // Bank p holds the cell's corner node whose coordinate parities are p: on an axis where the cell's index is odd
+    // and p's bit is even, that node is one further on, so its half-index is one more.
+    logic [DW:0]       hx;
+    logic [DW-1:0]     x_half;
+    logic [HW-1:0]     hbase;
+    logic [2:0]        par3;    // parities of the cell's x, y, z
+    logic [8*RowW-1:0] row;
+    logic [8*NslW-1:0] slot;
+    assign hx    = (nx_i >> 1) + (DW + 1)'(1);
+    assign x_half = vox3_q[DW-1:0] >> 1;
+    assign hbase  = HW'(x_half) + HW'(hx) * HW'(yzh3_q);
+    assign par3  = {vox3_q[2*DW], vox3_q[DW], vox3_q[0]};
+    for (genvar p = 0; p < 8; p++) begin : g_row
+      logic [2:0]    step;  // the half-index steps of bank p's node: x, y, z
+      logic [HW-1:0] h;
+      assign step = par3 & ~3'(p);
+      assign h    = hbase + HW'(step[0]) + (step[1] ? HW'(hx) : HW'(0)) + (step[2] ? HW'(hxy_i) : HW'(0));
+      // Inside points of a valid job read loaded words only, so the RowW-bit sum is exact for them.
+      assign row[p*RowW +: RowW]  = RowW'(map_base_i >> 3) + RowW'(h >> NpwLg);
+      assign slot[p*NslW +: NslW] = NslW'(h & HW'(NPW - 1));  // 0 when a word holds one node
+    end
+
+    logic              inside4_q;
+    logic [3*DW-1:0]   vox4_q;
+    logic [3*WB-1:0]   frac4_q;
+    logic [8*RowW-1:0] row4_q;
+    logic [8*NslW-1:0] slot4_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        inside4_q <= inside3_q;
+        vox4_q    <= vox3_q;
+        frac4_q   <= frac3_q;
+        row4_q    <= row;
+        slot4_q   <= slot;
+      end
+    end
+
+    // ---- R5: the 8 bank words (word w of the voxmap is row w >> 3 of bank w & 7) ----
+    logic [8*MEMW-1:0] word5;
+    logic              inside5_q;
+    logic [3*DW-1:0]   vox5_q;
+    logic [3*WB-1:0]   frac5_q;
+    logic [8*NslW-1:0] slot5_q;
+    for (genvar p = 0; p < 8; p++) begin : g_bank
+      voxcd_ram #(
+        .Width(MEMW),
+        .AddrW(RowW)
+      ) u_bank (
+        .clk_i  (clk_i),
+        .we_i   (map_we_i && (map_waddr_i[2:0] == 3'(p))),
+        .waddr_i(RowW'(map_waddr_i >> 3)),
+        .wdata_i(map_wdata_i),
+        .re_i   (en_i),
+        .raddr_i(row4_q[p*RowW +: RowW]),
+        .rdata_o(word5[p*MEMW +: MEMW])
+      );
+    end
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        inside5_q <= inside4_q;
+        vox5_q    <= vox4_q;
+        frac5_q   <= frac4_q;
+        slot5_q   <= slot4_q;
+      end
+    end
+
+    // ---- R6: node select, x interpolation ----
+    logic [8*SB-1:0] bank_val;  // the value bank p read
+    logic [8*SB-1:0] q;         // q(dx, dy, dz) at [(dx | dy<<1 | dz<<2)*SB +: SB]
+    logic [2:0]      par5;
+    assign par5 = {vox5_q[2*DW], vox5_q[DW], vox5_q[0]};
+    for (genvar p = 0; p < 8; p++) begin : g_val
+      assign bank_val[p*SB +: SB] = word5[p*MEMW + SB*slot5_q[p*NslW +: NslW] +: SB];
+    end
+    for (genvar c = 0; c < 8; c++) begin : g_node
+      // The node at offset c from the cell's corner has parities par5 ^ c.
+      logic [2:0] bank;
+      assign bank          = 3'(c) ^ par5;
+      assign q[c*SB +: SB] = bank_val[bank*SB +: SB];
+    end
+
+    logic [4*XW-1:0] lx;  // at (dy | dz<<1): between q(0, dy, dz) and q(1, dy, dz)
+    for (genvar k = 0; k < 4; k++) begin : g_x
+      logic signed [XIW-1:0] a, b, f, v;
+      assign a = XIW'($signed(q[(2*k)*SB +: SB]));
+      assign b = XIW'($signed(q[(2*k+1)*SB +: SB]));
+      assign f = $signed(XIW'(frac5_q[0*WB +: WB]));
+      assign v = (a <<< WB) + (b - a) * f;  // exact: |b - a| < 2^SB, f < 2^WB
+      assign lx[k*XW +: XW] = v[XW-1:0];    // exact: between a and b times 2^WB
+      logic unused_sign;
+      assign unused_sign = v[XIW-1];
+    end
+
+    logic            inside6_q;
+    logic [3*DW-1:0] vox6_q;
+    logic [2*WB-1:0] frac6_q;  // {fz, fy}
+    logic [4*XW-1:0] lx6_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        inside6_q <= inside5_q;
+        vox6_q    <= vox5_q;
+        frac6_q   <= frac5_q[WB +: 2*WB];
+        lx6_q     <= lx;
+      end
+    end
+
+    // ---- R7: y interpolation ----
+    logic [2*YW-1:0] ly;  // at dz: between the x interpolations at dy = 0 and dy = 1
+    for (genvar k = 0; k < 2; k++) begin : g_y
+      logic signed [YIW-1:0] a, b, f, v;
+      assign a = YIW'($signed(lx6_q[(2*k)*XW +: XW]));
+      assign b = YIW'($signed(lx6_q[(2*k+1)*XW +: XW]));
+      assign f = $signed(YIW'(frac6_q[0*WB +: WB]));
+      assign v = (a <<< WB) + (b - a) * f;
+      assign ly[k*YW +: YW] = v[YW-1:0];
+      logic unused_sign;
+      assign unused_sign = v[YIW-1];
+    end
+
+    logic            inside7_q;
+    logic [3*DW-1:0] vox7_q;
+    logic [WB-1:0]   fz7_q;
+    logic [2*YW-1:0] ly7_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        inside7_q <= inside6_q;
+        vox7_q    <= vox6_q;
+        fz7_q     <= frac6_q[WB +: WB];
+        ly7_q     <= ly;
+      end
+    end
+
+    // ---- R8: z interpolation, D ----
+    logic signed [ZIW-1:0] za, zb, zf, zv;
+    assign za = ZIW'($signed(ly7_q[0*YW +: YW]));
+    assign zb = ZIW'($signed(ly7_q[1*YW +: YW]));
+    assign zf = $signed(ZIW'(fz7_q));
+    assign zv = (za <<< WB) + (zb - za) * zf;
+
+    logic            inside8_q;
+    logic [3*DW-1:0] vox8_q;
+    logic [IW-1:0]   dist8_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        inside8_q <= inside7_q;
+        vox8_q    <= vox7_q;
+        dist8_q   <= zv[IW-1:0];
+      end
+    end
+
+    assign inside_o = inside8_q;
+    assign voxel_o  = vox8_q;
+    assign dist_o   = dist8_q;
+    assign state_o  = 2'd0;  // a distance voxmap has no states
+
+    logic unused_dist;  // the bank bits of map_base (a distance map starts on a bank boundary) and D's sign copy
+    assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW]};
+
+  end
 
 endmodule

@@ -19,6 +19,8 @@ package voxcd_pkg;
   localparam int unsigned SAW   = 16;  // shell memory depth 2^SAW points
   localparam int unsigned MAW   = 18;  // voxmap memory depth 2^MAW words
   localparam int unsigned TAGW  = 16;  // job tag width, unsigned
+  localparam int unsigned SB    = 2;   // voxmap value width: 2 = voxel states; 4, 8, 16 = signed node distances
+  localparam int unsigned WB    = 8;   // interpolation weight bits (distance voxmaps)
   /* verilator lint_on UNUSEDPARAM */
 
   // ---- Counters in completion records ----
@@ -28,6 +30,9 @@ package voxcd_pkg;
   // Slots in flight between the issue stage and the hit-test stage (registers R0 .. R5); ref/timing.h has the
   // same number as kPipelineSlots, and the cycle model is exact only while they agree.
   localparam int unsigned PipeSlots = 6;
+  // A distance device (SB > 2) has three more (R6 node select and x interpolation, R7 y, R8 z): ref/timing.h's
+  // kDistanceSlots.
+  localparam int unsigned DistSlots = 3;
 
   typedef enum logic [1:0] {
     ModeAll   = 2'd0,

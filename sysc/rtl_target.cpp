@@ -3,10 +3,10 @@
 #include <verilated.h>
 #include <verilated_fst_sc.h>
 
-#include "Vvoxcd_sc_l1.h"
-#include "Vvoxcd_sc_l2.h"
-#include "Vvoxcd_sc_l4.h"
-#include "Vvoxcd_sc_l8.h"
+#include <type_traits>
+
+#include "voxcd/ref/vectors.h"
+#include "voxcd_sysc_models.h"  // every model this build has, with its configuration (sysc/CMakeLists.txt)
 
 namespace voxcd::sysc {
 
@@ -14,7 +14,16 @@ using namespace sc_core;
 
 std::vector<int> rtl_target_lanes() { return {VOXCD_SYSC_LANES}; }
 
-// One signal per pin, typed as Verilator types the ports of the default-width device.
+std::vector<DeviceConfig> rtl_target_configs() {
+  std::vector<DeviceConfig> out;
+#define VOXCD_SYSC_MODEL_ENTRY(model, pairs) out.push_back(parse_config_pairs(pairs, "SystemC model " #model));
+  VOXCD_SYSC_MODELS(VOXCD_SYSC_MODEL_ENTRY)
+#undef VOXCD_SYSC_MODEL_ENTRY
+  return out;
+}
+
+// One signal per pin, typed as Verilator types the ports of the default-width device. The threshold and distance
+// are IW = SB + 3*WB bits: a uint32_t pin up to 32 bits, a uint64_t one above; a model binds the one of its type.
 struct RtlPins {
   sc_signal<bool> rst_ni{"rst_ni", false};
   sc_signal<bool> shell_we_i{"shell_we_i"}, map_we_i{"map_we_i"};
@@ -28,9 +37,13 @@ struct RtlPins {
   sc_signal<uint32_t> job_nx_i{"job_nx_i"}, job_ny_i{"job_ny_i"}, job_nz_i{"job_nz_i"};
   sc_signal<uint32_t> job_m_i[9];
   sc_signal<uint64_t> job_t_i[3];
+  sc_signal<uint32_t> job_threshold32_i{"job_threshold32_i"};
+  sc_signal<uint64_t> job_threshold64_i{"job_threshold64_i"};
   sc_signal<bool> hit_valid_o{"hit_valid_o"}, hit_ready_i{"hit_ready_i", true};
   sc_signal<uint32_t> hit_tag_o{"hit_tag_o"}, hit_point_o{"hit_point_o"}, hit_x_o{"hit_x_o"}, hit_y_o{"hit_y_o"},
       hit_z_o{"hit_z_o"}, hit_state_o{"hit_state_o"};
+  sc_signal<uint32_t> hit_dist32_o{"hit_dist32_o"};
+  sc_signal<uint64_t> hit_dist64_o{"hit_dist64_o"};
   sc_signal<bool> done_valid_o{"done_valid_o"}, done_ready_i{"done_ready_i", true};
   sc_signal<uint32_t> done_tag_o{"done_tag_o"}, done_hits_o{"done_hits_o"}, done_cycles_o{"done_cycles_o"},
       done_points_o{"done_points_o"}, done_stalls_o{"done_stalls_o"};
@@ -44,6 +57,15 @@ struct RtlModel {
 };
 
 namespace {
+
+// Binds `port` to the signal of its own width.
+template <class Port>
+void bind_iw(Port& port, sc_signal<uint32_t>& s32, sc_signal<uint64_t>& s64) {
+  if constexpr (std::is_same_v<typename Port::data_type, uint64_t>)
+    port(s64);
+  else
+    port(s32);
+}
 
 template <class M>
 struct ModelOf final : RtlModel {
@@ -79,6 +101,7 @@ struct ModelOf final : RtlModel {
     m.job_t0_i(p.job_t_i[0]);
     m.job_t1_i(p.job_t_i[1]);
     m.job_t2_i(p.job_t_i[2]);
+    bind_iw(m.job_threshold_i, p.job_threshold32_i, p.job_threshold64_i);
     m.hit_valid_o(p.hit_valid_o);
     m.hit_ready_i(p.hit_ready_i);
     m.hit_tag_o(p.hit_tag_o);
@@ -87,6 +110,7 @@ struct ModelOf final : RtlModel {
     m.hit_y_o(p.hit_y_o);
     m.hit_z_o(p.hit_z_o);
     m.hit_state_o(p.hit_state_o);
+    bind_iw(m.hit_dist_o, p.hit_dist32_o, p.hit_dist64_o);
     m.done_valid_o(p.done_valid_o);
     m.done_ready_i(p.done_ready_i);
     m.done_tag_o(p.done_tag_o);
@@ -103,6 +127,14 @@ struct ModelOf final : RtlModel {
 
 uint32_t masked(int64_t v, int width) { return uint32_t(uint64_t(v) & ((uint64_t{1} << width) - 1)); }
 
+// The signed value of the low `width` bits of v.
+int64_t sign_extend(uint64_t v, int width) {
+  if (width >= 64) return int64_t(v);
+  const uint64_t sign = uint64_t{1} << (width - 1);
+  v &= (sign << 1) - 1;
+  return int64_t(v ^ sign) - int64_t(sign);
+}
+
 }  // namespace
 
 RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock_period, sc_time access_latency,
@@ -113,24 +145,23 @@ RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock
       // Rising edges at T, 2T, ...: the first one resets the device.
       clk_("clk", clock_period, 0.5, clock_period, true),
       pins_(std::make_unique<RtlPins>()) {
-  DeviceConfig built;
-  built.LANES = cfg.LANES;
-  if (!cfg.same_widths(built))
-    throw std::invalid_argument(std::string(this->name()) + ": the RTL models are built for the default widths (" +
-                                DeviceConfig{}.to_string() + "), not for " + cfg.to_string());
   ctx_->fatalOnError(false);  // a failed assertion faults the target instead of ending the process
   if (!trace_path_.empty()) ctx_->traceEverOn(true);
   // A SystemC model takes the calling thread's context: make it this target's own.
   Verilated::threadContextp(ctx_.get());
   const std::string mname = std::string(basename()) + "_rtl";
-  switch (cfg.LANES) {
-    case 1: model_ = std::make_unique<ModelOf<Vvoxcd_sc_l1>>(mname.c_str(), clk_, *pins_); break;
-    case 2: model_ = std::make_unique<ModelOf<Vvoxcd_sc_l2>>(mname.c_str(), clk_, *pins_); break;
-    case 4: model_ = std::make_unique<ModelOf<Vvoxcd_sc_l4>>(mname.c_str(), clk_, *pins_); break;
-    case 8: model_ = std::make_unique<ModelOf<Vvoxcd_sc_l8>>(mname.c_str(), clk_, *pins_); break;
-    default:
-      throw std::invalid_argument(std::string(this->name()) + ": no RTL model for LANES " +
-                                  std::to_string(cfg.LANES) + " (this build has 1, 2, 4 and 8)");
+#define VOXCD_SYSC_MODEL_ENTRY(model, pairs)                                    \
+  if (!model_ && cfg == parse_config_pairs(pairs, "SystemC model " #model))      \
+    model_ = std::make_unique<ModelOf<model>>(mname.c_str(), clk_, *pins_);
+  VOXCD_SYSC_MODELS(VOXCD_SYSC_MODEL_ENTRY)
+#undef VOXCD_SYSC_MODEL_ENTRY
+  if (!model_) {
+    std::string built;
+    for (const DeviceConfig& c : rtl_target_configs()) built += (built.empty() ? "" : "; ") + c.to_string();
+    throw std::invalid_argument(std::string(this->name()) +
+                                ": the RTL models are built for the default widths with the lane counts and the "
+                                "distance devices listed here (" +
+                                built + "), not for " + cfg.to_string());
   }
   SC_METHOD(on_edge);
   sensitive << clk_.posedge_event();
@@ -210,6 +241,10 @@ void RtlTarget::drive_job(const Job& j) {
   for (int i = 0; i < 9; ++i) p.job_m_i[i].write(masked(j.M[i / 3][i % 3], cfg_.MW));
   const uint64_t tmask = cfg_.TW >= 64 ? ~uint64_t{0} : (uint64_t{1} << cfg_.TW) - 1;
   for (int i = 0; i < 3; ++i) p.job_t_i[i].write(uint64_t(j.t[i]) & tmask);
+  const int iw = cfg_.IW();  // 0 on a 2-bit device
+  const uint64_t thr = uint64_t(j.threshold) & (iw >= 64 ? ~uint64_t{0} : (uint64_t{1} << iw) - 1);
+  p.job_threshold32_i.write(uint32_t(thr));
+  p.job_threshold64_i.write(thr);
 }
 
 void RtlTarget::drive_word(const MemRequest& req) {
@@ -239,9 +274,12 @@ void RtlTarget::on_edge() {
     p.rst_ni.write(true);  // this edge reset the device; its outputs before it mean nothing
   } else {
     if (job_valid_ && p.job_ready_o.read()) ++fed_;
-    if (p.hit_valid_o.read())
+    if (p.hit_valid_o.read()) {
+      const int iw = cfg_.IW();
+      const uint64_t dist = iw > 32 ? p.hit_dist64_o.read() : p.hit_dist32_o.read();
       partial_.push_back(Record::hit(p.hit_tag_o.read(), p.hit_point_o.read(), p.hit_x_o.read(), p.hit_y_o.read(),
-                                     p.hit_z_o.read(), uint8_t(p.hit_state_o.read())));
+                                     p.hit_z_o.read(), uint8_t(p.hit_state_o.read()), sign_extend(dist, iw)));
+    }
     if (p.done_valid_o.read()) {
       Record d = Record::done(p.done_tag_o.read(), p.done_hits_o.read(), p.done_cycles_o.read());
       d.points = p.done_points_o.read();

@@ -22,13 +22,16 @@ namespace voxcd::sysc {
 struct RtlPins;   // one signal per pin of the model
 struct RtlModel;  // the Verilated model of one lane count
 
-// Lane counts this build has SystemC RTL models for.
+// Lane counts this build has SystemC RTL models of the 2-bit device (default widths) for.
 std::vector<int> rtl_target_lanes();
+// Every configuration this build has a SystemC RTL model for: the 2-bit device's lane counts, then the distance
+// devices (sysc/CMakeLists.txt, VOXCD_SYSC_DIST_MODELS).
+std::vector<DeviceConfig> rtl_target_configs();
 
 class RtlTarget final : public DeviceTarget {
  public:
   SC_HAS_PROCESS(RtlTarget);
-  // cfg must have the default widths and a lane count of rtl_target_lanes(); trace_path "" = no waveform.
+  // cfg must be one of rtl_target_configs(); trace_path "" = no waveform.
   RtlTarget(sc_core::sc_module_name name, const DeviceConfig& cfg, sc_core::sc_time clock_period,
             sc_core::sc_time access_latency = sc_core::SC_ZERO_TIME, const std::string& trace_path = "");
   ~RtlTarget() override;

@@ -24,6 +24,13 @@ const CLI::Validator kPositive(
     },
     "POSITIVE");
 
+// The node value widths a distance device has (docs/contract.md, "Distance voxmaps").
+const CLI::Validator kDistanceBits(
+    [](std::string& v) -> std::string {
+      return v == "4" || v == "8" || v == "16" ? "" : "'" + v + "' is not 4, 8 or 16 (bits per node value)";
+    },
+    "4|8|16");
+
 struct VoxelizeArgs {
   std::string input;
   double voxel = 0;
@@ -34,6 +41,8 @@ struct VoxelizeArgs {
   double shell_ratio = std::sqrt(2.0);
   unsigned threads = 0;
   bool json = false;
+  int distance_bits = 0;
+  double band = 4.0;
 };
 
 int voxelize_cmd(const VoxelizeArgs& a) {
@@ -46,6 +55,8 @@ int voxelize_cmd(const VoxelizeArgs& a) {
   opt.resolution = a.resolution;
   opt.shell_ratio = a.shell_ratio;
   opt.threads = a.threads;
+  opt.distance_bits = a.distance_bits;
+  opt.band = a.band;
   const ObjectFile obj = make_object(mesh, source, hash, opt, &report);
   write_object(a.output, obj);
   if (!a.png.empty()) write_object_picture(a.png, obj, &mesh);
@@ -80,6 +91,16 @@ void add_voxelize(CLI::App& app) {
       ->capture_default_str();
   c->add_option("--threads", a->threads, "Worker threads (0: one per hardware thread)")->capture_default_str();
   c->add_flag("--json", a->json, "Describe the written object as JSON (as `voxcd info --json`)");
+  CLI::Option* bits =
+      c->add_option("--distance-bits", a->distance_bits,
+                    "Also store the signed distance field at the voxmap's nodes, quantised to 4, 8 or 16 bits over "
+                    "the band (object file version 3; the shell then lies on the surface)")
+          ->check(kDistanceBits);
+  c->add_option("--band", a->band, "Half-width of the distance field's band in voxels (with --distance-bits): "
+                                   "the step is band / 2^(bits-1)")
+      ->check(kPositive)
+      ->needs(bits)
+      ->capture_default_str();
   c->callback([a, voxel, res] {
     if (!*voxel && !*res) throw CLI::RequiredError("--voxel or --resolution");
     exit_code() = voxelize_cmd(*a);

@@ -1,6 +1,7 @@
 // Shared by `voxcd voxelize` and `voxcd info`: the description of an object file (text or JSON) and its picture.
 #pragma once
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/png.h"
 #include "voxcd/ref/config.h"
+#include "voxcd/ref/pipeline.h"
 
 namespace voxcd::cli {
 
@@ -23,6 +25,28 @@ inline ObjectMemory object_memory(const ObjectFile& obj, const DeviceConfig& cfg
   const uint64_t per = uint64_t(cfg.states_per_word());
   m.voxmap_bytes = (obj.voxmap.size() + per - 1) / per * uint64_t(cfg.MEMW) / 8;
   m.shell_bytes = (uint64_t(obj.shell.size()) * 3 * uint64_t(cfg.PW) + 7) / 8;
+  return m;
+}
+
+// The device memory of an object's distance field with the default widths and SB = its bits: words of the 8 parity
+// banks (map_words), and the same in bytes.
+struct DistanceMemory {
+  DeviceConfig cfg;
+  uint64_t words = 0, bytes = 0, nodes = 0;
+};
+
+inline DistanceMemory distance_memory(const ObjectFile& obj) {
+  DistanceMemory m;
+  const DistanceField& f = obj.distance;
+  if (f.empty()) return m;
+  m.cfg.SB = f.bits;
+  Job j;
+  j.nx = f.dims[0];
+  j.ny = f.dims[1];
+  j.nz = f.dims[2];
+  m.words = map_words(m.cfg, j);
+  m.bytes = m.words * uint64_t(m.cfg.MEMW) / 8;
+  m.nodes = f.q.size();
   return m;
 }
 
@@ -132,8 +156,24 @@ inline std::string object_json(const std::string& path, const ObjectFile& obj) {
     << "  \"shell_bytes\": " << mem.shell_bytes << ",\n"
     << "  \"memory_bytes\": " << mem.voxmap_bytes + mem.shell_bytes << ",\n"
     << "  \"memory_config\": " << json_string(cfg.to_string()) << ",\n"
-    << "  \"repair\": " << repair_json(obj) << "\n"
-    << "}\n";
+    << "  \"repair\": " << repair_json(obj);
+  // Objects with a distance field (file version 3) have two more keys; the others print exactly as before.
+  if (!obj.distance.empty() || obj.shell.on_surface) {
+    j << ",\n  \"shell_on_surface\": " << (obj.shell.on_surface ? "true" : "false") << ",\n  \"distance\": ";
+    if (obj.distance.empty()) {
+      j << "null";
+    } else {
+      const DistanceField& f = obj.distance;
+      const DistanceMemory dm = distance_memory(obj);
+      j << "{\"bits\": " << f.bits << ", \"step\": " << num(f.step) << ", \"band\": " << num(f.band())
+        << ", \"nodes\": " << dm.nodes << ", \"node_dims\": [" << f.dims[0] + 1 << ", " << f.dims[1] + 1 << ", "
+        << f.dims[2] + 1 << "], \"min\": " << *std::min_element(f.q.begin(), f.q.end())
+        << ", \"max\": " << *std::max_element(f.q.begin(), f.q.end()) << ", \"memory_words\": " << dm.words
+        << ", \"memory_bytes\": " << dm.bytes << ", \"memory_config\": " << json_string(dm.cfg.to_string())
+        << "}";
+    }
+  }
+  j << "\n}\n";
   return j.str();
 }
 
@@ -150,12 +190,20 @@ inline std::string object_text(const std::string& path, const ObjectFile& obj) {
     << "  voxmap   " << d[0] << " x " << d[1] << " x " << d[2] << " voxels of size " << vm.voxel() << ", origin ("
     << vm.origin().x() << ", " << vm.origin().y() << ", " << vm.origin().z() << ")\n"
     << "  states   empty " << c[kEmpty] << ", surface " << c[kSurface] << ", interior " << c[kInterior] << "\n"
-    << "  shell    " << obj.shell.size() << " points at spacing " << obj.shell.grid.voxel << " (voxel / "
-    << obj.shell_ratio << "), grid " << sd[0] << " x " << sd[1] << " x " << sd[2] << "\n"
+    << "  shell    " << obj.shell.size() << (obj.shell.on_surface ? " points on the surface" : " points")
+    << " at spacing " << obj.shell.grid.voxel << " (voxel / " << obj.shell_ratio << "), grid " << sd[0] << " x "
+    << sd[1] << " x " << sd[2] << "\n"
     << "  memory   voxmap " << mem.voxmap_bytes << " bytes (MEMW " << cfg.MEMW << "), shell " << mem.shell_bytes
     << " bytes (3 x PW " << cfg.PW << " bits per point), total " << mem.voxmap_bytes + mem.shell_bytes
-    << " bytes\n"
-    << repair_text(obj);
+    << " bytes\n";
+  if (!obj.distance.empty()) {
+    const DistanceField& f = obj.distance;
+    const DistanceMemory dm = distance_memory(obj);
+    t << "  distance " << f.bits << "-bit node values, step " << f.step << " voxels, band +-" << f.band()
+      << " voxels, " << f.dims[0] + 1 << " x " << f.dims[1] + 1 << " x " << f.dims[2] + 1 << " nodes; device memory "
+      << dm.words << " words (" << dm.bytes << " bytes, MEMW " << dm.cfg.MEMW << ", SB " << dm.cfg.SB << ")\n";
+  }
+  t << repair_text(obj);
   return t.str();
 }
 

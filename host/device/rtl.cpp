@@ -2,6 +2,7 @@
 
 #include <random>
 #include <string>
+#include <type_traits>
 
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
@@ -45,6 +46,14 @@ template <class T>
 T masked(int64_t v, int width) {
   const uint64_t mask = width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
   return T(uint64_t(v) & mask);
+}
+
+// The signed value of the low `width` bits of v.
+int64_t sign_extend(uint64_t v, int width) {
+  if (width >= 64) return int64_t(v);
+  const uint64_t sign = uint64_t{1} << (width - 1);
+  v &= (sign << 1) - 1;
+  return int64_t(v ^ sign) - int64_t(sign);
 }
 
 template <class Model>
@@ -123,7 +132,8 @@ class RtlDevice final : public Device {
       const bool job_fire = m.job_valid_i && m.job_ready_o;
       bool progress = job_fire;
       if (m.hit_valid_o && m.hit_ready_i) {
-        out.push_back(Record::hit(m.hit_tag_o, m.hit_point_o, m.hit_x_o, m.hit_y_o, m.hit_z_o, m.hit_state_o));
+        out.push_back(Record::hit(m.hit_tag_o, m.hit_point_o, m.hit_x_o, m.hit_y_o, m.hit_z_o, m.hit_state_o,
+                                  sign_extend(uint64_t(m.hit_dist_o), cfg_.IW())));
         progress = true;
       }
       if (m.done_valid_o && m.done_ready_i) {
@@ -150,7 +160,7 @@ class RtlDevice final : public Device {
     m.hit_ready_i = 1;
     m.done_ready_i = 1;
     m.eval();
-    for (int k = 0; k <= kPipelineSlots && m.busy_o; ++k) {
+    for (int k = 0; k <= pipeline_slots(cfg_) && m.busy_o; ++k) {
       if (m.hit_valid_o || m.done_valid_o) throw DeviceError("rtl: a record came after the last completion record");
       tick();
     }
@@ -186,6 +196,8 @@ class RtlDevice final : public Device {
     m.job_t0_i = masked<uint64_t>(j.t[0], tw);
     m.job_t1_i = masked<uint64_t>(j.t[1], tw);
     m.job_t2_i = masked<uint64_t>(j.t[2], tw);
+    // IW bits: a 32-bit or a 64-bit port depending on the model (0 on a 2-bit device).
+    m.job_threshold_i = masked<std::remove_reference_t<decltype(m.job_threshold_i)>>(j.threshold, cfg_.IW());
   }
 
   // Verilator reports a failed assertion to the calling thread's current context, and making any context makes
@@ -252,6 +264,14 @@ std::vector<DeviceConfig> rtl_configs() {
   return out;
 }
 
+std::vector<DeviceConfig> rtl_distance_configs() {
+  std::vector<DeviceConfig> out;
+#define VOXCD_RTL_DIST_ENTRY(model, pairs) out.push_back(parse_config_pairs(pairs, "rtl model " #model));
+  VOXCD_RTL_DIST_MODELS(VOXCD_RTL_DIST_ENTRY)
+#undef VOXCD_RTL_DIST_ENTRY
+  return out;
+}
+
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
   return make_rtl_device(cfg, opt, RtlFaults{});
 }
@@ -263,12 +283,14 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
   if (cfg == parse_config_pairs(pairs, "rtl model " #model)) \
     return std::make_unique<RtlDevice<model>>(cfg, opt, faults);
   VOXCD_RTL_CONFIG_MODELS(VOXCD_RTL_CONFIG_ENTRY)
+  VOXCD_RTL_DIST_MODELS(VOXCD_RTL_CONFIG_ENTRY)
 #undef VOXCD_RTL_CONFIG_ENTRY
   DeviceConfig built;  // the other models are built for the default widths
   built.LANES = cfg.LANES;
   if (!cfg.same_widths(built)) {
     std::string extra;
     for (const DeviceConfig& c : rtl_configs()) extra += "; " + c.to_string();
+    for (const DeviceConfig& c : rtl_distance_configs()) extra += "; " + c.to_string();
     throw DeviceError("rtl: this build has models for the default widths (" + DeviceConfig{}.to_string() +
                       " with LANES 1, 2, 4, 8)" + extra + ", not for " + cfg.to_string());
   }
@@ -286,6 +308,7 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
 
 std::vector<int> rtl_lanes() { return {}; }
 std::vector<DeviceConfig> rtl_configs() { return {}; }
+std::vector<DeviceConfig> rtl_distance_configs() { return {}; }
 
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig&, const DeviceOptions&, const RtlFaults&) {
   throw DeviceError("rtl: this build has no RTL models (Verilator was not found at configure time)");

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <tuple>
 
 #include "voxcd/host/object/shapes.h"
 
@@ -18,7 +19,12 @@ namespace voxcd {
 namespace {
 
 constexpr char kMagic[8] = {'V', 'O', 'X', 'C', 'D', 'O', 'B', 'J'};
-constexpr uint32_t kVersion = 2;  // version 1 (no report section) is still read
+// Version 3 adds the distance section and shell points on the surface; it is written only for objects that have
+// either, so every other object is written as version 2, byte for byte as before. Versions 1 (no report section)
+// and 2 are still read.
+constexpr uint32_t kVersion = 2, kVersionDistance = 3;
+// Header flags (version 3 only): the shell's points lie on the surface (PointShell::on_surface).
+constexpr uint32_t kFlagSurfaceShell = 1;
 // The report section's fields (version 2), in file order.
 constexpr int kReportCounts = 19;
 constexpr uint32_t kClosed = 1, kFlipped = 2, kPointsOnly = 4, kSurfaceOnly = 8, kReportFlags = 15;
@@ -119,6 +125,44 @@ GridPlacement get_grid(Reader& r, const char* what) {
   return g;
 }
 
+// The distance section of version 3 (write_object describes it).
+void read_distance(Reader& r, const GridPlacement& g, DistanceField& f) {
+  const uint32_t bits = r.get<uint32_t>("the distance bits");
+  if (bits != 0 && bits != 4 && bits != 8 && bits != 16)
+    r.bad("distance bits " + std::to_string(bits) + " are not 0, 4, 8 or 16");
+  const double step = r.get<double>("the distance step");
+  if (bits == 0 ? step != 0 : !(std::isfinite(step) && step > 0))
+    r.bad(bits == 0 ? "the distance step of an object without a field is not 0"
+                    : "the distance step " + std::to_string(step) + " is not a positive finite number");
+  const uint64_t count = r.get<uint64_t>("the distance node count");
+  const uint64_t nodes = (uint64_t(g.dims[0]) + 1) * (uint64_t(g.dims[1]) + 1) * (uint64_t(g.dims[2]) + 1);
+  if (count != (bits ? nodes : 0))
+    r.bad("distance node count " + std::to_string(count) + " does not match the voxmap's grid (" +
+          std::to_string(bits ? nodes : 0) + ")");
+  if (bits == 0) return;
+  const uint64_t bytes = (count * bits + 7) / 8;
+  r.need(bytes, "the distance node values");
+  f.bits = int(bits);
+  f.step = step;
+  f.dims = g.dims;
+  f.q.resize(count);
+  const unsigned char* p = reinterpret_cast<const unsigned char*>(r.buf.data() + r.pos);
+  const uint64_t mask = (uint64_t{1} << bits) - 1, sign = uint64_t{1} << (bits - 1);
+  for (uint64_t i = 0; i < count; ++i) {
+    const uint64_t at = i * bits;
+    uint64_t v = 0;
+    for (uint64_t b = at / 8; b <= (at + bits - 1) / 8; ++b) v |= uint64_t(p[b]) << (8 * (b - at / 8));
+    v = (v >> (at % 8)) & mask;
+    f.q[i] = int16_t(int64_t(v ^ sign) - int64_t(sign));
+  }
+  r.field = r.pos;
+  if ((count * bits) % 8 && (p[bytes - 1] >> ((count * bits) % 8)) != 0) {
+    r.field = r.pos + bytes - 1;
+    r.bad("the last distance byte has bits set beyond the last node");
+  }
+  r.pos += bytes;
+}
+
 }  // namespace
 
 uint64_t hash_bytes(const std::string& bytes) {
@@ -166,6 +210,9 @@ Mesh load_source(const std::string& mesh_or_shape, std::string* source, uint64_t
 ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt,
                        const MeshReport* report) {
   ObjectFile obj;
+  if (opt.distance_bits != 0 && opt.distance_bits != 4 && opt.distance_bits != 8 && opt.distance_bits != 16)
+    throw MeshError(mesh.name + ": distance bits must be 4, 8 or 16 (or 0 for none), got " +
+                    std::to_string(opt.distance_bits));
   const double voxel = opt.resolution ? voxel_for_resolution(mesh, opt.resolution) : opt.voxel;
   obj.source = source;
   obj.source_hash = source_hash;
@@ -186,6 +233,14 @@ ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t sou
   so.ratio = opt.shell_ratio;
   so.shift = opt.shift;
   so.threads = opt.threads;
+  if (opt.distance_bits) {
+    DistanceOptions d;
+    d.bits = opt.distance_bits;
+    d.band = opt.band;
+    d.threads = opt.threads;
+    obj.distance = distance_field(mesh, obj.voxmap, d);
+    so.on_surface = true;
+  }
   obj.shell = point_shell(mesh, so);
   return obj;
 }
@@ -194,14 +249,20 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   const PointShell& sh = obj.shell;
   if (sh.points.size() != sh.size() || sh.normals.size() != sh.size())
     throw ObjectFileError(path + ": the shell's cells, points and normals differ in number");
+  if (sh.on_surface && sh.coords.size() != sh.size())
+    throw ObjectFileError(path + ": the shell's coordinates and cells differ in number");
+  const DistanceField& df = obj.distance;
+  if (!df.empty() && (df.dims != obj.voxmap.dims() || df.q.size() != df.node_index(0, 0, df.dims[2] + 1)))
+    throw ObjectFileError(path + ": the distance field's grid is not the voxmap's");
+  const bool v3 = !df.empty() || sh.on_surface;
   for (const GridPlacement* g : {&obj.voxmap.grid(), &sh.grid})
     for (uint32_t d : g->dims)
       if (d == 0 || d > kObjectMaxDim)
         throw ObjectFileError(path + ": grid dimension " + std::to_string(d) + " does not fit an object file");
   Writer w;
   w.buf.append(kMagic, 8);
-  w.put(kVersion);
-  w.put(uint32_t{0});  // flags
+  w.put(v3 ? kVersionDistance : kVersion);
+  w.put(sh.on_surface ? kFlagSurfaceShell : uint32_t{0});
   w.put(obj.source_hash);
   w.str(obj.source);
   w.put(obj.shell_ratio);
@@ -222,7 +283,8 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   w.put(uint32_t(kObjectShellFrac));
   w.put(uint64_t(s.size()));
   for (size_t k = 0; k < s.size(); ++k)
-    for (int a = 0; a < 3; ++a) w.put(int32_t((2 * int64_t(s.cells[k][a]) + 1) << (kObjectShellFrac - 1)));
+    for (int a = 0; a < 3; ++a)
+      w.put(s.on_surface ? s.coords[k][a] : int32_t((2 * int64_t(s.cells[k][a]) + 1) << (kObjectShellFrac - 1)));
   for (size_t k = 0; k < s.size(); ++k) put_vec(w, s.points[k]);
   for (size_t k = 0; k < s.size(); ++k) put_vec(w, s.normals[k]);
   // Report (version 2): flags, weld tolerance, counts; all zero when the object has none.
@@ -236,6 +298,22 @@ void write_object(const std::string& path, const ObjectFile& obj) {
     w.put(flags);
     w.put(m.weld_tolerance);
     for (uint64_t* f : report_fields(m, v)) w.put(*f);
+  }
+  // Distance section (version 3): SB, step, node count, then the node values packed SB bits each.
+  if (v3) {
+    w.put(uint32_t(df.bits));
+    w.put(df.empty() ? 0.0 : df.step);
+    w.put(uint64_t(df.empty() ? 0 : df.q.size()));
+    if (!df.empty()) {
+      const uint64_t mask = (uint64_t{1} << df.bits) - 1;
+      uint64_t acc = 0;
+      int have = 0;
+      for (int16_t v : df.q) {
+        acc |= (uint64_t(int64_t(v)) & mask) << have;
+        for (have += df.bits; have >= 8; have -= 8, acc >>= 8) w.buf += char(acc & 0xff);
+      }
+      if (have > 0) w.buf += char(acc & 0xff);
+    }
   }
   const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
   w.put(crc);
@@ -266,17 +344,20 @@ ObjectFile read_object(const std::string& path) {
   if (std::memcmp(buf.data(), kMagic, 8) != 0) r.bad("not a voxcd object file (bad magic)");
   r.pos = 8;
   const uint32_t version = r.get<uint32_t>("the version");
-  if (version != 1 && version != kVersion)
-    r.bad("object file version " + std::to_string(version) + " is not supported (this reader knows versions 1 and " +
-          std::to_string(kVersion) + ")");
+  if (version < 1 || version > kVersionDistance)
+    r.bad("object file version " + std::to_string(version) + " is not supported (this reader knows versions 1 to " +
+          std::to_string(kVersionDistance) + ")");
   const uint32_t stored_crc = [&] {
     uint32_t v;
     std::memcpy(&v, buf.data() + buf.size() - 4, 4);
     return v;
   }();
   const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(buf.data()), buf.size() - 4));
-  if (const uint32_t flags = r.get<uint32_t>("the flags"))
-    r.bad("unknown flags " + std::to_string(flags) + " (must be 0)");
+  const uint32_t header_flags = r.get<uint32_t>("the flags");
+  const uint32_t known_flags = version >= kVersionDistance ? kFlagSurfaceShell : 0;
+  if (header_flags & ~known_flags)
+    r.bad("unknown flags " + std::to_string(header_flags) + " (version " + std::to_string(version) + " knows " +
+          std::to_string(known_flags) + ")");
   ObjectFile obj;
   obj.source_hash = r.get<uint64_t>("the source hash");
   obj.source = r.str("the source name");
@@ -310,13 +391,23 @@ ObjectFile read_object(const std::string& path) {
   r.need(n, "the shell points", 12 + 24 + 24);
   PointShell& s = obj.shell;
   s.grid = sg;
+  s.on_surface = header_flags & kFlagSurfaceShell;
   s.cells.resize(n);
   s.points.resize(n);
   s.normals.resize(n);
+  if (s.on_surface) s.coords.resize(n);
   const size_t shell_words_at = r.pos;
   for (uint64_t k = 0; k < n; ++k)
     for (int a = 0; a < 3; ++a) {
       const int32_t w = r.get<int32_t>("a shell word");
+      if (s.on_surface) {
+        // Any point of the grid's closed box; its voxel is the one whose closed cube holds it.
+        if (w < 0 || int64_t(w) > (int64_t(sg.dims[a]) << kObjectShellFrac))
+          r.bad("shell word " + std::to_string(k) + " lies outside the shell grid");
+        s.coords[k][a] = w;
+        s.cells[k][a] = std::min(uint32_t(w >> kObjectShellFrac), sg.dims[a] - 1);
+        continue;
+      }
       const int32_t unit = 1 << (kObjectShellFrac - 1);
       if (w < 0 || w % unit != 0 || (w / unit) % 2 != 1 || uint32_t(w / unit / 2) >= sg.dims[a])
         r.bad("shell word " + std::to_string(k) + " is not a voxel centre of the shell grid");
@@ -326,10 +417,15 @@ ObjectFile read_object(const std::string& path) {
     auto lin = [&](uint64_t i) {
       return s.cells[i][0] + uint64_t(sg.dims[0]) * (s.cells[i][1] + uint64_t(sg.dims[1]) * s.cells[i][2]);
     };
-    if (lin(k) <= lin(k - 1)) {
+    bool after = lin(k) > lin(k - 1);
+    if (s.on_surface && lin(k) == lin(k - 1)) {
+      const auto &c = s.coords[k], &p = s.coords[k - 1];
+      after = std::make_tuple(c[2], c[1], c[0]) > std::make_tuple(p[2], p[1], p[0]);
+    }
+    if (!after) {
       r.field = shell_words_at + 12 * k;
       r.bad("shell word " + std::to_string(k) + " is not after shell word " + std::to_string(k - 1) +
-            " in linear-index order");
+            (s.on_surface ? " in the order of their voxels' linear index, then z, y, x" : " in linear-index order"));
     }
   }
   for (uint64_t k = 0; k < n; ++k) {
@@ -353,6 +449,7 @@ ObjectFile read_object(const std::string& path) {
     if (!(std::isfinite(m.weld_tolerance) && m.weld_tolerance >= 0)) r.bad("the weld tolerance is not a finite number >= 0");
     for (uint64_t* f : report_fields(m, obj.voxelize_report)) *f = r.get<uint64_t>("the report counts");
   }
+  if (version >= kVersionDistance) read_distance(r, g, obj.distance);
   r.get<uint32_t>("the checksum");
   if (r.pos != buf.size()) {
     r.field = r.pos;

@@ -53,7 +53,8 @@ Mesh load_source(const std::string& mesh_or_shape, std::string* source = nullptr
                  MeshReport* report = nullptr, const LoadOptions& opt = {});
 
 // Voxmap and shell of a mesh as load_source left it; `report` (what loading found) is kept in the object file.
-// MeshError as voxelize and point_shell throw them.
+// With distance_bits, also the distance field (distance_field) and the shell on the surface (surface_shell).
+// MeshError as voxelize, point_shell and distance_field throw them, and for distance bits not 0, 4, 8 or 16.
 ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt,
                        const MeshReport* report = nullptr);
 
@@ -61,14 +62,16 @@ ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t sou
 uint64_t hash_file(const std::string& path);
 uint64_t hash_bytes(const std::string& bytes);
 
-// Writes the object file (atomically: a temporary file renamed into place). ObjectFileError on I/O failure.
+// Writes the object file (atomically: a temporary file renamed into place): version 3 when the object has a distance
+// field or a shell on the surface, else version 2 exactly as before. ObjectFileError on I/O failure.
 void write_object(const std::string& path, const ObjectFile& obj);
 // Reads and checks an object file (magic, version, sizes, CRC-32). ObjectFileError naming the problem.
 ObjectFile read_object(const std::string& path);
 
 // Shell words in the file use this fixed format (grid coordinates, signed 32-bit with 8 fraction bits): exact,
-// because shell points are voxel centres (half-integers). PointShell::words gives them for any configuration.
-constexpr int kObjectShellFrac = 8;
+// because shell points are voxel centres (half-integers) or, on the surface, rounded to it. PointShell::words gives
+// them for any configuration.
+constexpr int kObjectShellFrac = kShellFrac;
 // Largest grid dimension an object file accepts on any axis.
 constexpr uint32_t kObjectMaxDim = 1u << 20;
 

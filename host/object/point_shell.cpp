@@ -102,7 +102,14 @@ std::vector<ShellWord> PointShell::words(const DeviceConfig& cfg) const {
   return w;
 }
 
+double PointShell::max_grid_coordinate() const {
+  double m = 0;
+  for (size_t k = 0; k < size(); ++k) m = std::max(m, grid_point(k).maxCoeff());
+  return m;
+}
+
 PointShell point_shell(const Mesh& mesh, const ShellOptions& opt) {
+  if (opt.on_surface) return surface_shell(mesh, opt);
   if (!(std::isfinite(opt.target_voxel) && opt.target_voxel > 0))
     throw MeshError(mesh.name + ": the target voxel size must be a positive finite number, got " +
                     std::to_string(opt.target_voxel));

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/host/object/detail/solid.h"
 #include "voxcd/host/object/detail/winding.h"
 
 namespace voxcd {
@@ -236,6 +237,125 @@ void apply_surface(Voxmap& vm, const std::vector<uint64_t>& sb) {
   }
 }
 
+// Steps 1-4 of the voxeliser on grid gp: every voxel whose centre has a generalized winding number of the non-sheet
+// triangles of at least 1/2 becomes interior in vm (all empty before). Step 4 leaves out the voxels set in *skip
+// (the surface voxels, which voxelize overrides anyway); with skip null every voxel is decided.
+void fill_solid(const Mesh& mesh, const GridMesh& gm, const GridPlacement& gp, ThreadPool& pool,
+                const std::vector<uint64_t>* skip, Voxmap& vm, VoxelizeReport& rep) {
+  // 1. The closed chain: the triangles that bound the solid (sheets excluded) minus the caps of their boundary.
+  std::vector<std::array<uint32_t, 3>> solid_copy;
+  if (!mesh.sheet.empty())
+    for (size_t t = 0; t < mesh.size(); ++t)
+      if (!mesh.is_sheet(t)) solid_copy.push_back(mesh.triangles[t]);
+  const std::vector<std::array<uint32_t, 3>>& solid = mesh.sheet.empty() ? mesh.triangles : solid_copy;
+  const std::vector<detail::ChainTriangle> caps = detail::boundary_caps(gm.q, solid, kFrac);
+
+  // 2. Signed crossings of the chain with every column ray, bucketed by column and sorted along it.
+  const size_t n_items = solid.size() + caps.size();
+  const auto parts = chunks(n_items, pool.size());
+  std::vector<std::vector<SignedCrossing>> found(parts.size());
+  pool.parallel_for(parts.size(), [&](size_t p) {
+    for (size_t i = parts[p].first; i < parts[p].second; ++i) {
+      if (i < solid.size()) {
+        const auto& t = solid[i];
+        crossings_of(gm.q[t[0]], gm.q[t[1]], gm.q[t[2]], gp, [&](uint32_t col, double x, bool front) {
+          found[p].push_back({col, front ? 1 : -1, x});
+        });
+      } else {
+        const auto& c = caps[i - solid.size()];
+        crossings_of(c.a, c.b, c.c, gp, [&](uint32_t col, double x, bool front) {
+          found[p].push_back({col, (front ? -1 : 1) * c.weight, x});
+        });
+      }
+    }
+  });
+  const size_t cols = size_t(gp.dims[1]) * gp.dims[2];
+  std::vector<uint32_t> start(cols + 1, 0);
+  for (const auto& f : found)
+    for (const SignedCrossing& c : f) ++start[c.col + 1];
+  for (size_t c = 0; c < cols; ++c) start[c + 1] += start[c];
+  std::vector<std::pair<double, int32_t>> xs(start[cols]);
+  {
+    std::vector<uint32_t> at(start.begin(), start.end() - 1);
+    for (const auto& f : found)
+      for (const SignedCrossing& c : f) xs[at[c.col]++] = {c.x, c.sign};
+  }
+  found.clear();
+  found.shrink_to_fit();
+
+  // 3. The integer part W (the chain's winding number: the signed crossings beyond the centre) fills every voxel
+  // where W >= 1; W is constant between crossings.
+  const uint64_t nx = gp.dims[0];
+  pool.parallel_for(std::min<size_t>(cols, 64), [&](size_t part) {
+    for (size_t c = cols * part / std::min<size_t>(cols, 64); c < cols * (part + 1) / std::min<size_t>(cols, 64); ++c)
+      std::sort(xs.begin() + start[c], xs.begin() + start[c + 1]);
+  });
+  for (size_t c = 0; c < cols; ++c) {
+    const auto* b = xs.data() + start[c];
+    const auto* e = xs.data() + start[c + 1];
+    if (b == e) continue;
+    int64_t prefix = 0;  // signs of the crossings at or before the current one; W = -prefix after it
+    for (const auto* p = b; p < e; ++p) {
+      prefix += p->second;
+      if (-prefix < 1 || p + 1 == e) continue;
+      // Voxels whose centre lies in [p->first, next crossing).
+      const double lo_i = std::max(0.0, std::ceil(p->first - 0.5));
+      const double hi_i = std::min(double(nx), std::ceil(p[1].first - 0.5));
+      if (lo_i >= hi_i) continue;
+      const uint64_t base = uint64_t(c) * nx;
+      fill_interior(vm.words(), base + uint64_t(lo_i), base + uint64_t(hi_i));
+    }
+    if (prefix != 0)
+      throw std::logic_error(mesh.name + ": the closed chain's crossings along column (y " +
+                             std::to_string(c % gp.dims[1]) + ", z " + std::to_string(c / gp.dims[1]) +
+                             ") do not sum to zero");
+  }
+
+  // 4. The caps' winding number moves W only near the holes: voxels where it could reach kUncertainLow are
+  // evaluated one by one (W + caps >= 1/2), every other voxel keeps W's answer.
+  if (!caps.empty()) {
+    const detail::CapField field(caps, kFrac);
+    constexpr uint32_t kBlock = 8;
+    const uint32_t bx = (gp.dims[0] + kBlock - 1) / kBlock, by = (gp.dims[1] + kBlock - 1) / kBlock,
+                   bz = (gp.dims[2] + kBlock - 1) / kBlock;
+    struct Change {
+      uint64_t index;
+      bool inside;
+    };
+    std::vector<std::vector<Change>> changes(size_t(bx) * by * bz);
+    std::vector<uint64_t> evaluated(changes.size(), 0), uncertain(changes.size(), 0);
+    pool.parallel_for(changes.size(), [&](size_t blk) {
+      const uint32_t x0 = uint32_t(blk % bx) * kBlock, y0 = uint32_t(blk / bx % by) * kBlock,
+                     z0 = uint32_t(blk / (size_t(bx) * by)) * kBlock;
+      const std::array<uint32_t, 3> lo = {x0, y0, z0};
+      const std::array<uint32_t, 3> hi = {std::min(x0 + kBlock, gp.dims[0]), std::min(y0 + kBlock, gp.dims[1]),
+                                          std::min(z0 + kBlock, gp.dims[2])};
+      field.uncertain_voxels(lo, hi, kUncertainLow, [&](uint32_t x, uint32_t y, uint32_t z, double near, double bound) {
+        const uint64_t i = vm.index(x, y, z);
+        if (skip && ((*skip)[i >> 6] >> (i & 63)) & 1) return;
+        ++evaluated[blk];
+        const size_t c = size_t(y) + size_t(gp.dims[1]) * z;
+        const double cx = x + 0.5;
+        int64_t prefix = 0;
+        for (uint32_t k = start[c]; k < start[c + 1] && xs[k].first <= cx; ++k) prefix += xs[k].second;
+        // The near caps' exact part with the bound on the rest decides, unless 1/2 lies within the bound (or the
+        // bound is too loose to say how certain the voxel is): then the whole field is evaluated.
+        double w = double(-prefix) + near;
+        if (!(bound <= kNearEnough && std::abs(w - 0.5) > bound))
+          w = double(-prefix) + field.value(Eigen::Vector3d(cx, y + 0.5, z + 0.5));
+        if (w >= kUncertainLow && w <= kUncertainHigh) ++uncertain[blk];
+        const bool inside = w >= 0.5;
+        if (inside != (vm.at(i) == kInterior)) changes[blk].push_back({i, inside});
+      });
+    });
+    for (size_t b = 0; b < changes.size(); ++b) {
+      for (const Change& ch : changes[b]) vm.set(ch.index, ch.inside ? kInterior : kEmpty);
+      rep.evaluated += evaluated[b];
+      rep.uncertain += uncertain[b];
+    }
+  }
+}
+
 }  // namespace
 
 Voxmap::Voxmap(const GridPlacement& g) : grid_(g), words_((g.size() + 31) / 32, 0) {}
@@ -399,125 +519,42 @@ Voxmap voxelize(const Mesh& mesh, const VoxelizeOptions& opt, VoxelizeReport* re
   const GridMesh gm = to_grid(mesh, gp);
   ThreadPool pool(opt.threads);
   const std::vector<uint64_t> sb = surface_bits_grid(gm, mesh, gp, pool);
-
-  // 1. The closed chain: the triangles that bound the solid (sheets excluded) minus the caps of their boundary.
-  std::vector<std::array<uint32_t, 3>> solid_copy;
-  if (!mesh.sheet.empty())
-    for (size_t t = 0; t < mesh.size(); ++t)
-      if (!mesh.is_sheet(t)) solid_copy.push_back(mesh.triangles[t]);
-  const std::vector<std::array<uint32_t, 3>>& solid = mesh.sheet.empty() ? mesh.triangles : solid_copy;
-  const std::vector<detail::ChainTriangle> caps = detail::boundary_caps(gm.q, solid, kFrac);
-
-  // 2. Signed crossings of the chain with every column ray, bucketed by column and sorted along it.
-  const size_t n_items = solid.size() + caps.size();
-  const auto parts = chunks(n_items, pool.size());
-  std::vector<std::vector<SignedCrossing>> found(parts.size());
-  pool.parallel_for(parts.size(), [&](size_t p) {
-    for (size_t i = parts[p].first; i < parts[p].second; ++i) {
-      if (i < solid.size()) {
-        const auto& t = solid[i];
-        crossings_of(gm.q[t[0]], gm.q[t[1]], gm.q[t[2]], gp, [&](uint32_t col, double x, bool front) {
-          found[p].push_back({col, front ? 1 : -1, x});
-        });
-      } else {
-        const auto& c = caps[i - solid.size()];
-        crossings_of(c.a, c.b, c.c, gp, [&](uint32_t col, double x, bool front) {
-          found[p].push_back({col, (front ? -1 : 1) * c.weight, x});
-        });
-      }
-    }
-  });
-  const size_t cols = size_t(gp.dims[1]) * gp.dims[2];
-  std::vector<uint32_t> start(cols + 1, 0);
-  for (const auto& f : found)
-    for (const SignedCrossing& c : f) ++start[c.col + 1];
-  for (size_t c = 0; c < cols; ++c) start[c + 1] += start[c];
-  std::vector<std::pair<double, int32_t>> xs(start[cols]);
-  {
-    std::vector<uint32_t> at(start.begin(), start.end() - 1);
-    for (const auto& f : found)
-      for (const SignedCrossing& c : f) xs[at[c.col]++] = {c.x, c.sign};
-  }
-  found.clear();
-  found.shrink_to_fit();
-
-  // 3. The integer part W (the chain's winding number: the signed crossings beyond the centre) fills every voxel
-  // where W >= 1; W is constant between crossings.
-  const uint64_t nx = gp.dims[0];
-  pool.parallel_for(std::min<size_t>(cols, 64), [&](size_t part) {
-    for (size_t c = cols * part / std::min<size_t>(cols, 64); c < cols * (part + 1) / std::min<size_t>(cols, 64); ++c)
-      std::sort(xs.begin() + start[c], xs.begin() + start[c + 1]);
-  });
-  for (size_t c = 0; c < cols; ++c) {
-    const auto* b = xs.data() + start[c];
-    const auto* e = xs.data() + start[c + 1];
-    if (b == e) continue;
-    int64_t prefix = 0;  // signs of the crossings at or before the current one; W = -prefix after it
-    for (const auto* p = b; p < e; ++p) {
-      prefix += p->second;
-      if (-prefix < 1 || p + 1 == e) continue;
-      // Voxels whose centre lies in [p->first, next crossing).
-      const double lo_i = std::max(0.0, std::ceil(p->first - 0.5));
-      const double hi_i = std::min(double(nx), std::ceil(p[1].first - 0.5));
-      if (lo_i >= hi_i) continue;
-      const uint64_t base = uint64_t(c) * nx;
-      fill_interior(vm.words(), base + uint64_t(lo_i), base + uint64_t(hi_i));
-    }
-    if (prefix != 0)
-      throw std::logic_error(mesh.name + ": the closed chain's crossings along column (y " +
-                             std::to_string(c % gp.dims[1]) + ", z " + std::to_string(c / gp.dims[1]) +
-                             ") do not sum to zero");
-  }
-
-  // 4. The caps' winding number moves W only near the holes: voxels where it could reach kUncertainLow are
-  // evaluated one by one (W + caps >= 1/2), every other voxel keeps W's answer.
-  if (!caps.empty()) {
-    const detail::CapField field(caps, kFrac);
-    constexpr uint32_t kBlock = 8;
-    const uint32_t bx = (gp.dims[0] + kBlock - 1) / kBlock, by = (gp.dims[1] + kBlock - 1) / kBlock,
-                   bz = (gp.dims[2] + kBlock - 1) / kBlock;
-    struct Change {
-      uint64_t index;
-      bool inside;
-    };
-    std::vector<std::vector<Change>> changes(size_t(bx) * by * bz);
-    std::vector<uint64_t> evaluated(changes.size(), 0), uncertain(changes.size(), 0);
-    pool.parallel_for(changes.size(), [&](size_t blk) {
-      const uint32_t x0 = uint32_t(blk % bx) * kBlock, y0 = uint32_t(blk / bx % by) * kBlock,
-                     z0 = uint32_t(blk / (size_t(bx) * by)) * kBlock;
-      const std::array<uint32_t, 3> lo = {x0, y0, z0};
-      const std::array<uint32_t, 3> hi = {std::min(x0 + kBlock, gp.dims[0]), std::min(y0 + kBlock, gp.dims[1]),
-                                          std::min(z0 + kBlock, gp.dims[2])};
-      field.uncertain_voxels(lo, hi, kUncertainLow, [&](uint32_t x, uint32_t y, uint32_t z, double near, double bound) {
-        const uint64_t i = vm.index(x, y, z);
-        if ((sb[i >> 6] >> (i & 63)) & 1) return;
-        ++evaluated[blk];
-        const size_t c = size_t(y) + size_t(gp.dims[1]) * z;
-        const double cx = x + 0.5;
-        int64_t prefix = 0;
-        for (uint32_t k = start[c]; k < start[c + 1] && xs[k].first <= cx; ++k) prefix += xs[k].second;
-        // The near caps' exact part with the bound on the rest decides, unless 1/2 lies within the bound (or the
-        // bound is too loose to say how certain the voxel is): then the whole field is evaluated.
-        double w = double(-prefix) + near;
-        if (!(bound <= kNearEnough && std::abs(w - 0.5) > bound))
-          w = double(-prefix) + field.value(Eigen::Vector3d(cx, y + 0.5, z + 0.5));
-        if (w >= kUncertainLow && w <= kUncertainHigh) ++uncertain[blk];
-        const bool inside = w >= 0.5;
-        if (inside != (vm.at(i) == kInterior)) changes[blk].push_back({i, inside});
-      });
-    });
-    for (size_t b = 0; b < changes.size(); ++b) {
-      for (const Change& ch : changes[b]) vm.set(ch.index, ch.inside ? kInterior : kEmpty);
-      rep.evaluated += evaluated[b];
-      rep.uncertain += uncertain[b];
-    }
-  }
-
+  fill_solid(mesh, gm, gp, pool, &sb, vm, rep);
   // 5. Surface voxels override.
   apply_surface(vm, sb);
   if (report) *report = rep;
   return vm;
 }
+
+namespace detail {
+
+std::vector<uint64_t> solid_bits(const Mesh& mesh, const GridPlacement& g, unsigned threads,
+                                 std::vector<uint64_t>* surface) {
+  if (mesh.points_only()) throw MeshError(mesh.name + ": a point cloud encloses no solid");
+  const GridMesh gm = to_grid(mesh, g);
+  ThreadPool pool(threads);
+  if (surface) *surface = surface_bits_grid(gm, mesh, g, pool);
+  Voxmap vm(g);
+  VoxelizeReport rep;
+  fill_solid(mesh, gm, g, pool, nullptr, vm, rep);
+  // Interior states (2) to bits.
+  std::vector<uint64_t> bits((g.size() + 63) / 64, 0);
+  const auto& w = vm.words();
+  for (size_t i = 0; i < w.size(); ++i) {
+    uint64_t x = (w[i] >> 1) & 0x5555555555555555ull;  // the high bit of each state
+    // Compact the even bits into 32 bits.
+    x = (x | (x >> 1)) & 0x3333333333333333ull;
+    x = (x | (x >> 2)) & 0x0f0f0f0f0f0f0f0full;
+    x = (x | (x >> 4)) & 0x00ff00ff00ff00ffull;
+    x = (x | (x >> 8)) & 0x0000ffff0000ffffull;
+    x = (x | (x >> 16)) & 0x00000000ffffffffull;
+    bits[i >> 1] |= x << (32 * (i & 1));
+  }
+  return bits;
+}
+
+}  // namespace detail
+
 
 bool triangle_meets_cube(const Eigen::Vector3d& c, double h, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
              const Eigen::Vector3d& d) {

@@ -1,6 +1,7 @@
 // Objects: voxcd.voxelize (a mesh file or a built-in shape, as `voxcd voxelize`), voxcd.read_object and the
 // voxcd.Object they give: the voxmap's states, its grid, the point shell and the repair report as numpy arrays and
 // dicts, and save(path) (an object file).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -44,6 +45,15 @@ py::array_t<uint8_t> states(const Voxmap& vm) {
   return a;
 }
 
+// The distance field's node values indexed [X, Y, Z] (Fortran order, as `states`), or None without a field.
+py::object distance(const DistanceField& f) {
+  if (f.empty()) return py::none();
+  const py::ssize_t nx = f.dims[0] + 1, ny = f.dims[1] + 1, nz = f.dims[2] + 1;
+  py::array_t<int16_t, py::array::f_style> a({nx, ny, nz});
+  std::copy(f.q.begin(), f.q.end(), a.mutable_data());
+  return std::move(a);
+}
+
 py::object repair_dict(const ObjectFile& obj) {
   if (!obj.has_report) return py::none();
   const MeshReport& r = obj.mesh_report;
@@ -78,7 +88,7 @@ py::object repair_dict(const ObjectFile& obj) {
 }
 
 ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel, std::optional<int64_t> resolution,
-                          double shell_ratio, bool strict, unsigned threads) {
+                          double shell_ratio, bool strict, unsigned threads, int distance_bits, double band) {
   const std::string input = path_arg(source, "source");
   if (voxel.has_value() == resolution.has_value())
     value_error("give voxel (the voxel edge in mesh units) or resolution (voxels along the longest side), " +
@@ -87,7 +97,13 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
     value_error("resolution: " + std::to_string(*resolution) + " is not a positive count of voxels");
   if (!(std::isfinite(shell_ratio) && shell_ratio > 0))
     value_error("shell_ratio: " + std::to_string(shell_ratio) + " is not a positive finite number");
+  if (distance_bits != 0 && distance_bits != 4 && distance_bits != 8 && distance_bits != 16)
+    value_error("distance_bits: " + std::to_string(distance_bits) + " is not 4, 8 or 16 (or 0 for no distance field)");
+  if (!(std::isfinite(band) && band > 0))
+    value_error("band: " + py::repr(py::float_(band)).cast<std::string>() + " is not a positive finite number of voxels");
   ObjectOptions opt;
+  opt.distance_bits = distance_bits;
+  opt.band = band;
   opt.voxel = voxel.value_or(0);
   opt.resolution = uint32_t(resolution.value_or(0));
   opt.shell_ratio = shell_ratio;
@@ -140,7 +156,20 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
               for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = o.shell.cells[k][size_t(i)];
             return a;
           },
-          "Each shell point's cell of the shell grid, an (N, 3) uint32 array (the point is the cell's centre).")
+          "Each shell point's cell of the shell grid, an (N, 3) uint32 array: the point is the cell's centre, or, "
+          "when shell_on_surface, a point of the cell's closed cube.")
+      .def_property_readonly("shell_on_surface", [](const ObjectFile& o) { return o.shell.on_surface; },
+                             "True when the shell's points lie on the surface (objects with a distance field): "
+                             "each is the closest point of the mesh to a surface cell's centre, rounded to 1/256 of "
+                             "the spacing.")
+      .def_property_readonly("distance_bits", [](const ObjectFile& o) { return o.distance.bits; },
+                             "Bits of the distance field's node values (4, 8 or 16); 0 for an object without one.")
+      .def_property_readonly("distance_step", [](const ObjectFile& o) { return o.distance.step; },
+                             "Voxels per unit of a node value (band / 2^(bits-1)); 0 without a field.")
+      .def_property_readonly("distance", [](const ObjectFile& o) { return distance(o.distance); },
+                             "The signed distance field's node values as a new int16 array of shape (nx+1, ny+1, "
+                             "nz+1), indexed [X, Y, Z] (node X, Y, Z at origin + voxel * (X, Y, Z)), negative "
+                             "inside; times distance_step it is voxels, clamped to the band. None without a field.")
       .def_property_readonly("shell_spacing", [](const ObjectFile& o) { return o.shell.grid.voxel; },
                              "The shell grid's spacing: voxel / shell_ratio.")
       .def_property_readonly("shell_origin", [](const ObjectFile& o) { return vec3(o.shell.grid.origin); },
@@ -173,10 +202,12 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
 
   m.def("voxelize", &voxelize_source, py::arg("source"), py::kw_only(), py::arg("voxel") = py::none(),
         py::arg("resolution") = py::none(), py::arg("shell_ratio") = std::sqrt(2.0), py::arg("strict") = false,
-        py::arg("threads") = 0u,
+        py::arg("threads") = 0u, py::arg("distance_bits") = 0, py::arg("band") = 4.0,
         R"(Voxelises a mesh file (any format `voxcd voxelize` reads; repaired unless strict) or a built-in shape
 (voxcd.shapes()) at `voxel` (mesh units) or at `resolution` voxels along its longest side: exactly one of the two.
-Returns an Object, the same as `voxcd voxelize SOURCE --voxel V | --resolution R` writes.)");
+distance_bits (4, 8 or 16) also stores the signed distance field over a band of +-band voxels, with the shell on
+the surface. Returns an Object, the same as `voxcd voxelize SOURCE --voxel V | --resolution R [--distance-bits B
+--band K]` writes.)");
   m.def(
       "read_object",
       [](const py::object& path) {

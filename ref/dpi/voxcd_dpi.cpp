@@ -188,11 +188,12 @@ int voxcd_dpi_param(void* h, const char* name) {
     const std::pair<const char*, int> params[] = {{"PW", c.PW},     {"PF", c.PF},       {"MW", c.MW},
                                                   {"MF", c.MF},     {"TW", c.TW},       {"DW", c.DW},
                                                   {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW},
-                                                  {"MAW", c.MAW},   {"TAGW", c.TAGW}};
+                                                  {"MAW", c.MAW},   {"TAGW", c.TAGW},   {"SB", c.SB},
+                                                  {"WB", c.WB},     {"IW", c.IW()}};
     for (const auto& p : params)
       if (n == p.first) return p.second;
     throw DpiError("voxcd_dpi_param: no parameter named '" + n +
-                   "' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW)");
+                   "' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, IW)");
   });
 }
 
@@ -236,7 +237,7 @@ int voxcd_dpi_write_map(void* h, int addr, long long word) {
 int voxcd_dpi_submit(void* h, int tag, int mode, int mask, int shell_base, int shell_count, int map_base, int nx,
                      int ny, int nz, long long m00, long long m01, long long m02, long long m10, long long m11,
                      long long m12, long long m20, long long m21, long long m22, long long t0, long long t1,
-                     long long t2) {
+                     long long t2, long long threshold) {
   return guarded(h, -1, [&] {
     const char* fn = "voxcd_dpi_submit";
     Device* d = device(h, fn);
@@ -263,14 +264,14 @@ int voxcd_dpi_submit(void* h, int tag, int mode, int mask, int shell_base, int s
     j.t[0] = t0;
     j.t[1] = t1;
     j.t[2] = t2;
+    j.threshold = threshold;
     // Field formats and ranges against the whole memories, then the words the job reads against those written.
     try {
       validate_job(c, j, c.shell_depth(), c.map_depth());
     } catch (const std::exception& e) {
       throw DpiError(std::string(fn) + ": " + e.what());
     }
-    const uint64_t spw = uint64_t(c.states_per_word());
-    const uint64_t map_end = uint64_t(j.map_base) + (j.voxels() + spw - 1) / spw;
+    const uint64_t map_end = uint64_t(j.map_base) + map_words(c, j);
     if (auto gap = d->shell_written.first_gap(j.shell_base, uint64_t(j.shell_base) + j.shell_count))
       throw DpiError(std::string(fn) + ": " + job_name(j) + " reads shell words [" + std::to_string(j.shell_base) +
                      ", " + std::to_string(uint64_t(j.shell_base) + j.shell_count) + "), and word " +
@@ -296,7 +297,7 @@ int voxcd_dpi_submit(void* h, int tag, int mode, int mask, int shell_base, int s
 }
 
 int voxcd_dpi_pop(void* h, int* tag, int* point, int* x, int* y, int* z, int* state, int* hits, long long* cycles,
-                  long long* points) {
+                  long long* points, long long* distance) {
   return guarded(h, -1, [&] {
     Device* d = device(h, "voxcd_dpi_pop");
     if (d->expected.empty()) return VOXCD_DPI_NONE;
@@ -311,6 +312,7 @@ int voxcd_dpi_pop(void* h, int* tag, int* point, int* x, int* y, int* z, int* st
     set_out(hits, r.hits);
     set_out(cycles, int64_t(r.cycles.value_or(0)));
     set_out(points, int64_t(r.points.value_or(0)));
+    set_out(distance, r.dist);
     return r.kind == Record::Hit ? VOXCD_DPI_HIT : VOXCD_DPI_DONE;
   });
 }
@@ -411,7 +413,7 @@ int voxcd_dpi_gen_map(void* h, int addr, long long* word) {
 int voxcd_dpi_gen_job(void* h, int index, int* tag, int* mode, int* mask, int* shell_base, int* shell_count,
                       int* map_base, int* nx, int* ny, int* nz, long long* m00, long long* m01, long long* m02,
                       long long* m10, long long* m11, long long* m12, long long* m20, long long* m21,
-                      long long* m22, long long* t0, long long* t1, long long* t2) {
+                      long long* m22, long long* t0, long long* t1, long long* t2, long long* threshold) {
   return guarded(h, -1, [&] {
     const char* fn = "voxcd_dpi_gen_job";
     const GeneratedVectors& g = generated(device(h, fn), fn);
@@ -431,6 +433,7 @@ int voxcd_dpi_gen_job(void* h, int index, int* tag, int* mode, int* mask, int* s
     set_out(t0, j.t[0]);
     set_out(t1, j.t[1]);
     set_out(t2, j.t[2]);
+    set_out(threshold, j.threshold);
     return 0;
   });
 }

@@ -8,7 +8,8 @@
  * Only DPI-C's standard types, so that any simulator can call them:
  *   SV chandle = void*, SV string = const char*, SV int = int, SV longint = long long, SV output arguments are
  *   pointers. Unsigned fields (tags, addresses, counts) travel as their 32-bit pattern in an int; map words as
- *   their 64-bit pattern in a long long; signed fields (M, t, shell coordinates) as signed values.
+ *   their 64-bit pattern in a long long; signed fields (M, t, shell coordinates, a job's threshold and a hit's
+ *   distance) as signed values.
  *
  * Errors: no C++ exception leaves these functions. A function returning int returns -1 when it fails (a handle of
  * 0, an argument that does not fit its field, a job reading memory never written, ...); voxcd_dpi_error(h) then
@@ -39,9 +40,11 @@ void voxcd_dpi_free(void* h);
 /* The message of the last call on h that failed ("" if none has); h = 0: of the last voxcd_dpi_new that failed,
  * or of the last call that was given a handle of 0. Valid until the next failing call on the same handle. */
 const char* voxcd_dpi_error(void* h);
-/* The value of one parameter of the device's configuration by name ("PW" .. "TAGW"), or -1 for another name. */
+/* The value of one parameter of the device's configuration by name ("PW" .. "TAGW", "SB", "WB", and the derived
+ * "IW" = SB + 3*WB), or -1 for another name. */
 int voxcd_dpi_param(void* h, const char* name);
-/* The whole configuration, every parameter named: "PW 24 PF 8 ... TAGW 16" ("" for h = 0). */
+/* The whole configuration, every parameter named: "PW 24 PF 8 ... TAGW 16", then "SB 8 WB 8" on a distance
+ * device ("" for h = 0). */
 const char* voxcd_dpi_config(void* h);
 
 /* ---- Memories, as the write ports load them ---- */
@@ -55,19 +58,22 @@ int voxcd_dpi_write_map(void* h, int addr, long long word);
 
 /* Submits one job, as the device accepts it: its records are computed now from the memories as they are, and
  * queued behind those of the jobs before it. mode 0 ALL, 1 FIRST, 2 COUNT; mask bit s: state s is a hit; M and t
- * signed (MW bits with MF fraction bits, TW bits with MF+PF). The job must read only words that were written
- * (docs/contract.md). Returns the number of records the job adds (its hits, then 1 completion), or -1. */
+ * signed (MW bits with MF fraction bits, TW bits with MF+PF); threshold signed, IW = SB + 3*WB bits: on a distance
+ * device (SB > 2) a point is a hit when its interpolated distance D <= threshold, on a 2-bit device it must be 0.
+ * The job must read only words that were written (docs/contract.md). Returns the number of records the job adds
+ * (its hits, then 1 completion), or -1. */
 int voxcd_dpi_submit(void* h, int tag, int mode, int mask, int shell_base, int shell_count, int map_base, int nx,
                      int ny, int nz, long long m00, long long m01, long long m02, long long m10, long long m11,
                      long long m12, long long m20, long long m21, long long m22, long long t0, long long t1,
-                     long long t2);
+                     long long t2, long long threshold);
 /* Pops the next expected record in stream order: each job's hit records in ascending point order, then its
- * completion record; jobs in submission order. Returns VOXCD_DPI_HIT (tag, point, x, y, z, state are set),
+ * completion record; jobs in submission order. Returns VOXCD_DPI_HIT (tag, point, x, y, z, state and distance are set:
+ * distance is the interpolated distance D on a distance device, 0 on a 2-bit one),
  * VOXCD_DPI_DONE (tag, hits, cycles and points are set), VOXCD_DPI_NONE when every record of the submitted jobs
  * has been popped, or -1. A completion record's cycles are what the device counts with an always-ready consumer:
  * compare them with its cycles minus its stalls. points: the points the job looked up (FIRST stops early). */
 int voxcd_dpi_pop(void* h, int* tag, int* point, int* x, int* y, int* z, int* state, int* hits, long long* cycles,
-                  long long* points);
+                  long long* points, long long* distance);
 /* Expected records not popped yet. */
 int voxcd_dpi_pending(void* h);
 /* Jobs submitted since the device was made. */
@@ -95,7 +101,7 @@ int voxcd_dpi_gen_map(void* h, int addr, long long* word);
 int voxcd_dpi_gen_job(void* h, int index, int* tag, int* mode, int* mask, int* shell_base, int* shell_count,
                       int* map_base, int* nx, int* ny, int* nz, long long* m00, long long* m01, long long* m02,
                       long long* m10, long long* m11, long long* m12, long long* m20, long long* m21,
-                      long long* m22, long long* t0, long long* t1, long long* t2);
+                      long long* m22, long long* t0, long long* t1, long long* t2, long long* threshold);
 
 #ifdef __cplusplus
 }

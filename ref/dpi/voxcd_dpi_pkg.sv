@@ -42,10 +42,12 @@ package voxcd_dpi_pkg;
                                                input longint m00, input longint m01, input longint m02,
                                                input longint m10, input longint m11, input longint m12,
                                                input longint m20, input longint m21, input longint m22,
-                                               input longint t0, input longint t1, input longint t2);
+                                               input longint t0, input longint t1, input longint t2,
+                                               input longint threshold);
   import "DPI-C" function int voxcd_dpi_pop(input chandle h, output int tag, output int point,
                                             output int x, output int y, output int z, output int state,
-                                            output int hits, output longint cycles, output longint points);
+                                            output int hits, output longint cycles, output longint points,
+                                            output longint distance);
   import "DPI-C" function int voxcd_dpi_pending(input chandle h);
   import "DPI-C" function int voxcd_dpi_jobs(input chandle h);
   import "DPI-C" function int voxcd_dpi_restart(input chandle h);
@@ -66,6 +68,7 @@ package voxcd_dpi_pkg;
                                                 output longint m00, output longint m01, output longint m02,
                                                 output longint m10, output longint m11, output longint m12,
                                                 output longint m20, output longint m21, output longint m22,
-                                                output longint t0, output longint t1, output longint t2);
+                                                output longint t0, output longint t1, output longint t2,
+                                                output longint threshold);
 
 endpackage

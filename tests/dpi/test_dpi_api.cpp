@@ -39,16 +39,16 @@ int submit(void* h, const Job& j) {
   return voxcd_dpi_submit(h, int(j.tag), int(j.mode), j.hit_mask, int(j.shell_base), int(j.shell_count),
                           int(j.map_base), int(j.nx), int(j.ny), int(j.nz), j.M[0][0], j.M[0][1], j.M[0][2],
                           j.M[1][0], j.M[1][1], j.M[1][2], j.M[2][0], j.M[2][1], j.M[2][2], j.t[0], j.t[1],
-                          j.t[2]);
+                          j.t[2], j.threshold);
 }
 
-// Pops one record into a Record (cycles and points on completions).
+// Pops one record into a Record (cycles and points on completions, the distance on hits).
 int pop(void* h, Record& r) {
   int tag = -1, point = -1, x = -1, y = -1, z = -1, state = -1, hits = -1;
-  long long cycles = -1, points = -1;
-  const int kind = voxcd_dpi_pop(h, &tag, &point, &x, &y, &z, &state, &hits, &cycles, &points);
+  long long cycles = -1, points = -1, dist = -1;
+  const int kind = voxcd_dpi_pop(h, &tag, &point, &x, &y, &z, &state, &hits, &cycles, &points, &dist);
   if (kind == VOXCD_DPI_HIT) r = Record::hit(uint32_t(tag), uint32_t(point), uint32_t(x), uint32_t(y),
-                                             uint32_t(z), uint8_t(state));
+                                             uint32_t(z), uint8_t(state), int64_t(dist));
   if (kind == VOXCD_DPI_DONE) {
     r = Record::done(uint32_t(tag), uint32_t(hits), uint64_t(cycles));
     r.points = uint64_t(points);
@@ -86,31 +86,40 @@ void expect_same_stream(const std::vector<Record>& want, const std::vector<Recor
 }
 
 // A job's cycles depend on the job before it, never on later ones: submitting one job at a time and popping
-// its records at once gives the stream ref/ computes for the whole stream, cycles and points included.
+// its records at once gives the stream ref/ computes for the whole stream, cycles and points included; on 2-bit
+// and distance devices (thresholds in, distances out).
 TEST(DpiApi, StreamAndCyclesEqualRefOverWholeStreams) {
-  for (int lanes : {1, 2, 4, 8}) {
-    GenerateOptions opt;
-    opt.seed = 40 + uint64_t(lanes);
-    opt.jobs = 600;
-    opt.cloud_points = 1500;
-    opt.config.LANES = lanes;
-    const GeneratedVectors g = generate_vectors(opt);
-    Handle d("LANES " + std::to_string(lanes));
-    write_memory(d.h, g.memory);
-    std::vector<Record> got;
-    size_t firsts = 0;
-    for (const Job& j : g.jobs) {
-      const int n = submit(d.h, j);
-      ASSERT_GE(n, 1) << voxcd_dpi_error(d.h);
-      ASSERT_EQ(voxcd_dpi_pending(d.h), n) << "a job's records are all ready as soon as it is submitted";
-      const std::vector<Record> recs = pop_all(d.h);
-      ASSERT_EQ(recs.size(), size_t(n));
-      got.insert(got.end(), recs.begin(), recs.end());
-      firsts += j.mode == Mode::First && recs.back().hits == 1;
+  for (int sb : {2, 8, 4, 16}) {
+    for (int lanes : {1, 2, 4, 8}) {
+      GenerateOptions opt;
+      opt.seed = 40 + uint64_t(lanes) + uint64_t(sb) * 10;
+      opt.jobs = 600;
+      opt.cloud_points = 1500;
+      opt.config.LANES = lanes;
+      opt.config.SB = sb;
+      const GeneratedVectors g = generate_vectors(opt);
+      Handle d(g.config.to_string());
+      write_memory(d.h, g.memory);
+      std::vector<Record> got;
+      size_t firsts = 0;
+      for (const Job& j : g.jobs) {
+        const int n = submit(d.h, j);
+        ASSERT_GE(n, 1) << voxcd_dpi_error(d.h);
+        ASSERT_EQ(voxcd_dpi_pending(d.h), n) << "a job's records are all ready as soon as it is submitted";
+        const std::vector<Record> recs = pop_all(d.h);
+        ASSERT_EQ(recs.size(), size_t(n));
+        got.insert(got.end(), recs.begin(), recs.end());
+        firsts += j.mode == Mode::First && recs.back().hits == 1;
+      }
+      EXPECT_EQ(voxcd_dpi_jobs(d.h), int(g.jobs.size()));
+      EXPECT_GT(firsts, 10u) << "the stream must have FIRST jobs that stop early";
+      expect_same_stream(reference_stream(g.config, g.memory, g.jobs), got, g.config.to_string());
+      if (sb > 2) {
+        size_t nonzero = 0;
+        for (const Record& r : got) nonzero += r.kind == Record::Hit && r.dist != 0;
+        EXPECT_GT(nonzero, 100u) << "hit records carry their distances";
+      }
     }
-    EXPECT_EQ(voxcd_dpi_jobs(d.h), int(g.jobs.size()));
-    EXPECT_GT(firsts, 10u) << "the stream must have FIRST jobs that stop early";
-    expect_same_stream(reference_stream(g.config, g.memory, g.jobs), got, "LANES " + std::to_string(lanes));
   }
 }
 
@@ -140,11 +149,13 @@ TEST(DpiApi, GenerateMatchesVectorGen) {
   }
   for (size_t k = 0; k < g.jobs.size(); ++k) {
     int f[9];
-    long long m[9], t[3];
+    long long m[9], t[3], threshold = -1;
     ASSERT_EQ(voxcd_dpi_gen_job(d.h, int(k), &f[0], &f[1], &f[2], &f[3], &f[4], &f[5], &f[6], &f[7], &f[8], &m[0],
-                                &m[1], &m[2], &m[3], &m[4], &m[5], &m[6], &m[7], &m[8], &t[0], &t[1], &t[2]),
+                                &m[1], &m[2], &m[3], &m[4], &m[5], &m[6], &m[7], &m[8], &t[0], &t[1], &t[2],
+                                &threshold),
               0);
     const Job& j = g.jobs[k];
+    EXPECT_EQ(threshold, 0) << "a 2-bit device's jobs have threshold 0";
     EXPECT_EQ(job_line(j), "job " + std::to_string(f[0]) + " " + mode_name(Mode(f[1])) + " " + std::to_string(f[2]) +
                                " " + std::to_string(f[3]) + " " + std::to_string(f[4]) + " " + std::to_string(f[5]) +
                                " " + std::to_string(f[6]) + " " + std::to_string(f[7]) + " " + std::to_string(f[8]) +
@@ -158,7 +169,7 @@ TEST(DpiApi, GenerateMatchesVectorGen) {
   }
   EXPECT_EQ(voxcd_dpi_gen_job(d.h, 300, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
                               nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-                              nullptr, nullptr, nullptr, nullptr),
+                              nullptr, nullptr, nullptr, nullptr, nullptr),
             -1);
   EXPECT_STREQ(voxcd_dpi_error(d.h), "voxcd_dpi_gen_job: job 300 is outside the generated 0..299");
 }
@@ -220,14 +231,24 @@ TEST(DpiApi, ConfigurationAndParameters) {
   EXPECT_EQ(voxcd_dpi_param(d.h, "PW"), 24);
   EXPECT_EQ(voxcd_dpi_param(d.h, "pw"), -1);
   EXPECT_STREQ(voxcd_dpi_error(d.h),
-               "voxcd_dpi_param: no parameter named 'pw' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW)");
+               "voxcd_dpi_param: no parameter named 'pw' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, "
+               "IW)");
+  EXPECT_EQ(voxcd_dpi_param(d.h, "SB"), 2);
+  EXPECT_EQ(voxcd_dpi_param(d.h, "WB"), 8);
+  Handle dist("SB 8 WB 6 LANES 1");
+  EXPECT_STREQ(voxcd_dpi_config(dist.h),
+               "PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 LANES 1 SAW 16 MAW 18 TAGW 16 SB 8 WB 6");
+  EXPECT_EQ(voxcd_dpi_param(dist.h, "SB"), 8);
+  EXPECT_EQ(voxcd_dpi_param(dist.h, "WB"), 6);
+  EXPECT_EQ(voxcd_dpi_param(dist.h, "IW"), 26);
   Handle def("");
   EXPECT_STREQ(voxcd_dpi_config(def.h), DeviceConfig{}.to_string().c_str());
   EXPECT_STREQ(voxcd_dpi_error(def.h), "") << "no call on it failed";
 }
 
 TEST(DpiApi, NullHandleFailsWithAMessage) {
-  EXPECT_EQ(voxcd_dpi_pop(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr),
+  EXPECT_EQ(voxcd_dpi_pop(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                          nullptr),
             -1);
   EXPECT_STREQ(voxcd_dpi_error(nullptr),
                "voxcd_dpi_pop: the handle is null (voxcd_dpi_new failed or was not called)");
@@ -297,6 +318,47 @@ TEST(DpiApi, JobsReadingUnwrittenOrInvalidAreRefused) {
   EXPECT_NE(e.find("7"), std::string::npos) << e;
   EXPECT_NE(e.find("M01"), std::string::npos) << e;
   EXPECT_EQ(voxcd_dpi_jobs(d.h), 2);
+}
+
+// A distance device: the job's threshold decides the hit, the record carries D; a 2-bit device refuses a threshold;
+// the words a distance map reads (8 parity banks) must all be written.
+TEST(DpiApi, DistanceJobsTakeAThresholdAndGiveTheirDistance) {
+  Handle d("SB 8 WB 8 LANES 1");
+  ASSERT_EQ(voxcd_dpi_write_shell(d.h, 0, 128, 128, 128), 0);  // (0.5, 0.5, 0.5): every weight 2^7
+  // A 1x1x1 map: its 8 nodes are slot 0 of words 0..7 (one per bank); node c holds c - 3.
+  for (int c = 0; c < 7; ++c) ASSERT_EQ(voxcd_dpi_write_map(d.h, c, (c - 3) & 0xff), 0);
+  Job j;
+  j.tag = 5;
+  j.shell_count = 1;
+  j.M[0][0] = j.M[1][1] = j.M[2][2] = 1 << 16;
+  const int64_t D = int64_t{4} << 21;  // the values sum to 4, each weighted 2^21
+  j.threshold = D;
+  EXPECT_EQ(submit(d.h, j), -1);
+  EXPECT_STREQ(voxcd_dpi_error(d.h),
+               "voxcd_dpi_submit: job tag 5 reads voxmap words [0, 8), and word 7 was never written "
+               "(voxcd_dpi_write_map)");
+  ASSERT_EQ(voxcd_dpi_write_map(d.h, 7, 4), 0);
+  EXPECT_EQ(submit(d.h, j), 2) << voxcd_dpi_error(d.h);
+  std::vector<Record> got = pop_all(d.h);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0].to_string(true), "hit 5 0 0 0 0 0 " + std::to_string(D));
+  j.threshold = D - 1;  // one unit below D: no hit
+  EXPECT_EQ(submit(d.h, j), 1) << voxcd_dpi_error(d.h);
+  got = pop_all(d.h);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].hits, 0u);
+  j.threshold = int64_t{1} << 31;  // IW = 32 bits signed
+  EXPECT_EQ(submit(d.h, j), -1);
+  EXPECT_NE(std::string(voxcd_dpi_error(d.h)).find("threshold 2147483648 does not fit IW"), std::string::npos)
+      << voxcd_dpi_error(d.h);
+
+  Handle two("");
+  ASSERT_EQ(voxcd_dpi_write_shell(two.h, 0, 0, 0, 0), 0);
+  ASSERT_EQ(voxcd_dpi_write_map(two.h, 0, 0), 0);
+  j.threshold = 5;
+  EXPECT_EQ(submit(two.h, j), -1);
+  EXPECT_NE(std::string(voxcd_dpi_error(two.h)).find("threshold 5 on a 2-bit voxmap"), std::string::npos)
+      << voxcd_dpi_error(two.h);
 }
 
 TEST(DpiApi, PopOnAnEmptyQueueReturnsNone) {

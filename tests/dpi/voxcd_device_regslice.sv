@@ -13,7 +13,9 @@ module voxcd_device_regslice #(
   parameter int unsigned LANES = voxcd_pkg::LANES,
   parameter int unsigned SAW   = voxcd_pkg::SAW,
   parameter int unsigned MAW   = voxcd_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_pkg::TAGW
+  parameter int unsigned TAGW  = voxcd_pkg::TAGW,
+  parameter int unsigned SB    = voxcd_pkg::SB,
+  parameter int unsigned WB    = voxcd_pkg::WB
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -38,6 +40,7 @@ module voxcd_device_regslice #(
   input  logic [MW-1:0]            job_m10_i, job_m11_i, job_m12_i,
   input  logic [MW-1:0]            job_m20_i, job_m21_i, job_m22_i,
   input  logic [TW-1:0]            job_t0_i, job_t1_i, job_t2_i,
+  input  logic [SB+3*WB-1:0]       job_threshold_i,
   output logic                     hit_valid_o,
   input  logic                     hit_ready_i,
   output logic [TAGW-1:0]          hit_tag_o,
@@ -46,6 +49,7 @@ module voxcd_device_regslice #(
   output logic [DW-1:0]            hit_y_o,
   output logic [DW-1:0]            hit_z_o,
   output logic [1:0]               hit_state_o,
+  output logic [SB+3*WB-1:0]       hit_dist_o,
   output logic                     done_valid_o,
   input  logic                     done_ready_i,
   output logic [TAGW-1:0]          done_tag_o,
@@ -64,6 +68,7 @@ module voxcd_device_regslice #(
   logic [SAW-1:0]  c_hit_point;
   logic [DW-1:0]   c_hit_x, c_hit_y, c_hit_z;
   logic [1:0]      c_hit_state;
+  logic [SB+3*WB-1:0] c_hit_dist;
   logic [SAW:0]    c_done_hits, c_done_points;
   logic [CW-1:0]   c_done_cycles, c_done_stalls;
 
@@ -74,12 +79,12 @@ module voxcd_device_regslice #(
 
   voxcd_device #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW)
+    .TAGW(TAGW), .SB(SB), .WB(WB)
   ) u_core (
     .clk_i, .rst_ni, .shell_we_i, .shell_waddr_i, .shell_wdata_i, .map_we_i, .map_waddr_i, .map_wdata_i,
     .job_valid_i, .job_ready_o, .job_tag_i, .job_mode_i, .job_mask_i, .job_shell_base_i, .job_shell_count_i,
     .job_map_base_i, .job_nx_i, .job_ny_i, .job_nz_i, .job_m00_i, .job_m01_i, .job_m02_i, .job_m10_i, .job_m11_i,
-    .job_m12_i, .job_m20_i, .job_m21_i, .job_m22_i, .job_t0_i, .job_t1_i, .job_t2_i,
+    .job_m12_i, .job_m20_i, .job_m21_i, .job_m22_i, .job_t0_i, .job_t1_i, .job_t2_i, .job_threshold_i,
     .hit_valid_o  (c_hit_valid),
     .hit_ready_i  (free),
     .hit_tag_o    (c_hit_tag),
@@ -88,6 +93,7 @@ module voxcd_device_regslice #(
     .hit_y_o      (c_hit_y),
     .hit_z_o      (c_hit_z),
     .hit_state_o  (c_hit_state),
+    .hit_dist_o   (c_hit_dist),
     .done_valid_o (c_done_valid),
     .done_ready_i (free),
     .done_tag_o   (c_done_tag),
@@ -116,6 +122,7 @@ module voxcd_device_regslice #(
       hit_y_o     <= c_hit_y;
       hit_z_o     <= c_hit_z;
       hit_state_o <= c_hit_state;
+      hit_dist_o  <= c_hit_dist;
     end
     if (free && c_done_valid) begin
       done_tag_o    <= c_done_tag;

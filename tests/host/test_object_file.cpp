@@ -199,9 +199,9 @@ TEST(ObjectFile, DamagedFilesNameTheFileAndTheByte) {
     c[0] = 'W';
     EXPECT_EQ(expect_error(c, "bad magic", "magic"), where + "not a voxcd object file (bad magic) (byte 0)");
     c = b;
-    c[8] = 3;
-    EXPECT_EQ(expect_error(c, "version 3 is not supported", "version"),
-              where + "object file version 3 is not supported (this reader knows versions 1 and 2) (byte 8)");
+    c[8] = 4;
+    EXPECT_EQ(expect_error(c, "version 4 is not supported", "version"),
+              where + "object file version 4 is not supported (this reader knows versions 1 to 3) (byte 8)");
     c = b;
     c[12] = 1;
     expect_error(c, "unknown flags 1", "flags");

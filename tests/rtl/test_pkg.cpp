@@ -34,7 +34,8 @@ TEST(RtlPackage, WidthsMatchDeviceConfig) {
   const DeviceConfig c;
   const std::pair<const char*, int> want[] = {{"PW", c.PW},   {"PF", c.PF},       {"MW", c.MW},   {"MF", c.MF},
                                               {"TW", c.TW},   {"DW", c.DW},       {"MEMW", c.MEMW},
-                                              {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW}};
+                                              {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW},
+                                              {"SB", c.SB},   {"WB", c.WB}};
   for (const auto& [name, value] : want) {
     ASSERT_TRUE(p.count(name)) << "voxcd_pkg.sv has no " << name;
     EXPECT_EQ(p.at(name), value) << name << ": voxcd_pkg.sv and DeviceConfig disagree";
@@ -45,6 +46,12 @@ TEST(RtlPackage, PipelineAndDefaultsMatchTheModels) {
   const auto p = package_params();
   ASSERT_TRUE(p.count("PipeSlots"));
   EXPECT_EQ(p.at("PipeSlots"), kPipelineSlots);
+  ASSERT_TRUE(p.count("DistSlots"));
+  EXPECT_EQ(p.at("DistSlots"), kDistanceSlots);
+  DeviceConfig dist;
+  dist.SB = 8;
+  EXPECT_EQ(pipeline_slots(dist), p.at("PipeSlots") + p.at("DistSlots"));
+  EXPECT_EQ(pipeline_slots(DeviceConfig{}), p.at("PipeSlots"));
   ASSERT_TRUE(p.count("DefaultHitMask"));
   EXPECT_EQ(p.at("DefaultHitMask"), kDefaultHitMask);
 }

@@ -40,16 +40,23 @@ struct Case {
   std::vector<Record> expected;  // with the timing model's cycles
 };
 
-Case generated(uint64_t seed, int lanes, size_t jobs) {
+Case generated(uint64_t seed, const DeviceConfig& cfg, size_t jobs) {
   GenerateOptions g;
   g.seed = seed;
   g.jobs = jobs;
   g.cloud_points = 600;
-  g.config.LANES = lanes;
+  g.config = cfg;
   const GeneratedVectors v = generate_vectors(g);
-  Case c{"generated lanes " + std::to_string(lanes), v.config, v.memory, v.jobs, run_stream(v.config, v.memory, v.jobs)};
+  Case c{"generated " + cfg.to_string(), v.config, v.memory, v.jobs, run_stream(v.config, v.memory, v.jobs)};
   annotate_cycles(c.config, c.jobs, c.expected);
   return c;
+}
+
+// Generated jobs for the default widths on `lanes` lanes.
+Case generated(uint64_t seed, int lanes, size_t jobs) {
+  DeviceConfig cfg;
+  cfg.LANES = lanes;
+  return generated(seed, cfg, jobs);
 }
 
 std::vector<Case> conformance_cases(uint64_t seed, bool rtl_widths_only, size_t jobs) {
@@ -84,10 +91,7 @@ void expect_stream(const std::vector<Record>& want, const std::vector<Record>& g
         << what << " record " << i << ": expected '" << want[i].to_string() << "', got '" << got[i].to_string() << "'";
 }
 
-void conformance(TargetKind k, size_t jobs) {
-  const uint64_t seed = test_seed();
-  const std::vector<Case> cases = conformance_cases(seed, k == TargetKind::Rtl, jobs);
-  ASSERT_GE(cases.size(), 10u);
+void run_cases(TargetKind k, const std::vector<Case>& cases) {
   std::vector<std::unique_ptr<Platform>> ps;
   for (size_t i = 0; i < cases.size(); ++i)
     ps.push_back(make_platform("p" + std::to_string(i), k, cases[i].config));
@@ -101,8 +105,32 @@ void conformance(TargetKind k, size_t jobs) {
   }
 }
 
+void conformance(TargetKind k, size_t jobs) {
+  const uint64_t seed = test_seed();
+  const std::vector<Case> cases = conformance_cases(seed, k == TargetKind::Rtl, jobs);
+  ASSERT_GE(cases.size(), 10u);
+  run_cases(k, cases);
+}
+
+// Every distance device the build has a SystemC RTL model of (SB 4, 8, 16): generated jobs with thresholds, their
+// hit records with distances, and cycles (three more slot registers); the TLM target on the same configurations.
+void distance_conformance(TargetKind k) {
+  const uint64_t seed = test_seed();
+  std::vector<Case> cases;
+  for (const DeviceConfig& cfg : rtl_target_configs())
+    if (cfg.distance()) cases.push_back(generated(seed + uint64_t(cfg.SB), cfg, 150));
+  ASSERT_GE(cases.size(), 3u) << "the build's distance models (VOXCD_SYSC_DIST_MODELS)";
+  size_t with_dist = 0;
+  for (const Case& c : cases)
+    for (const Record& r : c.expected) with_dist += r.kind == Record::Hit && r.dist != 0;
+  EXPECT_GT(with_dist, 100u) << "the cases must have hits with distances";
+  run_cases(k, cases);
+}
+
 TEST(SyscTlm, ConformanceVectorsWithCycles) { conformance(TargetKind::Tlm, 400); }
 TEST(SyscRtl, ConformanceVectorsWithCycles) { conformance(TargetKind::Rtl, 150); }
+TEST(SyscRtl, DistanceDevicesWithCycles) { distance_conformance(TargetKind::Rtl); }
+TEST(SyscTlm, DistanceDevicesWithCycles) { distance_conformance(TargetKind::Tlm); }
 
 // A batch launched at time t on an idle device: its first job is presented at the first edge after t and accepted
 // at the next; each completion record is taken one edge after its emission, `cycles` after the previous one. So

@@ -5,9 +5,10 @@
 // through the device's write ports, drives the jobs back to back with random ready on both output streams, and
 // checks every record. Monitors on the input ports tell the reference what the device takes (words written, jobs
 // accepted); each record the device hands over is compared with the next one the reference expects: hit records
-// on every field, completion records on tag and hits, and (+timing=1) on cycles minus stalls and on points against
-// the cycle model. It ends with one summary line, "tb_voxcd_dpi: PASS: ..." or "tb_voxcd_dpi: FAIL: ...", and a
-// failure stops the simulation with $fatal (a non-zero exit status).
+// on every field (the interpolated distance too, on a distance device: SB > 2), completion records on tag and
+// hits, and (+timing=1) on cycles minus stalls and on points against the cycle model. It ends with one summary
+// line, "tb_voxcd_dpi: PASS: ..." or "tb_voxcd_dpi: FAIL: ...", and a failure stops the simulation with $fatal (a
+// non-zero exit status).
 //
 // The device is `VOXCD_DUT (voxcd_device unless defined otherwise): any implementation of docs/contract.md with
 // voxcd_device's parameters and ports can take its place. The clock is an input (the simulator's main drives it);
@@ -20,7 +21,8 @@
 //   +stall=PCT       chance in percent that a stream's ready is low in a cycle [25]
 //   +burst=N         after every N jobs, let the device go idle before the next (0: never) [0]
 //   +timing=0|1      compare cycles minus stalls, and points, with the cycle model [1]
-//   +config=TEXT     the reference's configuration [the parameters, "PW 24 ... TAGW 16"]; must match the device
+//   +config=TEXT     the reference's configuration [the parameters, "PW 24 ... TAGW 16 SB 2 WB 8"]; must match the
+//                    device
 //   +norestart       do not tell the reference about idle gaps (voxcd_dpi_restart): shows why it is needed
 //   +corrupt_hit=K   flip bit 0 of the expected x of hit record K (from 0): the scoreboard must catch it
 //   +corrupt_done=K  add 1 to the expected cycles of completion record K (from 0): likewise
@@ -41,13 +43,16 @@ module tb_voxcd_dpi #(
   parameter int unsigned LANES = 4,
   parameter int unsigned SAW   = 16,
   parameter int unsigned MAW   = 18,
-  parameter int unsigned TAGW  = 16
+  parameter int unsigned TAGW  = 16,
+  parameter int unsigned SB    = 2,
+  parameter int unsigned WB    = 8
 ) (
   input logic clk_i
 );
   import voxcd_dpi_pkg::*;
 
-  localparam int unsigned CW = 32;  // width of the completion records' cycles and stalls
+  localparam int unsigned CW = 32;          // width of the completion records' cycles and stalls
+  localparam int unsigned IW = SB + 3 * WB;  // a job's threshold, a hit's distance (signed)
 
   // ---- The device ----
   logic                rst_n;
@@ -67,11 +72,13 @@ module tb_voxcd_dpi #(
   logic [DW:0]         job_nx, job_ny, job_nz;
   logic [MW-1:0]       job_m [9];  // row-major: m00, m01, .., m22
   logic [TW-1:0]       job_t [3];
+  logic [IW-1:0]       job_threshold;
   logic                hit_valid, hit_ready;
   logic [TAGW-1:0]     hit_tag;
   logic [SAW-1:0]      hit_point;
   logic [DW-1:0]       hit_x, hit_y, hit_z;
   logic [1:0]          hit_state;
+  logic [IW-1:0]       hit_dist;
   logic                done_valid, done_ready;
   logic [TAGW-1:0]     done_tag;
   logic [SAW:0]        done_hits, done_points;
@@ -80,7 +87,7 @@ module tb_voxcd_dpi #(
 
   `VOXCD_DUT #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW)
+    .TAGW(TAGW), .SB(SB), .WB(WB)
   ) u_dut (
     .clk_i            (clk_i),
     .rst_ni           (rst_n),
@@ -113,6 +120,7 @@ module tb_voxcd_dpi #(
     .job_t0_i         (job_t[0]),
     .job_t1_i         (job_t[1]),
     .job_t2_i         (job_t[2]),
+    .job_threshold_i  (job_threshold),
     .hit_valid_o      (hit_valid),
     .hit_ready_i      (hit_ready),
     .hit_tag_o        (hit_tag),
@@ -121,6 +129,7 @@ module tb_voxcd_dpi #(
     .hit_y_o          (hit_y),
     .hit_z_o          (hit_z),
     .hit_state_o      (hit_state),
+    .hit_dist_o       (hit_dist),
     .done_valid_o     (done_valid),
     .done_ready_i     (done_ready),
     .done_tag_o       (done_tag),
@@ -171,13 +180,15 @@ module tb_voxcd_dpi #(
 
   // The reference's next record (voxcd_dpi_pop).
   int     kind, e_tag, e_point, e_x, e_y, e_z, e_state, e_hits;
-  longint e_cycles, e_points;
+  longint e_cycles, e_points, e_dist;
+  longint got_dist;  // the device's hit_dist_o, sign-extended
   // A generated job and memory word, as the DPI functions return them: their int and longint are wider than the
   // fields they fill, and the generator's values fit those fields.
   /* verilator lint_off UNUSEDSIGNAL */
   int     g_tag, g_mode, g_mask, g_base, g_count, g_map, g_nx, g_ny, g_nz;
   longint g_m [9];
   longint g_t [3];
+  longint g_threshold;
   longint gx, gy, gz, gword;
   /* verilator lint_on UNUSEDSIGNAL */
 
@@ -203,16 +214,16 @@ module tb_voxcd_dpi #(
 
   // Makes the reference device of the configuration and the stimulus; 0 when the run cannot start.
   function automatic bit setup();
-    string names [11];
-    int    values [11];
-    names  = '{"PW", "PF", "MW", "MF", "TW", "DW", "MEMW", "LANES", "SAW", "MAW", "TAGW"};
-    values = '{PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW};
+    string names [13];
+    int    values [13];
+    names  = '{"PW", "PF", "MW", "MF", "TW", "DW", "MEMW", "LANES", "SAW", "MAW", "TAGW", "SB", "WB"};
+    values = '{PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB};
     h = voxcd_dpi_new(cfg_text);
     if (h == null) begin
       fail(voxcd_dpi_error(null));
       return 1'b0;
     end
-    for (int i = 0; i < 11; i++) begin
+    for (int i = 0; i < 13; i++) begin
       if (voxcd_dpi_param(h, names[i]) != values[i]) begin
         fail($sformatf("the reference's configuration (%s) has %s %0d, the device %0d", cfg_text, names[i],
                        voxcd_dpi_param(h, names[i]), values[i]));
@@ -230,8 +241,9 @@ module tb_voxcd_dpi #(
   function automatic void finish_run();
     string line;
     if (finished) return;
-    line = {$sformatf("LANES %0d, seed %0d: %0d of %0d jobs, %0d hit records and %0d completion records checked, ",
-                      LANES, seed, jobs_done, n_jobs, hit_records, jobs_done),
+    line = {$sformatf("%sLANES %0d, seed %0d: %0d of %0d jobs, %0d hit records and %0d completion records checked, ",
+                      SB > 2 ? $sformatf("SB %0d WB %0d ", SB, WB) : "", LANES, seed, jobs_done, n_jobs,
+                      hit_records, jobs_done),
             $sformatf("%0d idle gaps (carrying %0d stall cycles), %0d stall cycles, %0d cycles",
                       gaps, gap_waits, stalls, cycle)};
     if (errors == 0) begin
@@ -264,7 +276,7 @@ module tb_voxcd_dpi #(
   task automatic drive_job(input int k);
     void'(need(voxcd_dpi_gen_job(h, k, g_tag, g_mode, g_mask, g_base, g_count, g_map, g_nx, g_ny, g_nz,
                                  g_m[0], g_m[1], g_m[2], g_m[3], g_m[4], g_m[5], g_m[6], g_m[7], g_m[8],
-                                 g_t[0], g_t[1], g_t[2]), "voxcd_dpi_gen_job"));
+                                 g_t[0], g_t[1], g_t[2], g_threshold), "voxcd_dpi_gen_job"));
     job_valid       <= 1'b1;
     job_tag         <= TAGW'(g_tag);
     job_mode        <= 2'(g_mode);
@@ -277,6 +289,7 @@ module tb_voxcd_dpi #(
     job_nz          <= (DW + 1)'(g_nz);
     for (int i = 0; i < 9; i++) job_m[i] <= MW'(g_m[i]);
     for (int i = 0; i < 3; i++) job_t[i] <= TW'(g_t[i]);
+    job_threshold   <= IW'(g_threshold);
   endtask
 
   initial begin
@@ -290,8 +303,8 @@ module tb_voxcd_dpi #(
     void'($value$plusargs("corrupt_done=%d", corrupt_done));
     void'($value$plusargs("max_errors=%d", max_errors));
     if ($test$plusargs("norestart")) restart = 0;
-    cfg_text = $sformatf("PW %0d PF %0d MW %0d MF %0d TW %0d DW %0d MEMW %0d LANES %0d SAW %0d MAW %0d TAGW %0d",
-                         PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW);
+    cfg_text = $sformatf("PW %0d PF %0d MW %0d MF %0d TW %0d DW %0d MEMW %0d LANES %0d SAW %0d MAW %0d TAGW %0d %s",
+                         PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, $sformatf("SB %0d WB %0d", SB, WB));
     void'($value$plusargs("config=%s", cfg_text));
     rng        = ($unsigned(seed) ^ 64'h9e37_79b9_7f4a_7c15) | 64'd1;
     rst_n      = 1'b0;
@@ -331,31 +344,33 @@ module tb_voxcd_dpi #(
                                   longint'($signed(job_m[4])), longint'($signed(job_m[5])),
                                   longint'($signed(job_m[6])), longint'($signed(job_m[7])),
                                   longint'($signed(job_m[8])), longint'($signed(job_t[0])),
-                                  longint'($signed(job_t[1])), longint'($signed(job_t[2]))),
+                                  longint'($signed(job_t[1])), longint'($signed(job_t[2])),
+                                  longint'($signed(job_threshold))),
                  "voxcd_dpi_submit"));
       progress = 1'b1;
     end
 
     // ---- Scoreboard: every record the device hands over against the reference's next one ----
     if (hit_valid && hit_ready) begin
-      kind = voxcd_dpi_pop(h, e_tag, e_point, e_x, e_y, e_z, e_state, e_hits, e_cycles, e_points);
+      kind = voxcd_dpi_pop(h, e_tag, e_point, e_x, e_y, e_z, e_state, e_hits, e_cycles, e_points, e_dist);
       void'(need(kind, "voxcd_dpi_pop"));
       if (hit_records == corrupt_hit) e_x = e_x ^ 1;
+      got_dist = longint'($signed(hit_dist));
       if (kind != RecordHit)
-        mismatch($sformatf("expected %s, got hit tag %0d point %0d voxel (%0d %0d %0d) state %0d",
+        mismatch($sformatf("expected %s, got hit tag %0d point %0d voxel (%0d %0d %0d) state %0d dist %0d",
                            kind == RecordDone ? $sformatf("done tag %0d", e_tag) : "no more records",
-                           hit_tag, hit_point, hit_x, hit_y, hit_z, hit_state));
+                           hit_tag, hit_point, hit_x, hit_y, hit_z, hit_state, got_dist));
       else if (e_tag != int'(hit_tag) || e_point != int'(hit_point) || e_x != int'(hit_x) || e_y != int'(hit_y) ||
-               e_z != int'(hit_z) || e_state != int'(hit_state))
-        mismatch({$sformatf("hit record %0d: expected hit tag %0d point %0d voxel (%0d %0d %0d) state %0d, ",
-                            hit_records, e_tag, e_point, e_x, e_y, e_z, e_state),
-                  $sformatf("got hit tag %0d point %0d voxel (%0d %0d %0d) state %0d",
-                            hit_tag, hit_point, hit_x, hit_y, hit_z, hit_state)});
+               e_z != int'(hit_z) || e_state != int'(hit_state) || e_dist != got_dist)
+        mismatch({$sformatf("hit record %0d: expected hit tag %0d point %0d voxel (%0d %0d %0d) state %0d dist %0d, ",
+                            hit_records, e_tag, e_point, e_x, e_y, e_z, e_state, e_dist),
+                  $sformatf("got hit tag %0d point %0d voxel (%0d %0d %0d) state %0d dist %0d",
+                            hit_tag, hit_point, hit_x, hit_y, hit_z, hit_state, got_dist)});
       hit_records = hit_records + 1;
       progress    = 1'b1;
     end
     if (done_valid && done_ready) begin
-      kind = voxcd_dpi_pop(h, e_tag, e_point, e_x, e_y, e_z, e_state, e_hits, e_cycles, e_points);
+      kind = voxcd_dpi_pop(h, e_tag, e_point, e_x, e_y, e_z, e_state, e_hits, e_cycles, e_points, e_dist);
       void'(need(kind, "voxcd_dpi_pop"));
       if (jobs_done == corrupt_done) e_cycles = e_cycles + 1;
       if (kind != RecordDone)

@@ -13,6 +13,8 @@ namespace voxcd {
 std::vector<int> rtl_lanes();
 // Configurations beyond the default widths that this build has RTL models for (VOXCD_RTL_CONFIGS).
 std::vector<DeviceConfig> rtl_configs();
+// Distance devices (SB > 2) this build has RTL models for (VOXCD_RTL_DIST_MODELS).
+std::vector<DeviceConfig> rtl_distance_configs();
 // Throws DeviceError when there is no model for cfg (its lane count or widths), naming what there is.
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt);
 

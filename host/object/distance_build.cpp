@@ -1,0 +1,140 @@
+// distance_field(): the exact signed distance of a mesh at the nodes of a voxmap's grid (host/object/distance_field.h).
+// The sign is the voxeliser's solid at each node, computed by the voxeliser itself on the grid of cells centred on
+// the nodes; the magnitude is the distance to the nearest triangle, searched in a tree only for nodes that can lie
+// within the band (the rest clamp), along each row of nodes with the distance to the previous node's nearest
+// triangle as the radius.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "voxcd/host/object/detail/closest.h"
+#include "voxcd/host/object/detail/solid.h"
+#include "voxcd/host/object/distance_field.h"
+#include "voxcd/ref/fast/thread_pool.h"
+
+namespace voxcd {
+
+namespace {
+
+bool bit(const std::vector<uint64_t>& b, uint64_t i) { return (b[i >> 6] >> (i & 63)) & 1; }
+
+// Near[i] is 1 when some set bit of `surface` lies within Chebyshev distance r of node i (a separable max filter).
+std::vector<uint8_t> dilate(const std::vector<uint64_t>& surface, const std::array<uint64_t, 3>& n, int64_t r,
+                            ThreadPool& pool) {
+  const uint64_t total = n[0] * n[1] * n[2];
+  std::vector<uint8_t> a(total), b(total);
+  for (uint64_t i = 0; i < total; ++i) a[i] = bit(surface, i);
+  const uint64_t stride[3] = {1, n[0], n[0] * n[1]};
+  for (int axis = 0; axis < 3; ++axis) {
+    const uint64_t len = n[size_t(axis)], lines = total / len;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    pool.parallel_for(std::min<uint64_t>(lines, 256), [&](size_t part) {
+      const uint64_t parts = std::min<uint64_t>(lines, 256);
+      for (uint64_t line = lines * part / parts; line < lines * (part + 1) / parts; ++line) {
+        const uint64_t base = (line % n[size_t(u)]) * stride[u] + (line / n[size_t(u)]) * stride[v];
+        // Distance to the last set cell on the left, and then the running answer from the right.
+        int64_t last = -(int64_t(1) << 40);
+        for (uint64_t k = 0; k < len; ++k) {
+          if (a[base + k * stride[axis]]) last = int64_t(k);
+          b[base + k * stride[axis]] = int64_t(k) - last <= r;
+        }
+        last = int64_t(1) << 40;
+        for (uint64_t k = len; k-- > 0;) {
+          if (a[base + k * stride[axis]]) last = int64_t(k);
+          if (last - int64_t(k) <= r) b[base + k * stride[axis]] = 1;
+        }
+      }
+    });
+    a.swap(b);
+  }
+  return a;
+}
+
+}  // namespace
+
+DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt) {
+  if (opt.bits != 4 && opt.bits != 8 && opt.bits != 16)
+    throw MeshError(mesh.name + ": distance bits must be 4, 8 or 16, got " + std::to_string(opt.bits));
+  if (!(std::isfinite(opt.band) && opt.band > 0)) {
+    std::ostringstream s;
+    s << mesh.name << ": the distance band must be a positive finite number of voxels, got " << opt.band;
+    throw MeshError(s.str());
+  }
+  if (mesh.points_only())
+    throw MeshError(mesh.name + ": a point cloud has no surface to measure a signed distance from (" +
+                    std::to_string(mesh.vertices.size()) + " points, no triangles); give a mesh with faces");
+  if (mesh.triangles.empty()) throw MeshError(mesh.name + ": the mesh has no triangles");
+
+  const GridPlacement& g = voxmap.grid();
+  DistanceField f;
+  f.bits = opt.bits;
+  f.step = opt.band / double(1 << (opt.bits - 1));
+  f.dims = g.dims;
+  const std::array<uint64_t, 3> n = {uint64_t(g.dims[0]) + 1, uint64_t(g.dims[1]) + 1, uint64_t(g.dims[2]) + 1};
+  f.q.assign(n[0] * n[1] * n[2], 0);
+
+  // 1. The grid whose voxel centres are the nodes: the solid there is the sign, its surface voxels say which nodes
+  // can be near the surface.
+  GridPlacement ng;
+  ng.voxel = g.voxel;
+  ng.origin = g.origin - Eigen::Vector3d::Constant(0.5 * g.voxel);
+  for (int a = 0; a < 3; ++a) ng.dims[size_t(a)] = uint32_t(n[size_t(a)]);
+  std::vector<uint64_t> surface;
+  const std::vector<uint64_t> solid = detail::solid_bits(mesh, ng, opt.threads, &surface);
+
+  // 2. A surface point within the band of a node lies in a node cell (side 1, centred on a node) within
+  // floor(band + 1/2) of it on every axis, and that cell is a surface cell: every other node is farther than the
+  // band from the surface and clamps. One more cell keeps the rounding of the voxeliser's snapped corners inside.
+  ThreadPool pool(opt.threads);
+  const int64_t reach = int64_t(std::min(std::floor(opt.band + 0.5) + 1, 4096.0));
+  const std::vector<uint8_t> near = dilate(surface, n, reach, pool);
+  surface.clear();
+  surface.shrink_to_fit();
+
+  // 3. Distances in voxels: the tree over the triangles in grid coordinates, node (X, Y, Z) at (X, Y, Z).
+  std::vector<Eigen::Vector3d> gv(mesh.vertices.size());
+  for (size_t i = 0; i < gv.size(); ++i) gv[i] = (mesh.vertices[i] - g.origin) / g.voxel;
+  const detail::TriangleTree tree(gv, mesh.triangles);
+  const int qmax = f.qmax(), qmin = f.qmin();
+  // Nodes beyond the band clamp: any distance > band rounds to at least 2^(bits-1) steps. The search radius is a
+  // little larger so that a distance at the band's edge is still measured exactly.
+  const double radius = opt.band * (1 + 1e-9);
+  const double inv_step = 1 / f.step;
+  const uint64_t rows = n[1] * n[2];
+  pool.parallel_for(std::min<uint64_t>(rows, 1024), [&](size_t part) {
+    const uint64_t parts = std::min<uint64_t>(rows, 1024);
+    for (uint64_t row = rows * part / parts; row < rows * (part + 1) / parts; ++row) {
+      const uint64_t Y = row % n[1], Z = row / n[1];
+      uint32_t prev = UINT32_MAX;  // the previous node's nearest triangle in this row, when measured
+      for (uint64_t X = 0; X < n[0]; ++X) {
+        const uint64_t i = X + n[0] * row;
+        const bool inside = bit(solid, i);
+        if (!near[i]) {
+          f.q[i] = int16_t(inside ? qmin : qmax);
+          prev = UINT32_MAX;
+          continue;
+        }
+        const Eigen::Vector3d p = Eigen::Vector3d(double(X), double(Y), double(Z));
+        // The previous node's nearest triangle is usually this one's too, or nearly as near: its distance bounds
+        // the search, which still returns the nearest of all (the same value whatever the bound).
+        double r2 = radius * radius;
+        if (prev != UINT32_MAX) {
+          const auto& t = mesh.triangles[prev];
+          r2 = std::min(r2, detail::closest_on_triangle(p, gv[t[0]], gv[t[1]], gv[t[2]]).d2);
+        }
+        const detail::Closest c = tree.closest(p, r2);
+        prev = c.triangle;
+        if (!c.found()) {
+          f.q[i] = int16_t(inside ? qmin : qmax);
+          continue;
+        }
+        const double d = std::sqrt(c.d2);
+        const double v = std::round((inside ? -d : d) * inv_step);
+        f.q[i] = int16_t(std::clamp(v, double(qmin), double(qmax)));
+      }
+    }
+  });
+  return f;
+}
+
+}  // namespace voxcd
