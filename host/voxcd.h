@@ -37,6 +37,7 @@
 // Broadphases, scenes and scene files, sizing.
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/scene/ccd.h"
+#include "voxcd/host/scene/distance_bound.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/scene/simulate.h"

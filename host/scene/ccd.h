@@ -11,6 +11,7 @@
 
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/scene/distance_bound.h"
 
 namespace voxcd {
 
@@ -29,42 +30,6 @@ struct CcdStats {
   uint64_t cycles = 0;      // device cycles of the queries' job streams
 };
 
-// A lower bound on the distance between two bodies' solids from one both-directions query (ALL mode, margin as
-// ContinuousCollision::margin()): the terms of docs/simulate.md, "The bound".
-class DistanceBound {
- public:
-  // Per type, from the distance device cfg. std::invalid_argument naming the type when it has no distance field or
-  // its band is too narrow to bound a distance (at most the interpolation's error).
-  DistanceBound(const std::vector<std::shared_ptr<const ObjectType>>& types, const DeviceConfig& cfg);
-  // The query's margin, world units: the largest distance every type's field still represents.
-  double margin() const { return margin_; }
-  // World units, for bodies of types ta, tb and a result of the query of pair (A, B) (both directions); may be
-  // negative (touching or overlapping).
-  double device(uint32_t ta, uint32_t tb, const PairResult& r) const;
-  // The bound of the bounding spheres and oriented contact boxes (no device), for bodies of rotations Ra, Rb and
-  // translations Ta, Tb: world units, may be negative.
-  double geometric(uint32_t ta, const Eigen::Matrix3d& Ra, const Eigen::Vector3d& Ta, uint32_t tb,
-                   const Eigen::Matrix3d& Rb, const Eigen::Vector3d& Tb) const;
-
- private:
-  struct Type {
-    double field_error = 0;  // world: rounding, interpolation and truncation of a looked-up distance
-    double fixed_error = 0;  // world per unit voxel of the map: sqrt(3) x the fixed-point path's bound, in voxels
-    double shell_gap = 0;    // world: every surface point is this close to a shell point
-    double point_error = 0;  // world: the shell words' rounding (0 where they are exact)
-    double pad = 0;          // world: the grid's margin around the contact box
-    double none = 0;         // world: the distance a point inside the grid that reports nothing has at least
-    double voxel = 0;
-    double pmax = 0;         // the largest shell coordinate, shell units
-    Eigen::Vector3d half = Eigen::Vector3d::Zero(), mid = Eigen::Vector3d::Zero();  // contact box
-    double radius = 0;
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  };
-  double direction(const Type& shell, const Type& map, double min_distance, bool any) const;
-  std::vector<Type> types_;
-  double margin_ = 0, fixed_unit_ = 0;
-};
-
 class ContinuousCollision {
  public:
   // types, cfg: as DistanceBound. max_iterations: advancement steps per frame before the cap drops the remaining
@@ -78,7 +43,7 @@ class ContinuousCollision {
 
   // Contact when a pair's bound is at most this fraction of the finer voxel (and a wall's gap at most this
   // fraction of the body's voxel).
-  static constexpr double kTolerance = 0.5;
+  static constexpr double kTolerance = DistanceBound::kTolerance;
 
  private:
   void pose_at(size_t i, double t, Body& b) const;
