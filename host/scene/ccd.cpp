@@ -53,6 +53,117 @@ void ContinuousCollision::candidates(const Scene& scene, double t) {
     if (spheres_overlap(sweep_[p.first], sweep_[p.second])) cand_.push_back(p);
 }
 
+void ContinuousCollision::restart(const Scene& scene, size_t i, double t) {
+  t0_[i] = scene.bodies[i].pose.translation;
+  q0_[i] = scene.bodies[i].pose.rotation;
+  s0_[i] = t;
+}
+
+void ContinuousCollision::query(Scene& scene, PairCollider& collider, double rest, CcdStats& st) {
+  // The pairs that could close their geometric gap before the frame's end go to the device, in one batch.
+  requests_.clear();
+  queried_.clear();
+  geo_.resize(cand_.size());
+  for (size_t k = 0; k < cand_.size(); ++k) {
+    const uint32_t ia = cand_[k].first, ib = cand_[k].second;
+    const Body &a = scene.bodies[ia], &b = scene.bodies[ib];
+    geo_[k] = bound_.geometric(a.type, rot_[ia], a.pose.translation, b.type, rot_[ib], b.pose.translation);
+    const double tol =
+        kTolerance * std::min(scene.types[a.type]->voxmap().voxel(), scene.types[b.type]->voxmap().voxel());
+    if (geo_[k] > tol && geo_[k] >= (speed_[ia] + speed_[ib]) * rest) continue;
+    PairRequest r;
+    r.a = a.type;
+    r.b = b.type;
+    r.pose_a = a.pose;
+    r.pose_b = b.pose;
+    requests_.push_back(r);
+    queried_.push_back(uint32_t(k));
+  }
+  if (requests_.empty()) return;
+  PairOptions po;
+  po.mode = Mode::All;
+  po.both_directions = true;
+  po.cull = cull_;
+  po.margin = bound_.margin();
+  collider.collide(requests_, po, results_);
+  st.queries += requests_.size();
+  if (collider.device().models_cycles()) st.cycles += 1;  // the stream ends a cycle after its last completion
+}
+
+bool ContinuousCollision::pairs(Scene& scene, std::vector<bool>& moved, double now, double rest, double& dt,
+                                CcdStats& st) {
+  bool responded = false;
+  for (size_t q = 0; q < requests_.size(); ++q) {
+    const PairResult& r = results_[q];
+    st.lookups += r.lookups;
+    st.cycles += r.cycles;
+    const uint32_t ia = cand_[queried_[q]].first, ib = cand_[queried_[q]].second;
+    Body &a = scene.bodies[ia], &b = scene.bodies[ib];
+    const double va = scene.types[a.type]->voxmap().voxel(), vb = scene.types[b.type]->voxmap().voxel();
+    const double lb = std::max(geo_[queried_[q]], bound_.device(a.type, b.type, r));
+    if (lb <= kTolerance * std::min(va, vb)) {
+      // Contact: the normal from A towards B over the contacts nearest the surfaces (the field's gradients), the
+      // line between the spheres' centres when they give none.
+      double dmin = std::numeric_limits<double>::infinity();
+      for (const Contact& c : r.contacts) dmin = std::min(dmin, -c.depth);
+      Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
+      for (const Contact& c : r.contacts)
+        if (-c.depth <= dmin + std::max(va, vb)) nrm += c.a_in_b ? c.normal : -c.normal;
+      if (nrm.squaredNorm() < 1e-12)
+        nrm = (b.pose.rotation * scene.types[b.type]->centre + b.pose.translation) -
+              (a.pose.rotation * scene.types[a.type]->centre + a.pose.translation);
+      if (nrm.squaredNorm() < 1e-24) nrm = Eigen::Vector3d::UnitX();
+      nrm.normalize();
+      if (respond(a, b, nrm)) {
+        restart(scene, ia, now);
+        restart(scene, ib, now);
+        speed_[ia] = motion_bound(*scene.types[a.type], a);
+        speed_[ib] = motion_bound(*scene.types[b.type], b);
+        moved[ia] = moved[ib] = true;
+        limit_[ia] = limit_[ib] = 1;
+        ++st.toi;
+        ++st.pair_toi;
+        responded = true;
+      }
+      continue;  // touching and separating: it does not limit the step
+    }
+    const double vs = speed_[ia] + speed_[ib];
+    if (vs > 0 && lb < vs * rest) {
+      dt = std::min(dt, lb / vs);
+      limit_[ia] = limit_[ib] = 1;
+      limited_.push_back(uint64_t(ia) << 32 | ib);
+    }
+  }
+  return responded;
+}
+
+void ContinuousCollision::walls(Scene& scene, std::vector<bool>& moved, double now, double rest, double& dt,
+                                CcdStats& st, uint64_t& wall_hits) {
+  // By the enclosing sphere: its centre moves along an axis at most that velocity component plus the spin times
+  // the centre's distance from the rotation centre.
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    Body& b = scene.bodies[i];
+    const ObjectType& t = *scene.types[b.type];
+    const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
+    const double tol = kTolerance * t.voxmap().voxel(), swing = b.spin.norm() * t.centre.norm();
+    for (int ax = 0; ax < 3; ++ax) {
+      const double low = c[ax] - t.radius, high = scene.side - c[ax] - t.radius;
+      if ((low <= tol && b.velocity[ax] < 0) || (high <= tol && b.velocity[ax] > 0)) {
+        restart(scene, i, now);
+        b.velocity[ax] = -b.velocity[ax];
+        moved[i] = true;
+        limit_[i] = 1;
+        ++st.toi;
+        ++wall_hits;
+      }
+      const double rate_low = std::max(0.0, -b.velocity[ax]) + swing;
+      const double rate_high = std::max(0.0, b.velocity[ax]) + swing;
+      if (low > tol && rate_low > 0 && low < rate_low * rest) dt = std::min(dt, low / rate_low), limit_[i] = 1;
+      if (high > tol && rate_high > 0 && high < rate_high * rest) dt = std::min(dt, high / rate_high), limit_[i] = 1;
+    }
+  }
+}
+
 CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std::vector<bool>& moved,
                                       uint64_t& wall_hits) {
   CcdStats st;
@@ -65,22 +176,9 @@ CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std:
   limit_.assign(n, 0);
   limited_.clear();
   for (size_t i = 0; i < n; ++i) {
-    const Body& b = scene.bodies[i];
-    t0_[i] = b.pose.translation;
-    q0_[i] = b.pose.rotation;
-    speed_[i] = motion_bound(*scene.types[b.type], b);
+    restart(scene, i, 0.0);
+    speed_[i] = motion_bound(*scene.types[scene.bodies[i].type], scene.bodies[i]);
   }
-  auto restart = [&](size_t i, double t) {  // a new segment: the body's velocity changes at t
-    t0_[i] = scene.bodies[i].pose.translation;
-    q0_[i] = scene.bodies[i].pose.rotation;
-    s0_[i] = t;
-  };
-  PairOptions po;
-  po.mode = Mode::All;
-  po.both_directions = true;
-  po.cull = cull_;
-  po.margin = bound_.margin();
-  const bool cycles = collider.device().models_cycles();
   double now = 0;
   bool rebuild = true;
   for (uint32_t iter = 0; now < 1; ++iter) {
@@ -99,97 +197,10 @@ CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std:
     const double rest = 1 - now;
     std::fill(limit_.begin(), limit_.end(), 0);
     for (size_t i = 0; i < n; ++i) rot_[i] = scene.bodies[i].pose.rotation.toRotationMatrix();
-
-    // The pairs that could close their gap before the frame's end, by spheres and boxes, go to the device.
-    requests_.clear();
-    queried_.clear();
-    geo_.resize(cand_.size());
-    for (size_t k = 0; k < cand_.size(); ++k) {
-      const uint32_t ia = cand_[k].first, ib = cand_[k].second;
-      const Body &a = scene.bodies[ia], &b = scene.bodies[ib];
-      geo_[k] = bound_.geometric(a.type, rot_[ia], a.pose.translation, b.type, rot_[ib], b.pose.translation);
-      const double tol = kTolerance * std::min(scene.types[a.type]->voxmap().voxel(),
-                                               scene.types[b.type]->voxmap().voxel());
-      if (geo_[k] > tol && geo_[k] >= (speed_[ia] + speed_[ib]) * rest) continue;
-      PairRequest r;
-      r.a = a.type;
-      r.b = b.type;
-      r.pose_a = a.pose;
-      r.pose_b = b.pose;
-      requests_.push_back(r);
-      queried_.push_back(uint32_t(k));
-    }
-    if (!requests_.empty()) collider.collide(requests_, po, results_);
-    st.queries += requests_.size();
-    if (cycles && !requests_.empty()) st.cycles += 1;
-
-    bool responded = false;
+    query(scene, collider, rest, st);
     double dt = rest;
-    for (size_t q = 0; q < requests_.size(); ++q) {
-      const PairResult& r = results_[q];
-      st.lookups += r.lookups;
-      st.cycles += r.cycles;
-      const uint32_t ia = cand_[queried_[q]].first, ib = cand_[queried_[q]].second;
-      Body &a = scene.bodies[ia], &b = scene.bodies[ib];
-      const double va = scene.types[a.type]->voxmap().voxel(), vb = scene.types[b.type]->voxmap().voxel();
-      const double lb = std::max(geo_[queried_[q]], bound_.device(a.type, b.type, r));
-      if (lb <= kTolerance * std::min(va, vb)) {
-        // Contact: the normal from A towards B over the contacts nearest the surfaces (the field's gradients), the
-        // line between the spheres' centres when they give none.
-        double dmin = std::numeric_limits<double>::infinity();
-        for (const Contact& c : r.contacts) dmin = std::min(dmin, -c.depth);
-        Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
-        for (const Contact& c : r.contacts)
-          if (-c.depth <= dmin + std::max(va, vb)) nrm += c.a_in_b ? c.normal : -c.normal;
-        if (nrm.squaredNorm() < 1e-12)
-          nrm = (b.pose.rotation * scene.types[b.type]->centre + b.pose.translation) -
-                (a.pose.rotation * scene.types[a.type]->centre + a.pose.translation);
-        if (nrm.squaredNorm() < 1e-24) nrm = Eigen::Vector3d::UnitX();
-        nrm.normalize();
-        if (respond(a, b, nrm)) {
-          restart(ia, now);
-          restart(ib, now);
-          speed_[ia] = motion_bound(*scene.types[a.type], a);
-          speed_[ib] = motion_bound(*scene.types[b.type], b);
-          moved[ia] = moved[ib] = true;
-          limit_[ia] = limit_[ib] = 1;
-          ++st.toi;
-          ++st.pair_toi;
-          responded = true;
-        }
-        continue;  // touching and separating: it does not limit the step
-      }
-      const double vs = speed_[ia] + speed_[ib];
-      if (vs > 0 && lb < vs * rest) {
-        dt = std::min(dt, lb / vs);
-        limit_[ia] = limit_[ib] = 1;
-        limited_.push_back(uint64_t(ia) << 32 | ib);
-      }
-    }
-
-    // Walls, by the bounding sphere: its centre moves along an axis at most that velocity component plus the spin
-    // times the centre's distance from the rotation centre.
-    for (size_t i = 0; i < n; ++i) {
-      Body& b = scene.bodies[i];
-      const ObjectType& t = *scene.types[b.type];
-      const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
-      const double tol = kTolerance * t.voxmap().voxel(), swing = b.spin.norm() * t.centre.norm();
-      for (int ax = 0; ax < 3; ++ax) {
-        const double low = c[ax] - t.radius, high = scene.side - c[ax] - t.radius;
-        if ((low <= tol && b.velocity[ax] < 0) || (high <= tol && b.velocity[ax] > 0)) {
-          restart(i, now);
-          b.velocity[ax] = -b.velocity[ax];
-          moved[i] = true;
-          limit_[i] = 1;
-          ++st.toi;
-          ++wall_hits;
-        }
-        const double rate_low = std::max(0.0, -b.velocity[ax]) + swing;
-        const double rate_high = std::max(0.0, b.velocity[ax]) + swing;
-        if (low > tol && rate_low > 0 && low < rate_low * rest) dt = std::min(dt, low / rate_low), limit_[i] = 1;
-        if (high > tol && rate_high > 0 && high < rate_high * rest) dt = std::min(dt, high / rate_high), limit_[i] = 1;
-      }
-    }
+    const bool responded = pairs(scene, moved, now, rest, dt, st);
+    walls(scene, moved, now, rest, dt, st, wall_hits);
     // A response can make a body faster than its swept sphere allowed: find the candidates again, then step.
     if (responded) {
       rebuild = true;

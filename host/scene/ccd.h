@@ -46,8 +46,19 @@ class ContinuousCollision {
   static constexpr double kTolerance = DistanceBound::kTolerance;
 
  private:
+  // The pose of body i at time t of the frame, from its segment.
   void pose_at(size_t i, double t, Body& b) const;
+  // A new segment for body i from its pose at t (its velocity changes at t).
+  void restart(const Scene& scene, size_t i, double t);
+  // The pairs whose swept spheres meet over the rest of the frame from t.
   void candidates(const Scene& scene, double t);
+  // The candidates' geometric bounds; those that could be crossed within `rest` queried on the device in one batch.
+  void query(Scene& scene, PairCollider& collider, double rest, CcdStats& st);
+  // Responses of the pairs in contact and approaching (true when any), the step the others allow into dt.
+  bool pairs(Scene& scene, std::vector<bool>& moved, double now, double rest, double& dt, CcdStats& st);
+  // Reflections off the walls reached, the step the others allow into dt.
+  void walls(Scene& scene, std::vector<bool>& moved, double now, double rest, double& dt, CcdStats& st,
+             uint64_t& wall_hits);
 
   DistanceBound bound_;
   uint32_t max_iterations_;
