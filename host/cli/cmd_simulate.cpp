@@ -116,7 +116,7 @@ int simulate_cmd(const SimulateArgs& a) {
       << ", \"broadphase\": " << tot.t_broadphase << ", \"narrow\": " << tot.t_narrow
       << ", \"response\": " << tot.t_response << "}";
     if (s.ccd)
-      o << ", \"ccd\": {\"iterations\": " << tot.ccd_iterations << ", \"queries\": " << tot.ccd_queries
+      o << ", \"no_tunnelling\": {\"iterations\": " << tot.ccd_iterations << ", \"queries\": " << tot.ccd_queries
         << ", \"pairs_limited\": " << tot.ccd_limited << ", \"time_of_impact_events\": " << tot.ccd_toi
         << ", \"bodies_dropped\": " << tot.ccd_dropped << ", \"lookups\": " << tot.ccd_lookups << "}";
     o << ", \"lanes\": " << s.lanes

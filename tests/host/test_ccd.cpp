@@ -401,6 +401,7 @@ TEST(CcdCli, SceneFileKeyRunsThroughSimulate) {
   const std::string out = run("simulate " + path + " --json --threads 1", &status);
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("\"ccd\": true"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"no_tunnelling\": {\"iterations\": "), std::string::npos) << out;
   EXPECT_NE(out.find("\"time_of_impact_events\""), std::string::npos) << out;
   const std::string text = run("simulate " + path + " --threads 1 --no-progress", &status);
   ASSERT_EQ(status, 0) << text;
@@ -409,7 +410,9 @@ TEST(CcdCli, SceneFileKeyRunsThroughSimulate) {
   const std::string off = run("simulate --distance-bits 8 --objects 4 --frames 2 --threads 1", &status);
   ASSERT_EQ(status, 0) << off;
   EXPECT_EQ(off.find("no tunnelling"), std::string::npos) << off;
-  EXPECT_EQ(off.find("time_of_impact"), std::string::npos) << off;
+  const std::string json = run("simulate --distance-bits 8 --objects 4 --frames 2 --threads 1 --json", &status);
+  ASSERT_EQ(status, 0) << json;
+  EXPECT_EQ(json.find("no_tunnelling"), std::string::npos) << json;
 }
 
 TEST(CcdCli, CcdWithoutDistanceBitsIsAClearError) {
