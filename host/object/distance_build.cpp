@@ -18,36 +18,65 @@ namespace {
 
 bool bit(const std::vector<uint64_t>& b, uint64_t i) { return (b[i >> 6] >> (i & 63)) & 1; }
 
-// Near[i] is 1 when some set bit of `surface` lies within Chebyshev distance r of node i (a separable max filter).
-std::vector<uint8_t> dilate(const std::vector<uint64_t>& surface, const std::array<uint64_t, 3>& n, int64_t r,
-                            ThreadPool& pool) {
+// Near[i] is 1 when the centre of some set cell of `surface` (cells centred on the nodes) lies within sqrt(limit2)
+// of node i: the squared Euclidean distance transform of the set cells (Felzenszwalb and Huttenlocher, one axis at a
+// time, lower envelopes of parabolas), in integers clamped to limit2 + 1 (a clamped value exceeds limit2 either way,
+// and the minimum that reaches limit2 or less never takes one).
+std::vector<uint8_t> near_nodes(const std::vector<uint64_t>& surface, const std::array<uint64_t, 3>& n,
+                                uint32_t limit2, ThreadPool& pool) {
   const uint64_t total = n[0] * n[1] * n[2];
-  std::vector<uint8_t> a(total), b(total);
-  for (uint64_t i = 0; i < total; ++i) a[i] = bit(surface, i);
+  if (limit2 >= 65534) return std::vector<uint8_t>(total, 1);  // a band as wide as the largest grid
+  const uint16_t cap = uint16_t(limit2 + 1);
+  std::vector<uint16_t> d(total);
+  for (uint64_t i = 0; i < total; ++i) d[i] = bit(surface, i) ? 0 : cap;
   const uint64_t stride[3] = {1, n[0], n[0] * n[1]};
   for (int axis = 0; axis < 3; ++axis) {
     const uint64_t len = n[size_t(axis)], lines = total / len;
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    pool.parallel_for(std::min<uint64_t>(lines, 256), [&](size_t part) {
-      const uint64_t parts = std::min<uint64_t>(lines, 256);
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    const uint64_t parts = std::min<uint64_t>(lines, 256);
+    pool.parallel_for(parts, [&](size_t part) {
+      std::vector<int64_t> f(len), v(len);
+      std::vector<double> z(len + 1);
       for (uint64_t line = lines * part / parts; line < lines * (part + 1) / parts; ++line) {
-        const uint64_t base = (line % n[size_t(u)]) * stride[u] + (line / n[size_t(u)]) * stride[v];
-        // Distance to the last set cell on the left, and then the running answer from the right.
-        int64_t last = -(int64_t(1) << 40);
-        for (uint64_t k = 0; k < len; ++k) {
-          if (a[base + k * stride[axis]]) last = int64_t(k);
-          b[base + k * stride[axis]] = int64_t(k) - last <= r;
+        const uint64_t base = (line % n[size_t(u)]) * stride[u] + (line / n[size_t(u)]) * stride[w];
+        for (uint64_t k = 0; k < len; ++k) f[k] = d[base + k * stride[axis]];
+        // The lower envelope of the parabolas (x - q)^2 + f[q] of the sites q with f[q] < cap.
+        int64_t sites = 0;
+        for (int64_t q = 0; q < int64_t(len); ++q) {
+          if (f[size_t(q)] >= cap) continue;
+          while (sites > 0) {
+            const int64_t p = v[size_t(sites - 1)];
+            const double s = double((f[size_t(q)] + q * q) - (f[size_t(p)] + p * p)) / double(2 * (q - p));
+            if (s > z[size_t(sites - 1)]) {
+              v[size_t(sites)] = q;
+              z[size_t(sites)] = s;
+              ++sites;
+              break;
+            }
+            --sites;
+          }
+          if (sites == 0) {
+            v[0] = q;
+            z[0] = -HUGE_VAL;
+            sites = 1;
+          }
         }
-        last = int64_t(1) << 40;
-        for (uint64_t k = len; k-- > 0;) {
-          if (a[base + k * stride[axis]]) last = int64_t(k);
-          if (last - int64_t(k) <= r) b[base + k * stride[axis]] = 1;
+        z[size_t(sites)] = HUGE_VAL;
+        for (int64_t x = 0, k = 0; x < int64_t(len); ++x) {
+          int64_t out = cap;
+          if (sites > 0) {
+            while (z[size_t(k + 1)] < double(x)) ++k;
+            const int64_t p = v[size_t(k)];
+            out = std::min<int64_t>(cap, (x - p) * (x - p) + f[size_t(p)]);
+          }
+          d[base + uint64_t(x) * stride[axis]] = uint16_t(out);
         }
       }
     });
-    a.swap(b);
   }
-  return a;
+  std::vector<uint8_t> near(total);
+  for (uint64_t i = 0; i < total; ++i) near[i] = d[i] <= limit2;
+  return near;
 }
 
 }  // namespace
@@ -82,12 +111,13 @@ DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const Dista
   std::vector<uint64_t> surface;
   const std::vector<uint64_t> solid = detail::solid_bits(mesh, ng, opt.threads, &surface);
 
-  // 2. A surface point within the band of a node lies in a node cell (side 1, centred on a node) within
-  // floor(band + 1/2) of it on every axis, and that cell is a surface cell: every other node is farther than the
-  // band from the surface and clamps. One more cell keeps the rounding of the voxeliser's snapped corners inside.
+  // 2. A surface point within the band of a node lies in a surface node cell (side 1, centred on a node, grown by
+  // more than the voxeliser's snapping moves the surface) whose centre is within band + sqrt(3)/2 of the node: every
+  // node without such a cell is farther than the band from the surface and clamps.
   ThreadPool pool(opt.threads);
-  const int64_t reach = int64_t(std::min(std::floor(opt.band + 0.5) + 1, 4096.0));
-  const std::vector<uint8_t> near = dilate(surface, n, reach, pool);
+  const double reach = opt.band + std::sqrt(3.0) / 2 + 1e-3;
+  const std::vector<uint8_t> near =
+      near_nodes(surface, n, uint32_t(std::min(std::floor(reach * reach), 65535.0)), pool);
   surface.clear();
   surface.shrink_to_fit();
 

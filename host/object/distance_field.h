@@ -46,8 +46,9 @@ struct DistanceOptions {
 };
 
 // The field of a mesh as repair() left it, on the voxmap's grid: each node's exact distance to the nearest
-// triangle (point-triangle distance), its sign from the solid voxelize computed (inside: negative). MeshError for
-// bits not 4, 8 or 16 or a band that is not finite and > 0.
+// triangle (point-triangle distance), its sign from the solid voxelize computed (inside: negative; sheets, which
+// bound no solid, give the unsigned distance). Only the voxmap's grid is used. MeshError for bits not 4, 8 or 16, a
+// band that is not finite and > 0, or a point cloud. The result never depends on opt.threads.
 DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt);
 
 }  // namespace voxcd
