@@ -63,8 +63,7 @@ SceneExtents scene_extents(const Scene& scene) {
   double rmax = 0;
   for (size_t i = 0; i < n; ++i) {
     const ObjectType& t = *scene.types[i];
-    for (const auto& c : t.shell().cells)
-      for (int j = 0; j < 3; ++j) max_point[i] = std::max(max_point[i], c[j] + 0.5);
+    max_point[i] = t.shell().max_grid_coordinate();  // cell centres, or surface points (PointShell::coords)
     e.max_point = std::max(e.max_point, max_point[i]);
     for (uint32_t d : t.voxmap().dims()) e.max_dim = std::max(e.max_dim, d);
     rmax = std::max(rmax, t.radius);
