@@ -338,8 +338,10 @@ class Generator {
     if (chance(0.15)) {
       const FixedFormat tf = translation_format(cfg_);
       for (auto& e : j.t) {
-        const int64_t v = (sint(-1, 8) << cfg_.TF()) - 1;  // one ulp below an integer
-        if (v >= tf.min_raw() && v <= tf.max_raw()) e = v;
+        // One ulp below an integer, in 128 bits (TF can be 63): a signed left shift of a negative value, or past
+        // 64 bits, is undefined.
+        const Acc v = Acc(sint(-1, 8)) * (Acc(1) << cfg_.TF()) - 1;
+        if (v >= Acc(tf.min_raw()) && v <= Acc(tf.max_raw())) e = int64_t(v);
       }
     }
   }
