@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "bench/bench_common.h"
+#include "bench/fcl_common.h"
 #include "tests/exact_geometry.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/pairs/collide.h"
@@ -25,31 +26,9 @@ using namespace voxcd;
 
 namespace {
 
-using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
-
-std::shared_ptr<Bvh> bvh_of(const Mesh& m) {
-  auto model = std::make_shared<Bvh>();
-  std::vector<fcl::Vector3d> v(m.vertices.begin(), m.vertices.end());
-  std::vector<fcl::Triangle> t;
-  for (const auto& tri : m.triangles) t.emplace_back(tri[0], tri[1], tri[2]);
-  model->beginModel();
-  model->addSubModel(v, t);
-  model->endModel();
-  return model;
-}
-
-fcl::Transform3d to_fcl(const RigidPose& p) {
-  fcl::Transform3d t = fcl::Transform3d::Identity();
-  t.linear() = p.rotation.toRotationMatrix();
-  t.translation() = p.translation;
-  return t;
-}
-
-Mesh transformed(const Mesh& m, const RigidPose& pose) {
-  Mesh out = m;
-  for (auto& v : out.vertices) v = pose.rotation * v + pose.translation;
-  return out;
-}
+using bench::bvh_of;
+using bench::to_fcl;
+using bench::transformed;
 
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0;

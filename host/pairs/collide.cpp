@@ -11,11 +11,6 @@ namespace voxcd {
 
 namespace {
 
-uint64_t state_map_words(const DeviceConfig& cfg, const Voxmap& vm) {
-  const uint64_t spw = uint64_t(cfg.states_per_word());
-  return (vm.size() + spw - 1) / spw;
-}
-
 void check_distance(const DeviceConfig& cfg, const ObjectType& t) {
   if (!cfg.distance()) return;
   const DistanceField& f = t.object.distance;
@@ -39,12 +34,11 @@ void check_dims(const DeviceConfig& cfg, const ObjectType& t) {
 }  // namespace
 
 uint64_t type_map_words(const DeviceConfig& cfg, const ObjectType& t) {
-  if (!cfg.distance()) return state_map_words(cfg, t.voxmap());
   Job j;
   j.nx = t.voxmap().dims()[0];
   j.ny = t.voxmap().dims()[1];
   j.nz = t.voxmap().dims()[2];
-  return voxcd::map_words(cfg, j);
+  return map_words(cfg, j);  // ref/: states, or the distance field's parity banks
 }
 
 uint32_t DeviceImage::add(const ObjectType& t) {

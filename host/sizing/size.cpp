@@ -138,10 +138,9 @@ DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig 
 DeviceConfig derive_memory(DeviceConfig cfg, const Scene& scene) {
   // Count what the host's packing needs (DeviceImage places types back to back), then check it with the packing.
   uint64_t shell = 0, words = 0;
-  const uint64_t spw = uint64_t(cfg.states_per_word());
   for (const auto& t : scene.types) {
     shell += t->shell().size();
-    words += (t->voxmap().size() + spw - 1) / spw;
+    words += type_map_words(cfg, *t) + (cfg.distance() ? 7 : 0);  // a distance map starts on a bank boundary
   }
   cfg.SAW = 1;
   while (cfg.SAW < 24 && (cfg.shell_depth() < shell || (1 << cfg.SAW) < cfg.LANES)) ++cfg.SAW;
@@ -307,10 +306,9 @@ SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest
   }
   r.config = cfg;
   r.config.validate();
-  uint64_t spw = uint64_t(cfg.states_per_word());
   for (const auto& t : scene.types) {
     r.shell_words += t->shell().size();
-    r.map_words += (t->voxmap().size() + spw - 1) / spw;
+    r.map_words += type_map_words(cfg, *t);
   }
   if (req.cost) {
     r.cost = yosys_cost(r.config, req.rtl_dir);
