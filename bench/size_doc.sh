@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# bench/size_doc.sh: regenerates the worked example and the accuracy sweep of docs/size.md by running voxcd size
-# on tests/scenes/mixed.json (the example at 10,000 frames/s with --cost: two yosys runs, about 30 s).
+# bench/size_doc.sh: regenerates the worked example, the accuracy sweep and the contact-accuracy sweep of
+# docs/size.md by running voxcd size on tests/scenes/mixed.json (the example at 10,000 frames/s with --cost: two yosys runs, about 30 s).
 # Usage: bash bench/size_doc.sh [BUILD_DIR]   (default build/)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -24,5 +24,14 @@ trap 'rm -rf "$tmp"' EXIT
   done
   echo '```'
 } >"$tmp/accuracy.md"
+{
+  echo '```'
+  for c in 2 0.5 0.3 0.25 0.1; do
+    echo "\$ build/voxcd size tests/scenes/mixed.json --contact-accuracy $c | grep -E '^(configuration|contacts|memory|frame rate) '"
+    "$voxcd" size tests/scenes/mixed.json --contact-accuracy "$c" 2>&1 | grep -E '^(configuration|contacts|memory|frame rate) |cannot be met' || true
+  done
+  echo '```'
+} >"$tmp/contact.md"
 bash bench/splice.sh docs/size.md size-example "$tmp/example.md"
+bash bench/splice.sh docs/size.md size-contact "$tmp/contact.md"
 bash bench/splice.sh docs/size.md size-accuracy "$tmp/accuracy.md"

@@ -17,6 +17,7 @@
 
 // Objects: meshes, repair, shapes, voxmaps, point shells, object files and types.
 #include "voxcd/host/object/bounds.h"
+#include "voxcd/host/object/convex.h"
 #include "voxcd/host/object/frame.h"
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/object_file.h"
@@ -41,6 +42,7 @@
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/scene/simulate.h"
+#include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/size.h"
 
 // Where the installed package keeps its RTL and programs.

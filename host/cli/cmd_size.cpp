@@ -28,7 +28,7 @@ int size_cmd(const SizeArgs& a) {
     std::cerr << "voxcd size: " << a.file << ": cannot be met: " << e.what() << '\n';
     return 3;
   }
-  std::cout << (a.json ? size_json(r, scene) : size_text(r, scene));
+  std::cout << (a.json ? size_json(r) : size_text(r));
   return 0;
 }
 
@@ -42,6 +42,10 @@ void add_size(CLI::App& app) {
   c->add_option("scene", a->file, "A scene file (docs/scenes.md)")->required()->check(CLI::ExistingFile);
   c->add_option("--accuracy", a->req.accuracy, "Largest error of the fixed-point path, world units (default: the "
                                                "scene file's)")
+      ->check(CLI::PositiveNumber);
+  c->add_option("--contact-accuracy", a->req.contact_accuracy,
+                "How far outside the other object's surface a contact may lie, world units: chooses the voxmaps "
+                "(2-bit states, or distance voxmaps' SB, WB and band) (default: the scene file's, or its voxmaps)")
       ->check(CLI::PositiveNumber);
   c->add_option("--rate", a->req.rate, "Frames per second (default: the scene file's)")->check(CLI::PositiveNumber);
   c->add_option("--clock", a->req.clock, "Device clock, MHz (default: the scene file's)")->check(CLI::PositiveNumber);

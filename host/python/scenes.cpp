@@ -138,17 +138,19 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
   });
 }
 
-py::object size_scene(const py::object& scene, std::optional<double> accuracy, std::optional<double> rate,
-                      std::optional<double> clock, const py::object& frames, bool cost,
+py::object size_scene(const py::object& scene, std::optional<double> accuracy, std::optional<double> contact_accuracy,
+                      std::optional<double> rate, std::optional<double> clock, const py::object& frames, bool cost,
                       const std::optional<py::object>& rtl) {
   std::string file;
   std::optional<std::string> text;
   scene_arg(scene, file, text);
   SizeRequest req;
-  for (const auto& [v, name] : {std::pair{accuracy, "accuracy"}, {rate, "rate"}, {clock, "clock"}})
+  for (const auto& [v, name] : {std::pair{accuracy, "accuracy"}, {contact_accuracy, "contact_accuracy"},
+                                {rate, "rate"}, {clock, "clock"}})
     if (v && !(*v > 0)) value_error(std::string(name) + ": " + py::repr(py::float_(*v)).cast<std::string>() +
                                     " is not a positive number");
   req.accuracy = accuracy.value_or(0);
+  req.contact_accuracy = contact_accuracy.value_or(0);
   req.rate = rate.value_or(0);
   req.clock = clock.value_or(0);
   if (const auto f = count_arg(frames, "frames")) {
@@ -163,7 +165,7 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
     const SceneFile f = text ? parse_scene_file(*text, file) : read_scene_file(file);
     const Scene sc = make_scene(f);
     try {
-      json = size_json(derive_size(f, sc, req), sc);
+      json = size_json(derive_size(f, sc, req));
     } catch (const SizeError& e) {
       throw std::invalid_argument(file + ": cannot be met: " + e.what());
     }
@@ -186,10 +188,12 @@ void bind_scenes(py::module_& m) {
 or a dict with a scene file's keys (docs/scenes.md). Each option given (not None) overrides the scene file, as the
 tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs.)");
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
+        py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),
         py::arg("cost") = false, py::arg("rtl") = py::none(),
         R"(The smallest device for a scene file (or a dict with a scene file's keys), as `voxcd size --json` reports
-it, as a dict. The options override the file's accuracy (world units), rate (Hz), clock (MHz) and frames; cost
+it, as a dict. The options override the file's accuracy (world units), contact_accuracy (world units: chooses the
+voxmaps, docs/size.md), rate (Hz), clock (MHz) and frames; cost
 also synthesises the configuration with yosys (about 10 s each; rtl: the directory of the RTL's voxcd.f).
 ValueError '<scene>: cannot be met: ...' when no device meets the request.)");
 }

@@ -191,8 +191,8 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
   SceneFile f;
   f.where = where;
   const Reader top(j, "", where);
-  top.only({"types", "environment", "accuracy", "rate", "clock", "frames", "broadphase", "backend", "mode",
-            "both_directions", "distance_bits", "band", "ccd"});
+  top.only({"types", "environment", "accuracy", "contact_accuracy", "rate", "clock", "frames", "broadphase",
+            "backend", "mode", "both_directions", "distance_bits", "band", "ccd"});
   if (!top.has("types")) top.fail("types", "missing: a scene needs at least one object type");
   const json& types = top.at("types");
   if (!types.is_array()) top.fail("types", std::string("must be an array of object types, not ") + types.type_name());
@@ -236,6 +236,7 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
       e.fail("environment.density", "sizes only the types with no \"size\" or \"scale\", and every type has one");
   }
   top.number("accuracy", f.accuracy, 0, 1e12, true);
+  top.number("contact_accuracy", f.contact_accuracy, 0, 1e12, true);
   top.number("rate", f.rate, 0, 1e12, true);
   top.number("clock", f.clock, 0, 1e6, true);
   top.integer("frames", f.frames, 1, 1000000);

@@ -45,6 +45,8 @@ struct SceneFile {
   uint64_t seed = 1;
   // What is asked of the device.
   double accuracy = 0;   // world units; 0: not given (accuracy_or_default)
+  double contact_accuracy = 0;  // world units: how far outside the other surface a contact may lie (voxcd size);
+                                // 0: not given
   double rate = 1000;    // frames per second
   double clock = 200;    // MHz
   uint64_t frames = 100; // frames `voxcd size` simulates to measure pairs and points

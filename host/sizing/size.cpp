@@ -86,13 +86,19 @@ SceneExtents scene_extents(const Scene& scene) {
   return e;
 }
 
+namespace {
+// The fixed-point path's bound for one ordered pair, world units (size_error_bound).
+double pair_error_bound(const DeviceConfig& cfg, const SceneExtents::Pair& p) {
+  double v = 3 * std::ldexp(1.0, -(cfg.MF + 1)) * p.max_point_a + std::ldexp(1.0, -(cfg.TF() + 1));
+  if (cfg.PF < 1) v += 3 * (p.ratio + std::ldexp(1.0, -(cfg.MF + 1))) * std::ldexp(1.0, -(cfg.PF + 1));
+  return v * p.voxel_b;
+}
+}  // namespace
+
 double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* worst) {
   double err = 0;
   for (size_t k = 0; k < e.pairs.size(); ++k) {
-    const auto& p = e.pairs[k];
-    double v = 3 * std::ldexp(1.0, -(cfg.MF + 1)) * p.max_point_a + std::ldexp(1.0, -(cfg.TF() + 1));
-    if (cfg.PF < 1) v += 3 * (p.ratio + std::ldexp(1.0, -(cfg.MF + 1))) * std::ldexp(1.0, -(cfg.PF + 1));
-    v *= p.voxel_b;
+    const double v = pair_error_bound(cfg, e.pairs[k]);
     if (v > err || k == 0) {
       err = v;
       if (worst) *worst = k;
@@ -101,7 +107,7 @@ double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* 
   return err;
 }
 
-DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig cfg) {
+DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig cfg, int min_tf) {
   if (!(accuracy > 0) || !std::isfinite(accuracy))
     throw std::invalid_argument("accuracy must be a positive number of world units");
   // Shell words are voxel centres, half-integers of the shell spacing: PF 1 holds them exactly.
@@ -116,7 +122,7 @@ DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig 
   // The smallest MF whose bound meets the accuracy, among those whose MW and TW exist.
   int best_mf = -1;
   double best_err = 0;
-  for (int mf = 0; mf <= 31; ++mf) {
+  for (int mf = std::max(0, min_tf - cfg.PF); mf <= 31; ++mf) {
     cfg.MF = mf;
     cfg.MW = mw_for(e, mf);
     if (cfg.MW > 32) break;
@@ -169,6 +175,8 @@ LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceC
   opt.lanes = cfg.LANES;
   opt.mode = *parse_mode(f.mode);
   opt.both_directions = f.both_directions;
+  opt.distance_bits = f.distance_bits;
+  opt.ccd = f.ccd;
   Simulation sim(scene, opt);
   LaneMeasure m;
   m.lanes = cfg.LANES;
@@ -219,7 +227,7 @@ YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& dir) {
   chparam << "chparam -set PW " << cfg.PW << " -set PF " << cfg.PF << " -set MW " << cfg.MW << " -set MF " << cfg.MF
           << " -set TW " << cfg.TW << " -set DW " << cfg.DW << " -set MEMW " << cfg.MEMW << " -set LANES "
           << cfg.LANES << " -set SAW " << cfg.SAW << " -set MAW " << cfg.MAW << " -set TAGW " << cfg.TAGW
-          << " voxcd_device";
+          << " -set SB " << cfg.SB << " -set WB " << cfg.WB << " voxcd_device";
   YosysCost c;
   // The same method as bench/rtl_cost.sh's xilinx rows.
   c.command = read + "; " + chparam.str() + "; synth_xilinx -noiopad -top voxcd_device; flatten; tee -q -o stat.json stat -json";
@@ -270,21 +278,62 @@ DeviceConfig SizeReport::default_widths() const {
   d.LANES = config.LANES;
   d.SAW = config.SAW;
   d.MAW = config.MAW;
+  d.SB = config.SB;
+  d.WB = config.WB;
   return d;
 }
 uint64_t SizeReport::shell_bits() const { return config.shell_depth() * uint64_t(3 * config.PW); }
 uint64_t SizeReport::map_bits() const { return config.map_depth() * uint64_t(config.MEMW) * uint64_t(config.LANES); }
 
-SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest& req) {
+namespace {
+
+// The voxmap kind: chosen for the contact accuracy (the scene made again with it when it differs from the file's),
+// or the scene file's own. Fills r.kind, r.convex and r.scene, and returns the scene file as sized.
+SceneFile choose_kind(SizeReport& r, const SceneFile& f, const Scene& scene) {
+  r.convex = types_convex(f);
+  SceneFile sized = f;
+  r.scene = scene;
+  if (r.contact_accuracy <= 0) {
+    r.kind = f.distance_bits ? VoxmapKind{f.distance_bits, DeviceConfig{}.WB, f.band} : VoxmapKind{};
+    return sized;
+  }
+  r.kind = choose_voxmap(scene, r.convex, r.contact_accuracy, r.accuracy, band_for_motion(scene, f), f.ccd);
+  sized.distance_bits = r.kind.distance() ? r.kind.SB : 0;
+  if (r.kind.distance()) sized.band = r.kind.band;
+  if (sized.distance_bits != f.distance_bits || sized.band != f.band) r.scene = make_scene(sized);
+  return sized;
+}
+
+// r.contact_error: the largest over ordered pairs (A's shell in B's voxmap) of voxel_B * the kind's terms over B
+// plus the pair's fixed-point bound.
+void bound_contacts(SizeReport& r) {
+  r.contact_error = -1;
+  for (const auto& p : r.extents.pairs) {
+    const ContactTerms t = contact_terms(r.kind, r.convex.at(p.b));
+    const double e = p.voxel_b * t.total() + pair_error_bound(r.config, p);
+    if (e > r.contact_error) r.contact_error = e, r.contact_type = p.b, r.contact_terms = t;
+  }
+  r.contact_error = std::max(0.0, r.contact_error);
+}
+
+}  // namespace
+
+SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeRequest& req) {
   SizeReport r;
-  r.scene = f.where;
-  r.accuracy = req.accuracy > 0 ? req.accuracy : f.accuracy_or_default(scene);
+  r.file = f.where;
+  r.accuracy = req.accuracy > 0 ? req.accuracy : f.accuracy_or_default(input_scene);
+  r.contact_accuracy = req.contact_accuracy > 0 ? req.contact_accuracy : f.contact_accuracy;
   r.rate = req.rate > 0 ? req.rate : f.rate;
   r.clock = req.clock > 0 ? req.clock : f.clock;
   r.frames = req.frames > 0 ? req.frames : f.frames;
+  const SceneFile sized = choose_kind(r, f, input_scene);
+  const Scene& scene = r.scene;
   r.objects = scene.bodies.size();
   r.extents = scene_extents(scene);
-  DeviceConfig cfg = derive_widths(r.extents, r.accuracy);
+  DeviceConfig base;
+  base.SB = r.kind.SB;
+  base.WB = r.kind.WB;
+  DeviceConfig cfg = derive_widths(r.extents, r.accuracy, base, r.kind.distance() ? r.kind.WB : 0);
   r.error = size_error_bound(cfg, r.extents, &r.worst_pair);
   // Lanes: the fewest (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget.
   const double budget = r.clock * 1e6 / r.rate;
@@ -292,7 +341,7 @@ SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest
   for (int lanes = 1; lanes <= 64; lanes *= 2) {
     cfg.LANES = lanes;
     cfg = derive_memory(cfg, scene);
-    r.lanes.push_back(measure_frames(scene, f, cfg, r.frames));
+    r.lanes.push_back(measure_frames(scene, sized, cfg, r.frames));
     if (double(r.lanes.back().max_cycles) <= budget) break;
     if (lanes == 64) {
       const LaneMeasure& m = r.lanes.back();
@@ -310,6 +359,7 @@ SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest
     r.shell_words += t->shell().size();
     r.map_words += type_map_words(cfg, *t);
   }
+  bound_contacts(r);
   if (req.cost) {
     r.cost = yosys_cost(r.config, req.rtl_dir);
     r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
@@ -325,12 +375,29 @@ std::string bits_text(uint64_t b) {
 }
 }  // namespace
 
-std::string size_text(const SizeReport& r, const Scene& scene) {
+namespace {
+// "0.5 * (0.01562 quantisation + 0.01172 weights + 0.385 interpolation) + 0.007629 fixed-point"
+std::string contact_terms_text(const SizeReport& r) {
+  const ContactTerms& t = r.contact_terms;
+  const double voxel = r.scene.types.at(r.contact_type)->voxmap().voxel();
+  const double fixed = r.contact_error - voxel * t.total();
+  std::string s = fmt(voxel) + " * ";
+  if (!r.kind.distance())
+    s += fmt(t.cell) + " (a hit voxel's diagonal)";
+  else
+    s += "(" + fmt(t.quantisation) + " quantisation + " + fmt(t.weights) + " weights + " + fmt(t.interpolation) +
+         " interpolation)";
+  return s + " + " + fmt(fixed) + " fixed-point";
+}
+}  // namespace
+
+std::string size_text(const SizeReport& r) {
+  const Scene& scene = r.scene;
   std::ostringstream o;
   const DeviceConfig& c = r.config;
   const LaneMeasure& m = r.chosen();
   const auto& wp = r.extents.pairs.at(r.worst_pair);
-  o << "voxcd size: " << r.scene << ": " << r.objects << " objects of " << scene.types.size() << " type"
+  o << "voxcd size: " << r.file << ": " << r.objects << " objects of " << scene.types.size() << " type"
     << (scene.types.size() > 1 ? "s" : "") << "; accuracy " << fmt(r.accuracy) << " world units, " << fmt(r.rate, 8)
     << " frames/s at " << fmt(r.clock) << " MHz\n";
   for (const auto& t : scene.types) {
@@ -346,6 +413,15 @@ std::string size_text(const SizeReport& r, const Scene& scene) {
   o << "error           " << fmt(r.error) << " world units at most (" << fmt(r.accuracy) << " requested; worst pair "
     << scene.types[wp.a]->name << " in " << scene.types[wp.b]->name << ": voxel_B * (3 * 2^-" << c.MF + 1 << " * "
     << fmt(wp.max_point_a) << " + 2^-" << c.TF() + 1 << "))\n";
+  {
+    const ObjectType& b = *scene.types.at(r.contact_type);
+    o << "contacts        within " << fmt(r.contact_error) << " world units of the other surface with "
+      << r.kind.text() << " ("
+      << (r.contact_accuracy > 0 ? fmt(r.contact_accuracy) + " requested"
+                                 : std::string("the scene file's voxmaps; --contact-accuracy chooses them"))
+      << "; worst type " << b.name << (r.convex.at(r.contact_type) ? ", convex" : ", not convex") << ": "
+      << contact_terms_text(r) << ")\n";
+  }
   o << "per frame       " << fmt(m.pairs) << " broadphase pairs, " << fmt(m.tested) << " tested, " << fmt(m.lookups)
     << " lookups, " << fmt(m.hits) << " hits (mean of " << r.frames << " frames on the cpu backend)\n";
   o << "cycles          ";
@@ -376,10 +452,11 @@ std::string size_text(const SizeReport& r, const Scene& scene) {
   return o.str();
 }
 
-std::string size_json(const SizeReport& r, const Scene& scene) {
+std::string size_json(const SizeReport& r) {
+  const Scene& scene = r.scene;
   nlohmann::ordered_json j;
   const DeviceConfig& c = r.config;
-  j["scene"] = r.scene;
+  j["scene"] = r.file;
   j["objects"] = r.objects;
   j["accuracy"] = r.accuracy;
   j["rate_hz"] = r.rate;
@@ -392,7 +469,8 @@ std::string size_json(const SizeReport& r, const Scene& scene) {
                           {"shell_points", t->shell().size()},
                           {"shell_spacing", t->shell().frame().voxel}});
   j["config"] = {{"PW", c.PW}, {"PF", c.PF},     {"MW", c.MW},   {"MF", c.MF},   {"TW", c.TW},    {"DW", c.DW},
-                 {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW}};
+                 {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW},
+                 {"SB", c.SB},     {"WB", c.WB}};
   j["config_text"] = c.to_string();
   j["extents"] = {{"max_point", r.extents.max_point},
                   {"max_ratio", r.extents.max_ratio},
@@ -401,6 +479,18 @@ std::string size_json(const SizeReport& r, const Scene& scene) {
   j["error"] = r.error;
   const auto& wp = r.extents.pairs.at(r.worst_pair);
   j["worst_pair"] = {scene.types[wp.a]->name, scene.types[wp.b]->name};
+  {
+    const ContactTerms& t = r.contact_terms;
+    nlohmann::ordered_json convex = nlohmann::ordered_json::array();
+    for (bool v : r.convex) convex.push_back(v);
+    j["contact"] = {{"requested", r.contact_accuracy > 0 ? nlohmann::ordered_json(r.contact_accuracy) : nullptr},
+                    {"bound", r.contact_error},
+                    {"voxmap", {{"SB", r.kind.SB}, {"WB", r.kind.WB}, {"band", r.kind.band}, {"step", r.kind.step()}}},
+                    {"worst_type", scene.types.at(r.contact_type)->name},
+                    {"terms_voxels", {{"cell", t.cell}, {"quantisation", t.quantisation}, {"weights", t.weights},
+                                      {"interpolation", t.interpolation}}},
+                    {"convex", convex}};
+  }
   j["cycle_budget"] = r.budget;
   for (const auto& m : r.lanes)
     j["lanes_measured"].push_back({{"lanes", m.lanes}, {"max_cycles", m.max_cycles}, {"mean_cycles", m.mean_cycles}});

@@ -13,12 +13,13 @@
 
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/ref/config.h"
 
 namespace voxcd {
 
-// A request no device can meet. `constraint` is "accuracy", "rate", "memory" or "extent"; the message says by
-// how much it fails (`factor`: how many times finer, faster or larger than the best device allows).
+// A request no device can meet. `constraint` is "accuracy", "contact", "rate", "memory" or "extent"; the message
+// says by how much it fails (`factor`: how many times finer, faster or larger than the best device allows).
 struct SizeError : std::runtime_error {
   SizeError(const std::string& constraint_, double factor_, const std::string& what)
       : std::runtime_error(constraint_ + ": " + what), constraint(constraint_), factor(factor_) {}
@@ -48,10 +49,11 @@ SceneExtents scene_extents(const Scene& scene);
 // the index of the pair that gives it.
 double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* worst = nullptr);
 
-// The smallest PW, PF, MW, MF, TW, DW for the extents and accuracy (world units); MEMW, TAGW, LANES, SAW and MAW
-// as in `base`. SizeError "accuracy" when even the widest formats (MW 32, TW 64) cannot meet it, "extent" when
-// the scene's coordinates need more than PW 32 or TW 64.
-DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig base = {});
+// The smallest PW, PF, MW, MF, TW, DW for the extents and accuracy (world units), with at least min_tf translation
+// fraction bits (a distance device's WB <= TF); MEMW, TAGW, LANES, SAW, MAW, SB and WB as in `base`. SizeError
+// "accuracy" when even the widest formats (MW 32, TW 64) cannot meet it, "extent" when the scene's coordinates need
+// more than PW 32 or TW 64.
+DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig base = {}, int min_tf = 0);
 
 // cfg with the smallest SAW and MAW into which DeviceImage packs the types (SAW at least log2(LANES), one row per
 // shell bank); SizeError "memory" naming the amount when the largest memories (SAW 24, MAW 28) are too small.
@@ -81,6 +83,10 @@ std::string default_rtl_dir();
 
 struct SizeRequest {
   double accuracy = 0;  // world units; 0: the scene file's (or its default)
+  // World units: how far outside the other object's surface a contact may lie (contact_bound.h); the voxmap kind
+  // (2-bit states, or SB, WB and band) is chosen to meet it. 0: the scene file's "contact_accuracy", and without it
+  // the scene file's own distance_bits and band.
+  double contact_accuracy = 0;
   double rate = 0;      // Hz; 0: the scene file's
   double clock = 0;     // MHz; 0: the scene file's
   uint64_t frames = 0;  // measured frames; 0: the scene file's
@@ -91,8 +97,17 @@ struct SizeRequest {
 };
 
 struct SizeReport {
-  std::string scene;
+  std::string file;
+  Scene scene;  // as sized: the scene file's, or remade with the voxmap kind chosen for contact_accuracy
   double accuracy = 0, rate = 0, clock = 0;
+  // The voxmap kind and how far outside the other surface a contact can lie with it, world units (the largest over
+  // the types as B of voxel_B * terms + the fixed-point bound of the worst pair into B).
+  double contact_accuracy = 0;  // requested (0: not requested; the scene file's kind is reported)
+  VoxmapKind kind;
+  double contact_error = 0;
+  size_t contact_type = 0;      // the B that gives contact_error
+  ContactTerms contact_terms;   // its terms, voxels of B
+  std::vector<bool> convex;     // per type
   uint64_t frames = 0, objects = 0;
   DeviceConfig config;
   SceneExtents extents;
@@ -104,19 +119,20 @@ struct SizeReport {
   const LaneMeasure& chosen() const { return lanes.back(); }
   double modelled_rate() const;   // clock / largest frame's cycles
   uint64_t shell_bits() const;    // 2^SAW x 3 PW
-  uint64_t map_bits() const;      // 2^MAW x MEMW, one copy per lane
+  uint64_t map_bits() const;      // 2^MAW x MEMW, one copy per lane (a distance device's 8 banks share the 2^MAW)
   std::optional<YosysCost> cost;
   // The same LANES, SAW and MAW at the default widths, synthesised the same way (the peer for the cost).
   std::optional<YosysCost> default_cost;
   DeviceConfig default_widths() const;
 };
 
-// The whole derivation (with the costs when req.cost). SizeError when a constraint cannot be met; SceneFileError
-// from the scene.
+// The whole derivation (with the costs when req.cost) for the scene made from f (make_scene(f)); with a contact
+// accuracy the scene is made again with the chosen voxmap kind. SizeError when a constraint cannot be met;
+// SceneFileError from the scene; MeshError from a type's mesh (its convexity).
 SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest& req);
 
 // The text and JSON reports of `voxcd size`.
-std::string size_text(const SizeReport& r, const Scene& scene);
-std::string size_json(const SizeReport& r, const Scene& scene);
+std::string size_text(const SizeReport& r);
+std::string size_json(const SizeReport& r);
 
 }  // namespace voxcd
