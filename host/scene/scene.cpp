@@ -388,6 +388,9 @@ void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double spee
 
 Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(scene)), opt_(opt) {
   broadphase_ = make_broadphase(opt.pruning);
+  if (opt.exchange && broadphase_->predicate() == "all")
+    throw std::invalid_argument("broadphase " + opt.pruning + ": it pairs every body with every other, so it cannot "
+                                "be split over ranks by space; a distributed run needs grid, sap, tree, ...");
   std::vector<const ObjectType*> types;
   for (const auto& t : scene_.types) types.push_back(t.get());
   const DeviceConfig cfg =
@@ -417,6 +420,62 @@ void Simulation::compute_bounds() {
     bounds_[i] = body_bounds(t, b, rot_[i], box_centre_[i]);
     bounds_[i].moved_unexpectedly = moved_[i];
   }
+}
+
+const std::vector<BodyPair>& Simulation::find_pairs() {
+  if (!opt_.exchange) {
+    broadphase_->update(bounds_, frame_);
+    return broadphase_->pairs();
+  }
+  slabs_ = split_slabs(bounds_, opt_.exchange->ranks());
+  const int me = opt_.exchange->rank();
+  std::vector<uint32_t> local = slab_bodies(slabs_, me, bounds_);
+  // A broadphase that keeps state between frames keys it by index: another set of bodies starts a fresh one.
+  if (local != local_) broadphase_ = make_broadphase(opt_.pruning);
+  local_ = std::move(local);
+  local_bounds_.clear();
+  for (uint32_t i : local_) local_bounds_.push_back(bounds_[i]);
+  broadphase_->update(local_bounds_, frame_);
+  // Local indices ascend with the global ones, so the pairs stay sorted.
+  owned_.clear();
+  for (const BodyPair& p : broadphase_->pairs()) {
+    const uint32_t a = local_[p.first], b = local_[p.second];
+    if (pair_owner(slabs_, bounds_[a], bounds_[b]) == me) owned_.push_back({a, b});
+  }
+  return owned_;
+}
+
+void Simulation::gather_outcomes(FrameStats& st) {
+  outcomes_.clear();
+  uint64_t cycles = 0;
+  for (size_t q = 0; q < requests_.size(); ++q) {
+    const PairResult& r = results_[q];
+    PairOutcome o;
+    o.a = requests_pairs_[q].first;
+    o.b = requests_pairs_[q].second;
+    o.hits = r.hits;
+    o.lookups = r.lookups;
+    o.contacts = r.contacts.size();
+    o.cycles = r.cycles;
+    // A's outward normals where A's shell is in B, minus B's where B's is in A.
+    for (const Contact& c : r.contacts) o.normal += c.a_in_b ? c.normal : -c.normal;
+    cycles += r.cycles;
+    outcomes_.push_back(o);
+  }
+  // The stream of the frame is taken one cycle after its last completion record.
+  if (!requests_.empty() && collider_->device().models_cycles()) cycles += 1;
+  if (!opt_.exchange) {
+    st.device_cycles += cycles;
+    return;
+  }
+  RankCounts own, total;
+  own.pairs = st.pairs;
+  own.tested = st.tested;
+  own.cycles = cycles;
+  outcomes_ = opt_.exchange->exchange(frame_, outcomes_, own, total);
+  st.pairs = total.pairs;
+  st.tested = total.tested;
+  st.device_cycles += total.cycles;
 }
 
 FrameStats Simulation::step() {
@@ -462,15 +521,14 @@ FrameStats Simulation::step() {
   double t2 = now();
   st.t_bounds = t2 - t1;
 
-  broadphase_->update(bounds_, frame_);
-  const std::vector<BodyPair>& pairs = broadphase_->pairs();
+  const std::vector<BodyPair>& pairs = find_pairs();
   double t3 = now();
   st.t_broadphase = t3 - t2;
 
   // Mid-phase: the enclosing spheres, then the oriented boxes of the two bodies (separating-axis test over the 15
   // axes), then the device.
   requests_.clear();
-  tested_.clear();
+  requests_pairs_.clear();
   for (size_t k = 0; k < pairs.size(); ++k) {
     const uint32_t ia = pairs[k].first, ib = pairs[k].second;
     const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
@@ -484,7 +542,7 @@ FrameStats Simulation::step() {
     r.pose_a = a.pose;
     r.pose_b = b.pose;
     requests_.push_back(r);
-    tested_.push_back(uint32_t(k));
+    requests_pairs_.push_back(pairs[k]);
   }
   PairOptions po;
   po.mode = opt_.mode;
@@ -496,33 +554,28 @@ FrameStats Simulation::step() {
   st.t_narrow = t4 - t3;
   st.pairs = pairs.size();
   st.tested = requests_.size();
+  gather_outcomes(st);
 
-  // Response, in the broadphase's order (deterministic): for a touching pair that is approaching along the contact
-  // normal, exchange the velocity components along it (an elastic impulse between equal masses) and reverse both
-  // spins (the paper's rotation response). A pair already separating is left alone, so it cannot stick.
-  for (size_t q = 0; q < requests_.size(); ++q) {
-    const PairResult& r = results_[q];
-    const size_t k = tested_[q];
-    st.lookups += r.lookups;
-    st.hits += r.hits;
-    st.contacts += r.contacts.size();
-    st.device_cycles += r.cycles;
-    if (r.hits == 0) continue;
+  // Response, in pair order (deterministic): for a touching pair that is approaching along the contact normal,
+  // exchange the velocity components along it (an elastic impulse between equal masses) and reverse both spins (the
+  // paper's rotation response). A pair already separating is left alone, so it cannot stick.
+  for (const PairOutcome& o : outcomes_) {
+    st.lookups += o.lookups;
+    st.hits += o.hits;
+    st.contacts += o.contacts;
+    if (o.hits == 0) continue;
     ++st.touching;
-    Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
-    // The normal from A towards B: A's outward normals where A's shell is in B, minus B's where B's is in A; the
-    // line between the bounding spheres' centres when the contacts give none (COUNT, or normals that cancel).
-    Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
-    for (const Contact& c : r.contacts) nrm += c.a_in_b ? c.normal : -c.normal;
-    if (nrm.squaredNorm() < 1e-12) nrm = bounds_[pairs[k].second].centre - bounds_[pairs[k].first].centre;
+    Body &a = scene_.bodies[o.a], &b = scene_.bodies[o.b];
+    // The normal from A towards B (PairOutcome::normal); the line between the bounding spheres' centres when the
+    // contacts give none (COUNT, or normals that cancel).
+    Eigen::Vector3d nrm = o.normal;
+    if (nrm.squaredNorm() < 1e-12) nrm = bounds_[o.b].centre - bounds_[o.a].centre;
     if (nrm.squaredNorm() < 1e-24) nrm = Eigen::Vector3d::UnitX();
     nrm.normalize();
     if (!respond(a, b, nrm)) continue;  // separating already
-    moved_[pairs[k].first] = moved_[pairs[k].second] = true;
+    moved_[o.a] = moved_[o.b] = true;
     ++st.responses;
   }
-  // The stream of the frame is taken one cycle after its last completion record.
-  if (st.tested > 0 && collider_->device().models_cycles()) st.device_cycles += 1;
   st.t_response = now() - t4;
   ++frame_;
   return st;

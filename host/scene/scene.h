@@ -16,6 +16,8 @@
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/scene/ccd.h"
+#include "voxcd/host/scene/exchange.h"
+#include "voxcd/host/scene/partition.h"
 #include "voxcd/host/object/object_type.h"
 
 namespace voxcd {
@@ -99,6 +101,10 @@ struct SimOptions {
   // Submit only the shell points whose clusters can land in the other object's voxmap (PairOptions::cull):
   // results never depend on it, lookups and device cycles do.
   bool cull = true;
+  // A distributed run (host/scene/exchange.h, docs/scale.md): this process is one rank; its broadphase and device
+  // take only the pairs of its slab (partition.h), and the exchange gives it every rank's outcomes. Contacts and
+  // states are those of one process whatever the number of ranks; device_cycles is the busiest rank's.
+  std::shared_ptr<FrameExchange> exchange;
 };
 
 struct FrameStats {
@@ -111,7 +117,8 @@ struct FrameStats {
   uint64_t lookups = 0;     // shell points submitted
   uint64_t hits = 0;
   uint64_t contacts = 0;
-  uint64_t device_cycles = 0;  // of the frame's job streams (measured on rtl, the timing model on ref and cpu)
+  uint64_t device_cycles = 0;  // of the frame's job streams (measured on rtl, the timing model on ref and cpu);
+                               // distributed: of the busiest rank's
   // Continuous collision (SimOptions::ccd; all 0 without it): advancement steps, pair queries, distinct pairs whose
   // bound cut a step short, time-of-impact events (pair responses and wall reflections, also counted in responses
   // and wall_hits), bodies whose remaining motion the iteration cap dropped, shell points the queries submitted.
@@ -138,6 +145,10 @@ class Simulation {
 
  private:
   void compute_bounds();
+  // The broadphase's pairs, or in a distributed run those of this rank's slab (global body indices, sorted).
+  const std::vector<BodyPair>& find_pairs();
+  // The outcomes of the tested pairs, in pair order (every rank's in a distributed run).
+  void gather_outcomes(FrameStats& st);
 
   Scene scene_;
   SimOptions opt_;
@@ -150,8 +161,14 @@ class Simulation {
   std::vector<Eigen::Vector3d> box_centre_;
   std::vector<bool> moved_;
   std::vector<PairRequest> requests_;
-  std::vector<uint32_t> tested_;  // the broadphase index of each request
+  std::vector<BodyPair> requests_pairs_;  // the bodies of each request
   std::vector<PairResult> results_;
+  std::vector<PairOutcome> outcomes_;
+  // Distributed: this frame's slabs, the bodies of this rank's slab, their bounds and the pairs it owns.
+  Slabs slabs_;
+  std::vector<uint32_t> local_;
+  std::vector<BodyBounds> local_bounds_;
+  std::vector<BodyPair> owned_;
   uint64_t frame_ = 0;
 };
 
