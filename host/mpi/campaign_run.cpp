@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -103,6 +104,12 @@ class LocalRunner {
   w.abort(2);
 }
 
+std::string seconds_text(double s) {
+  std::ostringstream o;
+  o << s << " s";
+  return o.str();
+}
+
 std::string shard_text(const Campaign& c, uint64_t s) {
   return "shard " + std::to_string(s) + " (" + describe(shard_at(c, s)) + ")";
 }
@@ -160,15 +167,14 @@ Report coordinate(World& w, const Campaign& c, const RunOptions& opt) {
       fault(w, "rank 0 failed on " + (mine.running ? shard_text(c, *mine.running) : std::string("a shard")) + ": " +
                    mine.failure);
     if (mine.running && Clock::now() - mine.since > timeout)
-      fault(w, "rank 0 did not finish " + shard_text(c, *mine.running) + " within " + std::to_string(opt.timeout) +
-                   " s (--timeout)");
+      fault(w, "rank 0 did not finish " + shard_text(c, *mine.running) + " within " + seconds_text(opt.timeout) + " (--timeout)");
     bool waiting = false;
     for (int r = 1; r < w.size(); ++r) {
       if (!busy[size_t(r)]) continue;
       waiting = true;
       if (Clock::now() > deadline[size_t(r)])
         fault(w, "rank " + std::to_string(r) + " sent no result for " + shard_text(c, *busy[size_t(r)]) + " within " +
-                     std::to_string(opt.timeout) + " s (--timeout)");
+                     seconds_text(opt.timeout) + " (--timeout)");
     }
     if (!waiting && mine.finished) break;
     auto m = w.receive_until(Clock::now() + std::chrono::milliseconds(20));

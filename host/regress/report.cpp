@@ -44,9 +44,7 @@ std::string Report::text(const std::string& program) const {
   s << "failures: " << f.size() << '\n';
   for (const ShardResult& r : f) {
     const Shard sh = shard_at(c, r.shard);
-    s << "FAIL shard " << r.shard << " (" << describe(sh) << "): ";
-    if (r.differs) s << "first differing job " << r.job << " (tag " << r.tag << "): ";
-    s << r.error << '\n'
+    s << "FAIL shard " << r.shard << " (" << describe(sh) << "): " << r.error << '\n'
       << "  reproduce: " << reproduce_command(c, sh, program, reproduce_file_name(c, sh)) << '\n';
   }
   if (!stopped.empty()) s << "incomplete: " << stopped << '\n';

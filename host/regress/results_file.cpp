@@ -117,7 +117,7 @@ ResultsFile::ResultsFile(const std::string& path, const Campaign& c) : path_(pat
       if (line != header_line(c)) {
         std::string theirs = line;
         try {
-          const nlohmann::json j = nlohmann::json::parse(line);
+          const nlohmann::ordered_json j = nlohmann::ordered_json::parse(line);
           if (!j.contains(kFormatKey)) throw std::runtime_error("");
           theirs = j.at("campaign").dump();
         } catch (const std::exception&) {
