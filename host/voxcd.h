@@ -30,6 +30,10 @@
 // Devices: the interface and the backend registry (device_backends, make_device), conformance vectors on them.
 #include "voxcd/host/device/conform.h"
 #include "voxcd/host/device/device.h"
+#include "voxcd/host/regress/campaign.h"
+#include "voxcd/host/regress/report.h"
+#include "voxcd/host/regress/results_file.h"
+#include "voxcd/host/regress/shard.h"
 
 // Pair tests: poses, the device image, contacts.
 #include "voxcd/host/pairs/collide.h"

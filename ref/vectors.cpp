@@ -355,7 +355,7 @@ void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, 
   }
 }
 
-std::string compare_streams(const VectorFile& file, const std::vector<Record>& got, bool compare_cycles) {
+StreamDifference first_difference(const VectorFile& file, const std::vector<Record>& got, bool compare_cycles) {
   // The job each position of the stream belongs to, for the message.
   size_t job = 0;
   auto where = [&](size_t i) {
@@ -384,9 +384,19 @@ std::string compare_streams(const VectorFile& file, const std::vector<Record>& g
       << (g ? g->to_string(with_dist) : std::string("end of stream")) << "'";
     if (compare_cycles && e && g && e->kind == Record::Done && g->kind == Record::Done && e->hits == g->hits)
       s << " (cycles differ)";
-    return s.str();
+    StreamDifference d;
+    d.differs = true;
+    d.job = job;
+    d.tag = job < file.jobs.size() ? file.jobs[job].tag : 0;
+    d.record = i;
+    d.message = s.str();
+    return d;
   }
-  return "";
+  return {};
+}
+
+std::string compare_streams(const VectorFile& file, const std::vector<Record>& got, bool compare_cycles) {
+  return first_difference(file, got, compare_cycles).message;
 }
 
 }  // namespace voxcd

@@ -8,6 +8,7 @@
 //   done TAG HITS [CYCLES]
 #pragma once
 
+#include <cstdint>
 #include <iosfwd>
 #include <optional>
 #include <stdexcept>
@@ -57,6 +58,17 @@ void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, 
 // One job line in the file syntax of `version` (2 adds THRESHOLD).
 std::string job_line(const Job& job, int version = 1);
 
+// Where a backend's stream first departs from a file's expectations.
+struct StreamDifference {
+  bool differs = false;
+  size_t job = 0;       // index of the job the first differing record belongs to (jobs.size(): after the last)
+  uint32_t tag = 0;     // that job's tag (0 after the last job)
+  size_t record = 0;    // index of the first differing record in the stream
+  std::string message;  // as compare_streams returns it
+};
+
+// The first difference between a backend's stream and the file's expectations (differs false when equal).
+StreamDifference first_difference(const VectorFile& file, const std::vector<Record>& got, bool compare_cycles);
 // Compares a backend's stream with the file's expectations. Returns "" when equal, else the first difference:
 // the job (tag and line), the point, what was expected and what came.
 std::string compare_streams(const VectorFile& file, const std::vector<Record>& got, bool compare_cycles);

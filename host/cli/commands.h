@@ -15,5 +15,6 @@ void add_info(CLI::App& app);
 void add_pair(CLI::App& app);
 void add_simulate(CLI::App& app);
 void add_size(CLI::App& app);
+void add_regress(CLI::App& app);
 
 }  // namespace voxcd::cli

@@ -10,6 +10,7 @@
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/types.h"
 #include "voxcd/ref/vector_gen.h"
+#include "voxcd/ref/vectors.h"
 
 namespace voxcd {
 
@@ -18,6 +19,7 @@ struct ConformOptions {
   std::optional<int> lanes;  // the device's LANES instead of the file's
   bool cycles = false;       // also compare the cycles of every completion record
   std::string trace;         // rtl: write an FST waveform here ("" = none)
+  unsigned threads = 0;      // cpu: worker threads (0 = one per hardware thread)
 };
 
 struct ConformResult {
@@ -29,6 +31,7 @@ struct ConformResult {
   size_t expected = 0;         // hit and done records the file expects
   int version = 1;             // the file's format version (2: hit records carry DIST)
   std::vector<Record> stream;  // the backend's output, in order
+  StreamDifference difference; // the first difference, when the streams were compared and differ
   bool ok() const { return error.empty(); }
 };
 
@@ -36,12 +39,19 @@ struct ConformResult {
 // file naming other LANES is refused, as is a backend that does not model cycles). With compare false the stream is
 // only produced (`voxcd conform --print`). Never throws for the file or the backend: the reason is in `error`.
 ConformResult run_conformance(const std::string& path, const ConformOptions& opt, bool compare = true);
+// The same for a file already parsed (`file.path` names it in messages).
+ConformResult run_vector_file(const VectorFile& file, const ConformOptions& opt, bool compare = true);
 
 // What write_generated_vectors wrote.
 struct GeneratedFile {
   size_t jobs = 0, shell_words = 0, map_words = 0, lookups = 0;
   DeviceConfig config;
 };
+
+// generate_vectors(g) with the stream ref/ gives for them (and its timing model's cycles) as the text of a vector
+// file, after a comment naming the seed, jobs, LANES and `config_text`: the bytes write_generated_vectors writes.
+std::string generated_vectors_text(const GenerateOptions& g, const std::string& config_text = "",
+                                   GeneratedFile* info = nullptr);
 
 // generate_vectors(g) with the stream ref/ gives for them (and its timing model's cycles), written to `path` through
 // a temporary file renamed into place, after a comment naming the seed, jobs, LANES and `config_text` (the

@@ -3,6 +3,7 @@
 
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/device/detail/cpu.h"
+#include "voxcd/host/device/detail/planted.h"
 #include "voxcd/host/device/detail/rtl.h"
 #include "voxcd/host/device/detail/sysc.h"
 #include "voxcd/ref/pipeline.h"
@@ -44,7 +45,10 @@ std::vector<std::string> device_backends() {
   return b;
 }
 
-std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions& opt) {
+namespace {
+
+// The backend by name, as it is (make_device adds the testing plant where one is set).
+std::unique_ptr<Device> make_backend(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions& opt) {
   if (backend == "ref") return std::make_unique<RefDevice>(cfg);
   if (backend == "cpu") return make_cpu_device(cfg, opt);
   if (backend == "rtl") return make_rtl_device(cfg, opt);
@@ -54,6 +58,12 @@ std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConf
   std::string list;
   for (const auto& b : all) list += (list.empty() ? "" : ", ") + b;
   throw DeviceError("unknown backend '" + backend + "' (this build has: " + list + ")");
+}
+
+}  // namespace
+
+std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions& opt) {
+  return plant_from_environment(make_backend(backend, cfg, opt), backend);
 }
 
 }  // namespace voxcd

@@ -1,0 +1,95 @@
+// voxcd regress: a conformance campaign (seeds x configurations x lane counts x backends) sharded over the ranks
+// of an MPI run, with a results file that lets a stopped campaign resume, and one merged report.
+#include <unistd.h>
+
+#include <climits>
+#include <iostream>
+#include <memory>
+
+#include "voxcd/host/cli/commands.h"
+#include "voxcd/host/mpi/campaign_run.h"
+#include "voxcd/host/mpi/world.h"
+#include "voxcd/host/regress/campaign.h"
+
+namespace voxcd::cli {
+
+namespace {
+
+struct RegressArgs {
+  std::string campaign;
+  std::string seeds;
+  std::string configs = "default";
+  std::string lanes = "4";
+  std::string backends = "cpu";
+  uint64_t jobs = 200;
+  bool cycles = false;
+  mpi::RunOptions run;
+  bool json = false;
+};
+
+// This program's path, for the reproduce commands.
+std::string program_path() {
+  char buf[PATH_MAX];
+  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
+  return n > 0 ? std::string(buf, size_t(n)) : std::string("voxcd");
+}
+
+// The campaign from --campaign or from the lists; CampaignError or CLI::ValidationError.
+Campaign make_campaign(const RegressArgs& a, const CLI::App& cmd) {
+  if (!a.campaign.empty()) {
+    for (const char* o : {"--seeds", "--configs", "--lanes", "--backends", "--jobs-per-shard", "--cycles"})
+      if (cmd.count(o)) throw CLI::ValidationError(std::string(o) + " cannot be given with --campaign (the file "
+                                                   "holds the whole campaign)");
+    return read_campaign_file(a.campaign);
+  }
+  if (a.seeds.empty()) throw CLI::ValidationError("regress needs --seeds LIST or --campaign FILE");
+  return campaign_from_lists(a.seeds, a.configs, a.lanes, a.backends, a.jobs, a.cycles);
+}
+
+int regress(const RegressArgs& a, const CLI::App& cmd) {
+  mpi::World world;
+  if (world.rank() != 0) {
+    mpi::serve(world, a.run.threads);
+    return 0;
+  }
+  Campaign c;
+  try {
+    if (!(a.run.timeout > 0)) throw CLI::ValidationError("--timeout must be more than 0 seconds");
+    c = make_campaign(a, cmd);
+  } catch (...) {
+    mpi::release_workers(world);
+    throw;
+  }
+  const Report r = mpi::coordinate(world, c, a.run);
+  const std::string program = program_path();
+  std::cout << (a.json ? r.json(program) + "\n" : r.text(program)) << std::flush;
+  if (r.failures() > 0) return 1;
+  return r.complete() ? 0 : 3;
+}
+
+}  // namespace
+
+void add_regress(CLI::App& app) {
+  auto a = std::make_shared<RegressArgs>();
+  CLI::App* c = app.add_subcommand("regress", "Run a conformance campaign (seeds x configs x lanes x backends) "
+                                              "sharded over MPI ranks, resumable from a results file "
+                                              "(docs/regress.md)");
+  c->add_option("--campaign", a->campaign, "Campaign file (JSON; instead of the lists below)");
+  c->add_option("--seeds", a->seeds, "Seeds, e.g. 1-16 or 1,5,9 or 1-4,10");
+  c->add_option("--configs", a->configs, "Configurations separated by ';', each NAME VALUE pairs or default, e.g. "
+                                         "\"default;SB 8 WB 8\"")->capture_default_str();
+  c->add_option("--lanes", a->lanes, "Lane counts, e.g. 1,2,4")->capture_default_str();
+  c->add_option("--backends", a->backends, "Backends, e.g. rtl,cpu")->capture_default_str();
+  c->add_option("--jobs-per-shard", a->jobs, "Random jobs per shard")->capture_default_str();
+  c->add_flag("--cycles", a->cycles, "Also compare the cycles of every completion record");
+  c->add_option("--results", a->run.results, "Results file (JSON lines): finished shards are kept and not run again");
+  c->add_option("--timeout", a->run.timeout, "Seconds a rank may take over one shard before the run ends with an "
+                                             "error")->capture_default_str();
+  c->add_option("--stop-after", a->run.stop_after, "Run at most K shards now, then report (resume with --results)");
+  c->add_option("--threads", a->run.threads, "cpu backend threads per rank (0 = one per hardware thread)")
+      ->capture_default_str();
+  c->add_flag("--json", a->json, "Print the report as JSON");
+  c->callback([a, c] { exit_code() = regress(*a, *c); });
+}
+
+}  // namespace voxcd::cli
