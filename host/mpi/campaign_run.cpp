@@ -167,7 +167,8 @@ Report coordinate(World& w, const Campaign& c, const RunOptions& opt) {
       fault(w, "rank 0 failed on " + (mine.running ? shard_text(c, *mine.running) : std::string("a shard")) + ": " +
                    mine.failure);
     if (mine.running && Clock::now() - mine.since > timeout)
-      fault(w, "rank 0 did not finish " + shard_text(c, *mine.running) + " within " + seconds_text(opt.timeout) + " (--timeout)");
+      fault(w, "rank 0 did not finish " + shard_text(c, *mine.running) + " within " + seconds_text(opt.timeout) +
+                   " (--timeout)");
     bool waiting = false;
     for (int r = 1; r < w.size(); ++r) {
       if (!busy[size_t(r)]) continue;

@@ -211,7 +211,8 @@ Campaign campaign_from_json(const std::string& text, const std::string& where) {
   } else if (seeds.is_array()) {
     std::string list;
     for (const auto& s : seeds) {
-      if (!s.is_number_unsigned()) throw CampaignError(where_key(where, "seeds") + ": " + s.dump() + " is not a seed");
+      if (!s.is_number_unsigned())
+        throw CampaignError(where_key(where, "seeds") + ": " + s.dump() + " is not a seed");
       list += (list.empty() ? "" : ",") + std::to_string(s.get<uint64_t>());
     }
     c.seeds = parse_seeds(list, where_key(where, "seeds"));
@@ -236,13 +237,15 @@ Campaign campaign_from_json(const std::string& text, const std::string& where) {
     if (!v.is_array()) throw CampaignError(where_key(where, "lanes") + ": expected an array of lane counts");
     c.lanes.clear();
     for (const auto& l : v) {
-      if (!l.is_number_integer()) throw CampaignError(where_key(where, "lanes") + ": " + l.dump() + " is not a lane count");
+      if (!l.is_number_integer())
+        throw CampaignError(where_key(where, "lanes") + ": " + l.dump() + " is not a lane count");
       c.lanes.push_back(l.get<int>());
     }
   }
   if (j.contains("jobs_per_shard")) {
     const auto& v = j["jobs_per_shard"];
-    if (!v.is_number_unsigned()) throw CampaignError(where_key(where, "jobs_per_shard") + ": expected a positive integer");
+    if (!v.is_number_unsigned())
+      throw CampaignError(where_key(where, "jobs_per_shard") + ": expected a positive integer");
     c.jobs_per_shard = v.get<uint64_t>();
   }
   if (j.contains("cycles")) {

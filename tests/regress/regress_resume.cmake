@@ -83,7 +83,8 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E env VOXCD_TESTING_FAULT=fail:6
                         ${mpirun} -x VOXCD_TESTING_FAULT -np 2 ${VOXCD} regress ${campaign}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 expect("${rc}" "^[1-9]")
-expect("${err}" "voxcd: error: rank [01] failed on shard 6 \\(seed 2, config default, lanes 3, backend ref\\): planted fault")
+expect("${err}"
+       "voxcd: error: rank [01] failed on shard 6 \\(seed 2, config default, lanes 3, backend ref\\): planted fault")
 string(TIMESTAMP t0 "%s")
 execute_process(COMMAND ${CMAKE_COMMAND} -E env VOXCD_TESTING_FAULT=hang:3
                         ${mpirun} -x VOXCD_TESTING_FAULT -np 2 ${VOXCD} regress ${campaign} --timeout 2
@@ -92,7 +93,9 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E env VOXCD_TESTING_FAULT=hang:3
 string(TIMESTAMP t1 "%s")
 math(EXPR took "${t1} - ${t0}")
 expect("${rc}" "^[1-9]")
-expect("${err}" "voxcd: error: rank [01] (sent no result for|did not finish) shard 3 \\(seed 1, config default, lanes 3, backend cpu\\) within 2 s")
+string(CONCAT timed_out "voxcd: error: rank [01] (sent no result for|did not finish) shard 3 "
+                        "\\(seed 1, config default, lanes 3, backend cpu\\) within 2 s")
+expect("${err}" "${timed_out}")
 file(STRINGS ${WORK}/hang.jsonl hung)
 list(LENGTH hung n_hung)
 if(n_hung LESS 2 OR took GREATER 60)
@@ -106,7 +109,8 @@ expect("${err}" "rank 0 did not finish shard 0 \\(seed 1, config default, lanes 
 
 # Refused: a results file of another campaign, a file that is not one, bad campaign files and lists.
 run(2 out ${VOXCD} regress --seeds 1-5 --lanes 1,3 --backends ref,cpu --jobs-per-shard 30 --results ${WORK}/whole.jsonl)
-expect("${out}" "whole.jsonl holds the results of another campaign \\(.*\"seeds\":\"1-4\".*this one is .*\"seeds\":\"1-5\"")
+expect("${out}"
+       "whole.jsonl holds the results of another campaign \\(.*\"seeds\":\"1-4\".*this one is .*\"seeds\":\"1-5\"")
 file(WRITE ${WORK}/notes.txt "my notes\n")
 run(2 out ${VOXCD} regress ${campaign} --results ${WORK}/notes.txt)
 expect("${out}" "notes.txt is not a voxcd regress results file")
