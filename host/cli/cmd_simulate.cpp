@@ -9,6 +9,8 @@
 
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/cli/object_report.h"
+#include "voxcd/host/mpi/frame_exchange.h"
+#include "voxcd/host/mpi/world.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/host/scene/simulate.h"
 #include "voxcd/ref/vectors.h"
@@ -31,6 +33,7 @@ struct SimulateArgs {
   bool ccd = false;
   bool json = false;
   bool progress = true;
+  double mpi_timeout = 300;  // seconds a rank waits for a frame's messages
 };
 
 // The request of the options given (the others take the scene file's values or the defaults).
@@ -64,10 +67,16 @@ SimulateRequest request(const SimulateArgs& a) {
 }
 
 int simulate_cmd(const SimulateArgs& a) {
-  const bool progress = a.progress && !a.json && isatty(STDERR_FILENO);
+  // Under mpirun or srun, each process is one rank of a distributed run (docs/scale.md); rank 0 prints.
+  mpi::World world;
+  std::shared_ptr<mpi::MpiFrameExchange> exchange;
+  if (world.size() > 1) exchange = std::make_shared<mpi::MpiFrameExchange>(world, a.mpi_timeout);
+  const bool progress = a.progress && !a.json && isatty(STDERR_FILENO) && world.rank() == 0;
+  SimulateRequest req = request(a);
+  req.exchange = exchange;
   SimulationSummary s;
   try {
-    s = simulate(request(a), [&](uint64_t done, uint64_t frames) {
+    s = simulate(req, [&](uint64_t done, uint64_t frames) {
       if (!progress || frames < 100 || ((done - 1) % 25 != 0 && done != frames)) return;
       const int width = 40, bar = int(width * done / frames);
       std::fprintf(stderr, "\r[%s%s] %llu/%llu frames", std::string(size_t(bar), '#').c_str(),
@@ -78,8 +87,19 @@ int simulate_cmd(const SimulateArgs& a) {
   } catch (const SimulateOptionError& e) {
     std::string names;
     for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
+    if (exchange) {
+      std::cerr << "voxcd simulate: rank " << world.rank() << ": " << names << ": " << e.message << '\n';
+      world.abort(2);
+    }
     throw CLI::ValidationError(names, e.message);
+  } catch (const std::exception& e) {
+    if (!exchange) throw;
+    // One rank's error ends every rank now (the others would wait for its messages until the timeout).
+    std::cerr << "voxcd simulate: rank " << world.rank() << " of " << world.size() << ": " << e.what() << '\n';
+    world.abort(2);
   }
+  if (world.rank() != 0) return 0;
+  const double exchanged = exchange ? double(exchange->bytes_sent() + exchange->bytes_received()) : 0;
   const SimulationTotals& tot = s.totals;
   const ObjectType& type = *s.types[0];
   const double F = double(s.frames);
@@ -119,6 +139,8 @@ int simulate_cmd(const SimulateArgs& a) {
       o << ", \"no_tunnelling\": {\"iterations\": " << tot.ccd_iterations << ", \"queries\": " << tot.ccd_queries
         << ", \"pairs_limited\": " << tot.ccd_limited << ", \"time_of_impact_events\": " << tot.ccd_toi
         << ", \"bodies_dropped\": " << tot.ccd_dropped << ", \"lookups\": " << tot.ccd_lookups << "}";
+    if (s.ranks > 1)
+      o << ", \"ranks\": " << s.ranks << ", \"rank0_bytes_per_frame\": " << exchanged / F;
     o << ", \"lanes\": " << s.lanes
       << ", \"device_cycles\": " << tot.cycles << ", \"device_cycles_per_frame\": " << cyc_per_frame
       << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"clock_mhz\": " << s.clock
@@ -150,7 +172,14 @@ int simulate_cmd(const SimulateArgs& a) {
   if (s.distance_bits)
     std::printf("distance        %d-bit fields over +-%g voxels, margin %g%s\n", s.distance_bits, s.band, s.margin,
                 s.ccd ? ", continuous collision" : "");
-  std::printf("frame rate      %.1f Hz (%.3f ms per frame, one process)\n", rate, 1e3 * tot.seconds() / F);
+  if (s.ranks > 1)
+    std::printf("frame rate      %.1f Hz (%.3f ms per frame on rank 0 of %d)\n", rate, 1e3 * tot.seconds() / F, s.ranks);
+  else
+    std::printf("frame rate      %.1f Hz (%.3f ms per frame, one process)\n", rate, 1e3 * tot.seconds() / F);
+  if (s.ranks > 1)
+    std::printf("ranks           %d: slabs that follow the bodies, each rank's broadphase and device on its slab's "
+                "pairs; rank 0 sent and received %.0f bytes per frame; device cycles are the busiest rank's\n",
+                s.ranks, exchanged / F);
   std::printf("per frame       %.2f broadphase pairs, %.2f tested (bounding spheres and oriented boxes meet), %.2f touching, %.1f lookups, "
               "%.1f contacts, %.3f responses, %.3f wall bounces\n",
               double(tot.pairs) / F, double(tot.tested) / F, double(tot.touching) / F, double(tot.lookups) / F, double(tot.contacts) / F,
@@ -222,6 +251,11 @@ void add_simulate(CLI::App& app) {
   c->add_option("--seed", a->scene.seed, "Seed of the scene")->capture_default_str();
   c->add_option("--clock", a->clock_mhz, "Device clock in MHz for the modelled frame rate")->capture_default_str();
   c->add_option("--threads", a->sim.threads, "cpu backend threads (0: all)")->capture_default_str();
+  c->add_option("--mpi-timeout", a->mpi_timeout,
+                "Under mpirun or srun: seconds a rank waits for a frame's messages before the run ends with an error "
+                "naming the rank and its slab")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   c->add_flag("!--no-midphase", a->sim.midphase,
               "test every broadphase pair on the device (by default pairs whose oriented boxes are disjoint are dropped "
               "first; the results are the same)");

@@ -5,7 +5,10 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 #include <vector>
+
+#include "voxcd/host/scene/partition.h"
 
 namespace voxcd {
 
@@ -28,14 +31,21 @@ class FrameExchange {
   virtual ~FrameExchange() = default;
   virtual int rank() const = 0;
   virtual int ranks() const = 0;
-  // Called by every rank once a frame with its own outcomes (in pair order) and counts; returns every rank's
-  // outcomes merged in pair order, with `total` the sums of pairs and tested and the largest cycles. Throws
-  // std::runtime_error naming the rank and its slab when a rank fails or says nothing in time.
-  virtual std::vector<PairOutcome> exchange(uint64_t frame, const std::vector<PairOutcome>& mine,
+  // Called by every rank once a frame with the frame's slabs, its own outcomes (in pair order) and counts; returns
+  // every rank's outcomes merged in pair order, with `total` the sums of pairs and tested and the largest cycles.
+  // Throws std::runtime_error naming the rank and its slab when a rank fails or says nothing in time.
+  virtual std::vector<PairOutcome> exchange(uint64_t frame, const Slabs& slabs, const std::vector<PairOutcome>& mine,
                                             const RankCounts& own, RankCounts& total) = 0;
 };
 
 // Merges per-rank outcome lists (each in pair order, no pair in two) into one in pair order.
 std::vector<PairOutcome> merge_outcomes(const std::vector<std::vector<PairOutcome>>& per_rank);
+
+// "slab 2 of 3 (y in [31.4, 66.1))", for messages.
+std::string slab_text(const Slabs& s, int rank);
+
+// The bytes of a rank's message (frame, counts, outcomes) and back; std::runtime_error for a message that is not one.
+std::string encode_outcomes(uint64_t frame, const RankCounts& counts, const std::vector<PairOutcome>& outcomes);
+void decode_outcomes(const std::string& bytes, uint64_t& frame, RankCounts& counts, std::vector<PairOutcome>& outcomes);
 
 }  // namespace voxcd

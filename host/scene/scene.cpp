@@ -472,7 +472,7 @@ void Simulation::gather_outcomes(FrameStats& st) {
   own.pairs = st.pairs;
   own.tested = st.tested;
   own.cycles = cycles;
-  outcomes_ = opt_.exchange->exchange(frame_, outcomes_, own, total);
+  outcomes_ = opt_.exchange->exchange(frame_, slabs_, outcomes_, own, total);
   st.pairs = total.pairs;
   st.tested = total.tested;
   st.device_cycles += total.cycles;

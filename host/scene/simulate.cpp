@@ -164,6 +164,8 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
   s.clock = clock;
   s.lanes = sim.lanes;
 
+  sim.exchange = req.exchange;
+  s.ranks = req.exchange ? req.exchange->ranks() : 1;
   Simulation run(std::move(scene), sim);
   s.device = run.device_config();
   for (uint64_t f = 0; f < frames; ++f) {

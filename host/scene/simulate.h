@@ -44,6 +44,8 @@ struct SimulateRequest {
   std::optional<double> margin;        // world units (SimOptions::margin); default 0
   std::optional<bool> ccd;             // continuous collision (SimOptions::ccd); default off
   unsigned threads = 0;                // cpu backend threads (0: all); results never depend on it
+  // A distributed run: this process is one rank (SimOptions::exchange); results never depend on the ranks.
+  std::shared_ptr<FrameExchange> exchange;
   bool midphase = true;                // SimOptions::midphase
   bool cull = true;                    // SimOptions::cull
 };
@@ -88,6 +90,7 @@ struct SimulationSummary {
   uint64_t frames = 0;
   double clock = 0;  // MHz
   int lanes = 0;
+  int ranks = 1;      // processes of a distributed run
   SimulationTotals totals;
   uint64_t state_hash = 0;  // Simulation::state_hash after the last frame
 

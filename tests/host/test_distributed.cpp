@@ -67,9 +67,15 @@ class RankView final : public FrameExchange {
   RankView(MemoryExchange& m, int rank, int ranks) : m_(m), rank_(rank), ranks_(ranks) {}
   int rank() const override { return rank_; }
   int ranks() const override { return ranks_; }
-  std::vector<PairOutcome> exchange(uint64_t, const std::vector<PairOutcome>& mine, const RankCounts& own,
-                                    RankCounts& total) override {
-    return m_.exchange(rank_, mine, own, total);
+  std::vector<PairOutcome> exchange(uint64_t frame, const Slabs&, const std::vector<PairOutcome>& mine,
+                                    const RankCounts& own, RankCounts& total) override {
+    // Through the message encoding, as the MPI exchange sends them.
+    uint64_t f = 0;
+    RankCounts c;
+    std::vector<PairOutcome> back;
+    decode_outcomes(encode_outcomes(frame, own, mine), f, c, back);
+    EXPECT_EQ(f, frame);
+    return m_.exchange(rank_, back, c, total);
   }
 
  private:
