@@ -122,15 +122,19 @@ bool is_object_file(const std::string& path) {
   return in.read(magic, 8) && std::memcmp(magic, "VOXCDOBJ", 8) == 0;
 }
 
+void require_distance_bits(const ObjectFile& obj, int distance_bits, const std::string& name) {
+  if (distance_bits > 0 && obj.distance.bits != distance_bits)
+    throw MeshError(name + ": the object has " +
+                    (obj.distance.empty() ? std::string("no distance field")
+                                          : "a distance field of " + std::to_string(obj.distance.bits) + " bits") +
+                    "; " + std::to_string(distance_bits) + " bits were asked for (voxcd voxelize --distance-bits " +
+                    std::to_string(distance_bits) + ")");
+}
+
 ObjectType load_object_type(const std::string& file_or_shape, double voxel, int distance_bits, double band) {
   if (is_object_file(file_or_shape)) {
     ObjectFile obj = read_object(file_or_shape);
-    if (distance_bits > 0 && obj.distance.bits != distance_bits)
-      throw MeshError(file_or_shape + ": the object file has " +
-                      (obj.distance.empty() ? std::string("no distance field")
-                                            : "a distance field of " + std::to_string(obj.distance.bits) + " bits") +
-                      "; " + std::to_string(distance_bits) + " bits were asked for (voxcd voxelize --distance-bits " +
-                      std::to_string(distance_bits) + ")");
+    require_distance_bits(obj, distance_bits, file_or_shape);
     return make_object_type(std::move(obj), file_or_shape);
   }
   if (!(std::isfinite(voxel) && voxel > 0))

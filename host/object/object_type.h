@@ -37,6 +37,12 @@ ObjectType make_object_type(ObjectFile obj, const std::string& name);
 ObjectType load_object_type(const std::string& file_or_shape, double voxel, int distance_bits = 0,
                             double band = 4.0);
 
+// An object used as it is where distance voxmaps of `distance_bits` (4, 8, 16) are asked for must carry a field of
+// exactly that many bits: MeshError "NAME: the object has no distance field; 8 bits were asked for ..." otherwise.
+// Nothing is asked of it when distance_bits is 0. load_object_type checks object files with it; the Python module
+// checks its Objects.
+void require_distance_bits(const ObjectFile& obj, int distance_bits, const std::string& name);
+
 // The voxel that puts `resolution` voxels along the longest side of the largest mesh or shape among `sources`
 // (its bounding box's longest side / resolution); object files are left out (they have their voxel), and with
 // nothing else it is 0. `voxcd pair`'s voxel when none is given (resolution 32 by default). MeshError from

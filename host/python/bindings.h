@@ -26,6 +26,10 @@ std::string path_arg(const py::handle& h, const char* what);
 // Raises ValueError with the message: an argument the module refuses before calling the library.
 [[noreturn]] void value_error(const std::string& message);
 
+// The distance fields asked for (voxelize, Pair): ValueError naming the keyword for distance_bits other than 0 (no
+// field), 4, 8 or 16, or a band that is not a positive finite number of voxels.
+void check_distance_args(int distance_bits, double band);
+
 // Runs f(); when it throws and the file `path` (not "") does not exist, raises FileNotFoundError carrying the
 // library's message instead of the error it would map to (docs/python.md, "Errors").
 template <class F>

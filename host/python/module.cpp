@@ -1,5 +1,6 @@
 // import voxcd: the module, its version, the library's lists (backends, shapes, broadphases) and how the library's
 // errors reach Python (docs/python.md, "Errors").
+#include <cmath>
 #include <stdexcept>
 
 #include "voxcd/host/broadphase/broadphase.h"
@@ -30,6 +31,13 @@ std::string path_arg(const py::handle& h, const char* what) {
 }
 
 void value_error(const std::string& message) { throw py::value_error(message); }
+
+void check_distance_args(int distance_bits, double band) {
+  if (distance_bits != 0 && distance_bits != 4 && distance_bits != 8 && distance_bits != 16)
+    value_error("distance_bits: " + std::to_string(distance_bits) + " is not 4, 8 or 16 (or 0 for no distance field)");
+  if (!(std::isfinite(band) && band > 0))
+    value_error("band: " + py::repr(py::float_(band)).cast<std::string>() + " is not a positive finite number of voxels");
+}
 
 }  // namespace voxcd::python
 

@@ -97,10 +97,7 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
     value_error("resolution: " + std::to_string(*resolution) + " is not a positive count of voxels");
   if (!(std::isfinite(shell_ratio) && shell_ratio > 0))
     value_error("shell_ratio: " + std::to_string(shell_ratio) + " is not a positive finite number");
-  if (distance_bits != 0 && distance_bits != 4 && distance_bits != 8 && distance_bits != 16)
-    value_error("distance_bits: " + std::to_string(distance_bits) + " is not 4, 8 or 16 (or 0 for no distance field)");
-  if (!(std::isfinite(band) && band > 0))
-    value_error("band: " + py::repr(py::float_(band)).cast<std::string>() + " is not a positive finite number of voxels");
+  check_distance_args(distance_bits, band);
   ObjectOptions opt;
   opt.distance_bits = distance_bits;
   opt.band = band;

@@ -1,8 +1,10 @@
-// Pair tests: voxcd.Pair (two objects loaded into a device, as `voxcd pair` loads them) and voxcd.pair; the contacts
-// at each pose as numpy arrays, the same as `voxcd pair --json` gives.
+// Pair tests: voxcd.Pair (two objects loaded into a device, as `voxcd pair` loads them, with 2-bit states or distance
+// voxmaps) and voxcd.pair; the contacts at each pose as numpy arrays, the same as `voxcd pair --json` gives.
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
@@ -16,29 +18,57 @@ struct Pair {
   std::shared_ptr<ObjectType> a, b;
   double voxel = 0;
   std::string backend;
+  int distance_bits = 0;  // the device's SB on a distance device (`voxcd pair --distance-bits`), else 0
+  double margin = 0;      // PairOptions::margin of every query (`--margin`; used on a distance device only)
   std::unique_ptr<PairCollider> collider;
   std::mutex busy;  // one query at a time: the collider reuses its buffers
 };
 
-// An object argument: an Object, or an object file, a mesh file or a built-in shape (voxelised at `voxel`).
-std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const char* which) {
+// What `voxcd pair --distance-bits B --band K --margin M` is given, checked as the module checks voxelize's (None:
+// not given; distance_bits 0 is None).
+struct DistanceArgs {
+  int bits = 0;
+  double band = 4.0;
+  double margin = 0;
+};
+
+DistanceArgs distance_args(std::optional<int> bits, std::optional<double> band, std::optional<double> margin) {
+  DistanceArgs d;
+  d.bits = bits.value_or(0);
+  d.band = band.value_or(4.0);
+  check_distance_args(d.bits, d.band);
+  if (margin && !std::isfinite(*margin))
+    value_error("margin: " + py::repr(py::float_(*margin)).cast<std::string>() + " is not a finite number");
+  d.margin = margin.value_or(0);
+  return d;
+}
+
+// An object argument: an Object, or an object file, a mesh file or a built-in shape (voxelised at `voxel`, with a
+// distance field of d.bits over d.band voxels when d.bits > 0). Objects and object files are used as they are: with
+// d.bits > 0 they must carry a field of that many bits, as `voxcd pair --distance-bits` requires of object files.
+std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const DistanceArgs& d, const char* which) {
   if (py::isinstance<ObjectFile>(o)) {
     const ObjectFile obj = o.cast<const ObjectFile&>();
     py::gil_scoped_release unlocked;
+    require_distance_bits(obj, d.bits, std::string(which) + " (" + obj.source + ")");
     return std::make_shared<ObjectType>(make_object_type(obj, obj.source));
   }
   const std::string s = path_arg(o, which);
   py::gil_scoped_release unlocked;
-  return std::make_shared<ObjectType>(load_object_type(s, voxel));
+  return std::make_shared<ObjectType>(load_object_type(s, voxel, d.bits, d.band));
 }
 
 std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::optional<double> voxel,
-                                std::optional<int64_t> resolution, const std::string& backend, int lanes) {
+                                std::optional<int64_t> resolution, const std::string& backend, int lanes,
+                                std::optional<int> distance_bits, std::optional<double> band,
+                                std::optional<double> margin) {
   if (voxel && resolution) value_error("give voxel (world units) or resolution (voxels along the longest side), not both");
   if (resolution && (*resolution < 0 || *resolution > int64_t(UINT32_MAX)))
     value_error("resolution: " + std::to_string(*resolution) + " is not a count of voxels");
+  const DistanceArgs d = distance_args(distance_bits, band, margin);
   auto p = std::make_unique<Pair>();
   p->backend = backend;
+  p->margin = d.margin;
   if (voxel) {
     p->voxel = *voxel;
   } else {
@@ -49,10 +79,11 @@ std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::o
     py::gil_scoped_release unlocked;
     p->voxel = shared_voxel(sources, uint32_t(resolution.value_or(32)));
   }
-  p->a = object_type(a, p->voxel, "a");
-  p->b = object_type(b, p->voxel, "b");
+  p->a = object_type(a, p->voxel, d, "a");
+  p->b = object_type(b, p->voxel, d, "b");
   py::gil_scoped_release unlocked;
-  const DeviceConfig cfg = device_config_for(backend, lanes, {p->a.get(), p->b.get()});
+  const DeviceConfig cfg = device_config_for(backend, lanes, {p->a.get(), p->b.get()}, d.bits);
+  p->distance_bits = cfg.distance() ? cfg.SB : 0;
   p->collider = std::make_unique<PairCollider>(make_device(backend, cfg), std::vector<std::shared_ptr<const ObjectType>>{p->a, p->b});
   return p;
 }
@@ -144,6 +175,7 @@ py::object query(Pair& p, const py::object& pose, const std::string& mode, bool 
   opt.mode = *m;
   opt.both_directions = both;
   opt.cull = cull;
+  opt.margin = p.margin;
   std::vector<PairResult> res;
   {
     py::gil_scoped_release unlocked;
@@ -164,20 +196,39 @@ submits only the shell clusters that can land in the other voxmap (the contacts 
 dict: hits, lookups, device_cycles (None where the backend models none) and the contacts as arrays: a_in_b (bool:
 A's shell point in B's voxmap), points (index in its shell), positions and normals ((K, 3), world), voxels ((K, 3),
 of the other voxmap), states, depths (penetration estimates, world units). A list of such dicts for an array of
-poses.)";
+poses. On a distance device (distance_bits) a contact is a point where the other object's interpolated distance is
+at most the margin: depths is that distance negated (positive inside, negative within the margin outside), normals
+the other field's gradient negated and normalised, states 0.)";
 
 }  // namespace
 
 void bind_pairs(py::module_& m) {
   py::class_<Pair>(m, "Pair", R"(Two objects loaded into a device for pair tests, as `voxcd pair A B` loads them
 (docs/pairs.md). a and b: Objects, or object files, mesh files or built-in shape names (voxelised at voxel, or
-by default at the larger one's longest side / resolution, 32 unless given).)")
+by default at the larger one's longest side / resolution, 32 unless given). distance_bits (4, 8 or 16) loads
+distance voxmaps on a distance device, as `--distance-bits`: meshes and shapes get signed distance fields over
++-band voxels (4 unless given), Objects and object files must carry fields of that many bits; every query then
+reports the points within margin (world units, 0 unless given) of the other object, as `--margin`.)")
       .def(py::init(&make_pair), py::arg("a"), py::arg("b"), py::kw_only(), py::arg("voxel") = py::none(),
-           py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4)
+           py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4,
+           py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none())
       .def("query", &query, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
            py::arg("both") = false, py::arg("cull") = true, kQueryDoc)
       .def_readonly("voxel", &Pair::voxel, "The voxel meshes and shapes were voxelised at (0 if both were objects).")
       .def_readonly("backend", &Pair::backend)
+      .def_readonly("distance_bits", &Pair::distance_bits,
+                    "Bits of the device's distance voxmaps (4, 8 or 16); 0 on a device of 2-bit states.")
+      .def_property_readonly(
+          "band",
+          [](const Pair& p) -> py::object {
+            if (!p.distance_bits) return py::none();
+            auto world = [](const ObjectType& t) { return t.object.distance.band() * t.voxmap().voxel(); };
+            return py::make_tuple(world(*p.a), world(*p.b));
+          },
+          "The bands of A's and B's distance fields in world units (`voxcd pair --json`'s band), or None on a "
+          "device of 2-bit states.")
+      .def_readonly("margin", &Pair::margin,
+                    "The margin of every query, world units (used on a distance device only, as `--margin`).")
       .def_property_readonly("device", [](const Pair& p) { return p.collider->device().config().to_string(); },
                              "The device's configuration, NAME VALUE pairs.")
       .def_property_readonly("a", [](const Pair& p) { return std::shared_ptr<ObjectFile>(p.a, &p.a->object); },
@@ -189,15 +240,17 @@ by default at the larger one's longest side / resolution, 32 unless given).)")
       "pair",
       [](const py::object& a, const py::object& b, const py::object& pose, std::optional<double> voxel,
          std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode, bool both,
-         bool cull) {
-        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes);
+         bool cull, std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin) {
+        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin);
         return query(*p, pose, mode, both, cull);
       },
       py::arg("a"), py::arg("b"), py::arg("pose") = py::none(), py::kw_only(), py::arg("voxel") = py::none(),
       py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL",
-      py::arg("both") = false, py::arg("cull") = true,
-      "Pair(a, b, voxel=, resolution=, backend=, lanes=).query(pose, mode=, both=, cull=): the contacts of one "
-      "call, the same as `voxcd pair A B --pose ... --json`.");
+      py::arg("both") = false, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
+      py::arg("band") = py::none(), py::arg("margin") = py::none(),
+      "Pair(a, b, voxel=, resolution=, backend=, lanes=, distance_bits=, band=, margin=).query(pose, mode=, both=, "
+      "cull=): the contacts of one call, the same as `voxcd pair A B --pose ... [--distance-bits B --band K "
+      "--margin M] --json`.");
 }
 
 }  // namespace voxcd::python

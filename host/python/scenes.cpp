@@ -67,6 +67,12 @@ py::dict summary_dict(const SimulationSummary& s) {
   r["backend"] = s.backend;
   r["mode"] = s.mode;
   r["both_directions"] = s.both_directions;
+  if (s.distance_bits) {
+    r["distance_bits"] = s.distance_bits;
+    r["band"] = s.band;
+    r["margin"] = s.margin;
+    r["ccd"] = s.ccd;
+  }
   r["frames"] = s.frames;
   r["seed"] = s.seed;
   r["seconds"] = t.seconds();
@@ -86,6 +92,16 @@ py::dict summary_dict(const SimulationSummary& s) {
   stages["narrow"] = t.t_narrow;
   stages["response"] = t.t_response;
   r["stage_seconds"] = stages;
+  if (s.ccd) {
+    py::dict c;
+    c["iterations"] = t.ccd_iterations;
+    c["queries"] = t.ccd_queries;
+    c["pairs_limited"] = t.ccd_limited;
+    c["time_of_impact_events"] = t.ccd_toi;
+    c["bodies_dropped"] = t.ccd_dropped;
+    c["lookups"] = t.ccd_lookups;
+    r["no_tunnelling"] = c;
+  }
   r["lanes"] = s.lanes;
   r["device_cycles"] = t.cycles;
   r["device_cycles_per_frame"] = s.cycles_per_frame();
@@ -104,7 +120,8 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
                         std::optional<std::string> pruning, std::optional<std::string> backend,
                         std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
                         std::optional<double> clock, std::optional<std::string> config, unsigned threads,
-                        bool midphase, bool cull) {
+                        bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
+                        std::optional<double> margin, std::optional<bool> ccd) {
   SimulateRequest req;
   if (!scene.is_none()) scene_arg(scene, req.file, req.text);
   req.frames = count_arg(frames, "frames");
@@ -124,6 +141,10 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
   req.mode = std::move(mode);
   req.both_directions = both;
   req.clock = clock;
+  req.distance_bits = distance_bits;
+  req.band = band;
+  req.margin = margin;
+  req.ccd = ccd;
   if (config) req.device = parse_config_pairs(*config, "config");
   req.threads = threads;
   req.midphase = midphase;
@@ -182,11 +203,15 @@ void bind_scenes(py::module_& m) {
         py::arg("seed") = py::none(), py::arg("pruning") = py::none(), py::arg("backend") = py::none(),
         py::arg("lanes") = py::none(), py::arg("mode") = py::none(), py::arg("both") = py::none(),
         py::arg("clock") = py::none(), py::arg("config") = py::none(), py::arg("threads") = 0u,
-        py::arg("midphase") = true, py::arg("cull") = true,
+        py::arg("midphase") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
+        py::arg("band") = py::none(), py::arg("margin") = py::none(), py::arg("ccd") = py::none(),
         R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
 `voxcd simulate --json` (the state hash as a hex string). scene: None (the paper's built-in scene), a scene file,
 or a dict with a scene file's keys (docs/scenes.md). Each option given (not None) overrides the scene file, as the
-tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs.)");
+tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs. distance_bits
+(4, 8 or 16), band (voxels), margin (world units) and ccd (continuous collision, which needs distance voxmaps) are
+--distance-bits, --band, --margin and --ccd (ccd=False also turns off a scene file's "ccd"); with distance voxmaps
+the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling.)");
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
         py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),

@@ -30,6 +30,19 @@ def cli(voxcd_bin):
 
 
 @pytest.fixture(scope="session")
+def cli_error(voxcd_bin):
+    """Runs `voxcd ARGS...`, which must fail with exit code `expect`, and returns the first line of its standard
+    error without the tool's "voxcd: error: " (the library's message)."""
+
+    def run(*args, expect):
+        proc = subprocess.run([voxcd_bin, *map(str, args)], capture_output=True, text=True)
+        assert proc.returncode == expect, f"voxcd {' '.join(map(str, args))} exited {proc.returncode}:\n{proc.stderr}"
+        return proc.stderr.splitlines()[0].removeprefix("voxcd: error: ")
+
+    return run
+
+
+@pytest.fixture(scope="session")
 def cli_json(cli):
     return lambda *args: json.loads(cli(*args, "--json"))
 

@@ -107,3 +107,132 @@ def test_queries_from_several_threads_give_the_serial_results():
         assert a["hits"] == b["hits"]
         np.testing.assert_array_equal(a["points"], b["points"])
         np.testing.assert_array_equal(a["positions"], b["positions"])
+
+
+# Distance voxmaps: `voxcd pair --distance-bits B [--band K] [--margin M]`. Each row: the tool's options, the module's
+# keywords, the pose, and the query's options.
+DISTANCE = [
+    (["--distance-bits", "8"], dict(distance_bits=8), "0.5,0.2,0.1,10,20,30", ["--both"]),
+    (["--distance-bits", "4", "--band", "3"], dict(distance_bits=4, band=3.0), "1.2,0,0", []),
+    (["--distance-bits", "16", "--margin", "0.05"], dict(distance_bits=16, margin=0.05), "0.3,-0.4,0.2,0,90,0",
+     ["--mode", "FIRST", "--both"]),
+    (["--distance-bits", "8", "--band", "6", "--margin", "0.1"], dict(distance_bits=8, band=6.0, margin=0.1),
+     "0.3,-0.4,0.2,45,0,0", ["--both"]),
+    (["--distance-bits", "8", "--margin", "0.1"], dict(distance_bits=8, margin=0.1), "5,5,5", []),
+]
+
+
+@pytest.mark.parametrize("args, kwargs, text, opts", DISTANCE)
+def test_a_distance_pair_equals_the_tool(cli_json, args, kwargs, text, opts):
+    want = cli_json("pair", "cube", "torus", "--pose", text, *args, *opts)
+    mode = opts[opts.index("--mode") + 1] if "--mode" in opts else "ALL"
+    pose = [float(v) for v in text.split(",")]
+    pair = voxcd.Pair("cube", "torus", **kwargs)
+    assert pair.voxel == pytest.approx(want["voxel"], rel=1e-6)
+    assert pair.distance_bits == want["distance_bits"] == kwargs["distance_bits"]
+    assert pair.band == pytest.approx(want["band"], rel=1e-6)
+    assert pair.margin == want["margin"] == kwargs.get("margin", 0)
+    assert pair.a.distance_bits == pair.b.distance_bits == kwargs["distance_bits"]
+    assert "SB %d " % kwargs["distance_bits"] in pair.device
+    got = pair.query(pose, mode=mode, both="--both" in opts)
+    assert_same_contacts(got, want["results"][0])
+    # voxcd.pair takes the same keywords.
+    assert_same_contacts(voxcd.pair("cube", "torus", pose, mode=mode, both="--both" in opts, **kwargs),
+                         want["results"][0])
+    if text == "5,5,5":
+        assert got["hits"] == 0
+        return
+    assert got["hits"] > 0
+    # A contact of a distance device: state 0, the field's unit gradient as its normal, and a depth (the distance
+    # negated) no deeper outside than the margin.
+    assert not got["states"].any()
+    np.testing.assert_allclose(np.linalg.norm(got["normals"], axis=1), 1, rtol=1e-9)
+    assert got["depths"].min() >= -pair.margin - 1e-12
+    if pair.margin > 0 and mode == "ALL":
+        assert got["depths"].min() < 0  # points within the margin outside the other object are contacts too
+
+
+def test_distance_object_files_and_objects_are_used_as_they_are(cli, cli_json, cli_error, tmp_path, scenes):
+    mesh = str(scenes / "tetra.obj")
+    cli("voxelize", "stellated", "--voxel", "0.1", "--distance-bits", "8", "--band", "5", "-o", tmp_path / "d.vxo")
+    pose = [0.4, 0.3, 0.2, 5, 10, 15]
+    args = ["--voxel", "0.1", "--pose", "0.4,0.3,0.2,5,10,15", "--both", "--distance-bits", "8", "--margin", "0.02"]
+    want = cli_json("pair", tmp_path / "d.vxo", mesh, *args)
+    from_files = voxcd.pair(tmp_path / "d.vxo", mesh, pose, voxel=0.1, both=True, distance_bits=8, margin=0.02)
+    assert_same_contacts(from_files, want["results"][0])
+    # The same objects made in Python: the file's band (5 voxels) is kept, whatever band= says.
+    pair = voxcd.Pair(voxcd.read_object(tmp_path / "d.vxo"), voxcd.voxelize(mesh, voxel=0.1, distance_bits=8),
+                      distance_bits=8, band=2.0, margin=0.02)
+    assert pair.band == pytest.approx(want["band"], rel=1e-6) and pair.band[0] == pytest.approx(0.5)
+    assert_same_contacts(pair.query(pose, both=True), want["results"][0])
+
+    # Without a field, or with another one, an object cannot be used as it is: the tool's message for a file, the
+    # same naming the argument for an Object.
+    cli("voxelize", "stellated", "--voxel", "0.1", "-o", tmp_path / "s.vxo")
+    message = cli_error("pair", tmp_path / "s.vxo", mesh, *args, expect=2)
+    assert message == f"{tmp_path / 's.vxo'}: the object has no distance field; 8 bits were asked for (voxcd " \
+                      "voxelize --distance-bits 8)"
+    with pytest.raises(ValueError) as e:
+        voxcd.pair(tmp_path / "s.vxo", mesh, pose, voxel=0.1, distance_bits=8)
+    assert str(e.value) == message
+    with pytest.raises(ValueError, match=r"^a \(shape:stellated\): the object has no distance field; 8 bits were "):
+        voxcd.Pair(voxcd.read_object(tmp_path / "s.vxo"), mesh, voxel=0.1, distance_bits=8)
+    message = cli_error("pair", mesh, tmp_path / "d.vxo", *args[:-4], "--distance-bits", "16", expect=2)
+    with pytest.raises(ValueError) as e:
+        voxcd.pair(mesh, tmp_path / "d.vxo", voxel=0.1, distance_bits=16)
+    assert str(e.value) == message and "a distance field of 8 bits; 16 bits were asked for" in message
+    with pytest.raises(ValueError, match=r"^b \(shape:stellated\): the object has a distance field of 8 bits; 4 "):
+        voxcd.Pair(mesh, voxcd.read_object(tmp_path / "d.vxo"), voxel=0.1, distance_bits=4)
+
+
+def test_the_distance_keywords_are_not_ignored():
+    pose = [0.3, -0.4, 0.2, 45, 0, 0]
+    states = voxcd.Pair("cube", "torus")
+    fields = voxcd.Pair("cube", "torus", distance_bits=8)
+    assert (states.distance_bits, states.band, states.margin) == (0, None, 0)
+    assert " SB " not in states.device and "SB 8 " in fields.device
+    two, dist = states.query(pose, both=True), fields.query(pose, both=True)
+    assert two["hits"] > 0 and dist["hits"] > 0
+    assert two["hits"] != dist["hits"] or not np.array_equal(two["positions"], dist["positions"])
+    assert set(two["states"].tolist()) <= {voxcd.SURFACE, voxcd.INTERIOR} and two["states"].all()
+    assert not dist["states"].any()
+    assert fields.a.shell_on_surface and not states.a.shell_on_surface  # meshes and shapes get fields and shells
+    # A margin adds the points within it; a wider band changes the fields.
+    wide = voxcd.Pair("cube", "torus", distance_bits=8, margin=0.1).query(pose, both=True)
+    assert wide["hits"] > dist["hits"] and (wide["depths"] < 0).any() and not (dist["depths"] < 0).any()
+    banded = voxcd.Pair("cube", "torus", distance_bits=8, band=8.0)
+    assert banded.band[0] == pytest.approx(2 * fields.band[0])
+    assert not np.array_equal(banded.a.distance, fields.a.distance)
+
+
+def test_bad_distance_keywords_are_refused_as_the_tool_refuses_them(cli, cli_error):
+    for bits in (3, 2, 32):
+        cli_error("pair", "cube", "torus", "--distance-bits", bits, expect=105)
+        with pytest.raises(ValueError, match=r"^distance_bits: %d is not 4, 8 or 16" % bits):
+            voxcd.Pair("cube", "torus", distance_bits=bits)
+        with pytest.raises(ValueError, match=r"^distance_bits: %d is not 4, 8 or 16" % bits):
+            voxcd.pair("cube", "torus", distance_bits=bits)
+    for band in (0.0, -1.0):
+        cli_error("pair", "cube", "torus", "--distance-bits", "8", "--band", band, expect=105)
+        with pytest.raises(ValueError, match=r"^band: %r is not a positive finite number of voxels$" % band):
+            voxcd.Pair("cube", "torus", distance_bits=8, band=band)
+    with pytest.raises(ValueError, match=r"^band: inf is not a positive finite number of voxels$"):
+        voxcd.pair("cube", "torus", distance_bits=8, band=float("inf"))
+    with pytest.raises(ValueError, match=r"^margin: nan is not a finite number$"):
+        voxcd.Pair("cube", "torus", distance_bits=8, margin=float("nan"))
+    # A margin beyond what a job's threshold holds: the library's RangeError, the tool's message.
+    message = cli_error("pair", "cube", "torus", "--distance-bits", "8", "--margin", "1", expect=2)
+    assert message.startswith("pair 0 (cube, torus): margin = 1.000000 does not fit a distance job's threshold")
+    pair = voxcd.Pair("cube", "torus", distance_bits=8, margin=1.0)
+    with pytest.raises(ValueError) as e:
+        pair.query()
+    assert str(e.value) == message
+    with pytest.raises(ValueError) as e:
+        voxcd.pair("cube", "torus", distance_bits=8, margin=1.0)
+    assert str(e.value) == message
+    # As the tool does, a device of 2-bit states has no distances: a margin (or a band) changes nothing there.
+    want = cli("pair", "cube", "torus", "--pose", "1.2,0,0", "--margin", "0.1", "--json")
+    assert '"margin"' not in want
+    plain = voxcd.pair("cube", "torus", [1.2, 0, 0])
+    with_margin = voxcd.pair("cube", "torus", [1.2, 0, 0], margin=0.1, band=6.0)
+    assert with_margin["hits"] == plain["hits"] and np.array_equal(with_margin["depths"], plain["depths"])

@@ -95,3 +95,76 @@ def test_size_that_cannot_be_met(cli, scenes):
     assert out == ""
     with pytest.raises(ValueError, match=r"mixed\.json: cannot be met: accuracy: "):
         voxcd.size(scenes / "mixed.json", accuracy=1e-12)
+
+
+def test_distance_voxmaps_and_continuous_collision_equal_the_tool(cli_json, scenes):
+    want = cli_json("simulate", "--frames", "10", "--distance-bits", "8", "--ccd")
+    got = voxcd.simulate(frames=10, distance_bits=8, ccd=True)
+    assert_same_summary(got, want)
+    assert got["state_hash"] == want["state_hash"]
+    assert (got["distance_bits"], got["band"], got["margin"], got["ccd"]) == (8, 4.0, 0.0, True)
+    assert got["no_tunnelling"] == want["no_tunnelling"]
+    assert set(got["no_tunnelling"]) == {"iterations", "queries", "pairs_limited", "time_of_impact_events",
+                                         "bodies_dropped", "lookups"}
+    assert got["no_tunnelling"]["iterations"] > 0 and got["no_tunnelling"]["lookups"] > 0
+    assert got["device"].endswith("SB 8 WB 8")
+
+    args = ["--frames", "30", "--distance-bits", "16", "--band", "5", "--margin", "0.02", "--ccd"]
+    want = cli_json("simulate", scenes / "small.json", *args)
+    got = voxcd.simulate(scenes / "small.json", frames=30, distance_bits=16, band=5, margin=0.02, ccd=True)
+    assert_same_summary(got, want)
+    assert got["state_hash"] == want["state_hash"]
+    assert (got["distance_bits"], got["band"], got["margin"]) == (16, 5.0, 0.02)
+
+
+def test_the_distance_keywords_are_not_ignored(scenes):
+    runs = [dict(), dict(distance_bits=8), dict(distance_bits=8, band=6), dict(distance_bits=8, margin=0.05),
+            dict(distance_bits=8, ccd=True), dict(distance_bits=4, ccd=True)]
+    summaries = [voxcd.simulate(scenes / "small.json", frames=30, **kw) for kw in runs]
+    assert len({s["state_hash"] for s in summaries}) == len(runs)
+    assert "distance_bits" not in summaries[0] and "no_tunnelling" not in summaries[0]
+    assert all("no_tunnelling" not in s for s in summaries[1:4])
+    assert [s["band"] for s in summaries[1:]] == [4, 6, 4, 4, 4]
+    assert summaries[3]["margin"] == 0.05 and summaries[-1]["distance_bits"] == 4
+
+
+def test_a_scene_files_distance_keys_and_the_options_over_them(cli_json, tmp_path, scenes):
+    text = json.loads((scenes / "small.json").read_text())
+    text.update(distance_bits=8, band=5, ccd=True)
+    text["types"][1]["mesh"] = str(scenes / "tetra.obj")
+    scene = tmp_path / "ccd.json"
+    scene.write_text(json.dumps(text))
+    want = cli_json("simulate", scene, "--frames", "20")
+    got = voxcd.simulate(scene, frames=20)
+    assert_same_summary(got, want)
+    assert (got["distance_bits"], got["band"], got["ccd"]) == (8, 5.0, True) and "no_tunnelling" in got
+    assert voxcd.simulate(text, frames=20)["state_hash"] == got["state_hash"]
+
+    # The options override the file, as the tool's do.
+    want = cli_json("simulate", scene, "--frames", "20", "--distance-bits", "4", "--band", "3", "--margin", "0.01")
+    got = voxcd.simulate(scene, frames=20, distance_bits=4, band=3, margin=0.01)
+    assert_same_summary(got, want)
+    assert (got["distance_bits"], got["band"], got["margin"], got["ccd"]) == (4, 3.0, 0.01, True)
+    # ccd=False turns the file's "ccd" off (the tool's --ccd only turns it on): the run of the file without the key.
+    del text["ccd"]
+    (tmp_path / "no-ccd.json").write_text(json.dumps(text))
+    want = cli_json("simulate", tmp_path / "no-ccd.json", "--frames", "20")
+    got = voxcd.simulate(scene, frames=20, ccd=False)
+    assert got["ccd"] is False and "no_tunnelling" not in got and "no_tunnelling" not in want
+    assert got["state_hash"] == want["state_hash"] and got["lookups"] == want["lookups"]
+
+
+def test_bad_distance_keywords_are_refused_as_the_tool_refuses_them(cli_error):
+    message = cli_error("simulate", "--frames", "1", "--ccd", expect=105)
+    assert message.startswith("--ccd: continuous collision bounds each step by the distance fields")
+    with pytest.raises(ValueError) as e:
+        voxcd.simulate(frames=1, ccd=True)
+    assert str(e.value) == message.removeprefix("--")
+    cli_error("simulate", "--frames", "1", "--distance-bits", "3", expect=105)
+    with pytest.raises(ValueError, match=r"^distance_bits: 3 is not 4, 8 or 16$"):
+        voxcd.simulate(frames=1, distance_bits=3)
+    cli_error("simulate", "--frames", "1", "--distance-bits", "8", "--band", "0", expect=105)
+    with pytest.raises(ValueError, match=r"^band: must be a positive number of voxels$"):
+        voxcd.simulate(frames=1, distance_bits=8, band=0)
+    with pytest.raises(ValueError, match=r"^margin: must be a finite number$"):
+        voxcd.simulate(frames=1, distance_bits=8, margin=float("inf"))
