@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -61,6 +62,33 @@ bool send(int to, int tag, const std::string& bytes, Clock::time_point deadline)
   }
 }
 
+// VOXCD_TESTING_FRAME_FAULT=KIND:RANK:FRAME (docs/scale.md, "Testing aids"): rank RANK, at frame FRAME, fails
+// (throws), exits at once, or hangs instead of exchanging.
+void testing_fault(int rank, uint64_t frame) {
+  const char* text = std::getenv("VOXCD_TESTING_FRAME_FAULT");
+  if (!text || !*text) return;
+  const std::string t = text;
+  const size_t c1 = t.find(':'), c2 = c1 == std::string::npos ? c1 : t.find(':', c1 + 1);
+  const std::string kind = t.substr(0, c1);
+  int r = -1;
+  uint64_t f = 0;
+  try {
+    if (c2 == std::string::npos || (kind != "fail" && kind != "hang" && kind != "exit"))
+      throw std::invalid_argument("bad");
+    size_t used = 0;
+    r = std::stoi(t.substr(c1 + 1, c2 - c1 - 1), &used);
+    if (used != c2 - c1 - 1) throw std::invalid_argument("bad");
+    f = std::stoull(t.substr(c2 + 1), &used);
+    if (used != t.size() - c2 - 1) throw std::invalid_argument("bad");
+  } catch (const std::exception&) {
+    throw std::runtime_error("VOXCD_TESTING_FRAME_FAULT is '" + t + "', expected fail|hang|exit:RANK:FRAME");
+  }
+  if (r != rank || f != frame) return;
+  if (kind == "fail") throw std::runtime_error("planted fault (VOXCD_TESTING_FRAME_FAULT=" + t + ")");
+  if (kind == "exit") std::_Exit(3);
+  for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+}
+
 }  // namespace
 
 MpiFrameExchange::MpiFrameExchange(World& world, double timeout) : world_(world), timeout_(timeout) {
@@ -71,6 +99,7 @@ std::vector<PairOutcome> MpiFrameExchange::exchange(uint64_t frame, const Slabs&
                                                     const std::vector<PairOutcome>& mine, const RankCounts& own,
                                                     RankCounts& total) {
   const int n = world_.size(), me = world_.rank();
+  testing_fault(me, frame);
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                           std::chrono::duration<double>(timeout_));
   std::ostringstream why;
