@@ -2,8 +2,13 @@
 
 #include <mpi.h>
 
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -15,8 +20,6 @@ namespace {
 constexpr int kTagOutcomes = 0x7c01;  // a rank's outcomes for rank 0
 constexpr int kTagMerged = 0x7c02;    // rank 0's merge for every rank
 
-using Clock = std::chrono::steady_clock;
-
 void check(int rc, const char* what) {
   if (rc == MPI_SUCCESS) return;
   char text[MPI_MAX_ERROR_STRING];
@@ -25,41 +28,58 @@ void check(int rc, const char* what) {
   throw std::runtime_error(std::string(what) + " failed: " + std::string(text, size_t(len)));
 }
 
-// A message with `tag` from `source` (MPI_ANY_SOURCE: any), or false when none arrives by the deadline. Polls and
-// yields the processor between polls (ranks may share cores).
-bool receive(int source, int tag, Clock::time_point deadline, int& from, std::string& bytes) {
-  for (;;) {
-    int found = 0;
-    MPI_Message msg;
-    MPI_Status st;
-    check(MPI_Improbe(source, tag, MPI_COMM_WORLD, &found, &msg, &st), "MPI_Improbe");
-    if (found) {
-      int count = 0;
-      MPI_Get_count(&st, MPI_CHAR, &count);
-      bytes.resize(size_t(count));
-      check(MPI_Mrecv(bytes.data(), count, MPI_CHAR, &msg, MPI_STATUS_IGNORE), "MPI_Mrecv");
-      from = st.MPI_SOURCE;
-      return true;
-    }
-    if (Clock::now() >= deadline) return false;
-    std::this_thread::yield();
+// The deadline of one exchange. The exchange itself blocks in MPI (which makes progress fastest); a second thread,
+// which never calls MPI, ends the process with the message of `why` when the deadline passes first. The launcher
+// then ends every rank (a rank that exits with an error ends the job).
+class Watchdog {
+ public:
+  Watchdog(double seconds, std::function<std::string()> why) : why_(std::move(why)) {
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(seconds));
+    thread_ = std::thread([this, deadline] {
+      std::unique_lock<std::mutex> lock(mu_);
+      if (cv_.wait_until(lock, deadline, [this] { return done_; })) return;
+      const std::string text = "voxcd simulate: " + why_() + "\n";
+      std::fputs(text.c_str(), stderr);
+      std::fflush(nullptr);
+      std::_Exit(2);
+    });
   }
+  ~Watchdog() {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      done_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+  Watchdog(const Watchdog&) = delete;
+  Watchdog& operator=(const Watchdog&) = delete;
+
+ private:
+  std::function<std::string()> why_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+// The next message with `tag` from `source` (MPI_ANY_SOURCE: any), whatever its size.
+std::string receive(int source, int tag, int& from) {
+  MPI_Message msg;
+  MPI_Status st;
+  check(MPI_Mprobe(source, tag, MPI_COMM_WORLD, &msg, &st), "MPI_Mprobe");
+  int count = 0;
+  MPI_Get_count(&st, MPI_CHAR, &count);
+  std::string bytes(size_t(count), '\0');
+  check(MPI_Mrecv(bytes.data(), count, MPI_CHAR, &msg, MPI_STATUS_IGNORE), "MPI_Mrecv");
+  from = st.MPI_SOURCE;
+  return bytes;
 }
 
-// Sends and waits until the buffer may be reused, or returns false at the deadline (the receiver never took it).
-bool send(int to, int tag, const std::string& bytes, Clock::time_point deadline) {
-  MPI_Request req;
-  check(MPI_Isend(bytes.data(), int(bytes.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD, &req), "MPI_Isend");
-  for (;;) {
-    int done = 0;
-    check(MPI_Test(&req, &done, MPI_STATUS_IGNORE), "MPI_Test");
-    if (done) return true;
-    if (Clock::now() >= deadline) {
-      MPI_Cancel(&req);
-      return false;
-    }
-    std::this_thread::yield();
-  }
+void send(int to, int tag, const std::string& bytes) {
+  check(MPI_Send(bytes.data(), int(bytes.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD), "MPI_Send");
 }
 
 // VOXCD_TESTING_FRAME_FAULT=KIND:RANK:FRAME (docs/scale.md, "Testing aids"): rank RANK, at frame FRAME, fails
@@ -100,24 +120,19 @@ std::vector<PairOutcome> MpiFrameExchange::exchange(uint64_t frame, const Slabs&
                                                     RankCounts& total) {
   const int n = world_.size(), me = world_.rank();
   testing_fault(me, frame);
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                          std::chrono::duration<double>(timeout_));
   std::ostringstream why;
   if (me != 0) {
+    const Watchdog dog(timeout_, [&] {
+      std::ostringstream w;
+      w << "rank " << me << " of " << n << " (" << slab_text(slabs, me) << "): no merged outcomes of frame " << frame
+        << " from rank 0 within " << timeout_ << " s (--mpi-timeout)";
+      return w.str();
+    });
     const std::string out = encode_outcomes(frame, own, mine);
-    if (!send(0, kTagOutcomes, out, deadline)) {
-      why << "rank " << me << " (" << slab_text(slabs, me) << "): rank 0 took no outcomes for frame " << frame
-          << " within " << timeout_ << " s";
-      throw std::runtime_error(why.str());
-    }
+    send(0, kTagOutcomes, out);
     sent_ += out.size();
     int from = 0;
-    std::string bytes;
-    if (!receive(0, kTagMerged, deadline, from, bytes)) {
-      why << "rank " << me << " (" << slab_text(slabs, me) << "): rank 0 sent no merged outcomes for frame " << frame
-          << " within " << timeout_ << " s";
-      throw std::runtime_error(why.str());
-    }
+    const std::string bytes = receive(0, kTagMerged, from);
     received_ += bytes.size();
     uint64_t f = 0;
     std::vector<PairOutcome> all;
@@ -129,40 +144,47 @@ std::vector<PairOutcome> MpiFrameExchange::exchange(uint64_t frame, const Slabs&
     return all;
   }
   std::vector<std::vector<PairOutcome>> per_rank(static_cast<size_t>(n));
-  std::vector<bool> got(size_t(n), false);
+  std::unique_ptr<std::atomic<bool>[]> got(new std::atomic<bool>[size_t(n)]);
+  for (int r = 0; r < n; ++r) got[size_t(r)] = r == 0;
   per_rank[0] = mine;
-  got[0] = true;
   total = own;
-  for (int k = 1; k < n; ++k) {
-    int from = 0;
-    std::string bytes;
-    if (!receive(MPI_ANY_SOURCE, kTagOutcomes, deadline, from, bytes)) {
-      why << "rank 0: no outcomes for frame " << frame << " within " << timeout_ << " s from";
+  {
+    const Watchdog dog(timeout_, [&] {
+      std::ostringstream w;
+      w << "rank 0 of " << n << ": no outcomes of frame " << frame << " within " << timeout_
+        << " s (--mpi-timeout) from";
       for (int r = 1; r < n; ++r)
-        if (!got[size_t(r)]) why << " rank " << r << " (" << slab_text(slabs, r) << ")";
-      throw std::runtime_error(why.str());
+        if (!got[size_t(r)]) w << " rank " << r << " (" << slab_text(slabs, r) << ")";
+      return w.str();
+    });
+    for (int k = 1; k < n; ++k) {
+      int from = 0;
+      const std::string bytes = receive(MPI_ANY_SOURCE, kTagOutcomes, from);
+      received_ += bytes.size();
+      uint64_t f = 0;
+      RankCounts c;
+      decode_outcomes(bytes, f, c, per_rank[size_t(from)]);
+      if (f != frame || got[size_t(from)]) {
+        why << "rank 0: rank " << from << " (" << slab_text(slabs, from) << ") sent frame " << f << " at frame "
+            << frame;
+        throw std::runtime_error(why.str());
+      }
+      got[size_t(from)] = true;
+      total.pairs += c.pairs;
+      total.tested += c.tested;
+      total.cycles = std::max(total.cycles, c.cycles);
     }
-    received_ += bytes.size();
-    uint64_t f = 0;
-    RankCounts c;
-    decode_outcomes(bytes, f, c, per_rank[size_t(from)]);
-    if (f != frame || got[size_t(from)]) {
-      why << "rank 0: rank " << from << " (" << slab_text(slabs, from) << ") sent frame " << f << " at frame " << frame;
-      throw std::runtime_error(why.str());
-    }
-    got[size_t(from)] = true;
-    total.pairs += c.pairs;
-    total.tested += c.tested;
-    total.cycles = std::max(total.cycles, c.cycles);
   }
   std::vector<PairOutcome> all = merge_outcomes(per_rank);
   const std::string out = encode_outcomes(frame, total, all);
+  const Watchdog dog(timeout_, [&] {
+    std::ostringstream w;
+    w << "rank 0 of " << n << ": the ranks did not take the merged outcomes of frame " << frame << " within "
+      << timeout_ << " s (--mpi-timeout)";
+    return w.str();
+  });
   for (int r = 1; r < n; ++r) {
-    if (!send(r, kTagMerged, out, deadline)) {
-      why << "rank 0: rank " << r << " (" << slab_text(slabs, r) << ") took no merged outcomes for frame " << frame
-          << " within " << timeout_ << " s";
-      throw std::runtime_error(why.str());
-    }
+    send(r, kTagMerged, out);
     sent_ += out.size();
   }
   return all;
