@@ -90,6 +90,20 @@ def test_size_equals_the_tool(cli_json, scenes):
     assert voxcd.size(str(scenes / "small.json"), accuracy=0.05, rate=500, frames=20) == want
 
 
+def test_size_chooses_voxmaps_for_a_contact_accuracy(cli_json, scenes):
+    want = cli_json("size", scenes / "mixed.json", "--contact-accuracy", "0.3", "--frames", "5")
+    got = voxcd.size(scenes / "mixed.json", contact_accuracy=0.3, frames=5)
+    assert got == want
+    assert got["contact"]["requested"] == 0.3 and got["contact"]["bound"] <= 0.3
+    assert got["config"]["SB"] == got["contact"]["voxmap"]["SB"] > 2
+    plain = voxcd.size(scenes / "mixed.json", frames=5)
+    assert plain["config"]["SB"] == 2 and plain["contact"]["requested"] is None
+    with pytest.raises(ValueError, match=r"mixed\.json: cannot be met: contact: type star \(not convex\)"):
+        voxcd.size(scenes / "mixed.json", contact_accuracy=0.1, frames=5)
+    with pytest.raises(ValueError, match=r"contact_accuracy: "):
+        voxcd.size(scenes / "mixed.json", contact_accuracy=-1)
+
+
 def test_size_that_cannot_be_met(cli, scenes):
     out = cli("size", scenes / "mixed.json", "--accuracy", "1e-12", expect=3)
     assert out == ""
