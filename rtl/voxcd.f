@@ -1,7 +1,9 @@
-// The device's RTL, in compilation order (the package first), one file per line relative to this list. Every tool
+// The device's RTL, in compilation order (the package first), one file per line relative to this list; last, the
+// AXI top voxcd_axi (docs/hardware.md), which tools that build voxcd_device leave out by naming their top. Every tool
 // reads this list: CMake (rtl/CMakeLists.txt), the yosys scripts (bench/rtl_cost.sh, bench/results.sh),
 // `voxcd size --cost`, and Verilator as `-F voxcd.f`. Lines starting with // are comments.
 voxcd_pkg.sv
 voxcd_ram.sv
 voxcd_lane.sv
 voxcd_device.sv
+voxcd_axi.sv

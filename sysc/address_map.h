@@ -42,6 +42,8 @@ enum Reg : uint64_t {
   kRegStalls = 0x60,
   kRegShellWords = 0x68,   // RO: shell words loaded (one past the highest written)
   kRegMapWords = 0x70,     // RO: voxmap words loaded
+  kRegDropped = 0x78,      // RO: malformed job descriptors dropped (the AXI top, rtl/voxcd_axi.sv; the SystemC
+                           // targets refuse them with an error response instead, and read 0 here)
 };
 constexpr uint64_t kDeviceId = 0x766f'7863'6400'0001;  // "voxcd", version 1
 // STATUS bits.

@@ -1,5 +1,6 @@
 #include "voxcd/sysc/platform.h"
 
+#include "voxcd/sysc/axi_target.h"
 #include "voxcd/sysc/rtl_target.h"
 #include "voxcd/sysc/tlm_target.h"
 
@@ -7,11 +8,14 @@ namespace voxcd::sysc {
 
 using namespace sc_core;
 
-const char* target_name(TargetKind k) { return k == TargetKind::Rtl ? "rtl" : "tlm"; }
+const char* target_name(TargetKind k) {
+  return k == TargetKind::Rtl ? "rtl" : (k == TargetKind::RtlAxi ? "rtl-axi" : "tlm");
+}
 
 std::optional<TargetKind> parse_target(const std::string& s) {
   if (s == "rtl") return TargetKind::Rtl;
   if (s == "tlm") return TargetKind::Tlm;
+  if (s == "rtl-axi") return TargetKind::RtlAxi;
   return std::nullopt;
 }
 
@@ -19,6 +23,8 @@ Platform::Platform(sc_module_name name, const PlatformOptions& opt)
     : sc_module(name), cpu("cpu", opt.quantum, opt.burst), opt_(opt) {
   if (opt.target == TargetKind::Rtl)
     target_ = std::make_unique<RtlTarget>("device", opt.config, opt.clock_period, opt.access_latency, opt.trace_path);
+  else if (opt.target == TargetKind::RtlAxi)
+    target_ = std::make_unique<AxiRtlTarget>("device", opt.config, opt.clock_period, opt.access_latency);
   else
     target_ = std::make_unique<TlmTarget>("device", opt.config, opt.clock_period, opt.access_latency);
   cpu.socket.bind(target_->socket);

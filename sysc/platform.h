@@ -1,6 +1,6 @@
-// Platform: an example virtual platform: a host processor (HostCpu) bound to the device, the device being either
-// the Verilated RTL (RtlTarget) or the loosely-timed model (TlmTarget), chosen by one option. Nothing else in the
-// platform knows which.
+// Platform: an example virtual platform: a host processor (HostCpu) bound to the device, the device being the
+// Verilated RTL (RtlTarget), the Verilated AXI top (AxiRtlTarget) or the loosely-timed model (TlmTarget), chosen
+// by one option. Nothing else in the platform knows which.
 #pragma once
 
 #include <memory>
@@ -12,9 +12,9 @@
 
 namespace voxcd::sysc {
 
-enum class TargetKind { Rtl, Tlm };
-const char* target_name(TargetKind k);                          // "rtl", "tlm"
-std::optional<TargetKind> parse_target(const std::string& s);  // "rtl", "tlm"
+enum class TargetKind { Rtl, Tlm, RtlAxi };
+const char* target_name(TargetKind k);                          // "rtl", "tlm", "rtl-axi"
+std::optional<TargetKind> parse_target(const std::string& s);  // "rtl", "tlm", "rtl-axi"
 
 struct PlatformOptions {
   TargetKind target = TargetKind::Tlm;

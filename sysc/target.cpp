@@ -107,7 +107,7 @@ tlm_response_status DeviceTarget::access(tlm::tlm_generic_payload& tr, sc_time t
     if (len != 8 || off % 8) return fail(TLM_BURST_ERROR_RESPONSE, "registers take aligned 8-byte accesses");
     if (!wr) return reg_read(off, data, t);
     if (off != kRegRun) {
-      if (off <= kRegMapWords) return fail(TLM_COMMAND_ERROR_RESPONSE, "register is read-only");
+      if (off <= kRegDropped) return fail(TLM_COMMAND_ERROR_RESPONSE, "register is read-only");
       return fail(TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
     }
     if (staged_count_) {
@@ -207,6 +207,7 @@ tlm_response_status DeviceTarget::reg_read(uint64_t off, uint8_t* data, sc_time 
     case kRegStalls: v = stalls_; break;
     case kRegShellWords: v = shell_words_; break;
     case kRegMapWords: v = map_words_; break;
+    case kRegDropped: v = 0; break;
     default: return fail(tlm::TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
   }
   put_le(data, v, 8);

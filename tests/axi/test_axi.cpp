@@ -1,0 +1,680 @@
+// The AXI top (rtl/voxcd_axi.sv), Verilated, driven through its AXI4-Lite slave and its two AXI4-Stream ports
+// with random TVALID / TREADY and AXI4-Lite handshakes. Descriptors are packed and records unpacked with the
+// SystemC address map's own encode_job / decode_record (sysc/address_map.h). Checks: the records equal ref/'s
+// (vector files and generated vectors), the cycles equal ref/timing.h's (plus the counted stalls), the latency the
+// top adds is exactly the documented one, the responses are OKAY / SLVERR / DECERR as documented, and every
+// output payload is stable while valid and not taken, with no dropped or repeated beat. Every test prints its
+// seed; VOXCD_SEED replays.
+#include <gtest/gtest.h>
+#include <verilated.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
+#include "voxcd/ref/vector_gen.h"
+#include "voxcd/ref/vectors.h"
+#include "voxcd/sysc/address_map.h"
+#include "voxcd_axi_models.h"
+
+namespace voxcd {
+namespace {
+
+using namespace voxcd::sysc;
+
+constexpr uint8_t kOkay = 0, kSlverr = 2, kDecerr = 3;
+
+uint64_t test_seed() {
+  const char* s = std::getenv("VOXCD_SEED");
+  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 20261125;
+  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
+  return seed;
+}
+
+// ---- The model's pins, whatever their Verilated types ----
+struct In {
+  bool awvalid = false, wvalid = false, bready = false, arvalid = false, rready = false;
+  uint32_t awaddr = 0, araddr = 0;
+  uint64_t wdata = 0;
+  uint32_t wstrb = 0;
+  bool jvalid = false, jlast = false;
+  const uint8_t* jdata = nullptr;  // JobDw / 8 bytes
+  bool rec_ready = false;
+};
+struct Out {
+  bool awready = false, wready = false, bvalid = false, arready = false, rvalid = false;
+  uint32_t bresp = 0, rresp = 0;
+  uint64_t rdata = 0;
+  bool jready = false, rec_valid = false, rec_last = false;
+  uint8_t rec_data[32] = {};
+};
+
+template <class T>
+void put_bytes(T& port, const uint8_t* p, int n) {
+  uint64_t v = 0;
+  for (int i = 0; i < n; ++i) v |= uint64_t(p[i]) << (8 * i);
+  port = T(v);
+}
+template <std::size_t N>
+void put_bytes(VlWide<N>& port, const uint8_t* p, int n) {
+  for (std::size_t w = 0; w < N; ++w) {
+    uint32_t v = 0;
+    for (int b = 0; b < 4 && int(4 * w) + b < n; ++b) v |= uint32_t(p[4 * w + b]) << (8 * b);
+    port[w] = v;
+  }
+}
+template <class T>
+void get_bytes(const T& port, uint8_t* p, int n) {
+  for (int i = 0; i < n; ++i) p[i] = uint8_t(uint64_t(port) >> (8 * i));
+}
+template <std::size_t N>
+void get_bytes(const VlWide<N>& port, uint8_t* p, int n) {
+  for (int i = 0; i < n; ++i) p[i] = uint8_t(port[i / 4] >> (8 * (i % 4)));
+}
+
+struct Ports {
+  virtual ~Ports() = default;
+  virtual void reset(bool rst_n) = 0;
+  virtual void set(const In& in, int job_bytes) = 0;
+  virtual void eval(bool clk) = 0;
+  virtual void get(Out& o, int rec_bytes) = 0;
+  virtual void final() = 0;
+};
+
+template <class M>
+struct PortsOf final : Ports {
+  explicit PortsOf(VerilatedContext* ctx) : m(std::make_unique<M>(ctx, "axi")) {}
+  void reset(bool rst_n) override { m->rst_ni = rst_n; }
+  void set(const In& in, int job_bytes) override {
+    m->s_axil_awvalid_i = in.awvalid;
+    m->s_axil_awaddr_i = in.awaddr;
+    m->s_axil_awprot_i = 0;
+    m->s_axil_wvalid_i = in.wvalid;
+    m->s_axil_wdata_i = std::remove_reference_t<decltype(m->s_axil_wdata_i)>(in.wdata);
+    m->s_axil_wstrb_i = std::remove_reference_t<decltype(m->s_axil_wstrb_i)>(in.wstrb);
+    m->s_axil_bready_i = in.bready;
+    m->s_axil_arvalid_i = in.arvalid;
+    m->s_axil_araddr_i = in.araddr;
+    m->s_axil_arprot_i = 0;
+    m->s_axil_rready_i = in.rready;
+    m->s_axis_job_tvalid_i = in.jvalid;
+    m->s_axis_job_tlast_i = in.jlast;
+    if (in.jdata) put_bytes(m->s_axis_job_tdata_i, in.jdata, job_bytes);
+    m->m_axis_rec_tready_i = in.rec_ready;
+  }
+  void eval(bool clk) override {
+    m->clk_i = clk;
+    m->eval();
+  }
+  void get(Out& o, int rec_bytes) override {
+    o.awready = m->s_axil_awready_o;
+    o.wready = m->s_axil_wready_o;
+    o.bvalid = m->s_axil_bvalid_o;
+    o.bresp = m->s_axil_bresp_o;
+    o.arready = m->s_axil_arready_o;
+    o.rvalid = m->s_axil_rvalid_o;
+    o.rresp = m->s_axil_rresp_o;
+    o.rdata = uint64_t(m->s_axil_rdata_o);
+    o.jready = m->s_axis_job_tready_o;
+    o.rec_valid = m->m_axis_rec_tvalid_o;
+    o.rec_last = m->m_axis_rec_tlast_o;
+    get_bytes(m->m_axis_rec_tdata_o, o.rec_data, rec_bytes);
+  }
+  void final() override { m->final(); }
+  std::unique_ptr<M> m;
+};
+
+struct ModelEntry {
+  std::string name, params;
+  std::function<std::unique_ptr<Ports>(VerilatedContext*)> make;
+};
+std::vector<ModelEntry> models() {
+  std::vector<ModelEntry> v;
+#define VOXCD_AXI_ENTRY(model, pairs) \
+  v.push_back({#model, pairs, [](VerilatedContext* c) { return std::unique_ptr<Ports>(new PortsOf<model>(c)); }});
+  VOXCD_AXI_MODELS(VOXCD_AXI_ENTRY)
+#undef VOXCD_AXI_ENTRY
+  return v;
+}
+
+// ---- The harness: a cycle loop with an AXI4-Lite master, a job stream master and a record stream slave ----
+class Axi {
+ public:
+  // The parameters of a model: the device's config, and AxilDw, JobDw, RecDw.
+  Axi(const ModelEntry& e, uint64_t seed) : rng_(seed), ctx_(std::make_unique<VerilatedContext>()) {
+    std::istringstream is(e.params);
+    std::string name, rest;
+    int value = 0;
+    while (is >> name >> value) {
+      if (name == "AxilDw") axil_dw = value;
+      else if (name == "JobDw") job_dw = value;
+      else if (name == "RecDw") rec_dw = value;
+      else rest += name + " " + std::to_string(value) + " ";
+    }
+    cfg = parse_config_pairs(rest, e.name);
+    job_beats = int(8 * kJobBytes) / job_dw;
+    rec_beats = int(8 * kRecordBytes) / rec_dw;
+    ctx_->fatalOnError(false);  // an RTL assertion is a test failure with its message, not an abort
+    ports_ = e.make(ctx_.get());
+    ports_->reset(false);
+    apply();
+    ports_->eval(false);
+    ports_->eval(true);
+    ports_->eval(false);
+    ports_->reset(true);
+  }
+  ~Axi() {
+    Verilated::threadContextp(ctx_.get());
+    ports_->final();
+  }
+
+  DeviceConfig cfg;
+  int axil_dw = 32, job_dw = 64, rec_dw = 64, job_beats = 1, rec_beats = 1;
+  // Probabilities per cycle: the job stream's TVALID, the record stream's TREADY, and the AXI4-Lite master's
+  // VALIDs and READYs.
+  double p_job_valid = 1, p_rec_ready = 1, p_lite = 1;
+
+  std::vector<std::string> errors;  // protocol violations seen, with their cycle
+  uint64_t cycle = 0;               // rising edges so far; events are numbered by the cycle they happen in
+
+  // Received records, with the cycle of their last beat.
+  std::vector<Record> records;
+  std::vector<uint64_t> record_cycle;
+  // The cycle of each queued descriptor's first beat (in queue order).
+  std::vector<uint64_t> job_first_cycle;
+
+  // Queues a descriptor (its bytes as they go on the stream; `beats` beats, TLAST on the last one).
+  void queue_bytes(const std::vector<uint8_t>& bytes, int beats, bool tlast_on_last = true) {
+    const int bb = job_dw / 8;
+    for (int b = 0; b < beats; ++b) {
+      Beat beat;
+      beat.data.assign(bytes.begin() + std::min<size_t>(bytes.size(), size_t(b) * bb),
+                       bytes.begin() + std::min<size_t>(bytes.size(), size_t(b + 1) * bb));
+      beat.data.resize(bb, 0);
+      beat.last = tlast_on_last && b == beats - 1;
+      beat.first = b == 0;
+      beats_.push_back(std::move(beat));
+    }
+  }
+  void queue_job(const Job& j) {
+    std::vector<uint8_t> bytes(kJobBytes);
+    encode_job(j, bytes.data());
+    queue_bytes(bytes, job_beats);
+  }
+  bool jobs_pending() const { return !beats_.empty(); }
+
+  // One clock cycle of every agent.
+  void tick() {
+    // The stream agents' choices for this cycle (a VALID stays up until its beat is taken).
+    if (!in_.jvalid && !beats_.empty() && chance(p_job_valid)) in_.jvalid = true;
+    in_.jlast = in_.jvalid && beats_.front().last;
+    in_.jdata = in_.jvalid ? beats_.front().data.data() : nullptr;
+    in_.rec_ready = chance(p_rec_ready);
+    lite_drive();
+    apply();
+    ports_->eval(false);
+    Out o;
+    ports_->get(o, rec_dw / 8);
+    check_stable(o);
+    if (in_.jvalid && o.jready) {
+      if (beats_.front().first) job_first_cycle.push_back(cycle);
+      beats_.pop_front();
+      in_.jvalid = false;
+    }
+    if (o.rec_valid && in_.rec_ready) take_beat(o);
+    lite_observe(o);
+    ports_->eval(true);
+    ++cycle;
+    if (ctx_->gotError()) {
+      errors.push_back("cycle " + std::to_string(cycle) + ": an RTL assertion failed (see its message above)");
+      ctx_->gotError(false);
+    }
+  }
+  void ticks(int n) {
+    for (int i = 0; i < n; ++i) tick();
+  }
+
+  // AXI4-Lite transactions, one at a time (the streams keep running meanwhile). Returns the response.
+  uint32_t write(uint32_t addr, uint64_t data, uint32_t strb = ~0u) {
+    lite_ = Lite{};
+    lite_.write = true;
+    lite_.addr = addr;
+    lite_.data = data;
+    lite_.strb = strb & ((1u << (axil_dw / 8)) - 1);
+    return lite_run();
+  }
+  uint32_t read(uint32_t addr, uint64_t& data) {
+    lite_ = Lite{};
+    lite_.write = false;
+    lite_.addr = addr;
+    const uint32_t r = lite_run();
+    data = lite_.data;
+    return r;
+  }
+  // A 64-bit register or memory word: one access with AxilDw = 64, two (low half first) with 32. The first
+  // response that is not OKAY, else OKAY.
+  uint32_t write64(uint32_t addr, uint64_t v) {
+    if (axil_dw == 64) return write(addr, v);
+    const uint32_t a = write(addr, v & 0xffffffffu), b = write(addr + 4, v >> 32);
+    return a != kOkay ? a : b;
+  }
+  uint32_t read64(uint32_t addr, uint64_t& v) {
+    if (axil_dw == 64) return read(addr, v);
+    uint64_t lo = 0, hi = 0;
+    const uint32_t a = read(addr, lo), b = read(addr + 4, hi);
+    v = (lo & 0xffffffffu) | hi << 32;
+    return a != kOkay ? a : b;
+  }
+  uint64_t reg(uint64_t off) {
+    uint64_t v = 0;
+    const uint32_t r = read64(uint32_t(kRegBase + off), v);
+    EXPECT_EQ(r, kOkay) << "register " << off;
+    return v;
+  }
+  // Shell word k: {x, y, z, 0} as 32-bit values; z commits it.
+  uint32_t write_shell(uint64_t k, const ShellWord& w) {
+    const uint32_t a = uint32_t(kShellBase + kShellStride * k);
+    const uint64_t x = uint32_t(w[0]), y = uint32_t(w[1]), z = uint32_t(w[2]);
+    uint32_t r[3];
+    if (axil_dw == 64) {
+      r[0] = write(a, x | y << 32);
+      r[1] = kOkay;
+      r[2] = write(a + 8, z);
+    } else {
+      r[0] = write(a, x);
+      r[1] = write(a + 4, y);
+      r[2] = write(a + 8, z);
+    }
+    for (uint32_t v : r)
+      if (v != kOkay) return v;
+    return kOkay;
+  }
+  void load(const DeviceMemory& mem) {
+    for (size_t k = 0; k < mem.shell.size(); ++k) ASSERT_EQ(write_shell(k, mem.shell[k]), kOkay) << "shell " << k;
+    for (size_t k = 0; k < mem.map.size(); ++k)
+      ASSERT_EQ(write64(uint32_t(kMapBase + kMapStride * k), mem.map[k]), kOkay) << "voxmap " << k;
+  }
+  // Runs until `n` records have arrived (or the limit passes).
+  void run_until_records(size_t n, uint64_t limit = 2'000'000) {
+    const uint64_t end = cycle + limit;
+    while (records.size() < n && cycle < end) tick();
+    EXPECT_EQ(records.size(), n) << "records missing after " << limit << " cycles";
+  }
+
+ private:
+  struct Beat {
+    std::vector<uint8_t> data;
+    bool last = false, first = false;
+  };
+  struct Lite {
+    bool write = false;
+    uint32_t addr = 0, strb = 0;
+    uint64_t data = 0;
+    bool aw_done = false, w_done = false, ar_done = false, done = false;
+    uint32_t resp = 0;
+  };
+
+  bool chance(double p) { return p >= 1 || std::uniform_real_distribution<double>(0, 1)(rng_) < p; }
+  void apply() { ports_->set(in_, job_dw / 8); }
+
+  void lite_drive() {
+    if (lite_.write) {
+      if (!in_.awvalid && !lite_.aw_done && chance(p_lite)) in_.awvalid = true;
+      if (!in_.wvalid && !lite_.w_done && chance(p_lite)) in_.wvalid = true;
+      in_.awaddr = in_.awvalid ? lite_.addr : 0;
+      in_.wdata = in_.wvalid ? lite_.data : 0;
+      in_.wstrb = in_.wvalid ? lite_.strb : 0;
+      in_.bready = chance(p_lite);
+    } else {
+      if (!in_.arvalid && !lite_.ar_done && !lite_.done && active_ && chance(p_lite)) in_.arvalid = true;
+      in_.araddr = in_.arvalid ? lite_.addr : 0;
+      in_.rready = chance(p_lite);
+    }
+    if (!active_) in_.awvalid = in_.wvalid = in_.arvalid = false;
+  }
+  void lite_observe(const Out& o) {
+    if (!active_) {
+      if (o.bvalid || o.rvalid) errors.push_back("cycle " + std::to_string(cycle) + ": a response nobody asked for");
+      return;
+    }
+    if (lite_.write) {
+      if (o.bvalid && in_.bready) {
+        if (!lite_.aw_done || !lite_.w_done)
+          errors.push_back("cycle " + std::to_string(cycle) + ": B before both AW and W were taken");
+        lite_.resp = o.bresp;
+        lite_.done = true;
+      }
+      if (in_.awvalid && o.awready) {
+        lite_.aw_done = true;
+        in_.awvalid = false;
+      }
+      if (in_.wvalid && o.wready) {
+        lite_.w_done = true;
+        in_.wvalid = false;
+      }
+    } else {
+      if (o.rvalid && in_.rready) {
+        if (!lite_.ar_done) errors.push_back("cycle " + std::to_string(cycle) + ": R before AR was taken");
+        lite_.resp = o.rresp;
+        lite_.data = o.rdata;
+        lite_.done = true;
+      }
+      if (in_.arvalid && o.arready) {
+        lite_.ar_done = true;
+        in_.arvalid = false;
+      }
+    }
+  }
+  uint32_t lite_run() {
+    active_ = true;
+    for (int i = 0; i < 100000 && !lite_.done; ++i) tick();
+    active_ = false;
+    in_.awvalid = in_.wvalid = in_.arvalid = in_.bready = in_.rready = false;
+    EXPECT_TRUE(lite_.done) << "AXI4-Lite access to " << std::hex << lite_.addr << " never completed";
+    return lite_.resp;
+  }
+
+  // A payload offered and not taken must be offered again, unchanged, in the next cycle.
+  void check_stable(const Out& o) {
+    const std::string at = "cycle " + std::to_string(cycle) + ": ";
+    if (prev_b_stalled_ && !(o.bvalid && o.bresp == prev_.bresp)) errors.push_back(at + "B changed while stalled");
+    if (prev_r_stalled_ && !(o.rvalid && o.rresp == prev_.rresp && o.rdata == prev_.rdata))
+      errors.push_back(at + "R changed while stalled");
+    if (prev_rec_stalled_ && !(o.rec_valid && o.rec_last == prev_.rec_last &&
+                               std::memcmp(o.rec_data, prev_.rec_data, size_t(rec_dw / 8)) == 0))
+      errors.push_back(at + "record beat changed while stalled");
+    prev_b_stalled_ = o.bvalid && !in_.bready;
+    prev_r_stalled_ = o.rvalid && !in_.rready;
+    prev_rec_stalled_ = o.rec_valid && !in_.rec_ready;
+    prev_ = o;
+  }
+  // A record is rec_beats beats, TLAST on the last and only there.
+  void take_beat(const Out& o) {
+    const int bb = rec_dw / 8;
+    std::memcpy(rec_buf_ + rec_beat_ * bb, o.rec_data, size_t(bb));
+    ++rec_beat_;
+    if (o.rec_last != (rec_beat_ == rec_beats))
+      errors.push_back("cycle " + std::to_string(cycle) + ": TLAST " + (o.rec_last ? "on" : "missing on") +
+                       " record beat " + std::to_string(rec_beat_ - 1));
+    if (rec_beat_ < rec_beats) return;
+    rec_beat_ = 0;
+    Record r;
+    if (!decode_record(rec_buf_, r)) errors.push_back("cycle " + std::to_string(cycle) + ": a record of kind 0");
+    records.push_back(r);
+    record_cycle.push_back(cycle);
+  }
+
+  std::mt19937_64 rng_;
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<Ports> ports_;
+  In in_;
+  Lite lite_;
+  bool active_ = false;
+  std::deque<Beat> beats_;
+  uint8_t rec_buf_[kRecordBytes] = {};
+  int rec_beat_ = 0;
+  Out prev_;
+  bool prev_b_stalled_ = false, prev_r_stalled_ = false, prev_rec_stalled_ = false;
+};
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (size_t i = 0; i < v.size() && i < 10; ++i) s += v[i] + "\n";
+  return s;
+}
+
+// Checks `got` against ref/'s stream for the jobs; with `cycles`, every completion's cycles equal the exact timing
+// model's plus its counted stalls.
+void expect_stream(const Axi& axi, const DeviceMemory& mem, const std::vector<Job>& jobs,
+                   const std::vector<Record>& got, bool cycles, uint64_t seed) {
+  std::vector<Record> want = run_stream(axi.cfg, mem, jobs);
+  if (cycles) annotate_cycles(axi.cfg, jobs, want);
+  ASSERT_EQ(got.size(), want.size()) << "seed " << seed;
+  for (size_t i = 0; i < want.size(); ++i) {
+    ASSERT_TRUE(got[i].same_as(want[i], false))
+        << "record " << i << ": got " << got[i].to_string(true) << ", want " << want[i].to_string(true) << ", seed "
+        << seed;
+    if (cycles && want[i].kind == Record::Done) {
+      ASSERT_EQ(*got[i].cycles, *want[i].cycles + *got[i].stalls)
+          << "record " << i << " (" << got[i].to_string() << "): cycles = timing model + stalls; seed " << seed;
+    }
+  }
+}
+
+class AxiTest : public ::testing::TestWithParam<size_t> {
+ protected:
+  void SetUp() override {
+    seed_ = test_seed();
+    axi_ = std::make_unique<Axi>(models()[GetParam()], seed_);
+  }
+  void TearDown() override { EXPECT_TRUE(axi_->errors.empty()) << join(axi_->errors) << "seed " << seed_; }
+  uint64_t seed_ = 0;
+  std::unique_ptr<Axi> axi_;
+};
+
+// 1. The identification and configuration registers read as the SystemC address map defines them.
+TEST_P(AxiTest, RegistersAfterReset) {
+  Axi& a = *axi_;
+  a.p_lite = 0.4;
+  EXPECT_EQ(a.reg(kRegId), kDeviceId);
+  EXPECT_EQ(a.reg(kRegConfig0), config_word0(a.cfg));
+  EXPECT_EQ(a.reg(kRegConfig1), config_word1(a.cfg));
+  EXPECT_EQ(a.reg(kRegClockPs), 10000u);
+  EXPECT_EQ(a.reg(kRegStatus), 0u);
+  for (uint64_t r : {kRegStaged, kRegResultCount, kRegJobsDone, kRegHits, kRegPoints, kRegCycles, kRegStalls,
+                     kRegShellWords, kRegMapWords, kRegDropped})
+    EXPECT_EQ(a.reg(r), 0u) << "register " << r;
+}
+
+// 2. Every documented error response, and that a refused write has no effect.
+TEST_P(AxiTest, ErrorResponses) {
+  Axi& a = *axi_;
+  a.p_lite = 0.5;
+  uint64_t v = 0;
+  EXPECT_EQ(a.read(uint32_t(kRegBase + kRegRun), v), kSlverr) << "RUN is write-only";
+  EXPECT_EQ(a.write(uint32_t(kRegBase + kRegId), 1), kSlverr) << "ID is read-only";
+  EXPECT_EQ(a.write(uint32_t(kRegBase + kRegDropped), 1), kSlverr) << "DROPPED is read-only";
+  EXPECT_EQ(a.read(uint32_t(kRegBase + 0x80), v), kDecerr) << "no register at 0x80";
+  EXPECT_EQ(a.write(uint32_t(kRegBase + 0xff8), 0), kDecerr) << "no register at 0xff8";
+  EXPECT_EQ(a.read(uint32_t(kRegBase + 1), v), kSlverr) << "unaligned";
+  EXPECT_EQ(a.read(uint32_t(kJobBase), v), kDecerr) << "the job window is the job stream here";
+  EXPECT_EQ(a.write(uint32_t(kJobBase), 0), kDecerr);
+  EXPECT_EQ(a.read(uint32_t(kResultBase), v), kDecerr) << "the result window is the record stream here";
+  EXPECT_EQ(a.read(uint32_t(kShellBase), v), kSlverr) << "the shell memory is write-only";
+  EXPECT_EQ(a.read(uint32_t(kMapBase + 8), v), kSlverr) << "the voxmap memory is write-only";
+  EXPECT_EQ(a.write(uint32_t(kShellBase + kShellStride * a.cfg.shell_depth()), 0), kDecerr) << "past the shell";
+  EXPECT_EQ(a.write(uint32_t(kMapBase + kMapStride * a.cfg.map_depth()), 0), kDecerr) << "past the voxmap";
+  // Memory words: z without x and y, a coordinate that does not fit PW, reserved bytes, a partial strobe.
+  EXPECT_EQ(a.write(uint32_t(kShellBase + 8), 1), kSlverr) << "z commits only after x and y";
+  const int64_t big = int64_t{1} << (a.cfg.PW - 1);
+  EXPECT_EQ(a.write_shell(0, {int32_t(big), 0, 0}), kSlverr) << "x = 2^(PW-1) does not fit";
+  EXPECT_EQ(a.write_shell(0, {0, 0, int32_t(-big - 1)}), kSlverr) << "z = -2^(PW-1) - 1 does not fit";
+  if (a.axil_dw == 64) EXPECT_EQ(a.write(uint32_t(kShellBase + 8), uint64_t{1} << 32), kSlverr) << "reserved";
+  else EXPECT_EQ(a.write(uint32_t(kShellBase + 12), 1), kSlverr) << "reserved bytes 12..15";
+  EXPECT_EQ(a.write(uint32_t(kMapBase), 5, 0x1), kSlverr) << "partial WSTRB";
+  EXPECT_EQ(a.reg(kRegShellWords), 0u) << "a refused shell write took effect";
+  EXPECT_EQ(a.reg(kRegMapWords), 0u) << "a refused voxmap write took effect";
+  // The same words written properly.
+  EXPECT_EQ(a.write_shell(3, {int32_t(big - 1), int32_t(-big), 7}), kOkay);
+  EXPECT_EQ(a.write64(uint32_t(kMapBase + kMapStride * 9), 0x0123456789abcdefull), kOkay);
+  EXPECT_EQ(a.reg(kRegShellWords), 4u);
+  EXPECT_EQ(a.reg(kRegMapWords), 10u);
+  EXPECT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
+}
+
+// 3. The job stream stays closed until RUN; memory writes are refused while a job runs and accepted after.
+TEST_P(AxiTest, RunOpensTheStreamAndBusyRefusesWrites) {
+  Axi& a = *axi_;
+  DeviceMemory mem;
+  for (int k = 0; k < 4096; ++k) mem.shell.push_back({0, 0, 0});
+  mem.map.push_back(0);
+  a.load(mem);
+  Job j;
+  j.tag = 7;
+  j.mode = Mode::Count;
+  j.shell_count = 4096;
+  a.queue_job(j);
+  a.ticks(200);
+  EXPECT_TRUE(a.job_first_cycle.empty()) << "a descriptor beat was taken before RUN";
+  EXPECT_EQ(a.write(uint32_t(kRegBase + kRegRun), 0), kOkay);
+  while (a.jobs_pending()) a.tick();
+  a.ticks(a.job_beats + 2);  // the device has the job
+  EXPECT_EQ(a.reg(kRegStatus) & kStatusBusy, kStatusBusy);
+  EXPECT_EQ(a.write64(uint32_t(kMapBase), 1), kSlverr) << "a memory write while a job runs";
+  a.run_until_records(1);
+  a.ticks(4);
+  EXPECT_EQ(a.reg(kRegStatus), 0u);
+  EXPECT_EQ(a.reg(kRegJobsDone), 1u);
+  EXPECT_EQ(a.reg(kRegPoints), 4096u);
+  EXPECT_EQ(a.write64(uint32_t(kMapBase), 1), kOkay);
+  ASSERT_EQ(a.records.size(), 1u);
+  EXPECT_EQ(a.records[0].tag, 7u);
+  EXPECT_EQ(a.records[0].hits, 0u) << "every point lands in voxel (0, 0, 0), which is empty";
+}
+
+// 4. Added latency: a job alone whose one record is its completion (COUNT), streams always valid and ready: the
+// completion's last beat comes exactly cycles + 1 + 1024/JobDw + 256/RecDw cycles after the job's first
+// descriptor beat (docs/hardware.md), and cycles is the timing model's.
+TEST_P(AxiTest, AddedLatencyIsExact) {
+  Axi& a = *axi_;
+  const GeneratedVectors g = generate_vectors({seed_, 40, 500, a.cfg});
+  a.load(g.memory);
+  ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
+  for (size_t i = 0; i < g.jobs.size(); ++i) {
+    Job j = g.jobs[i];
+    j.mode = Mode::Count;  // one record: a hit record before it would hold the completion for RecBeats cycles
+    const std::vector<Record> want = run_stream(a.cfg, g.memory, {j});
+    const std::vector<JobTiming> t = job_timing(a.cfg, {j}, want);
+    const size_t before = a.records.size();
+    a.queue_job(j);
+    a.run_until_records(before + want.size());
+    const Record& done = a.records.back();
+    ASSERT_EQ(done.kind, Record::Done);
+    EXPECT_EQ(*done.cycles, t[0].cycles) << "job " << i;
+    EXPECT_EQ(a.record_cycle.back() - a.job_first_cycle[i],
+              *done.cycles + 1 + uint64_t(a.job_beats) + uint64_t(a.rec_beats))
+        << "job " << i << " (" << job_line(j) << ")";
+    a.ticks(3);
+  }
+}
+
+// 5. Generated vectors under random TVALID / TREADY and AXI4-Lite handshakes: ref/'s exact stream; with one-beat
+// descriptors the jobs reach the device back to back, so the cycles are the timing model's plus the stalls.
+TEST_P(AxiTest, GeneratedVectorsUnderRandomHandshakes) {
+  for (double p : {1.0, 0.7, 0.3}) {
+    Axi b(models()[GetParam()], seed_ + uint64_t(p * 100));
+    b.p_lite = p;
+    const GeneratedVectors g = generate_vectors({seed_ + 17, 150, 1500, b.cfg});
+    b.load(g.memory);
+    ASSERT_EQ(b.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
+    b.p_job_valid = b.job_beats == 1 ? 1.0 : p;
+    b.p_rec_ready = p;
+    for (const Job& j : g.jobs) b.queue_job(j);
+    const std::vector<Record> want = run_stream(b.cfg, g.memory, g.jobs);
+    b.run_until_records(want.size());
+    expect_stream(b, g.memory, g.jobs, b.records, b.job_beats == 1, seed_);
+    // The counters add up the completion records.
+    uint64_t hits = 0, points = 0, cycles = 0, stalls = 0;
+    for (const Record& r : b.records)
+      if (r.kind == Record::Done) {
+        hits += r.hits;
+        points += *r.points;
+        cycles += *r.cycles;
+        stalls += *r.stalls;
+      }
+    b.ticks(4);
+    EXPECT_EQ(b.reg(kRegJobsDone), g.jobs.size());
+    EXPECT_EQ(b.reg(kRegHits), hits);
+    EXPECT_EQ(b.reg(kRegPoints), points);
+    EXPECT_EQ(b.reg(kRegCycles), cycles);
+    EXPECT_EQ(b.reg(kRegStalls), stalls);
+    EXPECT_EQ(b.reg(kRegShellWords), g.memory.shell.size());
+    EXPECT_EQ(b.reg(kRegMapWords), g.memory.map.size());
+    EXPECT_EQ(b.reg(kRegStatus), 0u);
+    if (p < 1) {
+      EXPECT_GT(stalls, 0u) << "record back-pressure at " << p << " never stalled the device";
+    }
+    EXPECT_TRUE(b.errors.empty()) << join(b.errors) << "seed " << seed_;
+  }
+}
+
+// 6. The vector files of tests/vectors whose widths this model has: their expected records.
+TEST_P(AxiTest, VectorFiles) {
+  int ran = 0;
+  for (const char* f : {"hand_basic.vec", "hand_format.vec"}) {
+    const VectorFile v = read_vectors(std::string(VOXCD_VECTORS_DIR) + "/" + f);
+    DeviceConfig c = v.config;
+    c.LANES = axi_->cfg.LANES;
+    if (!(c == axi_->cfg) || (v.has_lanes && v.config.LANES != axi_->cfg.LANES)) continue;
+    Axi a(models()[GetParam()], seed_);
+    a.p_lite = a.p_rec_ready = a.p_job_valid = 0.6;
+    a.load(v.memory);
+    ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
+    for (const Job& j : v.jobs) a.queue_job(j);
+    a.run_until_records(v.expected.size());
+    EXPECT_EQ(compare_streams(v, a.records, false), "") << f;
+    EXPECT_TRUE(a.errors.empty()) << join(a.errors);
+    ++ran;
+  }
+  EXPECT_GT(ran, 0) << "no vector file has this model's widths";
+}
+
+// 7. Malformed descriptors are dropped and counted; the jobs around them run as if they were not there.
+TEST_P(AxiTest, MalformedDescriptorsAreDropped) {
+  Axi& a = *axi_;
+  a.p_job_valid = a.p_rec_ready = 0.7;
+  const GeneratedVectors g = generate_vectors({seed_ + 5, 12, 300, a.cfg});
+  a.load(g.memory);
+  ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
+  std::vector<uint8_t> good(kJobBytes);
+  int dropped = 0;
+  for (size_t i = 0; i < g.jobs.size(); ++i) {
+    a.queue_job(g.jobs[i]);
+    std::vector<uint8_t> bad(kJobBytes);
+    encode_job(g.jobs[i], bad.data());
+    switch (i % 6) {
+      case 0: bad[0x04] = 3; break;                       // mode 3
+      case 1: bad[0x70] = 1; break;                       // a reserved byte
+      case 2: std::memset(&bad[0x14], 0, 4); break;       // nx = 0
+      case 3: put_le(&bad[0x00], 1u << a.cfg.TAGW, 4); break;  // a tag wider than TAGW
+      case 4: put_le(&bad[0x0c], g.memory.shell.size() + 1, 4); break;  // past the loaded shell words
+      case 5: break;                                      // framing, below
+    }
+    if (i % 6 != 5) {
+      a.queue_bytes(bad, a.job_beats);
+    } else if (a.job_beats > 1) {
+      a.queue_bytes(bad, a.job_beats - 1);  // TLAST one beat early
+    } else {
+      a.queue_bytes(bad, 1, false);         // no TLAST: the next beat belongs to it too
+      a.queue_bytes(bad, 1);
+    }
+    ++dropped;
+  }
+  a.queue_bytes(good, a.job_beats + 1);  // TLAST one beat late (all-zero bytes: also nx = 0)
+  ++dropped;
+  a.queue_job(g.jobs[0]);
+  std::vector<Job> jobs = g.jobs;
+  jobs.push_back(g.jobs[0]);
+  const std::vector<Record> want = run_stream(a.cfg, g.memory, jobs);
+  a.run_until_records(want.size());
+  expect_stream(a, g.memory, jobs, a.records, false, seed_);
+  EXPECT_EQ(a.reg(kRegDropped), uint64_t(dropped));
+  EXPECT_EQ(a.reg(kRegJobsDone), jobs.size());
+}
+
+std::string model_name(const ::testing::TestParamInfo<size_t>& i) { return models()[i.param].name; }
+INSTANTIATE_TEST_SUITE_P(Models, AxiTest, ::testing::Range(size_t{0}, models().size()), model_name);
+
+}  // namespace
+}  // namespace voxcd
