@@ -16,5 +16,6 @@ void add_pair(CLI::App& app);
 void add_simulate(CLI::App& app);
 void add_size(CLI::App& app);
 void add_regress(CLI::App& app);
+void add_sweep(CLI::App& app);
 
 }  // namespace voxcd::cli

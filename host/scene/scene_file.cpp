@@ -266,25 +266,37 @@ SceneFile read_scene_file(const std::string& path) {
   return parse_scene_file(s.str(), path);
 }
 
-Scene make_scene(const SceneFile& f) {
+namespace {
+
+// A type's mesh as the scene uses it, and what its scale came from.
+struct LoadedType {
+  Mesh mesh;  // centred on its box's centre; scaled by s once load_types returns
+  std::string source;
+  uint64_t hash = 0;
+  double extent = 0, volume = 0, s = 0;  // extent and volume before scaling
+};
+struct LoadedTypes {
+  std::vector<LoadedType> types;
+  double fixed_volume = 0;  // of the types with a size or scale
+  uint64_t auto_count = 0;  // instances of the types without
+};
+
+// The scene file's meshes, centred and scaled as make_scene places them in their types' frames; SceneFileError
+// naming the key for a missing or unreadable mesh or a fill that does not fit the cube.
+LoadedTypes load_types(const SceneFile& f) {
   auto fail = [&](const std::string& path, const std::string& what) -> SceneFileError {
     return SceneFileError(f.where + ": " + path + ": " + what);
   };
   if (f.types.empty()) throw fail("types", "is empty: a scene needs at least one object type");
   const double cube = f.side * f.side * f.side;
-  // Meshes, centred on their boxes' centres; the explicitly sized types' volumes.
-  struct Loaded {
-    Mesh mesh;
-    std::string source;
-    uint64_t hash = 0;
-    double extent = 0, volume = 0, s = 0;
-  };
-  std::vector<Loaded> loaded(f.types.size());
-  double fixed_volume = 0;
-  uint64_t auto_count = 0;
+  LoadedTypes lt;
+  std::vector<LoadedType>& loaded = lt.types;
+  loaded.resize(f.types.size());
+  double& fixed_volume = lt.fixed_volume;
+  uint64_t& auto_count = lt.auto_count;
   for (size_t i = 0; i < f.types.size(); ++i) {
     const SceneTypeSpec& t = f.types[i];
-    Loaded& l = loaded[i];
+    LoadedType& l = loaded[i];
     if (!t.mesh.empty()) {
       std::error_code ec;
       if (!std::filesystem::is_regular_file(t.mesh, ec))
@@ -324,13 +336,33 @@ Scene make_scene(const SceneFile& f) {
   } else if (fixed_volume > 0.3 * cube) {
     throw fail("types", "the objects fill " + num_text(fixed_volume / cube) + " of the cube, above 0.3");
   }
+  for (LoadedType& l : loaded)
+    for (auto& v : l.mesh.vertices) v *= l.s;
+  return lt;
+}
+
+}  // namespace
+
+std::vector<Mesh> scene_meshes(const SceneFile& f) {
+  std::vector<Mesh> meshes;
+  for (LoadedType& l : load_types(f).types) meshes.push_back(std::move(l.mesh));
+  return meshes;
+}
+
+Scene make_scene(const SceneFile& f) {
+  auto fail = [&](const std::string& path, const std::string& what) -> SceneFileError {
+    return SceneFileError(f.where + ": " + path + ": " + what);
+  };
+  LoadedTypes lt = load_types(f);
+  std::vector<LoadedType>& loaded = lt.types;
+  const double fixed_volume = lt.fixed_volume;
+  const uint64_t auto_count = lt.auto_count;
   // Each type's voxel: given, from its resolution, or the default (make_scene(SceneSpec)'s rule, evaluated alike so
   // that one auto-scaled type gets exactly the built-in scene's voxel).
   std::vector<double> voxel(f.types.size());
   for (size_t i = 0; i < f.types.size(); ++i) {
     const SceneTypeSpec& t = f.types[i];
-    Loaded& l = loaded[i];
-    for (auto& v : l.mesh.vertices) v *= l.s;
+    const LoadedType& l = loaded[i];
     const double extent = l.extent * l.s;
     const double one = t.auto_scaled() ? (f.density * f.side * f.side * f.side - fixed_volume) / double(auto_count)
                                        : l.volume * l.s * l.s * l.s;
@@ -364,7 +396,7 @@ Scene make_scene(const SceneFile& f) {
   scene.side = f.side;
   for (size_t i = 0; i < f.types.size(); ++i) {
     const SceneTypeSpec& t = f.types[i];
-    Loaded& l = loaded[i];
+    const LoadedType& l = loaded[i];
     ObjectOptions oo;
     oo.voxel = voxel[i];
     oo.shell_ratio = std::sqrt(2.0) * (voxel[i] / vmin);

@@ -81,4 +81,9 @@ SceneFile read_scene_file(const std::string& path);
 // cube or a voxel that makes an object too large or too small for a voxmap.
 Scene make_scene(const SceneFile& f);
 
+// Each type's mesh in its type's frame, as make_scene places it (centred on its box, scaled as asked): what a
+// contact is checked against exactly. make_scene's SceneFileError for a missing or unreadable mesh or a fill that
+// does not fit the cube.
+std::vector<Mesh> scene_meshes(const SceneFile& f);
+
 }  // namespace voxcd

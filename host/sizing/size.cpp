@@ -107,6 +107,26 @@ double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* 
   return err;
 }
 
+double contact_error_bound(const DeviceConfig& cfg, const SceneExtents& e, const VoxmapKind& k,
+                           const std::vector<bool>& convex, size_t* worst_type, ContactTerms* worst_terms) {
+  double worst = -1;
+  for (const auto& p : e.pairs) {
+    const ContactTerms t = contact_terms(k, convex.at(p.b));
+    const double v = p.voxel_b * t.total() + pair_error_bound(cfg, p);
+    if (v > worst) {
+      worst = v;
+      if (worst_type) *worst_type = p.b;
+      if (worst_terms) *worst_terms = t;
+    }
+  }
+  return std::max(0.0, worst);
+}
+
+uint64_t shell_memory_bits(const DeviceConfig& cfg) { return cfg.shell_depth() * uint64_t(3 * cfg.PW); }
+uint64_t map_memory_bits(const DeviceConfig& cfg) {
+  return cfg.map_depth() * uint64_t(cfg.MEMW) * uint64_t(cfg.LANES);
+}
+
 DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig cfg, int min_tf) {
   if (!(accuracy > 0) || !std::isfinite(accuracy))
     throw std::invalid_argument("accuracy must be a positive number of world units");
@@ -167,7 +187,7 @@ DeviceConfig derive_memory(DeviceConfig cfg, const Scene& scene) {
   return cfg;
 }
 
-LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg, uint64_t frames) {
+SimOptions sizing_sim_options(const SceneFile& f, const DeviceConfig& cfg) {
   SimOptions opt;
   opt.pruning = f.broadphase;
   opt.backend = "cpu";
@@ -177,7 +197,11 @@ LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceC
   opt.both_directions = f.both_directions;
   opt.distance_bits = f.distance_bits;
   opt.ccd = f.ccd;
-  Simulation sim(scene, opt);
+  return opt;
+}
+
+LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg, uint64_t frames) {
+  Simulation sim(scene, sizing_sim_options(f, cfg));
   LaneMeasure m;
   m.lanes = cfg.LANES;
   uint64_t total = 0, pairs = 0, tested = 0, lookups = 0, hits = 0;
@@ -282,8 +306,8 @@ DeviceConfig SizeReport::default_widths() const {
   d.WB = config.WB;
   return d;
 }
-uint64_t SizeReport::shell_bits() const { return config.shell_depth() * uint64_t(3 * config.PW); }
-uint64_t SizeReport::map_bits() const { return config.map_depth() * uint64_t(config.MEMW) * uint64_t(config.LANES); }
+uint64_t SizeReport::shell_bits() const { return shell_memory_bits(config); }
+uint64_t SizeReport::map_bits() const { return map_memory_bits(config); }
 
 namespace {
 
@@ -307,13 +331,7 @@ SceneFile choose_kind(SizeReport& r, const SceneFile& f, const Scene& scene) {
 // r.contact_error: the largest over ordered pairs (A's shell in B's voxmap) of voxel_B * the kind's terms over B
 // plus the pair's fixed-point bound.
 void bound_contacts(SizeReport& r) {
-  r.contact_error = -1;
-  for (const auto& p : r.extents.pairs) {
-    const ContactTerms t = contact_terms(r.kind, r.convex.at(p.b));
-    const double e = p.voxel_b * t.total() + pair_error_bound(r.config, p);
-    if (e > r.contact_error) r.contact_error = e, r.contact_type = p.b, r.contact_terms = t;
-  }
-  r.contact_error = std::max(0.0, r.contact_error);
+  r.contact_error = contact_error_bound(r.config, r.extents, r.kind, r.convex, &r.contact_type, &r.contact_terms);
 }
 
 }  // namespace

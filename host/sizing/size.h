@@ -49,6 +49,17 @@ SceneExtents scene_extents(const Scene& scene);
 // the index of the pair that gives it.
 double size_error_bound(const DeviceConfig& cfg, const SceneExtents& e, size_t* worst = nullptr);
 
+// How far outside the other object's surface a contact can lie on cfg with voxmaps of kind k, world units: the
+// largest over ordered pairs (A's shell in B's voxmap) of voxel_B * contact_terms(k, convex[B]).total() plus the
+// pair's fixed-point bound. `worst_type` gets the B that gives it, `worst_terms` its terms.
+double contact_error_bound(const DeviceConfig& cfg, const SceneExtents& e, const VoxmapKind& k,
+                           const std::vector<bool>& convex, size_t* worst_type = nullptr,
+                           ContactTerms* worst_terms = nullptr);
+
+// The memories' bits: the shell memory 2^SAW x 3 PW, and the voxmap memory 2^MAW x MEMW with one copy per lane.
+uint64_t shell_memory_bits(const DeviceConfig& cfg);
+uint64_t map_memory_bits(const DeviceConfig& cfg);
+
 // The smallest PW, PF, MW, MF, TW, DW for the extents and accuracy (world units), with at least min_tf translation
 // fraction bits (a distance device's WB <= TF); MEMW, TAGW, LANES, SAW, MAW, SB and WB as in `base`. SizeError
 // "accuracy" when even the widest formats (MW 32, TW 64) cannot meet it, "extent" when the scene's coordinates need
@@ -66,6 +77,9 @@ struct LaneMeasure {
   double mean_cycles = 0;
   double pairs = 0, tested = 0, lookups = 0, hits = 0;  // per frame
 };
+// The simulation options the sizing steps run a scene file's scene with: its broadphase, mode, directions, voxmaps
+// and ccd on the cpu backend with the whole configuration cfg.
+SimOptions sizing_sim_options(const SceneFile& f, const DeviceConfig& cfg);
 LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg, uint64_t frames);
 
 // yosys synth_xilinx (7-series) of voxcd_device with every parameter of cfg set by chparam, from the files of

@@ -7,7 +7,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
 run(106 out ${VOXCD})
 expect("${out}" "A subcommand is required")
 run(106 out ${VOXCD} frobnicate --x 1)
-expect("${out}" "voxcd: 'frobnicate' is not a subcommand \\(the subcommands: conform, selftest, voxelize, info, pair, simulate, size, regress\\)")
+expect("${out}" "voxcd: 'frobnicate' is not a subcommand \\(the subcommands: conform, selftest, voxelize, info, pair, simulate, size, regress, sweep\\)")
 run(109 out ${VOXCD} info --frob ${WORK}/x.vox)
 expect("${out}" "not expected: --frob")
 

@@ -1,0 +1,351 @@
+#include "voxcd/host/sizing/sweep.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/sizing/contact_bound.h"
+#include "voxcd/host/sizing/contact_measure.h"
+
+namespace voxcd {
+
+namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+bool power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
+
+using json = nlohmann::ordered_json;
+
+}  // namespace
+
+std::string SweepPoint::text() const {
+  return "lanes " + std::to_string(lanes) + ", voxel x" + num(voxel_scale) + ", distance bits " +
+         std::to_string(distance_bits) + ", accuracy " + num(accuracy);
+}
+
+SweepPoint point_at(const SweepSpec& s, uint64_t index) {
+  if (index >= s.points())
+    throw std::out_of_range("point " + std::to_string(index) + " of a sweep of " + std::to_string(s.points()));
+  SweepPoint p;
+  p.index = index;
+  uint64_t i = index;
+  p.accuracy = s.accuracies[i % s.accuracies.size()];
+  i /= s.accuracies.size();
+  p.distance_bits = s.distance_bits[i % s.distance_bits.size()];
+  i /= s.distance_bits.size();
+  p.voxel_scale = s.voxel_scales[i % s.voxel_scales.size()];
+  i /= s.voxel_scales.size();
+  p.lanes = s.lanes[i];
+  return p;
+}
+
+std::vector<double> parse_number_list(const std::string& text, const std::string& what) {
+  std::vector<double> v;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    size_t used = 0;
+    double x = 0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size())
+      throw SweepError(what + ": '" + item + "' is not a number (expected a comma-separated list such as 1,2,4)");
+    v.push_back(x);
+  }
+  if (v.empty() || (!text.empty() && text.back() == ','))
+    throw SweepError(what + ": '" + text + "' is not a comma-separated list of numbers");
+  return v;
+}
+
+void check_sweep(const SweepSpec& s, const std::string& where) {
+  auto fail = [&](const std::string& key, const std::string& what) { return SweepError(where + ": " + key + ": " + what); };
+  if (s.lanes.empty()) throw fail("lanes", "is empty");
+  if (s.voxel_scales.empty()) throw fail("voxel_scale", "is empty");
+  if (s.distance_bits.empty()) throw fail("distance_bits", "is empty");
+  if (s.accuracies.empty()) throw fail("accuracy", "is empty");
+  for (size_t i = 0; i < s.lanes.size(); ++i)
+    if (!power_of_two(s.lanes[i]) || s.lanes[i] > 64)
+      throw fail("lanes[" + std::to_string(i) + "]", std::to_string(s.lanes[i]) +
+                                                         " is not a power of two from 1 to 64 (the RTL's lanes)");
+  for (size_t i = 0; i < s.voxel_scales.size(); ++i)
+    if (!(s.voxel_scales[i] > 0) || !std::isfinite(s.voxel_scales[i]))
+      throw fail("voxel_scale[" + std::to_string(i) + "]", num(s.voxel_scales[i]) + " is not a positive number");
+  for (size_t i = 0; i < s.distance_bits.size(); ++i) {
+    const int b = s.distance_bits[i];
+    if (b != 0 && b != 4 && b != 8 && b != 16)
+      throw fail("distance_bits[" + std::to_string(i) + "]",
+                 std::to_string(b) + " is not 0 (2-bit states), 4, 8 or 16");
+  }
+  for (size_t i = 0; i < s.accuracies.size(); ++i)
+    if (!(s.accuracies[i] > 0) || !std::isfinite(s.accuracies[i]))
+      throw fail("accuracy[" + std::to_string(i) + "]", num(s.accuracies[i]) + " is not a positive number of world "
+                                                                               "units");
+  if (!(s.clock >= 0) || !std::isfinite(s.clock)) throw fail("clock", num(s.clock) + " is not a positive number of MHz");
+  if (s.frames > 1000000) throw fail("frames", std::to_string(s.frames) + " is above 1000000");
+  if (s.frames > 0 && s.sample_frames > s.frames)
+    throw fail("sample_frames", std::to_string(s.sample_frames) + " is more than the " + std::to_string(s.frames) +
+                                    " frames measured");
+}
+
+namespace {
+
+// A JSON value as a list of numbers (a single number is a list of one); SweepError naming the key otherwise.
+std::vector<double> number_list(const json& v, const std::string& where, const std::string& key) {
+  std::vector<double> out;
+  if (v.is_number()) return {v.get<double>()};
+  if (!v.is_array()) throw SweepError(where + ": " + key + ": expected a list of numbers, got " + v.dump());
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].is_number())
+      throw SweepError(where + ": " + key + "[" + std::to_string(i) + "]: expected a number, got " + v[i].dump());
+    out.push_back(v[i].get<double>());
+  }
+  return out;
+}
+
+std::vector<int> int_list(const json& v, const std::string& where, const std::string& key) {
+  std::vector<int> out;
+  const std::vector<double> d = number_list(v, where, key);
+  for (size_t i = 0; i < d.size(); ++i) {
+    if (d[i] != std::floor(d[i]) || std::abs(d[i]) > 1e6)
+      throw SweepError(where + ": " + key + "[" + std::to_string(i) + "]: " + num(d[i]) + " is not a whole number");
+    out.push_back(int(d[i]));
+  }
+  return out;
+}
+
+uint64_t count_of(const json& v, const std::string& where, const std::string& key) {
+  if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<int64_t>() >= 0))
+    throw SweepError(where + ": " + key + ": expected a whole number of frames, got " + v.dump());
+  return v.get<uint64_t>();
+}
+
+}  // namespace
+
+SweepSpec parse_sweep_file(const std::string& text, const std::string& where, SweepSpec s) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw SweepError(where + ": not JSON: " + e.what());
+  }
+  if (!j.is_object()) throw SweepError(where + ": expected a JSON object of sweep keys, got " + j.dump());
+  for (const auto& [key, v] : j.items()) {
+    if (key == "lanes") s.lanes = int_list(v, where, key);
+    else if (key == "voxel_scale") s.voxel_scales = number_list(v, where, key);
+    else if (key == "distance_bits") s.distance_bits = int_list(v, where, key);
+    else if (key == "accuracy") s.accuracies = number_list(v, where, key);
+    else if (key == "frames") s.frames = count_of(v, where, key);
+    else if (key == "sample_frames") s.sample_frames = count_of(v, where, key);
+    else if (key == "clock") {
+      if (!v.is_number() || !(v.get<double>() > 0))
+        throw SweepError(where + ": clock: expected a positive number of MHz, got " + v.dump());
+      s.clock = v.get<double>();
+      s.clock_source = "the sweep file's clock";
+    } else if (key == "cost") {
+      if (!v.is_boolean()) throw SweepError(where + ": cost: expected true or false, got " + v.dump());
+      s.cost = v.get<bool>();
+    } else {
+      throw SweepError(where + ": " + key + ": unknown key (the keys: lanes, voxel_scale, distance_bits, accuracy, "
+                                            "frames, sample_frames, clock, cost)");
+    }
+  }
+  return s;
+}
+
+SweepSpec read_sweep_file(const std::string& path, SweepSpec base) {
+  std::ifstream in(path);
+  if (!in) throw SweepError(path + ": cannot read the sweep file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_sweep_file(ss.str(), path, std::move(base));
+}
+
+std::string sweep_json(const SweepSpec& s) {
+  json j;
+  j["scene"] = s.scene;
+  j["lanes"] = s.lanes;
+  j["voxel_scale"] = s.voxel_scales;
+  j["distance_bits"] = s.distance_bits;
+  j["accuracy"] = s.accuracies;
+  j["frames"] = s.frames;
+  j["sample_frames"] = s.sample_frames;
+  j["clock"] = s.clock;
+  j["clock_source"] = s.clock_source;
+  j["cost"] = s.cost;
+  j["rtl_dir"] = s.rtl_dir;
+  return j.dump();
+}
+
+SweepSpec sweep_from_json(const std::string& text, const std::string& where) {
+  try {
+    const json j = json::parse(text);
+    SweepSpec s;
+    s.scene = j.at("scene").get<std::string>();
+    s.lanes = j.at("lanes").get<std::vector<int>>();
+    s.voxel_scales = j.at("voxel_scale").get<std::vector<double>>();
+    s.distance_bits = j.at("distance_bits").get<std::vector<int>>();
+    s.accuracies = j.at("accuracy").get<std::vector<double>>();
+    s.frames = j.at("frames").get<uint64_t>();
+    s.sample_frames = j.at("sample_frames").get<uint64_t>();
+    s.clock = j.at("clock").get<double>();
+    s.clock_source = j.at("clock_source").get<std::string>();
+    s.cost = j.at("cost").get<bool>();
+    s.rtl_dir = j.at("rtl_dir").get<std::string>();
+    return s;
+  } catch (const json::exception& e) {
+    throw SweepError(where + ": not a sweep: " + e.what());
+  }
+}
+
+std::string sweep_row_line(const SweepRow& r) {
+  json j;
+  j["point"] = r.point.index;
+  j["lanes"] = r.point.lanes;
+  j["voxel_scale"] = r.point.voxel_scale;
+  j["distance_bits"] = r.point.distance_bits;
+  j["accuracy"] = r.point.accuracy;
+  j["status"] = r.status;
+  j["config"] = r.config;
+  j["error_bound"] = r.error_bound;
+  j["contact_bound"] = r.contact_bound;
+  j["contact_measured"] = r.contact_measured;
+  j["contacts_checked"] = r.contacts_checked;
+  j["max_cycles"] = r.max_cycles;
+  j["mean_cycles"] = r.mean_cycles;
+  j["rate"] = r.rate;
+  j["shell_bits"] = r.shell_bits;
+  j["map_bits"] = r.map_bits;
+  if (r.cost)
+    j["cost"] = {{"luts", r.cost->luts}, {"ffs", r.cost->ffs}, {"dsps", r.cost->dsps}, {"brams", r.cost->brams},
+                 {"seconds", r.cost->seconds}};
+  else
+    j["cost"] = nullptr;
+  j["rank"] = r.rank;
+  j["seconds"] = r.seconds;
+  return j.dump();
+}
+
+SweepRow parse_sweep_row(const std::string& line, const std::string& where) {
+  try {
+    const json j = json::parse(line);
+    SweepRow r;
+    r.point.index = j.at("point").get<uint64_t>();
+    r.point.lanes = j.at("lanes").get<int>();
+    r.point.voxel_scale = j.at("voxel_scale").get<double>();
+    r.point.distance_bits = j.at("distance_bits").get<int>();
+    r.point.accuracy = j.at("accuracy").get<double>();
+    r.status = j.at("status").get<std::string>();
+    r.config = j.at("config").get<std::string>();
+    r.error_bound = j.at("error_bound").get<double>();
+    r.contact_bound = j.at("contact_bound").get<double>();
+    r.contact_measured = j.at("contact_measured").get<double>();
+    r.contacts_checked = j.at("contacts_checked").get<uint64_t>();
+    r.max_cycles = j.at("max_cycles").get<uint64_t>();
+    r.mean_cycles = j.at("mean_cycles").get<double>();
+    r.rate = j.at("rate").get<double>();
+    r.shell_bits = j.at("shell_bits").get<uint64_t>();
+    r.map_bits = j.at("map_bits").get<uint64_t>();
+    if (!j.at("cost").is_null()) {
+      const json& c = j["cost"];
+      YosysCost y;
+      y.luts = c.at("luts").get<uint64_t>();
+      y.ffs = c.at("ffs").get<uint64_t>();
+      y.dsps = c.at("dsps").get<uint64_t>();
+      y.brams = c.at("brams").get<double>();
+      y.seconds = c.at("seconds").get<double>();
+      r.cost = y;
+    }
+    r.rank = j.at("rank").get<int>();
+    r.seconds = j.at("seconds").get<double>();
+    return r;
+  } catch (const json::exception& e) {
+    throw SweepError(where + ": not a sweep row: " + e.what());
+  }
+}
+
+SweepRunner::SweepRunner(const SweepSpec& s) : spec_(s) {
+  file_ = read_scene_file(s.scene);
+  const Scene base = make_scene(file_);
+  for (const auto& t : base.types) voxels_.push_back(t->voxmap().voxel());
+  convex_ = types_convex(file_);
+  meshes_ = scene_meshes(file_);
+  clock_ = s.clock > 0 ? s.clock : file_.clock;
+  frames_ = s.frames > 0 ? s.frames : file_.frames;
+}
+
+const Scene& SweepRunner::scene_for(const SceneFile& f, double scale, int bits) {
+  auto& slot = scenes_[{scale, bits}];
+  if (!slot) slot = std::make_shared<const Scene>(make_scene(f));
+  return *slot;
+}
+
+namespace {
+// The row of a point no device meets: its status says why, every number is 0.
+SweepRow infeasible(const SweepPoint& p, const std::string& why) {
+  SweepRow r;
+  r.point = p;
+  r.status = "infeasible: " + why;
+  return r;
+}
+}  // namespace
+
+SweepRow SweepRunner::run(uint64_t index) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SweepRow r;
+  r.point = point_at(spec_, index);
+  const SweepPoint p = r.point;
+  // The scene file of the point: every type's voxel scaled, the voxmap kind set.
+  SceneFile f = file_;
+  for (size_t i = 0; i < f.types.size(); ++i) {
+    f.types[i].voxel = voxels_[i] * p.voxel_scale;
+    f.types[i].resolution = 0;
+  }
+  f.distance_bits = p.distance_bits;
+  try {
+    const Scene& scene = scene_for(f, p.voxel_scale, p.distance_bits);
+    const VoxmapKind kind = p.distance_bits ? VoxmapKind{p.distance_bits, DeviceConfig{}.WB, f.band} : VoxmapKind{};
+    const SceneExtents e = scene_extents(scene);
+    DeviceConfig base;
+    base.SB = kind.SB;
+    base.WB = kind.WB;
+    base.LANES = p.lanes;
+    DeviceConfig cfg = derive_widths(e, p.accuracy, base, kind.distance() ? kind.WB : 0);
+    cfg = derive_memory(cfg, scene);
+    cfg.validate();
+    r.config = cfg.to_string();
+    r.error_bound = size_error_bound(cfg, e);
+    r.contact_bound = contact_error_bound(cfg, e, kind, convex_);
+    const LaneMeasure m = measure_frames(scene, f, cfg, frames_);
+    r.max_cycles = m.max_cycles;
+    r.mean_cycles = m.mean_cycles;
+    r.rate = m.max_cycles ? clock_ * 1e6 / double(m.max_cycles) : 0;
+    const ContactMeasure c = measure_contacts(scene, f, cfg, meshes_, frames_, spec_.sample_frames);
+    r.contact_measured = c.worst_outside;
+    r.contacts_checked = c.contacts;
+    r.shell_bits = shell_memory_bits(cfg);
+    r.map_bits = map_memory_bits(cfg);
+    if (spec_.cost) r.cost = yosys_cost(cfg, spec_.rtl_dir);
+  } catch (const SizeError& e) {
+    r = infeasible(p, e.what());
+  } catch (const SceneFileError& e) {
+    r = infeasible(p, e.what());
+  } catch (const CapacityError& e) {
+    r = infeasible(p, e.what());
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace voxcd
