@@ -27,7 +27,7 @@
       else $error("%m: assertion %s failed", `"__name`");
   `define VOXCD_ASSERT_INIT(__name, __prop) \
     if (!(__prop)) begin : __name \
-      $error("%m: elaboration check %s failed", `"__name`"); \
+      $error("elaboration check %s failed", `"__name`"); \
     end
 `endif
 
