@@ -134,10 +134,11 @@ module voxcd_device #(
     logic [3*TW-1:0]        t;      // {t2, t1, t0}
     logic [ThrW-1:0]        thr;    // the threshold (distance devices; else 0)
     logic [HxyW-1:0]        hxy;    // Hx*Hy = ((nx>>1)+1) * ((ny>>1)+1), the z step of a bank's half-index (else 0)
-    logic [CW-1:0]          stamp;  // cycle in which the job was accepted
+    logic [CW-1:0]          stamp;        // cycle in which the job was accepted
+    logic [CW-1:0]          stall_stamp;  // stall cycles up to and including that cycle
   } job_t;
   localparam int unsigned JobW = TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW + ThrW +
-                                 HxyW + CW;
+                                 HxyW + 2 * CW;
 
   typedef struct packed {
     logic              valid;   // a slot of a job (else an empty slot)
@@ -165,11 +166,19 @@ module voxcd_device #(
   } record_t;
   localparam int unsigned RecordW = 1 + TAGW + SAW + 3 * DW + 2 + IW + 2 * (SAW + 1) + 2 * CW;
 
-  // ---- Cycle counter ----
-  logic [CW-1:0] now_q;
+  // ---- Cycle and stall counters (free-running) ----
+  logic          stall;                       // this cycle the pipeline is held by the output slice
+  logic [CW-1:0] now_q;                       // this cycle's number
+  logic [CW-1:0] stall_total_d, stall_total_q;  // stall cycles before this one (_d: up to and including it)
+  assign stall_total_d = stall_total_q + CW'(stall);
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) now_q <= '0;
-    else         now_q <= now_q + 1'b1;
+    if (!rst_ni) begin
+      now_q         <= '0;
+      stall_total_q <= '0;
+    end else begin
+      now_q         <= now_q + 1'b1;
+      stall_total_q <= stall_total_d;
+    end
   end
 
   // ---- Job queue (voxcd_fifo, 2 entries) ----
@@ -198,6 +207,7 @@ module voxcd_device #(
       job_in.hxy = HxyW'(HxyW'(hx_in) * HxyW'(hy_in));
     end
     job_in.stamp       = now_q;
+    job_in.stall_stamp = stall_total_d;
   end
 
   voxcd_fifo #(
@@ -368,7 +378,6 @@ module voxcd_device #(
   logic             out_ready;             // the output slice takes a record (a register: no path from *_ready_i)
   logic             emit;                  // a record enters the output slice
   logic             emit_done;             // ... and it is the completion record
-  logic             stall;                 // the pipeline is held by the output slice
 
   always_comb begin
     for (int i = 0; i < LANES; i++) begin
@@ -449,24 +458,31 @@ module voxcd_device #(
   end
 
   // ---- Cycle and stall accounting of the completion records ----
-  // cycles: from the later of the job's acceptance and the previous completion record's emission, to this one's.
-  // stalls: cycles since the previous completion's emission in which the output slice held the pipeline.
-  logic [CW-1:0] since_done_d, since_done_q, stalls_d, stalls_q, job_age, cycles;
-  assign job_age = now_q - last_job.stamp;
-  assign cycles  = (job_age < since_done_q) ? job_age : since_done_q;
+  // Both count over one window: from the later of the job's acceptance and the previous completion record's
+  // emission, to this record's emission. cycles: the cycles of that window; stalls: its stall cycles (the cycles
+  // in which the output slice held the pipeline). Stalls before a job's acceptance (an idle device whose last
+  // record waits for its consumer) cannot delay it and are not counted.
+  logic [CW-1:0] since_done_d, since_done_q;            // cycles since the previous completion's emission
+  logic [CW-1:0] stalls_at_done_d, stalls_at_done_q;    // stall_total at the previous completion's emission
+  logic [CW-1:0] job_age, cycles, stalls;
+  logic          window_from_job;                       // the job was accepted after the previous completion
+  assign job_age         = now_q - last_job.stamp;
+  assign window_from_job = job_age < since_done_q;
+  assign cycles          = window_from_job ? job_age : since_done_q;
+  assign stalls          = stall_total_q - (window_from_job ? last_job.stall_stamp : stalls_at_done_q);
 
   always_comb begin
-    since_done_d = emit_done ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
-    stalls_d     = emit_done ? '0 : stalls_q + CW'(stall);
+    since_done_d     = emit_done ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
+    stalls_at_done_d = emit_done ? stall_total_d : stalls_at_done_q;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      since_done_q <= '1;
-      stalls_q     <= '0;
+      since_done_q     <= '1;
+      stalls_at_done_q <= '0;
     end else begin
-      since_done_q <= since_done_d;
-      stalls_q     <= stalls_d;
+      since_done_q     <= since_done_d;
+      stalls_at_done_q <= stalls_at_done_d;
     end
   end
 
@@ -483,7 +499,7 @@ module voxcd_device #(
     emit_record.hits    = hits_q + slot_hits;
     emit_record.points  = points_q + slot_points;
     emit_record.cycles  = cycles;
-    emit_record.stalls  = stalls_q;
+    emit_record.stalls  = stalls;
   end
 
   // The consumer's ready selects by the kind of the waiting record; it reaches only the slice.
