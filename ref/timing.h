@@ -1,6 +1,7 @@
 // The device's cycle model: how many cycles each job of a stream takes on the RTL (rtl/voxcd_device.sv), exactly,
 // when jobs are presented back to back and the consumer of the output streams is always ready. Under
-// back-pressure the RTL's count of a job exceeds this by the stall cycles it reports. docs/hardware.md derives it.
+// back-pressure the RTL's count of a job exceeds this by the stall cycles it reports (cycles in which the
+// output slice's registered ready is low and the pipeline holds). docs/hardware.md derives it.
 #pragma once
 
 #include <cstdint>

@@ -27,11 +27,8 @@
 // is taken in cycle f and whose completion record carries `cycles` has its completion's last beat taken in cycle
 // f + cycles + 1 + 1024 / JobDw + 256 / RecDw (the device alone: its job taken in cycle a, its completion in cycle
 // a + cycles + 1). One register holds a descriptor, one a record: 2 cycles more than the beats.
-`ifndef VOXCD_ASSERT
-// A named concurrent assertion, checked at every rising edge out of reset: `VOXCD_ASSERT(Name, property).
-`define VOXCD_ASSERT(__name, __prop)                                                   \
-  __name: assert property (@(posedge clk_i) disable iff (!rst_ni) (__prop))            \
-    else $error("assertion %s failed", `"__name`");
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
 `endif
 
 module voxcd_axi #(

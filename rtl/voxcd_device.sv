@@ -9,7 +9,7 @@
 // then a completion record per job. With SB = 2 the threshold is unused and hit_dist_o is 0.
 //
 // Streams (valid/ready; a transfer happens in a cycle where both are high):
-//   job   in : one job per transfer, into a 2-entry queue (job_ready_o is low only when the queue is full).
+//   job   in : one job per transfer, into a 2-entry queue (voxcd_fifo; job_ready_o is low only when it is full).
 //   hit   out: {tag, point, x, y, z, state, dist}, ascending point order within a job.
 //   done  out: {tag, hits, cycles, points, stalls} after the job's last hit record.
 // At most one of hit_valid_o / done_valid_o is high in a cycle, and records leave in stream order.
@@ -17,21 +17,29 @@
 // Structure: an issue stage takes LANES consecutive points of the head job per cycle (one lane group, a "slot")
 // and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through registers R0..R5 (R0..R8
 // on a distance device: PipeSlots + DistSlots); the hit-test stage at the last register emits the slot's records,
-// one per cycle, into the output register. The whole pipeline
-// advances together: it holds (a) while the output register is full and its consumer is not ready (a stall, and
-// only those cycles count as stalls) and (b) while the R5 slot still has more than one record to emit. Jobs
-// follow each other with no drain: the slot after a job's last one is the next job's first.
+// one per cycle, into the output slice (voxcd_skid: an output register and a skid register). The whole pipeline
+// advances together: it holds (a) while the output slice cannot take a record (its registered ready is low: both
+// of its registers are full, because the consumer has held the waiting record; a stall, and only those cycles
+// count as stalls) and (b) while the last slot register still has more than one record to emit. The consumer's
+// ready reaches only the output slice, never the pipeline's enables. Jobs follow each other with no drain: the
+// slot after a job's last one is the next job's first.
 //
 // Timing (the exact model is ref/timing.h): a job of c points takes max(1, ceil(c / LANES)) slots; a slot takes
 // max(1, records) cycles at the hit test; the first slot of a job accepted in cycle a is there in cycle a + 1 + N,
 // N = PipeSlots (+ DistSlots on a distance device). FIRST stops issuing at its first hit: the N - 1 slots already
 // issued are squashed and the issue stage leaves the job with one empty slot.
 //
+// The output slice adds no latency to the always-ready case (a record is on the pins in the cycle after its
+// emission, as from a plain output register), and with an always-ready consumer it never holds the pipeline.
+//
 // Memories are written through the two write ports while the device is idle (busy_o low).
 //
 // Ports are plain vectors, one per record field, so that every configuration is one source and the Verilated C++
 // and SystemC ports are plain integers. The code keeps to the subset of SystemVerilog that Verilator and yosys
 // both read (one-dimensional packed vectors, one-level structs, explicit package references).
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_device #(
   parameter int unsigned PW    = voxcd_pkg::PW,
   parameter int unsigned PF    = voxcd_pkg::PF,
@@ -113,7 +121,7 @@ module voxcd_device #(
   localparam int unsigned LaneW = LgL > 0 ? LgL : 1;
   localparam int unsigned SeqW  = $clog2(NumR + 2) + 1;           // tells apart every job in flight
 
-  // ---- Jobs and slots ----
+  // ---- Jobs, slots and output records ----
   typedef struct packed {
     logic [TAGW-1:0]        tag;
     logic [1:0]             mode;
@@ -126,10 +134,11 @@ module voxcd_device #(
     logic [3*TW-1:0]        t;      // {t2, t1, t0}
     logic [ThrW-1:0]        thr;    // the threshold (distance devices; else 0)
     logic [HxyW-1:0]        hxy;    // Hx*Hy = ((nx>>1)+1) * ((ny>>1)+1), the z step of a bank's half-index (else 0)
-    logic [CW-1:0]          stamp;  // cycle in which the job was accepted
+    logic [CW-1:0]          stamp;        // cycle in which the job was accepted
+    logic [CW-1:0]          stall_stamp;  // stall cycles up to and including that cycle
   } job_t;
   localparam int unsigned JobW = TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW + ThrW +
-                                 HxyW + CW;
+                                 HxyW + 2 * CW;
 
   typedef struct packed {
     logic              valid;   // a slot of a job (else an empty slot)
@@ -141,19 +150,42 @@ module voxcd_device #(
   } meta_t;
   localparam int unsigned MetaW = 1 + SeqW + 1 + (SAW + 1) + LANES + RotW;
 
-  // ---- Cycle counter ----
-  logic [CW-1:0] now_q;
+  // One output record, hit or completion, as it waits in the output slice (the fields of the other kind are
+  // don't-cares).
+  typedef struct packed {
+    logic              is_done;  // a completion record (else a hit record)
+    logic [TAGW-1:0]   tag;
+    logic [SAW-1:0]    point;
+    logic [3*DW-1:0]   voxel;    // {z, y, x}
+    logic [1:0]        state;
+    logic [IW-1:0]     distance;
+    logic [SAW:0]      hits;
+    logic [SAW:0]      points;
+    logic [CW-1:0]     cycles;
+    logic [CW-1:0]     stalls;
+  } record_t;
+  localparam int unsigned RecordW = 1 + TAGW + SAW + 3 * DW + 2 + IW + 2 * (SAW + 1) + 2 * CW;
+
+  // ---- Cycle and stall counters (free-running) ----
+  logic          stall;                       // this cycle the pipeline is held by the output slice
+  logic [CW-1:0] now_q;                       // this cycle's number
+  logic [CW-1:0] stall_total_d, stall_total_q;  // stall cycles before this one (_d: up to and including it)
+  assign stall_total_d = stall_total_q + CW'(stall);
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) now_q <= '0;
-    else         now_q <= now_q + 1'b1;
+    if (!rst_ni) begin
+      now_q         <= '0;
+      stall_total_q <= '0;
+    end else begin
+      now_q         <= now_q + 1'b1;
+      stall_total_q <= stall_total_d;
+    end
   end
 
-  // ---- Job queue (2 entries) ----
-  logic [JobW-1:0] fifo_q [2];
-  logic [1:0]      fifo_cnt_q;
-  logic            push, pop;
-  job_t            job_in;
-  logic [DW:0]     hx_in, hy_in;  // H = (n>>1) + 1, the half-grid's extent
+  // ---- Job queue (voxcd_fifo, 2 entries) ----
+  job_t        job_in, head_job;
+  logic        head_valid;  // the queue holds a job: the issue stage's head job
+  logic        head_pop;    // the issue stage is done with the head job
+  logic [DW:0] hx_in, hy_in;  // H = (n>>1) + 1, the half-grid's extent
   assign hx_in = (job_nx_i >> 1) + (DW + 1)'(1);
   assign hy_in = (job_ny_i >> 1) + (DW + 1)'(1);
 
@@ -175,102 +207,106 @@ module voxcd_device #(
       job_in.hxy = HxyW'(HxyW'(hx_in) * HxyW'(hy_in));
     end
     job_in.stamp       = now_q;
+    job_in.stall_stamp = stall_total_d;
   end
 
-  assign job_ready_o = fifo_cnt_q != 2'd2;
-  assign push        = job_valid_i && job_ready_o;
+  voxcd_fifo #(
+    .Depth(2),
+    .Width(JobW)
+  ) u_job_queue (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(job_valid_i),
+    .ready_o(job_ready_o),
+    .data_i (job_in),
+    .valid_o(head_valid),
+    .ready_i(head_pop),
+    .data_o (head_job)
+  );
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      fifo_cnt_q <= '0;
-    end else begin
-      fifo_cnt_q <= fifo_cnt_q + {1'b0, push} - {1'b0, pop};
+  // ---- Pipeline control ----
+  logic            advance;     // every slot register advances
+  logic            first_stop;  // the last register holds the first hit of a FIRST job: stop issuing it
+  logic [SeqW-1:0] first_stop_seq;
+
+  // ---- Issue stage ----
+  logic [SAW:0]    next_point_d, next_point_q;  // next point of the head job
+  logic [SeqW-1:0] head_seq_d, head_seq_q;      // sequence number of the head job
+  logic            head_last_slot;              // the head job's remaining points fit one slot
+  logic            head_stopped;                // FIRST has found the head job's hit: issue no more of it
+  logic [SAW:0]    head_remaining;
+  logic [SAW:0]    first_addr;                  // shell address of lane 0
+  logic [RotW-1:0] rot;
+
+  assign head_remaining = head_job.shell_count - next_point_q;
+  assign head_last_slot = head_remaining <= (SAW + 1)'(LANES);
+  assign head_stopped   = first_stop && (first_stop_seq == head_seq_q);
+  assign head_pop       = advance && head_valid && (head_stopped || head_last_slot);
+  assign first_addr     = (SAW + 1)'(head_job.shell_base) + next_point_q;
+  assign rot            = RotW'(32'(first_addr) % LANES);
+
+  always_comb begin
+    next_point_d = next_point_q;
+    head_seq_d   = head_seq_q;
+    if (head_pop) begin
+      next_point_d = '0;
+      head_seq_d   = head_seq_q + 1'b1;
+    end else if (advance && head_valid) begin
+      next_point_d = next_point_q + (SAW + 1)'(LANES);
     end
   end
 
-  always_ff @(posedge clk_i) begin
-    if (pop) fifo_q[0] <= fifo_q[1];
-    if (push) fifo_q[1'(fifo_cnt_q - {1'b0, pop})] <= job_in;
-  end
-
-  // ---- Pipeline control ----
-  logic            adv;       // every slot register advances
-  logic            kill;      // the last register holds the first hit of a FIRST job: stop issuing it
-  logic [SeqW-1:0] kill_seq;
-
-  // ---- Issue stage ----
-  job_t            head;
-  logic            have;
-  logic [SAW:0]    k_q;        // next point of the head job
-  logic [SeqW-1:0] seq_q;      // sequence number of the head job
-  logic            last_slot;  // the head job's remaining points fit one slot
-  logic            kill_head;
-  logic [SAW:0]    remaining;
-  logic [SAW:0]    first_addr; // shell address of lane 0
-  logic [RotW-1:0] rot;
-
-  assign head       = fifo_q[0];
-  assign have       = fifo_cnt_q != 2'd0;
-  assign remaining  = head.shell_count - k_q;
-  assign last_slot  = remaining <= (SAW + 1)'(LANES);
-  assign kill_head  = kill && (kill_seq == seq_q);
-  assign pop        = adv && have && (kill_head || last_slot);
-  assign first_addr = (SAW + 1)'(head.shell_base) + k_q;
-  assign rot        = RotW'(32'(first_addr) % LANES);
-
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      k_q   <= '0;
-      seq_q <= '0;
-    end else if (adv && have) begin
-      if (pop) begin
-        k_q   <= '0;
-        seq_q <= seq_q + 1'b1;
-      end else begin
-        k_q <= k_q + (SAW + 1)'(LANES);
-      end
+      next_point_q <= '0;
+      head_seq_q   <= '0;
+    end else begin
+      next_point_q <= next_point_d;
+      head_seq_q   <= head_seq_d;
     end
   end
 
   meta_t issue;
   always_comb begin
     issue       = '0;
-    issue.valid = have && !kill_head;
-    issue.seq   = seq_q;
-    issue.last  = last_slot;
-    issue.k     = k_q;
+    issue.valid = head_valid && !head_stopped;
+    issue.seq   = head_seq_q;
+    issue.last  = head_last_slot;
+    issue.k     = next_point_q;
     issue.rot   = rot;
-    for (int i = 0; i < LANES; i++) issue.lanes[i] = (k_q + (SAW + 1)'(i)) < head.shell_count;
+    for (int i = 0; i < LANES; i++) issue.lanes[i] = (next_point_q + (SAW + 1)'(i)) < head_job.shell_count;
   end
 
-  // ---- Slot registers R0 .. R5 (R8): the slot's bookkeeping and its job ----
-  logic [MetaW-1:0] meta_q [NumR];
-  logic [JobW-1:0]  sjob_q [NumR];
+  // ---- Slot registers R0 .. R5 (R8): the slot's bookkeeping and its job, shifting when the pipeline advances ----
+  logic [MetaW-1:0] slot_meta_q [NumR];
+  logic [JobW-1:0]  slot_job_q  [NumR];
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      for (int s = 0; s < NumR; s++) meta_q[s] <= '0;
-    end else if (adv) begin
-      meta_q[0] <= issue;
-      for (int s = 1; s < NumR; s++) meta_q[s] <= meta_q[s - 1];
+      for (int s = 0; s < NumR; s++) slot_meta_q[s] <= '0;
+    end else if (advance) begin
+      slot_meta_q[0] <= issue;
+      for (int s = 1; s < NumR; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
     end
   end
+  // Job fields are read only where their slot is valid: no reset.
   always_ff @(posedge clk_i) begin
-    if (adv) begin
-      sjob_q[0] <= head;
-      for (int s = 1; s < NumR; s++) sjob_q[s] <= sjob_q[s - 1];
+    if (advance) begin
+      slot_job_q[0] <= head_job;
+      for (int s = 1; s < NumR; s++) slot_job_q[s] <= slot_job_q[s - 1];
     end
   end
 
-  // What each stage reads of its slot; m5 and j5 are the last register's (R5, or R8 on a distance device).
-  meta_t m0, m5;
-  job_t  j0, j1, j2, j3, j5;
-  assign m0 = meta_q[0];
-  assign m5 = meta_q[NumR - 1];
-  assign j0 = sjob_q[0];
-  assign j1 = sjob_q[1];
-  assign j2 = sjob_q[2];
-  assign j3 = sjob_q[3];
-  assign j5 = sjob_q[NumR - 1];
+  // What each stage reads of its slot: the job of the slot in R0 .. R3, and the last register's (R5, or R8 on a
+  // distance device) slot and job, where the hit test is.
+  meta_t r0_slot, last_slot;
+  job_t  r0_job, r1_job, r2_job, r3_job, last_job;
+  assign r0_slot   = slot_meta_q[0];
+  assign last_slot = slot_meta_q[NumR - 1];
+  assign r0_job    = slot_job_q[0];
+  assign r1_job    = slot_job_q[1];
+  assign r2_job    = slot_job_q[2];
+  assign r3_job    = slot_job_q[3];
+  assign last_job  = slot_job_q[NumR - 1];
 
   // ---- Shell banks: address a is in bank a % LANES, row a / LANES ----
   logic [LANES*3*PW-1:0] bank_rdata;
@@ -289,7 +325,7 @@ module voxcd_device #(
       .we_i   (shell_we_i && ((32'(shell_waddr_i) % LANES) == b)),
       .waddr_i(RowW'(shell_waddr_i >> LgL)),
       .wdata_i(shell_wdata_i),
-      .re_i   (adv),
+      .re_i   (advance),
       .raddr_i(row),
       .rdata_o(bank_rdata[b*3*PW +: 3*PW])
     );
@@ -303,22 +339,22 @@ module voxcd_device #(
 
   for (genvar l = 0; l < LANES; l++) begin : g_lane
     logic [3*PW-1:0] point;
-    assign point = bank_rdata[((32'(m0.rot) + l) % LANES) * 3 * PW +: 3 * PW];
+    assign point = bank_rdata[((32'(r0_slot.rot) + l) % LANES) * 3 * PW +: 3 * PW];
     voxcd_lane #(
       .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB)
     ) u_lane (
       .clk_i      (clk_i),
-      .en_i       (adv),
+      .en_i       (advance),
       .map_we_i   (map_we_i),
       .map_waddr_i(map_waddr_i),
       .map_wdata_i(map_wdata_i),
       .point_i    (point),
-      .m_i        (j0.m),
-      .t_i        (j1.t),
-      .n_i        (j2.n),
-      .nx_i       (j3.n[DW:0]),
-      .map_base_i (j3.map_base),
-      .hxy_i      ((2 * DW + 1)'(j3.hxy)),
+      .m_i        (r0_job.m),
+      .t_i        (r1_job.t),
+      .n_i        (r2_job.n),
+      .nx_i       (r3_job.n[DW:0]),
+      .map_base_i (r3_job.map_base),
+      .hxy_i      ((2 * DW + 1)'(r3_job.hxy)),
       .inside_o   (lane_inside[l]),
       .state_o    (lane_state[2*l +: 2]),
       .dist_o     (lane_dist[IW*l +: IW]),
@@ -327,59 +363,83 @@ module voxcd_device #(
   end
 
   // ---- Hit test and record emission at the last register (R5, R8 on a distance device) ----
-  logic [LANES-1:0] hit;        // lanes whose point is a hit
-  logic [LANES-1:0] emitted_q;  // hit records of the R5 slot already emitted (ALL)
-  logic             found_q;    // a FIRST job's hit has been emitted; its later slots are squashed
-  logic [SeqW-1:0]  found_seq_q;
-  logic             squash;
+  logic [LANES-1:0] lane_hit;              // lanes whose point is a hit
+  logic [LANES-1:0] emitted_d, emitted_q;  // hit records of the last slot already emitted (ALL)
+  logic             found_d, found_q;      // a FIRST job's hit has been emitted; its later slots are squashed
+  logic [SeqW-1:0]  found_seq_d, found_seq_q;
+  logic             squash;                // the last slot belongs to a FIRST job whose hit was emitted
   logic             is_first;
-  logic [LANES-1:0] pend;       // hit records still to emit for the R5 slot
-  logic             need_done;  // the R5 slot ends its job
-  logic             more;       // after this cycle's record the slot has another one
-  logic [LaneW-1:0] sel;        // lowest lane in pend
-  logic [SAW:0]     group_hits, group_points;
-  logic [SAW:0]     hits_q, points_q;  // of the current job, over its slots before R5
-  logic             out_valid_q, out_done_q, out_ready, out_free, stall, load;
+  logic [LANES-1:0] records_left;          // hit records still to emit for the last slot
+  logic             done_due;              // the last slot ends its job: a completion record follows its hits
+  logic             slot_busy;             // after this cycle's record the last slot has another one to emit
+  logic [LaneW-1:0] emit_lane;             // lowest lane in records_left: the hit record of this cycle
+  logic [SAW:0]     slot_hits, slot_points;
+  logic [SAW:0]     hits_d, hits_q, points_d, points_q;  // of the current job, over its slots before this one
+  logic             out_ready;             // the output slice takes a record (a register: no path from *_ready_i)
+  logic             emit;                  // a record enters the output slice
+  logic             emit_done;             // ... and it is the completion record
 
   always_comb begin
     for (int i = 0; i < LANES; i++) begin
-      if (Dist) hit[i] = m5.lanes[i] && lane_inside[i] && ($signed(lane_dist[IW*i +: IW]) <= $signed(IW'(j5.thr)));
-      else      hit[i] = m5.lanes[i] && lane_inside[i] && j5.mask[lane_state[2*i +: 2]];
+      if (Dist) lane_hit[i] = last_slot.lanes[i] && lane_inside[i] &&
+                              ($signed(lane_dist[IW*i +: IW]) <= $signed(IW'(last_job.thr)));
+      else      lane_hit[i] = last_slot.lanes[i] && lane_inside[i] && last_job.mask[lane_state[2*i +: 2]];
     end
   end
 
   always_comb begin
-    is_first  = j5.mode == voxcd_pkg::ModeFirst;
-    squash    = m5.valid && found_q && (found_seq_q == m5.seq);
-    pend      = '0;
-    need_done = 1'b0;
-    if (m5.valid && !squash) begin
-      if (j5.mode == voxcd_pkg::ModeAll) pend = hit & ~emitted_q;
-      else if (is_first)                 pend = hit & (~hit + 1'b1) & ~emitted_q;  // the lowest hit
-      need_done = m5.last || (is_first && (|hit));
+    is_first     = last_job.mode == voxcd_pkg::ModeFirst;
+    squash       = last_slot.valid && found_q && (found_seq_q == last_slot.seq);
+    records_left = '0;
+    done_due     = 1'b0;
+    if (last_slot.valid && !squash) begin
+      if (last_job.mode == voxcd_pkg::ModeAll) records_left = lane_hit & ~emitted_q;
+      else if (is_first)                       records_left = lane_hit & (~lane_hit + 1'b1) & ~emitted_q;  // lowest
+      done_due = last_slot.last || (is_first && (|lane_hit));
     end
-    sel = '0;
+    emit_lane = '0;
     for (int i = LANES - 1; i >= 0; i--) begin
-      if (pend[i]) sel = LaneW'(i);
+      if (records_left[i]) emit_lane = LaneW'(i);
     end
     // More than one record left: two or more hits, or a hit and the completion.
-    more = ((pend & (pend - 1'b1)) != '0) || ((|pend) && need_done);
-    group_hits   = '0;
-    group_points = '0;
+    slot_busy = ((records_left & (records_left - 1'b1)) != '0) || ((|records_left) && done_due);
+    slot_hits   = '0;
+    slot_points = '0;
     for (int i = 0; i < LANES; i++) begin
-      group_hits   = group_hits + (SAW + 1)'(hit[i]);
-      group_points = group_points + (SAW + 1)'(m5.lanes[i]);
+      slot_hits   = slot_hits + (SAW + 1)'(lane_hit[i]);
+      slot_points = slot_points + (SAW + 1)'(last_slot.lanes[i]);
     end
-    if (is_first) group_hits = (SAW + 1)'(|hit);
+    if (is_first) slot_hits = (SAW + 1)'(|lane_hit);
   end
 
-  assign out_ready = out_done_q ? done_ready_i : hit_ready_i;
-  assign out_free  = !out_valid_q || out_ready;
-  assign stall     = out_valid_q && !out_ready;
-  assign adv       = out_free && !more;
-  assign load      = out_free && ((|pend) || need_done);
-  assign kill      = adv && m5.valid && !squash && is_first && (|hit);
-  assign kill_seq  = m5.seq;
+  assign stall          = !out_ready;
+  assign advance        = out_ready && !slot_busy;
+  assign emit           = out_ready && ((|records_left) || done_due);
+  assign emit_done      = emit && !(|records_left);
+  assign first_stop     = advance && last_slot.valid && !squash && is_first && (|lane_hit);
+  assign first_stop_seq = last_slot.seq;
+
+  always_comb begin
+    emitted_d   = emitted_q;
+    found_d     = found_q;
+    found_seq_d = found_seq_q;
+    hits_d      = hits_q;
+    points_d    = points_q;
+    if (out_ready && (|records_left)) emitted_d = emitted_q | (LANES'(1) << emit_lane);
+    if (advance) begin
+      emitted_d = '0;
+      if (first_stop) begin
+        found_d     = 1'b1;
+        found_seq_d = last_slot.seq;
+      end else if (last_slot.valid && (last_slot.seq != found_seq_q)) begin
+        found_d = 1'b0;
+      end
+      if (last_slot.valid && !squash) begin
+        hits_d   = done_due ? '0 : hits_q + slot_hits;
+        points_d = done_due ? '0 : points_q + slot_points;
+      end
+    end
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -389,150 +449,132 @@ module voxcd_device #(
       hits_q      <= '0;
       points_q    <= '0;
     end else begin
-      if (out_free && (|pend)) emitted_q <= emitted_q | (LANES'(1) << sel);
-      if (adv) begin
-        emitted_q <= '0;
-        if (kill) begin
-          found_q     <= 1'b1;
-          found_seq_q <= m5.seq;
-        end else if (m5.valid && (m5.seq != found_seq_q)) begin
-          found_q <= 1'b0;
-        end
-        if (m5.valid && !squash) begin
-          hits_q   <= need_done ? '0 : hits_q + group_hits;
-          points_q <= need_done ? '0 : points_q + group_points;
-        end
-      end
+      emitted_q   <= emitted_d;
+      found_q     <= found_d;
+      found_seq_q <= found_seq_d;
+      hits_q      <= hits_d;
+      points_q    <= points_d;
     end
   end
 
   // ---- Cycle and stall accounting of the completion records ----
-  // cycles: from the later of the job's acceptance and the previous completion record's emission, to this one's.
-  // stalls: cycles since the previous completion's emission in which the output register was held by its consumer.
-  logic [CW-1:0] since_done_q, stall_cnt_q, job_age, cycles;
-  logic          done_load;
-  assign done_load = load && !(|pend);
-  assign job_age   = now_q - j5.stamp;
-  assign cycles    = (job_age < since_done_q) ? job_age : since_done_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      since_done_q <= '1;
-      stall_cnt_q  <= '0;
-    end else begin
-      since_done_q <= done_load ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
-      stall_cnt_q  <= done_load ? '0 : stall_cnt_q + CW'(stall);
-    end
-  end
-
-  // ---- Output register ----
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      out_valid_q <= 1'b0;
-      out_done_q  <= 1'b0;
-    end else if (out_free) begin
-      out_valid_q <= load;
-      out_done_q  <= done_load;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (load) begin
-      hit_tag_o     <= j5.tag;
-      hit_point_o   <= SAW'(m5.k + (SAW + 1)'(sel));
-      hit_x_o       <= lane_voxel[3*DW*sel + 0*DW +: DW];
-      hit_y_o       <= lane_voxel[3*DW*sel + 1*DW +: DW];
-      hit_z_o       <= lane_voxel[3*DW*sel + 2*DW +: DW];
-      hit_state_o   <= lane_state[2*sel +: 2];
-      hit_dist_o    <= lane_dist[IW*sel +: IW];  // 0 on a 2-bit device
-      done_tag_o    <= j5.tag;
-      done_hits_o   <= hits_q + group_hits;
-      done_points_o <= points_q + group_points;
-      done_cycles_o <= cycles;
-      done_stalls_o <= stall_cnt_q;
-    end
-  end
-
-  assign hit_valid_o  = out_valid_q && !out_done_q;
-  assign done_valid_o = out_valid_q && out_done_q;
+  // Both count over one window: from the later of the job's acceptance and the previous completion record's
+  // emission, to this record's emission. cycles: the cycles of that window; stalls: its stall cycles (the cycles
+  // in which the output slice held the pipeline). Stalls before a job's acceptance (an idle device whose last
+  // record waits for its consumer) cannot delay it and are not counted.
+  logic [CW-1:0] since_done_d, since_done_q;            // cycles since the previous completion's emission
+  logic [CW-1:0] stalls_at_done_d, stalls_at_done_q;    // stall_total at the previous completion's emission
+  logic [CW-1:0] job_age, cycles, stalls;
+  logic          window_from_job;                       // the job was accepted after the previous completion
+  assign job_age         = now_q - last_job.stamp;
+  assign window_from_job = job_age < since_done_q;
+  assign cycles          = window_from_job ? job_age : since_done_q;
+  assign stalls          = stall_total_q - (window_from_job ? last_job.stall_stamp : stalls_at_done_q);
 
   always_comb begin
-    busy_o = have || out_valid_q;
-    for (int s = 0; s < NumR; s++) busy_o = busy_o || meta_q[s][MetaW-1];  // the valid bit
+    since_done_d     = emit_done ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
+    stalls_at_done_d = emit_done ? stall_total_d : stalls_at_done_q;
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      since_done_q     <= '1;
+      stalls_at_done_q <= '0;
+    end else begin
+      since_done_q     <= since_done_d;
+      stalls_at_done_q <= stalls_at_done_d;
+    end
+  end
+
+  // ---- Output slice: the record of this cycle, then voxcd_skid ----
+  record_t emit_record, out_record;
+  logic    out_valid, out_taken;
+  always_comb begin
+    emit_record.is_done = !(|records_left);
+    emit_record.tag     = last_job.tag;
+    emit_record.point   = SAW'(last_slot.k + (SAW + 1)'(emit_lane));
+    emit_record.voxel   = lane_voxel[3*DW*emit_lane +: 3*DW];
+    emit_record.state   = lane_state[2*emit_lane +: 2];
+    emit_record.distance = lane_dist[IW*emit_lane +: IW];  // 0 on a 2-bit device
+    emit_record.hits    = hits_q + slot_hits;
+    emit_record.points  = points_q + slot_points;
+    emit_record.cycles  = cycles;
+    emit_record.stalls  = stalls;
+  end
+
+  // The consumer's ready selects by the kind of the waiting record; it reaches only the slice.
+  assign out_taken = out_record.is_done ? done_ready_i : hit_ready_i;
+
+  voxcd_skid #(
+    .Width(RecordW)
+  ) u_out_slice (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i((|records_left) || done_due),
+    .ready_o(out_ready),
+    .data_i (emit_record),
+    .valid_o(out_valid),
+    .ready_i(out_taken),
+    .data_o (out_record)
+  );
+
+  assign hit_valid_o   = out_valid && !out_record.is_done;
+  assign hit_tag_o     = out_record.tag;
+  assign hit_point_o   = out_record.point;
+  assign hit_x_o       = out_record.voxel[0*DW +: DW];
+  assign hit_y_o       = out_record.voxel[1*DW +: DW];
+  assign hit_z_o       = out_record.voxel[2*DW +: DW];
+  assign hit_state_o   = out_record.state;
+  assign hit_dist_o    = out_record.distance;
+  assign done_valid_o  = out_valid && out_record.is_done;
+  assign done_tag_o    = out_record.tag;
+  assign done_hits_o   = out_record.hits;
+  assign done_points_o = out_record.points;
+  assign done_cycles_o = out_record.cycles;
+  assign done_stalls_o = out_record.stalls;
+
+  // The output slice holds records only behind its output register: out_valid covers both.
+  always_comb begin
+    busy_o = head_valid || out_valid;
+    for (int s = 0; s < NumR; s++) busy_o = busy_o || slot_meta_q[s][MetaW-1];  // the valid bit
   end
 
   // Fields that only some stages read.
   logic unused;
-  assign unused = ^{m0, m5.rot, j0, j1, j2, j3, j5, job_threshold_i, hx_in, hy_in};
+  assign unused = ^{r0_slot, last_slot.rot, r0_job, r1_job, r2_job, r3_job, last_job, job_threshold_i, hx_in,
+                    hy_in};
 
-`ifndef SYNTHESIS
-  // ---- Assertions (Verilator runs them with --assert) ----
+  // ---- Assertions (Verilator runs them with --assert; voxcd_assert.svh) ----
   // Parameter sanity, at elaboration.
-  if ((LANES & (LANES - 1)) != 0 || LANES > 64) begin : g_bad_lanes
-    $error("LANES = %0d must be a power of two, at most 64", LANES);
-  end
-  if (SAW < LgL) begin : g_bad_saw
-    $error("SAW = %0d leaves less than one row per shell bank for LANES = %0d", SAW, LANES);
-  end
-  if (MF + PF >= TW) begin : g_bad_tw
-    $error("TW = %0d leaves no integer bit above TF = MF + PF = %0d", TW, MF + PF);
-  end
-  if ((MEMW & (MEMW - 1)) != 0 || MEMW < 2 || MEMW > 64) begin : g_bad_memw
-    $error("MEMW = %0d must be a power of two in 2..64", MEMW);
-  end
-  if (((MW + PW + 2 > TW) ? MW + PW + 2 : TW) + 1 - (MF + PF) < DW + 1) begin : g_bad_dw
-    $error("the accumulator's integer part cannot hold DW = %0d", DW);
-  end
-  if (SB != 2 && SB != 4 && SB != 8 && SB != 16) begin : g_bad_sb
-    $error("SB = %0d must be 2, 4, 8 or 16", SB);
-  end
-  if (Dist && (SB > MEMW || MAW < 3)) begin : g_bad_dist_mem
-    $error("a distance device needs SB = %0d <= MEMW = %0d and MAW = %0d >= 3 (8 banks)", SB, MEMW, MAW);
-  end
-  if (Dist && (WB < 1 || WB > MF + PF || WB > 16)) begin : g_bad_wb
-    $error("WB = %0d must be in 1..min(TF = %0d, 16)", WB, MF + PF);
-  end
-  if (JobW != $bits(job_in) || MetaW != $bits(issue)) begin : g_bad_widths
-    $error("JobW or MetaW does not match its struct");
-  end
+  `VOXCD_ASSERT_INIT(LanesPowerOfTwo, (LANES & (LANES - 1)) == 0 && LANES <= 64)
+  `VOXCD_ASSERT_INIT(ShellBankHasARow, SAW >= LgL)
+  `VOXCD_ASSERT_INIT(TranslationHasIntegerBits, MF + PF < TW)
+  `VOXCD_ASSERT_INIT(MemWordPowerOfTwo, (MEMW & (MEMW - 1)) == 0 && MEMW >= 2 && MEMW <= 64)
+  `VOXCD_ASSERT_INIT(AccumulatorHoldsIndex,
+                     ((MW + PW + 2 > TW) ? MW + PW + 2 : TW) + 1 - (MF + PF) >= DW + 1)
+  `VOXCD_ASSERT_INIT(ValueWidthKnown, SB == 2 || SB == 4 || SB == 8 || SB == 16)
+  `VOXCD_ASSERT_INIT(DistanceBanksFit, !Dist || (SB <= MEMW && MAW >= 3))
+  `VOXCD_ASSERT_INIT(WeightBitsFit, !Dist || (WB >= 1 && WB <= MF + PF && WB <= 16))
+  `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) &&
+                                        RecordW == $bits(record_t))
 
-  // Records stay put while their consumer is not ready.
-  logic                           hold_hit_q, hold_done_q;
-  logic [TAGW+SAW+3*DW+2+IW-1:0]  hit_prev_q;
-  logic [TAGW+2*(SAW+1)+2*CW-1:0] done_prev_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      hold_hit_q  <= 1'b0;
-      hold_done_q <= 1'b0;
-    end else begin
-      hold_hit_q  <= hit_valid_o && !hit_ready_i;
-      hold_done_q <= done_valid_o && !done_ready_i;
-      hit_prev_q  <= {hit_tag_o, hit_point_o, hit_x_o, hit_y_o, hit_z_o, hit_state_o, hit_dist_o};
-      done_prev_q <= {done_tag_o, done_hits_o, done_cycles_o, done_points_o, done_stalls_o};
-      if (hold_hit_q) begin
-        assert (hit_valid_o &&
-                hit_prev_q == {hit_tag_o, hit_point_o, hit_x_o, hit_y_o, hit_z_o, hit_state_o, hit_dist_o})
-          else $error("hit record changed while stalled");
-      end
-      if (hold_done_q) begin
-        assert (done_valid_o &&
-                done_prev_q == {done_tag_o, done_hits_o, done_cycles_o, done_points_o, done_stalls_o})
-          else $error("completion record changed while stalled");
-      end
-      assert (!(hit_valid_o && done_valid_o)) else $error("hit and completion records valid together");
-      assert (fifo_cnt_q <= 2'd2) else $error("job queue overflow");
-      assert (!(push && fifo_cnt_q == 2'd2)) else $error("push into a full job queue");
-      assert (!(pop && !have)) else $error("pop from an empty job queue");
-      assert (!((shell_we_i || map_we_i) && busy_o)) else $error("memory written while jobs run");
-      if (push) begin
-        assert (job_mode_i != 2'd3) else $error("job %0d: mode 3 is invalid", job_tag_i);
-        assert (job_nx_i != 0 && job_ny_i != 0 && job_nz_i != 0 &&
-                job_nx_i <= (DW + 1)'(1 << DW) && job_ny_i <= (DW + 1)'(1 << DW) &&
-                job_nz_i <= (DW + 1)'(1 << DW))
-          else $error("job %0d: a map dimension is outside 1..2^DW", job_tag_i);
-      end
-    end
-  end
-`endif
+  // The streams: records hold while their consumer is not ready; one record at a time, in stream order.
+  `VOXCD_ASSERT(HitHeldWhileStalled, !$past(hit_valid_o && !hit_ready_i) ||
+                (hit_valid_o && {hit_tag_o, hit_point_o, hit_x_o, hit_y_o, hit_z_o, hit_state_o, hit_dist_o} ==
+                                $past({hit_tag_o, hit_point_o, hit_x_o, hit_y_o, hit_z_o, hit_state_o, hit_dist_o})))
+  `VOXCD_ASSERT(DoneHeldWhileStalled, !$past(done_valid_o && !done_ready_i) ||
+                (done_valid_o && {done_tag_o, done_hits_o, done_cycles_o, done_points_o, done_stalls_o} ==
+                                 $past({done_tag_o, done_hits_o, done_cycles_o, done_points_o, done_stalls_o})))
+  `VOXCD_ASSERT(OneRecordAtATime, !(hit_valid_o && done_valid_o))
+  // The pipeline holds whenever the output slice cannot take a record; a record is never dropped.
+  `VOXCD_ASSERT(EmitOnlyWhenReady, !(advance || emit) || out_ready)
+  `VOXCD_ASSERT(PopOnlyAHeadJob, !head_pop || head_valid)
+  // The memories are loaded while the device is idle.
+  `VOXCD_ASSERT(WriteOnlyWhileIdle, !((shell_we_i || map_we_i) && busy_o))
+  // Every accepted job has a valid mode and map dimensions in 1 .. 2^DW.
+  `VOXCD_ASSERT(JobModeValid, !(job_valid_i && job_ready_o) || job_mode_i != 2'd3)
+  `VOXCD_ASSERT(JobDimsValid, !(job_valid_i && job_ready_o) ||
+                (job_nx_i != 0 && job_ny_i != 0 && job_nz_i != 0 && job_nx_i <= (DW + 1)'(1 << DW) &&
+                 job_ny_i <= (DW + 1)'(1 << DW) && job_nz_i <= (DW + 1)'(1 << DW)))
 
 endmodule

@@ -26,6 +26,9 @@
 // (i, j) at [(3i + j) * MW +: MW]). Written in the subset of SystemVerilog that Verilator and yosys both read.
 // Each lane owns a copy of the voxmap memory, written through the shared write port, so that every lane can
 // read one word (eight bank words on a distance device) in every cycle.
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_lane #(
   parameter int unsigned PW   = voxcd_pkg::PW,
   parameter int unsigned PF   = voxcd_pkg::PF,
@@ -84,9 +87,7 @@ module voxcd_lane #(
   end
 
   // ---- R2: accumulator ----
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [3*AccW-1:0] acc_q;  // the floor drops each coordinate's TF fraction bits (a distance lane keeps WB)
-  /* verilator lint_on UNUSEDSIGNAL */
+  logic [3*AccW-1:0] acc_q;  // the floor drops each coordinate's TF fraction bits (a distance lane keeps WB; voxcd.vlt)
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       for (int i = 0; i < 3; i++) begin
@@ -377,5 +378,10 @@ module voxcd_lane #(
     assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW]};
 
   end
+
+  // Parameter sanity, at elaboration: the index keeps its sign bit above DW + 1 magnitude bits, and SB is a width
+  // the lane has a data path for.
+  `VOXCD_ASSERT_INIT(IndexHoldsDims, IdxW >= DW + 1)
+  `VOXCD_ASSERT_INIT(ValueWidthKnown, SB == 2 || SB == 4 || SB == 8 || SB == 16)
 
 endmodule

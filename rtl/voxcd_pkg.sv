@@ -6,8 +6,7 @@
 package voxcd_pkg;
 
   // ---- Widths (DeviceConfig) ----
-  // Defaults of the module parameters of the same names: a build that overrides one leaves it unread.
-  /* verilator lint_off UNUSEDPARAM */
+  // Defaults of the module parameters of the same names: a build that overrides one leaves it unread (voxcd.vlt).
   localparam int unsigned PW    = 24;  // shell point coordinate width, signed
   localparam int unsigned PF    = 8;   // shell point fraction bits
   localparam int unsigned MW    = 18;  // matrix entry width, signed
@@ -21,7 +20,6 @@ package voxcd_pkg;
   localparam int unsigned TAGW  = 16;  // job tag width, unsigned
   localparam int unsigned SB    = 2;   // voxmap value width: 2 = voxel states; 4, 8, 16 = signed node distances
   localparam int unsigned WB    = 8;   // interpolation weight bits (distance voxmaps)
-  /* verilator lint_on UNUSEDPARAM */
 
   // ---- Counters in completion records ----
   localparam int unsigned CW = 32;  // cycles and stall counters
@@ -48,8 +46,6 @@ package voxcd_pkg;
   } state_e;
 
   // Default hit mask: surface | interior. The device takes the mask from each job; this is the host's default.
-  /* verilator lint_off UNUSEDPARAM */
   localparam logic [3:0] DefaultHitMask = 4'b0110;  // read by the host and tests/rtl/test_pkg.cpp, not the RTL
-  /* verilator lint_on UNUSEDPARAM */
 
 endpackage

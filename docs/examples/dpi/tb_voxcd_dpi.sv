@@ -170,13 +170,6 @@ module tb_voxcd_dpi #(
   int              gaps        = 0;
   bit              finished    = 1'b0;
   logic            progress;
-  // The device counts a job's stalls from the previous completion record's emission, and its cycles from the
-  // later of that and the job's acceptance. Back to back, both include the cycles the previous completion record
-  // waited for its consumer; after an idle gap only the stalls do, so the first job after a gap gets them back.
-  longint          done_wait   = 0;  // cycles the completion record at the output has waited so far
-  longint          last_wait   = 0;  // cycles the last completion record taken had waited
-  longint          carried     = 0;  // stalls of the next completion record counted before its job was accepted
-  longint          gap_waits   = 0;  // `carried` summed over the run
 
   // The reference's next record (voxcd_dpi_pop).
   int     kind, e_tag, e_point, e_x, e_y, e_z, e_state, e_hits;
@@ -244,8 +237,7 @@ module tb_voxcd_dpi #(
     line = {$sformatf("%sLANES %0d, seed %0d: %0d of %0d jobs, %0d hit records and %0d completion records checked, ",
                       SB > 2 ? $sformatf("SB %0d WB %0d ", SB, WB) : "", LANES, seed, jobs_done, n_jobs,
                       hit_records, jobs_done),
-            $sformatf("%0d idle gaps (carrying %0d stall cycles), %0d stall cycles, %0d cycles",
-                      gaps, gap_waits, stalls, cycle)};
+            $sformatf("%0d idle gaps, %0d stall cycles, %0d cycles", gaps, stalls, cycle)};
     if (errors == 0) begin
       $display("tb_voxcd_dpi: PASS: %s", line);
       finished = 1'b1;
@@ -380,23 +372,16 @@ module tb_voxcd_dpi #(
       else if (e_tag != int'(done_tag) || e_hits != int'(done_hits))
         mismatch($sformatf("completion record %0d: expected done tag %0d hits %0d, got done tag %0d hits %0d",
                            jobs_done, e_tag, e_hits, done_tag, done_hits));
-      else if (timing != 0 && (e_cycles != longint'(done_cycles) - (longint'(done_stalls) - carried) ||
+      else if (timing != 0 && (e_cycles != longint'(done_cycles) - longint'(done_stalls) ||
                                e_points != longint'(done_points)))
         mismatch({$sformatf("completion record %0d (tag %0d): expected cycles %0d points %0d, ",
                             jobs_done, e_tag, e_cycles, e_points),
-                  $sformatf("got cycles %0d - %s = %0d points %0d", done_cycles,
-                            carried != 0 ? $sformatf("(stalls %0d - %0d of them before the idle gap)", done_stalls,
-                                                     carried)
-                                         : $sformatf("stalls %0d", done_stalls),
-                            longint'(done_cycles) - (longint'(done_stalls) - carried), done_points)});
-      carried   = 0;
-      last_wait = done_wait;
-      done_wait = 0;
+                  $sformatf("got cycles %0d - stalls %0d = %0d points %0d", done_cycles, done_stalls,
+                            longint'(done_cycles) - longint'(done_stalls), done_points)});
       stalls    = stalls + longint'(done_stalls);
       jobs_done = jobs_done + 1;
       progress  = 1'b1;
     end
-    if (done_valid && !done_ready) done_wait = done_wait + 1;
 
     // ---- Random ready on both output streams ----
     rng         = xorshift(rng);
@@ -447,8 +432,6 @@ module tb_voxcd_dpi #(
       PhDrain: if (!busy) begin
         // The device is idle: the next job starts a new stream.
         if (restart != 0) void'(need(voxcd_dpi_restart(h), "voxcd_dpi_restart"));
-        carried   = last_wait;
-        gap_waits = gap_waits + last_wait;
         gaps      = gaps + 1;
         drive_job(next_job);
         phase <= PhRun;

@@ -1,0 +1,34 @@
+// voxcd_assert.svh: named assertions for every module of rtl/ (after lowRISC's prim_assert.sv).
+//
+//   `VOXCD_ASSERT(Name, prop)       prop holds at every rising edge of clk_i while rst_ni is high
+//   `VOXCD_ASSERT_INIT(Name, prop)  prop holds at elaboration (parameter sanity)
+//
+// The including module has clk_i and rst_ni. Three readings of one macro:
+//   - simulation (Verilator with --assert): a concurrent assertion that names itself when it fires;
+//   - formal (yosys read_verilog -formal, which defines FORMAL): an immediate assert in a clocked process, which
+//     `sat -prove-asserts` proves (tests/formal);
+//   - synthesis (SYNTHESIS defined, yosys's default): nothing.
+// rtl/voxcd.f lists this file first, so a tool reading the list sees the macros before any module; each module
+// also includes it (guarded), so a module read on its own with -I rtl works too.
+`ifndef VOXCD_ASSERT_SVH
+`define VOXCD_ASSERT_SVH
+
+`ifdef FORMAL
+  `define VOXCD_ASSERT(__name, __prop) \
+    always @(posedge clk_i) if (rst_ni) __name: assert (__prop);
+  `define VOXCD_ASSERT_INIT(__name, __prop) \
+    initial __name: assert (__prop);
+`elsif SYNTHESIS
+  `define VOXCD_ASSERT(__name, __prop)
+  `define VOXCD_ASSERT_INIT(__name, __prop)
+`else
+  `define VOXCD_ASSERT(__name, __prop) \
+    __name: assert property (@(posedge clk_i) disable iff (!rst_ni) (__prop)) \
+      else $error("%m: assertion %s failed", `"__name`");
+  `define VOXCD_ASSERT_INIT(__name, __prop) \
+    if (!(__prop)) begin : __name \
+      $error("elaboration check %s failed", `"__name`"); \
+    end
+`endif
+
+`endif
