@@ -1,6 +1,7 @@
 // Where the package finds its own files (host/package/paths.h): the build tree is laid out as an installed prefix.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -23,9 +24,23 @@ TEST(Package, RtlDirHoldsEveryFileOfTheListAsTheSourceTreeHasIt) {
   EXPECT_EQ(fs::path(dir).filename(), "rtl");
   EXPECT_NE(dir.find("share/voxcd/rtl"), std::string::npos) << dir;
   const std::vector<std::string> files = voxcd::rtl_files(dir);
-  ASSERT_EQ(files.size(), 4u);
-  EXPECT_EQ(fs::path(files.front()).filename(), "voxcd_pkg.sv");  // the package first
-  EXPECT_EQ(fs::path(files.back()).filename(), "voxcd_device.sv");
+  // Every file the source tree's list names, in its order.
+  std::vector<std::string> listed;
+  {
+    std::ifstream in(std::string(VOXCD_SOURCE_RTL) + "/voxcd.f");
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty() && line.rfind("//", 0) != 0) listed.push_back(line);
+  }
+  ASSERT_GE(listed.size(), 4u);
+  ASSERT_EQ(files.size(), listed.size());
+  for (size_t i = 0; i < files.size(); ++i) EXPECT_EQ(fs::path(files[i]).filename(), listed[i]);
+  // The package before every module that uses it, the device before the AXI top that wraps it.
+  const auto at = [&](const std::string& name) {
+    return std::find(listed.begin(), listed.end(), name) - listed.begin();
+  };
+  EXPECT_LT(at("voxcd_pkg.sv"), at("voxcd_lane.sv"));
+  EXPECT_LT(at("voxcd_pkg.sv"), at("voxcd_device.sv"));
+  EXPECT_LT(at("voxcd_device.sv"), at("voxcd_axi.sv"));
   for (const std::string& f : files) {
     const std::string source = std::string(VOXCD_SOURCE_RTL) + "/" + fs::path(f).filename().string();
     EXPECT_EQ(slurp(f), slurp(source)) << f << " is not a copy of " << source;
