@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "voxcd/host/broadphase/detail/common.h"
+#include "voxcd/ref/fast/thread_pool.h"
 
 namespace voxcd::detail {
 namespace {
@@ -25,13 +26,16 @@ class UniformGrid final : public BroadphaseBase {
     const uint32_t n = uint32_t(bodies.size());
     box_.resize(n);
     ids_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) {
-      check_body(bodies[i], "grid", i, frame);
-      box_[i] = flat(bodies[i].box);
-      ids_[i] = i;
-    }
-    nfound_ = 0;
-    tests_ = 0;
+    // On the pool in ranges of bodies (the lowest range that throws names the first bad body, as one thread would).
+    for_ranges(pool_, pool_ranges(pool_, n, kGrainBodies), [&](size_t, size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) {
+        check_body(bodies[i], "grid", i, frame);
+        box_[i] = flat(bodies[i].box);
+        ids_[i] = uint32_t(i);
+      }
+    });
+    if (out_.empty()) out_.resize(1);
+    for (auto& o : out_) o.value.n = 0, o.value.tests = 0;
     size_t used = 0;
     // ids_[0, m): the boxes not yet placed in a level.
     for (uint32_t m = n; m > 0; ++used) {
@@ -41,14 +45,31 @@ class UniformGrid final : public BroadphaseBase {
       pairs_within(lv);
       // The boxes left over are larger than the level's cell: each against the level's boxes it can reach (and,
       // as it goes up, against every later level it does not end in).
-      for (uint32_t k = 0; k < m; ++k) pairs_with(lv, ids_[k]);
+      for (uint32_t k = 0; k < m; ++k) pairs_with(lv, ids_[k], out_[0].value);
     }
-    found_.resize(nfound_);
-    sort_pairs(found_, tmp_, n, pairs_);
-    stats_ = {tests_, pairs_.size()};
+    // Every part's pairs, then sorted: the same pairs in the same order whatever the parts.
+    uint64_t tests = 0;
+    size_t total = 0;
+    for (const auto& o : out_) tests += o.value.tests, total += o.value.n;
+    Found& first = out_[0].value;
+    first.keys.resize(std::max(first.keys.size(), total));
+    for (size_t p = 1, at = first.n; p < out_.size(); ++p) {
+      const Found& o = out_[p].value;
+      std::copy(o.keys.begin(), o.keys.begin() + std::ptrdiff_t(o.n), first.keys.begin() + std::ptrdiff_t(at));
+      at += o.n;
+    }
+    first.keys.resize(total);
+    sort_pairs(first.keys, tmp_, n, pairs_);
+    stats_ = {tests, pairs_.size()};
   }
 
  private:
+  // Pairs found (keys[0, n)) and tests made, by one part of the search.
+  struct Found {
+    std::vector<uint64_t> keys;
+    size_t n = 0;
+    uint64_t tests = 0;
+  };
   struct Entry {
     FlatBox box;
     uint32_t id;
@@ -156,37 +177,45 @@ class UniformGrid final : public BroadphaseBase {
 
   // Box e against the entries [from, to). Without a branch on the outcome (which the scenes make hard to
   // predict): every candidate's key is written, and the count advances only for an overlap.
-  void test_run(const Entry& e, const Entry* entries, uint32_t from, uint32_t to) {
+  static void test_run(const Entry& e, const Entry* entries, uint32_t from, uint32_t to, Found& f) {
     if (from >= to) return;
-    tests_ += to - from;
-    if (found_.size() < nfound_ + (to - from)) found_.resize(2 * (nfound_ + (to - from)));
-    uint64_t* out = found_.data() + nfound_;
+    f.tests += to - from;
+    if (f.keys.size() < f.n + (to - from)) f.keys.resize(2 * (f.n + (to - from)));
+    uint64_t* out = f.keys.data() + f.n;
     size_t k = 0;
     for (uint32_t q = from; q < to; ++q) {
       out[k] = pair_key(e.id, entries[q].id);
       k += overlaps(e.box, entries[q].box);
     }
-    nfound_ += k;
+    f.n += k;
   }
 
   // Every overlapping pair of a level's boxes, once: each box against the rest of its cell and the cells after it
   // among its 26 neighbours, which are five runs of consecutive cells: (x, y, z+1), (x, y+1, z-1..z+1) and
   // (x+1, y-1..y+1, z-1..z+1).
+  // On the pool in ranges of entries, each into a part of out_ (part 0 continues the search's first list).
   void pairs_within(const Level& lv) {
+    const uint32_t s = uint32_t(lv.entries.size());
+    const Ranges r = pool_ranges(pool_, s, kGrainEntries);
+    if (out_.size() < r.parts) out_.resize(r.parts);
+    for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
+      pairs_within(lv, uint32_t(b), uint32_t(e), out_[part].value);
+    });
+  }
+  void pairs_within(const Level& lv, uint32_t first, uint32_t end, Found& f) {
     const Entry* en = lv.entries.data();
     const uint32_t* st = lv.start.data();
     const int dy = lv.dims[1], dz = lv.dims[2];
-    const uint32_t s = uint32_t(lv.entries.size());
-    for (uint32_t p = 0; p < s; ++p) {
+    for (uint32_t p = first; p < end; ++p) {
       const Entry& e = en[p];
       const int c = int(lv.cell[p]);
       const int x = lv.xyz[p][0], y = lv.xyz[p][1], z = lv.xyz[p][2];
       // The same cell after p, and (x, y, z+1).
-      test_run(e, en, p + 1, st[z + 1 < dz ? c + 2 : c + 1]);
+      test_run(e, en, p + 1, st[z + 1 < dz ? c + 2 : c + 1], f);
       const int z0 = z > 0 ? z - 1 : 0, z1 = z + 1 < dz ? z + 1 : z;
       auto row = [&](int rx, int ry) {
         const int base = (rx * dy + ry) * dz;
-        test_run(e, en, st[base + z0], st[base + z1 + 1]);
+        test_run(e, en, st[base + z0], st[base + z1 + 1], f);
       };
       if (y + 1 < dy) row(x, y + 1);
       if (x + 1 < lv.dims[0]) {
@@ -199,7 +228,7 @@ class UniformGrid final : public BroadphaseBase {
 
   // Body `id` (larger than the level's cell) against the level's boxes whose lower corner lies in a cell its box
   // can reach: from one cell below its own lower corner's to its upper corner's, on every axis.
-  void pairs_with(const Level& lv, uint32_t id) {
+  void pairs_with(const Level& lv, uint32_t id, Found& f) {
     const FlatBox& b = box_[id];
     int c0[3], c1[3];
     for (int a = 0; a < 3; ++a) {
@@ -211,21 +240,22 @@ class UniformGrid final : public BroadphaseBase {
     for (int x = c0[0]; x <= c1[0]; ++x)
       for (int y = c0[1]; y <= c1[1]; ++y) {
         const int base = (x * lv.dims[1] + y) * lv.dims[2];
-        test_run(e, en, lv.start[base + c0[2]], lv.start[base + c1[2] + 1]);
+        test_run(e, en, lv.start[base + c0[2]], lv.start[base + c1[2] + 1], f);
       }
   }
 
   // Finer cells test fewer boxes but cost more to clear and count; 16 measured best on the paper's scene at 256
   // and 1024 bodies (bench_broadphase, 1 to 16 tried).
   static constexpr double kCellsPerBox = 16;
+  // Parts of the pool's loops: bodies checked and flattened, entries searched (about 50 ns each at 16 cells a box).
+  static constexpr size_t kGrainBodies = 2048, kGrainEntries = 64;
   std::vector<FlatBox> box_;
   std::vector<uint32_t> ids_, small_, cell_tmp_, fill_;
   std::vector<double> size_, sorted_;
   std::vector<std::array<int, 3>> xyz_tmp_;
   std::vector<Level> levels_;
-  std::vector<uint64_t> found_, tmp_;  // found_[0, nfound_): the pairs of this frame
-  size_t nfound_ = 0;
-  uint64_t tests_ = 0;
+  std::vector<PartSlot<Found>> out_;  // the pairs of this frame, per part of the search
+  std::vector<uint64_t> tmp_;
 };
 
 }  // namespace
