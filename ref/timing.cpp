@@ -50,30 +50,23 @@ JobHits join_job_hits(const JobHits& a, const JobHits& b) {
   return s;
 }
 
-StreamClock::StreamClock(const DeviceConfig& cfg)
-    : lanes_(uint64_t(cfg.LANES)), slots_(uint64_t(pipeline_slots(cfg))), t_(1 + slots_) {}
-
-JobTiming StreamClock::next(const Job& job, size_t j, const JobHits& h, uint32_t done_hits) {
-  // `t_` is the cycle in which the next slot reaches the hit-test stage, counted from job 0's acceptance
-  // (kFirstSlotLatency on a 2-bit device).
-  const uint64_t L = lanes_, P = slots_;
+JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& h, uint32_t done_hits) {
+  const uint64_t L = uint64_t(cfg.LANES), P = uint64_t(pipeline_slots(cfg));
   const uint64_t count = job.shell_count;
   const uint64_t groups = count == 0 ? 1 : ceil_div(count, L);
-  JobTiming jt;
-  uint64_t done_at = 0;
+  JobSpan s;
   if (job.mode == Mode::First && done_hits > 0) {
     if (h.first_group == groups)
       throw std::invalid_argument("timing: FIRST job " + std::to_string(j) + " reports a hit but has no record");
     const uint64_t f = h.first_group;
-    t_ += f;                // the groups before the hit: one cycle each
-    done_at = t_ + 1;       // the hit record, then the completion record
-    t_ += 2;
-    // Groups issued behind the hit are squashed; the issue stage leaves the job with one empty slot.
+    // The groups before the hit, one cycle each; the hit record, then the completion record. Groups issued behind
+    // the hit are squashed; the issue stage leaves the job with one empty slot.
     const uint64_t squashed = std::min(groups - 1, f + P - 1) - f;
     const uint64_t bubble = (groups - 1 >= f + P) ? 1 : 0;
-    t_ += squashed + bubble;
-    jt.slots = f + 1 + squashed + bubble;
-    jt.points = std::min(count, (f + 1) * L);
+    s.done = f + 1;
+    s.advance = f + 2 + squashed + bubble;
+    s.slots = f + 1 + squashed + bubble;
+    s.points = std::min(count, (f + 1) * L);
   } else {
     // A slot takes max(1, its records) cycles: its hit records (ALL only), and the completion record on the
     // job's last slot. Summed over the slots without a loop over them.
@@ -81,20 +74,25 @@ JobTiming StreamClock::next(const Job& job, size_t j, const JobHits& h, uint32_t
     const uint64_t recs = (all ? h.records : 0) + 1;
     const uint64_t busy = (all ? h.groups : 0) + ((all && h.last_group == groups - 1) ? 0 : 1);
     const uint64_t total = recs + (groups - busy);
-    done_at = t_ + total - 1;
-    t_ += total;
-    jt.slots = groups;
-    jt.points = count;
+    s.done = total - 1;
+    s.advance = total;
+    s.slots = groups;
+    s.points = count;
   }
-  jt.cycles = done_at - prev_done_;
-  prev_done_ = done_at;
-  return jt;
+  return s;
+}
+
+uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan& cur) {
+  // `t`, the cycle in which a job's first slot may reach the hit-test stage, counted from job 0's acceptance:
+  // 1 + P for job 0 (kFirstSlotLatency on a 2-bit device), then the previous job's plus its advance.
+  if (!prev) return 1 + uint64_t(pipeline_slots(cfg)) + cur.done;
+  return prev->advance - prev->done + cur.done;
 }
 
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records) {
   std::vector<JobTiming> out(jobs.size());
-  StreamClock clock(cfg);
+  JobSpan prev;
   size_t r = 0;
   for (size_t j = 0; j < jobs.size(); ++j) {
     const Job& job = jobs[j];
@@ -104,7 +102,11 @@ std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job
     if (r == records.size() || records[r].tag != job.tag)
       throw std::invalid_argument("timing: no completion record for job " + std::to_string(j));
     const Record& done = records[r++];
-    out[j] = clock.next(job, j, h, done.hits);
+    const JobSpan s = job_span(cfg, job, j, h, done.hits);
+    out[j].cycles = span_cycles(cfg, j ? &prev : nullptr, s);
+    out[j].slots = s.slots;
+    out[j].points = s.points;
+    prev = s;
   }
   if (r != records.size()) throw std::invalid_argument("timing: records left over after the last job");
   return out;

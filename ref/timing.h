@@ -42,16 +42,18 @@ JobHits join_job_hits(const JobHits& a, const JobHits& b);
 // The lane groups of a job (at least one).
 uint64_t job_groups(const DeviceConfig& cfg, const Job& job);
 
-// The clock of a stream: job_timing, one job at a time, from each job's JobHits and its completion record's hits.
-class StreamClock {
- public:
-  explicit StreamClock(const DeviceConfig& cfg);
-  // Throws std::invalid_argument when a FIRST job reports a hit without a hit record (`j` names it).
-  JobTiming next(const Job& job, size_t j, const JobHits& hits, uint32_t done_hits);
-
- private:
-  uint64_t lanes_, slots_, t_, prev_done_ = 0;
+// A job's place on the stream's clock, from its own hit records alone (job_hits) and its completion record's hits:
+// cycles from the moment its first slot may reach the hit-test stage to its completion record (`done`) and to the
+// moment the next job's first slot may (`advance`), its slots and points. A job's completion cycles are its `done`
+// plus the previous job's `advance` less the previous job's `done` (span_cycles), so jobs can be timed apart and in
+// any order. Throws std::invalid_argument when a FIRST job reports a hit without a hit record (`j` names it).
+struct JobSpan {
+  uint64_t done = 0, advance = 0, slots = 0, points = 0;
 };
+JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& hits, uint32_t done_hits);
+// The completion record's cycles of a job of span `cur` after a job of span `prev` (null: the stream's first job,
+// whose slots may start kFirstSlotLatency cycles, plus the distance slots, after its acceptance).
+uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan& cur);
 
 // Timing of every job of `jobs`, given the stream `records` that ref/ produced for them (hits in order, then a
 // completion per job). Throws std::invalid_argument when the stream does not belong to the jobs.

@@ -318,43 +318,55 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
                                          : "the device returned records after the completions of all " +
                                                std::to_string(js.size()) + " jobs");
   }
-  // Which hit records make contacts (FIRST: only the first hit of a direction, over its jobs), and the pairs' hits,
-  // lookups and cycles, job by job.
+  // Pair by pair (on the pool in ranges of pairs when they are many; a pair's jobs are consecutive): which hit
+  // records make contacts (FIRST: only the first hit of a direction, over its jobs), the pair's hits, lookups and
+  // cycles, its contacts in place (a vector that holds more already only shrinks: no contact is constructed twice)
+  // and, for a pair with contacts, the pose of its objects as matrices.
   out.resize(pairs.size());
-  counts_.assign(pairs.size(), 0);
-  for (PairResult& r : out) r.hits = 0, r.lookups = 0, r.cycles = 0;
-  const bool first_only = opt.mode == Mode::First;
-  size_t kept_total = 0;
-  bool found = false;  // FIRST: the current direction has its hit
-  for (size_t j = 0; j < js.size(); ++j) {
-    const JobSource& src = sources_[j];
-    if (j == 0 || src.pair != sources_[j - 1].pair || src.a_in_b != sources_[j - 1].a_in_b) found = false;
-    JobRecords& jr = job_records_[j];
-    const size_t end = j + 1 < js.size() ? job_records_[j + 1].first - 1 : nrec - 1;  // its completion record
-    const Record& done = records_[end];
-    jr.kept = first_only && found ? 0 : end - jr.first;
-    jr.at = counts_[src.pair];
-    counts_[src.pair] += jr.kept;
-    kept_total += jr.kept;
-    PairResult& res = out[src.pair];
-    if (first_only) {
-      if (!found && done.hits) ++res.hits, found = true;
-    } else {
-      res.hits += done.hits;
-    }
-    res.lookups += js[j].shell_count;
-    if (done.cycles) res.cycles += *done.cycles;
+  first_job_.resize(pairs.size() + 1);  // pair i's jobs: [first_job_[i], first_job_[i + 1])
+  for (size_t i = 0, j = 0; i <= pairs.size(); ++i) {
+    while (j < js.size() && sources_[j].pair < i) ++j;
+    first_job_[i] = j;
   }
-  // Each pair's contacts in place (a vector that holds more already only shrinks: no contact is constructed twice),
-  // and the pose of its objects as matrices, once, for the pairs with contacts.
   rot_a_.resize(pairs.size());
   rot_b_.resize(pairs.size());
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    out[i].contacts.resize(counts_[i]);
-    if (counts_[i] == 0) continue;
-    rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
-    rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
-  }
+  const bool first_only = opt.mode == Mode::First;
+  const Ranges parts = pool_ranges(pool_.get(), pairs.size(), kParallelPairs);
+  if (kept_parts_.size() < parts.parts) kept_parts_.resize(parts.parts);
+  for_ranges(pool_.get(), parts, [&](size_t part, size_t p0, size_t p1) {
+    size_t kept_total = 0;
+    for (size_t i = p0; i < p1; ++i) {
+      PairResult& res = out[i];
+      res.hits = 0, res.lookups = 0, res.cycles = 0;
+      size_t count = 0;
+      bool found = false;  // FIRST: the current direction has its hit
+      for (size_t j = first_job_[i]; j < first_job_[i + 1]; ++j) {
+        const JobSource& src = sources_[j];
+        if (j == first_job_[i] || src.a_in_b != sources_[j - 1].a_in_b) found = false;
+        JobRecords& jr = job_records_[j];
+        const size_t end = j + 1 < js.size() ? job_records_[j + 1].first - 1 : nrec - 1;  // its completion record
+        const Record& done = records_[end];
+        jr.kept = first_only && found ? 0 : end - jr.first;
+        jr.at = count;
+        count += jr.kept;
+        if (first_only) {
+          if (!found && done.hits) ++res.hits, found = true;
+        } else {
+          res.hits += done.hits;
+        }
+        res.lookups += js[j].shell_count;
+        if (done.cycles) res.cycles += *done.cycles;
+      }
+      res.contacts.resize(count);
+      kept_total += count;
+      if (count == 0) continue;
+      rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
+      rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
+    }
+    kept_parts_[part].value = kept_total;
+  });
+  size_t kept_total = 0;
+  for (size_t p = 0; p < parts.parts; ++p) kept_total += kept_parts_[p].value;
   if (!pool_ || kept_total < kParallelContacts) {
     for (size_t j = 0; j < js.size(); ++j)
       if (job_records_[j].kept)

@@ -13,10 +13,9 @@
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/pose.h"
+#include "voxcd/ref/fast/thread_pool.h"
 
 namespace voxcd {
-
-class ThreadPool;  // ref/fast/thread_pool.h
 
 // Object types that do not fit the device's memories or formats; names the type and the sizes.
 struct CapacityError : std::runtime_error {
@@ -187,7 +186,8 @@ class PairCollider {
   std::vector<Job> jobs_;
   std::vector<JobSource> sources_;
   std::vector<Record> records_;
-  std::vector<size_t> counts_;
+  std::vector<size_t> first_job_;
+  std::vector<PartSlot<size_t>> kept_parts_;
   // Per job: the stream index of its first hit record, how many of them make contacts, where they go in the
   // pair's contacts.
   struct JobRecords {

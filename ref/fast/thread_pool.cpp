@@ -1,6 +1,7 @@
 #include "voxcd/ref/fast/thread_pool.h"
 
 #include <chrono>
+#include <cstdlib>
 
 #if defined(__linux__)
 #include <sched.h>
@@ -42,8 +43,10 @@ ThreadPool::ThreadPool(unsigned threads) {
   const unsigned cpus = available_cpus();
   if (threads == 0) threads = cpus;
   // More threads than CPUs: a spinning worker would take the CPU from the thread it waits for.
-  spin_ = threads <= cpus;
-  for (unsigned k = 1; k < threads; ++k) workers_.emplace_back([this] { worker(); });
+  spin_us_ = threads <= cpus ? kSpinMicros : 0;
+  if (const char* env = std::getenv("VOXCD_SPIN_US")) spin_us_ = unsigned(std::strtoul(env, nullptr, 10));
+  blocks_ = std::make_unique<Block[]>(threads);
+  for (unsigned k = 1; k < threads; ++k) workers_.emplace_back([this, k] { worker(k); });
 }
 
 ThreadPool::~ThreadPool() {
@@ -55,38 +58,74 @@ ThreadPool::~ThreadPool() {
   for (auto& t : workers_) t.join();
 }
 
-void ThreadPool::drain(Loop& loop) {
+void ThreadPool::run(size_t i, size_t& finished) {
+  try {
+    (*fn_)(i);
+  } catch (...) {
+    std::lock_guard<std::mutex> l(error_mu_);
+    if (i < error_index_) error_index_ = i, error_ = std::current_exception();
+  }
+  ++finished;
+}
+
+void ThreadPool::drain(unsigned self) {
   const ThreadPool* outer = t_inside;
   t_inside = this;
   size_t finished = 0;
-  for (size_t i; (i = loop.next.fetch_add(1, std::memory_order_relaxed)) < loop.n;) {
-    try {
-      (*loop.fn)(i);
-    } catch (...) {
-      std::lock_guard<std::mutex> l(loop.error_mu);
-      if (i < loop.error_index) loop.error_index = i, loop.error = std::current_exception();
+  // Its own block from the front.
+  for (;;) {
+    const uint64_t w = blocks_[self].range.fetch_add(uint64_t(1) << 32, std::memory_order_acq_rel);
+    const size_t i = size_t(w >> 32), end = size_t(uint32_t(w));
+    if (i >= end) break;
+    run(i, finished);
+  }
+  // Then the others' blocks from the back, the next thread's first.
+  const unsigned threads = size();
+  for (unsigned d = 1; d < threads; ++d) {
+    std::atomic<uint64_t>& range = blocks_[(self + d) % threads].range;
+    uint64_t w = range.load(std::memory_order_acquire);
+    for (;;) {
+      const size_t i = size_t(w >> 32), end = size_t(uint32_t(w));
+      if (i >= end) break;
+      if (range.compare_exchange_weak(w, (w & ~uint64_t(0xffffffffu)) | (end - 1), std::memory_order_acq_rel,
+                                      std::memory_order_acquire)) {
+        run(end - 1, finished);
+        w = range.load(std::memory_order_acquire);
+      }
     }
-    ++finished;
   }
   t_inside = outer;
-  if (finished) loop.done.fetch_add(finished, std::memory_order_acq_rel);
+  if (finished) done_.fetch_add(finished, std::memory_order_acq_rel);
 }
 
-void ThreadPool::worker() {
+void ThreadPool::worker(unsigned self) {
   uint64_t seen = 0;
   for (;;) {
-    // Wait for a new generation: spin first, then sleep.
+    // Wait for a new loop: spin first, then sleep.
     if (generation_.load(std::memory_order_acquire) == seen && !stop_.load(std::memory_order_acquire)) {
       bool woke = false;
-      if (spin_) {
-        const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(kSpinMicros);
+      if (spin_us_) {
+        // Pauses at first; then a yield between checks, so that on a busy machine the waiting worker gives its CPU
+        // to whatever else wants it (the thread that will start the next loop, often).
+        const auto start = std::chrono::steady_clock::now();
+        const auto busy = start + std::chrono::microseconds(std::min(kBusyMicros, spin_us_));
+        const auto until = start + std::chrono::microseconds(spin_us_);
+        bool yielding = false;
         for (unsigned k = 1;; ++k) {
           if (generation_.load(std::memory_order_acquire) != seen || stop_.load(std::memory_order_relaxed)) {
             woke = true;
             break;
           }
-          relax();
-          if (k % 64 == 0 && std::chrono::steady_clock::now() > until) break;
+          if (yielding) {
+            std::this_thread::yield();
+          } else {
+            relax();
+          }
+          if (yielding || k % 64 == 0) {
+            const auto now = std::chrono::steady_clock::now();
+            if (now > until) break;
+            yielding = now > busy;
+          }
         }
       }
       if (!woke) {
@@ -98,11 +137,34 @@ void ThreadPool::worker() {
     }
     if (stop_.load(std::memory_order_acquire)) return;
     seen = generation_.load(std::memory_order_acquire);
-    // Announce, then read the loop (null when its caller has closed it already).
-    users_.fetch_add(1, std::memory_order_seq_cst);
-    if (Loop* loop = loop_.load(std::memory_order_seq_cst)) drain(*loop);
-    users_.fetch_sub(1, std::memory_order_release);
+    drain(self);
   }
+}
+
+void ThreadPool::run_loop(size_t n, const std::function<void(size_t)>& fn) {
+  const auto start = stats_on_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
+  fn_ = &fn;
+  done_.store(0, std::memory_order_relaxed);
+  error_index_ = SIZE_MAX;
+  error_ = nullptr;
+  const unsigned threads = size();
+  for (unsigned k = 0; k < threads; ++k) {
+    const uint64_t b = uint64_t(n * k / threads), e = uint64_t(n * (k + 1) / threads);
+    blocks_[k].range.store(b << 32 | e, std::memory_order_release);
+  }
+  generation_.fetch_add(1, std::memory_order_seq_cst);
+  if (sleepers_.load(std::memory_order_seq_cst) > 0) {
+    { std::lock_guard<std::mutex> l(sleep_mu_); }
+    wake_.notify_all();
+  }
+  drain(0);
+  // The tasks the workers claimed: the caller waits for them alone (a worker that claimed none is not waited for).
+  for (unsigned k = 1; done_.load(std::memory_order_acquire) < n; ++k) k % 1024 ? relax() : std::this_thread::yield();
+  if (stats_on_) {
+    ++stats_.loops;
+    stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  if (error_) std::rethrow_exception(error_);
 }
 
 void ThreadPool::parallel_for(size_t n, const std::function<void(size_t)>& fn) {
@@ -113,26 +175,13 @@ void ThreadPool::parallel_for(size_t n, const std::function<void(size_t)>& fn) {
     return;
   }
   std::lock_guard<std::mutex> call(call_mu_);
-  const auto start = stats_on_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
-  Loop loop;
-  loop.fn = &fn;
-  loop.n = n;
-  loop_.store(&loop, std::memory_order_seq_cst);
-  generation_.fetch_add(1, std::memory_order_seq_cst);
-  if (sleepers_.load(std::memory_order_seq_cst) > 0) {
-    { std::lock_guard<std::mutex> l(sleep_mu_); }
-    wake_.notify_all();
+  // The count is 32 bits of the work word (less a margin for the claims past the end): longer loops in turn.
+  constexpr size_t kMost = (size_t(1) << 32) - 4096;
+  if (n <= kMost) return run_loop(n, fn);
+  for (size_t base = 0; base < n; base += kMost) {
+    const std::function<void(size_t)> part = [&](size_t i) { fn(base + i); };
+    run_loop(std::min(kMost, n - base), part);
   }
-  drain(loop);
-  // Wait for the tasks the workers claimed, then close the loop and wait for every worker that may still read it.
-  for (unsigned k = 1; loop.done.load(std::memory_order_acquire) < n; ++k) k % 1024 ? relax() : std::this_thread::yield();
-  loop_.store(nullptr, std::memory_order_seq_cst);
-  for (unsigned k = 1; users_.load(std::memory_order_seq_cst) != 0; ++k) k % 1024 ? relax() : std::this_thread::yield();
-  if (stats_on_) {
-    ++stats_.loops;
-    stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-  if (loop.error) std::rethrow_exception(loop.error);
 }
 
 }  // namespace voxcd

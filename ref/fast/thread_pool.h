@@ -3,9 +3,13 @@
 //
 // Made for loops of a few microseconds (a frame of `voxcd simulate` runs about ten of them): after a loop its
 // workers wait for the next one spinning for up to kSpinMicros before they sleep, so a loop started within that
-// time costs a write to one cache line and no system call (a sleeping worker costs a futex wake-up, tens of
-// microseconds on a virtual machine). A pool with more threads than the CPUs the process may run on never spins.
-// docs/scale.md, "Every core in a process".
+// time costs a few cache lines and no system call (a sleeping worker costs a futex wake-up, tens of microseconds on
+// a virtual machine). A pool with more threads than the CPUs the process may run on never spins.
+//
+// Thread k of T (the caller is thread 0) takes the indices of the k-th of T equal blocks of a loop first, in order,
+// and then takes the others' last indices while any are left: loops over the same ranges find their data where
+// they left it (a cache line moves between the cores of this machine in about 200 ns), and a thread that is late
+// or slow has its work taken by the others. docs/scale.md, "Every core in a process".
 #pragma once
 
 #include <algorithm>
@@ -15,6 +19,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -50,33 +55,37 @@ class ThreadPool {
 
   // The CPUs this process may run on (sched_getaffinity; hardware_concurrency where that fails), at least 1.
   static unsigned available_cpus();
-  // How long an idle worker spins for the next loop before it sleeps.
-  static constexpr unsigned kSpinMicros = 1000;
+  // How long an idle worker spins for the next loop before it sleeps (the environment variable VOXCD_SPIN_US, read
+  // when a pool is made, overrides it; 0: sleep at once), and for how much of that it spins without yielding.
+  static constexpr unsigned kSpinMicros = 1000, kBusyMicros = 50;
 
  private:
-  // One loop, on the caller's stack while it runs.
-  struct Loop {
-    const std::function<void(size_t)>* fn = nullptr;
-    size_t n = 0;
-    alignas(64) std::atomic<size_t> next{0};  // the next index to claim
-    alignas(64) std::atomic<size_t> done{0};  // indices finished
-    std::mutex error_mu;
-    size_t error_index = SIZE_MAX;
-    std::exception_ptr error;
-  };
-  void worker();
-  void drain(Loop& loop);
+  void worker(unsigned self);
+  void drain(unsigned self);
+  void run(size_t i, size_t& finished);
+  void run_loop(size_t n, const std::function<void(size_t)>& fn);
 
   std::vector<std::thread> workers_;
-  bool spin_ = true;
+  unsigned spin_us_ = kSpinMicros;  // 0: no spinning
   bool stats_on_ = false;
   Stats stats_;
   std::mutex call_mu_;  // one loop at a time
-  // The current loop (null between loops), its generation, and the workers reading it. A worker announces itself
-  // in users_ before it reads loop_; the caller clears loop_ and then waits for users_ to reach 0.
-  alignas(64) std::atomic<Loop*> loop_{nullptr};
-  std::atomic<uint64_t> generation_{0};
-  alignas(64) std::atomic<unsigned> users_{0};
+  // The current loop: its body, and per thread its block, in one word: the next index to take from the front (high
+  // half) and one past the last index left (low half). The owner takes from the front with a fetch_add, the others
+  // from the back with a compare-and-swap. A thread that takes an index below the end it read has a task of the
+  // live loop (a loop ends only when all its tasks are done), whose body it then reads; between loops every block
+  // is empty, so a late worker takes nothing.
+  const std::function<void(size_t)>* fn_ = nullptr;
+  struct alignas(64) Block {
+    std::atomic<uint64_t> range{0};
+  };
+  std::unique_ptr<Block[]> blocks_;
+  alignas(64) std::atomic<size_t> done_{0};  // tasks of the live loop finished
+  std::mutex error_mu_;
+  size_t error_index_ = SIZE_MAX;  // the lowest index that threw, and its exception
+  std::exception_ptr error_;
+  // Loops started, for the waiting workers; and how many of them sleep.
+  alignas(64) std::atomic<uint64_t> generation_{0};
   alignas(64) std::atomic<unsigned> sleepers_{0};
   std::mutex sleep_mu_;
   std::condition_variable wake_;
