@@ -12,67 +12,101 @@ uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 
 }  // namespace
 
+uint64_t job_groups(const DeviceConfig& cfg, const Job& job) {
+  const uint64_t count = job.shell_count;
+  return count == 0 ? 1 : ceil_div(count, uint64_t(cfg.LANES));
+}
+
+JobHits job_hits(const DeviceConfig& cfg, const Job& job, size_t j, const Record* hits, size_t n, size_t first) {
+  const uint64_t L = uint64_t(cfg.LANES);
+  const uint64_t count = job.shell_count;
+  const uint64_t groups = job_groups(cfg, job);
+  JobHits s;
+  s.first_group = s.last_group = groups;
+  for (size_t k = 0; k < n; ++k) {
+    const Record& h = hits[k];
+    if (h.tag != job.tag || h.point >= count)
+      throw std::invalid_argument("timing: hit record " + std::to_string(first + k) + " does not belong to job " +
+                                  std::to_string(j));
+    const uint64_t g = h.point / L;
+    if (s.records && g < s.last_group)
+      throw std::invalid_argument("timing: hit record " + std::to_string(first + k) + " of job " + std::to_string(j) +
+                                  " is not in ascending point order");
+    ++s.records;
+    if (g != s.last_group) ++s.groups, s.last_group = g;
+    if (s.first_group == groups) s.first_group = g;
+  }
+  return s;
+}
+
+JobHits join_job_hits(const JobHits& a, const JobHits& b) {
+  if (!a.records) return b;
+  if (!b.records) return a;
+  JobHits s;
+  s.records = a.records + b.records;
+  s.groups = a.groups + b.groups - (a.last_group == b.first_group ? 1 : 0);
+  s.first_group = a.first_group;
+  s.last_group = b.last_group;
+  return s;
+}
+
+JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& h, uint32_t done_hits) {
+  const uint64_t L = uint64_t(cfg.LANES), P = uint64_t(pipeline_slots(cfg));
+  const uint64_t count = job.shell_count;
+  const uint64_t groups = count == 0 ? 1 : ceil_div(count, L);
+  JobSpan s;
+  if (job.mode == Mode::First && done_hits > 0) {
+    if (h.first_group == groups)
+      throw std::invalid_argument("timing: FIRST job " + std::to_string(j) + " reports a hit but has no record");
+    const uint64_t f = h.first_group;
+    // The groups before the hit, one cycle each; the hit record, then the completion record. Groups issued behind
+    // the hit are squashed; the issue stage leaves the job with one empty slot.
+    const uint64_t squashed = std::min(groups - 1, f + P - 1) - f;
+    const uint64_t bubble = (groups - 1 >= f + P) ? 1 : 0;
+    s.done = f + 1;
+    s.advance = f + 2 + squashed + bubble;
+    s.slots = f + 1 + squashed + bubble;
+    s.points = std::min(count, (f + 1) * L);
+  } else {
+    // A slot takes max(1, its records) cycles: its hit records (ALL only), and the completion record on the
+    // job's last slot. Summed over the slots without a loop over them.
+    const bool all = job.mode == Mode::All;
+    const uint64_t recs = (all ? h.records : 0) + 1;
+    const uint64_t busy = (all ? h.groups : 0) + ((all && h.last_group == groups - 1) ? 0 : 1);
+    const uint64_t total = recs + (groups - busy);
+    s.done = total - 1;
+    s.advance = total;
+    s.slots = groups;
+    s.points = count;
+  }
+  return s;
+}
+
+uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan& cur) {
+  // `t`, the cycle in which a job's first slot may reach the hit-test stage, counted from job 0's acceptance:
+  // 1 + P for job 0 (kFirstSlotLatency on a 2-bit device), then the previous job's plus its advance.
+  if (!prev) return 1 + uint64_t(pipeline_slots(cfg)) + cur.done;
+  return prev->advance - prev->done + cur.done;
+}
+
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records) {
-  const uint64_t L = uint64_t(cfg.LANES);
-  const uint64_t P = uint64_t(pipeline_slots(cfg));
   std::vector<JobTiming> out(jobs.size());
-  // `t` is the cycle in which the next slot reaches the hit-test stage, counted from job 0's acceptance.
-  uint64_t t = 1 + P;  // kFirstSlotLatency on a 2-bit device
-  uint64_t prev_done = 0;
+  JobSpan prev;
   size_t r = 0;
   for (size_t j = 0; j < jobs.size(); ++j) {
     const Job& job = jobs[j];
-    const uint64_t count = job.shell_count;
-    const uint64_t groups = count == 0 ? 1 : ceil_div(count, L);
-    uint64_t first_group = groups;  // group of the first hit record
-    uint64_t hit_records = 0, hit_groups = 0, last_group = groups;  // groups with a hit record, the latest one
-    for (; r < records.size() && records[r].kind == Record::Hit; ++r) {
-      const Record& h = records[r];
-      if (h.tag != job.tag || h.point >= count)
-        throw std::invalid_argument("timing: hit record " + std::to_string(r) + " does not belong to job " +
-                                    std::to_string(j));
-      const uint64_t g = h.point / L;
-      if (hit_records && g < last_group)
-        throw std::invalid_argument("timing: hit record " + std::to_string(r) + " of job " + std::to_string(j) +
-                                    " is not in ascending point order");
-      ++hit_records;
-      if (g != last_group) ++hit_groups, last_group = g;
-      if (first_group == groups) first_group = g;
-    }
+    const size_t first = r;
+    while (r < records.size() && records[r].kind == Record::Hit) ++r;
+    const JobHits h = job_hits(cfg, job, j, records.data() + first, r - first, first);
     if (r == records.size() || records[r].tag != job.tag)
       throw std::invalid_argument("timing: no completion record for job " + std::to_string(j));
     const Record& done = records[r++];
-
-    JobTiming& jt = out[j];
-    uint64_t done_at = 0;
-    if (job.mode == Mode::First && done.hits > 0) {
-      if (first_group == groups)
-        throw std::invalid_argument("timing: FIRST job " + std::to_string(j) + " reports a hit but has no record");
-      const uint64_t f = first_group;
-      t += f;                 // the groups before the hit: one cycle each
-      done_at = t + 1;        // the hit record, then the completion record
-      t += 2;
-      // Groups issued behind the hit are squashed; the issue stage leaves the job with one empty slot.
-      const uint64_t squashed = std::min(groups - 1, f + P - 1) - f;
-      const uint64_t bubble = (groups - 1 >= f + P) ? 1 : 0;
-      t += squashed + bubble;
-      jt.slots = f + 1 + squashed + bubble;
-      jt.points = std::min(count, (f + 1) * L);
-    } else {
-      // A slot takes max(1, its records) cycles: its hit records (ALL only), and the completion record on the
-      // job's last slot. Summed over the slots without a loop over them.
-      const bool all = job.mode == Mode::All;
-      const uint64_t recs = (all ? hit_records : 0) + 1;
-      const uint64_t busy = (all ? hit_groups : 0) + ((all && last_group == groups - 1) ? 0 : 1);
-      const uint64_t total = recs + (groups - busy);
-      done_at = t + total - 1;
-      t += total;
-      jt.slots = groups;
-      jt.points = count;
-    }
-    jt.cycles = done_at - prev_done;
-    prev_done = done_at;
+    const JobSpan s = job_span(cfg, job, j, h, done.hits);
+    out[j].cycles = span_cycles(cfg, j ? &prev : nullptr, s);
+    out[j].slots = s.slots;
+    out[j].points = s.points;
+    prev = s;
   }
   if (r != records.size()) throw std::invalid_argument("timing: records left over after the last job");
   return out;

@@ -28,6 +28,34 @@ struct JobTiming {
   uint64_t points = 0;  // points that reached the hit test before the completion (the record's informative count)
 };
 
+// What a job's timing takes from its own hit records: how many, how many lane groups hold one, the first and the
+// last of those groups (both = the job's group count when it has none).
+struct JobHits {
+  uint64_t records = 0, groups = 0, first_group = 0, last_group = 0;
+};
+// The summary of job `j`'s hit records [hits, hits + n) (its records before its completion record). Throws
+// std::invalid_argument as job_timing does when a record is not the job's or not in ascending point order;
+// `first` is the index of hits[0] in the stream, for the message.
+JobHits job_hits(const DeviceConfig& cfg, const Job& job, size_t j, const Record* hits, size_t n, size_t first = 0);
+// The summary of two consecutive runs of one job's hit records (a before b), as job_hits of the whole run gives it;
+// the two runs are not checked against each other.
+JobHits join_job_hits(const JobHits& a, const JobHits& b);
+// The lane groups of a job (at least one).
+uint64_t job_groups(const DeviceConfig& cfg, const Job& job);
+
+// A job's place on the stream's clock, from its own hit records alone (job_hits) and its completion record's hits:
+// cycles from the moment its first slot may reach the hit-test stage to its completion record (`done`) and to the
+// moment the next job's first slot may (`advance`), its slots and points. A job's completion cycles are its `done`
+// plus the previous job's `advance` less the previous job's `done` (span_cycles), so jobs can be timed apart and in
+// any order. Throws std::invalid_argument when a FIRST job reports a hit without a hit record (`j` names it).
+struct JobSpan {
+  uint64_t done = 0, advance = 0, slots = 0, points = 0;
+};
+JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& hits, uint32_t done_hits);
+// The completion record's cycles of a job of span `cur` after a job of span `prev` (null: the stream's first job,
+// whose slots may start kFirstSlotLatency cycles, plus the distance slots, after its acceptance).
+uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan& cur);
+
 // Timing of every job of `jobs`, given the stream `records` that ref/ produced for them (hits in order, then a
 // completion per job). Throws std::invalid_argument when the stream does not belong to the jobs.
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,

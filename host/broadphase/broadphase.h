@@ -12,6 +12,8 @@
 
 namespace voxcd {
 
+class ThreadPool;  // ref/fast/thread_pool.h
+
 struct Aabb {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
   // Closed boxes: touching faces overlap.
@@ -56,6 +58,12 @@ class Broadphase {
   // The pairs of the last update whose bounding volumes overlap under predicate(): ascending, each once.
   virtual const std::vector<BodyPair>& pairs() const = 0;
   virtual BroadphaseStats stats() const = 0;
+  // Threads for update() (grid: the pair search and the sort; the others run on the calling thread). The pairs
+  // never depend on it. Null: the calling thread.
+  void set_pool(ThreadPool* pool) { pool_ = pool; }
+
+ protected:
+  ThreadPool* pool_ = nullptr;
 };
 
 // "all" (every pair, the paper's baseline), "sphere" (bounding spheres, all pairs tested), "sap" (sort and sweep on

@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "voxcd/host/broadphase/detail/common.h"
+#include "voxcd/ref/fast/thread_pool.h"
 
 namespace voxcd::detail {
 namespace {
@@ -25,13 +26,29 @@ class UniformGrid final : public BroadphaseBase {
     const uint32_t n = uint32_t(bodies.size());
     box_.resize(n);
     ids_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) {
-      check_body(bodies[i], "grid", i, frame);
-      box_[i] = flat(bodies[i].box);
-      ids_[i] = i;
-    }
-    nfound_ = 0;
-    tests_ = 0;
+    size_.resize(n);
+    // Every box checked, flattened and sized (its largest side), on the pool in ranges of bodies (the lowest range
+    // that throws names the first bad body, as one thread would); the smallest and largest size per range.
+    const Ranges r = pool_ranges(pool_, n, kGrainBodies);
+    if (span_.size() < r.parts) span_.resize(r.parts);
+    for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
+      double smallest = HUGE_VAL, largest = 0;
+      for (size_t i = b; i < e; ++i) {
+        check_body(bodies[i], "grid", i, frame);
+        const FlatBox f = flat(bodies[i].box);
+        box_[i] = f;
+        ids_[i] = uint32_t(i);
+        size_[i] = std::max({f.hi[0] - f.lo[0], f.hi[1] - f.lo[1], f.hi[2] - f.lo[2]});
+        smallest = std::min(smallest, size_[i]);
+        largest = std::max(largest, size_[i]);
+      }
+      span_[part].value = {smallest, largest};
+    });
+    sizes_[0] = HUGE_VAL, sizes_[1] = 0;
+    for (size_t p = 0; p < r.parts; ++p)
+      sizes_[0] = std::min(sizes_[0], span_[p].value[0]), sizes_[1] = std::max(sizes_[1], span_[p].value[1]);
+    if (out_.empty()) out_.resize(1);
+    for (auto& o : out_) o.value.n = 0, o.value.tests = 0;
     size_t used = 0;
     // ids_[0, m): the boxes not yet placed in a level.
     for (uint32_t m = n; m > 0; ++used) {
@@ -41,14 +58,80 @@ class UniformGrid final : public BroadphaseBase {
       pairs_within(lv);
       // The boxes left over are larger than the level's cell: each against the level's boxes it can reach (and,
       // as it goes up, against every later level it does not end in).
-      for (uint32_t k = 0; k < m; ++k) pairs_with(lv, ids_[k]);
+      for (uint32_t k = 0; k < m; ++k) pairs_with(lv, ids_[k], out_[0].value);
     }
-    found_.resize(nfound_);
-    sort_pairs(found_, tmp_, n, pairs_);
-    stats_ = {tests_, pairs_.size()};
+    // Every part's pairs, sorted: the same pairs in the same order whatever the parts.
+    uint64_t tests = 0;
+    size_t total = 0;
+    for (const auto& o : out_) tests += o.value.tests, total += o.value.n;
+    if (pool_ && total >= kParallelSort) {
+      sort_on_pool(n, total);
+    } else {
+      Found& first = out_[0].value;
+      first.keys.resize(std::max(first.keys.size(), total));
+      for (size_t p = 1, at = first.n; p < out_.size(); ++p) {
+        const Found& o = out_[p].value;
+        std::copy(o.keys.begin(), o.keys.begin() + std::ptrdiff_t(o.n), first.keys.begin() + std::ptrdiff_t(at));
+        at += o.n;
+      }
+      first.keys.resize(total);
+      sort_pairs(first.keys, tmp_, n, pairs_);
+    }
+    stats_ = {tests, pairs_.size()};
   }
 
  private:
+  // Pairs found (keys[0, n)) and tests made, by one part of the search.
+  struct Found {
+    std::vector<uint64_t> keys, scratch;
+    size_t n = 0;
+    uint64_t tests = 0;
+  };
+
+  // The parts' keys sorted on the pool, each part its own; then merged on the pool in buckets of first bodies
+  // ([b n / B, (b + 1) n / B) for bucket b of B), each bucket written to its place in pairs_.
+  void sort_on_pool(uint32_t n, size_t total) {
+    const size_t parts = out_.size();
+    pool_->parallel_for(parts, [&](size_t p) {
+      Found& f = out_[p].value;
+      f.keys.resize(f.n);
+      sort_keys(f.keys, f.scratch, n);
+    });
+    const size_t buckets = 4 * size_t(pool_->size());
+    cut_.resize(parts * (buckets + 1));
+    bucket_at_.assign(buckets + 1, 0);
+    for (size_t p = 0; p < parts; ++p) {
+      const std::vector<uint64_t>& k = out_[p].value.keys;
+      for (size_t b = 0; b <= buckets; ++b) {
+        const uint64_t lo = uint64_t(uint64_t(b) * n / buckets) << 32;
+        const size_t at = b == buckets ? k.size() : size_t(std::lower_bound(k.begin(), k.end(), lo) - k.begin());
+        cut_[p * (buckets + 1) + b] = at;
+        if (b > 0) bucket_at_[b] += at - cut_[p * (buckets + 1) + b - 1];
+      }
+    }
+    for (size_t b = 1; b <= buckets; ++b) bucket_at_[b] += bucket_at_[b - 1];
+    pairs_.resize(total);
+    if (heads_.size() < buckets) heads_.resize(buckets);
+    pool_->parallel_for(buckets, [&](size_t b) {
+      // A merge of the parts' runs of the bucket: the smallest head each time.
+      auto& h = heads_[b].value;
+      h.clear();
+      for (size_t p = 0; p < parts; ++p) {
+        const uint64_t* k = out_[p].value.keys.data();
+        const size_t from = cut_[p * (buckets + 1) + b], to = cut_[p * (buckets + 1) + b + 1];
+        if (from < to) h.push_back({k + from, k + to});
+      }
+      BodyPair* out = pairs_.data() + bucket_at_[b];
+      while (!h.empty()) {
+        size_t best = 0;
+        for (size_t q = 1; q < h.size(); ++q)
+          if (*h[q].first < *h[best].first) best = q;
+        const uint64_t key = *h[best].first++;
+        *out++ = {uint32_t(key >> 32), uint32_t(key)};
+        if (h[best].first == h[best].second) h.erase(h.begin() + std::ptrdiff_t(best));
+      }
+    });
+  }
   struct Entry {
     FlatBox box;
     uint32_t id;
@@ -73,38 +156,55 @@ class UniformGrid final : public BroadphaseBase {
   }
 
   // Builds a level from ids_[0, m): the boxes up to twice the median size go into it, the rest are moved to the
-  // front of ids_ (their count is returned).
+  // front of ids_ (their count is returned). The passes over the boxes run on the pool in ranges, each range's
+  // results joined in range order (the same level whatever the ranges).
   uint32_t build(Level& lv, uint32_t m) {
-    // The size of a box: its largest side. The median only when the sizes differ by more than a factor of two.
-    size_.resize(m);
-    double smallest = HUGE_VAL, largest = 0;
-    for (uint32_t k = 0; k < m; ++k) {
-      const FlatBox& b = box_[ids_[k]];
-      size_[k] = std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
-      smallest = std::min(smallest, size_[k]);
-      largest = std::max(largest, size_[k]);
+    // The size of a box: its largest side (size_, by body). The median only when the sizes differ by more than a
+    // factor of two. The first level's smallest and largest come from update().
+    double smallest = sizes_[0], largest = sizes_[1];
+    if (m != box_.size()) {
+      smallest = HUGE_VAL, largest = 0;
+      for (uint32_t k = 0; k < m; ++k) smallest = std::min(smallest, size_[ids_[k]]), largest = std::max(largest, size_[ids_[k]]);
     }
     double limit = largest;
     if (largest > 2 * smallest) {
-      sorted_.assign(size_.begin(), size_.end());
+      sorted_.resize(m);
+      for (uint32_t k = 0; k < m; ++k) sorted_[k] = size_[ids_[k]];
       std::nth_element(sorted_.begin(), sorted_.begin() + m / 2, sorted_.end());
       limit = 2 * sorted_[m / 2];
     }
-    // Split: the small ones (size <= limit, which includes the median and everything below) stay in order.
+    // Split: the small ones (size <= limit, which includes the median and everything below) stay in order; per
+    // range its small and large ones, the largest small box and the range of the small ones' lower corners.
+    const Ranges r = pool_ranges(pool_, m, kGrainSplit);
+    if (split_.size() < r.parts) split_.resize(r.parts);
+    for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
+      Split& sp = split_[part].value;
+      sp.small.clear();
+      sp.large.clear();
+      sp.width = 0;
+      for (int a = 0; a < 3; ++a) sp.lo[a] = HUGE_VAL, sp.hi[a] = -HUGE_VAL;
+      for (size_t k = b; k < e; ++k) {
+        const uint32_t id = ids_[k];
+        if (size_[id] > limit) {
+          sp.large.push_back(id);
+          continue;
+        }
+        sp.small.push_back(id);
+        sp.width = std::max(sp.width, size_[id]);
+        const FlatBox& box = box_[id];
+        for (int a = 0; a < 3; ++a) sp.lo[a] = std::min(sp.lo[a], box.lo[a]), sp.hi[a] = std::max(sp.hi[a], box.lo[a]);
+      }
+    });
     double width = 0, lo[3], hi[3];
     for (int a = 0; a < 3; ++a) lo[a] = HUGE_VAL, hi[a] = -HUGE_VAL;
     uint32_t large = 0;
     small_.clear();
-    for (uint32_t k = 0; k < m; ++k) {
-      const uint32_t id = ids_[k];
-      if (size_[k] > limit) {
-        ids_[large++] = id;
-        continue;
-      }
-      small_.push_back(id);
-      width = std::max(width, size_[k]);
-      const FlatBox& b = box_[id];
-      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], b.lo[a]), hi[a] = std::max(hi[a], b.lo[a]);
+    for (size_t p = 0; p < r.parts; ++p) {
+      const Split& sp = split_[p].value;
+      small_.insert(small_.end(), sp.small.begin(), sp.small.end());
+      for (uint32_t id : sp.large) ids_[large++] = id;
+      width = std::max(width, sp.width);
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], sp.lo[a]), hi[a] = std::max(hi[a], sp.hi[a]);
     }
     // The cell: the largest box and a millionth, and no finer than about kCellsPerBox cells a box over the range
     // of the lower corners.
@@ -128,65 +228,131 @@ class UniformGrid final : public BroadphaseBase {
     }
     if (lv.inv == 0) lv.dims[0] = lv.dims[1] = lv.dims[2] = 1;
     const uint64_t cells = uint64_t(lv.dims[0]) * lv.dims[1] * lv.dims[2];
-    // Counting sort of the small boxes by cell.
-    lv.start.assign(cells + 1, 0);
+    // Counting sort of the small boxes by cell, stable (in small_ order within a cell).
     lv.cell.resize(s);
     lv.xyz.resize(s);
     lv.entries.resize(s);
     cell_tmp_.resize(s);
     xyz_tmp_.resize(s);
-    for (uint32_t k = 0; k < s; ++k) {
-      const FlatBox& b = box_[small_[k]];
-      auto& q = xyz_tmp_[k];
-      for (int a = 0; a < 3; ++a) q[a] = coord(lv, b.lo[a], a);
-      const uint32_t c = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
-      cell_tmp_[k] = c;
-      ++lv.start[c + 1];
+    if (!pool_ || s < kParallelCells) {
+      lv.start.assign(cells + 1, 0);
+      for (uint32_t k = 0; k < s; ++k) {
+        const FlatBox& box = box_[small_[k]];
+        auto& q = xyz_tmp_[k];
+        for (int a = 0; a < 3; ++a) q[a] = coord(lv, box.lo[a], a);
+        cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
+        ++lv.start[cell_tmp_[k] + 1];
+      }
+      for (uint64_t c = 0; c < cells; ++c) lv.start[c + 1] += lv.start[c];
+      fill_.assign(lv.start.begin(), lv.start.end() - 1);
+      for (uint32_t k = 0; k < s; ++k) place(lv, k, fill_[cell_tmp_[k]]++);
+      return large;
     }
-    for (uint64_t c = 0; c < cells; ++c) lv.start[c + 1] += lv.start[c];
-    fill_.assign(lv.start.begin(), lv.start.end() - 1);
-    for (uint32_t k = 0; k < s; ++k) {
-      const uint32_t p = fill_[cell_tmp_[k]]++;
-      lv.entries[p] = {box_[small_[k]], small_[k]};
-      lv.cell[p] = cell_tmp_[k];
-      lv.xyz[p] = xyz_tmp_[k];
+    // On the pool, in buckets of consecutive cells (bucket c * B / cells of cell c): each range of boxes finds their
+    // cells and counts them per bucket; the buckets' places follow (range by range within a bucket); each range puts
+    // its boxes in their buckets, in order; each bucket counts its cells' boxes, writes its cells' starts and places
+    // its boxes. The same order as the loop above.
+    const size_t buckets = 4 * size_t(pool_->size());
+    auto bucket_of = [&](uint64_t c) { return size_t(c * buckets / cells); };
+    auto first_cell = [&](size_t b) { return (uint64_t(b) * cells + buckets - 1) / buckets; };
+    const Ranges r2 = pool_ranges(pool_, s, kGrainCells);
+    if (count_.size() < r2.parts) count_.resize(r2.parts);
+    pool_->parallel_for(r2.parts, [&](size_t part) {
+      std::vector<uint32_t>& cnt = count_[part].value;
+      cnt.assign(buckets, 0);
+      for (size_t k = r2.begin(part); k < r2.end(part); ++k) {
+        const FlatBox& box = box_[small_[k]];
+        auto& q = xyz_tmp_[k];
+        for (int a = 0; a < 3; ++a) q[a] = coord(lv, box.lo[a], a);
+        cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
+        ++cnt[bucket_of(cell_tmp_[k])];
+      }
+    });
+    bucket_at_.assign(buckets + 1, 0);
+    for (size_t b = 0, at = 0; b < buckets; ++b) {
+      bucket_at_[b] = at;
+      for (size_t part = 0; part < r2.parts; ++part) {
+        uint32_t& c = count_[part].value[b];
+        const uint32_t n = c;
+        c = uint32_t(at);  // where the range's boxes of the bucket go
+        at += n;
+      }
     }
+    bucket_at_[buckets] = s;
+    order_.resize(s);
+    pool_->parallel_for(r2.parts, [&](size_t part) {
+      std::vector<uint32_t>& at = count_[part].value;
+      for (size_t k = r2.begin(part); k < r2.end(part); ++k) order_[at[bucket_of(cell_tmp_[k])]++] = uint32_t(k);
+    });
+    lv.start.resize(cells + 1);
+    fill_.resize(cells);
+    pool_->parallel_for(buckets, [&](size_t b) {
+      const uint64_t c0 = first_cell(b), c1 = first_cell(b + 1);
+      std::fill(fill_.begin() + std::ptrdiff_t(c0), fill_.begin() + std::ptrdiff_t(c1), 0u);
+      for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) ++fill_[cell_tmp_[order_[i]]];
+      uint32_t at = uint32_t(bucket_at_[b]);
+      for (uint64_t c = c0; c < c1; ++c) {
+        const uint32_t n = fill_[c];
+        lv.start[c] = fill_[c] = at;
+        at += n;
+      }
+      for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) {
+        const uint32_t k = order_[i];
+        place(lv, k, fill_[cell_tmp_[k]]++);
+      }
+    });
+    lv.start[cells] = s;
     return large;
+  }
+
+  // Small box k (small_[k], its cell and coordinates in cell_tmp_ and xyz_tmp_) to entry p of the level.
+  void place(Level& lv, uint32_t k, uint32_t p) {
+    lv.entries[p] = {box_[small_[k]], small_[k]};
+    lv.cell[p] = cell_tmp_[k];
+    lv.xyz[p] = xyz_tmp_[k];
   }
 
   // Box e against the entries [from, to). Without a branch on the outcome (which the scenes make hard to
   // predict): every candidate's key is written, and the count advances only for an overlap.
-  void test_run(const Entry& e, const Entry* entries, uint32_t from, uint32_t to) {
+  static void test_run(const Entry& e, const Entry* entries, uint32_t from, uint32_t to, Found& f) {
     if (from >= to) return;
-    tests_ += to - from;
-    if (found_.size() < nfound_ + (to - from)) found_.resize(2 * (nfound_ + (to - from)));
-    uint64_t* out = found_.data() + nfound_;
+    f.tests += to - from;
+    if (f.keys.size() < f.n + (to - from)) f.keys.resize(2 * (f.n + (to - from)));
+    uint64_t* out = f.keys.data() + f.n;
     size_t k = 0;
     for (uint32_t q = from; q < to; ++q) {
       out[k] = pair_key(e.id, entries[q].id);
       k += overlaps(e.box, entries[q].box);
     }
-    nfound_ += k;
+    f.n += k;
   }
 
   // Every overlapping pair of a level's boxes, once: each box against the rest of its cell and the cells after it
   // among its 26 neighbours, which are five runs of consecutive cells: (x, y, z+1), (x, y+1, z-1..z+1) and
   // (x+1, y-1..y+1, z-1..z+1).
+  // On the pool in ranges of entries, each into a part of out_ (part 0 continues the search's first list).
   void pairs_within(const Level& lv) {
+    const uint32_t s = uint32_t(lv.entries.size());
+    const Ranges r = pool_ranges(pool_, s, kGrainEntries);
+    if (out_.size() < r.parts) out_.resize(r.parts);
+    for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
+      pairs_within(lv, uint32_t(b), uint32_t(e), out_[part].value);
+    });
+  }
+  void pairs_within(const Level& lv, uint32_t first, uint32_t end, Found& f) {
     const Entry* en = lv.entries.data();
     const uint32_t* st = lv.start.data();
     const int dy = lv.dims[1], dz = lv.dims[2];
-    const uint32_t s = uint32_t(lv.entries.size());
-    for (uint32_t p = 0; p < s; ++p) {
+    for (uint32_t p = first; p < end; ++p) {
       const Entry& e = en[p];
       const int c = int(lv.cell[p]);
       const int x = lv.xyz[p][0], y = lv.xyz[p][1], z = lv.xyz[p][2];
       // The same cell after p, and (x, y, z+1).
-      test_run(e, en, p + 1, st[z + 1 < dz ? c + 2 : c + 1]);
+      test_run(e, en, p + 1, st[z + 1 < dz ? c + 2 : c + 1], f);
       const int z0 = z > 0 ? z - 1 : 0, z1 = z + 1 < dz ? z + 1 : z;
       auto row = [&](int rx, int ry) {
         const int base = (rx * dy + ry) * dz;
-        test_run(e, en, st[base + z0], st[base + z1 + 1]);
+        test_run(e, en, st[base + z0], st[base + z1 + 1], f);
       };
       if (y + 1 < dy) row(x, y + 1);
       if (x + 1 < lv.dims[0]) {
@@ -199,7 +365,7 @@ class UniformGrid final : public BroadphaseBase {
 
   // Body `id` (larger than the level's cell) against the level's boxes whose lower corner lies in a cell its box
   // can reach: from one cell below its own lower corner's to its upper corner's, on every axis.
-  void pairs_with(const Level& lv, uint32_t id) {
+  void pairs_with(const Level& lv, uint32_t id, Found& f) {
     const FlatBox& b = box_[id];
     int c0[3], c1[3];
     for (int a = 0; a < 3; ++a) {
@@ -211,21 +377,38 @@ class UniformGrid final : public BroadphaseBase {
     for (int x = c0[0]; x <= c1[0]; ++x)
       for (int y = c0[1]; y <= c1[1]; ++y) {
         const int base = (x * lv.dims[1] + y) * lv.dims[2];
-        test_run(e, en, lv.start[base + c0[2]], lv.start[base + c1[2] + 1]);
+        test_run(e, en, lv.start[base + c0[2]], lv.start[base + c1[2] + 1], f);
       }
   }
 
   // Finer cells test fewer boxes but cost more to clear and count; 16 measured best on the paper's scene at 256
   // and 1024 bodies (bench_broadphase, 1 to 16 tried).
   static constexpr double kCellsPerBox = 16;
+  // Parts of the pool's loops (each a few microseconds): bodies checked and flattened, boxes split by size and
+  // placed in cells, entries searched (about 50 ns each at 16 cells a box).
+  static constexpr size_t kGrainBodies = 64, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 64;
+  static constexpr size_t kParallelSort = 256;  // pairs of a frame sorted on the pool (part by part, then merged)
+  static constexpr size_t kParallelCells = 256;  // boxes of a level sorted by cell on the pool
   std::vector<FlatBox> box_;
   std::vector<uint32_t> ids_, small_, cell_tmp_, fill_;
-  std::vector<double> size_, sorted_;
+  std::vector<double> size_, sorted_;  // size_: by body
+  double sizes_[2] = {0, 0};           // the smallest and largest box
+  struct Split {
+    std::vector<uint32_t> small, large;
+    double width = 0, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  };
+  std::vector<PartSlot<std::array<double, 2>>> span_;
+  std::vector<PartSlot<Split>> split_;
   std::vector<std::array<int, 3>> xyz_tmp_;
   std::vector<Level> levels_;
-  std::vector<uint64_t> found_, tmp_;  // found_[0, nfound_): the pairs of this frame
-  size_t nfound_ = 0;
-  uint64_t tests_ = 0;
+  std::vector<PartSlot<Found>> out_;  // the pairs of this frame, per part of the search
+  // sort_on_pool: where each bucket starts in each part's keys, in pairs_; each bucket's merge heads.
+  std::vector<size_t> cut_, bucket_at_;
+  // build's sort on the pool: per range of boxes its counts (then places) per bucket; the boxes by bucket.
+  std::vector<PartSlot<std::vector<uint32_t>>> count_;
+  std::vector<uint32_t> order_;
+  std::vector<PartSlot<std::vector<std::pair<const uint64_t*, const uint64_t*>>>> heads_;
+  std::vector<uint64_t> tmp_;
 };
 
 }  // namespace

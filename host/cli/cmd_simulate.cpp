@@ -250,7 +250,8 @@ void add_simulate(CLI::App& app) {
   c->add_option("--frames", a->frames, "Frames to simulate")->capture_default_str();
   c->add_option("--seed", a->scene.seed, "Seed of the scene")->capture_default_str();
   c->add_option("--clock", a->clock_mhz, "Device clock in MHz for the modelled frame rate")->capture_default_str();
-  c->add_option("--threads", a->sim.threads, "cpu backend threads (0: all)")->capture_default_str();
+  c->add_option("--threads", a->sim.threads, "threads of every stage of a frame and the cpu backend (0: all)")
+      ->capture_default_str();
   c->add_option("--mpi-timeout", a->mpi_timeout,
                 "Under mpirun or srun: seconds a rank waits for a frame's messages before the run ends with an error "
                 "naming the rank and its slab")

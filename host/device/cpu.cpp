@@ -4,6 +4,7 @@
 #include "voxcd/host/device/detail/cpu.h"
 
 #include "voxcd/ref/fast/fast.h"
+#include "voxcd/ref/fast/thread_pool.h"
 
 namespace voxcd {
 
@@ -11,13 +12,17 @@ namespace {
 
 class CpuDevice final : public Device {
  public:
-  CpuDevice(const DeviceConfig& cfg, const DeviceOptions& opt) : runner_(cfg, opt.threads) {}
+  CpuDevice(const DeviceConfig& cfg, const DeviceOptions& opt)
+      : runner_(cfg, opt.pool                ? opt.pool
+                     : opt.threads == 1 ? nullptr
+                                        : std::make_shared<ThreadPool>(opt.threads)) {}
   std::string name() const override { return "cpu"; }
   const DeviceConfig& config() const override { return runner_.config(); }
   bool models_cycles() const override { return true; }
   void load(const DeviceMemory& mem) override { runner_.load(mem); }
   std::vector<Record> run(const std::vector<Job>& jobs) override { return runner_.run(jobs); }
   void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) override { runner_.run_into(jobs, out); }
+  std::shared_ptr<ThreadPool> pool() const override { return runner_.pool(); }
 
  private:
   FastRunner runner_;

@@ -12,6 +12,8 @@
 
 namespace voxcd {
 
+class ThreadPool;  // ref/fast/thread_pool.h
+
 // Thrown when a backend cannot be made or cannot run what it was given; the message says why.
 struct DeviceError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -23,6 +25,8 @@ struct DeviceOptions {
   double done_stall_prob = 0.0; // rtl: the same for the completion stream
   uint64_t stall_seed = 1;      // rtl: seed of the back-pressure pattern
   unsigned threads = 0;         // cpu: worker threads (0 = one per hardware thread); results never depend on it
+  // cpu: run on this pool (shared with the caller's own loops) instead of one of `threads`.
+  std::shared_ptr<ThreadPool> pool;
 };
 
 class Device {
@@ -40,6 +44,8 @@ class Device {
   // The same stream into `out` (replacing its contents and reusing its capacity), for callers that run many
   // batches: a backend may keep its working buffers between calls too.
   virtual void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) { out = run(jobs); }
+  // The pool the backend computes on (cpu), for the host's work around it (PairCollider); null when it has none.
+  virtual std::shared_ptr<ThreadPool> pool() const { return nullptr; }
 };
 
 // The backends this build has, by name.

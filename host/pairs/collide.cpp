@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "voxcd/host/pairs/detail/cull.h"
+#include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
 
@@ -93,8 +94,11 @@ DeviceConfig device_config_for(const std::string& backend, int lanes, const std:
   return backend == "rtl" ? cfg : fit_memory(cfg, types);
 }
 
-PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types)
-    : device_(std::move(device)), types_(std::move(types)), image_(device_->config()) {
+PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types,
+                           std::shared_ptr<ThreadPool> pool)
+    : device_(std::move(device)), types_(std::move(types)), pool_(std::move(pool)), image_(device_->config()) {
+  if (!pool_) pool_ = device_->pool();
+  if (pool_ && pool_->size() <= 1) pool_ = nullptr;
   for (const auto& t : types_) {
     image_.add(*t);
     // Clusters of up to kClusterPoints consecutive points, never across a z-slice of the shell grid (cells come
@@ -123,7 +127,7 @@ PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shar
 }
 
 void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
-                            std::vector<JobSource>& sources) const {
+                            std::vector<JobSource>& sources, std::vector<uint64_t>& bits_) const {
   const DeviceConfig& cfg = device_->config();
   auto emit = [&](uint32_t first, uint32_t end) {
     Job& j = out.emplace_back(whole);
@@ -148,7 +152,22 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, const JobSour
   const detail::ClusterBoxes boxes{{cl.centre[0].data(), cl.centre[1].data(), cl.centre[2].data()},
                                    {cl.half[0].data(), cl.half[1].data(), cl.half[2].data()},
                                    nc};
-  detail::cull_clusters(boxes, M, aM, t, n, bits_.data());
+  if (pool_ && nc >= kParallelClusters) {
+    // A large shell (a query of one pair of fine objects): word-aligned ranges of its clusters on the pool (a call
+    // from inside a task of the pool runs them in turn).
+    const size_t words = bits_.size();
+    const Ranges parts = Ranges::of(words, kParallelClusters / 64, pool_->size());
+    pool_->parallel_for(parts.parts, [&](size_t p) {
+      const size_t w0 = parts.begin(p), w1 = parts.end(p);
+      const size_t k0 = w0 * 64, k1 = std::min(nc, w1 * 64);
+      const detail::ClusterBoxes part{{boxes.centre[0] + k0, boxes.centre[1] + k0, boxes.centre[2] + k0},
+                                      {boxes.half[0] + k0, boxes.half[1] + k0, boxes.half[2] + k0},
+                                      k1 - k0};
+      detail::cull_clusters(part, M, aM, t, n, bits_.data() + w0);
+    });
+  } else {
+    detail::cull_clusters(boxes, M, aM, t, n, bits_.data());
+  }
   // Runs of kept clusters, a run at a time from the bit mask (ctz of the word, then of its complement: the keep
   // pattern is hard to predict, so a branch per cluster costs more than the whole cull); runs closer than kMergeGap
   // points apart are one job (a job costs more on the host than a few extra lookups), which also joins the two
@@ -182,49 +201,75 @@ std::vector<Job> PairCollider::jobs(const std::vector<PairRequest>& pairs, const
   return out;
 }
 
+void PairCollider::pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
+                             std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const {
+  const DeviceConfig& cfg = device_->config();
+  if (r.a >= types_.size() || r.b >= types_.size())
+    throw std::out_of_range("pair " + std::to_string(i) + " names object type " + std::to_string(std::max(r.a, r.b)) +
+                            " of " + std::to_string(types_.size()));
+  for (int dir = 0; dir < (opt.both_directions ? 2 : 1); ++dir) {
+    const uint32_t s = dir == 0 ? r.a : r.b, m = dir == 0 ? r.b : r.a;
+    const RigidPose& ps = dir == 0 ? r.pose_a : r.pose_b;
+    const RigidPose& pm = dir == 0 ? r.pose_b : r.pose_a;
+    const DeviceImage::Placement& sp = image_.placement(s);
+    const DeviceImage::Placement& mp = image_.placement(m);
+    Job j;
+    j.tag = uint32_t(out.size() & cfg.max_tag());
+    j.mode = opt.mode;
+    j.hit_mask = opt.hit_mask;
+    j.shell_base = sp.shell_base;
+    j.shell_count = sp.shell_count;
+    j.map_base = mp.map_base;
+    j.nx = mp.dims[0];
+    j.ny = mp.dims[1];
+    j.nz = mp.dims[2];
+    try {
+      pose_job(cfg, ps, types_[s]->shell().frame(), pm, types_[m]->voxmap().grid().frame(), j);
+      if (cfg.distance())
+        j.threshold = distance_threshold(cfg, opt.margin, types_[m]->voxmap().voxel(), types_[m]->object.distance.step);
+    } catch (const RangeError& e) {
+      throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
+                       "): " + e.what());
+    }
+    const JobSource src{uint32_t(i), dir == 0, 0};
+    if (opt.cull) {
+      add_runs(j, s, src, out, sources, bits);
+    } else {
+      out.push_back(j);
+      sources.push_back(src);
+    }
+  }
+}
+
 void PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out,
                         std::vector<JobSource>& sources) const {
-  const DeviceConfig& cfg = device_->config();
   out.clear();
   sources.clear();
-  out.reserve(pairs.size() * (opt.both_directions ? 2 : 1));
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    const PairRequest& r = pairs[i];
-    if (r.a >= types_.size() || r.b >= types_.size())
-      throw std::out_of_range("pair " + std::to_string(i) + " names object type " +
-                              std::to_string(std::max(r.a, r.b)) + " of " + std::to_string(types_.size()));
-    for (int dir = 0; dir < (opt.both_directions ? 2 : 1); ++dir) {
-      const uint32_t s = dir == 0 ? r.a : r.b, m = dir == 0 ? r.b : r.a;
-      const RigidPose& ps = dir == 0 ? r.pose_a : r.pose_b;
-      const RigidPose& pm = dir == 0 ? r.pose_b : r.pose_a;
-      const DeviceImage::Placement& sp = image_.placement(s);
-      const DeviceImage::Placement& mp = image_.placement(m);
-      Job j;
-      j.tag = uint32_t(out.size() & cfg.max_tag());
-      j.mode = opt.mode;
-      j.hit_mask = opt.hit_mask;
-      j.shell_base = sp.shell_base;
-      j.shell_count = sp.shell_count;
-      j.map_base = mp.map_base;
-      j.nx = mp.dims[0];
-      j.ny = mp.dims[1];
-      j.nz = mp.dims[2];
-      try {
-        pose_job(cfg, ps, types_[s]->shell().frame(), pm, types_[m]->voxmap().grid().frame(), j);
-        if (cfg.distance())
-          j.threshold = distance_threshold(cfg, opt.margin, types_[m]->voxmap().voxel(), types_[m]->object.distance.step);
-      } catch (const RangeError& e) {
-        throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
-                         "): " + e.what());
-      }
-      const JobSource src{uint32_t(i), dir == 0, 0};
-      if (opt.cull) {
-        add_runs(j, s, src, out, sources);
-      } else {
-        out.push_back(j);
-        sources.push_back(src);
-      }
-    }
+  if (jobs_tasks_.empty()) jobs_tasks_.resize(1);
+  if (!pool_ || pairs.size() < kParallelPairs) {
+    out.reserve(pairs.size() * (opt.both_directions ? 2 : 1));
+    for (size_t i = 0; i < pairs.size(); ++i) pair_jobs(i, pairs[i], opt, out, sources, jobs_tasks_[0].bits);
+    return;
+  }
+  // Ranges of pairs on the pool, each into its own lists, joined in order (the tags renumbered by their place in
+  // the stream). The lowest range that throws is the one the pool rethrows: the error of the first bad pair.
+  const Ranges parts = Ranges::of(pairs.size(), kParallelPairs / 2, pool_->size());
+  if (jobs_tasks_.size() < parts.parts) jobs_tasks_.resize(parts.parts);
+  pool_->parallel_for(parts.parts, [&](size_t p) {
+    JobsTask& t = jobs_tasks_[p];
+    t.jobs.clear();
+    t.sources.clear();
+    for (size_t i = parts.begin(p); i < parts.end(p); ++i) pair_jobs(i, pairs[i], opt, t.jobs, t.sources, t.bits);
+  });
+  size_t total = 0;
+  for (size_t p = 0; p < parts.parts; ++p) total += jobs_tasks_[p].jobs.size();
+  out.reserve(total);
+  sources.reserve(total);
+  const uint32_t max_tag = device_->config().max_tag();
+  for (size_t p = 0; p < parts.parts; ++p) {
+    const JobsTask& t = jobs_tasks_[p];
+    for (const Job& j : t.jobs) out.push_back(j), out.back().tag = uint32_t((out.size() - 1) & max_tag);
+    sources.insert(sources.end(), t.sources.begin(), t.sources.end());
   }
 }
 
@@ -239,110 +284,162 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
   jobs(pairs, opt, jobs_, sources_);
   device_->run_into(jobs_, records_);
   const std::vector<Job>& js = jobs_;
+  const size_t nrec = records_.size();
   // The stream is checked whole before `out` is touched, so a misbehaving device leaves the caller's results as
-  // they were. Each pair's contacts then go in one allocation (or none, when the capacity is there already).
-  counts_.assign(pairs.size(), 0);
+  // they were: the completion records, one per job, the last record one of them.
+  job_records_.resize(js.size());
   {
-    size_t job = 0;
-    for (const Record& rec : records_) {
+    size_t job = 0, last = SIZE_MAX;
+    auto done = [&](size_t r) {
       if (job == js.size())
         throw DeviceError("the device returned records after the completions of all " + std::to_string(js.size()) +
                           " jobs");
-      if (rec.kind == Record::Done) ++job;
-      else ++counts_[sources_[job].pair];
+      job_records_[job++].first = last + 1;
+      last = r;
+    };
+    if (pool_ && nrec >= kParallelScan) {
+      const Ranges parts = Ranges::of(nrec, kParallelScan / 4, pool_->size());
+      if (done_parts_.size() < parts.parts) done_parts_.resize(parts.parts);
+      pool_->parallel_for(parts.parts, [&](size_t p) {
+        std::vector<size_t>& d = done_parts_[p];
+        d.clear();
+        for (size_t r = parts.begin(p); r < parts.end(p); ++r)
+          if (records_[r].kind == Record::Done) d.push_back(r);
+      });
+      for (size_t p = 0; p < parts.parts; ++p)
+        for (size_t r : done_parts_[p]) done(r);
+    } else {
+      for (size_t r = 0; r < nrec; ++r)
+        if (records_[r].kind == Record::Done) done(r);
     }
-    if (job != js.size())
-      throw DeviceError("the device returned fewer completions than the " + std::to_string(js.size()) +
-                        " jobs it was given");
+    if (job != js.size() || last + 1 != nrec)
+      throw DeviceError(job != js.size() ? "the device returned fewer completions than the " + std::to_string(js.size()) +
+                                               " jobs it was given"
+                                         : "the device returned records after the completions of all " +
+                                               std::to_string(js.size()) + " jobs");
   }
+  // Pair by pair (on the pool in ranges of pairs when they are many; a pair's jobs are consecutive): which hit
+  // records make contacts (FIRST: only the first hit of a direction, over its jobs), the pair's hits, lookups and
+  // cycles, its contacts in place (a vector that holds more already only shrinks: no contact is constructed twice)
+  // and, for a pair with contacts, the pose of its objects as matrices.
   out.resize(pairs.size());
-  // The pose of each pair's objects as matrices, once, for the pairs with contacts.
+  first_job_.resize(pairs.size() + 1);  // pair i's jobs: [first_job_[i], first_job_[i + 1])
+  for (size_t i = 0, j = 0; i <= pairs.size(); ++i) {
+    while (j < js.size() && sources_[j].pair < i) ++j;
+    first_job_[i] = j;
+  }
   rot_a_.resize(pairs.size());
   rot_b_.resize(pairs.size());
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    PairResult& r = out[i];
-    r.contacts.clear();
-    r.contacts.reserve(counts_[i]);
-    r.hits = 0;
-    r.lookups = 0;
-    r.cycles = 0;
-    if (counts_[i] == 0) continue;
-    rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
-    rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
-  }
-  // Contacts, job by job. The depth lookups land all over B's depth field (4 bytes per voxel, often larger than
-  // the cache), so the loop prefetches the depth of the hit a few records ahead. A direction of a pair can have
-  // several jobs (runs of its shell, ascending); in FIRST mode only the first hit among them is the direction's.
-  constexpr size_t kAhead = 16;
-  const size_t nrec = records_.size();
   const bool first_only = opt.mode == Mode::First;
-  size_t r = 0;
-  bool found = false;  // FIRST: the current direction has its hit
-  for (size_t j = 0; j < js.size(); ++j) {
-    const JobSource& src = sources_[j];
-    if (j == 0 || src.pair != sources_[j - 1].pair || src.a_in_b != sources_[j - 1].a_in_b) found = false;
-    const size_t pair = src.pair;
-    const bool a_in_b = src.a_in_b;
-    PairResult& res = out[pair];
-    const PairRequest& req = pairs[pair];
-    const ObjectType& shell_t = *types_[a_in_b ? req.a : req.b];
-    const ObjectType& map_t = *types_[a_in_b ? req.b : req.a];
-    const RigidPose& pose = a_in_b ? req.pose_a : req.pose_b;
-    const Eigen::Matrix3d& R = a_in_b ? rot_a_[pair] : rot_b_[pair];
-    const auto& points = shell_t.shell().points;
-    const auto& normals = shell_t.shell().normals;
-    const Voxmap& vm = map_t.voxmap();
-    const float* depth = map_t.depth.data();
-    const size_t nvox = map_t.depth.size();
-    const double voxel = vm.voxel();
-    const bool distance = device_->config().distance();
-    const DistanceField& field = map_t.object.distance;
-    const double dist_unit = distance ? voxel * field.step / std::ldexp(1.0, 3 * device_->config().WB) : 0.0;
-    const RigidPose& map_pose = a_in_b ? req.pose_b : req.pose_a;
-    const Eigen::Matrix3d& Rm = a_in_b ? rot_b_[pair] : rot_a_[pair];
-    for (; r < nrec && records_[r].kind != Record::Done; ++r) {
-      if (r + kAhead < nrec) {
-        const Record& ahead = records_[r + kAhead];
-        if (ahead.kind == Record::Hit) {
-          const uint64_t i = vm.index(ahead.x, ahead.y, ahead.z);
-          if (i < nvox) __builtin_prefetch(depth + i);
+  const Ranges parts = pool_ranges(pool_.get(), pairs.size(), kParallelPairs);
+  if (kept_parts_.size() < parts.parts) kept_parts_.resize(parts.parts);
+  for_ranges(pool_.get(), parts, [&](size_t part, size_t p0, size_t p1) {
+    size_t kept_total = 0;
+    for (size_t i = p0; i < p1; ++i) {
+      PairResult& res = out[i];
+      res.hits = 0, res.lookups = 0, res.cycles = 0;
+      size_t count = 0;
+      bool found = false;  // FIRST: the current direction has its hit
+      for (size_t j = first_job_[i]; j < first_job_[i + 1]; ++j) {
+        const JobSource& src = sources_[j];
+        if (j == first_job_[i] || src.a_in_b != sources_[j - 1].a_in_b) found = false;
+        JobRecords& jr = job_records_[j];
+        const size_t end = j + 1 < js.size() ? job_records_[j + 1].first - 1 : nrec - 1;  // its completion record
+        const Record& done = records_[end];
+        jr.kept = first_only && found ? 0 : end - jr.first;
+        jr.at = count;
+        count += jr.kept;
+        if (first_only) {
+          if (!found && done.hits) ++res.hits, found = true;
+        } else {
+          res.hits += done.hits;
         }
+        res.lookups += js[j].shell_count;
+        if (done.cycles) res.cycles += *done.cycles;
       }
-      if (first_only && found) continue;
-      const Record& rec = records_[r];
-      const uint32_t point = rec.point + src.first;
-      Contact c;
-      c.pair = uint32_t(pair);
-      c.a_in_b = a_in_b;
-      c.point = point;
-      c.position = R * points[point] + pose.translation;
-      c.normal = R * normals[point];
-      c.voxel = {rec.x, rec.y, rec.z};
-      c.state = rec.state;
-      if (distance) {
-        c.depth = -double(rec.dist) * dist_unit;
-        // The field's gradient at the point, in the map's grid, to the world; negated, it points the way the
-        // shell object's outward normal does at a contact.
-        const Eigen::Vector3d g = (Rm.transpose() * (c.position - map_pose.translation) - vm.origin()) / voxel;
-        Eigen::Vector3d grad;
-        field.sample(g, &grad);
-        const Eigen::Vector3d n = -(Rm * grad);
-        if (n.squaredNorm() > 1e-24) c.normal = n.normalized();
-      } else {
-        c.depth = double(depth[vm.index(rec.x, rec.y, rec.z)]) * voxel;
-      }
-      res.contacts.push_back(c);
+      res.contacts.resize(count);
+      kept_total += count;
+      if (count == 0) continue;
+      rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
+      rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
     }
-    if (r == nrec) throw DeviceError("the device returned fewer completions than the " + std::to_string(js.size()) +
-                                     " jobs it was given");
-    const Record& done = records_[r++];
-    if (first_only) {
-      if (!found && done.hits) ++res.hits, found = true;
+    kept_parts_[part].value = kept_total;
+  });
+  size_t kept_total = 0;
+  for (size_t p = 0; p < parts.parts; ++p) kept_total += kept_parts_[p].value;
+  if (!pool_ || kept_total < kParallelContacts) {
+    for (size_t j = 0; j < js.size(); ++j)
+      if (job_records_[j].kept)
+        make_contacts(pairs, j, job_records_[j].first, job_records_[j].kept,
+                      out[sources_[j].pair].contacts.data() + job_records_[j].at);
+    return;
+  }
+  // In pieces of up to kContactPiece records on the pool, each written to its place.
+  contact_pieces_.clear();
+  for (size_t j = 0; j < js.size(); ++j) {
+    const JobRecords& jr = job_records_[j];
+    Contact* to = out[sources_[j].pair].contacts.data() + jr.at;
+    for (size_t k = 0; k < jr.kept; k += kContactPiece)
+      contact_pieces_.push_back({j, jr.first + k, std::min(kContactPiece, jr.kept - k), to + k});
+  }
+  pool_->parallel_for(contact_pieces_.size(), [&](size_t p) {
+    const ContactPiece& c = contact_pieces_[p];
+    make_contacts(pairs, c.job, c.first, c.n, c.to);
+  });
+}
+
+void PairCollider::make_contacts(const std::vector<PairRequest>& pairs, size_t j, size_t first, size_t n,
+                                 Contact* to) const {
+  // The depth lookups land all over B's depth field (4 bytes per voxel, often larger than the cache), so the loop
+  // prefetches the depth of the hit a few records ahead.
+  constexpr size_t kAhead = 16;
+  const JobSource& src = sources_[j];
+  const size_t pair = src.pair;
+  const bool a_in_b = src.a_in_b;
+  const PairRequest& req = pairs[pair];
+  const ObjectType& shell_t = *types_[a_in_b ? req.a : req.b];
+  const ObjectType& map_t = *types_[a_in_b ? req.b : req.a];
+  const RigidPose& pose = a_in_b ? req.pose_a : req.pose_b;
+  const Eigen::Matrix3d& R = a_in_b ? rot_a_[pair] : rot_b_[pair];
+  const auto& points = shell_t.shell().points;
+  const auto& normals = shell_t.shell().normals;
+  const Voxmap& vm = map_t.voxmap();
+  const float* depth = map_t.depth.data();
+  const size_t nvox = map_t.depth.size();
+  const double voxel = vm.voxel();
+  const bool distance = device_->config().distance();
+  const DistanceField& field = map_t.object.distance;
+  const double dist_unit = distance ? voxel * field.step / std::ldexp(1.0, 3 * device_->config().WB) : 0.0;
+  const RigidPose& map_pose = a_in_b ? req.pose_b : req.pose_a;
+  const Eigen::Matrix3d& Rm = a_in_b ? rot_b_[pair] : rot_a_[pair];
+  for (size_t k = 0; k < n; ++k) {
+    if (k + kAhead < n) {
+      const Record& ahead = records_[first + k + kAhead];
+      const uint64_t i = vm.index(ahead.x, ahead.y, ahead.z);
+      if (i < nvox) __builtin_prefetch(depth + i);
+    }
+    const Record& rec = records_[first + k];
+    const uint32_t point = rec.point + src.first;
+    Contact& c = to[k];
+    c.pair = uint32_t(pair);
+    c.a_in_b = a_in_b;
+    c.point = point;
+    c.position = R * points[point] + pose.translation;
+    c.normal = R * normals[point];
+    c.voxel = {rec.x, rec.y, rec.z};
+    c.state = rec.state;
+    if (distance) {
+      c.depth = -double(rec.dist) * dist_unit;
+      // The field's gradient at the point, in the map's grid, to the world; negated, it points the way the
+      // shell object's outward normal does at a contact.
+      const Eigen::Vector3d g = (Rm.transpose() * (c.position - map_pose.translation) - vm.origin()) / voxel;
+      Eigen::Vector3d grad;
+      field.sample(g, &grad);
+      const Eigen::Vector3d nrm = -(Rm * grad);
+      if (nrm.squaredNorm() > 1e-24) c.normal = nrm.normalized();
     } else {
-      res.hits += done.hits;
+      c.depth = double(depth[vm.index(rec.x, rec.y, rec.z)]) * voxel;
     }
-    res.lookups += js[j].shell_count;
-    if (done.cycles) res.cycles += *done.cycles;
   }
 }
 

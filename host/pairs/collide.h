@@ -13,6 +13,7 @@
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/pose.h"
+#include "voxcd/ref/fast/thread_pool.h"
 
 namespace voxcd {
 
@@ -116,8 +117,11 @@ struct PairResult {
 
 class PairCollider {
  public:
-  // Loads the types into the device (its config must fit them: see fit_memory).
-  PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types);
+  // Loads the types into the device (its config must fit them: see fit_memory). The host's part of a query (the
+  // jobs of many pairs, the culling of a large shell, the contacts of many hits) runs on `pool`, by default the
+  // device's (the cpu backend's threads); results never depend on it.
+  PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types,
+               std::shared_ptr<ThreadPool> pool = nullptr);
 
   // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked; one job per
   // direction without opt.cull, zero or more (runs of the shell in ascending order) with it. RangeError naming
@@ -125,12 +129,22 @@ class PairCollider {
   std::vector<Job> jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt = {}) const;
   void jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out,
             std::vector<JobSource>& sources) const;
-  // Runs every pair's jobs back to back on the device and routes the hits to their pairs.
+  // Runs every pair's jobs back to back on the device and routes the hits to their pairs. Contacts, hits and
+  // cycles are the same whatever the threads.
   std::vector<PairResult> collide(const std::vector<PairRequest>& pairs, const PairOptions& opt = {});
   // The same into `out`, reusing its capacity (and the collider's buffers): for callers that query every frame.
   void collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
 
   Device& device() { return *device_; }
+  const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
+  // On the pool above these sizes (each part a few microseconds of work): pairs of a batch (a pair's jobs take about
+  // a microsecond), clusters of one shell (32 points each), hit records of a batch (a contact takes about 25 ns) and
+  // of a part, records of a stream scanned for its completions in parts.
+  static constexpr size_t kParallelPairs = 8;
+  static constexpr size_t kParallelClusters = 1024;
+  static constexpr size_t kParallelContacts = 256;
+  static constexpr size_t kContactPiece = 256;
+  static constexpr size_t kParallelScan = 16384;
   const ObjectType& type(uint32_t i) const { return *types_.at(i); }
   size_t types() const { return types_.size(); }
   const DeviceImage& image() const { return image_; }
@@ -138,9 +152,16 @@ class PairCollider {
  private:
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
+  std::shared_ptr<ThreadPool> pool_;
+  // The jobs of pair i, appended to out and sources (tags: their index in `out`); bits: add_runs' scratch.
+  void pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
+                 std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The culled runs of one direction of one pair, appended to out and sources.
   void add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
-                std::vector<JobSource>& sources) const;
+                std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
+  // The contacts of job j's hit records [r, r + n) of the stream, written to `to` (the pair's matrices in rot_a_,
+  // rot_b_).
+  void make_contacts(const std::vector<PairRequest>& pairs, size_t j, size_t r, size_t n, Contact* to) const;
 
   // Per type, its shell in clusters of consecutive points: the first point of each (one past the end last), and
   // each cluster's box in the shell's grid (centre and half-extent per axis).
@@ -153,13 +174,32 @@ class PairCollider {
 
   DeviceImage image_;
   std::vector<Clusters> clusters_;
-  // Scratch of add_runs (which clusters survive), kept to avoid an allocation per pair: jobs() is const but, like
-  // collide(), not to be called on one collider from two threads at once.
-  mutable std::vector<uint64_t> bits_;
+  // Scratch of jobs() (per task of the pool: its jobs, their sources and add_runs' bits of which clusters
+  // survive), kept to avoid allocations per pair: jobs() is const but, like collide(), not to be called on one
+  // collider from two threads at once.
+  struct alignas(64) JobsTask {
+    std::vector<Job> jobs;
+    std::vector<JobSource> sources;
+    std::vector<uint64_t> bits;
+  };
+  mutable std::vector<JobsTask> jobs_tasks_;
   std::vector<Job> jobs_;
   std::vector<JobSource> sources_;
   std::vector<Record> records_;
-  std::vector<size_t> counts_;
+  std::vector<size_t> first_job_;
+  std::vector<PartSlot<size_t>> kept_parts_;
+  // Per job: the stream index of its first hit record, how many of them make contacts, where they go in the
+  // pair's contacts.
+  struct JobRecords {
+    size_t first = 0, kept = 0, at = 0;
+  };
+  std::vector<JobRecords> job_records_;
+  std::vector<std::vector<size_t>> done_parts_;  // Done record indices found by each part of a parallel scan
+  struct ContactPiece {
+    size_t job, first, n;  // job j's kept records [first, first + n) of the stream
+    Contact* to;
+  };
+  std::vector<ContactPiece> contact_pieces_;
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
 };
 

@@ -20,9 +20,12 @@ double motion_bound(const ObjectType& t, const Body& b) {
 
 }  // namespace
 
+// Bodies per part of the per-body loops, candidates per part of the bounds.
+constexpr size_t kGrainBodies = 64, kGrainPairs = 32;
+
 ContinuousCollision::ContinuousCollision(const std::vector<std::shared_ptr<const ObjectType>>& types,
-                                         const DeviceConfig& cfg, uint32_t max_iterations, bool cull)
-    : bound_(types, cfg), max_iterations_(max_iterations), cull_(cull), swept_(make_broadphase("sap")) {}
+                                         const DeviceConfig& cfg, uint32_t max_iterations, bool cull, ThreadPool* pool)
+    : bound_(types, cfg), max_iterations_(max_iterations), cull_(cull), pool_(pool), swept_(make_broadphase("sap")) {}
 
 void ContinuousCollision::pose_at(size_t i, double t, Body& b) const {
   // The integration of Simulation::step over the time since the segment's start: at h = 1 exactly its arithmetic.
@@ -38,15 +41,17 @@ void ContinuousCollision::candidates(const Scene& scene, double t) {
   // Every body's sphere grown by what its motion bound allows over the rest of the frame.
   const size_t n = scene.bodies.size();
   sweep_.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Body& b = scene.bodies[i];
-    const ObjectType& ty = *scene.types[b.type];
-    BodyBounds& s = sweep_[i];
-    s.centre = b.pose.rotation * ty.centre + b.pose.translation;
-    s.radius = ty.radius + speed_[i] * (1 - t);
-    s.box.lo = s.centre - Eigen::Vector3d::Constant(s.radius);
-    s.box.hi = s.centre + Eigen::Vector3d::Constant(s.radius);
-  }
+  for_ranges(pool_, pool_ranges(pool_, n, kGrainBodies), [&](size_t, size_t first, size_t end) {
+    for (size_t i = first; i < end; ++i) {
+      const Body& b = scene.bodies[i];
+      const ObjectType& ty = *scene.types[b.type];
+      BodyBounds& s = sweep_[i];
+      s.centre = b.pose.rotation * ty.centre + b.pose.translation;
+      s.radius = ty.radius + speed_[i] * (1 - t);
+      s.box.lo = s.centre - Eigen::Vector3d::Constant(s.radius);
+      s.box.hi = s.centre + Eigen::Vector3d::Constant(s.radius);
+    }
+  });
   swept_->update(sweep_, calls_++);
   cand_.clear();
   for (const BodyPair& p : swept_->pairs())
@@ -64,13 +69,20 @@ void ContinuousCollision::query(Scene& scene, PairCollider& collider, double res
   requests_.clear();
   queried_.clear();
   geo_.resize(cand_.size());
+  query_.resize(cand_.size());
+  for_ranges(pool_, pool_ranges(pool_, cand_.size(), kGrainPairs), [&](size_t, size_t first, size_t end) {
+    for (size_t k = first; k < end; ++k) {
+      const uint32_t ia = cand_[k].first, ib = cand_[k].second;
+      const Body &a = scene.bodies[ia], &b = scene.bodies[ib];
+      geo_[k] = bound_.geometric(a.type, rot_[ia], a.pose.translation, b.type, rot_[ib], b.pose.translation);
+      const double tol =
+          kTolerance * std::min(scene.types[a.type]->voxmap().voxel(), scene.types[b.type]->voxmap().voxel());
+      query_[k] = !(geo_[k] > tol && geo_[k] >= (speed_[ia] + speed_[ib]) * rest);
+    }
+  });
   for (size_t k = 0; k < cand_.size(); ++k) {
-    const uint32_t ia = cand_[k].first, ib = cand_[k].second;
-    const Body &a = scene.bodies[ia], &b = scene.bodies[ib];
-    geo_[k] = bound_.geometric(a.type, rot_[ia], a.pose.translation, b.type, rot_[ib], b.pose.translation);
-    const double tol =
-        kTolerance * std::min(scene.types[a.type]->voxmap().voxel(), scene.types[b.type]->voxmap().voxel());
-    if (geo_[k] > tol && geo_[k] >= (speed_[ia] + speed_[ib]) * rest) continue;
+    if (!query_[k]) continue;
+    const Body &a = scene.bodies[cand_[k].first], &b = scene.bodies[cand_[k].second];
     PairRequest r;
     r.a = a.type;
     r.b = b.type;
@@ -90,7 +102,7 @@ void ContinuousCollision::query(Scene& scene, PairCollider& collider, double res
   if (collider.device().models_cycles()) st.cycles += 1;  // the stream ends a cycle after its last completion
 }
 
-bool ContinuousCollision::pairs(Scene& scene, std::vector<bool>& moved, double now, double rest, double& dt,
+bool ContinuousCollision::pairs(Scene& scene, std::vector<uint8_t>& moved, double now, double rest, double& dt,
                                 CcdStats& st) {
   bool responded = false;
   for (size_t q = 0; q < requests_.size(); ++q) {
@@ -119,7 +131,7 @@ bool ContinuousCollision::pairs(Scene& scene, std::vector<bool>& moved, double n
         restart(scene, ib, now);
         speed_[ia] = motion_bound(*scene.types[a.type], a);
         speed_[ib] = motion_bound(*scene.types[b.type], b);
-        moved[ia] = moved[ib] = true;
+        moved[ia] = moved[ib] = 1;
         limit_[ia] = limit_[ib] = 1;
         ++st.toi;
         ++st.pair_toi;
@@ -137,34 +149,48 @@ bool ContinuousCollision::pairs(Scene& scene, std::vector<bool>& moved, double n
   return responded;
 }
 
-void ContinuousCollision::walls(Scene& scene, std::vector<bool>& moved, double now, double rest, double& dt,
+void ContinuousCollision::walls(Scene& scene, std::vector<uint8_t>& moved, double now, double rest, double& dt,
                                 CcdStats& st, uint64_t& wall_hits) {
   // By the enclosing sphere: its centre moves along an axis at most that velocity component plus the spin times
-  // the centre's distance from the rotation centre.
-  for (size_t i = 0; i < scene.bodies.size(); ++i) {
-    Body& b = scene.bodies[i];
-    const ObjectType& t = *scene.types[b.type];
-    const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
-    const double tol = kTolerance * t.voxmap().voxel(), swing = b.spin.norm() * t.centre.norm();
-    for (int ax = 0; ax < 3; ++ax) {
-      const double low = c[ax] - t.radius, high = scene.side - c[ax] - t.radius;
-      if ((low <= tol && b.velocity[ax] < 0) || (high <= tol && b.velocity[ax] > 0)) {
-        restart(scene, i, now);
-        b.velocity[ax] = -b.velocity[ax];
-        moved[i] = true;
-        limit_[i] = 1;
-        ++st.toi;
-        ++wall_hits;
+  // the centre's distance from the rotation centre. Body by body on the pool (each reflection touches its body
+  // alone); the parts' steps and counts joined in part order (a minimum and sums: the same whatever the parts).
+  const Ranges r = pool_ranges(pool_, scene.bodies.size(), kGrainBodies);
+  if (parts_.size() < r.parts) parts_.resize(r.parts);
+  for_ranges(pool_, r, [&](size_t part, size_t first, size_t end) {
+    PartResult& out = parts_[part].value;
+    out = PartResult();
+    out.dt = dt;
+    for (size_t i = first; i < end; ++i) {
+      Body& b = scene.bodies[i];
+      const ObjectType& t = *scene.types[b.type];
+      const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
+      const double tol = kTolerance * t.voxmap().voxel(), swing = b.spin.norm() * t.centre.norm();
+      for (int ax = 0; ax < 3; ++ax) {
+        const double low = c[ax] - t.radius, high = scene.side - c[ax] - t.radius;
+        if ((low <= tol && b.velocity[ax] < 0) || (high <= tol && b.velocity[ax] > 0)) {
+          restart(scene, i, now);
+          b.velocity[ax] = -b.velocity[ax];
+          moved[i] = 1;
+          limit_[i] = 1;
+          ++out.toi;
+        }
+        const double rate_low = std::max(0.0, -b.velocity[ax]) + swing;
+        const double rate_high = std::max(0.0, b.velocity[ax]) + swing;
+        if (low > tol && rate_low > 0 && low < rate_low * rest) out.dt = std::min(out.dt, low / rate_low), limit_[i] = 1;
+        if (high > tol && rate_high > 0 && high < rate_high * rest)
+          out.dt = std::min(out.dt, high / rate_high), limit_[i] = 1;
       }
-      const double rate_low = std::max(0.0, -b.velocity[ax]) + swing;
-      const double rate_high = std::max(0.0, b.velocity[ax]) + swing;
-      if (low > tol && rate_low > 0 && low < rate_low * rest) dt = std::min(dt, low / rate_low), limit_[i] = 1;
-      if (high > tol && rate_high > 0 && high < rate_high * rest) dt = std::min(dt, high / rate_high), limit_[i] = 1;
     }
+  });
+  for (size_t p = 0; p < r.parts; ++p) {
+    const PartResult& out = parts_[p].value;
+    dt = std::min(dt, out.dt);
+    st.toi += out.toi;
+    wall_hits += out.toi;
   }
 }
 
-CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std::vector<bool>& moved,
+CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std::vector<uint8_t>& moved,
                                       uint64_t& wall_hits) {
   CcdStats st;
   const size_t n = scene.bodies.size();
@@ -175,20 +201,29 @@ CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std:
   rot_.resize(n);
   limit_.assign(n, 0);
   limited_.clear();
-  for (size_t i = 0; i < n; ++i) {
-    restart(scene, i, 0.0);
-    speed_[i] = motion_bound(*scene.types[scene.bodies[i].type], scene.bodies[i]);
-  }
+  const Ranges bodies = pool_ranges(pool_, n, kGrainBodies);
+  if (parts_.size() < bodies.parts) parts_.resize(bodies.parts);
+  for_ranges(pool_, bodies, [&](size_t, size_t first, size_t end) {
+    for (size_t i = first; i < end; ++i) {
+      restart(scene, i, 0.0);
+      speed_[i] = motion_bound(*scene.types[scene.bodies[i].type], scene.bodies[i]);
+    }
+  });
   double now = 0;
   bool rebuild = true;
   for (uint32_t iter = 0; now < 1; ++iter) {
     if (iter == max_iterations_) {
       // The cap: the bodies that limited the last step keep their place for the rest of the frame; the others
       // could not reach them, another body or a wall before the frame's end, so they finish it.
-      for (size_t i = 0; i < n; ++i) {
-        if (limit_[i]) ++st.dropped;
-        else pose_at(i, 1.0, scene.bodies[i]);
-      }
+      for_ranges(pool_, bodies, [&](size_t part, size_t first, size_t end) {
+        uint64_t dropped = 0;
+        for (size_t i = first; i < end; ++i) {
+          if (limit_[i]) ++dropped;
+          else pose_at(i, 1.0, scene.bodies[i]);
+        }
+        parts_[part].value.dropped = dropped;
+      });
+      for (size_t p = 0; p < bodies.parts; ++p) st.dropped += parts_[p].value.dropped;
       break;
     }
     if (rebuild) candidates(scene, now);
@@ -196,7 +231,9 @@ CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std:
     ++st.iterations;
     const double rest = 1 - now;
     std::fill(limit_.begin(), limit_.end(), 0);
-    for (size_t i = 0; i < n; ++i) rot_[i] = scene.bodies[i].pose.rotation.toRotationMatrix();
+    for_ranges(pool_, bodies, [&](size_t, size_t first, size_t end) {
+      for (size_t i = first; i < end; ++i) rot_[i] = scene.bodies[i].pose.rotation.toRotationMatrix();
+    });
     query(scene, collider, rest, st);
     double dt = rest;
     const bool responded = pairs(scene, moved, now, rest, dt, st);
@@ -207,7 +244,9 @@ CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std:
       continue;
     }
     now = dt >= rest ? 1.0 : now + dt;
-    for (size_t i = 0; i < n; ++i) pose_at(i, now, scene.bodies[i]);
+    for_ranges(pool_, bodies, [&](size_t, size_t first, size_t end) {
+      for (size_t i = first; i < end; ++i) pose_at(i, now, scene.bodies[i]);
+    });
   }
   std::sort(limited_.begin(), limited_.end());
   st.limited = uint64_t(std::unique(limited_.begin(), limited_.end()) - limited_.begin());

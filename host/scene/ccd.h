@@ -12,6 +12,7 @@
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/scene/distance_bound.h"
+#include "voxcd/ref/fast/thread_pool.h"
 
 namespace voxcd {
 
@@ -34,11 +35,12 @@ class ContinuousCollision {
  public:
   // types, cfg: as DistanceBound. max_iterations: advancement steps per frame before the cap drops the remaining
   // motion of the bodies still limited.
+  // pool: threads for the per-body and per-candidate loops (null: the calling thread).
   ContinuousCollision(const std::vector<std::shared_ptr<const ObjectType>>& types, const DeviceConfig& cfg,
-                      uint32_t max_iterations, bool cull);
+                      uint32_t max_iterations, bool cull, ThreadPool* pool = nullptr);
   // Moves every body through one frame (the integration of Simulation::step, cut into steps), responding at each
-  // time of impact; sets moved[i] for every body whose velocity changed. Deterministic whatever the device's threads.
-  CcdStats advance(Scene& scene, PairCollider& collider, std::vector<bool>& moved, uint64_t& wall_hits);
+  // time of impact; sets moved[i] to 1 for every body whose velocity changed. Deterministic whatever the threads.
+  CcdStats advance(Scene& scene, PairCollider& collider, std::vector<uint8_t>& moved, uint64_t& wall_hits);
   const DistanceBound& bound() const { return bound_; }
 
   // Contact when a pair's bound is at most this fraction of the finer voxel (and a wall's gap at most this
@@ -55,14 +57,22 @@ class ContinuousCollision {
   // The candidates' geometric bounds; those that could be crossed within `rest` queried on the device in one batch.
   void query(Scene& scene, PairCollider& collider, double rest, CcdStats& st);
   // Responses of the pairs in contact and approaching (true when any), the step the others allow into dt.
-  bool pairs(Scene& scene, std::vector<bool>& moved, double now, double rest, double& dt, CcdStats& st);
+  bool pairs(Scene& scene, std::vector<uint8_t>& moved, double now, double rest, double& dt, CcdStats& st);
   // Reflections off the walls reached, the step the others allow into dt.
-  void walls(Scene& scene, std::vector<bool>& moved, double now, double rest, double& dt, CcdStats& st,
+  void walls(Scene& scene, std::vector<uint8_t>& moved, double now, double rest, double& dt, CcdStats& st,
              uint64_t& wall_hits);
 
   DistanceBound bound_;
   uint32_t max_iterations_;
   bool cull_;
+  ThreadPool* pool_;
+  // Per part of a loop over the bodies: the step it allows, time-of-impact events and wall hits, bodies dropped.
+  struct PartResult {
+    double dt = 0;
+    uint64_t toi = 0, dropped = 0;
+  };
+  std::vector<PartSlot<PartResult>> parts_;
+  std::vector<uint8_t> query_;     // per candidate: whether it goes to the device this step
   std::unique_ptr<Broadphase> swept_;
   // Per body: its motion since the start of its current segment (the frame's start or its last velocity change).
   std::vector<Eigen::Vector3d> t0_;

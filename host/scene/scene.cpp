@@ -386,8 +386,17 @@ void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double spee
   scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
 }
 
+std::unique_ptr<Broadphase> Simulation::make_pruning() const {
+  std::unique_ptr<Broadphase> b = make_broadphase(opt_.pruning);
+  b->set_pool(pool_.get());
+  return b;
+}
+
 Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(scene)), opt_(opt) {
-  broadphase_ = make_broadphase(opt.pruning);
+  // One pool for every stage and the device (a loop inside a loop of it runs on the thread that asked).
+  const unsigned threads = opt.threads ? opt.threads : ThreadPool::available_cpus();
+  if (threads > 1) pool_ = std::make_shared<ThreadPool>(threads);
+  broadphase_ = make_pruning();
   if (opt.exchange && broadphase_->predicate() == "all")
     throw std::invalid_argument("broadphase " + opt.pruning + ": it pairs every body with every other, so it cannot "
                                 "be split over ranks by space; a distributed run needs grid, sap, tree, ...");
@@ -396,15 +405,51 @@ Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(sc
   const DeviceConfig cfg =
       opt.device ? *opt.device : device_config_for(opt.backend, opt.lanes, types, opt.distance_bits);
   DeviceOptions dopt;
-  dopt.threads = opt.threads;
-  collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types);
-  moved_.assign(scene_.bodies.size(), true);
+  dopt.threads = threads;
+  dopt.pool = pool_;
+  collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types, pool_);
+  moved_.assign(scene_.bodies.size(), 1);
   if (opt.ccd) {
     if (!cfg.distance())
       throw std::invalid_argument("ccd: continuous collision bounds each step by the distance fields: it needs a "
                                   "distance device (distance_bits 4, 8 or 16)");
-    ccd_ = std::make_unique<ContinuousCollision>(scene_.types, cfg, opt.ccd_max_iterations, opt.cull);
+    ccd_ = std::make_unique<ContinuousCollision>(scene_.types, cfg, opt.ccd_max_iterations, opt.cull, pool_.get());
   }
+}
+
+namespace {
+// Bodies per part of the per-body loops (integration, bounds: about 50 ns a body) and broadphase pairs per part of
+// the mid-phase (about 100 ns a pair).
+constexpr size_t kGrainBodies = 64, kGrainPairs = 32;
+}  // namespace
+
+void Simulation::integrate(FrameStats& st) {
+  // Explicit Euler, renormalising the orientation; bounce off the walls by the bounding sphere. Body by body on the
+  // pool; the wall bounces counted per part.
+  const Ranges r = pool_ranges(pool_.get(), scene_.bodies.size(), kGrainBodies);
+  if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
+  for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
+    uint64_t walls = 0;
+    for (size_t i = first; i < end; ++i) {
+      Body& b = scene_.bodies[i];
+      b.pose.translation += b.velocity;
+      const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
+      Eigen::Quaterniond q = b.pose.rotation;
+      q.coeffs() += 0.5 * (w * q).coeffs();
+      b.pose.rotation = q.normalized();
+      const ObjectType& t = *scene_.types[b.type];
+      const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
+      for (int a = 0; a < 3; ++a) {
+        if ((c[a] - t.radius < 0 && b.velocity[a] < 0) || (c[a] + t.radius > scene_.side && b.velocity[a] > 0)) {
+          b.velocity[a] = -b.velocity[a];
+          moved_[i] = 1;
+          ++walls;
+        }
+      }
+    }
+    part_counts_[part].value = walls;
+  });
+  for (size_t p = 0; p < r.parts; ++p) st.wall_hits += part_counts_[p].value;
 }
 
 void Simulation::compute_bounds() {
@@ -412,13 +457,42 @@ void Simulation::compute_bounds() {
   bounds_.resize(n);
   rot_.resize(n);
   box_centre_.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Body& b = scene_.bodies[i];
-    const ObjectType& t = *scene_.types[b.type];
-    rot_[i] = b.pose.rotation.toRotationMatrix();
-    box_centre_[i] = rot_[i] * (0.5 * (t.lo + t.hi)) + b.pose.translation;
-    bounds_[i] = body_bounds(t, b, rot_[i], box_centre_[i]);
-    bounds_[i].moved_unexpectedly = moved_[i];
+  for_ranges(pool_.get(), pool_ranges(pool_.get(), n, kGrainBodies), [&](size_t, size_t first, size_t end) {
+    for (size_t i = first; i < end; ++i) {
+      const Body& b = scene_.bodies[i];
+      const ObjectType& t = *scene_.types[b.type];
+      rot_[i] = b.pose.rotation.toRotationMatrix();
+      box_centre_[i] = rot_[i] * (0.5 * (t.lo + t.hi)) + b.pose.translation;
+      bounds_[i] = body_bounds(t, b, rot_[i], box_centre_[i]);
+      bounds_[i].moved_unexpectedly = moved_[i] != 0;
+    }
+  });
+}
+
+void Simulation::midphase(const std::vector<BodyPair>& pairs) {
+  // The enclosing spheres, then the oriented boxes of the two bodies (separating-axis test over the 15 axes): the
+  // verdicts on the pool, then the requests in pair order.
+  keep_.resize(pairs.size());
+  for_ranges(pool_.get(), pool_ranges(pool_.get(), pairs.size(), kGrainPairs), [&](size_t, size_t first, size_t end) {
+    for (size_t k = first; k < end; ++k) {
+      const uint32_t ia = pairs[k].first, ib = pairs[k].second;
+      const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
+      keep_[k] = !opt_.midphase || (spheres_overlap(bounds_[ia], bounds_[ib]) &&
+                                    boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia],
+                                                  *scene_.types[b.type], rot_[ib], box_centre_[ib]));
+    }
+  });
+  requests_.clear();
+  requests_pairs_.clear();
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    if (!keep_[k]) continue;
+    const Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
+    PairRequest& r = requests_.emplace_back();
+    r.a = a.type;
+    r.b = b.type;
+    r.pose_a = a.pose;
+    r.pose_b = b.pose;
+    requests_pairs_.push_back(pairs[k]);
   }
 }
 
@@ -431,7 +505,7 @@ const std::vector<BodyPair>& Simulation::find_pairs() {
   const int me = opt_.exchange->rank();
   std::vector<uint32_t> local = slab_bodies(slabs_, me, bounds_);
   // A broadphase that keeps state between frames keys it by index: another set of bodies starts a fresh one.
-  if (local != local_) broadphase_ = make_broadphase(opt_.pruning);
+  if (local != local_) broadphase_ = make_pruning();
   local_ = std::move(local);
   local_bounds_.clear();
   for (uint32_t i : local_) local_bounds_.push_back(bounds_[i]);
@@ -446,22 +520,26 @@ const std::vector<BodyPair>& Simulation::find_pairs() {
 }
 
 void Simulation::gather_outcomes(FrameStats& st) {
-  outcomes_.clear();
+  // Pair by pair on the pool (each pair's normal summed in its contacts' order).
+  outcomes_.resize(requests_.size());
+  for_ranges(pool_.get(), pool_ranges(pool_.get(), requests_.size(), kGrainPairs), [&](size_t, size_t first,
+                                                                                      size_t end) {
+    for (size_t q = first; q < end; ++q) {
+      const PairResult& r = results_[q];
+      PairOutcome& o = outcomes_[q];
+      o.a = requests_pairs_[q].first;
+      o.b = requests_pairs_[q].second;
+      o.hits = r.hits;
+      o.lookups = r.lookups;
+      o.contacts = r.contacts.size();
+      o.cycles = r.cycles;
+      // A's outward normals where A's shell is in B, minus B's where B's is in A.
+      o.normal = Eigen::Vector3d::Zero();
+      for (const Contact& c : r.contacts) o.normal += c.a_in_b ? c.normal : -c.normal;
+    }
+  });
   uint64_t cycles = 0;
-  for (size_t q = 0; q < requests_.size(); ++q) {
-    const PairResult& r = results_[q];
-    PairOutcome o;
-    o.a = requests_pairs_[q].first;
-    o.b = requests_pairs_[q].second;
-    o.hits = r.hits;
-    o.lookups = r.lookups;
-    o.contacts = r.contacts.size();
-    o.cycles = r.cycles;
-    // A's outward normals where A's shell is in B, minus B's where B's is in A.
-    for (const Contact& c : r.contacts) o.normal += c.a_in_b ? c.normal : -c.normal;
-    cycles += r.cycles;
-    outcomes_.push_back(o);
-  }
+  for (const PairOutcome& o : outcomes_) cycles += o.cycles;
   // The stream of the frame is taken one cycle after its last completion record.
   if (!requests_.empty() && collider_->device().models_cycles()) cycles += 1;
   if (!opt_.exchange) {
@@ -481,8 +559,7 @@ void Simulation::gather_outcomes(FrameStats& st) {
 FrameStats Simulation::step() {
   FrameStats st;
   st.frame = frame_;
-  const size_t n = scene_.bodies.size();
-  std::fill(moved_.begin(), moved_.end(), false);
+  std::fill(moved_.begin(), moved_.end(), uint8_t(0));
 
   // Integrate (explicit Euler), renormalising the orientation; bounce off the walls by the bounding sphere.
   double t0 = now();
@@ -497,23 +574,7 @@ FrameStats Simulation::step() {
     st.responses += c.pair_toi;
     st.device_cycles += c.cycles;
   }
-  for (size_t i = 0; i < n && !ccd_; ++i) {
-    Body& b = scene_.bodies[i];
-    b.pose.translation += b.velocity;
-    const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
-    Eigen::Quaterniond q = b.pose.rotation;
-    q.coeffs() += 0.5 * (w * q).coeffs();
-    b.pose.rotation = q.normalized();
-    const ObjectType& t = *scene_.types[b.type];
-    const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
-    for (int a = 0; a < 3; ++a) {
-      if ((c[a] - t.radius < 0 && b.velocity[a] < 0) || (c[a] + t.radius > scene_.side && b.velocity[a] > 0)) {
-        b.velocity[a] = -b.velocity[a];
-        moved_[i] = true;
-        ++st.wall_hits;
-      }
-    }
-  }
+  if (!ccd_) integrate(st);
   double t1 = now();
   st.t_integrate = t1 - t0;
 
@@ -525,25 +586,8 @@ FrameStats Simulation::step() {
   double t3 = now();
   st.t_broadphase = t3 - t2;
 
-  // Mid-phase: the enclosing spheres, then the oriented boxes of the two bodies (separating-axis test over the 15
-  // axes), then the device.
-  requests_.clear();
-  requests_pairs_.clear();
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    const uint32_t ia = pairs[k].first, ib = pairs[k].second;
-    const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
-    if (opt_.midphase && (!spheres_overlap(bounds_[ia], bounds_[ib]) ||
-                          !boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia], *scene_.types[b.type],
-                                         rot_[ib], box_centre_[ib])))
-      continue;
-    PairRequest r;
-    r.a = a.type;
-    r.b = b.type;
-    r.pose_a = a.pose;
-    r.pose_b = b.pose;
-    requests_.push_back(r);
-    requests_pairs_.push_back(pairs[k]);
-  }
+  // Mid-phase, then the device.
+  midphase(pairs);
   PairOptions po;
   po.mode = opt_.mode;
   po.both_directions = opt_.both_directions;
@@ -573,7 +617,7 @@ FrameStats Simulation::step() {
     if (nrm.squaredNorm() < 1e-24) nrm = Eigen::Vector3d::UnitX();
     nrm.normalize();
     if (!respond(a, b, nrm)) continue;  // separating already
-    moved_[o.a] = moved_[o.b] = true;
+    moved_[o.a] = moved_[o.b] = 1;
     ++st.responses;
   }
   st.t_response = now() - t4;

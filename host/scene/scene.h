@@ -19,6 +19,7 @@
 #include "voxcd/host/scene/exchange.h"
 #include "voxcd/host/scene/partition.h"
 #include "voxcd/host/object/object_type.h"
+#include "voxcd/ref/fast/thread_pool.h"
 
 namespace voxcd {
 
@@ -94,7 +95,9 @@ struct SimOptions {
   uint32_t ccd_max_iterations = 64;
   Mode mode = Mode::All;         // ALL reports every contact; FIRST only tells whether a pair touches
   bool both_directions = false;  // also test B's shell in A's voxmap
-  unsigned threads = 0;          // cpu backend threads (0: all); results never depend on it
+  // Threads of the whole frame (0: one per CPU the process may run on): every stage but the response runs on them,
+  // and so does the cpu backend. Results never depend on it (docs/scale.md, "Every core in a process").
+  unsigned threads = 0;
   // Before the device, drop broadphase pairs whose oriented boxes (each type's contact bounds in its own frame,
   // grown by one voxel) are disjoint: such a pair can have no hit, so results never depend on it.
   bool midphase = true;
@@ -140,11 +143,20 @@ class Simulation {
   const Broadphase& broadphase() const { return *broadphase_; }
   const DeviceConfig& device_config() const { return collider_->device().config(); }
   uint64_t frame() const { return frame_; }
+  // The last frame's pairs tested on the device (global body indices, in pair order) and their results, contacts
+  // included (this rank's, in a distributed run).
+  const std::vector<BodyPair>& tested_pairs() const { return requests_pairs_; }
+  const std::vector<PairResult>& results() const { return results_; }
+  // The threads of the frame (SimOptions::threads; null on one thread).
+  const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
   // A hash of every body's state (bit patterns of positions, orientations and velocities): equal runs, equal hash.
   uint64_t state_hash() const;
 
  private:
   void compute_bounds();
+  void integrate(FrameStats& st);
+  void midphase(const std::vector<BodyPair>& pairs);
+  std::unique_ptr<Broadphase> make_pruning() const;
   // The broadphase's pairs, or in a distributed run those of this rank's slab (global body indices, sorted).
   const std::vector<BodyPair>& find_pairs();
   // The outcomes of the tested pairs, in pair order (every rank's in a distributed run).
@@ -159,7 +171,10 @@ class Simulation {
   // Each body's rotation matrix and the world centre of its contact box, this frame (for the mid-phase).
   std::vector<Eigen::Matrix3d> rot_;
   std::vector<Eigen::Vector3d> box_centre_;
-  std::vector<bool> moved_;
+  std::vector<uint8_t> moved_;  // bytes, not bits: the threads write them body by body
+  std::shared_ptr<ThreadPool> pool_;  // null on one thread
+  std::vector<uint8_t> keep_;         // the mid-phase's verdict per broadphase pair
+  std::vector<PartSlot<uint64_t>> part_counts_;
   std::vector<PairRequest> requests_;
   std::vector<BodyPair> requests_pairs_;  // the bodies of each request
   std::vector<PairResult> results_;

@@ -18,12 +18,12 @@ namespace voxcd {
 
 namespace {
 
-constexpr size_t kChunk = 4096;  // points per task
-constexpr size_t kBlock = 256;   // points per vector block inside a task
-constexpr size_t kProbeBlock = 64;  // points of a task's first block with the skipping kernel (run_chunk)
-// Below this many points in a batch the pool's wake-up costs more than the second core saves (bench_pair: a
-// 6,000-point pair query took 67 us on one thread and 89 us on two), so the batch runs on the calling thread.
-constexpr size_t kParallelMinPoints = 65536;
+constexpr size_t kChunk = 4096;  // points per piece
+constexpr size_t kBlock = 256;   // points per vector block inside a piece
+constexpr size_t kProbeBlock = 64;  // points of a piece's first block with the skipping kernel (run_chunk)
+// Points per task (runs of consecutive pieces, so that the many small jobs of a simulation frame make tasks of a
+// few microseconds: about 1.5 ns a point).
+constexpr size_t kTaskPoints = 2048;
 
 // The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
 // bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
@@ -259,7 +259,11 @@ FastRunner::FastRunner(const DeviceConfig& cfg, unsigned threads) : cfg_(cfg) {
   keep_int64_ = path_ == Path::Int64 || (path_ == Path::Double && 3 * cfg_.DW >= 31);
   while ((1 << slot_bits_) < cfg_.states_per_word()) ++slot_bits_;
   tf_scale_ = std::ldexp(1.0, -cfg_.TF());
-  pool_ = std::make_unique<ThreadPool>(threads);
+  if (threads != 1) pool_ = std::make_shared<ThreadPool>(threads);
+}
+
+FastRunner::FastRunner(const DeviceConfig& cfg, std::shared_ptr<ThreadPool> pool) : FastRunner(cfg, 1) {
+  pool_ = std::move(pool);
 }
 
 FastRunner::~FastRunner() = default;
@@ -275,7 +279,7 @@ const char* FastRunner::path_name(Path p) {
 
 const char* FastRunner::double_kernel() { return block_fetch.name; }
 
-unsigned FastRunner::threads() const { return pool_->size(); }
+unsigned FastRunner::threads() const { return pool_ ? pool_->size() : 1; }
 
 void FastRunner::set_shell_word(size_t k, const ShellWord& w) {
   shell_[k] = w;
@@ -329,67 +333,157 @@ std::vector<Record> FastRunner::run(const std::vector<Job>& jobs, bool cycles) {
 }
 
 void FastRunner::run_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) {
-  for (const Job& j : jobs) validate_job(cfg_, j, shell_.size(), map_.size());
-  run_validated_into(jobs, out, cycles);
+  run_jobs(jobs, out, cycles, true);
 }
 
 void FastRunner::run_validated_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) {
-  // Tasks: (job, first point, end point).
-  tasks_.clear();
-  first_task_.assign(jobs.size() + 1, 0);
+  run_jobs(jobs, out, cycles, false);
+}
+
+void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate) {
+  // Pieces: (job, first point, end point), at most kChunk points each.
+  pieces_.clear();
+  first_piece_.assign(jobs.size() + 1, 0);
   size_t points = 0;
   for (size_t j = 0; j < jobs.size(); ++j) {
-    first_task_[j] = tasks_.size();
+    first_piece_[j] = pieces_.size();
     const uint32_t n = jobs[j].shell_count;
     points += n;
-    for (uint32_t b = 0; b < n; b += uint32_t(kChunk))
-      tasks_.push_back({j, b, uint32_t(std::min<size_t>(n, b + kChunk))});
+    for (uint32_t b = 0; b < n; b += uint32_t(kChunk)) {
+      Piece& p = pieces_.emplace_back();
+      p.job = j;
+      p.begin = b;
+      p.end = uint32_t(std::min<size_t>(n, b + kChunk));
+    }
   }
-  first_task_[jobs.size()] = tasks_.size();
-  if (tasks_.size() <= 1 || pool_->size() <= 1 || points < kParallelMinPoints) {
-    // One thread: chunks in order, hits straight into `out`; FIRST skips the chunks after its hit.
+  first_piece_[jobs.size()] = pieces_.size();
+  if (pieces_.size() <= 1 || !pool_ || pool_->size() <= 1 || points < kParallelMinPoints) {
+    // One thread: every job validated first, then the pieces in order, hits straight into `out`; FIRST skips the
+    // pieces after its hit.
+    if (validate)
+      for (const Job& j : jobs) validate_job(cfg_, j, shell_.size(), map_.size());
     out.clear();
     out.reserve(2 * jobs.size());
     for (size_t j = 0; j < jobs.size(); ++j) {
       uint32_t hits = 0;
-      for (size_t i = first_task_[j]; i < first_task_[j + 1]; ++i) {
-        run_chunk(jobs[j], tasks_[i].begin, tasks_[i].end, out, hits);
+      for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
+        run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, out, hits);
         if (jobs[j].mode == Mode::First && hits) break;
       }
       push_record(out, Record::Done, jobs[j].tag).hits = hits;
     }
-  } else {
-    if (results_.size() < tasks_.size()) results_.resize(tasks_.size());
-    for (size_t i = 0; i < tasks_.size(); ++i) {
-      results_[i].hits.clear();
-      results_[i].count = 0;
-    }
-    pool_->parallel_for(tasks_.size(), [&](size_t i) {
-      run_chunk(jobs[tasks_[i].job], tasks_[i].begin, tasks_[i].end, results_[i].hits, results_[i].count);
-    });
-    // Merge in order.
-    size_t total = jobs.size();
-    for (size_t i = 0; i < tasks_.size(); ++i) total += results_[i].hits.size();
-    out.clear();
-    out.reserve(total);
-    for (size_t j = 0; j < jobs.size(); ++j) {
-      uint32_t hits = 0;
-      for (size_t i = first_task_[j]; i < first_task_[j + 1]; ++i) {
-        ChunkResult& r = results_[i];
-        if (jobs[j].mode == Mode::First) {
-          if (hits == 0 && r.count) {
-            out.push_back(r.hits.front());
-            hits = 1;
-          }
-        } else {
-          hits += r.count;
-          out.insert(out.end(), r.hits.begin(), r.hits.end());
-        }
-      }
-      push_record(out, Record::Done, jobs[j].tag).hits = hits;
-    }
+    if (cycles) annotate_cycles(cfg_, jobs, out);
+    return;
   }
-  if (cycles) annotate_cycles(cfg_, jobs, out);
+
+  // Tasks: runs of consecutive pieces of at least kTaskPoints points.
+  task_first_.clear();
+  for (size_t i = 0, acc = kTaskPoints; i < pieces_.size(); ++i) {
+    if (acc >= kTaskPoints) task_first_.push_back(i), acc = 0;
+    acc += pieces_[i].end - pieces_[i].begin;
+  }
+  task_first_.push_back(pieces_.size());
+  const size_t tasks = task_first_.size() - 1;
+  if (results_.size() < tasks) results_.resize(tasks);
+  // Each task validates a job before its first piece of it (the task holding a job's first piece validates it
+  // before any piece of a later job), so the lowest task that throws, whose exception the pool rethrows, names the
+  // first invalid job, as the loop above would. The lookups only read the memories, and `out` is not touched
+  // before every task has finished.
+  pool_->parallel_for(tasks, [&](size_t t) {
+    std::vector<Record>& hits = results_[t].hits;
+    hits.clear();
+    size_t validated = SIZE_MAX;
+    for (size_t i = task_first_[t]; i < task_first_[t + 1]; ++i) {
+      Piece& p = pieces_[i];
+      const Job& j = jobs[p.job];
+      if (validate && validated != p.job) validate_job(cfg_, j, shell_.size(), map_.size()), validated = p.job;
+      p.task = t;
+      p.first = hits.size();
+      p.count = 0;
+      run_chunk(j, p.begin, p.end, hits, p.count);
+      p.records = hits.size() - p.first;
+      if (cycles) p.sum = job_hits(cfg_, j, p.job, hits.data() + p.first, p.records);
+    }
+  });
+  // Where each piece's records go: ALL every one, FIRST only those of the job's first piece with a hit; then the
+  // completion record. Completion records are written here with their cycles.
+  size_t total = 0;
+  done_at_.resize(jobs.size());
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    bool found = false;
+    for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
+      Piece& p = pieces_[i];
+      if (jobs[j].mode == Mode::First) {
+        if (found || p.count == 0) p.records = 0;
+        else found = true;
+      }
+      p.out = total;
+      total += p.records;
+    }
+    done_at_[j] = total++;
+  }
+  // Records are trivially destructible: shrinking `out` to the total costs nothing, and growing it constructs only
+  // the new ones. Every record is written below.
+  out.resize(total);
+  // A job's hits and the summary of its kept records (from its pieces, all done).
+  auto job_result = [&](size_t j, uint32_t& hits, JobHits& sum) {
+    hits = 0;
+    sum = JobHits();  // none yet: the group sentinels of job_hits
+    sum.first_group = sum.last_group = job_groups(cfg_, jobs[j]);
+    for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
+      const Piece& p = pieces_[i];
+      if (jobs[j].mode == Mode::First) {
+        if (p.records) hits = 1, sum = p.sum;
+      } else {
+        hits += p.count;
+        if (cycles) sum = join_job_hits(sum, p.sum);
+      }
+    }
+  };
+  // Task t copies its pieces' kept records to their places and writes the completion records of the jobs from its
+  // first piece's to the next task's (the first task also those before, the last those after: jobs of no points
+  // have no pieces). A job's cycles need only its own span and the previous job's (ref/timing.h), so every task
+  // times its jobs apart.
+  auto finish = [&](size_t t) {
+    const std::vector<Record>& hits = results_[t].hits;
+    for (size_t i = task_first_[t]; i < task_first_[t + 1]; ++i) {
+      const Piece& p = pieces_[i];
+      std::copy(hits.begin() + std::ptrdiff_t(p.first), hits.begin() + std::ptrdiff_t(p.first + p.records),
+                out.begin() + std::ptrdiff_t(p.out));
+    }
+    const size_t j0 = t == 0 ? 0 : pieces_[task_first_[t]].job;
+    const size_t j1 = t + 1 == tasks ? jobs.size() : pieces_[task_first_[t + 1]].job;
+    JobSpan prev;
+    for (size_t j = j0; j < j1; ++j) {
+      uint32_t n = 0;
+      JobHits sum;
+      job_result(j, n, sum);
+      Record& done = out[done_at_[j]];
+      done = Record();
+      done.kind = Record::Done;
+      done.tag = jobs[j].tag;
+      done.hits = n;
+      if (!cycles) continue;
+      if (j == j0 && j > 0) {
+        uint32_t pn = 0;
+        JobHits psum;
+        job_result(j - 1, pn, psum);
+        prev = job_span(cfg_, jobs[j - 1], j - 1, psum, pn);
+      }
+      const JobSpan span = job_span(cfg_, jobs[j], j, sum, n);
+      done.cycles = span_cycles(cfg_, j > 0 ? &prev : nullptr, span);
+      done.points = span.points;
+      done.stalls = 0;
+      prev = span;
+    }
+  };
+  // On the pool when there is enough to share (a copy of 4,096 records takes about 5 us, a job's completion about
+  // 0.1 us).
+  if (total - jobs.size() >= kParallelMinPoints || jobs.size() >= 64) {
+    pool_->parallel_for(tasks, finish);
+  } else {
+    for (size_t t = 0; t < tasks; ++t) finish(t);
+  }
 }
 
 void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,

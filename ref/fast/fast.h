@@ -12,7 +12,8 @@
 //  - int64: when the accumulator fits 63 bits.
 //  - wide: otherwise, ref/'s own stage functions on 128-bit integers.
 // Jobs are split into chunks of points spread over a thread pool; chunk results are merged in order, so the
-// stream is the same for any thread count.
+// stream is the same for any thread count. A batch of fewer than kParallelMinPoints points runs on the calling
+// thread.
 #pragma once
 
 #include <cstddef>
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "voxcd/ref/config.h"
+#include "voxcd/ref/timing.h"
 #include "voxcd/ref/types.h"
 
 namespace voxcd {
@@ -34,6 +36,8 @@ class FastRunner {
   // threads: workers including the calling thread (0 = one per hardware thread, 1 = the caller alone). Results
   // never depend on it. Throws ConfigError for an invalid configuration.
   explicit FastRunner(const DeviceConfig& cfg, unsigned threads = 1);
+  // On a pool shared with the caller's own loops (null: the calling thread alone).
+  FastRunner(const DeviceConfig& cfg, std::shared_ptr<ThreadPool> pool);
   ~FastRunner();
   FastRunner(const FastRunner&) = delete;
   FastRunner& operator=(const FastRunner&) = delete;
@@ -44,6 +48,11 @@ class FastRunner {
   // The double path's kernel on this processor: "avx512", "avx2" or "baseline".
   static const char* double_kernel();
   unsigned threads() const;
+  // The pool the batches run on (null without one).
+  const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
+  // Batches of fewer points than this run on the calling thread: below it, the chunks are too few to share
+  // (a loop on the pool costs about a microsecond; 4,096 points take about 5).
+  static constexpr size_t kParallelMinPoints = 4096;
 
   // Replaces both memories (validate_memory first: throws JobError, leaving the memories as they were).
   void load(const DeviceMemory& mem);
@@ -65,16 +74,23 @@ class FastRunner {
   std::vector<Record> run(const std::vector<Job>& jobs, bool cycles = true);
 
  private:
-  struct ChunkResult {
-    std::vector<Record> hits;  // ALL: every hit; FIRST: at most the first
-    uint32_t count = 0;
-  };
-  struct Task {
+  // A piece of a job: points [begin, end), at most kChunk of them. A task is a run of consecutive pieces.
+  struct Piece {
     size_t job;
     uint32_t begin, end;
+    uint32_t count = 0;    // hits (ALL, COUNT) or, FIRST, 0 or 1
+    size_t task = 0;       // its task, and the index of its first record in the task's hits
+    size_t first = 0, records = 0;
+    size_t out = 0;        // where its records go in the stream (those the stream keeps)
+    JobHits sum;           // of its records, for the timing
+  };
+  struct alignas(64) TaskResult {
+    std::vector<Record> hits;  // the hit records of its pieces, in order
   };
 
   void set_shell_word(size_t k, const ShellWord& w);
+  // run_into (validate: every job first) and run_validated_into.
+  void run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate);
   // Looks up points [begin, end) of job j: appends their hit records (ALL: every one; FIRST: the first, then stops)
   // to `hits` and adds their number to `count`.
   void run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits, uint32_t& count) const;
@@ -87,16 +103,18 @@ class FastRunner {
   int slot_bits_ = 0;
   double tf_scale_ = 1;  // 2^-TF (std::ldexp is a library call; run_chunk needs it per job)
   bool keep_int64_ = false;  // the int64 arrays serve the int64 path and the double path's maps of 2^31 voxels
-  std::unique_ptr<ThreadPool> pool_;
+  std::shared_ptr<ThreadPool> pool_;
   std::vector<ShellWord> shell_;
   std::vector<uint64_t> map_;
   // The double path's coordinates as int32 (PW <= 32): half the memory traffic of doubles; the kernel converts
   // them exactly.
   std::vector<int32_t> sx_, sy_, sz_;
   std::vector<int64_t> ix_, iy_, iz_;
-  std::vector<Task> tasks_;
-  std::vector<size_t> first_task_;
-  std::vector<ChunkResult> results_;
+  std::vector<Piece> pieces_;
+  std::vector<size_t> first_piece_;  // per job, and one past the last
+  std::vector<size_t> task_first_;   // per task its first piece, and one past the last
+  std::vector<size_t> done_at_;      // per job, where its completion record goes in the stream
+  std::vector<TaskResult> results_;
 };
 
 }  // namespace voxcd

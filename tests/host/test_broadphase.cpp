@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "voxcd/host/broadphase/broadphase.h"
+#include "voxcd/ref/fast/thread_pool.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {
@@ -301,6 +302,76 @@ TEST_P(EachBroadphase, RejectsBadBoundsNamingTheBody) {
 
 INSTANTIATE_TEST_SUITE_P(Broadphase, EachBroadphase, ::testing::ValuesIn(broadphase_names()),
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
+
+// With threads (Broadphase::set_pool: the grid searches, sorts and places its boxes on the pool; the others ignore
+// it): the pairs and stats of the grid on one thread, frame by frame (brute force's pairs, for the smaller scenes);
+// a bad body's error is the first bad body's.
+TEST(Broadphase, GridOnAPoolGivesThePairsStatsAndErrorsOfOneThread) {
+  const uint64_t seed = test::seed();
+  std::vector<SceneOptions> cases;
+  for (uint32_t n : {0u, 1u, 5u, 300u, 2500u}) {
+    SceneOptions o;
+    o.n = n;
+    o.world = n > 1000 ? 100 : 60;
+    o.max_half = n > 1000 ? 2 : 5;
+    cases.push_back(o);
+  }
+  {  // sizes over five orders of magnitude: several levels of the grid, large boxes against each level
+    SceneOptions o;
+    o.n = 3000;
+    o.min_half = 1e-4;
+    o.max_half = 3;
+    cases.push_back(o);
+  }
+  {  // identical boxes at the same positions
+    SceneOptions o;
+    o.n = 1500;
+    o.world = 40;
+    o.clump = 0.5;
+    cases.push_back(o);
+  }
+  for (unsigned threads : {2u, 3u}) {
+    ThreadPool pool(threads);
+    for (size_t c = 0; c < cases.size(); ++c) {
+      TestScene a(cases[c], seed + c), b(cases[c], seed + c);
+      auto one = make_broadphase("grid"), many = make_broadphase("grid");
+      many->set_pool(&pool);
+      const std::string what = "case " + std::to_string(c) + ", " + std::to_string(threads) + " threads";
+      if (cases[c].n <= 300) {
+        EXPECT_EQ(run_against_brute_force(*many, a, 6, 0, what), 0) << what << " seed " << seed;
+        for (uint64_t f = 0; f < 6; ++f) {
+          if (f) b.step();
+          one->update(b.bounds(), f);
+        }
+        ASSERT_EQ(one->pairs(), many->pairs()) << what;
+        ASSERT_EQ(one->stats().overlap_tests, many->stats().overlap_tests) << what;
+        continue;
+      }
+      for (uint64_t f = 0; f < 6; ++f) {
+        if (f) a.step();
+        one->update(a.bounds(), f);
+        many->update(a.bounds(), f);
+        ASSERT_EQ(one->pairs(), many->pairs()) << what << " frame " << f << " seed " << seed;
+        ASSERT_EQ(one->stats().overlap_tests, many->stats().overlap_tests) << what << " frame " << f;
+        ASSERT_GT(many->pairs().size(), 0u) << what;
+      }
+    }
+    SceneOptions o;
+    o.n = 3000;
+    TestScene scene(o, seed);
+    auto bodies = scene.bounds();
+    bodies[2900].box.lo.y() = std::nan("");
+    bodies[1700].radius = -1;
+    auto bp = make_broadphase("grid");
+    bp->set_pool(&pool);
+    try {
+      bp->update(bodies, 0);
+      FAIL() << "bad bodies accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("body 1700"), std::string::npos) << e.what();
+    }
+  }
+}
 
 TEST(Broadphase, NamesAndPredicates) {
   const std::vector<std::string> want = {"all", "sphere", "sap", "coherent", "queue", "tree", "grid"};

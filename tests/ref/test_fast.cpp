@@ -225,5 +225,69 @@ TEST(FastRunner, RefusesInvalidInputBeforeActing) {
   EXPECT_THROW(FastRunner{invalid}, ConfigError);
 }
 
+TEST(FastRunner, ParallelBatchesOfSmallJobsAndEmptyOnesKeepTheStream) {
+  // A batch above kParallelMinPoints made of many small jobs of every mode, with jobs of no points between them and
+  // first and last: the pieces run as tasks of several jobs, and the stream (and the cycles, joined from the pieces'
+  // summaries) are run_stream's on every thread count.
+  GenerateOptions g;
+  g.seed = test_seed() + 3;
+  g.jobs = 600;
+  g.cloud_points = 20000;
+  for (int lanes : {4, 3}) {
+    g.config.LANES = lanes;
+    GeneratedVectors v = generate_vectors(g);
+    std::vector<Job> jobs;
+    Job empty;
+    empty.nx = empty.ny = empty.nz = 1;
+    size_t points = 0;
+    for (size_t k = 0; k < v.jobs.size(); ++k) {
+      if (k % 50 == 0) jobs.push_back(empty);
+      jobs.push_back(v.jobs[k]);
+      points += v.jobs[k].shell_count;
+    }
+    jobs.push_back(empty);
+    for (size_t k = 0; k < jobs.size(); ++k) jobs[k].tag = uint32_t(k & v.config.max_tag());
+    ASSERT_GE(points, FastRunner::kParallelMinPoints);
+    const std::vector<Record> want = reference(v.config, v.memory, jobs);
+    for (unsigned threads : {1u, 2u, 3u}) {
+      FastRunner fr(v.config, threads);
+      fr.load(v.memory);
+      std::vector<Record> out(5 * want.size());  // a longer vector from before: shrunk, every record rewritten
+      fr.run_into(jobs, out);
+      expect_same(want, out, "lanes " + std::to_string(lanes) + " threads " + std::to_string(threads));
+      fr.run_into(jobs, out);
+      expect_same(want, out, "again, lanes " + std::to_string(lanes) + " threads " + std::to_string(threads));
+    }
+  }
+}
+
+TEST(FastRunner, ParallelBatchesRefuseTheFirstInvalidJobBeforeWriting) {
+  // The parallel path validates each job in the task that runs its first piece: the error is the first invalid
+  // job's, as on one thread, and `out` is left as it was.
+  GenerateOptions g;
+  g.seed = test_seed() + 4;
+  g.jobs = 600;
+  g.cloud_points = 20000;
+  GeneratedVectors v = generate_vectors(g);
+  std::vector<Job> jobs = v.jobs;
+  jobs[400].shell_count = uint32_t(v.memory.shell.size()) + 1;  // past the loaded shell
+  jobs[500].nx = 0;
+  std::string want;
+  for (unsigned threads : {1u, 2u, 3u}) {
+    FastRunner fr(v.config, threads);
+    fr.load(v.memory);
+    std::vector<Record> out = {Record::done(99, 0)};
+    try {
+      fr.run_into(jobs, out);
+      FAIL() << "no error";
+    } catch (const JobError& e) {
+      if (want.empty()) want = e.what();
+      EXPECT_EQ(want, e.what()) << threads << " threads";
+    }
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].tag, 99u);
+  }
+}
+
 }  // namespace
 }  // namespace voxcd
