@@ -37,6 +37,10 @@ class RefDevice final : public Device {
 
 }  // namespace
 
+void Device::run_part(const Job*, size_t, std::vector<Record>&) const {
+  throw DeviceError("the " + name() + " backend runs whole batches only (no run_part)");
+}
+
 std::vector<std::string> device_backends() {
   std::vector<std::string> b = {"ref", "cpu"};
   if (!rtl_lanes().empty()) b.push_back("rtl");

@@ -340,6 +340,20 @@ void FastRunner::run_validated_into(const std::vector<Job>& jobs, std::vector<Re
   run_jobs(jobs, out, cycles, false);
 }
 
+void FastRunner::run_part(const Job* jobs, size_t n, std::vector<Record>& out) const {
+  out.clear();
+  for (size_t j = 0; j < n; ++j) {
+    const Job& job = jobs[j];
+    validate_job(cfg_, job, shell_.size(), map_.size());
+    uint32_t hits = 0;
+    for (uint32_t b = 0; b < job.shell_count; b += uint32_t(kChunk)) {
+      run_chunk(job, b, uint32_t(std::min<size_t>(job.shell_count, b + kChunk)), out, hits);
+      if (job.mode == Mode::First && hits) break;
+    }
+    push_record(out, Record::Done, job.tag).hits = hits;
+  }
+}
+
 void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate) {
   // Pieces: (job, first point, end point), at most kChunk points each.
   pieces_.clear();
