@@ -387,8 +387,8 @@ class UniformGrid final : public BroadphaseBase {
   // Parts of the pool's loops (each a few microseconds): bodies checked and flattened, boxes split by size and
   // placed in cells, entries searched (about 50 ns each at 16 cells a box).
   static constexpr size_t kGrainBodies = 64, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 64;
-  static constexpr size_t kParallelSort = 256;  // pairs of a frame sorted on the pool (part by part, then merged)
-  static constexpr size_t kParallelCells = 256;  // boxes of a level sorted by cell on the pool
+  static constexpr size_t kParallelSort = 1024;  // pairs of a frame sorted on the pool (part by part, then merged)
+  static constexpr size_t kParallelCells = 1024;  // boxes of a level sorted by cell on the pool
   std::vector<FlatBox> box_;
   std::vector<uint32_t> ids_, small_, cell_tmp_, fill_;
   std::vector<double> size_, sorted_;  // size_: by body

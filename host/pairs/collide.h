@@ -175,7 +175,7 @@ class PairCollider {
   static constexpr size_t kParallelClusters = 1024;
   static constexpr size_t kParallelContacts = 256;
   static constexpr size_t kContactPiece = 256;
-  static constexpr size_t kParallelScan = 16384;
+  static constexpr size_t kParallelScan = 2048;
   const ObjectType& type(uint32_t i) const { return *types_.at(i); }
   size_t types() const { return types_.size(); }
   const DeviceImage& image() const { return image_; }

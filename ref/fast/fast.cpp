@@ -18,7 +18,7 @@ namespace voxcd {
 
 namespace {
 
-constexpr size_t kChunk = 4096;  // points per piece
+constexpr size_t kChunk = 2048;  // points per piece
 constexpr size_t kBlock = 256;   // points per vector block inside a piece
 constexpr size_t kProbeBlock = 64;  // points of a piece's first block with the skipping kernel (run_chunk)
 // Points per task (runs of consecutive pieces, so that the many small jobs of a simulation frame make tasks of a
