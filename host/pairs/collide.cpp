@@ -412,11 +412,29 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
   const std::vector<Job>& js = part.jobs;
   device_->run_part(js.data(), js.size(), part.records);
   const DeviceConfig& cfg = device_->config();
-  if (device_->models_cycles()) annotate_cycles(cfg, js, part.records);
   const size_t nrec = part.records.size();
   part.job_records.resize(js.size());
   for (size_t r = 0, j = 0, first = 0; r < nrec; ++r)
     if (part.records[r].kind == Record::Done) part.job_records[j++].first = first, first = r + 1;
+  // The cycles of the timing model (annotate_cycles' of the part as a stream of its own), and the spans of its first
+  // and last jobs for join_parts.
+  part.any = !js.empty() && device_->models_cycles();
+  if (part.any) {
+    JobSpan prev;
+    for (size_t j = 0; j < js.size(); ++j) {
+      const Part::JobRecords& jr = part.job_records[j];
+      const size_t end = j + 1 < js.size() ? part.job_records[j + 1].first - 1 : nrec - 1;
+      Record& done = part.records[end];
+      const JobHits h = job_hits(cfg, js[j], j, part.records.data() + jr.first, end - jr.first, jr.first);
+      const JobSpan span = job_span(cfg, js[j], j, h, done.hits);
+      done.cycles = span_cycles(cfg, j ? &prev : nullptr, span);
+      done.points = span.points;
+      done.stalls = 0;
+      if (j == 0) part.first = span;
+      prev = span;
+    }
+    part.last = prev;
+  }
   part.first_job.resize(n + 1);
   for (size_t i = 0, j = 0; i <= n; ++i) {
     while (j < js.size() && part.sources[j].pair < i) ++j;
@@ -435,19 +453,7 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
     make_contacts(pairs[i], uint32_t(base + i), src, part.records.data() + jr.first, jr.kept, part.rot_a[i],
                   part.rot_b[i], out[i].contacts.data() + jr.at);
   }
-  // For join_parts: the spans of the first and last jobs (as job_timing has them).
-  part.any = !js.empty() && device_->models_cycles();
-  if (part.any) {
-    auto span = [&](size_t j) {
-      const Part::JobRecords& jr = part.job_records[j];
-      const size_t end = j + 1 < js.size() ? part.job_records[j + 1].first - 1 : nrec - 1;
-      const JobHits h = job_hits(cfg, js[j], j, part.records.data() + jr.first, end - jr.first, jr.first);
-      return job_span(cfg, js[j], j, h, part.records[end].hits);
-    };
-    part.first = span(0);
-    part.last = span(js.size() - 1);
-    part.first_result = out + part.sources[0].pair;
-  }
+  if (part.any) part.first_result = out + part.sources[0].pair;
 }
 
 void PairCollider::join_parts(Part* const* parts, size_t n) const {

@@ -418,9 +418,11 @@ Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(sc
 }
 
 namespace {
-// Bodies per part of the per-body loops (integration, bounds: about 50 ns a body) and broadphase pairs per part of
-// the mid-phase (about 100 ns a pair).
-constexpr size_t kGrainBodies = 64, kGrainPairs = 32;
+// Bodies per part of the per-body loops (integration, bounds: about 50 ns a body), tested pairs per part of the
+// outcomes (about 100 ns a pair); and the parts of the pair tests: at least 8 broadphase pairs each (one of three
+// reaches the device, a few microseconds each), up to 16 per thread, for their costs differ and a thread that
+// finishes early takes another's.
+constexpr size_t kGrainBodies = 64, kGrainPairs = 32, kGrainNarrow = 8, kPartsNarrow = 16;
 }  // namespace
 
 void Simulation::integrate(FrameStats& st) {
@@ -473,7 +475,7 @@ void Simulation::narrow(const std::vector<BodyPair>& pairs, const PairOptions& p
   // The mid-phase: the enclosing spheres, then the oriented boxes of the two bodies (separating-axis test over the
   // 15 axes); its verdicts on the pool, counted per range of pairs.
   keep_.resize(pairs.size());
-  const Ranges r = pool_ranges(pool_.get(), pairs.size(), kGrainPairs);
+  const Ranges r = pool_ranges(pool_.get(), pairs.size(), kGrainNarrow, kPartsNarrow);
   if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
   for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
     uint64_t kept = 0;
