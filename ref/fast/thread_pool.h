@@ -71,8 +71,8 @@ class ThreadPool {
   std::mutex call_mu_;  // one loop at a time
   // Per thread, on a cache line of its own, what it needs of a loop (one line moves to start it): the loop's
   // generation and body, written by the caller; its block, in one word: the next index to take from the front (high
-  // half) and one past the last index left (low half); and the tasks it has finished, counted over every loop, which
-  // the caller reads with the block when it looks for work left. The owner takes from the front with a fetch_add,
+  // half) and one past the last index left (low half); and on the next line the tasks it has finished, counted over
+  // every loop. The owner takes from the front with a fetch_add,
   // the others from the back with a compare-and-swap. A thread that takes an index below the end it read has a task
   // of the live loop (a loop ends only when all its tasks are done), whose body it then reads; between loops every
   // block is empty, so a late worker takes nothing.
@@ -80,7 +80,8 @@ class ThreadPool {
     std::atomic<uint64_t> generation{0};
     const std::function<void(size_t)>* fn = nullptr;
     std::atomic<uint64_t> range{0};
-    std::atomic<uint64_t> finished{0};
+    // On a line of its own: the caller polls it while the owner still takes tasks from `range`.
+    alignas(64) std::atomic<uint64_t> finished{0};
     uint64_t finished_before = 0;  // the caller's copy of `finished` when the loop started
   };
   std::unique_ptr<Slot[]> slots_;
