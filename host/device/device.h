@@ -52,6 +52,10 @@ class Device {
   // (PairCollider::collide_part); the others throw DeviceError.
   virtual bool runs_parts() const { return false; }
   virtual void run_part(const Job* jobs, size_t n, std::vector<Record>& out) const;
+  // The same for points [begin, end) of one job: their hit records appended to `hits` (FIRST: up to the first), their
+  // number added to `count`, the job validated first when `validate`.
+  virtual void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+                         uint32_t& count) const;
 };
 
 // The backends this build has, by name.

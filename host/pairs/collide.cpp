@@ -282,6 +282,11 @@ std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pa
 void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt,
                            std::vector<PairResult>& out) {
   jobs(pairs, opt, jobs_, sources_);
+  if (pool_ && device_->runs_parts()) {
+    size_t points = 0;
+    for (const Job& j : jobs_) points += j.shell_count;
+    if (points >= kParallelPoints) return collide_pieces(pairs, opt, out);
+  }
   device_->run_into(jobs_, records_);
   const std::vector<Job>& js = jobs_;
   const size_t nrec = records_.size();
@@ -360,6 +365,122 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     make_contacts(pairs[src.pair], src.pair, src, records_.data() + c.first, c.n, rot_a_[src.pair], rot_b_[src.pair],
                   c.to);
   });
+}
+
+void PairCollider::collide_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt,
+                                  std::vector<PairResult>& out) {
+  const std::vector<Job>& js = jobs_;
+  const DeviceConfig& cfg = device_->config();
+  const bool cycles = device_->models_cycles(), first_only = opt.mode == Mode::First;
+  // Pieces of at most kPiecePoints points; tasks: runs of consecutive pieces of at least kTaskPoints points.
+  pieces_.clear();
+  job_first_piece_.resize(js.size() + 1);
+  for (size_t j = 0; j < js.size(); ++j) {
+    job_first_piece_[j] = pieces_.size();
+    for (uint32_t b = 0; b < js[j].shell_count; b += uint32_t(kPiecePoints)) {
+      Piece& p = pieces_.emplace_back();
+      p.job = j;
+      p.begin = b;
+      p.end = uint32_t(std::min<size_t>(js[j].shell_count, b + kPiecePoints));
+    }
+  }
+  job_first_piece_[js.size()] = pieces_.size();
+  task_first_piece_.clear();
+  for (size_t i = 0, acc = kTaskPoints; i < pieces_.size(); ++i) {
+    if (acc >= kTaskPoints) task_first_piece_.push_back(i), acc = 0;
+    acc += pieces_[i].end - pieces_[i].begin;
+  }
+  task_first_piece_.push_back(pieces_.size());
+  const size_t tasks = task_first_piece_.size() - 1;
+  if (piece_hits_.size() < tasks) piece_hits_.resize(tasks);
+  // The lookups. A task validates a job before its first piece of it, so the lowest task that throws names the first
+  // invalid job (the error run_into gives); `out` is not touched before every task has finished.
+  pool_->parallel_for(tasks, [&](size_t t) {
+    std::vector<Record>& hits = piece_hits_[t].value;
+    hits.clear();
+    size_t validated = SIZE_MAX;
+    for (size_t i = task_first_piece_[t]; i < task_first_piece_[t + 1]; ++i) {
+      Piece& p = pieces_[i];
+      const Job& j = js[p.job];
+      p.task = t;
+      p.first = hits.size();
+      p.count = 0;
+      device_->run_piece(j, p.begin, p.end, validated != p.job, hits, p.count);
+      validated = p.job;
+      p.records = hits.size() - p.first;
+      if (cycles) p.sum = job_hits(cfg, j, p.job, hits.data() + p.first, p.records);
+    }
+  });
+  // Job by job, in order: its hits and summary as the device's stream would have them (FIRST: the first piece with a
+  // hit holds the job's record), its cycles after the previous job's, and which records make contacts (FIRST: only
+  // the first hit of a direction, over its jobs) and where they go in their pair's contacts.
+  out.resize(pairs.size());
+  for (PairResult& r : out) r.hits = 0, r.lookups = 0, r.cycles = 0;
+  contact_count_.assign(pairs.size(), 0);
+  JobSpan prev;
+  bool found = false;  // FIRST: the current direction has its hit
+  size_t kept_total = 0;
+  for (size_t j = 0; j < js.size(); ++j) {
+    const JobSource& src = sources_[j];
+    if (j == 0 || src.pair != sources_[j - 1].pair || src.a_in_b != sources_[j - 1].a_in_b) found = false;
+    PairResult& res = out[src.pair];
+    uint32_t hits = 0;
+    JobHits sum;
+    sum.first_group = sum.last_group = job_groups(cfg, js[j]);
+    for (size_t i = job_first_piece_[j]; i < job_first_piece_[j + 1]; ++i) {
+      Piece& p = pieces_[i];
+      p.kept = 0;
+      if (first_only) {
+        if (hits == 0 && p.records) {
+          hits = 1;
+          sum = p.sum;
+          p.kept = found ? 0 : 1;
+        }
+      } else {
+        hits += p.count;
+        if (cycles) sum = join_job_hits(sum, p.sum);
+        p.kept = p.records;
+      }
+      p.at = contact_count_[src.pair];
+      contact_count_[src.pair] += p.kept;
+      kept_total += p.kept;
+    }
+    if (first_only) {
+      if (!found && hits) ++res.hits, found = true;
+    } else {
+      res.hits += hits;
+    }
+    res.lookups += js[j].shell_count;
+    if (cycles) {
+      const JobSpan span = job_span(cfg, js[j], j, sum, hits);
+      res.cycles += span_cycles(cfg, j ? &prev : nullptr, span);
+      prev = span;
+    }
+  }
+  rot_a_.resize(pairs.size());
+  rot_b_.resize(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    out[i].contacts.resize(contact_count_[i]);
+    if (contact_count_[i] == 0) continue;
+    rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
+    rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
+  }
+  // The contacts, each task's from the records it made (on the pool when they are many).
+  auto contacts = [&](size_t t) {
+    const std::vector<Record>& hits = piece_hits_[t].value;
+    for (size_t i = task_first_piece_[t]; i < task_first_piece_[t + 1]; ++i) {
+      const Piece& p = pieces_[i];
+      if (!p.kept) continue;
+      const JobSource& src = sources_[p.job];
+      make_contacts(pairs[src.pair], src.pair, src, hits.data() + p.first, p.kept, rot_a_[src.pair], rot_b_[src.pair],
+                    out[src.pair].contacts.data() + p.at);
+    }
+  };
+  if (kept_total >= kParallelContacts) {
+    pool_->parallel_for(tasks, contacts);
+  } else {
+    for (size_t t = 0; t < tasks; ++t) contacts(t);
+  }
 }
 
 size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,

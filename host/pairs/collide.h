@@ -176,6 +176,8 @@ class PairCollider {
   static constexpr size_t kParallelContacts = 256;
   static constexpr size_t kContactPiece = 256;
   static constexpr size_t kParallelScan = 2048;
+  // collide_pieces: batches of this many points or more; points per piece and (at least) per task.
+  static constexpr size_t kParallelPoints = 4096, kPiecePoints = 2048, kTaskPoints = 2048;
   const ObjectType& type(uint32_t i) const { return *types_.at(i); }
   size_t types() const { return types_.size(); }
   const DeviceImage& image() const { return image_; }
@@ -184,6 +186,10 @@ class PairCollider {
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
   std::shared_ptr<ThreadPool> pool_;
+  // collide() of a batch of `points` shell points or more on a device that runs parts, with a pool: the jobs (in
+  // jobs_) in pieces on the pool, each piece's hit records kept where its task put them and made into contacts
+  // there, each job timed from its pieces (ref/timing.h): no stream is put together.
+  void collide_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
   // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), their first hit records
   // job_records[j].first, `nrec` records in all): which hit records make contacts, its hits, lookups, cycles and
   // contacts' places; the contacts vectors sized, the rotations of the pairs with contacts. Returns the contacts.
@@ -237,6 +243,19 @@ class PairCollider {
   };
   std::vector<ContactPiece> contact_pieces_;
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
+  // collide_pieces: points [begin, end) of a job; its task and where its hit records are in the task's list; its
+  // hits, the summary of its records, how many make contacts and where they go in the pair's contacts.
+  struct Piece {
+    size_t job = 0;
+    uint32_t begin = 0, end = 0;
+    size_t task = 0, first = 0, records = 0;
+    uint32_t count = 0;
+    JobHits sum;
+    size_t kept = 0, at = 0;
+  };
+  std::vector<Piece> pieces_;
+  std::vector<size_t> job_first_piece_, task_first_piece_, contact_count_;
+  std::vector<PartSlot<std::vector<Record>>> piece_hits_;
 };
 
 }  // namespace voxcd

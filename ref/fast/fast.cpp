@@ -354,6 +354,12 @@ void FastRunner::run_part(const Job* jobs, size_t n, std::vector<Record>& out) c
   }
 }
 
+void FastRunner::run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+                           uint32_t& count) const {
+  if (validate) validate_job(cfg_, job, shell_.size(), map_.size());
+  run_chunk(job, begin, end, hits, count);
+}
+
 void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate) {
   // Pieces: (job, first point, end point), at most kChunk points each.
   pieces_.clear();
