@@ -333,7 +333,7 @@ class UniformGrid final : public BroadphaseBase {
   // On the pool in ranges of entries, each into a part of out_ (part 0 continues the search's first list).
   void pairs_within(const Level& lv) {
     const uint32_t s = uint32_t(lv.entries.size());
-    const Ranges r = pool_ranges(pool_, s, kGrainEntries);
+    const Ranges r = pool_ranges(pool_, s, kGrainEntries, 8);
     if (out_.size() < r.parts) out_.resize(r.parts);
     for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
       pairs_within(lv, uint32_t(b), uint32_t(e), out_[part].value);
@@ -386,9 +386,9 @@ class UniformGrid final : public BroadphaseBase {
   static constexpr double kCellsPerBox = 16;
   // Parts of the pool's loops (each a few microseconds): bodies checked and flattened, boxes split by size and
   // placed in cells, entries searched (about 50 ns each at 16 cells a box).
-  static constexpr size_t kGrainBodies = 64, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 64;
-  static constexpr size_t kParallelSort = 256;  // pairs of a frame sorted on the pool (part by part, then merged)
-  static constexpr size_t kParallelCells = 256;  // boxes of a level sorted by cell on the pool
+  static constexpr size_t kGrainBodies = 64, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 32;
+  static constexpr size_t kParallelSort = 1024;  // pairs of a frame sorted on the pool (part by part, then merged)
+  static constexpr size_t kParallelCells = 1024;  // boxes of a level sorted by cell on the pool
   std::vector<FlatBox> box_;
   std::vector<uint32_t> ids_, small_, cell_tmp_, fill_;
   std::vector<double> size_, sorted_;  // size_: by body

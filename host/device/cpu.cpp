@@ -23,6 +23,12 @@ class CpuDevice final : public Device {
   std::vector<Record> run(const std::vector<Job>& jobs) override { return runner_.run(jobs); }
   void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) override { runner_.run_into(jobs, out); }
   std::shared_ptr<ThreadPool> pool() const override { return runner_.pool(); }
+  bool runs_parts() const override { return true; }
+  void run_part(const Job* jobs, size_t n, std::vector<Record>& out) const override { runner_.run_part(jobs, n, out); }
+  void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+                 uint32_t& count) const override {
+    runner_.run_piece(job, begin, end, validate, hits, count);
+  }
 
  private:
   FastRunner runner_;

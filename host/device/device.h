@@ -46,6 +46,16 @@ class Device {
   virtual void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) { out = run(jobs); }
   // The pool the backend computes on (cpu), for the host's work around it (PairCollider); null when it has none.
   virtual std::shared_ptr<ThreadPool> pool() const { return nullptr; }
+  // Backends that compute on the host (cpu) can run a part of a batch on the calling thread: the records of jobs
+  // [jobs, jobs + n), each validated first (JobError), as a stream of their own without cycles, into `out`
+  // (replaced); calls for different parts may run at once. A host that splits its batches itself uses it
+  // (PairCollider::collide_part); the others throw DeviceError.
+  virtual bool runs_parts() const { return false; }
+  virtual void run_part(const Job* jobs, size_t n, std::vector<Record>& out) const;
+  // The same for points [begin, end) of one job: their hit records appended to `hits` (FIRST: up to the first), their
+  // number added to `count`, the job validated first when `validate`.
+  virtual void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+                         uint32_t& count) const;
 };
 
 // The backends this build has, by name.

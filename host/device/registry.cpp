@@ -38,6 +38,14 @@ class RefDevice final : public Device {
 
 }  // namespace
 
+void Device::run_part(const Job*, size_t, std::vector<Record>&) const {
+  throw DeviceError("the " + name() + " backend runs whole batches only (no run_part)");
+}
+
+void Device::run_piece(const Job&, uint32_t, uint32_t, bool, std::vector<Record>&, uint32_t&) const {
+  throw DeviceError("the " + name() + " backend runs whole batches only (no run_piece)");
+}
+
 std::vector<std::string> device_backends() {
   std::vector<std::string> b = {"ref", "cpu"};
   if (!rtl_lanes().empty()) b.push_back("rtl");

@@ -14,6 +14,7 @@
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/pose.h"
 #include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/timing.h"
 
 namespace voxcd {
 
@@ -135,6 +136,36 @@ class PairCollider {
   // The same into `out`, reusing its capacity (and the collider's buffers): for callers that query every frame.
   void collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
 
+  // A batch in parts, for a device that runs parts (the cpu backend: Device::runs_parts): the caller splits the
+  // batch into consecutive runs of pairs, calls collide_part for each on threads of its own (each part with a Part of
+  // its own, kept from batch to batch for its buffers), then join_parts with every part in order. The results are
+  // those collide() gives for the whole batch: a part's first job is timed as if it began a stream until join_parts
+  // counts it after the previous part's last job.
+  struct Part {
+    std::vector<Job> jobs;
+    std::vector<JobSource> sources;
+    std::vector<uint64_t> bits;
+    std::vector<Record> records;
+    std::vector<size_t> first_job;
+    std::vector<Eigen::Matrix3d> rot_a, rot_b;
+    struct JobRecords {
+      size_t first = 0, kept = 0, at = 0;
+    };
+    std::vector<JobRecords> job_records;
+    // For join_parts: whether the part had a job; the pair of its first job, and its first and last jobs' spans.
+    bool any = false;
+    PairResult* first_result = nullptr;
+    JobSpan first, last;
+  };
+  bool runs_parts() const { return device_->runs_parts(); }
+  // Pairs [pairs, pairs + n) of a batch, the first of them pair `base` of the batch (in messages and
+  // Contact::pair): their results into [out, out + n). Errors as collide()'s. Calls for different parts may run at
+  // once.
+  void collide_part(const PairRequest* pairs, size_t n, size_t base, const PairOptions& opt, PairResult* out,
+                    Part& part) const;
+  // After every part of a batch, the parts in batch order.
+  void join_parts(Part* const* parts, size_t n) const;
+
   Device& device() { return *device_; }
   const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
   // On the pool above these sizes (each part a few microseconds of work): pairs of a batch (a pair's jobs take about
@@ -144,7 +175,9 @@ class PairCollider {
   static constexpr size_t kParallelClusters = 1024;
   static constexpr size_t kParallelContacts = 256;
   static constexpr size_t kContactPiece = 256;
-  static constexpr size_t kParallelScan = 16384;
+  static constexpr size_t kParallelScan = 2048;
+  // collide_pieces: batches of this many points or more; points per piece and (at least) per task.
+  static constexpr size_t kParallelPoints = 4096, kPiecePoints = 2048, kTaskPoints = 2048;
   const ObjectType& type(uint32_t i) const { return *types_.at(i); }
   size_t types() const { return types_.size(); }
   const DeviceImage& image() const { return image_; }
@@ -153,15 +186,27 @@ class PairCollider {
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
   std::shared_ptr<ThreadPool> pool_;
+  // collide() of a batch of `points` shell points or more on a device that runs parts, with a pool: the jobs (in
+  // jobs_) in pieces on the pool, each piece's hit records kept where its task put them and made into contacts
+  // there, each job timed from its pieces (ref/timing.h): no stream is put together.
+  void collide_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
+  // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), their first hit records
+  // job_records[j].first, `nrec` records in all): which hit records make contacts, its hits, lookups, cycles and
+  // contacts' places; the contacts vectors sized, the rotations of the pairs with contacts. Returns the contacts.
+  size_t tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
+               const JobSource* sources, size_t njobs, const size_t* first_job, Part::JobRecords* job_records,
+               const Record* records, size_t nrec, PairResult* out, Eigen::Matrix3d* rot_a,
+               Eigen::Matrix3d* rot_b) const;
   // The jobs of pair i, appended to out and sources (tags: their index in `out`); bits: add_runs' scratch.
   void pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
                  std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The culled runs of one direction of one pair, appended to out and sources.
   void add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
                 std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
-  // The contacts of job j's hit records [r, r + n) of the stream, written to `to` (the pair's matrices in rot_a_,
-  // rot_b_).
-  void make_contacts(const std::vector<PairRequest>& pairs, size_t j, size_t r, size_t n, Contact* to) const;
+  // The contacts of hit records [recs, recs + n) of a job from `src`, of the pair `req` (its rotations Ra, Rb; its
+  // index `pair`), written to `to`.
+  void make_contacts(const PairRequest& req, uint32_t pair, const JobSource& src, const Record* recs, size_t n,
+                     const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, Contact* to) const;
 
   // Per type, its shell in clusters of consecutive points: the first point of each (one past the end last), and
   // each cluster's box in the shell's grid (centre and half-extent per axis).
@@ -190,10 +235,7 @@ class PairCollider {
   std::vector<PartSlot<size_t>> kept_parts_;
   // Per job: the stream index of its first hit record, how many of them make contacts, where they go in the
   // pair's contacts.
-  struct JobRecords {
-    size_t first = 0, kept = 0, at = 0;
-  };
-  std::vector<JobRecords> job_records_;
+  std::vector<Part::JobRecords> job_records_;
   std::vector<std::vector<size_t>> done_parts_;  // Done record indices found by each part of a parallel scan
   struct ContactPiece {
     size_t job, first, n;  // job j's kept records [first, first + n) of the stream
@@ -201,6 +243,19 @@ class PairCollider {
   };
   std::vector<ContactPiece> contact_pieces_;
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
+  // collide_pieces: points [begin, end) of a job; its task and where its hit records are in the task's list; its
+  // hits, the summary of its records, how many make contacts and where they go in the pair's contacts.
+  struct Piece {
+    size_t job = 0;
+    uint32_t begin = 0, end = 0;
+    size_t task = 0, first = 0, records = 0;
+    uint32_t count = 0;
+    JobHits sum;
+    size_t kept = 0, at = 0;
+  };
+  std::vector<Piece> pieces_;
+  std::vector<size_t> job_first_piece_, task_first_piece_, contact_count_;
+  std::vector<PartSlot<std::vector<Record>>> piece_hits_;
 };
 
 }  // namespace voxcd

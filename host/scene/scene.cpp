@@ -418,9 +418,11 @@ Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(sc
 }
 
 namespace {
-// Bodies per part of the per-body loops (integration, bounds: about 50 ns a body) and broadphase pairs per part of
-// the mid-phase (about 100 ns a pair).
-constexpr size_t kGrainBodies = 64, kGrainPairs = 32;
+// Bodies per part of the per-body loops (integration, bounds: about 50 ns a body), tested pairs per part of the
+// outcomes (about 100 ns a pair); and the parts of the pair tests: at least 8 broadphase pairs each (one of three
+// reaches the device, a few microseconds each), up to 16 per thread, for their costs differ and a thread that
+// finishes early takes another's.
+constexpr size_t kGrainBodies = 64, kGrainPairs = 32, kGrainNarrow = 8, kPartsNarrow = 16;
 }  // namespace
 
 void Simulation::integrate(FrameStats& st) {
@@ -469,31 +471,84 @@ void Simulation::compute_bounds() {
   });
 }
 
-void Simulation::midphase(const std::vector<BodyPair>& pairs) {
-  // The enclosing spheres, then the oriented boxes of the two bodies (separating-axis test over the 15 axes): the
-  // verdicts on the pool, then the requests in pair order.
+void Simulation::narrow(const std::vector<BodyPair>& pairs, const PairOptions& po) {
+  // The mid-phase: the enclosing spheres, then the oriented boxes of the two bodies (separating-axis test over the
+  // 15 axes); its verdicts on the pool, counted per range of pairs.
   keep_.resize(pairs.size());
-  for_ranges(pool_.get(), pool_ranges(pool_.get(), pairs.size(), kGrainPairs), [&](size_t, size_t first, size_t end) {
+  const Ranges r = pool_ranges(pool_.get(), pairs.size(), kGrainNarrow, kPartsNarrow);
+  if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
+  for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
+    uint64_t kept = 0;
     for (size_t k = first; k < end; ++k) {
       const uint32_t ia = pairs[k].first, ib = pairs[k].second;
       const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
       keep_[k] = !opt_.midphase || (spheres_overlap(bounds_[ia], bounds_[ib]) &&
                                     boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia],
                                                   *scene_.types[b.type], rot_[ib], box_centre_[ib]));
+      kept += keep_[k];
     }
+    part_counts_[part].value = kept;
   });
-  requests_.clear();
-  requests_pairs_.clear();
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    if (!keep_[k]) continue;
-    const Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
-    PairRequest& r = requests_.emplace_back();
-    r.a = a.type;
-    r.b = b.type;
-    r.pose_a = a.pose;
-    r.pose_b = b.pose;
-    requests_pairs_.push_back(pairs[k]);
+  // Where each range's requests go: the requests in pair order.
+  size_t total = 0;
+  part_first_.resize(r.parts + 1);
+  for (size_t p = 0; p < r.parts; ++p) part_first_[p] = total, total += part_counts_[p].value;
+  part_first_[r.parts] = total;
+  requests_.resize(total);
+  requests_pairs_.resize(total);
+  results_.resize(total);
+  outcomes_.resize(total);
+  auto request = [&](size_t first, size_t end, size_t q) {
+    for (size_t k = first; k < end; ++k) {
+      if (!keep_[k]) continue;
+      const Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
+      PairRequest& rq = requests_[q];
+      rq.a = a.type;
+      rq.b = b.type;
+      rq.pose_a = a.pose;
+      rq.pose_b = b.pose;
+      requests_pairs_[q++] = pairs[k];
+    }
+  };
+  if (!pool_ || r.parts <= 1 || !collider_->runs_parts()) {
+    request(0, pairs.size(), 0);
+    collider_->collide(requests_, po, results_);
+    for_ranges(pool_.get(), pool_ranges(pool_.get(), total, kGrainPairs), [&](size_t, size_t first, size_t end) {
+      for (size_t q = first; q < end; ++q) outcome(q);
+    });
+    return;
   }
+  // The device runs parts (the cpu backend): each range of pairs, from its requests to its outcomes, in one loop,
+  // each part timed on its own, then the parts' cycles joined in order.
+  if (narrow_parts_.size() < r.parts) narrow_parts_.resize(r.parts);
+  for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
+    const size_t q0 = part_first_[part], q1 = part_first_[part + 1];
+    request(first, end, q0);
+    collider_->collide_part(requests_.data() + q0, q1 - q0, q0, po, results_.data() + q0, narrow_parts_[part].value);
+    for (size_t q = q0; q < q1; ++q) outcome(q);
+  });
+  part_ptrs_.clear();
+  for (size_t p = 0; p < r.parts; ++p) part_ptrs_.push_back(&narrow_parts_[p].value);
+  collider_->join_parts(part_ptrs_.data(), part_ptrs_.size());
+  for (const PairCollider::Part* p : part_ptrs_)
+    if (p->any) {
+      const size_t q = size_t(p->first_result - results_.data());
+      outcomes_[q].cycles = results_[q].cycles;
+    }
+}
+
+void Simulation::outcome(size_t q) {
+  const PairResult& r = results_[q];
+  PairOutcome& o = outcomes_[q];
+  o.a = requests_pairs_[q].first;
+  o.b = requests_pairs_[q].second;
+  o.hits = r.hits;
+  o.lookups = r.lookups;
+  o.contacts = r.contacts.size();
+  o.cycles = r.cycles;
+  // A's outward normals where A's shell is in B, minus B's where B's is in A, in the contacts' order.
+  o.normal = Eigen::Vector3d::Zero();
+  for (const Contact& c : r.contacts) o.normal += c.a_in_b ? c.normal : -c.normal;
 }
 
 const std::vector<BodyPair>& Simulation::find_pairs() {
@@ -520,24 +575,7 @@ const std::vector<BodyPair>& Simulation::find_pairs() {
 }
 
 void Simulation::gather_outcomes(FrameStats& st) {
-  // Pair by pair on the pool (each pair's normal summed in its contacts' order).
-  outcomes_.resize(requests_.size());
-  for_ranges(pool_.get(), pool_ranges(pool_.get(), requests_.size(), kGrainPairs), [&](size_t, size_t first,
-                                                                                      size_t end) {
-    for (size_t q = first; q < end; ++q) {
-      const PairResult& r = results_[q];
-      PairOutcome& o = outcomes_[q];
-      o.a = requests_pairs_[q].first;
-      o.b = requests_pairs_[q].second;
-      o.hits = r.hits;
-      o.lookups = r.lookups;
-      o.contacts = r.contacts.size();
-      o.cycles = r.cycles;
-      // A's outward normals where A's shell is in B, minus B's where B's is in A.
-      o.normal = Eigen::Vector3d::Zero();
-      for (const Contact& c : r.contacts) o.normal += c.a_in_b ? c.normal : -c.normal;
-    }
-  });
+  // The outcomes of the tested pairs (narrow() made them), and the frame's cycles.
   uint64_t cycles = 0;
   for (const PairOutcome& o : outcomes_) cycles += o.cycles;
   // The stream of the frame is taken one cycle after its last completion record.
@@ -586,14 +624,13 @@ FrameStats Simulation::step() {
   double t3 = now();
   st.t_broadphase = t3 - t2;
 
-  // Mid-phase, then the device.
-  midphase(pairs);
+  // Mid-phase, the device, and each tested pair's outcome.
   PairOptions po;
   po.mode = opt_.mode;
   po.both_directions = opt_.both_directions;
   po.cull = opt_.cull;
   po.margin = opt_.margin;
-  collider_->collide(requests_, po, results_);
+  narrow(pairs, po);
   double t4 = now();
   st.t_narrow = t4 - t3;
   st.pairs = pairs.size();

@@ -155,7 +155,9 @@ class Simulation {
  private:
   void compute_bounds();
   void integrate(FrameStats& st);
-  void midphase(const std::vector<BodyPair>& pairs);
+  // The mid-phase, the pair tests and the tested pairs' outcomes (requests_, requests_pairs_, results_, outcomes_).
+  void narrow(const std::vector<BodyPair>& pairs, const PairOptions& po);
+  void outcome(size_t q);
   std::unique_ptr<Broadphase> make_pruning() const;
   // The broadphase's pairs, or in a distributed run those of this rank's slab (global body indices, sorted).
   const std::vector<BodyPair>& find_pairs();
@@ -175,6 +177,9 @@ class Simulation {
   std::shared_ptr<ThreadPool> pool_;  // null on one thread
   std::vector<uint8_t> keep_;         // the mid-phase's verdict per broadphase pair
   std::vector<PartSlot<uint64_t>> part_counts_;
+  std::vector<size_t> part_first_;  // narrow(): the first request of each range of broadphase pairs
+  std::vector<PartSlot<PairCollider::Part>> narrow_parts_;
+  std::vector<PairCollider::Part*> part_ptrs_;
   std::vector<PairRequest> requests_;
   std::vector<BodyPair> requests_pairs_;  // the bodies of each request
   std::vector<PairResult> results_;

@@ -18,7 +18,7 @@ namespace voxcd {
 
 namespace {
 
-constexpr size_t kChunk = 4096;  // points per piece
+constexpr size_t kChunk = 2048;  // points per piece
 constexpr size_t kBlock = 256;   // points per vector block inside a piece
 constexpr size_t kProbeBlock = 64;  // points of a piece's first block with the skipping kernel (run_chunk)
 // Points per task (runs of consecutive pieces, so that the many small jobs of a simulation frame make tasks of a
@@ -338,6 +338,26 @@ void FastRunner::run_into(const std::vector<Job>& jobs, std::vector<Record>& out
 
 void FastRunner::run_validated_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) {
   run_jobs(jobs, out, cycles, false);
+}
+
+void FastRunner::run_part(const Job* jobs, size_t n, std::vector<Record>& out) const {
+  out.clear();
+  for (size_t j = 0; j < n; ++j) {
+    const Job& job = jobs[j];
+    validate_job(cfg_, job, shell_.size(), map_.size());
+    uint32_t hits = 0;
+    for (uint32_t b = 0; b < job.shell_count; b += uint32_t(kChunk)) {
+      run_chunk(job, b, uint32_t(std::min<size_t>(job.shell_count, b + kChunk)), out, hits);
+      if (job.mode == Mode::First && hits) break;
+    }
+    push_record(out, Record::Done, job.tag).hits = hits;
+  }
+}
+
+void FastRunner::run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+                           uint32_t& count) const {
+  if (validate) validate_job(cfg_, job, shell_.size(), map_.size());
+  run_chunk(job, begin, end, hits, count);
 }
 
 void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate) {

@@ -72,6 +72,15 @@ class FastRunner {
   // as they are now, as the SystemC target does when a descriptor arrives. An invalid job is undefined behaviour.
   void run_validated_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles = true);
   std::vector<Record> run(const std::vector<Job>& jobs, bool cycles = true);
+  // Jobs [jobs, jobs + n) on the calling thread alone, each validated before it runs (JobError), their records
+  // (no cycles) into `out`, replaced: for a caller that runs the parts of a batch on its own threads. Calls on
+  // different `out`s may run at once (it only reads the runner).
+  void run_part(const Job* jobs, size_t n, std::vector<Record>& out) const;
+  // Points [begin, end) of one job on the calling thread: their hit records appended to `hits` (FIRST: up to the
+  // first), their number added to `count`; the job validated first when `validate` (JobError). For a caller that
+  // splits the jobs of a batch itself; calls may run at once.
+  void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+                 uint32_t& count) const;
 
  private:
   // A piece of a job: points [begin, end), at most kChunk of them. A task is a run of consecutive pieces.

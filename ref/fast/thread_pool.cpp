@@ -45,7 +45,7 @@ ThreadPool::ThreadPool(unsigned threads) {
   // More threads than CPUs: a spinning worker would take the CPU from the thread it waits for.
   spin_us_ = threads <= cpus ? kSpinMicros : 0;
   if (const char* env = std::getenv("VOXCD_SPIN_US")) spin_us_ = unsigned(std::strtoul(env, nullptr, 10));
-  blocks_ = std::make_unique<Block[]>(threads);
+  slots_ = std::make_unique<Slot[]>(threads);
   for (unsigned k = 1; k < threads; ++k) workers_.emplace_back([this, k] { worker(k); });
 }
 
@@ -58,51 +58,53 @@ ThreadPool::~ThreadPool() {
   for (auto& t : workers_) t.join();
 }
 
-void ThreadPool::run(size_t i, size_t& finished) {
-  try {
-    (*fn_)(i);
-  } catch (...) {
-    std::lock_guard<std::mutex> l(error_mu_);
-    if (i < error_index_) error_index_ = i, error_ = std::current_exception();
-  }
-  ++finished;
-}
-
 void ThreadPool::drain(unsigned self) {
   const ThreadPool* outer = t_inside;
   t_inside = this;
-  size_t finished = 0;
+  uint64_t finished = 0;
+  const std::function<void(size_t)>* fn = nullptr;
+  auto run_task = [&](size_t i) {
+    if (!fn) fn = slots_[self].fn;  // read after a task is taken: the live loop's
+    try {
+      (*fn)(i);
+    } catch (...) {
+      std::lock_guard<std::mutex> l(error_mu_);
+      if (i < error_index_) error_index_ = i, error_ = std::current_exception();
+    }
+    ++finished;
+  };
   // Its own block from the front.
   for (;;) {
-    const uint64_t w = blocks_[self].range.fetch_add(uint64_t(1) << 32, std::memory_order_acq_rel);
+    const uint64_t w = slots_[self].range.fetch_add(uint64_t(1) << 32, std::memory_order_acq_rel);
     const size_t i = size_t(w >> 32), end = size_t(uint32_t(w));
     if (i >= end) break;
-    run(i, finished);
+    run_task(i);
   }
   // Then the others' blocks from the back, the next thread's first.
   const unsigned threads = size();
   for (unsigned d = 1; d < threads; ++d) {
-    std::atomic<uint64_t>& range = blocks_[(self + d) % threads].range;
+    std::atomic<uint64_t>& range = slots_[(self + d) % threads].range;
     uint64_t w = range.load(std::memory_order_acquire);
     for (;;) {
       const size_t i = size_t(w >> 32), end = size_t(uint32_t(w));
       if (i >= end) break;
       if (range.compare_exchange_weak(w, (w & ~uint64_t(0xffffffffu)) | (end - 1), std::memory_order_acq_rel,
                                       std::memory_order_acquire)) {
-        run(end - 1, finished);
+        run_task(end - 1);
         w = range.load(std::memory_order_acquire);
       }
     }
   }
   t_inside = outer;
-  if (finished) done_.fetch_add(finished, std::memory_order_acq_rel);
+  if (finished) slots_[self].finished.fetch_add(finished, std::memory_order_release);
 }
 
 void ThreadPool::worker(unsigned self) {
+  Slot& slot = slots_[self];
   uint64_t seen = 0;
   for (;;) {
     // Wait for a new loop: spin first, then sleep.
-    if (generation_.load(std::memory_order_acquire) == seen && !stop_.load(std::memory_order_acquire)) {
+    if (slot.generation.load(std::memory_order_acquire) == seen && !stop_.load(std::memory_order_acquire)) {
       bool woke = false;
       if (spin_us_) {
         // Pauses at first; then a yield between checks, so that on a busy machine the waiting worker gives its CPU
@@ -112,7 +114,7 @@ void ThreadPool::worker(unsigned self) {
         const auto until = start + std::chrono::microseconds(spin_us_);
         bool yielding = false;
         for (unsigned k = 1;; ++k) {
-          if (generation_.load(std::memory_order_acquire) != seen || stop_.load(std::memory_order_relaxed)) {
+          if (slot.generation.load(std::memory_order_acquire) != seen || stop_.load(std::memory_order_relaxed)) {
             woke = true;
             break;
           }
@@ -131,35 +133,46 @@ void ThreadPool::worker(unsigned self) {
       if (!woke) {
         std::unique_lock<std::mutex> l(sleep_mu_);
         sleepers_.fetch_add(1, std::memory_order_seq_cst);
-        wake_.wait(l, [&] { return generation_.load(std::memory_order_seq_cst) != seen || stop_.load(); });
+        wake_.wait(l, [&] { return slot.generation.load(std::memory_order_seq_cst) != seen || stop_.load(); });
         sleepers_.fetch_sub(1, std::memory_order_relaxed);
       }
     }
     if (stop_.load(std::memory_order_acquire)) return;
-    seen = generation_.load(std::memory_order_acquire);
+    seen = slot.generation.load(std::memory_order_acquire);
     drain(self);
   }
 }
 
 void ThreadPool::run_loop(size_t n, const std::function<void(size_t)>& fn) {
   const auto start = stats_on_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
-  fn_ = &fn;
-  done_.store(0, std::memory_order_relaxed);
   error_index_ = SIZE_MAX;
   error_ = nullptr;
   const unsigned threads = size();
+  ++generation_;
+  // Every slot's body, then the blocks (released: a worker that takes a task from any block finds the body in its
+  // own slot), then the workers' generations.
+  for (unsigned k = 0; k < threads; ++k) {
+    slots_[k].fn = &fn;
+    slots_[k].finished_before = slots_[k].finished.load(std::memory_order_relaxed);
+  }
   for (unsigned k = 0; k < threads; ++k) {
     const uint64_t b = uint64_t(n * k / threads), e = uint64_t(n * (k + 1) / threads);
-    blocks_[k].range.store(b << 32 | e, std::memory_order_release);
+    slots_[k].range.store(b << 32 | e, std::memory_order_release);
   }
-  generation_.fetch_add(1, std::memory_order_seq_cst);
+  for (unsigned k = 1; k < threads; ++k) slots_[k].generation.store(generation_, std::memory_order_seq_cst);
   if (sleepers_.load(std::memory_order_seq_cst) > 0) {
     { std::lock_guard<std::mutex> l(sleep_mu_); }
     wake_.notify_all();
   }
   drain(0);
-  // The tasks the workers claimed: the caller waits for them alone (a worker that claimed none is not waited for).
-  for (unsigned k = 1; done_.load(std::memory_order_acquire) < n; ++k) k % 1024 ? relax() : std::this_thread::yield();
+  // The tasks the workers took: the caller waits for them alone (a worker that took none is not waited for).
+  auto finished = [&] {
+    uint64_t f = 0;
+    for (unsigned k = 0; k < threads; ++k)
+      f += slots_[k].finished.load(std::memory_order_acquire) - slots_[k].finished_before;
+    return f;
+  };
+  for (unsigned k = 1; finished() < n; ++k) k % 1024 ? relax() : std::this_thread::yield();
   if (stats_on_) {
     ++stats_.loops;
     stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -62,7 +62,6 @@ class ThreadPool {
  private:
   void worker(unsigned self);
   void drain(unsigned self);
-  void run(size_t i, size_t& finished);
   void run_loop(size_t n, const std::function<void(size_t)>& fn);
 
   std::vector<std::thread> workers_;
@@ -70,22 +69,27 @@ class ThreadPool {
   bool stats_on_ = false;
   Stats stats_;
   std::mutex call_mu_;  // one loop at a time
-  // The current loop: its body, and per thread its block, in one word: the next index to take from the front (high
-  // half) and one past the last index left (low half). The owner takes from the front with a fetch_add, the others
-  // from the back with a compare-and-swap. A thread that takes an index below the end it read has a task of the
-  // live loop (a loop ends only when all its tasks are done), whose body it then reads; between loops every block
-  // is empty, so a late worker takes nothing.
-  const std::function<void(size_t)>* fn_ = nullptr;
-  struct alignas(64) Block {
+  // Per thread, on a cache line of its own, what it needs of a loop (one line moves to start it): the loop's
+  // generation and body, written by the caller; its block, in one word: the next index to take from the front (high
+  // half) and one past the last index left (low half); and on the next line the tasks it has finished, counted over
+  // every loop. The owner takes from the front with a fetch_add,
+  // the others from the back with a compare-and-swap. A thread that takes an index below the end it read has a task
+  // of the live loop (a loop ends only when all its tasks are done), whose body it then reads; between loops every
+  // block is empty, so a late worker takes nothing.
+  struct alignas(64) Slot {
+    std::atomic<uint64_t> generation{0};
+    const std::function<void(size_t)>* fn = nullptr;
     std::atomic<uint64_t> range{0};
+    // On a line of its own: the caller polls it while the owner still takes tasks from `range`.
+    alignas(64) std::atomic<uint64_t> finished{0};
+    uint64_t finished_before = 0;  // the caller's copy of `finished` when the loop started
   };
-  std::unique_ptr<Block[]> blocks_;
-  alignas(64) std::atomic<size_t> done_{0};  // tasks of the live loop finished
+  std::unique_ptr<Slot[]> slots_;
+  uint64_t generation_ = 0;  // the caller's
   std::mutex error_mu_;
   size_t error_index_ = SIZE_MAX;  // the lowest index that threw, and its exception
   std::exception_ptr error_;
-  // Loops started, for the waiting workers; and how many of them sleep.
-  alignas(64) std::atomic<uint64_t> generation_{0};
+  // Workers asleep.
   alignas(64) std::atomic<unsigned> sleepers_{0};
   std::mutex sleep_mu_;
   std::condition_variable wake_;
