@@ -74,15 +74,15 @@ def model(rows, campaign_rate):
     for R in (1, 16, 64, 256):
         compute = N * rep + N * div / R
         outcomes = N * tested_per_body * OUTCOME_BYTES
-        # Rank 0 receives R-1 shares and sends the whole merge to R-1 ranks, one message each (a star).
-        star = 2 * (R - 1) * LATENCY_S + (outcomes * (R - 1) / R + outcomes * (R - 1)) / BANDWIDTH_BPS
-        # An allgather over a tree: log2(R) steps, each rank receiving the whole merge once.
+        # As implemented: every rank sends its share to the R-1 others and receives theirs, R-1 messages each way.
+        a2a = (R - 1) * LATENCY_S + (outcomes * (R - 1) / R) / BANDWIDTH_BPS
+        # An allgather over a tree (MPI_Allgatherv's algorithms): log2(R) steps, each rank receiving every share once.
         tree = (2 * (R - 1).bit_length()) * LATENCY_S + outcomes / BANDWIDTH_BPS if R > 1 else 0.0
-        out["bodies"].append({"ranks": R, "compute_ms": compute * 1e3, "star_ms": star * 1e3, "tree_ms": tree * 1e3,
-                              "star_hz": 1 / (compute + star), "tree_hz": 1 / (compute + tree),
+        out["bodies"].append({"ranks": R, "compute_ms": compute * 1e3, "a2a_ms": a2a * 1e3, "tree_ms": tree * 1e3,
+                              "a2a_hz": 1 / (compute + a2a), "tree_hz": 1 / (compute + tree),
                               # Were integration and bounds divided too (bodies kept by their slab's rank only):
                               "all_divided_hz": 1 / (N * (rep + div) / R + tree),
-                              "speedup_star": (N * (rep + div)) / (compute + star)})
+                              "speedup_a2a": (N * (rep + div)) / (compute + a2a)})
     if campaign_rate:
         L, shard = 1e9, 200 * 40  # lookups, lookups per shard (200 jobs of about 40 points)
         shards = L / shard
@@ -104,12 +104,12 @@ def markdown(rows, m, campaign_rate):
     lines += ["", f"Fit (one process, {fit['objects']} objects, one thread): replicated stages "
               f"{fit['replicated_us_per_body']:.3f} us per body and frame, divided stages "
               f"{fit['divided_us_per_body']:.3f} us, {fit['tested_per_body']:.3f} pairs tested per body and frame.",
-              "", "| N = 10^6, ranks | compute per frame (ms) | exchange, star (ms) | exchange, tree (ms) | "
-              "frame rate, star (Hz) | frame rate, tree (Hz) | speed-up over one rank (star) | every stage divided, "
+              "", "| N = 10^6, ranks | compute per frame (ms) | exchange, all-to-all (ms) | exchange, tree (ms) | "
+              "frame rate, all-to-all (Hz) | frame rate, tree (Hz) | speed-up over one rank (all-to-all) | every stage divided, "
               "tree (Hz) |", "|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for b in m["bodies"]:
-        lines.append(f"| {b['ranks']} | {b['compute_ms']:.1f} | {b['star_ms']:.2f} | {b['tree_ms']:.2f} | "
-                     f"{b['star_hz']:.1f} | {b['tree_hz']:.1f} | {b['speedup_star']:.1f} | "
+        lines.append(f"| {b['ranks']} | {b['compute_ms']:.1f} | {b['a2a_ms']:.2f} | {b['tree_ms']:.2f} | "
+                     f"{b['a2a_hz']:.1f} | {b['tree_hz']:.1f} | {b['speedup_a2a']:.1f} | "
                      f"{b['all_divided_hz']:.1f} |")
     if m["campaign"]:
         lines += ["", f"10^9-lookup campaign at {campaign_rate:.3g} lookups/s per rank (`bash bench/regress.sh`):", "",

@@ -58,6 +58,9 @@ class Broadphase {
   // The pairs of the last update whose bounding volumes overlap under predicate(): ascending, each once.
   virtual const std::vector<BodyPair>& pairs() const = 0;
   virtual BroadphaseStats stats() const = 0;
+  // Whether update() builds on the previous frame's bodies (by index): a caller that changes which bodies it
+  // passes, keeping their count, must then start a fresh broadphase. The others rebuild every frame.
+  virtual bool keeps_state() const { return false; }
   // Threads for update() (grid: the pair search and the sort; the others run on the calling thread). The pairs
   // never depend on it. Null: the calling thread.
   void set_pool(ThreadPool* pool) { pool_ = pool; }

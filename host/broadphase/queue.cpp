@@ -16,6 +16,7 @@ constexpr uint32_t kMaxBodies = 8192;
 class PriorityQueue final : public BroadphaseBase {
  public:
   std::string name() const override { return "queue"; }
+  bool keeps_state() const override { return true; }
   std::string predicate() const override { return "sphere"; }
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {

@@ -216,6 +216,7 @@ class PairSet {
 class CoherentSweep final : public BroadphaseBase {
  public:
   std::string name() const override { return "coherent"; }
+  bool keeps_state() const override { return true; }
   std::string predicate() const override { return "box"; }
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {

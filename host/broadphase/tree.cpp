@@ -33,6 +33,7 @@ inline bool contains(const FlatBox& outer, const FlatBox& inner) {
 class AabbTree final : public BroadphaseBase {
  public:
   std::string name() const override { return "tree"; }
+  bool keeps_state() const override { return true; }
   std::string predicate() const override { return "box"; }
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {

@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -17,8 +18,7 @@ namespace voxcd::mpi {
 
 namespace {
 
-constexpr int kTagOutcomes = 0x7c01;  // a rank's outcomes for rank 0
-constexpr int kTagMerged = 0x7c02;    // rank 0's merge for every rank
+constexpr int kTagOutcomes = 0x7c02;  // a rank's outcomes for the others (plus the frame's parity)
 
 void check(int rc, const char* what) {
   if (rc == MPI_SUCCESS) return;
@@ -28,28 +28,26 @@ void check(int rc, const char* what) {
   throw std::runtime_error(std::string(what) + " failed: " + std::string(text, size_t(len)));
 }
 
-// The deadline of one exchange. The exchange itself blocks in MPI (which makes progress fastest); a second thread,
-// which never calls MPI, ends the process with the message of `why` when the deadline passes first. The launcher
-// then ends every rank (a rank that exits with an error ends the job).
+}  // namespace
+
+// The deadline of each exchange, held by one thread for the whole run (a thread a frame cost more than the frame's
+// messages). The exchange itself blocks in MPI (which makes progress fastest); the watchdog, which never calls MPI,
+// wakes every twentieth of the timeout (at most every 100 ms) and, when an armed deadline has passed, ends the
+// process with the message of `why`. The launcher then ends every rank (a rank that exits with an error ends the
+// job). Arming and disarming take an uncontended lock: no system call.
 class Watchdog {
  public:
-  Watchdog(double seconds, std::function<std::string()> why) : why_(std::move(why)) {
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                              std::chrono::duration<double>(seconds));
-    thread_ = std::thread([this, deadline] {
-      std::unique_lock<std::mutex> lock(mu_);
-      if (cv_.wait_until(lock, deadline, [this] { return done_; })) return;
-      const std::string text = "voxcd simulate: " + why_() + "\n";
-      std::fputs(text.c_str(), stderr);
-      std::fflush(nullptr);
-      std::_Exit(2);
-    });
+  explicit Watchdog(double seconds)
+      : timeout_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+            std::chrono::duration<double>(seconds))),
+        poll_(std::clamp(timeout_ / 20, std::chrono::steady_clock::duration(std::chrono::milliseconds(1)),
+                         std::chrono::steady_clock::duration(std::chrono::milliseconds(100)))) {
+    thread_ = std::thread([this] { watch(); });
   }
   ~Watchdog() {
     {
       std::lock_guard<std::mutex> lock(mu_);
-      done_ = true;
+      stop_ = true;
     }
     cv_.notify_all();
     thread_.join();
@@ -57,12 +55,53 @@ class Watchdog {
   Watchdog(const Watchdog&) = delete;
   Watchdog& operator=(const Watchdog&) = delete;
 
+  // From now until disarm(), the deadline is the timeout from now; `why` says what did not arrive.
+  void arm(std::function<std::string()> why) {
+    std::lock_guard<std::mutex> lock(mu_);
+    why_ = std::move(why);
+    deadline_ = std::chrono::steady_clock::now() + timeout_;
+    armed_ = true;
+  }
+  void disarm() {
+    std::lock_guard<std::mutex> lock(mu_);
+    armed_ = false;
+    why_ = nullptr;
+  }
+
  private:
-  std::function<std::string()> why_;
+  void watch() {
+    std::unique_lock<std::mutex> lock(mu_);
+    while (!stop_) {
+      cv_.wait_for(lock, poll_, [this] { return stop_; });
+      if (stop_ || !armed_ || std::chrono::steady_clock::now() < deadline_) continue;
+      const std::string text = "voxcd simulate: " + why_() + "\n";
+      std::fputs(text.c_str(), stderr);
+      std::fflush(nullptr);
+      std::_Exit(2);
+    }
+  }
+
+  const std::chrono::steady_clock::duration timeout_, poll_;
   std::mutex mu_;
   std::condition_variable cv_;
-  bool done_ = false;
+  std::function<std::string()> why_;
+  std::chrono::steady_clock::time_point deadline_;
+  bool armed_ = false, stop_ = false;
   std::thread thread_;
+};
+
+namespace {
+
+// Arms a watchdog for one scope.
+class Armed {
+ public:
+  Armed(Watchdog& dog, std::function<std::string()> why) : dog_(dog) { dog_.arm(std::move(why)); }
+  ~Armed() { dog_.disarm(); }
+  Armed(const Armed&) = delete;
+  Armed& operator=(const Armed&) = delete;
+
+ private:
+  Watchdog& dog_;
 };
 
 // The next message with `tag` from `source` (MPI_ANY_SOURCE: any), whatever its size.
@@ -76,10 +115,6 @@ std::string receive(int source, int tag, int& from) {
   check(MPI_Mrecv(bytes.data(), count, MPI_CHAR, &msg, MPI_STATUS_IGNORE), "MPI_Mrecv");
   from = st.MPI_SOURCE;
   return bytes;
-}
-
-void send(int to, int tag, const std::string& bytes) {
-  check(MPI_Send(bytes.data(), int(bytes.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD), "MPI_Send");
 }
 
 // VOXCD_TESTING_FRAME_FAULT=KIND:RANK:FRAME (docs/scale.md, "Testing aids"): rank RANK, at frame FRAME, fails
@@ -113,81 +148,70 @@ void testing_fault(int rank, uint64_t frame) {
 
 MpiFrameExchange::MpiFrameExchange(World& world, double timeout) : world_(world), timeout_(timeout) {
   if (!world.distributed()) throw std::logic_error("MpiFrameExchange needs a world started by an MPI launcher");
+  dog_ = std::make_unique<Watchdog>(timeout);
 }
+
+MpiFrameExchange::~MpiFrameExchange() = default;
 
 std::vector<PairOutcome> MpiFrameExchange::exchange(uint64_t frame, const Slabs& slabs,
                                                     const std::vector<PairOutcome>& mine, const RankCounts& own,
                                                     RankCounts& total) {
   const int n = world_.size(), me = world_.rank();
   testing_fault(me, frame);
-  std::ostringstream why;
-  if (me != 0) {
-    const Watchdog dog(timeout_, [&] {
-      std::ostringstream w;
-      w << "rank " << me << " of " << n << " (" << slab_text(slabs, me) << "): no merged outcomes of frame " << frame
-        << " from rank 0 within " << timeout_ << " s (--mpi-timeout)";
-      return w.str();
-    });
-    const std::string out = encode_outcomes(frame, own, mine);
-    send(0, kTagOutcomes, out);
+  // Every rank sends its outcomes to every other and merges what it receives (all ranks at once: no rank waits
+  // for another's merge). A rank is at most one frame ahead of any other (it needs their outcomes of its frame to
+  // go on), so the frame's parity in the tag keeps two frames' messages apart.
+  const int tag = kTagOutcomes + int(frame & 1);
+  const std::string out = encode_outcomes(frame, own, mine);
+  std::vector<MPI_Request> sends;
+  sends.reserve(size_t(n));
+  for (int r = 0; r < n; ++r) {
+    if (r == me) continue;
+    sends.emplace_back();
+    check(MPI_Isend(out.data(), int(out.size()), MPI_CHAR, r, tag, MPI_COMM_WORLD, &sends.back()), "MPI_Isend");
     sent_ += out.size();
-    int from = 0;
-    const std::string bytes = receive(0, kTagMerged, from);
-    received_ += bytes.size();
-    uint64_t f = 0;
-    std::vector<PairOutcome> all;
-    decode_outcomes(bytes, f, total, all);
-    if (f != frame) {
-      why << "rank " << me << ": rank 0 sent frame " << f << " while this rank is at frame " << frame;
-      throw std::runtime_error(why.str());
-    }
-    return all;
   }
   std::vector<std::vector<PairOutcome>> per_rank(static_cast<size_t>(n));
-  std::unique_ptr<std::atomic<bool>[]> got(new std::atomic<bool>[size_t(n)]);
-  for (int r = 0; r < n; ++r) got[size_t(r)] = r == 0;
-  per_rank[0] = mine;
+  std::vector<char> got(size_t(n), 0);
+  got[size_t(me)] = 1;
+  per_rank[size_t(me)] = mine;
   total = own;
   {
-    const Watchdog dog(timeout_, [&] {
+    const Armed armed(*dog_, [&] {
       std::ostringstream w;
-      w << "rank 0 of " << n << ": no outcomes of frame " << frame << " within " << timeout_
-        << " s (--mpi-timeout) from";
-      for (int r = 1; r < n; ++r)
+      w << "rank " << me << " of " << n << ": ";
+      if (std::count(got.begin(), got.end(), 1) == n) {
+        w << "the other ranks did not take the outcomes of frame " << frame << " within " << timeout_
+          << " s (--mpi-timeout)";
+        return w.str();
+      }
+      w << "no outcomes of frame " << frame << " within " << timeout_ << " s (--mpi-timeout) from";
+      for (int r = 0; r < n; ++r)
         if (!got[size_t(r)]) w << " rank " << r << " (" << slab_text(slabs, r) << ")";
       return w.str();
     });
     for (int k = 1; k < n; ++k) {
       int from = 0;
-      const std::string bytes = receive(MPI_ANY_SOURCE, kTagOutcomes, from);
+      const std::string bytes = receive(MPI_ANY_SOURCE, tag, from);
       received_ += bytes.size();
       uint64_t f = 0;
       RankCounts c;
       decode_outcomes(bytes, f, c, per_rank[size_t(from)]);
       if (f != frame || got[size_t(from)]) {
-        why << "rank 0: rank " << from << " (" << slab_text(slabs, from) << ") sent frame " << f << " at frame "
-            << frame;
+        std::ostringstream why;
+        why << "rank " << me << ": rank " << from << " (" << slab_text(slabs, from) << ") sent frame " << f
+            << " at frame " << frame;
         throw std::runtime_error(why.str());
       }
-      got[size_t(from)] = true;
+      got[size_t(from)] = 1;
       total.pairs += c.pairs;
       total.tested += c.tested;
       total.cycles = std::max(total.cycles, c.cycles);
     }
+    // Every rank has sent this frame's outcomes too, so this completes at once.
+    check(MPI_Waitall(int(sends.size()), sends.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
   }
-  std::vector<PairOutcome> all = merge_outcomes(per_rank);
-  const std::string out = encode_outcomes(frame, total, all);
-  const Watchdog dog(timeout_, [&] {
-    std::ostringstream w;
-    w << "rank 0 of " << n << ": the ranks did not take the merged outcomes of frame " << frame << " within "
-      << timeout_ << " s (--mpi-timeout)";
-    return w.str();
-  });
-  for (int r = 1; r < n; ++r) {
-    send(r, kTagMerged, out);
-    sent_ += out.size();
-  }
-  return all;
+  return merge_outcomes(per_rank);
 }
 
 }  // namespace voxcd::mpi

@@ -4,16 +4,20 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "voxcd/host/mpi/world.h"
 #include "voxcd/host/scene/exchange.h"
 
 namespace voxcd::mpi {
 
+class Watchdog;  // frame_exchange.cpp
+
 class MpiFrameExchange final : public FrameExchange {
  public:
   // timeout: seconds a rank waits for a frame's messages.
   MpiFrameExchange(World& world, double timeout);
+  ~MpiFrameExchange() override;
   int rank() const override { return world_.rank(); }
   int ranks() const override { return world_.size(); }
   std::vector<PairOutcome> exchange(uint64_t frame, const Slabs& slabs, const std::vector<PairOutcome>& mine,
@@ -25,6 +29,7 @@ class MpiFrameExchange final : public FrameExchange {
   World& world_;
   double timeout_;
   uint64_t sent_ = 0, received_ = 0;
+  std::unique_ptr<Watchdog> dog_;  // one thread holding every exchange's deadline
 };
 
 }  // namespace voxcd::mpi

@@ -21,11 +21,24 @@ Slabs split_slabs(const std::vector<BodyBounds>& bodies, int ranks) {
   std::vector<double> c;
   c.reserve(bodies.size());
   for (const BodyBounds& b : bodies) c.push_back(b.centre[s.axis]);
-  std::sort(c.begin(), c.end());
+  // The cuts' order statistics by selection, cut after cut on what lies above the last (a sort costs more than the
+  // rest of the partition): c[k] is then the k-th smallest, and the largest of c[begin, k) the (k-1)-th.
   const size_t n = c.size();
+  size_t begin = 0;
   for (int r = 1; r < ranks; ++r) {
     const size_t k = n * size_t(r) / size_t(ranks);  // bodies below the cut
-    s.cuts.push_back(k == 0 ? c.front() : k >= n ? c.back() : 0.5 * (c[k - 1] + c[k]));
+    if (k == 0) {
+      s.cuts.push_back(*std::min_element(c.begin(), c.end()));
+      continue;
+    }
+    if (k == begin) {  // fewer bodies than ranks: the same cut again
+      s.cuts.push_back(s.cuts.back());
+      continue;
+    }
+    std::nth_element(c.begin() + std::ptrdiff_t(begin), c.begin() + std::ptrdiff_t(k), c.end());
+    const double below = *std::max_element(c.begin() + std::ptrdiff_t(begin), c.begin() + std::ptrdiff_t(k));
+    s.cuts.push_back(0.5 * (below + c[k]));
+    begin = k;
   }
   return s;
 }

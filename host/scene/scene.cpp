@@ -560,7 +560,7 @@ const std::vector<BodyPair>& Simulation::find_pairs() {
   const int me = opt_.exchange->rank();
   std::vector<uint32_t> local = slab_bodies(slabs_, me, bounds_);
   // A broadphase that keeps state between frames keys it by index: another set of bodies starts a fresh one.
-  if (local != local_) broadphase_ = make_pruning();
+  if (broadphase_->keeps_state() && local != local_) broadphase_ = make_pruning();
   local_ = std::move(local);
   local_bounds_.clear();
   for (uint32_t i : local_) local_bounds_.push_back(bounds_[i]);
