@@ -43,6 +43,16 @@ void DeviceConfig::validate() const {
     require(MAW >= 3, "MAW = " + std::to_string(MAW) + " leaves no row for the 8 banks of a distance voxmap (SB = " +
                           std::to_string(SB) + " needs MAW >= 3)");
   }
+  if (banked()) {
+    range("BANKS", BANKS, 1, 64);
+    require((BANKS & (BANKS - 1)) == 0, "BANKS = " + std::to_string(BANKS) + " is not a power of two");
+    require(BANKS <= (1 << std::min(MAW, 28)), "BANKS = " + std::to_string(BANKS) + " is more than the 2^MAW = " +
+                                                   std::to_string(1 << std::min(MAW, 28)) + " voxmap words");
+    require(!distance(), "BANKS = " + std::to_string(BANKS) + ": shared voxmap banks are for 2-bit devices (SB = 2); "
+                         "a distance device (SB = " + std::to_string(SB) + ") keeps a copy per lane");
+  } else {
+    require(BANKS == 0, "BANKS = " + std::to_string(BANKS) + " is negative (0: a voxmap copy per lane)");
+  }
   // An index must be able to hold every in-grid value 0 .. 2^DW - 1 plus a sign.
   require(index_width() >= DW + 1, "the accumulator's integer part (" + std::to_string(index_width()) +
                                        " bits) cannot hold DW = " + std::to_string(DW));
@@ -53,6 +63,7 @@ std::string DeviceConfig::to_string() const {
   s << "PW " << PW << " PF " << PF << " MW " << MW << " MF " << MF << " TW " << TW << " DW " << DW << " MEMW "
     << MEMW << " LANES " << LANES << " SAW " << SAW << " MAW " << MAW << " TAGW " << TAGW;
   if (distance()) s << " SB " << SB << " WB " << WB;
+  if (banked()) s << " BANKS " << BANKS;
   return s.str();
 }
 

@@ -26,12 +26,18 @@ struct DeviceConfig {
   int TAGW = 16;  // job tag width (unsigned)
   int SB = 2;     // voxmap value width: 2 = voxel states; 4, 8, 16 = a signed distance per grid node
   int WB = 8;     // interpolation weight bits (distance voxmaps): the top WB fraction bits per coordinate
+  int BANKS = 0;  // 0: every lane its own copy of the voxmap; B: the lanes share one voxmap in B banks (word w in
+                  // bank w % B), with bank conflicts resolved by the device (timing only, never results)
 
   int TF() const { return MF + PF; }
   int states_per_word() const { return MEMW / 2; }
   // A distance device (SB > 2) holds signed node distances in 8 parity banks (docs/contract.md).
   bool distance() const { return SB > 2; }
   int nodes_per_word() const { return MEMW / SB; }
+  // The lanes share one voxmap memory in BANKS banks (docs/contract.md, "Shared voxmap banks").
+  bool banked() const { return BANKS > 0; }
+  // Voxmap copies the device holds: LANES, or one when banked.
+  int voxmap_copies() const { return banked() ? 1 : LANES; }
   // Width of an interpolated distance, a job's threshold and a hit record's distance: SB + 3*WB.
   int IW() const { return SB + 3 * WB; }
   uint64_t shell_depth() const { return uint64_t{1} << SAW; }
@@ -46,11 +52,11 @@ struct DeviceConfig {
   // Throws ConfigError naming the parameter and the rule it breaks.
   void validate() const;
   // "PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 LANES 4 SAW 16 MAW 18 TAGW 16", then "SB 8 WB 8" on a
-  // distance device (a 2-bit device's text is the paper device's, unchanged).
+  // distance device and "BANKS B" on a banked one (a 2-bit device's text is the paper device's, unchanged).
   std::string to_string() const;
-  // Same widths; LANES may differ (it changes timing, never results).
+  // Same widths; LANES and BANKS may differ (they change timing, never results).
   bool same_widths(const DeviceConfig& o) const;
-  bool operator==(const DeviceConfig& o) const { return same_widths(o) && LANES == o.LANES; }
+  bool operator==(const DeviceConfig& o) const { return same_widths(o) && LANES == o.LANES && BANKS == o.BANKS; }
   bool operator!=(const DeviceConfig& o) const { return !(*this == o); }
 };
 

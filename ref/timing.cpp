@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "voxcd/ref/banks.h"
+
 namespace voxcd {
 
 namespace {
@@ -50,7 +52,8 @@ JobHits join_job_hits(const JobHits& a, const JobHits& b) {
   return s;
 }
 
-JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& h, uint32_t done_hits) {
+JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& h, uint32_t done_hits,
+                 uint64_t conflicts) {
   const uint64_t L = uint64_t(cfg.LANES), P = uint64_t(pipeline_slots(cfg));
   const uint64_t count = job.shell_count;
   const uint64_t groups = count == 0 ? 1 : ceil_div(count, L);
@@ -79,6 +82,8 @@ JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHit
     s.slots = groups;
     s.points = count;
   }
+  s.done += conflicts;
+  s.advance += conflicts;
   return s;
 }
 
@@ -89,8 +94,13 @@ uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan
   return prev->advance - prev->done + cur.done;
 }
 
-std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
-                                  const std::vector<Record>& records) {
+namespace {
+
+std::vector<JobTiming> timing_of(const DeviceConfig& cfg, const std::vector<Job>& jobs,
+                                 const std::vector<Record>& records, const std::vector<uint64_t>* conflicts) {
+  if (conflicts && conflicts->size() != jobs.size())
+    throw std::invalid_argument("timing: " + std::to_string(conflicts->size()) + " bank conflict counts for " +
+                                std::to_string(jobs.size()) + " jobs");
   std::vector<JobTiming> out(jobs.size());
   JobSpan prev;
   size_t r = 0;
@@ -102,7 +112,7 @@ std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job
     if (r == records.size() || records[r].tag != job.tag)
       throw std::invalid_argument("timing: no completion record for job " + std::to_string(j));
     const Record& done = records[r++];
-    const JobSpan s = job_span(cfg, job, j, h, done.hits);
+    const JobSpan s = job_span(cfg, job, j, h, done.hits, conflicts ? (*conflicts)[j] : 0);
     out[j].cycles = span_cycles(cfg, j ? &prev : nullptr, s);
     out[j].slots = s.slots;
     out[j].points = s.points;
@@ -112,8 +122,13 @@ std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job
   return out;
 }
 
-void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records) {
-  const std::vector<JobTiming> t = job_timing(cfg, jobs, records);
+void require_unbanked(const DeviceConfig& cfg) {
+  if (cfg.banked())
+    throw std::invalid_argument("timing: a banked device's cycles (BANKS " + std::to_string(cfg.BANKS) +
+                                ") depend on its voxmap reads: time it with the memory or the bank conflicts");
+}
+
+void annotate(const std::vector<JobTiming>& t, std::vector<Record>& records) {
   size_t j = 0;
   for (Record& rec : records) {
     if (rec.kind != Record::Done) continue;
@@ -122,6 +137,40 @@ void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std:
     rec.stalls = 0;
     ++j;
   }
+}
+
+}  // namespace
+
+std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
+                                  const std::vector<Record>& records) {
+  require_unbanked(cfg);
+  return timing_of(cfg, jobs, records, nullptr);
+}
+
+std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
+                                  const std::vector<Record>& records, const std::vector<uint64_t>& conflicts) {
+  return timing_of(cfg, jobs, records, &conflicts);
+}
+
+std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs,
+                                  const std::vector<Record>& records) {
+  if (!cfg.banked()) return timing_of(cfg, jobs, records, nullptr);
+  const std::vector<uint64_t> conflicts = bank_conflicts(cfg, mem.shell, jobs, records);
+  return timing_of(cfg, jobs, records, &conflicts);
+}
+
+void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records) {
+  annotate(job_timing(cfg, jobs, records), records);
+}
+
+void annotate_cycles(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs,
+                     std::vector<Record>& records) {
+  annotate(job_timing(cfg, mem, jobs, records), records);
+}
+
+void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records,
+                     const std::vector<uint64_t>& conflicts) {
+  annotate(job_timing(cfg, jobs, records, conflicts), records);
 }
 
 uint64_t stream_cycles(const std::vector<JobTiming>& t) {

@@ -51,18 +51,33 @@ uint64_t job_groups(const DeviceConfig& cfg, const Job& job);
 struct JobSpan {
   uint64_t done = 0, advance = 0, slots = 0, points = 0;
 };
-JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& hits, uint32_t done_hits);
+// On a banked device `conflicts` is the job's bank conflict cycles (ref/banks.h): each delays the job's next slot
+// by one cycle at the hit test, so both `done` and `advance` grow by them.
+JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& hits, uint32_t done_hits,
+                 uint64_t conflicts = 0);
 // The completion record's cycles of a job of span `cur` after a job of span `prev` (null: the stream's first job,
 // whose slots may start kFirstSlotLatency cycles, plus the distance slots, after its acceptance).
 uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan& cur);
 
 // Timing of every job of `jobs`, given the stream `records` that ref/ produced for them (hits in order, then a
-// completion per job). Throws std::invalid_argument when the stream does not belong to the jobs.
+// completion per job). Throws std::invalid_argument when the stream does not belong to the jobs, and on a banked
+// device (whose cycles depend on the reads: use the overloads with the conflicts or the memory).
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records);
+// The same with each job's bank conflict cycles (bank_conflicts; all 0 on a device with a copy per lane).
+std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
+                                  const std::vector<Record>& records, const std::vector<uint64_t>& conflicts);
+// The same for any device, counting a banked device's conflicts from the memory the jobs ran on.
+std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs,
+                                  const std::vector<Record>& records);
 
-// Fills the cycles (and the informative points and zero stalls) of every completion record in `records`.
+// Fills the cycles (and the informative points and zero stalls) of every completion record in `records`. Throws
+// on a banked device, as job_timing does; the overload with the memory times any device.
 void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records);
+void annotate_cycles(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs,
+                     std::vector<Record>& records);
+void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records,
+                     const std::vector<uint64_t>& conflicts);
 
 // Cycles of the whole stream: from the first job's acceptance to the cycle the last completion record is taken.
 uint64_t stream_cycles(const std::vector<JobTiming>& t);

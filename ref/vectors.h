@@ -30,6 +30,7 @@ struct VectorFile {
   int version = 1;  // the header's format version
   DeviceConfig config;
   bool has_lanes = false;  // the config line named LANES
+  bool has_banks = false;  // the config line named BANKS
   DeviceMemory memory;
   std::vector<Job> jobs;
   std::vector<int> job_lines;

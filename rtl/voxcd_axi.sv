@@ -45,6 +45,7 @@ module voxcd_axi #(
   parameter int unsigned TAGW    = voxcd_pkg::TAGW,
   parameter int unsigned SB      = voxcd_pkg::SB,
   parameter int unsigned WB      = voxcd_pkg::WB,
+  parameter int unsigned BANKS   = voxcd_pkg::BANKS,
   parameter int unsigned AxilDw  = 32,     // AXI4-Lite data bits: 32 or 64
   parameter int unsigned JobDw   = 64,     // job stream TDATA bits: a power of two, 8 .. 1024
   parameter int unsigned RecDw   = 64,     // record stream TDATA bits: a power of two, 8 .. 256
@@ -112,9 +113,9 @@ module voxcd_axi #(
                           RegStatus = 12'h020, RegStaged = 12'h028, RegResultCount = 12'h030, RegRun = 12'h038,
                           RegJobsDone = 12'h040, RegHits = 12'h048, RegPoints = 12'h050, RegCycles = 12'h058,
                           RegStalls = 12'h060, RegShellWords = 12'h068, RegMapWords = 12'h070,
-                          RegDropped = 12'h078;
+                          RegDropped = 12'h078, RegConflicts = 12'h080;
   localparam logic [63:0] Config0 = {8'(LANES), 8'(MEMW), 8'(DW), 8'(TW), 8'(MF), 8'(MW), 8'(PF), 8'(PW)};
-  localparam logic [63:0] Config1 = {24'd0, 8'(WB), 8'(SB), 8'(TAGW), 8'(MAW), 8'(SAW)};
+  localparam logic [63:0] Config1 = {16'd0, 8'(BANKS), 8'(WB), 8'(SB), 8'(TAGW), 8'(MAW), 8'(SAW)};
 
   // ---- Device ----
   logic                 shell_we, map_we;
@@ -130,7 +131,7 @@ module voxcd_axi #(
   logic [1:0]           hit_state;
   logic [IW-1:0]        hit_dist;
   logic [SAW:0]         done_hits, done_points;
-  logic [CW-1:0]        done_cycles, done_stalls;
+  logic [CW-1:0]        done_cycles, done_stalls, conflicts;  // conflicts: the device's bank conflict cycles
   logic                 dev_busy;
 
   // The descriptor register and its fields (byte offsets of sysc/address_map.h).
@@ -184,7 +185,7 @@ module voxcd_axi #(
 
   voxcd_device #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB)
+    .TAGW(TAGW), .SB(SB), .WB(WB), .BANKS(BANKS)
   ) u_device (
     .clk_i            (clk_i),
     .rst_ni           (rst_ni),
@@ -226,6 +227,7 @@ module voxcd_axi #(
     .done_cycles_o    (done_cycles),
     .done_points_o    (done_points),
     .done_stalls_o    (done_stalls),
+    .conflicts_o      (conflicts),
     .busy_o           (dev_busy)
   );
 
@@ -371,6 +373,7 @@ module voxcd_axi #(
       RegShellWords:  v = shell_words_q;
       RegMapWords:    v = map_words_q;
       RegDropped:     v = dropped_q;
+      RegConflicts:   v = 64'(conflicts);
       RegRun:         begin v = '0; kind = 2'd1; end
       default:        begin v = '0; kind = 2'd2; end
     endcase
@@ -470,7 +473,7 @@ module voxcd_axi #(
     mlo_d       = mlo_q;
     if (a < RegSize) begin
       if ({a[11:3], 3'b000} == RegRun) run_d = 1'b1;
-      else bresp_d = {a[11:3], 3'b000} <= RegDropped ? RespSlverr : RespDecerr;  // read-only, or no register
+      else bresp_d = {a[11:3], 3'b000} <= RegConflicts ? RespSlverr : RespDecerr;  // read-only, or no register
     end else if (in_window(a, ShellBase, ShellBytes)) begin
       if (busy) bresp_d = RespSlverr;
       else if (b == 4'd0 || b == 4'd4) begin

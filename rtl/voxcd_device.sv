@@ -53,7 +53,8 @@ module voxcd_device #(
   parameter int unsigned MAW   = voxcd_pkg::MAW,
   parameter int unsigned TAGW  = voxcd_pkg::TAGW,
   parameter int unsigned SB    = voxcd_pkg::SB,
-  parameter int unsigned WB    = voxcd_pkg::WB
+  parameter int unsigned WB    = voxcd_pkg::WB,
+  parameter int unsigned BANKS = voxcd_pkg::BANKS  // 0: a voxmap copy per lane; B: one voxmap in B shared banks
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -106,7 +107,9 @@ module voxcd_device #(
   output logic [voxcd_pkg::CW-1:0] done_stalls_o,
 
   // High while a job is queued or in flight or a record waits.
-  output logic                     busy_o
+  output logic                     busy_o,
+  // Bank conflict cycles since reset (cycles in which R4 waited for a shared voxmap bank; 0 without BANKS).
+  output logic [voxcd_pkg::CW-1:0] conflicts_o
 );
 
   localparam int unsigned CW    = voxcd_pkg::CW;
@@ -120,6 +123,11 @@ module voxcd_device #(
   localparam int unsigned RowW  = SAW - LgL;                      // rows of one shell bank
   localparam int unsigned LaneW = LgL > 0 ? LgL : 1;
   localparam int unsigned SeqW  = $clog2(NumR + 2) + 1;           // tells apart every job in flight
+  localparam bit          Banked = BANKS > 0;                      // the lanes share one voxmap in BANKS banks
+  localparam int unsigned LgB   = Banked ? $clog2(BANKS) : 0;
+  localparam int unsigned NumB  = Banked ? BANKS : 1;
+  localparam int unsigned BankW = LgB > 0 ? LgB : 1;
+  localparam int unsigned BRowW = MAW - LgB;                       // rows of one shared bank
 
   // ---- Jobs, slots and output records ----
   typedef struct packed {
@@ -225,7 +233,11 @@ module voxcd_device #(
   );
 
   // ---- Pipeline control ----
-  logic            advance;     // every slot register advances
+  // The last register (the hit test) advances when its records are out (advance_out); the registers before it and
+  // the issue stage too unless R4 still waits for a shared voxmap bank (advance), in which case the last register
+  // takes an empty slot. Without shared banks the two are the same.
+  logic            advance;     // R0 .. R4 and the issue stage advance
+  logic            advance_out; // the last register advances
   logic            first_stop;  // the last register holds the first hit of a FIRST job: stop issuing it
   logic [SeqW-1:0] first_stop_seq;
 
@@ -283,17 +295,21 @@ module voxcd_device #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       for (int s = 0; s < NumR; s++) slot_meta_q[s] <= '0;
-    end else if (advance) begin
-      slot_meta_q[0] <= issue;
-      for (int s = 1; s < NumR; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
+    end else begin
+      if (advance) begin
+        slot_meta_q[0] <= issue;
+        for (int s = 1; s < NumR - 1; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
+      end
+      if (advance_out) slot_meta_q[NumR - 1] <= advance ? slot_meta_q[NumR - 2] : '0;  // '0: an empty slot
     end
   end
   // Job fields are read only where their slot is valid: no reset.
   always_ff @(posedge clk_i) begin
     if (advance) begin
       slot_job_q[0] <= head_job;
-      for (int s = 1; s < NumR; s++) slot_job_q[s] <= slot_job_q[s - 1];
+      for (int s = 1; s < NumR - 1; s++) slot_job_q[s] <= slot_job_q[s - 1];
     end
+    if (advance_out) slot_job_q[NumR - 1] <= slot_job_q[NumR - 2];
   end
 
   // What each stage reads of its slot: the job of the slot in R0 .. R3, and the last register's (R5, or R8 on a
@@ -332,6 +348,9 @@ module voxcd_device #(
   end
 
   // ---- Lanes ----
+  logic [LANES-1:0]      lane_read;     // R4: the lane's point is inside its map and reads a voxmap word
+  logic [LANES*MAW-1:0]  lane_addr;     // R4: the word it reads
+  logic [LANES*MEMW-1:0] lane_word;     // R5: the word from the shared banks (Banked)
   logic [LANES-1:0]      lane_inside;
   logic [LANES*2-1:0]    lane_state;
   logic [LANES*3*DW-1:0] lane_voxel;
@@ -341,10 +360,15 @@ module voxcd_device #(
     logic [3*PW-1:0] point;
     assign point = bank_rdata[((32'(r0_slot.rot) + l) % LANES) * 3 * PW +: 3 * PW];
     voxcd_lane #(
-      .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB)
+      .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB),
+      .SharedMap(Banked)
     ) u_lane (
       .clk_i      (clk_i),
       .en_i       (advance),
+      .en_out_i   (advance_out),
+      .addr_o     (lane_addr[MAW*l +: MAW]),
+      .read_o     (lane_read[l]),
+      .word_i     (lane_word[MEMW*l +: MEMW]),
       .map_we_i   (map_we_i),
       .map_waddr_i(map_waddr_i),
       .map_wdata_i(map_wdata_i),
@@ -361,6 +385,9 @@ module voxcd_device #(
       .voxel_o    (lane_voxel[3*DW*l +: 3*DW])
     );
   end
+
+  logic             bank_wait;     // R4 has lanes left after this cycle's round (shared voxmap banks, below)
+  logic [CW-1:0]    conflicts_q;   // bank conflict cycles since reset
 
   // ---- Hit test and record emission at the last register (R5, R8 on a distance device) ----
   logic [LANES-1:0] lane_hit;              // lanes whose point is a hit
@@ -413,10 +440,11 @@ module voxcd_device #(
   end
 
   assign stall          = !out_ready;
-  assign advance        = out_ready && !slot_busy;
+  assign advance_out    = out_ready && !slot_busy;
+  assign advance        = advance_out && !bank_wait;
   assign emit           = out_ready && ((|records_left) || done_due);
   assign emit_done      = emit && !(|records_left);
-  assign first_stop     = advance && last_slot.valid && !squash && is_first && (|lane_hit);
+  assign first_stop     = advance_out && last_slot.valid && !squash && is_first && (|lane_hit);
   assign first_stop_seq = last_slot.seq;
 
   always_comb begin
@@ -426,7 +454,7 @@ module voxcd_device #(
     hits_d      = hits_q;
     points_d    = points_q;
     if (out_ready && (|records_left)) emitted_d = emitted_q | (LANES'(1) << emit_lane);
-    if (advance) begin
+    if (advance_out) begin
       emitted_d = '0;
       if (first_stop) begin
         found_d     = 1'b1;
@@ -456,6 +484,112 @@ module voxcd_device #(
       points_q    <= points_d;
     end
   end
+
+  // ---- Shared voxmap banks (BANKS > 0, 2-bit devices): word w is in bank w % BANKS, row w / BANKS ----
+  // The slot in R4 reads in rounds, one in each cycle in which the last register lets the pipeline advance: in a
+  // round each bank reads the word of the lowest lane still waiting for it, and every waiting lane that wants that
+  // word takes it. R4 leaves in its last round; before that the last register takes empty slots (a bank conflict
+  // cycle each). So a slot with at most r distinct words in any one bank reaches the hit test r - 1 cycles late;
+  // a slot of a FIRST job that has found its hit reads nothing (it is squashed). ref/banks.h counts the same.
+  // A word read in an earlier round waits in early_q and moves to held_q when the slot enters R5; the words of the
+  // last round stay on the banks' outputs while the slot is in R5 (the banks read only when R5 advances).
+  if (Banked) begin : g_banks
+    meta_t                r4_slot;
+    logic                 r4_squashed;   // R4 belongs to a FIRST job whose hit is found or at the hit test now
+    logic [LANES-1:0]     want;          // lanes of R4 that read a word
+    logic [LANES-1:0]     served_d, served_q;  // lanes of R4 that have their word (earlier rounds)
+    logic [LANES-1:0]     waiting, granted;
+    logic [NumB-1:0]      map_re;
+    logic [NumB*MAW-1:0]  map_word;     // the word each bank reads this round
+    logic [NumB*MEMW-1:0] map_rdata;
+    logic [LANES-1:0]     early_read_q;  // lanes whose word the banks read last cycle, in an earlier round
+    logic [LANES*MEMW-1:0] early_q, early_now, held_q;
+    logic [LANES-1:0]     last_round_q;  // lanes of R5 whose word was read in R4's last round
+    logic [LANES*BankW-1:0] r5_bank_q;   // and the bank that read it
+
+    assign r4_slot     = slot_meta_q[NumR - 2];
+    assign r4_squashed = (found_q && (found_seq_q == r4_slot.seq)) ||
+                         (last_slot.valid && !squash && is_first && (|lane_hit) && (last_slot.seq == r4_slot.seq));
+    for (genvar l = 0; l < LANES; l++) begin : g_want
+      assign want[l] = r4_slot.valid && !r4_squashed && r4_slot.lanes[l] && lane_read[l];
+    end
+    assign waiting = want & ~served_q;
+    logic unused_r4;  // R4's slot: which job and lanes
+    assign unused_r4 = ^{r4_slot.last, r4_slot.k, r4_slot.rot};
+
+    // Each bank's word this round: the lowest waiting lane's that falls in it.
+    always_comb begin
+      map_re   = '0;
+      map_word = '0;
+      for (int l = LANES - 1; l >= 0; l--) begin
+        if (waiting[l]) begin
+          map_re[32'(lane_addr[MAW*l +: BankW]) % NumB] = 1'b1;
+          map_word[MAW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MAW] = lane_addr[MAW*l +: MAW];
+        end
+      end
+      for (int l = 0; l < LANES; l++) begin
+        granted[l] = waiting[l] &&
+                     (map_word[MAW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MAW] == lane_addr[MAW*l +: MAW]);
+      end
+    end
+    assign bank_wait = |(waiting & ~granted);
+
+    for (genvar b = 0; b < NumB; b++) begin : g_bank
+      voxcd_ram #(
+        .Width(MEMW),
+        .AddrW(BRowW)
+      ) u_map (
+        .clk_i  (clk_i),
+        .we_i   (map_we_i && ((32'(map_waddr_i) % NumB) == b)),
+        .waddr_i(BRowW'(map_waddr_i >> LgB)),
+        .wdata_i(map_wdata_i),
+        .re_i   (advance_out && map_re[b]),
+        .raddr_i(BRowW'(map_word[MAW*b +: MAW] >> LgB)),
+        .rdata_o(map_rdata[MEMW*b +: MEMW])
+      );
+    end
+
+    always_comb begin
+      served_d = served_q;
+      if (advance)          served_d = '0;
+      else if (advance_out) served_d = served_q | granted;
+      for (int l = 0; l < LANES; l++) begin
+        early_now[MEMW*l +: MEMW] = early_read_q[l]
+            ? map_rdata[MEMW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MEMW] : early_q[MEMW*l +: MEMW];
+        lane_word[MEMW*l +: MEMW] = last_round_q[l]
+            ? map_rdata[MEMW*r5_bank_q[BankW*l +: BankW] +: MEMW] : held_q[MEMW*l +: MEMW];
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        served_q     <= '0;
+        early_read_q <= '0;
+        last_round_q <= '0;
+        conflicts_q  <= '0;
+      end else begin
+        served_q     <= served_d;
+        early_read_q <= (advance_out && !advance) ? granted : '0;
+        if (advance_out) last_round_q <= advance ? granted : '0;
+        conflicts_q  <= conflicts_q + CW'(advance_out && !advance);
+      end
+    end
+    // Words: no reset (read only for lanes that read).
+    always_ff @(posedge clk_i) begin
+      early_q <= early_now;
+      if (advance) begin
+        held_q <= early_now;
+        for (int l = 0; l < LANES; l++) r5_bank_q[BankW*l +: BankW] <= BankW'(32'(lane_addr[MAW*l +: BankW]) % NumB);
+      end
+    end
+  end else begin : g_copies
+    assign bank_wait   = 1'b0;
+    assign conflicts_q = '0;
+    assign lane_word   = '0;
+    logic unused_banks;  // each lane reads its own copy
+    assign unused_banks = ^{lane_read, lane_addr};
+  end
+  assign conflicts_o = conflicts_q;
 
   // ---- Cycle and stall accounting of the completion records ----
   // Both count over one window: from the later of the job's acceptance and the previous completion record's
@@ -555,6 +689,8 @@ module voxcd_device #(
   `VOXCD_ASSERT_INIT(ValueWidthKnown, SB == 2 || SB == 4 || SB == 8 || SB == 16)
   `VOXCD_ASSERT_INIT(DistanceBanksFit, !Dist || (SB <= MEMW && MAW >= 3))
   `VOXCD_ASSERT_INIT(WeightBitsFit, !Dist || (WB >= 1 && WB <= MF + PF && WB <= 16))
+  `VOXCD_ASSERT_INIT(BanksPowerOfTwo, (BANKS & (BANKS - 1)) == 0 && BANKS <= 64 && LgB <= MAW)
+  `VOXCD_ASSERT_INIT(BanksOnlyOnStates, !Banked || !Dist)
   `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) &&
                                         RecordW == $bits(record_t))
 
@@ -569,6 +705,8 @@ module voxcd_device #(
   // The pipeline holds whenever the output slice cannot take a record; a record is never dropped.
   `VOXCD_ASSERT(EmitOnlyWhenReady, !(advance || emit) || out_ready)
   `VOXCD_ASSERT(PopOnlyAHeadJob, !head_pop || head_valid)
+  // R0 .. R4 advance only with the last register, and only when every lane of R4 has its word.
+  `VOXCD_ASSERT(AdvanceWithTheLastRegister, !advance || (advance_out && !bank_wait))
   // The memories are loaded while the device is idle.
   `VOXCD_ASSERT(WriteOnlyWhileIdle, !((shell_we_i || map_we_i) && busy_o))
   // Every accepted job has a valid mode and map dimensions in 1 .. 2^DW.

@@ -25,7 +25,10 @@
 // Vectors of three coordinates hold x in the low bits: {z, y, x}; the matrix is {m22, m21, ..., m00} (entry
 // (i, j) at [(3i + j) * MW +: MW]). Written in the subset of SystemVerilog that Verilator and yosys both read.
 // Each lane owns a copy of the voxmap memory, written through the shared write port, so that every lane can
-// read one word (eight bank words on a distance device) in every cycle.
+// read one word (eight bank words on a distance device) in every cycle. With SharedMap (2-bit lanes only) the lane
+// has no copy: it shows its R4 address and whether it reads (read_o: the point is inside), and the device's shared
+// banks give it the word for R5 (word_i, in the R5 slot's cycles). Its R5 registers then advance on en_out_i, which
+// the device may raise without en_i: R5 takes a bubble while R4 waits for a bank (voxcd_device).
 `ifndef VOXCD_ASSERT_SVH
 `include "voxcd_assert.svh"
 `endif
@@ -39,10 +42,12 @@ module voxcd_lane #(
   parameter int unsigned MEMW = voxcd_pkg::MEMW,
   parameter int unsigned MAW  = voxcd_pkg::MAW,
   parameter int unsigned SB   = voxcd_pkg::SB,
-  parameter int unsigned WB   = voxcd_pkg::WB
+  parameter int unsigned WB   = voxcd_pkg::WB,
+  parameter bit          SharedMap = 1'b0
 ) (
   input  logic                  clk_i,
-  input  logic                  en_i,
+  input  logic                  en_i,        // R1 .. R4 (and every register of a lane with its own copy) advance
+  input  logic                  en_out_i,    // R5 advances (en_i implies it; the same as en_i without SharedMap)
   // voxmap write port (shared by all lanes)
   input  logic                  map_we_i,
   input  logic [MAW-1:0]        map_waddr_i,
@@ -58,6 +63,10 @@ module voxcd_lane #(
   input  logic [DW:0]           nx_i,
   input  logic [MAW-1:0]        map_base_i,
   input  logic [2*DW:0]         hxy_i,
+  // Shared voxmap banks (SharedMap): the R4 word address, whether the point reads it, and the R5 word
+  output logic [MAW-1:0]        addr_o,
+  output logic                  read_o,
+  input  logic [MEMW-1:0]       word_i,
   // The result: R5 (SB = 2) or R8 (SB > 2)
   output logic                  inside_o,
   output logic [1:0]            state_o,
@@ -159,21 +168,31 @@ module voxcd_lane #(
     logic [3*DW-1:0]  vox5_q;
     logic [SlotW-1:0] slot5_q;
 
-    voxcd_ram #(
-      .Width(MEMW),
-      .AddrW(MAW)
-    ) u_map (
-      .clk_i  (clk_i),
-      .we_i   (map_we_i),
-      .waddr_i(map_waddr_i),
-      .wdata_i(map_wdata_i),
-      .re_i   (en_i),
-      .raddr_i(addr4_q),
-      .rdata_o(word5)
-    );
+    if (SharedMap) begin : g_shared
+      assign word5 = word_i;
+      logic unused_write;  // the device writes its shared banks
+      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i};
+    end else begin : g_copy
+      voxcd_ram #(
+        .Width(MEMW),
+        .AddrW(MAW)
+      ) u_map (
+        .clk_i  (clk_i),
+        .we_i   (map_we_i),
+        .waddr_i(map_waddr_i),
+        .wdata_i(map_wdata_i),
+        .re_i   (en_out_i),
+        .raddr_i(addr4_q),
+        .rdata_o(word5)
+      );
+      logic unused_word;  // a lane with its own copy reads no shared bank
+      assign unused_word = ^word_i;
+    end
+    assign addr_o = addr4_q;
+    assign read_o = inside4_q;
 
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
+      if (en_out_i) begin
         inside5_q <= inside4_q;
         vox5_q    <= vox4_q;
         slot5_q   <= slot4_q;
@@ -375,7 +394,9 @@ module voxcd_lane #(
     assign state_o  = 2'd0;  // a distance voxmap has no states
 
     logic unused_dist;  // the bank bits of map_base (a distance map starts on a bank boundary) and D's sign copy
-    assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW]};
+    assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW], en_out_i, word_i};  // and the shared banks' ports
+    assign addr_o = '0;
+    assign read_o = 1'b0;
 
   end
 
@@ -383,5 +404,6 @@ module voxcd_lane #(
   // the lane has a data path for.
   `VOXCD_ASSERT_INIT(IndexHoldsDims, IdxW >= DW + 1)
   `VOXCD_ASSERT_INIT(ValueWidthKnown, SB == 2 || SB == 4 || SB == 8 || SB == 16)
+  `VOXCD_ASSERT_INIT(SharedMapOnStates, !SharedMap || SB == 2)
 
 endmodule

@@ -20,6 +20,7 @@ package voxcd_pkg;
   localparam int unsigned TAGW  = 16;  // job tag width, unsigned
   localparam int unsigned SB    = 2;   // voxmap value width: 2 = voxel states; 4, 8, 16 = signed node distances
   localparam int unsigned WB    = 8;   // interpolation weight bits (distance voxmaps)
+  localparam int unsigned BANKS = 0;   // 0: a voxmap copy per lane; B: one voxmap in B shared banks (2-bit devices)
 
   // ---- Counters in completion records ----
   localparam int unsigned CW = 32;  // cycles and stall counters

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "voxcd/ref/banks.h"
 #include "voxcd/ref/timing.h"
 
 namespace voxcd::sysc {
@@ -36,7 +37,9 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   runner_.run_validated_into(jobs, batch_, /*cycles=*/false);
   // The completion records get ref/timing.h's cycles as annotate_cycles gives them (cycles, points, no stalls),
   // in the same pass that encodes the batch's records into the result queue, where they wait for their edge.
-  const std::vector<JobTiming> timing = job_timing(cfg_, jobs, batch_);
+  const std::vector<JobTiming> timing =
+      cfg_.banked() ? job_timing(cfg_, jobs, batch_, bank_conflicts(cfg_, runner_.shell(), jobs, batch_))
+                    : job_timing(cfg_, jobs, batch_);
   future_.erase(future_.begin(), future_.begin() + std::ptrdiff_t(future_head_));  // the jobs already readable
   future_head_ = 0;
   uint8_t* out = queue_records(batch_.size());

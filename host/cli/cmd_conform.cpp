@@ -17,6 +17,7 @@ struct ConformArgs {
   std::vector<std::string> files;
   std::string backend = "ref";
   std::optional<int> lanes;
+  std::optional<int> banks;
   bool cycles = false;
   bool print = false;
   std::string trace;
@@ -36,6 +37,7 @@ int generate(const ConformArgs& a) {
   g.cloud_points = a.cloud;
   if (!a.config.empty()) g.config = parse_config_pairs(a.config, "--config");
   if (a.lanes) g.config.LANES = *a.lanes;
+  if (a.banks) g.config.BANKS = *a.banks;
   const GeneratedFile w = write_generated_vectors(a.output, g, a.config);
   std::cout << "wrote " << a.output << ": " << w.jobs << " jobs, " << w.shell_words << " shell words, " << w.map_words
             << " map words, " << w.lookups << " lookups, seed " << a.seed << '\n';
@@ -47,6 +49,7 @@ std::string run_file(const ConformArgs& a, const std::string& path, std::ostream
   ConformOptions opt;
   opt.backend = a.backend;
   opt.lanes = a.lanes;
+  opt.banks = a.banks;
   opt.cycles = a.cycles;
   opt.trace = a.trace;
   const ConformResult r = run_conformance(path, opt, !a.print);
@@ -93,6 +96,9 @@ void add_conform(CLI::App& app) {
   }())->capture_default_str();
   c->add_option("--lanes", a->lanes, "Lanes of the device model (default: the file's LANES)")
       ->check(CLI::Range(1, 64));
+  c->add_option("--banks", a->banks,
+                "Shared voxmap banks of the device model (0: a copy per lane; default: the file's BANKS)")
+      ->check(CLI::Range(0, 64));
   c->add_flag("--cycles", a->cycles, "Also compare the cycles of every completion record");
   c->add_flag("--print", a->print, "Print the backend's own output stream instead of comparing");
   c->add_option("--trace", a->trace, "rtl: write an FST waveform to this file");

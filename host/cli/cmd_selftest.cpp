@@ -32,7 +32,7 @@ int selftest(const SelftestArgs& a) {
     g.config.LANES = lanes;
     const GeneratedVectors v = generate_vectors(g);
     std::vector<Record> expect = run_stream(v.config, v.memory, v.jobs);
-    annotate_cycles(v.config, v.jobs, expect);
+    annotate_cycles(v.config, v.memory, v.jobs, expect);
     VectorFile f;
     f.path = "generated";
     f.config = v.config;

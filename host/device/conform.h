@@ -17,6 +17,7 @@ namespace voxcd {
 struct ConformOptions {
   std::string backend = "ref";
   std::optional<int> lanes;  // the device's LANES instead of the file's
+  std::optional<int> banks;  // the device's BANKS instead of the file's (0: a voxmap copy per lane)
   bool cycles = false;       // also compare the cycles of every completion record
   std::string trace;         // rtl: write an FST waveform here ("" = none)
   unsigned threads = 0;      // cpu: worker threads (0 = one per hardware thread)

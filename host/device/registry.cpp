@@ -27,7 +27,7 @@ class RefDevice final : public Device {
   }
   std::vector<Record> run(const std::vector<Job>& jobs) override {
     std::vector<Record> out = run_stream(cfg_, mem_, jobs);
-    annotate_cycles(cfg_, jobs, out);
+    annotate_cycles(cfg_, mem_, jobs, out);
     return out;
   }
 
@@ -44,6 +44,10 @@ void Device::run_part(const Job*, size_t, std::vector<Record>&) const {
 
 void Device::run_piece(const Job&, uint32_t, uint32_t, bool, std::vector<Record>&, uint32_t&) const {
   throw DeviceError("the " + name() + " backend runs whole batches only (no run_piece)");
+}
+
+uint64_t Device::bank_conflicts(const Job&, uint64_t) const {
+  throw DeviceError("the " + name() + " backend runs whole batches only (no bank_conflicts)");
 }
 
 std::vector<std::string> device_backends() {

@@ -141,10 +141,10 @@ std::string job_name(const Job& j) { return "job tag " + std::to_string(j.tag); 
 // by an amount fixed by the previous job alone; so job_timing over the pair gives the second job's cycles exactly
 // as over the whole stream (tests/dpi/test_dpi_api.cpp checks both on long random streams).
 JobTiming next_timing(const Device& d, const Job& job, const std::vector<Record>& recs) {
-  if (!d.prev_job) return job_timing(d.cfg, {job}, recs).at(0);
+  if (!d.prev_job) return job_timing(d.cfg, d.mem, {job}, recs).at(0);
   std::vector<Record> pair = d.prev_records;
   pair.insert(pair.end(), recs.begin(), recs.end());
-  return job_timing(d.cfg, {*d.prev_job, job}, pair).at(1);
+  return job_timing(d.cfg, d.mem, {*d.prev_job, job}, pair).at(1);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "voxcd/ref/banks.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/fast/thread_pool.h"
@@ -326,6 +327,10 @@ void FastRunner::write_map(uint64_t first, const uint64_t* words, size_t n) {
   std::copy(words, words + n, map_.begin() + std::ptrdiff_t(first));
 }
 
+uint64_t FastRunner::bank_conflicts(const Job& job, uint64_t groups) const {
+  return job_bank_conflicts(cfg_, shell_, job, groups);
+}
+
 std::vector<Record> FastRunner::run(const std::vector<Job>& jobs, bool cycles) {
   std::vector<Record> out;
   run_into(jobs, out, cycles);
@@ -392,7 +397,8 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
       }
       push_record(out, Record::Done, jobs[j].tag).hits = hits;
     }
-    if (cycles) annotate_cycles(cfg_, jobs, out);
+    if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_conflicts(cfg_, shell_, jobs, out));
+    else if (cycles) annotate_cycles(cfg_, jobs, out);
     return;
   }
 
@@ -446,6 +452,10 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
   // the new ones. Every record is written below.
   out.resize(total);
   // A job's hits and the summary of its kept records (from its pieces, all done).
+  // A banked device's conflict cycles of a job, from its slots' addresses (ref/banks.h).
+  auto conflicts = [&](const Job& job, const JobHits& sum, uint32_t hits) -> uint64_t {
+    return cfg_.banked() ? job_bank_conflicts(cfg_, shell_, job, read_groups(cfg_, job, sum, hits)) : 0;
+  };
   auto job_result = [&](size_t j, uint32_t& hits, JobHits& sum) {
     hits = 0;
     sum = JobHits();  // none yet: the group sentinels of job_hits
@@ -488,9 +498,9 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
         uint32_t pn = 0;
         JobHits psum;
         job_result(j - 1, pn, psum);
-        prev = job_span(cfg_, jobs[j - 1], j - 1, psum, pn);
+        prev = job_span(cfg_, jobs[j - 1], j - 1, psum, pn, conflicts(jobs[j - 1], psum, pn));
       }
-      const JobSpan span = job_span(cfg_, jobs[j], j, sum, n);
+      const JobSpan span = job_span(cfg_, jobs[j], j, sum, n, conflicts(jobs[j], sum, n));
       done.cycles = span_cycles(cfg_, j > 0 ? &prev : nullptr, span);
       done.points = span.points;
       done.stalls = 0;

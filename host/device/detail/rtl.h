@@ -15,6 +15,8 @@ std::vector<int> rtl_lanes();
 std::vector<DeviceConfig> rtl_configs();
 // Distance devices (SB > 2) this build has RTL models for (VOXCD_RTL_DIST_MODELS).
 std::vector<DeviceConfig> rtl_distance_configs();
+// Devices with shared voxmap banks (BANKS > 0) this build has RTL models for (VOXCD_RTL_BANKED_MODELS).
+std::vector<DeviceConfig> rtl_banked_configs();
 // Throws DeviceError when there is no model for cfg (its lane count or widths), naming what there is.
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt);
 
