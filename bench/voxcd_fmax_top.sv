@@ -43,7 +43,8 @@ module voxcd_fmax_top #(
   localparam int unsigned BaseOutW = 1                                    // job_ready_o
                                + 1 + TAGW + SAW + 3 * DW + 2              // hit stream
                                + 1 + TAGW + (SAW + 1) + CW + (SAW + 1) + CW  // completion stream
-                               + 1;                                       // busy_o
+                               + 1                                        // busy_o
+                               + CW;                                      // conflicts_o
   localparam int unsigned OutW = BaseOutW + DistW;
 
   // ---- Inputs: a shift register from din_i ----
@@ -97,6 +98,7 @@ module voxcd_fmax_top #(
   logic [SAW:0]    done_points;
   logic [CW-1:0]   done_stalls;
   logic            busy;
+  logic [CW-1:0]   conflicts;
 
   voxcd_device #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
@@ -150,7 +152,8 @@ module voxcd_fmax_top #(
     .done_cycles_o     (done_cycles),
     .done_points_o     (done_points),
     .done_stalls_o     (done_stalls),
-    .busy_o            (busy)
+    .busy_o            (busy),
+    .conflicts_o       (conflicts)
   );
 
   // ---- Outputs: registered, XOR-reduced into one registered pin ----
@@ -159,7 +162,7 @@ module voxcd_fmax_top #(
   assign out_base = {job_ready,
                      hit_valid, hit_tag, hit_point, hit_x, hit_y, hit_z, hit_state,
                      done_valid, done_tag, done_hits, done_cycles, done_points, done_stalls,
-                     busy};
+                     busy, conflicts};
   if (SB > 2) begin : g_dist_out
     always_ff @(posedge clk_i) out_q <= {out_base, hit_dist};
   end else begin : g_no_dist_out

@@ -57,7 +57,8 @@ module voxcd_device_regslice #(
   output logic [voxcd_pkg::CW-1:0] done_cycles_o,
   output logic [SAW:0]             done_points_o,
   output logic [voxcd_pkg::CW-1:0] done_stalls_o,
-  output logic                     busy_o
+  output logic                     busy_o,
+  output logic [voxcd_pkg::CW-1:0] conflicts_o
 );
 
   localparam int unsigned CW = voxcd_pkg::CW;
@@ -70,7 +71,7 @@ module voxcd_device_regslice #(
   logic [1:0]      c_hit_state;
   logic [SB+3*WB-1:0] c_hit_dist;
   logic [SAW:0]    c_done_hits, c_done_points;
-  logic [CW-1:0]   c_done_cycles, c_done_stalls;
+  logic [CW-1:0]   c_done_cycles, c_done_stalls, c_conflicts;
 
   // The slice: one record of either kind, so the stream keeps its order.
   logic full_q, is_done_q, out_ready, free;
@@ -101,8 +102,10 @@ module voxcd_device_regslice #(
     .done_cycles_o(c_done_cycles),
     .done_points_o(c_done_points),
     .done_stalls_o(c_done_stalls),
-    .busy_o       (c_busy)
+    .busy_o       (c_busy),
+    .conflicts_o  (c_conflicts)
   );
+  assign conflicts_o = c_conflicts;  // a count, not a record: outside the slice
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

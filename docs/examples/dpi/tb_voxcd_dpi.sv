@@ -82,7 +82,7 @@ module tb_voxcd_dpi #(
   logic                done_valid, done_ready;
   logic [TAGW-1:0]     done_tag;
   logic [SAW:0]        done_hits, done_points;
-  logic [CW-1:0]       done_cycles, done_stalls;
+  logic [CW-1:0]       done_cycles, done_stalls, conflicts;
   logic                busy;
 
   `VOXCD_DUT #(
@@ -137,8 +137,11 @@ module tb_voxcd_dpi #(
     .done_cycles_o    (done_cycles),
     .done_points_o    (done_points),
     .done_stalls_o    (done_stalls),
-    .busy_o           (busy)
+    .busy_o           (busy),
+    .conflicts_o      (conflicts)
   );
+  logic unused_conflicts;  // the device keeps a voxmap copy per lane: no bank conflicts
+  assign unused_conflicts = ^conflicts;
 
   // ---- Options ----
   longint seed         = 1;
