@@ -223,14 +223,17 @@ or a dict with a scene file's keys (docs/scenes.md). Each option given (not None
 tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs. distance_bits
 (4, 8 or 16), band (voxels), margin (world units) and ccd (continuous collision, which needs distance voxmaps) are
 --distance-bits, --band, --margin and --ccd (ccd=False also turns off a scene file's "ccd"); with distance voxmaps
-the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling.)");
+the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling. clock (MHz) is the
+device clock of device_frame_rate_hz (default: the scene file's "clock", or the 122 MHz estimate of
+docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and device_frame_rate_hz is None when no
+frame needed device cycles.)");
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
         py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),
         py::arg("cost") = false, py::arg("rtl") = py::none(),
         R"(The smallest device for a scene file (or a dict with a scene file's keys), as `voxcd size --json` reports
 it, as a dict. The options override the file's accuracy (world units), contact_accuracy (world units: chooses the
-voxmaps, docs/size.md), rate (Hz), clock (MHz) and frames; cost
+voxmaps, docs/size.md), rate (Hz), clock (MHz; clock_source in the dict says where it comes from) and frames; cost
 also synthesises the configuration with yosys (about 10 s each; rtl: the directory of the RTL's voxcd.f).
 ValueError '<scene>: cannot be met: ...' when no device meets the request.)");
 }
