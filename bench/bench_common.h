@@ -5,11 +5,15 @@
 #include <algorithm>
 #include <cstdio>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "voxcd/host/device/clock.h"
 
 namespace voxcd::bench {
 
@@ -86,6 +90,23 @@ inline std::string fmt(const char* format, double v) {
   char b[64];
   std::snprintf(b, sizeof b, format, v);
   return b;
+}
+
+// The clock of a benchmark's device rates: default_device_clock(), or the figure of its --clock (`text`), named as
+// given; std::invalid_argument "--clock: ..." for text that is no positive number of MHz.
+inline DeviceClock clock_arg(const char* text) {
+  char* end = nullptr;
+  const double mhz = std::strtod(text, &end);
+  if (end == text || *end) throw std::invalid_argument(std::string("--clock: '") + text + "' is not a number of MHz");
+  return given_clock(mhz, "--clock");
+}
+
+// The two comment lines a benchmark's CSV starts with, so that its rates and plots name their clock:
+// "# clock_mhz: 122" and "# clock_source: estimate: ...". bench/results.sh reads them for the plots' labels.
+inline std::string clock_csv_lines(const DeviceClock& c) {
+  char mhz[32];
+  std::snprintf(mhz, sizeof mhz, "%g", c.mhz);
+  return std::string("# clock_mhz: ") + mhz + "\n# clock_source: " + c.source + "\n";
 }
 
 // Keeps a value alive so the optimiser cannot drop the work that made it.

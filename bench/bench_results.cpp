@@ -4,7 +4,8 @@
 //   pairs  Table 1 and Figs. 11-13: update rate and time per lookup of one pair of the paper's 36-face polytopes
 //          against the number of shell points (voxmap fixed at about 12,672 voxels) and against the number of
 //          voxmap voxels (shell at the matching density), on the cpu backend with one thread, with the modelled
-//          device's rate from its cycles at a stated clock; the paper's Table 1 beside ours.
+//          device's rate from its cycles at the device clock (default_device_clock(), or --clock), named with its
+//          source; the paper's Table 1 beside ours.
 //   error  For each voxel size, the pair's update rate and lookups per second beside its error against exact
 //          geometry on the same poses (FCL's GJK/EPA on the convex polytope: penetration depth of the contacts
 //          voxcd misses, separation of the ones it reports falsely), and the narrow phases of FCL and Bullet
@@ -41,7 +42,7 @@ struct Args {
   std::string part, out_path, csv_path;
   int repeats = 5;
   size_t poses = 64;
-  double clock_mhz = 200;
+  DeviceClock clock = default_device_clock();  // of the device rates; --clock MHZ gives another
   std::vector<double> voxels = {0.4, 0.2, 0.1, 0.05, 0.025};
   std::vector<size_t> shells = {25, 92, 219, 384, 606, 840, 1150, 1509, 1909, 2314, 5321, 9337};
   std::vector<size_t> maps = {20, 50, 120, 300, 700, 1500, 3500, 8000, 16000, 35000, 80000, 200000};
@@ -172,7 +173,7 @@ std::string hz_text(double hz) { return bench::fmt(hz >= 100 ? "%.0f" : "%.1f", 
 void part_pairs(const Args& a, std::ostream& md, std::ostream& csv) {
   const Mesh m = make_shape("polytope36");
   const auto reqs = random_poses(a.poses, 0.5, 1.6, 11);
-  csv << "series,target,shell_points,map_voxels,voxel_a,voxel_b,us_per_query,hz,ns_per_lookup,device_cycles,"
+  csv << bench::clock_csv_lines(a.clock) << "series,target,shell_points,map_voxels,voxel_a,voxel_b,us_per_query,hz,ns_per_lookup,device_cycles,"
          "device_hz,paper_points,paper_hz,paper_ms,lookups\n";
   const auto [vb, tb] = voxel_for(m, a.map_voxels, [](const ObjectType& t) { return t.voxmap().size(); });
   md << "Pair: two of the paper's 36-face polytopes (about 2 units across), " << a.poses
@@ -180,20 +181,20 @@ void part_pairs(const Args& a, std::ostream& md, std::ostream& csv) {
         "contacts; one query at a time on the cpu backend with one thread (as the paper's single CPU), median of "
      << a.repeats << " runs over all poses. Update rate = 1 / time per query; time per lookup = time per query / "
         "lookups (the shell points the query submits to the device). Device: the modelled device's cycles for the same jobs (exact timing model, 4 lanes) at "
-     << a.clock_mhz << " MHz.\n\n";
+     << a.clock.text() << ".\n\n";
   md << "**Fixed voxmap (Table 1, Fig. 12)**: B voxelised at " << bench::fmt("%.4f", vb) << " units: "
      << tb->voxmap().dims()[0] << " x " << tb->voxmap().dims()[1] << " x " << tb->voxmap().dims()[2] << " = "
      << tb->voxmap().size() << " voxels (the paper's: 12,672); A's shell at the voxel size whose shell has the "
         "number of points nearest the paper's row. Ratio = ours / the paper's (rate), the paper's / ours (time per "
         "lookup): how many times faster.\n\n"
      << "| paper: shell points | paper: Hz | paper: ms per lookup | ours: shell points | ours: Hz | ours: us per "
-        "lookup | rate ratio | per-lookup ratio | device Hz (" << a.clock_mhz << " MHz) | device / paper |\n"
+        "lookup | rate ratio | per-lookup ratio | device Hz (" << a.clock.mhz << " MHz) | device / paper |\n"
      << "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (size_t target : a.shells) {
     const auto [va, ta] = voxel_for(m, target, [](const ObjectType& t) { return t.shell().size(); });
     const PairTiming t = time_pairs(ta, tb, reqs, PairOptions{}, a.repeats);
     const double hz = 1 / t.seconds, ns = t.seconds * 1e9 / t.lookups;
-    const double dev_hz = a.clock_mhz * 1e6 / t.cycles;
+    const double dev_hz = a.clock.rate(t.cycles);
     const PaperRow* p = nullptr;
     for (const auto& row : kTable1)
       if (row.points == target) p = &row;
@@ -211,13 +212,13 @@ void part_pairs(const Args& a, std::ostream& md, std::ostream& csv) {
   md << "\n**Voxmap resolution (Fig. 11)**: A and B at the same voxel size (shell at the matching density, the "
         "paper's sqrt(2) rule), chosen so that B's voxmap has the number of voxels nearest each target. The paper "
         "gives Fig. 11's values only as points on a plot: none are quoted, so no ratio is possible.\n\n"
-     << "| voxmap voxels | voxel (units) | shell points | Hz | us per lookup | device Hz (" << a.clock_mhz
+     << "| voxmap voxels | voxel (units) | shell points | Hz | us per lookup | device Hz (" << a.clock.mhz
      << " MHz) |\n|--:|--:|--:|--:|--:|--:|\n";
   for (size_t target : a.maps) {
     const auto [v, tv] = voxel_for(m, target, [](const ObjectType& t) { return t.voxmap().size(); });
     const PairTiming t = time_pairs(tv, tv, reqs, PairOptions{}, a.repeats);
     const double hz = 1 / t.seconds, ns = t.seconds * 1e9 / t.lookups;
-    const double dev_hz = a.clock_mhz * 1e6 / t.cycles;
+    const double dev_hz = a.clock.rate(t.cycles);
     md << "| " << tv->voxmap().size() << " | " << bench::fmt("%.4f", v) << " | " << tv->shell().size() << " | "
        << hz_text(hz) << " | " << bench::fmt("%.3f", ns / 1e3) << " | " << hz_text(dev_hz) << " |\n";
     csv << "map," << target << "," << tv->shell().size() << "," << tv->voxmap().size() << "," << v << "," << v << ","
@@ -368,12 +369,14 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
         "`fcl::Convexd`) and Bullet "
      << BT_BULLET_VERSION / 100 << "." << BT_BULLET_VERSION % 100
      << " `btGjkPairDetector` with EPA on `btConvexHullShape` (single precision, margin 0); ratio = the peer's "
-        "time per query over voxcd's.\n\n"
+        "time per query over voxcd's. Device Hz: the modelled device's cycles for the same jobs (exact timing model, 4 "
+        "lanes) at "
+     << a.clock.text() << ".\n\n"
      << "| voxel (units) | direction | shell points | voxmap voxels | us per query | update rate (Hz) | lookups / s "
-        "| device Hz (" << a.clock_mhz << " MHz) | touching poses | missed | missed depth, voxels (50/90/max) | "
+        "| device Hz (" << a.clock.mhz << " MHz) | touching poses | missed | missed depth, voxels (50/90/max) | "
         "false | false separation, voxels (50/90/max) | FCL / voxcd time | Bullet / voxcd time |\n"
      << "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
-  csv << "kind,voxel,both,value_voxels\n";
+  csv << bench::clock_csv_lines(a.clock) << "kind,voxel,both,value_voxels\n";
   std::ostringstream summary, peer_note;
   uint64_t seed = 12;
   for (double voxel : a.voxels) {
@@ -404,12 +407,12 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
       md << "| " << voxel << " | " << (both ? "both" : "A in B") << " | " << t->shell().size() << " | "
          << t->voxmap().size() << " | " << bench::fmt("%.2f", tm.seconds * 1e6) << " | "
          << hz_text(1 / tm.seconds) << " | " << bench::fmt("%.3g", tm.lookups / tm.seconds) << " | "
-         << hz_text(a.clock_mhz * 1e6 / tm.cycles) << " | " << e.n_touching << " of " << n << " | "
+         << hz_text(a.clock.rate(tm.cycles)) << " | " << e.n_touching << " of " << n << " | "
          << missed.size() << " | " << q3(missed) << " | " << falses.size() << " of " << n - e.n_touching << " | "
          << q3(falses) << " | " << bench::fmt("%.2f", e.fcl_seconds / tm.seconds) << " | "
          << bench::fmt("%.2f", e.bullet_seconds / tm.seconds) << " |\n";
       summary << "summary," << voxel << "," << both << "," << tm.seconds * 1e6 << "," << 1 / tm.seconds << ","
-              << tm.lookups / tm.seconds << "," << a.clock_mhz * 1e6 / tm.cycles << "," << missed.size() << ","
+              << tm.lookups / tm.seconds << "," << a.clock.rate(tm.cycles) << "," << missed.size() << ","
               << falses.size() << "," << quantile(missed, 1.0) << "," << quantile(falses, 1.0) << ","
               << quantile(missed, 0.9) << "," << quantile(falses, 0.9) << "," << e.fcl_seconds * 1e6 << ","
               << e.bullet_seconds * 1e6 << "\n";
@@ -516,7 +519,7 @@ int main(int argc, char** argv) {
       else if (arg == "--csv") a.csv_path = next();
       else if (arg == "--repeats") a.repeats = int(parse_counts(next(), "--repeats").at(0));
       else if (arg == "--poses") a.poses = parse_counts(next(), "--poses").at(0);
-      else if (arg == "--clock") a.clock_mhz = parse_list(next(), "--clock").at(0);
+      else if (arg == "--clock") a.clock = bench::clock_arg(next().c_str());
       else if (arg == "--voxels") a.voxels = parse_list(next(), "--voxels");
       else if (arg == "--shells") a.shells = parse_counts(next(), "--shells");
       else if (arg == "--maps") a.maps = parse_counts(next(), "--maps");

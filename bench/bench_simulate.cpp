@@ -1,7 +1,8 @@
 // The paper's N-body environment as a whole: frames per second on one core for each broadphase, with the paper's
 // shape and accuracy (the 36-face polytope, voxel of one world unit, density 2.5%, momentum up to 10% of the radius
-// per frame), against the number of objects; and the modelled device's frame rate from its cycles at a stated
-// clock. Writes Markdown to stdout (and to --out FILE).
+// per frame), against the number of objects; and the modelled device's frame rate from its cycles at the device
+// clock (default_device_clock(), or --clock MHZ), which the table and the CSV name with its source. Writes Markdown
+// to stdout (and to --out FILE).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,7 +22,7 @@ int main(int argc, char** argv) {
   std::string out_path;
   int repeats = 3;
   uint64_t frames = 300;
-  double clock_mhz = 200;
+  DeviceClock clock = default_device_clock();
   std::vector<size_t> counts = {2, 8, 32, 64, 128, 256, 1024, 4096};
   std::vector<std::string> prunings = broadphase_names();
   double fixed_voxel = 0;  // 0: voxel (64/N)^(1/3)
@@ -78,9 +79,10 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else if (!std::strcmp(argv[i], "--clock") && i + 1 < argc) {
-      clock_mhz = std::atof(argv[++i]);
-      if (!(clock_mhz > 0) || !std::isfinite(clock_mhz)) {
-        std::fprintf(stderr, "bench_simulate: --clock: '%s' is not a positive frequency\n", argv[i]);
+      try {
+        clock = bench::clock_arg(argv[++i]);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_simulate: %s\n", e.what());
         return 2;
       }
     } else if (!std::strcmp(argv[i], "--no-midphase")) {
@@ -98,7 +100,7 @@ int main(int argc, char** argv) {
   const std::string dev_pruning =
       std::find(prunings.begin(), prunings.end(), "sap") != prunings.end() ? "sap" : prunings.front();
   std::ostringstream csv;
-  csv << "objects,pruning,hz,pairs_tested,device_cycles,device_hz\n";
+  csv << bench::clock_csv_lines(clock) << "objects,pruning,hz,pairs_tested,device_cycles,device_hz\n";
   std::ostringstream md;
   md << provenance << "\n\n";
   md << "Frames per second (median of " << repeats << " runs of " << frames
@@ -109,9 +111,9 @@ int main(int argc, char** argv) {
      << (midphase ? "" : ", no mid-phase (every broadphase pair goes to the device, as in the paper)")
      << ". Device: cycles per frame of the same job streams from the "
         "exact timing model, 4 lanes, and the frame rate they allow at "
-     << clock_mhz << " MHz.\n\n| objects |";
+     << clock.text() << ".\n\n| objects |";
   for (const auto& p : prunings) md << " " << p << " (Hz) |";
-  md << " pairs tested on the device per frame (" << dev_pruning << (midphase ? ", after the mid-phase" : "") << ") | device cycles per frame | device frame rate (Hz) |\n|---|";
+  md << " pairs tested on the device per frame (" << dev_pruning << (midphase ? ", after the mid-phase" : "") << ") | device cycles per frame | device frame rate (Hz at " << clock.mhz << " MHz) |\n|---|";
   for (size_t i = 0; i < prunings.size(); ++i) md << "---|";
   md << "---|---|---|\n";
   for (size_t n : counts) {
@@ -160,10 +162,12 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%zu objects, %s: %.0f Hz\n", n, p.c_str(), hz);
       csv << n << "," << p << "," << hz << "," << (p == dev_pruning ? bench::fmt("%g", pairs) : "") << ","
           << (p == dev_pruning ? bench::fmt("%g", cycles) : "") << ","
-          << (p == dev_pruning && cycles > 0 ? bench::fmt("%g", clock_mhz * 1e6 / cycles) : "") << "\n";
+          << (p == dev_pruning && cycles > 0 ? bench::fmt("%g", clock.rate(cycles)) : "") << "\n";
     }
+    // Frames without device cycles have no device rate ("-"), not a rate of frames that took no time.
     char b[160];
-    std::snprintf(b, sizeof b, " %.1f | %.0f | %.0f |\n", pairs, cycles, cycles > 0 ? clock_mhz * 1e6 / cycles : 0.0);
+    std::snprintf(b, sizeof b, " %.1f | %.0f | %s |\n", pairs, cycles,
+                  cycles > 0 ? bench::fmt("%.0f", clock.rate(cycles)).c_str() : "-");
     md << b;
   }
   md << "\nMachine: " << bench::machine_description() << ". The frame time is the sum of the stages (integration, "

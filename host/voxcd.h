@@ -28,6 +28,7 @@
 #include "voxcd/host/object/voxelize.h"
 
 // Devices: the interface and the backend registry (device_backends, make_device), conformance vectors on them.
+#include "voxcd/host/device/clock.h"
 #include "voxcd/host/device/conform.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/regress/campaign.h"

@@ -1,6 +1,7 @@
 # Speed against error per voxel size (data/error.csv): rate and error summaries, and the distributions.
 load 'bench/plot/style.gpi'
 f = data.'/error.csv'
+device = 'device '.clock_label(f).', A in B'
 set format x '%g'
 set logscale x
 set xlabel 'voxel size (world units; the polytope is about 2 across)'
@@ -22,7 +23,7 @@ set ylabel 'pair update rate (Hz)'
 set key inside left bottom
 plot rows2(f, 1, 'summary', 3, '0') using 2:5 with linespoints ls 1 title 'cpu, A in B', \
      rows2(f, 1, 'summary', 3, '1') using 2:5 with linespoints ls 1 dt 2 title 'cpu, both', \
-     rows2(f, 1, 'summary', 3, '0') using 2:7 with linespoints ls 2 title 'device 200 MHz, A in B', \
+     rows2(f, 1, 'summary', 3, '0') using 2:7 with linespoints ls 2 title device, \
      rows2(f, 1, 'summary', 3, '1') using 2:7 with linespoints ls 2 dt 2 title 'device, both', \
      rows2(f, 1, 'summary', 3, '0') using 2:(1e6/$14) with lines ls 4 title 'FCL GJK (convex)', \
      rows2(f, 1, 'summary', 3, '0') using 2:(1e6/$15) with lines ls 5 title 'Bullet GJK/EPA (convex)'

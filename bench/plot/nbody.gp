@@ -3,6 +3,8 @@ load 'bench/plot/style.gpi'
 f = data.'/nbody.csv'
 h = data.'/nbody_mid.csv'
 g = data.'/large.csv'
+device_f = 'modelled device ('.clock_label(f).'), pairs only'
+device_g = 'modelled device ('.clock_label(g).'), pairs only'
 set logscale xy
 set xrange [1.6:320]
 set format x '%g'
@@ -22,7 +24,7 @@ plot rows(f, 2, 'all') using 1:3 with linespoints ls 7 title 'ours: all pairs', 
      rows(f, 2, 'sphere') using 1:3 with linespoints ls 1 title 'ours: bounding spheres', \
      rows(f, 2, 'sap') using 1:3 with linespoints ls 4 title 'ours: fast AABB (sap)', \
      rows(h, 2, 'grid') using 1:3 with linespoints ls 4 dt 2 title 'ours: grid + mid-phase (default)', \
-     rows(f, 2, 'sap') using 1:6 with linespoints ls 2 dt 3 title 'modelled device (200 MHz), pairs only', \
+     rows(f, 2, 'sap') using 1:6 with linespoints ls 2 dt 3 title device_f, \
      $paper_a using 1:(strcol(3) eq 'sphere' ? $2 : NaN) with points ls 3 pt 9 title 'paper: bounding spheres', \
      $paper_a using 1:(strcol(3) eq 'sap' ? $2 : NaN) with points ls 3 pt 5 title 'paper: fast AABB'
 
@@ -36,7 +38,7 @@ plot rows(f, 2, 'all') using 1:3 with linespoints ls 7 title 'ours: all pairs', 
      rows(f, 2, 'coherent') using 1:3 with linespoints ls 5 title 'ours: coherent AABB', \
      rows(f, 2, 'queue') using 1:3 with linespoints ls 6 title 'ours: priority queue', \
      rows(h, 2, 'grid') using 1:3 with linespoints ls 4 dt 2 title 'ours: grid + mid-phase (default)', \
-     rows(f, 2, 'sap') using 1:6 with linespoints ls 2 dt 3 title 'modelled device (200 MHz), pairs only', \
+     rows(f, 2, 'sap') using 1:6 with linespoints ls 2 dt 3 title device_f, \
      $paper_b using 1:2 with points ls 3 pt 8 ps 2.5 title 'paper: queue, > 1000 Hz'
 
 set output out.'/large_n.png'
@@ -46,4 +48,4 @@ set xrange [128:131072]
 plot rows(g, 2, 'sap') using 1:3 with linespoints ls 4 title 'ours: sap', \
      rows(g, 2, 'tree') using 1:3 with linespoints ls 9 title 'ours: tree', \
      rows(g, 2, 'grid') using 1:3 with linespoints ls 8 title 'ours: grid (default)', \
-     rows(g, 2, 'sap') using 1:6 with linespoints ls 2 dt 3 title 'modelled device (200 MHz), pairs only'
+     rows(g, 2, 'sap') using 1:6 with linespoints ls 2 dt 3 title device_g

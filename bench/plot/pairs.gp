@@ -1,6 +1,7 @@
 # Table 1 and Figs. 11-13: pair update rate against shell points and voxmap voxels (data/pairs.csv).
 load 'bench/plot/style.gpi'
 f = data.'/pairs.csv'
+device = 'ours: modelled device, '.clock_label(f)
 set logscale xy
 
 # Fig. 12 and Table 1: two panels, update rate and time per lookup against shell points.
@@ -11,7 +12,7 @@ set xlabel 'points in the point shell'
 set ylabel 'update rate (Hz, pair queries per second)'
 set key inside right top
 plot f using (strcol(1) eq 'shell' ? $3 : NaN):8 with linespoints ls 1 title 'ours: cpu backend, 1 thread', \
-     f using (strcol(1) eq 'shell' ? $3 : NaN):11 with linespoints ls 2 title 'ours: modelled device, 200 MHz', \
+     f using (strcol(1) eq 'shell' ? $3 : NaN):11 with linespoints ls 2 title device, \
      f using (strcol(1) eq 'shell' ? $12 : NaN):13 with linespoints ls 3 dt 2 title 'paper, Table 1 (Pentium 166)'
 set title 'Time per lookup'
 set ylabel 'time per shell-point lookup (us)'
@@ -28,7 +29,7 @@ set xlabel 'voxels in the voxmap'
 set ylabel 'update rate (Hz, pair queries per second)'
 set key inside right top
 plot f using (strcol(1) eq 'map' ? $4 : NaN):8 with linespoints ls 1 title 'ours: cpu backend, 1 thread', \
-     f using (strcol(1) eq 'map' ? $4 : NaN):11 with linespoints ls 2 title 'ours: modelled device, 200 MHz'
+     f using (strcol(1) eq 'map' ? $4 : NaN):11 with linespoints ls 2 title device
 
 # Fig. 13: the two series against shell points.
 set output out.'/fig13_compared.png'

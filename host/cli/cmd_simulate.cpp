@@ -27,7 +27,7 @@ struct SimulateArgs {
   SimOptions sim;
   std::string mode = "ALL";
   uint64_t frames = 1000;
-  double clock_mhz = 200;
+  double clock_mhz = 0;  // --clock; unset: the scene file's "clock" or default_device_clock()
   int distance_bits = 0;
   double band = 4.0, margin = 0;
   bool ccd = false;
@@ -53,7 +53,7 @@ SimulateRequest request(const SimulateArgs& a) {
   if (given("--mode")) r.mode = a.mode;
   if (given("--both")) r.both_directions = a.sim.both_directions;
   if (given("--frames")) r.frames = a.frames;
-  if (given("--clock")) r.clock = a.clock_mhz;
+  if (given("--clock")) r.clock = clock_option(a.clock_mhz, "--clock");
   if (given("--lanes")) r.lanes = a.sim.lanes;
   if (given("--distance-bits")) r.distance_bits = a.distance_bits;
   if (given("--band")) r.band = a.band;
@@ -143,8 +143,14 @@ int simulate_cmd(const SimulateArgs& a) {
       o << ", \"ranks\": " << s.ranks << ", \"rank0_bytes_per_frame\": " << exchanged / F;
     o << ", \"lanes\": " << s.lanes
       << ", \"device_cycles\": " << tot.cycles << ", \"device_cycles_per_frame\": " << cyc_per_frame
-      << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"clock_mhz\": " << s.clock
-      << ", \"device_frame_rate_hz\": " << device_rate << ", \"state_hash\": \"" << std::hex << s.state_hash
+      << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"device_idle_frames\": " << tot.idle_frames
+      << ", \"clock_mhz\": " << s.clock.mhz
+      << ", \"clock_source\": " << json_string(s.clock.source)
+      << ", \"clock_estimate\": " << (s.clock.estimate ? "true" : "false") << ", \"device_frame_rate_hz\": ";
+    // No device cycles: no device rate (null), not a rate of frames that took no time.
+    if (tot.cycles) o << device_rate;
+    else o << "null";
+    o << ", \"state_hash\": \"" << std::hex << s.state_hash
       << std::dec << "\"}\n";
     std::cout << o.str();
     return 0;
@@ -193,11 +199,11 @@ int simulate_cmd(const SimulateArgs& a) {
               "response %.1f us\n",
               1e6 * tot.t_integrate / F, 1e6 * tot.t_bounds / F, 1e6 * tot.t_broadphase / F, 1e6 * tot.t_narrow / F,
               1e6 * tot.t_response / F);
-  std::printf("device          %.0f cycles per frame (largest %llu) at %d lanes (%s): %.0f Hz at %g MHz\n",
+  std::printf("device          %.0f cycles per frame (largest %llu) at %d lanes (%s); device frame rate %s\n",
               cyc_per_frame, (unsigned long long)tot.max_cycles, s.lanes,
               s.backend == "rtl" || s.backend == "sysc-rtl" ? "measured on the RTL"
                                                              : "the exact timing model of ref/",
-              device_rate, s.clock);
+              s.device_rate_text().c_str());
   std::printf("state hash      %016llx\n", (unsigned long long)s.state_hash);
   return 0;
 }
@@ -249,7 +255,9 @@ void add_simulate(CLI::App& app) {
                                "(needs --distance-bits)");
   c->add_option("--frames", a->frames, "Frames to simulate")->capture_default_str();
   c->add_option("--seed", a->scene.seed, "Seed of the scene")->capture_default_str();
-  c->add_option("--clock", a->clock_mhz, "Device clock in MHz for the modelled frame rate")->capture_default_str();
+  c->add_option("--clock", a->clock_mhz,
+                "Device clock in MHz for the modelled frame rate (default: the scene file's \"clock\", or " +
+                    default_device_clock().text() + ")");
   c->add_option("--threads", a->sim.threads, "threads of every stage of a frame and the cpu backend (0: all)")
       ->capture_default_str();
   c->add_option("--mpi-timeout", a->mpi_timeout,

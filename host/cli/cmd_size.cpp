@@ -12,14 +12,16 @@ namespace {
 struct SizeArgs {
   std::string file;
   SizeRequest req;
+  double clock_mhz = 0;  // --clock when given
   bool json = false;
   std::string rtl_dir = default_rtl_dir();
 };
 
-int size_cmd(const SizeArgs& a) {
+int size_cmd(const SizeArgs& a, const CLI::App& cmd) {
   const SceneFile f = read_scene_file(a.file);
   const Scene scene = make_scene(f);
   SizeRequest req = a.req;
+  if (cmd.count("--clock")) req.clock = clock_option(a.clock_mhz, "--clock");
   req.rtl_dir = a.rtl_dir;
   SizeReport r;
   try {
@@ -48,7 +50,8 @@ void add_size(CLI::App& app) {
                 "(2-bit states, or distance voxmaps' SB, WB and band) (default: the scene file's, or its voxmaps)")
       ->check(CLI::PositiveNumber);
   c->add_option("--rate", a->req.rate, "Frames per second (default: the scene file's)")->check(CLI::PositiveNumber);
-  c->add_option("--clock", a->req.clock, "Device clock, MHz (default: the scene file's)")->check(CLI::PositiveNumber);
+  c->add_option("--clock", a->clock_mhz,
+                "Device clock, MHz (default: the scene file's \"clock\", or " + default_device_clock().text() + ")");
   c->add_option("--frames", a->req.frames, "Frames simulated to measure cycles (default: the scene file's)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1000000}));
   c->add_flag("--cost", a->req.cost,
@@ -56,7 +59,7 @@ void add_size(CLI::App& app) {
               "(synth_xilinx) for LUTs, FFs, DSPs and block RAMs; about 10 s each");
   c->add_option("--rtl", a->rtl_dir, "The directory of the RTL file list voxcd.f for --cost (default: the installed package's)")->capture_default_str();
   c->add_flag("--json", a->json, "Print the report as JSON");
-  c->callback([a] { exit_code() = size_cmd(*a); });
+  c->callback([a, c] { exit_code() = size_cmd(*a, *c); });
 }
 
 }  // namespace voxcd::cli

@@ -79,7 +79,10 @@ SweepSpec make_spec(const SweepArgs& a, const CLI::App& cmd) {
   if (cmd.count("--accuracy")) s.accuracies = parse_number_list(a.accuracy, "--accuracy");
   if (cmd.count("--frames")) s.frames = a.frames;
   if (cmd.count("--sample-frames")) s.sample_frames = a.sample_frames;
-  if (cmd.count("--clock")) s.clock = a.clock, s.clock_source = "--clock";
+  if (cmd.count("--clock")) {
+    const DeviceClock c = clock_option(a.clock, "--clock");
+    s.clock = c.mhz, s.clock_source = c.source;
+  }
   if (a.cost) s.cost = true;
   s.rtl_dir = a.rtl_dir;
   const SceneFile f = read_scene_file(a.scene);
@@ -88,7 +91,7 @@ SweepSpec make_spec(const SweepArgs& a, const CLI::App& cmd) {
   if (s.distance_bits.empty()) s.distance_bits = {f.distance_bits};
   if (s.accuracies.empty()) s.accuracies = {f.accuracy > 0 ? f.accuracy : f.accuracy_or_default(make_scene(f))};
   if (s.frames == 0) s.frames = f.frames;
-  if (!(s.clock > 0)) s.clock = f.clock, s.clock_source = "the scene file's clock";
+  if (!(s.clock > 0)) s.clock = f.clock.mhz, s.clock_source = f.clock.source;
   check_sweep(s, a.sweep_file.empty() ? std::string("the sweep options") : a.sweep_file + " with the options");
   return s;
 }
@@ -193,8 +196,9 @@ void add_sweep(CLI::App& app) {
       ->check(CLI::Range(uint64_t{1}, uint64_t{1000000}));
   c->add_option("--sample-frames", a->sample_frames,
                 "Frames per point whose contacts are checked against the meshes (default 4)");
-  c->add_option("--clock", a->clock, "Device clock, MHz, for the frame rate (default: the scene file's)")
-      ->check(CLI::PositiveNumber);
+  c->add_option("--clock", a->clock,
+                "Device clock, MHz, for the frame rate (default: the scene file's \"clock\", or " +
+                    default_device_clock().text() + ")");
   c->add_flag("--cost", a->cost, "Also synthesise every point with yosys (synth_xilinx; 10 to 60 s a point)");
   c->add_option("--rtl", a->rtl_dir, "The directory of the RTL file list voxcd.f for --cost")->capture_default_str();
   c->add_option("--csv", a->csv, "Write the table as CSV to FILE");

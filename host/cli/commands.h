@@ -2,8 +2,19 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <string>
+
+#include "voxcd/host/device/clock.h"
 
 namespace voxcd::cli {
+
+// The clock a user gave with `option` (--clock), its source "given by --clock"; CLI::ValidationError naming the
+// option for zero, negative, NaN or infinity.
+inline DeviceClock clock_option(double mhz, const std::string& option) {
+  const std::string problem = clock_problem(mhz);
+  if (!problem.empty()) throw CLI::ValidationError(option, problem);
+  return given_clock(mhz, option);
+}
 
 // The process exit code a subcommand's callback sets (0 by default).
 int& exit_code();

@@ -40,6 +40,14 @@ void scene_arg(const py::object& scene, std::string& file, std::optional<std::st
   }
 }
 
+// The clock argument (MHz), its source "given by the clock argument"; ValueError "clock: ..." for zero, negative,
+// NaN or infinity.
+DeviceClock clock_arg(double mhz) {
+  const std::string problem = clock_problem(mhz);
+  if (!problem.empty()) value_error("clock: " + problem);
+  return given_clock(mhz, "the clock argument");
+}
+
 py::dict summary_dict(const SimulationSummary& s) {
   const SimulationTotals& t = s.totals;
   const ObjectType& type = *s.types[0];
@@ -106,8 +114,12 @@ py::dict summary_dict(const SimulationSummary& s) {
   r["device_cycles"] = t.cycles;
   r["device_cycles_per_frame"] = s.cycles_per_frame();
   r["device_cycles_max_frame"] = t.max_cycles;
-  r["clock_mhz"] = s.clock;
-  r["device_frame_rate_hz"] = s.device_rate();
+  r["device_idle_frames"] = t.idle_frames;
+  r["clock_mhz"] = s.clock.mhz;
+  r["clock_source"] = s.clock.source;
+  r["clock_estimate"] = s.clock.estimate;
+  // No device cycles: no device rate (None), as `voxcd simulate --json` gives null.
+  r["device_frame_rate_hz"] = t.cycles ? py::object(py::float_(s.device_rate())) : py::object(py::none());
   char hash[24];
   std::snprintf(hash, sizeof hash, "%llx", static_cast<unsigned long long>(s.state_hash));
   r["state_hash"] = std::string(hash);
@@ -140,7 +152,7 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
   req.lanes = lanes;
   req.mode = std::move(mode);
   req.both_directions = both;
-  req.clock = clock;
+  if (clock) req.clock = clock_arg(*clock);
   req.distance_bits = distance_bits;
   req.band = band;
   req.margin = margin;
@@ -167,13 +179,13 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
   scene_arg(scene, file, text);
   SizeRequest req;
   for (const auto& [v, name] : {std::pair{accuracy, "accuracy"}, {contact_accuracy, "contact_accuracy"},
-                                {rate, "rate"}, {clock, "clock"}})
+                                {rate, "rate"}})
     if (v && !(*v > 0)) value_error(std::string(name) + ": " + py::repr(py::float_(*v)).cast<std::string>() +
                                     " is not a positive number");
   req.accuracy = accuracy.value_or(0);
   req.contact_accuracy = contact_accuracy.value_or(0);
   req.rate = rate.value_or(0);
-  req.clock = clock.value_or(0);
+  if (clock) req.clock = clock_arg(*clock);
   if (const auto f = count_arg(frames, "frames")) {
     if (*f < 1 || *f > 1000000) value_error("frames: " + std::to_string(*f) + " is outside [1, 1000000]");
     req.frames = *f;
@@ -211,14 +223,17 @@ or a dict with a scene file's keys (docs/scenes.md). Each option given (not None
 tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs. distance_bits
 (4, 8 or 16), band (voxels), margin (world units) and ccd (continuous collision, which needs distance voxmaps) are
 --distance-bits, --band, --margin and --ccd (ccd=False also turns off a scene file's "ccd"); with distance voxmaps
-the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling.)");
+the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling. clock (MHz) is the
+device clock of device_frame_rate_hz (default: the scene file's "clock", or the 122 MHz estimate of
+docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and device_frame_rate_hz is None when no
+frame needed device cycles.)");
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
         py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),
         py::arg("cost") = false, py::arg("rtl") = py::none(),
         R"(The smallest device for a scene file (or a dict with a scene file's keys), as `voxcd size --json` reports
 it, as a dict. The options override the file's accuracy (world units), contact_accuracy (world units: chooses the
-voxmaps, docs/size.md), rate (Hz), clock (MHz) and frames; cost
+voxmaps, docs/size.md), rate (Hz), clock (MHz; clock_source in the dict says where it comes from) and frames; cost
 also synthesises the configuration with yosys (about 10 s each; rtl: the directory of the RTL's voxcd.f).
 ValueError '<scene>: cannot be met: ...' when no device meets the request.)");
 }

@@ -238,7 +238,8 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
   top.number("accuracy", f.accuracy, 0, 1e12, true);
   top.number("contact_accuracy", f.contact_accuracy, 0, 1e12, true);
   top.number("rate", f.rate, 0, 1e12, true);
-  top.number("clock", f.clock, 0, 1e6, true);
+  double clock = 0;
+  if (top.number("clock", clock, 0, 1e6, true)) f.clock = given_clock(clock, where + "'s \"clock\"");
   top.integer("frames", f.frames, 1, 1000000);
   if (top.string("broadphase", f.broadphase)) top.one_of("broadphase", f.broadphase, broadphase_names());
   if (top.string("backend", f.backend)) top.one_of("backend", f.backend, device_backends());

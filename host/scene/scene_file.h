@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "voxcd/host/device/clock.h"
 #include "voxcd/host/scene/scene.h"
 
 namespace voxcd {
@@ -48,7 +49,9 @@ struct SceneFile {
   double contact_accuracy = 0;  // world units: how far outside the other surface a contact may lie (voxcd size);
                                 // 0: not given
   double rate = 1000;    // frames per second
-  double clock = 200;    // MHz
+  // The device clock for its frame rates: the file's "clock" (MHz), "given by <file>'s \"clock\"", or without
+  // it default_device_clock() (an estimate, docs/hardware.md).
+  DeviceClock clock = default_device_clock();
   uint64_t frames = 100; // frames `voxcd size` simulates to measure pairs and points
   // How the scene is run.
   std::string broadphase = "grid";

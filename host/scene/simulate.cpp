@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "voxcd/host/scene/scene_file.h"
@@ -26,6 +27,7 @@ void SimulationTotals::add(const FrameStats& f) {
   pairs += f.pairs, tested += f.tested, touching += f.touching, responses += f.responses, wall_hits += f.wall_hits;
   lookups += f.lookups, hits += f.hits, contacts += f.contacts, cycles += f.device_cycles;
   max_cycles = std::max(max_cycles, f.device_cycles);
+  idle_frames += f.device_cycles == 0;
   ccd_iterations += f.ccd_iterations, ccd_queries += f.ccd_queries, ccd_limited += f.ccd_limited;
   ccd_toi += f.ccd_toi, ccd_dropped += f.ccd_dropped, ccd_lookups += f.ccd_lookups;
   t_integrate += f.t_integrate, t_bounds += f.t_bounds, t_broadphase += f.t_broadphase;
@@ -38,9 +40,16 @@ double SimulationSummary::frame_rate() const {
 
 double SimulationSummary::cycles_per_frame() const { return double(totals.cycles) / double(frames); }
 
-double SimulationSummary::device_rate() const {
-  const double c = cycles_per_frame();
-  return c > 0 ? clock * 1e6 / c : 0;
+double SimulationSummary::device_rate() const { return clock.rate(cycles_per_frame()); }
+
+std::string SimulationSummary::device_rate_text() const {
+  if (totals.cycles == 0) return "none: the frames needed no device cycles";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.0f Hz at ", device_rate());
+  std::string t = buf + clock.text();
+  if (totals.idle_frames)
+    t += "; " + std::to_string(totals.idle_frames) + " of " + std::to_string(frames) + " frames needed no device cycles";
+  return t;
 }
 
 SimulationSummary simulate(const SimulateRequest& req, const std::function<void(uint64_t, uint64_t)>& progress) {
@@ -89,7 +98,7 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
   sim.midphase = req.midphase;
   sim.cull = req.cull;
   uint64_t frames = req.frames.value_or(1000);
-  double clock = req.clock.value_or(200);
+  DeviceClock clock = req.clock.value_or(default_device_clock());
 
   Scene scene;
   if (!req.file.empty() || req.text) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/host/device/clock.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/ref/config.h"
 
@@ -36,7 +37,9 @@ struct SimulateRequest {
   std::optional<std::string> mode;     // ALL, FIRST or COUNT
   std::optional<bool> both_directions;
   std::optional<uint64_t> frames;      // default 1000 (a scene file's `frames` otherwise)
-  std::optional<double> clock;         // MHz, for the modelled frame rate; default 200
+  // The device clock for the modelled frame rate (given_clock names where it was given); unset: the scene file's
+  // "clock", or default_device_clock() (an estimate, docs/hardware.md).
+  std::optional<DeviceClock> clock;
   std::optional<int> lanes;            // default 4; overrides the LANES of `device`
   std::optional<DeviceConfig> device;  // the device's whole configuration (SimOptions::device)
   std::optional<int> distance_bits;    // 4, 8, 16: distance voxmaps (SimOptions::distance_bits); default 0
@@ -64,6 +67,7 @@ struct SimulationTotals {
   uint64_t pairs = 0, tested = 0, touching = 0, responses = 0, wall_hits = 0, lookups = 0, hits = 0, contacts = 0;
   uint64_t cycles = 0;      // device cycles of every frame
   uint64_t max_cycles = 0;  // of the largest frame
+  uint64_t idle_frames = 0; // frames that needed no device cycles
   // Continuous collision (FrameStats::ccd_*).
   uint64_t ccd_iterations = 0, ccd_queries = 0, ccd_limited = 0, ccd_toi = 0, ccd_dropped = 0, ccd_lookups = 0;
   double t_integrate = 0, t_bounds = 0, t_broadphase = 0, t_narrow = 0, t_response = 0;  // seconds
@@ -88,7 +92,7 @@ struct SimulationSummary {
   double band = 0, margin = 0;
   bool ccd = false;
   uint64_t frames = 0;
-  double clock = 0;  // MHz
+  DeviceClock clock;  // the clock of device_rate and where it comes from
   int lanes = 0;
   int ranks = 1;      // processes of a distributed run
   SimulationTotals totals;
@@ -97,6 +101,9 @@ struct SimulationSummary {
   double frame_rate() const;        // frames per second of the host (0 when no time was measured)
   double cycles_per_frame() const;  // mean device cycles
   double device_rate() const;       // frames per second the device's mean cycles allow at `clock` (0 without cycles)
+  // The device's frame rate as printed: "4181 Hz at 122 MHz (estimate: ...)", with "; 3 of 10 frames needed no device
+  // cycles" when some did not, or "none: the frames needed no device cycles" when none did.
+  std::string device_rate_text() const;
 };
 
 // Resolves the request, makes the scene (make_scene of the file or of the SceneSpec) and runs it, calling

@@ -296,7 +296,7 @@ YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& dir) {
 }
 
 double SizeReport::modelled_rate() const {
-  return chosen().max_cycles ? clock * 1e6 / double(chosen().max_cycles) : 0;
+  return clock.rate(double(chosen().max_cycles));
 }
 DeviceConfig SizeReport::default_widths() const {
   DeviceConfig d;
@@ -343,7 +343,7 @@ SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeR
   r.accuracy = req.accuracy > 0 ? req.accuracy : f.accuracy_or_default(input_scene);
   r.contact_accuracy = req.contact_accuracy > 0 ? req.contact_accuracy : f.contact_accuracy;
   r.rate = req.rate > 0 ? req.rate : f.rate;
-  r.clock = req.clock > 0 ? req.clock : f.clock;
+  r.clock = req.clock.value_or(f.clock);
   r.frames = req.frames > 0 ? req.frames : f.frames;
   const SceneFile sized = choose_kind(r, f, input_scene);
   const Scene& scene = r.scene;
@@ -355,7 +355,7 @@ SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeR
   DeviceConfig cfg = derive_widths(r.extents, r.accuracy, base, r.kind.distance() ? r.kind.WB : 0);
   r.error = size_error_bound(cfg, r.extents, &r.worst_pair);
   // Lanes: the fewest (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget.
-  const double budget = r.clock * 1e6 / r.rate;
+  const double budget = r.clock.mhz * 1e6 / r.rate;
   r.budget = uint64_t(std::floor(budget));
   for (int lanes = 1; lanes <= 64; lanes *= 2) {
     cfg.LANES = lanes;
@@ -364,11 +364,11 @@ SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeR
     if (double(r.lanes.back().max_cycles) <= budget) break;
     if (lanes == 64) {
       const LaneMeasure& m = r.lanes.back();
-      const double best = r.clock * 1e6 / double(m.max_cycles);
+      const double best = r.clock.rate(double(m.max_cycles));
       throw SizeError("rate", r.rate / best,
                       "64 lanes take " + std::to_string(m.max_cycles) + " cycles for the largest of " +
                           std::to_string(r.frames) + " frames, " + fmt(best) + " frames per second at " +
-                          fmt(r.clock) + " MHz; " + fmt(r.rate, 8) + " requested is " + fmt(r.rate / best) +
+                          r.clock.text() + "; " + fmt(r.rate, 8) + " requested is " + fmt(r.rate / best) +
                           " times faster");
     }
   }
@@ -418,7 +418,7 @@ std::string size_text(const SizeReport& r) {
   const auto& wp = r.extents.pairs.at(r.worst_pair);
   o << "voxcd size: " << r.file << ": " << r.objects << " objects of " << scene.types.size() << " type"
     << (scene.types.size() > 1 ? "s" : "") << "; accuracy " << fmt(r.accuracy) << " world units, " << fmt(r.rate, 8)
-    << " frames/s at " << fmt(r.clock) << " MHz\n";
+    << " frames/s at " << r.clock.text() << "\n";
   for (const auto& t : scene.types) {
     const auto& d = t->voxmap().dims();
     o << "  type " << t->name << ": voxel " << fmt(t->voxmap().voxel()) << ", voxmap " << d[0] << "x" << d[1] << "x"
@@ -447,8 +447,11 @@ std::string size_text(const SizeReport& r) {
   for (size_t i = 0; i < r.lanes.size(); ++i)
     o << (i ? ", " : "") << "LANES " << r.lanes[i].lanes << ": " << r.lanes[i].max_cycles;
   o << " (largest frame; budget " << r.budget << " at " << fmt(r.rate, 8) << " frames/s)\n";
-  o << "frame rate      " << fmt(r.modelled_rate(), 6) << " frames/s at " << fmt(r.clock) << " MHz with LANES "
-    << c.LANES << " (largest frame " << m.max_cycles << " cycles, mean " << fmt(m.mean_cycles, 6) << ")\n";
+  if (m.max_cycles == 0)
+    o << "frame rate      none from the device: the frames needed no device cycles (LANES " << c.LANES << ")\n";
+  else
+    o << "frame rate      " << fmt(r.modelled_rate(), 6) << " frames/s with LANES " << c.LANES << " (largest frame "
+      << m.max_cycles << " cycles, mean " << fmt(m.mean_cycles, 6) << ") at " << r.clock.text() << "\n";
   o << "memory          shell 2^" << c.SAW << " x " << 3 * c.PW << " bit = " << bits_text(r.shell_bits())
     << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.LANES
     << " lane copies = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
@@ -479,7 +482,9 @@ std::string size_json(const SizeReport& r) {
   j["objects"] = r.objects;
   j["accuracy"] = r.accuracy;
   j["rate_hz"] = r.rate;
-  j["clock_mhz"] = r.clock;
+  j["clock_mhz"] = r.clock.mhz;
+  j["clock_source"] = r.clock.source;
+  j["clock_estimate"] = r.clock.estimate;
   j["frames"] = r.frames;
   for (const auto& t : scene.types)
     j["types"].push_back({{"name", t->name},
@@ -516,7 +521,8 @@ std::string size_json(const SizeReport& r) {
   const LaneMeasure& m = r.chosen();
   j["per_frame"] = {{"pairs", m.pairs}, {"tested", m.tested}, {"lookups", m.lookups}, {"hits", m.hits}};
   j["cycles_per_frame"] = {{"max", m.max_cycles}, {"mean", m.mean_cycles}};
-  j["modelled_rate_hz"] = r.modelled_rate();
+  // At clock_mhz (clock_source above); null when the frames needed no device cycles.
+  j["modelled_rate_hz"] = m.max_cycles ? nlohmann::ordered_json(r.modelled_rate()) : nullptr;
   j["memory_bits"] = {{"shell", r.shell_bits()}, {"voxmap", r.map_bits()}, {"total", r.shell_bits() + r.map_bits()}};
   j["words_used"] = {{"shell", r.shell_words}, {"voxmap", r.map_words}};
   if (r.cost)

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/host/device/clock.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/sizing/contact_bound.h"
@@ -102,7 +103,7 @@ struct SizeRequest {
   // the scene file's own distance_bits and band.
   double contact_accuracy = 0;
   double rate = 0;      // Hz; 0: the scene file's
-  double clock = 0;     // MHz; 0: the scene file's
+  std::optional<DeviceClock> clock;  // unset: the scene file's "clock", or default_device_clock()
   uint64_t frames = 0;  // measured frames; 0: the scene file's
   // Also synthesise the configuration and its default widths (SizeReport::cost, default_cost) from the RTL of
   // rtl_dir ("" = the package's); yosys_cost's errors.
@@ -113,7 +114,8 @@ struct SizeRequest {
 struct SizeReport {
   std::string file;
   Scene scene;  // as sized: the scene file's, or remade with the voxmap kind chosen for contact_accuracy
-  double accuracy = 0, rate = 0, clock = 0;
+  double accuracy = 0, rate = 0;
+  DeviceClock clock;  // the clock of the budget and the modelled rate, with its source
   // The voxmap kind and how far outside the other surface a contact can lie with it, world units (the largest over
   // the types as B of voxel_B * terms + the fixed-point bound of the worst pair into B).
   double contact_accuracy = 0;  // requested (0: not requested; the scene file's kind is reported)
@@ -131,7 +133,7 @@ struct SizeReport {
   uint64_t budget = 0;       // cycles per frame the rate allows at the clock
   std::vector<LaneMeasure> lanes;  // every lane count measured, ascending; the last is config.LANES
   const LaneMeasure& chosen() const { return lanes.back(); }
-  double modelled_rate() const;   // clock / largest frame's cycles
+  double modelled_rate() const;   // clock / largest frame's cycles (0 when the frames needed no device cycles)
   uint64_t shell_bits() const;    // 2^SAW x 3 PW
   uint64_t map_bits() const;      // 2^MAW x MEMW, one copy per lane (a distance device's 8 banks share the 2^MAW)
   std::optional<YosysCost> cost;

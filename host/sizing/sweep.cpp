@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "voxcd/host/device/clock.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/contact_measure.h"
@@ -151,8 +152,9 @@ SweepSpec parse_sweep_file(const std::string& text, const std::string& where, Sw
     else if (key == "clock") {
       if (!v.is_number() || !(v.get<double>() > 0))
         throw SweepError(where + ": clock: expected a positive number of MHz, got " + v.dump());
-      s.clock = v.get<double>();
-      s.clock_source = "the sweep file's clock";
+      const DeviceClock c = given_clock(v.get<double>(), where + "'s \"clock\"");
+      s.clock = c.mhz;
+      s.clock_source = c.source;
     } else if (key == "cost") {
       if (!v.is_boolean()) throw SweepError(where + ": cost: expected true or false, got " + v.dump());
       s.cost = v.get<bool>();
@@ -281,7 +283,7 @@ SweepRunner::SweepRunner(const SweepSpec& s) : spec_(s) {
   for (const auto& t : base.types) voxels_.push_back(t->voxmap().voxel());
   convex_ = types_convex(file_);
   meshes_ = scene_meshes(file_);
-  clock_ = s.clock > 0 ? s.clock : file_.clock;
+  clock_ = s.clock > 0 ? s.clock : file_.clock.mhz;
   frames_ = s.frames > 0 ? s.frames : file_.frames;
 }
 

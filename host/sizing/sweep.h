@@ -33,7 +33,9 @@ struct SweepSpec {
   uint64_t frames = 0;                // frames measured per point (0: the scene file's)
   uint64_t sample_frames = 4;         // of those, frames whose contacts are checked against the meshes
   double clock = 0;                   // MHz (0: the scene file's)
-  std::string clock_source;           // "the scene file's clock", "--clock" or "the sweep file's clock"
+  // Where clock comes from (DeviceClock::source): "given by --clock", "given by <sweep file>'s \"clock\"", or the
+  // scene file's clock's source (its "clock", or the default estimate of docs/hardware.md).
+  std::string clock_source;
   bool cost = false;                  // yosys per point
   std::string rtl_dir;                // the RTL for cost ("" = the package's)
   uint64_t points() const { return lanes.size() * voxel_scales.size() * distance_bits.size() * accuracies.size(); }

@@ -60,7 +60,7 @@ std::string sweep_csv(const SweepTable& t) {
   std::ostringstream o;
   o << "point,lanes,voxel_scale,distance_bits,accuracy,status,config,error_bound,contact_bound,contact_measured,"
        "contacts_checked,max_cycles,mean_cycles,rate_fps,shell_bits,map_bits,memory_bits,luts,ffs,dsps,brams,"
-       "pareto\n";
+       "pareto,clock_mhz,clock_source\n";
   for (const SweepRow& r : t.rows) {
     o << r.point.index << ',' << r.point.lanes << ',' << g(r.point.voxel_scale) << ',' << r.point.distance_bits
       << ',' << g(r.point.accuracy) << ',' << csv_field(r.status) << ',' << csv_field(r.config) << ',';
@@ -74,7 +74,7 @@ std::string sweep_csv(const SweepTable& t) {
       o << r.cost->luts << ',' << r.cost->ffs << ',' << r.cost->dsps << ',' << g(r.cost->brams) << ',';
     else
       o << ",,,,";
-    o << (r.pareto ? 1 : 0) << '\n';
+    o << (r.pareto ? 1 : 0) << ',' << g(t.clock) << ',' << csv_field(t.spec.clock_source) << '\n';
   }
   return o.str();
 }
@@ -88,7 +88,8 @@ std::string sweep_table_json(const SweepTable& t) {
   j["frames"] = t.frames;
   j["sample_frames"] = t.spec.sample_frames;
   j["clock_mhz"] = t.clock;
-  j["clock_from"] = t.spec.clock_source;
+  j["clock_from"] = t.spec.clock_source;  // the name before clock_source; the same text
+  j["clock_source"] = t.spec.clock_source;
   j["pareto_axes"] = {"contact_bound", "max_cycles", "memory_bits"};
   for (const SweepRow& r : t.rows) {
     nlohmann::ordered_json row = nlohmann::ordered_json::parse(sweep_row_line(r));
@@ -113,7 +114,7 @@ std::string sweep_text(const SweepTable& t) {
   o << "voxcd sweep: " << s.scene << ": " << s.points() << " points (" << s.lanes.size() << " lanes x "
     << s.voxel_scales.size() << " voxel scales x " << s.distance_bits.size() << " distance bits x "
     << s.accuracies.size() << " accuracies), " << t.frames << " frames each (" << s.sample_frames
-    << " checked against the meshes); clock " << g(t.clock) << " MHz (" << s.clock_source << ")\n";
+    << " checked against the meshes); frames/s at clock " << g(t.clock) << " MHz (" << s.clock_source << ")\n";
   char line[512];
   std::snprintf(line, sizeof line, "%5s %5s %6s %4s %9s %10s %10s %10s %9s %10s %10s %10s %s\n", "point", "lanes",
                 "voxel", "dist", "accuracy", "error", "contact", "measured", "cycles", "mean", "frames/s", "kbit",

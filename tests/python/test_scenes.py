@@ -8,12 +8,19 @@ import voxcd
 
 # Host times differ from run to run; everything else is deterministic.
 TIMES = {"seconds", "frame_rate_hz", "stage_seconds"}
+# The estimate every rate uses when no clock is given (docs/hardware.md, "Measured clock").
+ESTIMATE = ("estimate: synth_xilinx logic depth of the default configuration, 16 LUT levels x 0.5 ns + 2 CARRY4 x "
+            "0.1 ns = 8.2 ns (docs/hardware.md)")
 
 
 def assert_same_summary(got, want):
     assert set(got) == set(want)
     for key, value in want.items():
         if key in TIMES:
+            continue
+        if key == "clock_source" and value == "given by --clock":
+            # The same clock, given by the module's argument instead of the tool's option.
+            assert got[key] == "given by the clock argument"
             continue
         if key == "voxmap":
             assert list(got[key]) == value
@@ -53,6 +60,32 @@ def test_options_override_the_file_as_the_tools_do(cli_json, scenes):
                          lanes=2, backend="ref", speed=0.2, clock=150)
     assert_same_summary(got, want)
     assert (got["mode"], got["pruning"], got["lanes"], got["clock_mhz"]) == ("FIRST", "sap", 2, 150)
+    assert (got["clock_source"], got["clock_estimate"]) == ("given by the clock argument", False)
+
+
+def test_every_rate_names_its_clock(scenes):
+    default = voxcd.simulate(frames=5)
+    assert (default["clock_mhz"], default["clock_source"], default["clock_estimate"]) == (122, ESTIMATE, True)
+    assert default["device_frame_rate_hz"] == pytest.approx(122e6 / default["device_cycles_per_frame"])
+    given = voxcd.simulate(scenes / "small.json", frames=5)
+    assert given["clock_mhz"] == 100 and given["clock_source"] == f"given by {scenes / 'small.json'}'s \"clock\""
+    sized = voxcd.size(scenes / "small.json", frames=5, clock=80)
+    assert (sized["clock_mhz"], sized["clock_source"], sized["clock_estimate"]) == (80, "given by the clock argument",
+                                                                                     False)
+
+
+def test_frames_without_device_cycles_have_no_device_rate():
+    got = voxcd.simulate(objects=2, density=0.00001, frames=3)
+    assert got["device_cycles"] == 0 and got["device_idle_frames"] == 3
+    assert got["device_frame_rate_hz"] is None
+
+
+@pytest.mark.parametrize("clock", [0, -5, float("nan"), float("inf")])
+def test_a_clock_that_is_no_frequency_is_refused(scenes, clock):
+    with pytest.raises(ValueError, match=r"^clock: .* is not a positive number of MHz$"):
+        voxcd.simulate(frames=1, clock=clock)
+    with pytest.raises(ValueError, match=r"^clock: .* is not a positive number of MHz$"):
+        voxcd.size(scenes / "small.json", frames=1, clock=clock)
 
 
 def test_a_whole_configuration(cli_json, scenes):

@@ -97,7 +97,7 @@ TEST(SweepFile, KeysOverrideAndBadFilesNameTheKey) {
   EXPECT_EQ(s.frames, 30u);
   EXPECT_EQ(s.sample_frames, 3u);
   EXPECT_EQ(s.clock, 250);
-  EXPECT_EQ(s.clock_source, "the sweep file's clock");
+  EXPECT_EQ(s.clock_source, "given by s.json's \"clock\"");
   EXPECT_TRUE(s.cost);
   const std::pair<const char*, const char*> bad[] = {
       {"[1, 2]", "s.json: expected a JSON object"},

@@ -1,0 +1,44 @@
+#include "voxcd/host/device/clock.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace voxcd {
+
+namespace {
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+std::string DeviceClock::text() const { return num(mhz) + " MHz (" + source + ")"; }
+
+double DeviceClock::rate(double cycles) const { return cycles > 0 ? mhz * 1e6 / cycles : 0; }
+
+double default_path_ns() { return kEstimateLutLevels * kEstimateNsPerLut + kEstimateCarry4 * kEstimateNsPerCarry4; }
+
+DeviceClock default_device_clock() {
+  DeviceClock c;
+  c.mhz = kDefaultClockMhz;
+  c.estimate = true;
+  c.source = "estimate: synth_xilinx logic depth of the default configuration, " + num(kEstimateLutLevels) +
+             " LUT levels x " + num(kEstimateNsPerLut) + " ns + " + num(kEstimateCarry4) + " CARRY4 x " +
+             num(kEstimateNsPerCarry4) + " ns = " + num(default_path_ns()) + " ns (docs/hardware.md)";
+  return c;
+}
+
+std::string clock_problem(double mhz) {
+  if (mhz > 0 && std::isfinite(mhz)) return "";
+  return num(mhz) + " is not a positive number of MHz";
+}
+
+DeviceClock given_clock(double mhz, const std::string& origin) {
+  const std::string problem = clock_problem(mhz);
+  if (!problem.empty()) throw std::invalid_argument(origin + ": " + problem);
+  return DeviceClock{mhz, "given by " + origin, false};
+}
+
+}  // namespace voxcd
