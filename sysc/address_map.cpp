@@ -113,7 +113,8 @@ uint64_t config_word0(const DeviceConfig& c) {
 }
 
 uint64_t config_word1(const DeviceConfig& c) {
-  return uint64_t(c.SAW) | uint64_t(c.MAW) << 8 | uint64_t(c.TAGW) << 16 | uint64_t(c.SB) << 24 | uint64_t(c.WB) << 32;
+  return uint64_t(c.SAW) | uint64_t(c.MAW) << 8 | uint64_t(c.TAGW) << 16 | uint64_t(c.SB) << 24 | uint64_t(c.WB) << 32 |
+         uint64_t(c.BANKS) << 40;
 }
 
 }  // namespace voxcd::sysc

@@ -29,7 +29,7 @@ constexpr uint64_t kMapStride = 8;
 enum Reg : uint64_t {
   kRegId = 0x00,           // RO: kDeviceId
   kRegConfig0 = 0x08,      // RO: PW | PF<<8 | MW<<16 | MF<<24 | TW<<32 | DW<<40 | MEMW<<48 | LANES<<56
-  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16 | SB<<24 | WB<<32
+  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16 | SB<<24 | WB<<32 | BANKS<<40
   kRegClockPs = 0x18,      // RO: clock period in picoseconds
   kRegStatus = 0x20,       // RO: kStatus* bits
   kRegStaged = 0x28,       // RO: jobs staged and not yet launched
@@ -44,6 +44,7 @@ enum Reg : uint64_t {
   kRegMapWords = 0x70,     // RO: voxmap words loaded
   kRegDropped = 0x78,      // RO: malformed job descriptors dropped (the AXI top, rtl/voxcd_axi.sv; the SystemC
                            // targets refuse them with an error response instead, and read 0 here)
+  kRegConflicts = 0x80,    // RO: bank conflict cycles since reset (shared voxmap banks, BANKS > 0; else 0)
 };
 constexpr uint64_t kDeviceId = 0x766f'7863'6400'0001;  // "voxcd", version 1
 // STATUS bits.

@@ -64,6 +64,7 @@ void DeviceTarget::publish_queued(size_t n, const JobCounts& c) {
   points_ += c.points;
   cycles_ += c.cycles;
   stalls_ += c.stalls;
+  conflicts_ += c.conflicts;
 }
 
 void DeviceTarget::take_records(uint8_t* out, size_t n) {
@@ -107,7 +108,7 @@ tlm_response_status DeviceTarget::access(tlm::tlm_generic_payload& tr, sc_time t
     if (len != 8 || off % 8) return fail(TLM_BURST_ERROR_RESPONSE, "registers take aligned 8-byte accesses");
     if (!wr) return reg_read(off, data, t);
     if (off != kRegRun) {
-      if (off <= kRegDropped) return fail(TLM_COMMAND_ERROR_RESPONSE, "register is read-only");
+      if (off <= kRegConflicts) return fail(TLM_COMMAND_ERROR_RESPONSE, "register is read-only");
       return fail(TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
     }
     if (staged_count_) {
@@ -208,6 +209,7 @@ tlm_response_status DeviceTarget::reg_read(uint64_t off, uint8_t* data, sc_time 
     case kRegShellWords: v = shell_words_; break;
     case kRegMapWords: v = map_words_; break;
     case kRegDropped: v = 0; break;
+    case kRegConflicts: v = conflicts_; break;
     default: return fail(tlm::TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
   }
   put_le(data, v, 8);

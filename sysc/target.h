@@ -63,6 +63,7 @@ class DeviceTarget : public sc_core::sc_module {
   // queued records, one job's, readable and adds the job's counts.
   struct JobCounts {
     uint64_t hits = 0, points = 0, cycles = 0, stalls = 0;
+    uint64_t conflicts = 0;  // bank conflict cycles (shared voxmap banks)
   };
   uint8_t* queue_records(size_t n);
   void publish_queued(size_t n, const JobCounts& counts);
@@ -95,7 +96,7 @@ class DeviceTarget : public sc_core::sc_module {
   std::unique_ptr<uint8_t[]> results_;
   size_t head_ = 0, ready_ = 0, end_ = 0, cap_ = 0;
   uint64_t shell_words_ = 0, map_words_ = 0;
-  uint64_t jobs_done_ = 0, hits_ = 0, points_ = 0, cycles_ = 0, stalls_ = 0;
+  uint64_t jobs_done_ = 0, hits_ = 0, points_ = 0, cycles_ = 0, stalls_ = 0, conflicts_ = 0;
   std::string last_error_;
 };
 

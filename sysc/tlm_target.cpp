@@ -37,9 +37,9 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   runner_.run_validated_into(jobs, batch_, /*cycles=*/false);
   // The completion records get ref/timing.h's cycles as annotate_cycles gives them (cycles, points, no stalls),
   // in the same pass that encodes the batch's records into the result queue, where they wait for their edge.
-  const std::vector<JobTiming> timing =
-      cfg_.banked() ? job_timing(cfg_, jobs, batch_, bank_conflicts(cfg_, runner_.shell(), jobs, batch_))
-                    : job_timing(cfg_, jobs, batch_);
+  const std::vector<uint64_t> conflicts = cfg_.banked() ? bank_conflicts(cfg_, runner_.shell(), jobs, batch_)
+                                                         : std::vector<uint64_t>(jobs.size(), 0);
+  const std::vector<JobTiming> timing = job_timing(cfg_, jobs, batch_, conflicts);
   future_.erase(future_.begin(), future_.begin() + std::ptrdiff_t(future_head_));  // the jobs already readable
   future_head_ = 0;
   uint8_t* out = queue_records(batch_.size());
@@ -58,7 +58,7 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
     encode_record(done, out + r * kRecordBytes);
     ++r;
     edge += timing[j].cycles;
-    future_.push_back({edge, r - last_first, {done.hits, timing[j].points, timing[j].cycles, 0}});
+    future_.push_back({edge, r - last_first, {done.hits, timing[j].points, timing[j].cycles, 0, conflicts[j]}});
   }
   batch_free_ = edge;
   // The device is idle one edge after the last completion record is taken, or later when slots issued behind a

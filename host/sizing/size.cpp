@@ -124,7 +124,7 @@ double contact_error_bound(const DeviceConfig& cfg, const SceneExtents& e, const
 
 uint64_t shell_memory_bits(const DeviceConfig& cfg) { return cfg.shell_depth() * uint64_t(3 * cfg.PW); }
 uint64_t map_memory_bits(const DeviceConfig& cfg) {
-  return cfg.map_depth() * uint64_t(cfg.MEMW) * uint64_t(cfg.LANES);
+  return cfg.map_depth() * uint64_t(cfg.MEMW) * uint64_t(cfg.voxmap_copies());
 }
 
 DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig cfg, int min_tf) {
@@ -252,7 +252,7 @@ YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& dir) {
   chparam << "chparam -set PW " << cfg.PW << " -set PF " << cfg.PF << " -set MW " << cfg.MW << " -set MF " << cfg.MF
           << " -set TW " << cfg.TW << " -set DW " << cfg.DW << " -set MEMW " << cfg.MEMW << " -set LANES "
           << cfg.LANES << " -set SAW " << cfg.SAW << " -set MAW " << cfg.MAW << " -set TAGW " << cfg.TAGW
-          << " -set SB " << cfg.SB << " -set WB " << cfg.WB << " voxcd_device";
+          << " -set SB " << cfg.SB << " -set WB " << cfg.WB << " -set BANKS " << cfg.BANKS << " voxcd_device";
   YosysCost c;
   // The same method as bench/rtl_cost.sh's xilinx rows.
   c.command = read + "; " + chparam.str() + "; synth_xilinx -noiopad -top voxcd_device; flatten; tee -q -o stat.json stat -json";
@@ -379,9 +379,18 @@ SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeR
     r.map_words += type_map_words(cfg, *t);
   }
   bound_contacts(r);
+  // Copies against banks: the same frames with one voxmap in LANES banks.
+  if (!cfg.distance() && cfg.LANES > 1) {
+    SizeReport::Banked b;
+    b.config = cfg;
+    b.config.BANKS = cfg.LANES;
+    b.measure = measure_frames(scene, sized, b.config, r.frames);
+    r.banked = b;
+  }
   if (req.cost) {
     r.cost = yosys_cost(r.config, req.rtl_dir);
     r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
+    if (r.banked) r.banked->cost = yosys_cost(r.banked->config, req.rtl_dir);
   }
   return r;
 }
@@ -453,8 +462,8 @@ std::string size_text(const SizeReport& r) {
     o << "frame rate      " << fmt(r.modelled_rate(), 6) << " frames/s with LANES " << c.LANES << " (largest frame "
       << m.max_cycles << " cycles, mean " << fmt(m.mean_cycles, 6) << ") at " << r.clock.text() << "\n";
   o << "memory          shell 2^" << c.SAW << " x " << 3 * c.PW << " bit = " << bits_text(r.shell_bits())
-    << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.LANES
-    << " lane copies = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
+    << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.voxmap_copies()
+    << (c.banked() ? " (shared banks)" : " lane copies") << " = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
     << bits_text(r.shell_bits() + r.map_bits()) << "\n";
   if (r.cost)
     o << "cost            " << r.cost->luts << " LUTs, " << r.cost->ffs << " FFs, " << r.cost->dsps << " DSPs, "
@@ -462,6 +471,21 @@ std::string size_text(const SizeReport& r) {
       << ", " << fmt(r.cost->seconds, 3) << " s)\n";
   else
     o << "cost            not synthesised (add --cost to run yosys)\n";
+  if (r.banked) {
+    const SizeReport::Banked& b = *r.banked;
+    const uint64_t copies = r.map_bits(), shared = b.map_bits();
+    const double more = m.max_cycles ? double(b.measure.max_cycles) / double(m.max_cycles) - 1 : 0;
+    o << "banks           BANKS " << b.config.BANKS << " (one voxmap shared in " << b.config.BANKS
+      << " banks instead of " << c.LANES << " copies): voxmap " << bits_text(shared) << " instead of "
+      << bits_text(copies) << " (saves " << bits_text(copies - shared) << "); largest frame "
+      << b.measure.max_cycles << " cycles instead of " << m.max_cycles << " (" << (more >= 0 ? "+" : "")
+      << fmt(100 * more, 3) << "%, bank conflicts), mean " << fmt(b.measure.mean_cycles, 6) << "; "
+      << (b.meets(r.budget) ? "meets" : "misses") << " the budget of " << r.budget << " cycles\n";
+    if (b.cost)
+      o << "banks cost      " << b.cost->luts << " LUTs, " << b.cost->ffs << " FFs, " << b.cost->dsps << " DSPs, "
+        << fmt(b.cost->brams) << " block RAMs (RAMB36) with BANKS " << b.config.BANKS << ", against "
+        << fmt(r.cost->brams) << " with copies\n";
+  }
   if (r.default_cost) {
     const DeviceConfig d = r.default_widths();
     o << "default widths  " << r.default_cost->luts << " LUTs, " << r.default_cost->ffs << " FFs, "
@@ -494,7 +518,7 @@ std::string size_json(const SizeReport& r) {
                           {"shell_spacing", t->shell().frame().voxel}});
   j["config"] = {{"PW", c.PW}, {"PF", c.PF},     {"MW", c.MW},   {"MF", c.MF},   {"TW", c.TW},    {"DW", c.DW},
                  {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW},
-                 {"SB", c.SB},     {"WB", c.WB}};
+                 {"SB", c.SB},     {"WB", c.WB},   {"BANKS", c.BANKS}};
   j["config_text"] = c.to_string();
   j["extents"] = {{"max_point", r.extents.max_point},
                   {"max_ratio", r.extents.max_ratio},
@@ -531,6 +555,20 @@ std::string size_json(const SizeReport& r) {
                  {"seconds", r.cost->seconds}};
   else
     j["cost"] = nullptr;
+  if (r.banked) {
+    const SizeReport::Banked& b = *r.banked;
+    j["banked"] = {{"config_text", b.config.to_string()},
+                   {"banks", b.config.BANKS},
+                   {"voxmap_bits", b.map_bits()},
+                   {"voxmap_bits_saved", r.map_bits() - b.map_bits()},
+                   {"cycles_per_frame", {{"max", b.measure.max_cycles}, {"mean", b.measure.mean_cycles}}},
+                   {"meets_budget", b.meets(r.budget)}};
+    if (b.cost)
+      j["banked"]["cost"] = {{"luts", b.cost->luts}, {"ffs", b.cost->ffs}, {"dsps", b.cost->dsps},
+                             {"brams", b.cost->brams}};
+  } else {
+    j["banked"] = nullptr;
+  }
   if (r.default_cost)
     j["default_widths_cost"] = {{"config", r.default_widths().to_string()}, {"luts", r.default_cost->luts},
                                 {"ffs", r.default_cost->ffs}, {"dsps", r.default_cost->dsps},

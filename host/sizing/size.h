@@ -57,7 +57,8 @@ double contact_error_bound(const DeviceConfig& cfg, const SceneExtents& e, const
                            const std::vector<bool>& convex, size_t* worst_type = nullptr,
                            ContactTerms* worst_terms = nullptr);
 
-// The memories' bits: the shell memory 2^SAW x 3 PW, and the voxmap memory 2^MAW x MEMW with one copy per lane.
+// The memories' bits: the shell memory 2^SAW x 3 PW, and the voxmap memory 2^MAW x MEMW with one copy per lane (one
+// in all with shared banks, DeviceConfig::BANKS).
 uint64_t shell_memory_bits(const DeviceConfig& cfg);
 uint64_t map_memory_bits(const DeviceConfig& cfg);
 
@@ -137,6 +138,16 @@ struct SizeReport {
   uint64_t shell_bits() const;    // 2^SAW x 3 PW
   uint64_t map_bits() const;      // 2^MAW x MEMW, one copy per lane (a distance device's 8 banks share the 2^MAW)
   std::optional<YosysCost> cost;
+  // The chosen configuration with shared voxmap banks instead of a copy per lane (BANKS = LANES; 2-bit devices with
+  // more than one lane): the same frames measured again, its memory, and its cost when synthesised.
+  struct Banked {
+    DeviceConfig config;
+    LaneMeasure measure;
+    std::optional<YosysCost> cost;
+    uint64_t map_bits() const { return map_memory_bits(config); }
+    bool meets(uint64_t budget) const { return measure.max_cycles <= budget; }
+  };
+  std::optional<Banked> banked;
   // The same LANES, SAW and MAW at the default widths, synthesised the same way (the peer for the cost).
   std::optional<YosysCost> default_cost;
   DeviceConfig default_widths() const;

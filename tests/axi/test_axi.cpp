@@ -473,7 +473,7 @@ TEST_P(AxiTest, RegistersAfterReset) {
   EXPECT_EQ(a.reg(kRegClockPs), 10000u);
   EXPECT_EQ(a.reg(kRegStatus), 0u);
   for (uint64_t r : {kRegStaged, kRegResultCount, kRegJobsDone, kRegHits, kRegPoints, kRegCycles, kRegStalls,
-                     kRegShellWords, kRegMapWords, kRegDropped})
+                     kRegShellWords, kRegMapWords, kRegDropped, kRegConflicts})
     EXPECT_EQ(a.reg(r), 0u) << "register " << r;
 }
 
@@ -485,7 +485,8 @@ TEST_P(AxiTest, ErrorResponses) {
   EXPECT_EQ(a.read(uint32_t(kRegBase + kRegRun), v), kSlverr) << "RUN is write-only";
   EXPECT_EQ(a.write(uint32_t(kRegBase + kRegId), 1), kSlverr) << "ID is read-only";
   EXPECT_EQ(a.write(uint32_t(kRegBase + kRegDropped), 1), kSlverr) << "DROPPED is read-only";
-  EXPECT_EQ(a.read(uint32_t(kRegBase + 0x80), v), kDecerr) << "no register at 0x80";
+  EXPECT_EQ(a.write(uint32_t(kRegBase + kRegConflicts), 1), kSlverr) << "CONFLICTS is read-only";
+  EXPECT_EQ(a.read(uint32_t(kRegBase + 0x88), v), kDecerr) << "no register at 0x88";
   EXPECT_EQ(a.write(uint32_t(kRegBase + 0xff8), 0), kDecerr) << "no register at 0xff8";
   EXPECT_EQ(a.read(uint32_t(kRegBase + 1), v), kSlverr) << "unaligned";
   EXPECT_EQ(a.read(uint32_t(kJobBase), v), kDecerr) << "the job window is the job stream here";
