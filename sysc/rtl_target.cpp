@@ -48,6 +48,7 @@ struct RtlPins {
   sc_signal<uint32_t> done_tag_o{"done_tag_o"}, done_hits_o{"done_hits_o"}, done_cycles_o{"done_cycles_o"},
       done_points_o{"done_points_o"}, done_stalls_o{"done_stalls_o"};
   sc_signal<bool> busy_o{"busy_o"};
+  sc_signal<uint32_t> conflicts_o{"conflicts_o"};  // bank conflict cycles (0: the models keep a copy per lane)
 };
 
 struct RtlModel {
@@ -119,6 +120,7 @@ struct ModelOf final : RtlModel {
     m.done_points_o(p.done_points_o);
     m.done_stalls_o(p.done_stalls_o);
     m.busy_o(p.busy_o);
+    m.conflicts_o(p.conflicts_o);
   }
   void final() override { m.final(); }
   void trace(VerilatedFstC* tfp) override { m.trace(tfp, 99); }

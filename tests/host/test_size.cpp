@@ -154,6 +154,35 @@ TEST(Size, ListedConfigurationsAreWhatSizeDerives) {
   }
 }
 
+// Copies against shared banks: with more than one lane the same frames are measured again with one voxmap in LANES
+// banks; the voxmap memory is one copy, the cycles are those of the banked device's timing model (never fewer).
+TEST(Size, CopiesAreWeighedAgainstBanks) {
+  for (const auto& l : listed_configs()) {
+    SCOPED_TRACE(l.scene);
+    const SceneFile f = read_scene_file(kScenes + "/" + l.scene);
+    const Scene scene = make_scene(f);
+    const SizeReport r = derive_size(f, scene, {});
+    const std::string json = size_json(r);
+    if (r.config.LANES == 1) {
+      EXPECT_FALSE(r.banked.has_value());
+      EXPECT_NE(json.find("\"banked\": null"), std::string::npos);
+      continue;
+    }
+    ASSERT_TRUE(r.banked.has_value());
+    const SizeReport::Banked& b = *r.banked;
+    EXPECT_EQ(b.config.BANKS, r.config.LANES);
+    EXPECT_TRUE(b.config.same_widths(r.config));
+    EXPECT_EQ(b.map_bits() * uint64_t(r.config.LANES), r.map_bits());
+    EXPECT_GE(b.measure.max_cycles, r.chosen().max_cycles);
+    EXPECT_GE(b.measure.mean_cycles, r.chosen().mean_cycles);
+    const LaneMeasure again = measure_frames(scene, f, b.config, r.frames);
+    EXPECT_EQ(again.max_cycles, b.measure.max_cycles);
+    EXPECT_GT(b.measure.mean_cycles, r.chosen().mean_cycles) << "the scene's lanes must meet in a bank sometimes";
+    EXPECT_NE(size_text(r).find("banks           BANKS " + std::to_string(r.config.LANES)), std::string::npos);
+    EXPECT_NE(json.find("\"voxmap_bits_saved\": " + std::to_string(r.map_bits() - b.map_bits())), std::string::npos);
+  }
+}
+
 // cfg with one field changed; true when that device cannot run the scene at the accuracy and rate: a width that
 // does not validate, a shell or voxmap that does not load, a pose entry that does not fit, a bound above the
 // accuracy, or a largest frame over the cycle budget.
