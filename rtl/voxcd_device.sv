@@ -314,9 +314,10 @@ module voxcd_device #(
 
   // What each stage reads of its slot: the job of the slot in R0 .. R3, and the last register's (R5, or R8 on a
   // distance device) slot and job, where the hit test is.
-  meta_t r0_slot, last_slot;
+  meta_t r0_slot, r4_slot, last_slot;  // r4_slot: the slot whose lanes read the shared voxmap banks (BANKS > 0)
   job_t  r0_job, r1_job, r2_job, r3_job, last_job;
   assign r0_slot   = slot_meta_q[0];
+  assign r4_slot   = slot_meta_q[NumR - 2];
   assign last_slot = slot_meta_q[NumR - 1];
   assign r0_job    = slot_job_q[0];
   assign r1_job    = slot_job_q[1];
@@ -494,7 +495,6 @@ module voxcd_device #(
   // A word read in an earlier round waits in early_q and moves to held_q when the slot enters R5; the words of the
   // last round stay on the banks' outputs while the slot is in R5 (the banks read only when R5 advances).
   if (Banked) begin : g_banks
-    meta_t                r4_slot;
     logic                 r4_squashed;   // R4 belongs to a FIRST job whose hit is found or at the hit test now
     logic [LANES-1:0]     want;          // lanes of R4 that read a word
     logic [LANES-1:0]     served_d, served_q;  // lanes of R4 that have their word (earlier rounds)
@@ -507,15 +507,12 @@ module voxcd_device #(
     logic [LANES-1:0]     last_round_q;  // lanes of R5 whose word was read in R4's last round
     logic [LANES*BankW-1:0] r5_bank_q;   // and the bank that read it
 
-    assign r4_slot     = slot_meta_q[NumR - 2];
     assign r4_squashed = (found_q && (found_seq_q == r4_slot.seq)) ||
                          (last_slot.valid && !squash && is_first && (|lane_hit) && (last_slot.seq == r4_slot.seq));
     for (genvar l = 0; l < LANES; l++) begin : g_want
       assign want[l] = r4_slot.valid && !r4_squashed && r4_slot.lanes[l] && lane_read[l];
     end
     assign waiting = want & ~served_q;
-    logic unused_r4;  // R4's slot: which job and lanes
-    assign unused_r4 = ^{r4_slot.last, r4_slot.k, r4_slot.rot};
 
     // Each bank's word this round: the lowest waiting lane's that falls in it.
     always_comb begin
@@ -675,7 +672,7 @@ module voxcd_device #(
 
   // Fields that only some stages read.
   logic unused;
-  assign unused = ^{r0_slot, last_slot.rot, r0_job, r1_job, r2_job, r3_job, last_job, job_threshold_i, hx_in,
+  assign unused = ^{r0_slot, r4_slot, last_slot.rot, r0_job, r1_job, r2_job, r3_job, last_job, job_threshold_i, hx_in,
                     hy_in};
 
   // ---- Assertions (Verilator runs them with --assert; voxcd_assert.svh) ----
