@@ -1,5 +1,6 @@
 # Checks the device's netlist for a combinational path from an output stream's ready to anything but the output
-# slice: cmake -DYOSYS=... -DRTL=<rtl dir> -DWORK=<dir> [-DBREAK_FROM=<text> -DBREAK_TO=<text>] -P ready_cone.cmake
+# slice: cmake -DYOSYS=... -DRTL=<rtl dir> -DWORK=<dir> [-DPARAMS="-set NAME VALUE ..."] [-DBREAK_FROM=<text>
+# -DBREAK_TO=<text>] -P ready_cone.cmake
 # yosys elaborates voxcd_device (LANES 2, small memories; every source of rtl/voxcd.f but the lint waivers),
 # flattens it and takes the fan-out cone of hit_ready_i and done_ready_i, stopping at flip-flops and memories.
 # No wire of that cone may feed a flip-flop or memory outside the output slice (u_out_slice): the consumer's
@@ -24,7 +25,7 @@ foreach(f ${list})
 endforeach()
 list(JOIN files " " files)
 set(regs "$dff,$adff,$dffe,$adffe,$sdff,$sdffe,$sdffce,$aldff,$mem_v2,$mem")
-set(script "read_verilog -sv ${files}; chparam -set LANES 2 -set SAW 6 -set MAW 6 voxcd_device; \
+set(script "read_verilog -sv ${files}; chparam -set LANES 2 -set SAW 6 -set MAW 6 ${PARAMS} voxcd_device; \
 prep -flatten -top voxcd_device; \
 select -set cone w:hit_ready_i w:done_ready_i %u %co*:-${regs}; \
 tee -o cone.txt select -list @cone; \
