@@ -88,15 +88,14 @@ int simulate_cmd(const SimulateArgs& a) {
     std::string names;
     for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
     if (exchange) {
-      std::cerr << "voxcd simulate: rank " << world.rank() << ": " << names << ": " << e.message << '\n';
-      world.abort(2);
+      world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + ": " + names + ": " + e.message);
     }
     throw CLI::ValidationError(names, e.message);
   } catch (const std::exception& e) {
     if (!exchange) throw;
     // One rank's error ends every rank now (the others would wait for its messages until the timeout).
-    std::cerr << "voxcd simulate: rank " << world.rank() << " of " << world.size() << ": " << e.what() << '\n';
-    world.abort(2);
+    world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size()) +
+                       ": " + e.what());
   }
   if (world.rank() != 0) return 0;
   const double exchanged = exchange ? double(exchange->bytes_sent() + exchange->bytes_received()) : 0;

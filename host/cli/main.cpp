@@ -1,4 +1,5 @@
 // voxcd: the command-line tool. One binary, one subcommand per job.
+#include <cstdio>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -46,7 +47,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {
-    std::cerr << "voxcd: error: " << e.what() << '\n';
+    // One write, so that nothing another process writes to the same stream (an MPI launcher) lands inside it.
+    const std::string line = std::string("voxcd: error: ") + e.what() + "\n";
+    std::fwrite(line.data(), 1, line.size(), stderr);
+    std::fflush(stderr);
     return 2;
   }
   return voxcd::cli::exit_code();

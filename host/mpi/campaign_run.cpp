@@ -99,9 +99,8 @@ class LocalRunner {
 };
 
 [[noreturn]] void fault(World& w, const std::string& what) {
-  std::cerr << "voxcd: error: " << what << " (every shard finished before is in the results file; rerun with it to "
-            << "resume)" << std::endl;
-  w.abort(2);
+  w.abort(2, "voxcd: error: " + what +
+                 " (every shard finished before is in the results file; rerun with it to resume)");
 }
 
 std::string seconds_text(double s) {

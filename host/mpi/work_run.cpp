@@ -98,9 +98,7 @@ std::string seconds_text(double s) {
 
 // Ends every rank with an error on stderr (exit code 2).
 [[noreturn]] void fault(World& w, const WorkPlan& plan, const std::string& what) {
-  std::cerr << "voxcd: error: " << what << (plan.resume_hint.empty() ? "" : " (" + plan.resume_hint + ")")
-            << std::endl;
-  w.abort(2);
+  w.abort(2, "voxcd: error: " + what + (plan.resume_hint.empty() ? "" : " (" + plan.resume_hint + ")"));
 }
 
 }  // namespace

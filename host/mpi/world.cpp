@@ -89,9 +89,11 @@ Message World::receive_from(int from) {
   return m;
 }
 
-void World::abort(int code) {
+void World::abort(int code, const std::string& message) {
   std::cout.flush();
   std::cerr.flush();
+  const std::string line = message + "\n";
+  std::fwrite(line.data(), 1, line.size(), stderr);
   std::fflush(nullptr);
   if (mpi_) MPI_Abort(MPI_COMM_WORLD, code);
   std::_Exit(code);

@@ -38,7 +38,9 @@ class World {
   // The next message from rank `from`, waiting as long as it takes (for ranks that only answer rank 0).
   Message receive_from(int from);
   // Ends every rank of the run with `code` (MPI_Abort), or this process when there is no MPI.
-  [[noreturn]] void abort(int code);
+  // Writes `message` and a newline to stderr in one write (so that the launcher's own report of the abort cannot
+  // split it), then ends every rank with `code`.
+  [[noreturn]] void abort(int code, const std::string& message);
 
   uint64_t bytes_sent() const { return sent_; }
   uint64_t bytes_received() const { return received_; }
