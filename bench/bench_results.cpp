@@ -444,7 +444,7 @@ void part_fixed(const Args& a, std::ostream& md, std::ostream& csv) {
         "when its voxel index differs on any axis. 'Shell points' are half-integers (a voxelised object's shell "
         "words, exact for PF >= 1): only the matrix and translation quantisation acts on them. 'Any points' are "
         "real-valued (points quantised to PF bits). MW = MF + 2, PW = PF + 16, TW = 48, other widths the "
-        "defaults (rtl/voxcd_pkg.sv).\n\n"
+        "defaults (rtl/voxcd_arch_pkg.sv).\n\n"
      << "| MF | PF | shell points: disagreeing | rate | any points: disagreeing | rate | design bound (voxels) "
         "|\n|--:|--:|--:|--:|--:|--:|--:|\n";
   csv << "mf,pf,shell_rate,any_rate,bound\n";

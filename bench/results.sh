@@ -153,7 +153,7 @@ with open(os.path.join(data, "cost.md"), "w") as f:
         f.write(f"| {mf} | {pf} | {int(mf) + 2} | {int(pf) + 16} | {lut} | {ff} | {mul} | {ccu} | {bram} | "
                 f"{fmt(rate.get('shell_rate'))} | {fmt(rate.get('any_rate'))} |\n")
     f.write(f"\nvoxcd_device with LANES=1, SAW=MAW=12 (memory depths cut as in docs/hardware.md), MW = MF + 2, "
-            f"PW = PF + 16, other widths the defaults; `yosys -p \"read_verilog -sv voxcd_pkg.sv voxcd_ram.sv "
+            f"PW = PF + 16, other widths the defaults; `yosys -p \"read_verilog -sv voxcd_arch_pkg.sv voxcd_ram.sv "
             f"voxcd_lane.sv voxcd_device.sv; chparam ... voxcd_device; synth_ecp5 -top voxcd_device; stat -json\"` "
             f"({version}). One synthesis per configuration: the counts are deterministic. Disagreement rates from "
             f"the table above (the same run).\n")

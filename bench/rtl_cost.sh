@@ -180,7 +180,7 @@ if distance:
 else:
     print("### Synthesis cost per configuration")
     print()
-    print(f"voxcd_device at the default widths (rtl/voxcd_pkg.sv) but memory depths reduced to SAW=12, MAW=12: "
+    print(f"voxcd_device at the default widths (rtl/voxcd_arch_pkg.sv) but memory depths reduced to SAW=12, MAW=12: "
           f"a 2^12-point shell (split into LANES banks) and a 2^12 x 64-bit voxmap copy per lane. The default "
           f"depths (SAW=16: 2^16 x 72-bit shell points; MAW=18: 2^18 x 64-bit voxmap words, 16 Mbit per lane) are "
           f"far beyond any FPGA's block RAM. The cost of the logic does not depend on the depths; the block RAM "

@@ -7,19 +7,19 @@
 // the device is optimised away (every input is live, every output observed), and every path into and out of the
 // device starts or ends at a flip-flop next to it, so IO timing does not limit the internal paths.
 module voxcd_fmax_top #(
-  parameter int unsigned PW    = voxcd_pkg::PW,
-  parameter int unsigned PF    = voxcd_pkg::PF,
-  parameter int unsigned MW    = voxcd_pkg::MW,
-  parameter int unsigned MF    = voxcd_pkg::MF,
-  parameter int unsigned TW    = voxcd_pkg::TW,
-  parameter int unsigned DW    = voxcd_pkg::DW,
-  parameter int unsigned MEMW  = voxcd_pkg::MEMW,
-  parameter int unsigned LANES = voxcd_pkg::LANES,
-  parameter int unsigned SAW   = voxcd_pkg::SAW,
-  parameter int unsigned MAW   = voxcd_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_pkg::TAGW,
-  parameter int unsigned SB    = voxcd_pkg::SB,
-  parameter int unsigned WB    = voxcd_pkg::WB
+  parameter int unsigned PW    = voxcd_arch_pkg::PW,
+  parameter int unsigned PF    = voxcd_arch_pkg::PF,
+  parameter int unsigned MW    = voxcd_arch_pkg::MW,
+  parameter int unsigned MF    = voxcd_arch_pkg::MF,
+  parameter int unsigned TW    = voxcd_arch_pkg::TW,
+  parameter int unsigned DW    = voxcd_arch_pkg::DW,
+  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW,
+  parameter int unsigned LANES = voxcd_arch_pkg::LANES,
+  parameter int unsigned SAW   = voxcd_arch_pkg::SAW,
+  parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
+  parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
+  parameter int unsigned SB    = voxcd_arch_pkg::SB,
+  parameter int unsigned WB    = voxcd_arch_pkg::WB
 ) (
   input  logic clk_i,
   input  logic rst_ni,
@@ -27,7 +27,7 @@ module voxcd_fmax_top #(
   output logic dout_o
 );
 
-  localparam int unsigned CW = voxcd_pkg::CW;
+  localparam int unsigned CW = voxcd_arch_pkg::CW;
   localparam int unsigned IW = SB + 3 * WB;
   // The threshold and distance ports count only on a distance device (a 2-bit device leaves them unused).
   localparam int unsigned DistW = SB > 2 ? IW : 0;

@@ -1,4 +1,4 @@
-// DeviceConfig: every width of the device, with the names and defaults of rtl/voxcd_pkg.sv.
+// DeviceConfig: every width of the device, with the names and defaults of rtl/voxcd_arch_pkg.sv.
 #pragma once
 
 #include <cstdint>

@@ -12,11 +12,11 @@
 
 namespace voxcd {
 
-// Slot registers between the issue stage and the hit-test stage on a 2-bit device (voxcd_pkg::PipeSlots).
+// Slot registers between the issue stage and the hit-test stage on a 2-bit device (voxcd_arch_pkg::PipeSlots).
 constexpr int kPipelineSlots = 6;
 // Cycles from a job's acceptance to its first slot at the hit-test stage: the queue register, then the slots.
 constexpr int kFirstSlotLatency = 1 + kPipelineSlots;
-// A distance device (SB > 2) adds three registers after the voxmap read (voxcd_pkg::DistSlots): node select and
+// A distance device (SB > 2) adds three registers after the voxmap read (voxcd_arch_pkg::DistSlots): node select and
 // the x interpolation, the y interpolation, the z interpolation.
 constexpr int kDistanceSlots = 3;
 // The slot registers of cfg's device: kPipelineSlots, plus kDistanceSlots on a distance device.

@@ -1,11 +1,12 @@
-// The device's RTL, in compilation order (Verilator's lint waivers, the assertion macros, then the package), one file
-// per line relative to this list; last, the AXI top voxcd_axi (docs/hardware.md), which tools that build
-// voxcd_device leave out by naming their top. Every tool reads this list: CMake (rtl/CMakeLists.txt), the yosys
+// The device's RTL, in compilation order (Verilator's lint waivers, the package, the assertion macros, then the
+// modules), one file per line relative to this list; last, the AXI top voxcd_axi (docs/hardware.md), which tools
+// that build voxcd_device leave out by naming their top. The order is also the files' name order but for the
+// modules, which may come in any order (rtl/*.sv lints as it is). Every tool reads this list: CMake (rtl/CMakeLists.txt), the yosys
 // scripts (bench/rtl_cost.sh, bench/results.sh), `voxcd size --cost`, and Verilator as `-F voxcd.f`. Lines starting
 // with // are comments.
 voxcd.vlt
-voxcd_assert.svh
-voxcd_pkg.sv
+voxcd_arch_pkg.sv
+voxcd_assert.sv
 voxcd_ram.sv
 voxcd_fifo.sv
 voxcd_skid.sv

@@ -27,25 +27,22 @@
 // is taken in cycle f and whose completion record carries `cycles` has its completion's last beat taken in cycle
 // f + cycles + 1 + 1024 / JobDw + 256 / RecDw (the device alone: its job taken in cycle a, its completion in cycle
 // a + cycles + 1). One register holds a descriptor, one a record: 2 cycles more than the beats.
-`ifndef VOXCD_ASSERT_SVH
-`include "voxcd_assert.svh"
-`endif
 
 module voxcd_axi #(
-  parameter int unsigned PW      = voxcd_pkg::PW,
-  parameter int unsigned PF      = voxcd_pkg::PF,
-  parameter int unsigned MW      = voxcd_pkg::MW,
-  parameter int unsigned MF      = voxcd_pkg::MF,
-  parameter int unsigned TW      = voxcd_pkg::TW,
-  parameter int unsigned DW      = voxcd_pkg::DW,
-  parameter int unsigned MEMW    = voxcd_pkg::MEMW,
-  parameter int unsigned LANES   = voxcd_pkg::LANES,
-  parameter int unsigned SAW     = voxcd_pkg::SAW,
-  parameter int unsigned MAW     = voxcd_pkg::MAW,
-  parameter int unsigned TAGW    = voxcd_pkg::TAGW,
-  parameter int unsigned SB      = voxcd_pkg::SB,
-  parameter int unsigned WB      = voxcd_pkg::WB,
-  parameter int unsigned BANKS   = voxcd_pkg::BANKS,
+  parameter int unsigned PW      = voxcd_arch_pkg::PW,
+  parameter int unsigned PF      = voxcd_arch_pkg::PF,
+  parameter int unsigned MW      = voxcd_arch_pkg::MW,
+  parameter int unsigned MF      = voxcd_arch_pkg::MF,
+  parameter int unsigned TW      = voxcd_arch_pkg::TW,
+  parameter int unsigned DW      = voxcd_arch_pkg::DW,
+  parameter int unsigned MEMW    = voxcd_arch_pkg::MEMW,
+  parameter int unsigned LANES   = voxcd_arch_pkg::LANES,
+  parameter int unsigned SAW     = voxcd_arch_pkg::SAW,
+  parameter int unsigned MAW     = voxcd_arch_pkg::MAW,
+  parameter int unsigned TAGW    = voxcd_arch_pkg::TAGW,
+  parameter int unsigned SB      = voxcd_arch_pkg::SB,
+  parameter int unsigned WB      = voxcd_arch_pkg::WB,
+  parameter int unsigned BANKS   = voxcd_arch_pkg::BANKS,
   parameter int unsigned AxilDw  = 32,     // AXI4-Lite data bits: 32 or 64
   parameter int unsigned JobDw   = 64,     // job stream TDATA bits: a power of two, 8 .. 1024
   parameter int unsigned RecDw   = 64,     // record stream TDATA bits: a power of two, 8 .. 256
@@ -89,7 +86,7 @@ module voxcd_axi #(
 );
 
   localparam int unsigned IW       = SB + 3 * WB;
-  localparam int unsigned CW       = voxcd_pkg::CW;
+  localparam int unsigned CW       = voxcd_arch_pkg::CW;
   localparam int unsigned JobBytes = 128;
   localparam int unsigned RecBytes = 32;
   localparam int unsigned JobBeats = 8 * JobBytes / JobDw;

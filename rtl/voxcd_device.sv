@@ -37,24 +37,21 @@
 // Ports are plain vectors, one per record field, so that every configuration is one source and the Verilated C++
 // and SystemC ports are plain integers. The code keeps to the subset of SystemVerilog that Verilator and yosys
 // both read (one-dimensional packed vectors, one-level structs, explicit package references).
-`ifndef VOXCD_ASSERT_SVH
-`include "voxcd_assert.svh"
-`endif
 module voxcd_device #(
-  parameter int unsigned PW    = voxcd_pkg::PW,
-  parameter int unsigned PF    = voxcd_pkg::PF,
-  parameter int unsigned MW    = voxcd_pkg::MW,
-  parameter int unsigned MF    = voxcd_pkg::MF,
-  parameter int unsigned TW    = voxcd_pkg::TW,
-  parameter int unsigned DW    = voxcd_pkg::DW,
-  parameter int unsigned MEMW  = voxcd_pkg::MEMW,
-  parameter int unsigned LANES = voxcd_pkg::LANES,
-  parameter int unsigned SAW   = voxcd_pkg::SAW,
-  parameter int unsigned MAW   = voxcd_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_pkg::TAGW,
-  parameter int unsigned SB    = voxcd_pkg::SB,
-  parameter int unsigned WB    = voxcd_pkg::WB,
-  parameter int unsigned BANKS = voxcd_pkg::BANKS  // 0: a voxmap copy per lane; B: one voxmap in B shared banks
+  parameter int unsigned PW    = voxcd_arch_pkg::PW,
+  parameter int unsigned PF    = voxcd_arch_pkg::PF,
+  parameter int unsigned MW    = voxcd_arch_pkg::MW,
+  parameter int unsigned MF    = voxcd_arch_pkg::MF,
+  parameter int unsigned TW    = voxcd_arch_pkg::TW,
+  parameter int unsigned DW    = voxcd_arch_pkg::DW,
+  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW,
+  parameter int unsigned LANES = voxcd_arch_pkg::LANES,
+  parameter int unsigned SAW   = voxcd_arch_pkg::SAW,
+  parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
+  parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
+  parameter int unsigned SB    = voxcd_arch_pkg::SB,
+  parameter int unsigned WB    = voxcd_arch_pkg::WB,
+  parameter int unsigned BANKS = voxcd_arch_pkg::BANKS  // 0: a voxmap copy per lane; B: one voxmap in B shared banks
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -72,7 +69,7 @@ module voxcd_device #(
   input  logic                     job_valid_i,
   output logic                     job_ready_o,
   input  logic [TAGW-1:0]          job_tag_i,
-  input  logic [1:0]               job_mode_i,         // voxcd_pkg::mode_e
+  input  logic [1:0]               job_mode_i,         // voxcd_arch_pkg::mode_e
   input  logic [3:0]               job_mask_i,
   input  logic [SAW-1:0]           job_shell_base_i,
   input  logic [SAW:0]             job_shell_count_i,
@@ -102,20 +99,20 @@ module voxcd_device #(
   input  logic                     done_ready_i,
   output logic [TAGW-1:0]          done_tag_o,
   output logic [SAW:0]             done_hits_o,
-  output logic [voxcd_pkg::CW-1:0] done_cycles_o,
+  output logic [voxcd_arch_pkg::CW-1:0] done_cycles_o,
   output logic [SAW:0]             done_points_o,
-  output logic [voxcd_pkg::CW-1:0] done_stalls_o,
+  output logic [voxcd_arch_pkg::CW-1:0] done_stalls_o,
 
   // High while a job is queued or in flight or a record waits.
   output logic                     busy_o,
   // Bank conflict cycles since reset (cycles in which R4 waited for a shared voxmap bank; 0 without BANKS).
-  output logic [voxcd_pkg::CW-1:0] conflicts_o
+  output logic [voxcd_arch_pkg::CW-1:0] conflicts_o
 );
 
-  localparam int unsigned CW    = voxcd_pkg::CW;
+  localparam int unsigned CW    = voxcd_arch_pkg::CW;
   localparam bit          Dist  = SB > 2;                        // a distance device
   localparam int unsigned IW    = SB + 3 * WB;                   // D, the threshold
-  localparam int unsigned NumR  = voxcd_pkg::PipeSlots + (Dist ? voxcd_pkg::DistSlots : 0);  // R0 .. R5 (R8)
+  localparam int unsigned NumR  = voxcd_arch_pkg::PipeSlots + (Dist ? voxcd_arch_pkg::DistSlots : 0);  // R0 .. R5 (R8)
   localparam int unsigned ThrW  = Dist ? IW : 1;                 // job fields a 2-bit device does not keep
   localparam int unsigned HxyW  = Dist ? 2 * DW + 1 : 1;
   localparam int unsigned LgL   = $clog2(LANES);
@@ -416,12 +413,12 @@ module voxcd_device #(
   end
 
   always_comb begin
-    is_first     = last_job.mode == voxcd_pkg::ModeFirst;
+    is_first     = last_job.mode == voxcd_arch_pkg::ModeFirst;
     squash       = last_slot.valid && found_q && (found_seq_q == last_slot.seq);
     records_left = '0;
     done_due     = 1'b0;
     if (last_slot.valid && !squash) begin
-      if (last_job.mode == voxcd_pkg::ModeAll) records_left = lane_hit & ~emitted_q;
+      if (last_job.mode == voxcd_arch_pkg::ModeAll) records_left = lane_hit & ~emitted_q;
       else if (is_first)                       records_left = lane_hit & (~lane_hit + 1'b1) & ~emitted_q;  // lowest
       done_due = last_slot.last || (is_first && (|lane_hit));
     end
@@ -675,7 +672,7 @@ module voxcd_device #(
   assign unused = ^{r0_slot, r4_slot, last_slot.rot, r0_job, r1_job, r2_job, r3_job, last_job, job_threshold_i, hx_in,
                     hy_in};
 
-  // ---- Assertions (Verilator runs them with --assert; voxcd_assert.svh) ----
+  // ---- Assertions (Verilator runs them with --assert; voxcd_assert.sv) ----
   // Parameter sanity, at elaboration.
   `VOXCD_ASSERT_INIT(LanesPowerOfTwo, (LANES & (LANES - 1)) == 0 && LANES <= 64)
   `VOXCD_ASSERT_INIT(ShellBankHasARow, SAW >= LgL)

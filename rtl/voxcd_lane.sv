@@ -29,20 +29,17 @@
 // has no copy: it shows its R4 address and whether it reads (read_o: the point is inside), and the device's shared
 // banks give it the word for R5 (word_i, in the R5 slot's cycles). Its R5 registers then advance on en_out_i, which
 // the device may raise without en_i: R5 takes a bubble while R4 waits for a bank (voxcd_device).
-`ifndef VOXCD_ASSERT_SVH
-`include "voxcd_assert.svh"
-`endif
 module voxcd_lane #(
-  parameter int unsigned PW   = voxcd_pkg::PW,
-  parameter int unsigned PF   = voxcd_pkg::PF,
-  parameter int unsigned MW   = voxcd_pkg::MW,
-  parameter int unsigned MF   = voxcd_pkg::MF,
-  parameter int unsigned TW   = voxcd_pkg::TW,
-  parameter int unsigned DW   = voxcd_pkg::DW,
-  parameter int unsigned MEMW = voxcd_pkg::MEMW,
-  parameter int unsigned MAW  = voxcd_pkg::MAW,
-  parameter int unsigned SB   = voxcd_pkg::SB,
-  parameter int unsigned WB   = voxcd_pkg::WB,
+  parameter int unsigned PW   = voxcd_arch_pkg::PW,
+  parameter int unsigned PF   = voxcd_arch_pkg::PF,
+  parameter int unsigned MW   = voxcd_arch_pkg::MW,
+  parameter int unsigned MF   = voxcd_arch_pkg::MF,
+  parameter int unsigned TW   = voxcd_arch_pkg::TW,
+  parameter int unsigned DW   = voxcd_arch_pkg::DW,
+  parameter int unsigned MEMW = voxcd_arch_pkg::MEMW,
+  parameter int unsigned MAW  = voxcd_arch_pkg::MAW,
+  parameter int unsigned SB   = voxcd_arch_pkg::SB,
+  parameter int unsigned WB   = voxcd_arch_pkg::WB,
   parameter bit          SharedMap = 1'b0
 ) (
   input  logic                  clk_i,
@@ -96,7 +93,7 @@ module voxcd_lane #(
   end
 
   // ---- R2: accumulator ----
-  logic [3*AccW-1:0] acc_q;  // the floor drops each coordinate's TF fraction bits (a distance lane keeps WB; voxcd.vlt)
+  logic [3*AccW-1:0] acc_q;
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       for (int i = 0; i < 3; i++) begin
@@ -108,6 +105,10 @@ module voxcd_lane #(
       end
     end
   end
+
+  // The floor drops each coordinate's TF fraction bits (a distance lane keeps the top WB of them as its weights).
+  logic unused_fraction;
+  assign unused_fraction = ^{acc_q[2*AccW +: TF], acc_q[1*AccW +: TF], acc_q[0*AccW +: TF]};
 
   // ---- R3: floor and bounds (both kinds of voxmap) ----
   // The upper bits of a two's complement value are floor(acc / 2^TF).

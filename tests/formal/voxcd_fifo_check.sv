@@ -2,9 +2,6 @@
 // whenever the free input `offer_i` says so), the consumer takes when the free input `take_i` says so, and every
 // beat that leaves must be number `received_q`: no beat lost, duplicated or reordered. The free inputs make the
 // proof cover every producer and consumer; Width = 4 bits of beat number are more than the Depth beats in flight.
-`ifndef VOXCD_ASSERT_SVH
-`include "voxcd_assert.svh"
-`endif
 module voxcd_fifo_check #(
   parameter int unsigned Depth = 3,
   parameter int unsigned Width = 4

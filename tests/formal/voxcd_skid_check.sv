@@ -2,9 +2,6 @@
 // free producer and consumer), plus the slice's own promises: ready is a function of the registers (it equals
 // "fewer than two beats held", which the scoreboard counts, whatever the inputs do), it is never low while the
 // output register is free, and with a consumer that was ready the slice passes a beat through in one cycle.
-`ifndef VOXCD_ASSERT_SVH
-`include "voxcd_assert.svh"
-`endif
 module voxcd_skid_check #(
   parameter int unsigned Width = 4
 ) (

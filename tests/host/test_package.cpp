@@ -34,12 +34,13 @@ TEST(Package, RtlDirHoldsEveryFileOfTheListAsTheSourceTreeHasIt) {
   ASSERT_GE(listed.size(), 4u);
   ASSERT_EQ(files.size(), listed.size());
   for (size_t i = 0; i < files.size(); ++i) EXPECT_EQ(fs::path(files[i]).filename(), listed[i]);
-  // The package before every module that uses it, the device before the AXI top that wraps it.
+  // The package and the assertion macros before every module that uses them, the device before the AXI top.
   const auto at = [&](const std::string& name) {
     return std::find(listed.begin(), listed.end(), name) - listed.begin();
   };
-  EXPECT_LT(at("voxcd_pkg.sv"), at("voxcd_lane.sv"));
-  EXPECT_LT(at("voxcd_pkg.sv"), at("voxcd_device.sv"));
+  EXPECT_LT(at("voxcd_arch_pkg.sv"), at("voxcd_lane.sv"));
+  EXPECT_LT(at("voxcd_arch_pkg.sv"), at("voxcd_device.sv"));
+  EXPECT_LT(at("voxcd_assert.sv"), at("voxcd_ram.sv"));
   EXPECT_LT(at("voxcd_device.sv"), at("voxcd_axi.sv"));
   for (const std::string& f : files) {
     const std::string source = std::string(VOXCD_SOURCE_RTL) + "/" + fs::path(f).filename().string();

@@ -1,9 +1,10 @@
-// voxcd_pkg: the device's default widths, enums and record layouts.
+// voxcd_arch_pkg: the device's default widths, counter width, pipeline depths and enums.
 //
-// Every width is also a module parameter of the same name (voxcd_device, voxcd_top), defaulting to the value
-// here, so one RTL source builds any configuration. The names and defaults are those of the C++ DeviceConfig
+// Every width is also a module parameter of the same name (voxcd_device, voxcd_axi), defaulting to the value
+// here, so one RTL source builds any configuration. The file's name sorts before every module's, so a tool that
+// reads rtl/*.sv in name order declares the package before its first use (rtl.lint_glob). The names and defaults are those of the C++ DeviceConfig
 // (ref/config.h); tests/rtl/test_pkg.cpp parses this file and fails when the two disagree.
-package voxcd_pkg;
+package voxcd_arch_pkg;
 
   // ---- Widths (DeviceConfig) ----
   // Defaults of the module parameters of the same names: a build that overrides one leaves it unread (voxcd.vlt).
@@ -45,8 +46,5 @@ package voxcd_pkg;
     StateInterior = 2'd2,
     StateReserved = 2'd3
   } state_e;
-
-  // Default hit mask: surface | interior. The device takes the mask from each job; this is the host's default.
-  localparam logic [3:0] DefaultHitMask = 4'b0110;  // read by the host and tests/rtl/test_pkg.cpp, not the RTL
 
 endpackage

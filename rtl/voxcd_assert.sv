@@ -1,17 +1,16 @@
-// voxcd_assert.svh: named assertions for every module of rtl/ (after lowRISC's prim_assert.sv).
+// voxcd_assert.sv: named assertions for every module of rtl/ (after lowRISC's prim_assert.sv).
 //
 //   `VOXCD_ASSERT(Name, prop)       prop holds at every rising edge of clk_i while rst_ni is high
 //   `VOXCD_ASSERT_INIT(Name, prop)  prop holds at elaboration (parameter sanity)
 //
-// The including module has clk_i and rst_ni. Three readings of one macro:
+// The module that uses them has clk_i and rst_ni. Three readings of one macro:
 //   - simulation (Verilator with --assert): a concurrent assertion that names itself when it fires;
 //   - formal (yosys read_verilog -formal, which defines FORMAL): an immediate assert in a clocked process, which
 //     `sat -prove-asserts` proves (tests/formal);
 //   - synthesis (SYNTHESIS defined, yosys's default): nothing.
-// rtl/voxcd.f lists this file first, so a tool reading the list sees the macros before any module; each module
-// also includes it (guarded), so a module read on its own with -I rtl works too.
-`ifndef VOXCD_ASSERT_SVH
-`define VOXCD_ASSERT_SVH
+// A tool reads this file before the modules, with no `include: rtl/voxcd.f lists it before them, and its name
+// (like the package's, voxcd_arch_pkg.sv) sorts before every module's, so `verilator --lint-only -Wall rtl/*.sv`
+// reads it first too (tests/rtl/CMakeLists.txt, rtl.lint_glob). Defines outlive the file in Verilator and yosys.
 
 `ifdef FORMAL
   `define VOXCD_ASSERT(__name, __prop) \
@@ -29,6 +28,4 @@
     if (!(__prop)) begin : __name \
       $error("elaboration check %s failed", `"__name`"); \
     end
-`endif
-
 `endif
