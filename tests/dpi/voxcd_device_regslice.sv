@@ -3,19 +3,19 @@
 // voxcd_device behind a register slice that holds one output record: every record leaves at least a cycle later,
 // and the core sees its consumer ready whenever the slice is empty. Parameters and ports are voxcd_device's.
 module voxcd_device_regslice #(
-  parameter int unsigned PW    = voxcd_pkg::PW,
-  parameter int unsigned PF    = voxcd_pkg::PF,
-  parameter int unsigned MW    = voxcd_pkg::MW,
-  parameter int unsigned MF    = voxcd_pkg::MF,
-  parameter int unsigned TW    = voxcd_pkg::TW,
-  parameter int unsigned DW    = voxcd_pkg::DW,
-  parameter int unsigned MEMW  = voxcd_pkg::MEMW,
-  parameter int unsigned LANES = voxcd_pkg::LANES,
-  parameter int unsigned SAW   = voxcd_pkg::SAW,
-  parameter int unsigned MAW   = voxcd_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_pkg::TAGW,
-  parameter int unsigned SB    = voxcd_pkg::SB,
-  parameter int unsigned WB    = voxcd_pkg::WB
+  parameter int unsigned PW    = voxcd_arch_pkg::PW,
+  parameter int unsigned PF    = voxcd_arch_pkg::PF,
+  parameter int unsigned MW    = voxcd_arch_pkg::MW,
+  parameter int unsigned MF    = voxcd_arch_pkg::MF,
+  parameter int unsigned TW    = voxcd_arch_pkg::TW,
+  parameter int unsigned DW    = voxcd_arch_pkg::DW,
+  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW,
+  parameter int unsigned LANES = voxcd_arch_pkg::LANES,
+  parameter int unsigned SAW   = voxcd_arch_pkg::SAW,
+  parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
+  parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
+  parameter int unsigned SB    = voxcd_arch_pkg::SB,
+  parameter int unsigned WB    = voxcd_arch_pkg::WB
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -54,14 +54,14 @@ module voxcd_device_regslice #(
   input  logic                     done_ready_i,
   output logic [TAGW-1:0]          done_tag_o,
   output logic [SAW:0]             done_hits_o,
-  output logic [voxcd_pkg::CW-1:0] done_cycles_o,
+  output logic [voxcd_arch_pkg::CW-1:0] done_cycles_o,
   output logic [SAW:0]             done_points_o,
-  output logic [voxcd_pkg::CW-1:0] done_stalls_o,
+  output logic [voxcd_arch_pkg::CW-1:0] done_stalls_o,
   output logic                     busy_o,
-  output logic [voxcd_pkg::CW-1:0] conflicts_o
+  output logic [voxcd_arch_pkg::CW-1:0] conflicts_o
 );
 
-  localparam int unsigned CW = voxcd_pkg::CW;
+  localparam int unsigned CW = voxcd_arch_pkg::CW;
 
   // The core's output streams.
   logic            c_hit_valid, c_done_valid, c_busy;
