@@ -145,6 +145,22 @@ module voxcd_device #(
   localparam int unsigned JobW = TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW + ThrW +
                                  HxyW + 2 * CW;
 
+  // What the slot registers after R0 keep of a slot's job (below): the map, and the fields of the hit test.
+  typedef struct packed {
+    logic [3*(DW+1)-1:0] n;
+    logic [MAW-1:0]      map_base;
+    logic [HxyW-1:0]     hxy;
+  } map_t;
+  typedef struct packed {
+    logic [TAGW-1:0] tag;
+    logic [1:0]      mode;
+    logic [3:0]      mask;
+    logic [ThrW-1:0] thr;
+    logic [CW-1:0]   stamp;
+    logic [CW-1:0]   stall_stamp;
+  } test_t;
+  localparam int unsigned TestW = TAGW + 2 + 4 + ThrW + 2 * CW;
+
   typedef struct packed {
     logic              valid;   // a slot of a job (else an empty slot)
     logic [SeqW-1:0]   seq;     // job sequence number, to match FIRST's early stop
@@ -194,26 +210,14 @@ module voxcd_device #(
   assign hx_in = (job_nx_i >> 1) + (DW + 1)'(1);
   assign hy_in = (job_ny_i >> 1) + (DW + 1)'(1);
 
-  always_comb begin
-    job_in.tag         = job_tag_i;
-    job_in.mode        = job_mode_i;
-    job_in.mask        = job_mask_i;
-    job_in.shell_base  = job_shell_base_i;
-    job_in.shell_count = job_shell_count_i;
-    job_in.map_base    = job_map_base_i;
-    job_in.n           = {job_nz_i, job_ny_i, job_nx_i};
-    job_in.m           = {job_m22_i, job_m21_i, job_m20_i, job_m12_i, job_m11_i, job_m10_i,
-                          job_m02_i, job_m01_i, job_m00_i};
-    job_in.t           = {job_t2_i, job_t1_i, job_t0_i};
-    job_in.thr         = '0;
-    job_in.hxy         = '0;
-    if (Dist) begin
-      job_in.thr = ThrW'(job_threshold_i);
-      job_in.hxy = HxyW'(HxyW'(hx_in) * HxyW'(hy_in));
-    end
-    job_in.stamp       = now_q;
-    job_in.stall_stamp = stall_total_d;
-  end
+  // One assignment, in job_t's field order (so that a simulator packs it only where the queue stores it).
+  assign job_in = {job_tag_i, job_mode_i, job_mask_i, job_shell_base_i, job_shell_count_i, job_map_base_i,
+                   job_nz_i, job_ny_i, job_nx_i,
+                   job_m22_i, job_m21_i, job_m20_i, job_m12_i, job_m11_i, job_m10_i, job_m02_i, job_m01_i, job_m00_i,
+                   job_t2_i, job_t1_i, job_t0_i,
+                   Dist ? ThrW'(job_threshold_i) : ThrW'(0),
+                   Dist ? HxyW'(HxyW'(hx_in) * HxyW'(hy_in)) : HxyW'(0),
+                   now_q, stall_total_d};
 
   voxcd_fifo #(
     .Depth(2),
@@ -288,7 +292,6 @@ module voxcd_device #(
 
   // ---- Slot registers R0 .. R5 (R8): the slot's bookkeeping and its job, shifting when the pipeline advances ----
   logic [MetaW-1:0] slot_meta_q [NumR];
-  logic [JobW-1:0]  slot_job_q  [NumR];
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       for (int s = 0; s < NumR; s++) slot_meta_q[s] <= '0;
@@ -300,30 +303,40 @@ module voxcd_device #(
       if (advance_out) slot_meta_q[NumR - 1] <= advance ? slot_meta_q[NumR - 2] : '0;  // '0: an empty slot
     end
   end
+
+  // The job travels with its slot, each register keeping what the stages from it on read: R0 the whole job (the
+  // lanes read M there), R1 the translation and the map, R2 and R3 the map (the lanes read t at R1, n at R2, nx,
+  // map_base and hxy at R3), and R1 .. R5 (R8) the fields of the hit test (slot_test_q[s - 1] is register Rs).
+  job_t             r0_job_q;
+  logic [3*TW-1:0]  r1_t_q;
+  map_t             r1_map_q, r2_map_q, r3_map_q;
+  logic [TestW-1:0] slot_test_q [NumR - 1];
+  test_t            r0_test, last_test;
+  assign r0_test   = {r0_job_q.tag, r0_job_q.mode, r0_job_q.mask, r0_job_q.thr, r0_job_q.stamp, r0_job_q.stall_stamp};
+  assign last_test = slot_test_q[NumR - 2];
   // Job fields are read only where their slot is valid: no reset.
   always_ff @(posedge clk_i) begin
     if (advance) begin
-      slot_job_q[0] <= head_job;
-      for (int s = 1; s < NumR - 1; s++) slot_job_q[s] <= slot_job_q[s - 1];
+      r0_job_q       <= head_job;
+      r1_t_q         <= r0_job_q.t;
+      r1_map_q       <= {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
+      r2_map_q       <= r1_map_q;
+      r3_map_q       <= r2_map_q;
+      slot_test_q[0] <= r0_test;
+      for (int s = 1; s < NumR - 2; s++) slot_test_q[s] <= slot_test_q[s - 1];
     end
-    if (advance_out) slot_job_q[NumR - 1] <= slot_job_q[NumR - 2];
+    if (advance_out) slot_test_q[NumR - 2] <= slot_test_q[NumR - 3];
   end
 
-  // What each stage reads of its slot: the job of the slot in R0 .. R3, and the last register's (R5, or R8 on a
-  // distance device) slot and job, where the hit test is.
+  // What each stage reads of its slot's bookkeeping: R0's, R4's and the last register's (R5, or R8 on a distance
+  // device), where the hit test is.
   meta_t r0_slot, r4_slot, last_slot;  // r4_slot: the slot whose lanes read the shared voxmap banks (BANKS > 0)
-  job_t  r0_job, r1_job, r2_job, r3_job, last_job;
   assign r0_slot   = slot_meta_q[0];
   assign r4_slot   = slot_meta_q[NumR - 2];
   assign last_slot = slot_meta_q[NumR - 1];
-  assign r0_job    = slot_job_q[0];
-  assign r1_job    = slot_job_q[1];
-  assign r2_job    = slot_job_q[2];
-  assign r3_job    = slot_job_q[3];
-  assign last_job  = slot_job_q[NumR - 1];
 
   // ---- Shell banks: address a is in bank a % LANES, row a / LANES ----
-  logic [LANES*3*PW-1:0] bank_rdata;
+  logic [3*PW-1:0] bank_rdata [LANES];
   for (genvar b = 0; b < LANES; b++) begin : g_bank
     // The LANES consecutive addresses of a slot fall one in each bank: bank b holds the one (b - rot) mod LANES
     // after the first.
@@ -341,7 +354,7 @@ module voxcd_device #(
       .wdata_i(shell_wdata_i),
       .re_i   (advance),
       .raddr_i(row),
-      .rdata_o(bank_rdata[b*3*PW +: 3*PW])
+      .rdata_o(bank_rdata[b])
     );
   end
 
@@ -356,7 +369,7 @@ module voxcd_device #(
 
   for (genvar l = 0; l < LANES; l++) begin : g_lane
     logic [3*PW-1:0] point;
-    assign point = bank_rdata[((32'(r0_slot.rot) + l) % LANES) * 3 * PW +: 3 * PW];
+    assign point = bank_rdata[RotW'(32'(r0_slot.rot) + l) & RotW'(LANES - 1)];
     voxcd_lane #(
       .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB),
       .SharedMap(Banked)
@@ -371,12 +384,12 @@ module voxcd_device #(
       .map_waddr_i(map_waddr_i),
       .map_wdata_i(map_wdata_i),
       .point_i    (point),
-      .m_i        (r0_job.m),
-      .t_i        (r1_job.t),
-      .n_i        (r2_job.n),
-      .nx_i       (r3_job.n[DW:0]),
-      .map_base_i (r3_job.map_base),
-      .hxy_i      ((2 * DW + 1)'(r3_job.hxy)),
+      .m_i        (r0_job_q.m),
+      .t_i        (r1_t_q),
+      .n_i        (r2_map_q.n),
+      .nx_i       (r3_map_q.n[DW:0]),
+      .map_base_i (r3_map_q.map_base),
+      .hxy_i      ((2 * DW + 1)'(r3_map_q.hxy)),
       .inside_o   (lane_inside[l]),
       .state_o    (lane_state[2*l +: 2]),
       .dist_o     (lane_dist[IW*l +: IW]),
@@ -407,18 +420,18 @@ module voxcd_device #(
   always_comb begin
     for (int i = 0; i < LANES; i++) begin
       if (Dist) lane_hit[i] = last_slot.lanes[i] && lane_inside[i] &&
-                              ($signed(lane_dist[IW*i +: IW]) <= $signed(IW'(last_job.thr)));
-      else      lane_hit[i] = last_slot.lanes[i] && lane_inside[i] && last_job.mask[lane_state[2*i +: 2]];
+                              ($signed(lane_dist[IW*i +: IW]) <= $signed(IW'(last_test.thr)));
+      else      lane_hit[i] = last_slot.lanes[i] && lane_inside[i] && last_test.mask[lane_state[2*i +: 2]];
     end
   end
 
   always_comb begin
-    is_first     = last_job.mode == voxcd_arch_pkg::ModeFirst;
+    is_first     = last_test.mode == voxcd_arch_pkg::ModeFirst;
     squash       = last_slot.valid && found_q && (found_seq_q == last_slot.seq);
     records_left = '0;
     done_due     = 1'b0;
     if (last_slot.valid && !squash) begin
-      if (last_job.mode == voxcd_arch_pkg::ModeAll) records_left = lane_hit & ~emitted_q;
+      if (last_test.mode == voxcd_arch_pkg::ModeAll) records_left = lane_hit & ~emitted_q;
       else if (is_first)                       records_left = lane_hit & (~lane_hit + 1'b1) & ~emitted_q;  // lowest
       done_due = last_slot.last || (is_first && (|lane_hit));
     end
@@ -594,10 +607,10 @@ module voxcd_device #(
   logic [CW-1:0] stalls_at_done_d, stalls_at_done_q;    // stall_total at the previous completion's emission
   logic [CW-1:0] job_age, cycles, stalls;
   logic          window_from_job;                       // the job was accepted after the previous completion
-  assign job_age         = now_q - last_job.stamp;
+  assign job_age         = now_q - last_test.stamp;
   assign window_from_job = job_age < since_done_q;
   assign cycles          = window_from_job ? job_age : since_done_q;
-  assign stalls          = stall_total_q - (window_from_job ? last_job.stall_stamp : stalls_at_done_q);
+  assign stalls          = stall_total_q - (window_from_job ? last_test.stall_stamp : stalls_at_done_q);
 
   always_comb begin
     since_done_d     = emit_done ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
@@ -619,7 +632,7 @@ module voxcd_device #(
   logic    out_valid, out_taken;
   always_comb begin
     emit_record.is_done = !(|records_left);
-    emit_record.tag     = last_job.tag;
+    emit_record.tag     = last_test.tag;
     emit_record.point   = SAW'(last_slot.k + (SAW + 1)'(emit_lane));
     emit_record.voxel   = lane_voxel[3*DW*emit_lane +: 3*DW];
     emit_record.state   = lane_state[2*emit_lane +: 2];
@@ -669,8 +682,8 @@ module voxcd_device #(
 
   // Fields that only some stages read.
   logic unused;
-  assign unused = ^{r0_slot, r4_slot, last_slot.rot, r0_job, r1_job, r2_job, r3_job, last_job, job_threshold_i, hx_in,
-                    hy_in};
+  assign unused = ^{r0_slot, r4_slot, last_slot.rot, r0_job_q, r3_map_q.n[3*(DW+1)-1:DW+1], last_test, job_threshold_i,
+                    hx_in, hy_in};
 
   // ---- Assertions (Verilator runs them with --assert; voxcd_assert.sv) ----
   // Parameter sanity, at elaboration.
@@ -685,7 +698,7 @@ module voxcd_device #(
   `VOXCD_ASSERT_INIT(WeightBitsFit, !Dist || (WB >= 1 && WB <= MF + PF && WB <= 16))
   `VOXCD_ASSERT_INIT(BanksPowerOfTwo, (BANKS & (BANKS - 1)) == 0 && BANKS <= 64 && LgB <= MAW)
   `VOXCD_ASSERT_INIT(BanksOnlyOnStates, !Banked || !Dist)
-  `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) &&
+  `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) && TestW == $bits(test_t) &&
                                         RecordW == $bits(record_t))
 
   // The streams: records hold while their consumer is not ready; one record at a time, in stream order.

@@ -78,45 +78,36 @@ module voxcd_lane #(
   localparam int unsigned CmpW  = (IdxW - 1 > DW + 1) ? IdxW - 1 : DW + 1;  // unsigned compare width
   localparam int unsigned IW    = SB + 3 * WB;                              // interpolated distance D
 
-  // ---- R1: products ----
-  logic [9*ProdW-1:0] prod_q;
-  always_ff @(posedge clk_i) begin
-    if (en_i) begin
-      for (int i = 0; i < 3; i++) begin
-        for (int j = 0; j < 3; j++) begin
-          // A signed MW x PW multiplier: the ProdW-bit product is exact.
-          prod_q[(3*i+j)*ProdW +: ProdW] <=
-              ProdW'($signed(m_i[(3*i+j)*MW +: MW])) * ProdW'($signed(point_i[j*PW +: PW]));
-        end
+  // ---- R1: products, R2: accumulator ----
+  // One block per output coordinate i: its three products (R1) and their sum with t_i (R2), each in a register of
+  // its own width (no wider vector to slice: simulators keep each in a native word).
+  logic [AccW-1:0] acc_q [3];
+  for (genvar i = 0; i < 3; i++) begin : g_row
+    logic [ProdW-1:0] px_q, py_q, pz_q;  // M[i][0]*x, M[i][1]*y, M[i][2]*z
+    logic [AccW-1:0]  sum_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        // Signed MW x PW multipliers: the ProdW-bit products are exact.
+        px_q  <= ProdW'($signed(m_i[(3*i+0)*MW +: MW])) * ProdW'($signed(point_i[0*PW +: PW]));
+        py_q  <= ProdW'($signed(m_i[(3*i+1)*MW +: MW])) * ProdW'($signed(point_i[1*PW +: PW]));
+        pz_q  <= ProdW'($signed(m_i[(3*i+2)*MW +: MW])) * ProdW'($signed(point_i[2*PW +: PW]));
+        sum_q <= AccW'($signed(t_i[i*TW +: TW])) + AccW'($signed(px_q)) + AccW'($signed(py_q)) + AccW'($signed(pz_q));
       end
     end
-  end
-
-  // ---- R2: accumulator ----
-  logic [3*AccW-1:0] acc_q;
-  always_ff @(posedge clk_i) begin
-    if (en_i) begin
-      for (int i = 0; i < 3; i++) begin
-        acc_q[i*AccW +: AccW] <=
-              {{(AccW - TW){t_i[i*TW + TW-1]}}, t_i[i*TW +: TW]}
-            + {{(AccW - ProdW){prod_q[(3*i+0)*ProdW + ProdW-1]}}, prod_q[(3*i+0)*ProdW +: ProdW]}
-            + {{(AccW - ProdW){prod_q[(3*i+1)*ProdW + ProdW-1]}}, prod_q[(3*i+1)*ProdW +: ProdW]}
-            + {{(AccW - ProdW){prod_q[(3*i+2)*ProdW + ProdW-1]}}, prod_q[(3*i+2)*ProdW +: ProdW]};
-      end
-    end
+    assign acc_q[i] = sum_q;
   end
 
   // The floor drops each coordinate's TF fraction bits (a distance lane keeps the top WB of them as its weights).
   logic unused_fraction;
-  assign unused_fraction = ^{acc_q[2*AccW +: TF], acc_q[1*AccW +: TF], acc_q[0*AccW +: TF]};
+  assign unused_fraction = ^{acc_q[2][TF-1:0], acc_q[1][TF-1:0], acc_q[0][TF-1:0]};
 
   // ---- R3: floor and bounds (both kinds of voxmap) ----
   // The upper bits of a two's complement value are floor(acc / 2^TF).
   logic [IdxW-1:0] idx_x, idx_y, idx_z;
   logic [2:0]      in_axis;
-  assign idx_x = acc_q[0*AccW + TF +: IdxW];
-  assign idx_y = acc_q[1*AccW + TF +: IdxW];
-  assign idx_z = acc_q[2*AccW + TF +: IdxW];
+  assign idx_x = acc_q[0][TF +: IdxW];
+  assign idx_y = acc_q[1][TF +: IdxW];
+  assign idx_z = acc_q[2][TF +: IdxW];
   assign in_axis[0] = !idx_x[IdxW-1] && (CmpW'(idx_x[IdxW-2:0]) < CmpW'(n_i[0*(DW+1) +: DW+1]));
   assign in_axis[1] = !idx_y[IdxW-1] && (CmpW'(idx_y[IdxW-2:0]) < CmpW'(n_i[1*(DW+1) +: DW+1]));
   assign in_axis[2] = !idx_z[IdxW-1] && (CmpW'(idx_z[IdxW-2:0]) < CmpW'(n_i[2*(DW+1) +: DW+1]));
@@ -233,7 +224,7 @@ module voxcd_lane #(
     assign z_half = idx_z[DW-1:0] >> 1;
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        for (int i = 0; i < 3; i++) frac3_q[i*WB +: WB] <= acc_q[i*AccW + TF - WB +: WB];
+        for (int i = 0; i < 3; i++) frac3_q[i*WB +: WB] <= acc_q[i][TF - WB +: WB];
         yzh3_q <= YzhW'(y_half) + YzhW'(hy) * YzhW'(z_half);
       end
     end
