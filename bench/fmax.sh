@@ -90,7 +90,8 @@ for lanes in (1, 2):
 print()
 # Logic depth after synth_xilinx.
 cells = {}
-mod = json.load(open("xilinx.json"))["modules"]["voxcd_device"]
+# chparam may leave the top under a $paramod name: the module whose name ends in voxcd_device.
+mod = next(v for k, v in json.load(open("xilinx.json"))["modules"].items() if k.split("\\")[-1] == "voxcd_device")
 for n, c in mod["cells"].items():
     cells[n] = c["type"]
 text = open("ltp.txt").read()
