@@ -32,6 +32,7 @@
 #include "voxcd/host/device/conform.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/regress/campaign.h"
+#include "voxcd/host/regress/journal.h"
 #include "voxcd/host/regress/report.h"
 #include "voxcd/host/regress/results_file.h"
 #include "voxcd/host/regress/shard.h"

@@ -1,11 +1,5 @@
 #include "voxcd/host/regress/results_file.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,22 +13,6 @@ constexpr const char* kFormatKey = "voxcd_regress_results";
 
 std::string header_line(const Campaign& c) {
   return std::string("{\"") + kFormatKey + "\":1,\"campaign\":" + campaign_json(c) + "}";
-}
-
-std::string system_error(const std::string& what, const std::string& path) {
-  return what + " " + path + ": " + std::strerror(errno);
-}
-
-// Writes all of `bytes` to fd; false on an error.
-bool write_all(int fd, const std::string& bytes) {
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += size_t(n);
-  }
-  return true;
 }
 
 }  // namespace
@@ -92,26 +70,11 @@ ShardResult parse_shard_result(const std::string& line, const Campaign& c, const
   return r;
 }
 
-ResultsFile::ResultsFile(const std::string& path, const Campaign& c) : path_(path) {
-  std::string text;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (in) {
-      std::ostringstream s;
-      s << in.rdbuf();
-      text = s.str();
-    }
-  }
-  // A writer stopped mid-line leaves a last line without its newline: it never counted.
-  const size_t keep = text.empty() ? 0 : text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
-  const bool cut = keep != text.size();
-  text.resize(keep);
+ResultsFile::ResultsFile(const std::string& path, const Campaign& c) : journal_(path) {
   std::vector<bool> seen(c.shards(), false);
-  std::istringstream lines(text);
-  std::string line;
-  size_t n = 0;
-  while (std::getline(lines, line)) {
-    ++n;
+  const std::vector<std::string>& lines = journal_.lines();
+  for (size_t n = 1; n <= lines.size(); ++n) {
+    const std::string& line = lines[n - 1];
     const std::string where = path + ":" + std::to_string(n);
     if (n == 1) {
       if (line != header_line(c)) {
@@ -133,22 +96,9 @@ ResultsFile::ResultsFile(const std::string& path, const Campaign& c) : path_(pat
     seen[r.shard] = true;
     finished_.push_back(std::move(r));
   }
-  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT, 0644);
-  if (fd_ < 0) throw std::runtime_error(system_error("cannot open the results file", path));
-  if ((cut || keep == 0) && ::ftruncate(fd_, off_t(keep)) != 0)
-    throw std::runtime_error(system_error("cannot cut the unfinished last line of", path));
-  if (::lseek(fd_, 0, SEEK_END) < 0) throw std::runtime_error(system_error("cannot seek in", path));
-  if (keep == 0 && (!write_all(fd_, header_line(c) + "\n") || ::fsync(fd_) != 0))
-    throw std::runtime_error(system_error("cannot write the results file", path));
+  journal_.open(header_line(c));
 }
 
-ResultsFile::~ResultsFile() {
-  if (fd_ >= 0) ::close(fd_);
-}
-
-void ResultsFile::append(const ShardResult& r, const Shard& s) {
-  if (!write_all(fd_, shard_result_line(r, s) + "\n") || ::fsync(fd_) != 0)
-    throw std::runtime_error(system_error("cannot write the results file", path_));
-}
+void ResultsFile::append(const ShardResult& r, const Shard& s) { journal_.append(shard_result_line(r, s)); }
 
 }  // namespace voxcd

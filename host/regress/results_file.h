@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "voxcd/host/regress/campaign.h"
+#include "voxcd/host/regress/journal.h"
 #include "voxcd/host/regress/shard.h"
 
 namespace voxcd {
@@ -24,9 +25,6 @@ class ResultsFile {
   // without its newline (a writer stopped mid-line) is cut off and its shard runs again; a malformed complete line
   // is a CampaignError naming its line. A shard written twice counts once.
   ResultsFile(const std::string& path, const Campaign& c);
-  ~ResultsFile();
-  ResultsFile(const ResultsFile&) = delete;
-  ResultsFile& operator=(const ResultsFile&) = delete;
 
   // The shards the file held when opened, each once, in file order.
   const std::vector<ShardResult>& finished() const { return finished_; }
@@ -34,8 +32,7 @@ class ResultsFile {
   void append(const ShardResult& r, const Shard& s);
 
  private:
-  std::string path_;
-  int fd_ = -1;
+  Journal journal_;
   std::vector<ShardResult> finished_;
 };
 

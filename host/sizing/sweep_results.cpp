@@ -1,13 +1,6 @@
 #include "voxcd/host/sizing/sweep_results.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 namespace voxcd {
 
@@ -17,21 +10,6 @@ constexpr const char* kFormatKey = "voxcd_sweep_results";
 
 std::string header_line(const SweepSpec& s) {
   return std::string("{\"") + kFormatKey + "\":1,\"sweep\":" + sweep_json(s) + "}";
-}
-
-std::string system_error(const std::string& what, const std::string& path) {
-  return what + " " + path + ": " + std::strerror(errno);
-}
-
-bool write_all(int fd, const std::string& s) {
-  size_t done = 0;
-  while (done < s.size()) {
-    const ssize_t n = ::write(fd, s.data() + done, s.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += size_t(n);
-  }
-  return true;
 }
 
 // The row's point must be the point of s with its index.
@@ -48,27 +26,11 @@ void check_point(const SweepRow& r, const SweepSpec& s, const std::string& where
 
 }  // namespace
 
-SweepResults::SweepResults(const std::string& path, const SweepSpec& s) : path_(path) {
-  std::string text;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (in) {
-      std::ostringstream ss;
-      ss << in.rdbuf();
-      text = ss.str();
-    }
-  }
-  // A writer stopped mid-line leaves a last line without its newline: it never counted.
-  const size_t nl = text.rfind('\n');
-  const size_t keep = nl == std::string::npos ? 0 : nl + 1;
-  const bool cut = keep != text.size();
-  text.resize(keep);
+SweepResults::SweepResults(const std::string& path, const SweepSpec& s) : journal_(path) {
   std::vector<bool> seen(s.points(), false);
-  std::istringstream lines(text);
-  std::string line;
-  size_t n = 0;
-  while (std::getline(lines, line)) {
-    ++n;
+  const std::vector<std::string>& lines = journal_.lines();
+  for (size_t n = 1; n <= lines.size(); ++n) {
+    const std::string& line = lines[n - 1];
     const std::string where = path + ":" + std::to_string(n);
     if (n == 1) {
       if (line == header_line(s)) continue;
@@ -88,22 +50,9 @@ SweepResults::SweepResults(const std::string& path, const SweepSpec& s) : path_(
     seen[r.point.index] = true;
     finished_.push_back(std::move(r));
   }
-  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT, 0644);
-  if (fd_ < 0) throw std::runtime_error(system_error("cannot open the results file", path));
-  if ((cut || keep == 0) && ::ftruncate(fd_, off_t(keep)) != 0)
-    throw std::runtime_error(system_error("cannot cut the unfinished last line of", path));
-  if (::lseek(fd_, 0, SEEK_END) < 0) throw std::runtime_error(system_error("cannot seek in", path));
-  if (keep == 0 && (!write_all(fd_, header_line(s) + "\n") || ::fsync(fd_) != 0))
-    throw std::runtime_error(system_error("cannot write the results file", path));
+  journal_.open(header_line(s));
 }
 
-SweepResults::~SweepResults() {
-  if (fd_ >= 0) ::close(fd_);
-}
-
-void SweepResults::append(const SweepRow& r) {
-  if (!write_all(fd_, sweep_row_line(r) + "\n") || ::fsync(fd_) != 0)
-    throw std::runtime_error(system_error("cannot write the results file", path_));
-}
+void SweepResults::append(const SweepRow& r) { journal_.append(sweep_row_line(r)); }
 
 }  // namespace voxcd

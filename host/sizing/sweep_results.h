@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/host/regress/journal.h"
 #include "voxcd/host/sizing/sweep.h"
 
 namespace voxcd {
@@ -17,9 +18,6 @@ class SweepResults {
   // newline (a writer stopped mid-line) is cut off and its point runs again; a malformed complete line, or a row
   // that is not the point of s it names, is a SweepError naming its line. A point written twice counts once.
   SweepResults(const std::string& path, const SweepSpec& s);
-  ~SweepResults();
-  SweepResults(const SweepResults&) = delete;
-  SweepResults& operator=(const SweepResults&) = delete;
 
   // The rows the file held when opened, each point once, in file order.
   const std::vector<SweepRow>& finished() const { return finished_; }
@@ -27,8 +25,7 @@ class SweepResults {
   void append(const SweepRow& r);
 
  private:
-  std::string path_;
-  int fd_ = -1;
+  Journal journal_;
   std::vector<SweepRow> finished_;
 };
 
