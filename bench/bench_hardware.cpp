@@ -16,7 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "Vvoxcd_l4.h"
+#include "Vvoxcd_lanes4.h"
 #include "bench/bench_common.h"
 #include "voxcd/host/device/detail/rtl.h"
 #include "voxcd/host/device/device.h"
@@ -137,7 +137,7 @@ struct Latency {
 
 Latency latency() {
   auto ctx = std::make_unique<VerilatedContext>();
-  auto m = std::make_unique<Vvoxcd_l4>(ctx.get(), "voxcd");
+  auto m = std::make_unique<Vvoxcd_lanes4>(ctx.get(), "voxcd");
   auto tick = [&] {
     m->clk_i = 1;
     m->eval();

@@ -91,7 +91,7 @@ void add_conform(CLI::App& app) {
   c->add_option("files", a->files, "Vector files");
   c->add_option("--backend", a->backend, "Backend: " + [] {
     std::string s;
-    for (const auto& b : device_backends()) s += (s.empty() ? "" : ", ") + b;
+    for (const auto& b : backend_names()) s += (s.empty() ? "" : ", ") + b;
     return s;
   }())->capture_default_str();
   c->add_option("--lanes", a->lanes, "Lanes of the device model (default: the file's LANES)")

@@ -238,7 +238,7 @@ void add_simulate(CLI::App& app) {
   }())->capture_default_str();
   c->add_option("--backend", a->sim.backend, "Device backend: " + [] {
     std::string s;
-    for (const auto& b : device_backends()) s += (s.empty() ? "" : ", ") + b;
+    for (const auto& b : backend_names()) s += (s.empty() ? "" : ", ") + b;
     return s;
   }())->capture_default_str();
   c->add_option("--lanes", a->sim.lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();

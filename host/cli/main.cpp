@@ -5,6 +5,7 @@
 #include <string>
 
 #include "voxcd/host/cli/commands.h"
+#include "voxcd/host/device/device.h"
 #include "voxcd/version.h"
 
 namespace voxcd::cli {
@@ -18,7 +19,15 @@ int main(int argc, char** argv) {
   CLI::App app{"voxcd: voxel collision detection on a modelled point-lookup accelerator"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
-  app.set_version_flag("--version", std::string("voxcd ") + VOXCD_VERSION);
+  // The version, then which backends can run here: the device models are built on their own (docs/build.md).
+  app.set_version_flag("--version", [] {
+    std::string s = std::string("voxcd ") + VOXCD_VERSION + "\nbackends:";
+    for (const voxcd::BackendStatus& b : voxcd::backend_status()) {
+      s += "\n  " + b.name + std::string(10 - b.name.size(), ' ');
+      s += b.ready ? "ready" : "not ready: " + b.why_not;
+    }
+    return s;
+  });
   voxcd::cli::add_conform(app);
   voxcd::cli::add_selftest(app);
   voxcd::cli::add_voxelize(app);

@@ -61,9 +61,21 @@ class Device {
   virtual uint64_t bank_conflicts(const Job& job, uint64_t groups) const;
 };
 
-// The backends this build has, by name.
+// Every backend by name (ref, cpu, rtl, sysc-rtl, sysc-tlm), whether or not it can run here.
+std::vector<std::string> backend_names();
+// A backend and whether it can run here: rtl and sysc-* need the device models, which are built on their own
+// (`cmake --build build --target voxcd_models`, docs/build.md) and loaded when first used.
+struct BackendStatus {
+  std::string name;
+  bool ready = false;
+  std::string why_not;  // when not ready: what is missing and the command that builds it
+};
+// Every backend with its status (loads the models' module to see whether it works).
+std::vector<BackendStatus> backend_status();
+// The backends that can run here, by name.
 std::vector<std::string> device_backends();
-// Makes a backend by name for cfg; throws DeviceError naming the backend and what it lacks.
+// Makes a backend by name for cfg; throws DeviceError naming the backend and what it lacks (for a backend that
+// cannot run here, its BackendStatus::why_not).
 std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg,
                                     const DeviceOptions& opt = {});
 

@@ -50,11 +50,23 @@ uint64_t Device::bank_conflicts(const Job&, uint64_t) const {
   throw DeviceError("the " + name() + " backend runs whole batches only (no bank_conflicts)");
 }
 
+std::vector<std::string> backend_names() { return {"ref", "cpu", "rtl", "sysc-rtl", "sysc-tlm"}; }
+
+std::vector<BackendStatus> backend_status() {
+  const std::string rtl = rtl_unavailable(), sysc = sysc_unavailable();
+  std::vector<BackendStatus> out;
+  for (const std::string& name : backend_names()) {
+    const std::string& why = name == "rtl" ? rtl : name.rfind("sysc-", 0) == 0 ? sysc : std::string();
+    out.push_back({name, why.empty(), why});
+  }
+  return out;
+}
+
 std::vector<std::string> device_backends() {
-  std::vector<std::string> b = {"ref", "cpu"};
-  if (!rtl_lanes().empty()) b.push_back("rtl");
-  if (have_sysc()) b.insert(b.end(), {"sysc-rtl", "sysc-tlm"});
-  return b;
+  std::vector<std::string> out;
+  for (const BackendStatus& b : backend_status())
+    if (b.ready) out.push_back(b.name);
+  return out;
 }
 
 namespace {
@@ -66,10 +78,9 @@ std::unique_ptr<Device> make_backend(const std::string& backend, const DeviceCon
   if (backend == "rtl") return make_rtl_device(cfg, opt);
   if (backend == "sysc-rtl") return make_sysc_device("rtl", cfg, opt);
   if (backend == "sysc-tlm") return make_sysc_device("tlm", cfg, opt);
-  const auto all = device_backends();
   std::string list;
-  for (const auto& b : all) list += (list.empty() ? "" : ", ") + b;
-  throw DeviceError("unknown backend '" + backend + "' (this build has: " + list + ")");
+  for (const auto& b : backend_names()) list += (list.empty() ? "" : ", ") + b;
+  throw DeviceError("unknown backend '" + backend + "' (the backends: " + list + ")");
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 
 #include "voxcd/ref/pipeline.h"
 
-#ifdef VOXCD_HAVE_SYSC
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/socket.h>
@@ -17,20 +16,16 @@
 #include "voxcd/sysc/server_protocol.h"
 
 extern char** environ;
-#endif
 
 namespace voxcd {
 
-#ifdef VOXCD_HAVE_SYSC
 namespace {
 
-// The server: $VOXCD_SYSC_SERVER, else where the package installs it (host/package/paths.h).
-std::string server_path() {
-  try {
-    return sysc_server_path();
-  } catch (const std::runtime_error& e) {
-    throw DeviceError(e.what());
-  }
+// The server: $VOXCD_SYSC_SERVER, else where the package installs it (host/package/paths.h); `name` says whose.
+std::string server_path(const std::string& name) {
+  const std::string why = sysc_unavailable();
+  if (!why.empty()) throw DeviceError(name + ": " + why);
+  return sysc_server_path();
 }
 
 class SyscDevice final : public Device {
@@ -38,6 +33,7 @@ class SyscDevice final : public Device {
   SyscDevice(const std::string& target, const DeviceConfig& cfg, const DeviceOptions& opt)
       : name_("sysc-" + target), cfg_(cfg) {
     cfg_.validate();
+    const std::string path = server_path(name_);  // before any descriptor exists
     int sv[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
       throw DeviceError(name_ + ": socketpair: " + std::strerror(errno));
@@ -47,7 +43,6 @@ class SyscDevice final : public Device {
       child = ::fcntl(sv[1], F_DUPFD_CLOEXEC, sysc::kServerFd + 1);
       ::close(sv[1]);
     }
-    const std::string path = server_path();
     std::vector<std::string> args = {path, "--target", target, "--config", cfg_.to_string()};
     if (!opt.trace_path.empty()) args.insert(args.end(), {"--trace", opt.trace_path});
     std::vector<char*> argv;
@@ -180,7 +175,24 @@ class SyscDevice final : public Device {
 
 }  // namespace
 
-bool have_sysc() { return true; }
+std::string sysc_unavailable() {
+  if (std::getenv("VOXCD_SYSC_SERVER")) return "";  // the caller's choice: starting it says what is wrong with it
+#if !VOXCD_DEVICE_MODELS
+  return "this build was configured without the device models (-DVOXCD_DEVICE_MODELS=OFF)";
+#else
+  try {
+    sysc_server_path();
+    return "";
+  } catch (const std::runtime_error&) {
+    const std::string cmd = models_build_command();
+    if (!cmd.empty()) return "the SystemC platform server is not built (build it with `" + cmd + "`)";
+    return "this installation has no SystemC platform server (build it with `cmake --build BUILD --target "
+           "voxcd_models` before `cmake --install BUILD`)";
+  }
+#endif
+}
+
+bool have_sysc() { return sysc_unavailable().empty(); }
 
 std::unique_ptr<Device> make_sysc_device(const std::string& target, const DeviceConfig& cfg, const DeviceOptions& opt) {
   if (target != "rtl" && target != "tlm") throw DeviceError("sysc: no target '" + target + "' (rtl or tlm)");
@@ -191,17 +203,5 @@ SyscRunTime sysc_last_run(const Device& dev) {
   if (const auto* s = dynamic_cast<const SyscDevice*>(&dev)) return s->last_run();
   return {};
 }
-
-#else
-
-bool have_sysc() { return false; }
-
-std::unique_ptr<Device> make_sysc_device(const std::string&, const DeviceConfig&, const DeviceOptions&) {
-  throw DeviceError("sysc: this build has no SystemC platform");
-}
-
-SyscRunTime sysc_last_run(const Device&) { return {}; }
-
-#endif
 
 }  // namespace voxcd

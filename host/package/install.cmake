@@ -1,7 +1,8 @@
 # cmake --install build --prefix P:
 #   P/include/voxcd/       the public headers (<voxcd/voxcd.h> and what it includes, <voxcd/sysc/...>)
 #   P/lib/                 libvoxcd (voxcd::host), libvoxcd_ref (voxcd::ref), libvoxcd_ref_fast (voxcd::fast),
-#                          libvoxcd_sysc (voxcd::sysc), libvoxcd_dpi (voxcd::dpi) and the Verilated models they load
+#                          libvoxcd_sysc (voxcd::sysc), libvoxcd_dpi (voxcd::dpi) and the Verilated models they load;
+#                          P/lib/voxcd/voxcd_rtl_backend.so, the rtl backend's module (it loads libvoxcd_rtl_models)
 #   P/lib/cmake/voxcd/     the CMake package: find_package(voxcd CONFIG REQUIRED)
 #   P/lib/pkgconfig/       voxcd.pc
 #   P/bin/voxcd            the tool; P/libexec/voxcd/voxcd_sysc_server, the sysc backends' platform
@@ -36,13 +37,29 @@ function(voxcd_build_only_interface target)
   endforeach()
 endfunction()
 
+# The device models are not built with the tool (docs/build.md): an install of a build that has them configured
+# but not built says so and how, before it copies anything.
+if(TARGET voxcd_models)
+  install(CODE "
+    foreach(f \"$<TARGET_FILE:voxcd_rtl_backend>\" \"$<TARGET_FILE:voxcd_sysc_server>\")
+      if(NOT EXISTS \"\${f}\")
+        message(FATAL_ERROR \"the device models are not built (\${f} is missing): run \"
+                            \"cmake --build ${CMAKE_BINARY_DIR} (everything) or \"
+                            \"cmake --build ${CMAKE_BINARY_DIR} --target voxcd_models first\")
+      endif()
+    endforeach()")
+endif()
+
 get_property(voxcd_targets GLOBAL PROPERTY VOXCD_EXPORTED_TARGETS)
-foreach(models voxcd_rtl_models voxcd_sysc_models)
-  if(TARGET ${models})
-    voxcd_build_only_interface(${models})
-    list(APPEND voxcd_targets ${models})
-  endif()
-endforeach()
+# voxcd::sysc links the SystemC models: they are installed with it (the C++ models only the rtl module loads).
+if(TARGET voxcd_sysc_models)
+  voxcd_build_only_interface(voxcd_sysc_models)
+  list(APPEND voxcd_targets voxcd_sysc_models)
+endif()
+if(TARGET voxcd_rtl_backend)
+  install(TARGETS voxcd_rtl_models LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(TARGETS voxcd_rtl_backend LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/voxcd)
+endif()
 set(VOXCD_HAVE_SYSC_PACKAGE OFF)
 if(TARGET voxcd_sysc)
   set(VOXCD_HAVE_SYSC_PACKAGE ON)

@@ -11,6 +11,9 @@
 #ifndef VOXCD_REL_LIBEXEC
 #define VOXCD_REL_LIBEXEC "../libexec/voxcd"
 #endif
+#ifndef VOXCD_REL_MODULES
+#define VOXCD_REL_MODULES "voxcd"
+#endif
 #ifndef VOXCD_REL_DATA
 #define VOXCD_REL_DATA "../share/voxcd"
 #endif
@@ -56,6 +59,21 @@ std::string sysc_server_path() {
   return first_of({lib / VOXCD_REL_LIBEXEC / "voxcd_sysc_server", lib / "voxcd_sysc_server"},
                   "the SystemC platform server voxcd_sysc_server (set VOXCD_SYSC_SERVER to its path)",
                   [](const fs::path& p) { return ::access(p.c_str(), X_OK) == 0; });
+}
+
+std::string rtl_module_path() {
+  if (const char* e = std::getenv("VOXCD_RTL_MODULE")) return e;
+  const fs::path lib = library_dir();
+  const char* name = "voxcd_rtl_backend.so";
+  return first_of({lib / VOXCD_REL_MODULES / name, lib / name}, std::string("the RTL models' module ") + name,
+                  [](const fs::path& p) { return fs::is_regular_file(p); });
+}
+
+std::string models_build_command() {
+  const fs::path lib = library_dir();
+  // A build tree: CMake's cache is beside the library (every target's output is in the build directory).
+  if (!fs::is_regular_file(lib / "CMakeCache.txt")) return "";
+  return "cmake --build " + lib.string() + " --target voxcd_models";
 }
 
 std::vector<std::string> rtl_files(const std::string& dir) {

@@ -16,6 +16,15 @@ std::string rtl_dir();
 // else next to the library (the build tree). Throws std::runtime_error naming the places it looked.
 std::string sysc_server_path();
 
+// The rtl backend's module, which drives the Verilated models (voxcd_rtl_backend.so): $VOXCD_RTL_MODULE, else
+// P/lib/voxcd/voxcd_rtl_backend.so, else next to the library (the build tree). Throws std::runtime_error naming the
+// places it looked.
+std::string rtl_module_path();
+
+// The command that builds the device models (the rtl module, the SystemC models and server) for the library in use:
+// `cmake --build DIR --target voxcd_models` when the library is in a build tree DIR; "" for an installed package.
+std::string models_build_command();
+
 // The files of an RTL file list (voxcd.f: one file per line relative to the list, // comments), as full paths.
 // Throws std::runtime_error when the list cannot be read or names no file.
 std::vector<std::string> rtl_files(const std::string& dir);

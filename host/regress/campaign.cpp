@@ -148,14 +148,18 @@ void validate_campaign(const Campaign& c, const std::string& where) {
   for (int l : c.lanes)
     if (l < 1 || l > 64)
       throw CampaignError(where_key(where, "lanes") + ": " + std::to_string(l) + " is not a lane count 1..64");
-  const std::vector<std::string> have = device_backends();
-  for (const std::string& b : c.backends)
-    if (std::find(have.begin(), have.end(), b) == have.end()) {
+  const std::vector<BackendStatus> have = backend_status();
+  for (const std::string& b : c.backends) {
+    const auto it = std::find_if(have.begin(), have.end(), [&](const BackendStatus& s) { return s.name == b; });
+    if (it == have.end()) {
       std::string list;
-      for (const auto& h : have) list += (list.empty() ? "" : ", ") + h;
-      throw CampaignError(where_key(where, "backends") + ": backend '" + b + "' is not in this build (it has: " +
+      for (const auto& h : have) list += (list.empty() ? "" : ", ") + h.name;
+      throw CampaignError(where_key(where, "backends") + ": backend '" + b + "' is not a backend (the backends: " +
                           list + ")");
     }
+    if (!it->ready)
+      throw CampaignError(where_key(where, "backends") + ": backend '" + b + "' cannot run here: " + it->why_not);
+  }
   for (const std::string& cfg : c.configs)
     if (canonical_config(cfg, where_key(where, "configs")) != cfg)
       throw CampaignError(where_key(where, "configs") + ": '" + cfg + "' is not in NAME VALUE form");

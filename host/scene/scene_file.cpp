@@ -242,7 +242,7 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
   if (top.number("clock", clock, 0, 1e6, true)) f.clock = given_clock(clock, where + "'s \"clock\"");
   top.integer("frames", f.frames, 1, 1000000);
   if (top.string("broadphase", f.broadphase)) top.one_of("broadphase", f.broadphase, broadphase_names());
-  if (top.string("backend", f.backend)) top.one_of("backend", f.backend, device_backends());
+  if (top.string("backend", f.backend)) top.one_of("backend", f.backend, backend_names());
   if (top.string("mode", f.mode)) top.one_of("mode", f.mode, {"ALL", "FIRST", "COUNT"});
   top.boolean("both_directions", f.both_directions);
   uint64_t bits = 0;

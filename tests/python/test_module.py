@@ -7,7 +7,7 @@ import voxcd
 
 
 def test_version_is_the_tools(cli):
-    assert voxcd.__version__ == cli("--version").split()[-1]
+    assert voxcd.__version__ == cli("--version").splitlines()[0].split()[-1]
     assert voxcd.__version__.count(".") >= 1
 
 

@@ -5,17 +5,17 @@
 
 #include <memory>
 
-#include "Vvoxcd_l2.h"
+#include VOXCD_PIN_MODEL_HEADER  // the first lane count of VOXCD_RTL_LANES (tests/rtl/CMakeLists.txt)
 
 namespace voxcd {
 namespace {
 
 struct Bench {
   std::unique_ptr<VerilatedContext> ctx = std::make_unique<VerilatedContext>();
-  std::unique_ptr<Vvoxcd_l2> m;
+  std::unique_ptr<VOXCD_PIN_MODEL> m;
   Bench() {
     ctx->fatalOnError(false);
-    m = std::make_unique<Vvoxcd_l2>(ctx.get(), "voxcd");
+    m = std::make_unique<VOXCD_PIN_MODEL>(ctx.get(), "voxcd");
     m->clk_i = 0;
     m->rst_ni = 0;
     m->hit_ready_i = 1;

@@ -3,12 +3,16 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "voxcd/host/device/device.h"
 
 namespace voxcd {
 
+// Why the rtl backend cannot run here (its models not configured, not built, or built from other sources), with
+// the command that builds them; "" when it can. The models are loaded on first use (detail/rtl_module.h).
+std::string rtl_unavailable();
 // Lane counts this build has RTL models for (empty when it has none).
 std::vector<int> rtl_lanes();
 // Configurations beyond the default widths that this build has RTL models for (VOXCD_RTL_CONFIGS).
@@ -17,7 +21,8 @@ std::vector<DeviceConfig> rtl_configs();
 std::vector<DeviceConfig> rtl_distance_configs();
 // Devices with shared voxmap banks (BANKS > 0) this build has RTL models for (VOXCD_RTL_BANKED_MODELS).
 std::vector<DeviceConfig> rtl_banked_configs();
-// Throws DeviceError when there is no model for cfg (its lane count or widths), naming what there is.
+// Throws DeviceError when the models cannot be loaded (rtl_unavailable()) or have none for cfg (its lane count or
+// widths), naming what there is.
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt);
 
 // Test-only fault injection: the backend misbehaves on purpose so that tests can reach the checks that guard

@@ -10,7 +10,10 @@
 
 namespace voxcd {
 
-// True when this build has the SystemC platform.
+// Why the sysc backends cannot run here (the build has no device models, or its SystemC platform server is not
+// built), with the command that builds it; "" when they can (or VOXCD_SYSC_SERVER names a server to try).
+std::string sysc_unavailable();
+// True when the sysc backends can run here: sysc_unavailable() is empty.
 bool have_sysc();
 // target: "rtl" or "tlm". Throws DeviceError when the server cannot be started or refuses cfg.
 std::unique_ptr<Device> make_sysc_device(const std::string& target, const DeviceConfig& cfg, const DeviceOptions& opt);
