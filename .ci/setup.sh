@@ -8,6 +8,9 @@
 # docs/build.md says what each builds and how long it takes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each phase's wall time on standard error, so that a slow step shows (docs/build.md has measured figures).
+phase_start=$SECONDS
+phase() { echo "setup.sh: $1 took $((SECONDS - phase_start)) s" >&2; phase_start=$SECONDS; }
 mode="${1:-run}"
 [ $# -gt 0 ] && shift
 case "$mode" in
@@ -32,6 +35,7 @@ if ((${#missing[@]})); then
   [ "$(id -u)" = 0 ] || sudo=sudo
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  phase "installing ${#missing[@]} packages"
 fi
 
 # `test` builds everything; `run` configures a new build/ without the tests, benchmarks and Python module (whose
@@ -43,6 +47,7 @@ elif [ ! -f build/CMakeCache.txt ]; then
   parts=(-DVOXCD_TESTS=OFF -DVOXCD_BENCH=OFF -DVOXCD_PYTHON=OFF)
 fi
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${parts[@]}" >/dev/null
+phase "configuring build/"
 
 # The backends that load the device models (docs/build.md, "The device models").
 needs_models() {
@@ -65,10 +70,12 @@ case "$mode" in
     targets=(voxcd)
     if needs_models "$@"; then targets+=(voxcd_models); fi
     cmake --build build -j2 --target "${targets[@]}"
+    phase "building ${targets[*]}"
     exec build/voxcd simulate "$@"
     ;;
   test)
     cmake --build build -j2
+    phase "building everything"
     cd build && exec ctest -j2 --output-on-failure "$@"
     ;;
 esac

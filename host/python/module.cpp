@@ -71,7 +71,17 @@ PYBIND11_MODULE(voxcd, m) {
     }
   });
 
-  m.def("backends", &device_backends, "The device backends of this build, by name (for backend=...).");
+  m.def("backends", &device_backends, "The device backends that can run here, by name (for backend=...).");
+  m.def(
+      "backend_status",
+      [] {
+        py::list out;
+        for (const BackendStatus& b : backend_status())
+          out.append(py::dict(py::arg("name") = b.name, py::arg("ready") = b.ready, py::arg("why_not") = b.why_not));
+        return out;
+      },
+      "Every backend as {name, ready, why_not}: rtl and sysc-* need the device models (cmake --build build "
+      "--target voxcd_models), which why_not names when they are not built.");
   m.def("shapes", &shape_names, "The built-in shapes, by name (for voxelize, pair and simulate).");
   m.def("broadphases", &broadphase_names, "The broadphases, by name (for simulate(pruning=...)).");
   m.attr("EMPTY") = int(kEmpty);

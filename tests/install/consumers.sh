@@ -31,7 +31,13 @@ if find "$P/include" -path '*detail*' -o -name server_protocol.h -o -path '*/cli
 fi
 
 step "the installed tool"
-"$P/bin/voxcd" --version
+"$P/bin/voxcd" --version | tee "$work/version.txt"
+# Every backend of a full build is installed ready: the rtl backend's module from lib/voxcd, the server from libexec.
+for b in ref cpu rtl sysc-rtl sysc-tlm; do
+  grep -Eq "^  $b +ready\$" "$work/version.txt" || fail "the installed $b backend is not ready (voxcd --version above)"
+done
+"$P/bin/voxcd" conform --generate --seed 3 --jobs 20 -o "$work/generated.vec" >/dev/null
+"$P/bin/voxcd" conform --backend rtl --cycles "$work/generated.vec" | grep -q "^1 passed, 0 failed" || fail "voxcd conform --backend rtl"
 "$P/bin/voxcd" simulate --frames 3 --objects 32 | grep -q "state hash" || fail "voxcd simulate"
 if "$P/bin/voxcd" conform --help >/dev/null 2>&1 && [ -x "$P/libexec/voxcd/voxcd_sysc_server" ]; then
   "$P/bin/voxcd" simulate --frames 2 --objects 16 --backend sysc-tlm | grep -q "state hash" ||

@@ -11,8 +11,16 @@ def test_version_is_the_tools(cli):
     assert voxcd.__version__.count(".") >= 1
 
 
-def test_backends_shapes_and_broadphases():
+def test_backends_shapes_and_broadphases(cli):
     assert {"ref", "cpu"} <= set(voxcd.backends())
+    status = voxcd.backend_status()
+    assert [b["name"] for b in status] == ["ref", "cpu", "rtl", "sysc-rtl", "sysc-tlm"]
+    assert voxcd.backends() == [b["name"] for b in status if b["ready"]]
+    assert all(b["why_not"] == "" for b in status if b["ready"])
+    assert all(b["why_not"] for b in status if not b["ready"])
+    # The tool says the same: `voxcd --version` lists every backend after "backends:".
+    listed = dict(line.split(None, 1) for line in cli("--version").splitlines()[2:])
+    assert listed == {b["name"]: "ready" if b["ready"] else "not ready: " + b["why_not"] for b in status}
     assert voxcd.shapes()[0] == "polytope36" and "torus" in voxcd.shapes()
     assert "grid" in voxcd.broadphases()
     assert (voxcd.EMPTY, voxcd.SURFACE, voxcd.INTERIOR) == (0, 1, 2)

@@ -17,6 +17,7 @@
 #include "voxcd/sysc/platform.h"
 #include "voxcd/sysc/rtl_target.h"
 #include "tests/ref/directed_cases.h"
+#include "tests/sysc/built_lanes.h"
 
 namespace voxcd::sysc {
 namespace {
@@ -59,14 +60,21 @@ Case generated(uint64_t seed, int lanes, size_t jobs) {
   return generated(seed, cfg, jobs);
 }
 
-std::vector<Case> conformance_cases(uint64_t seed, bool rtl_widths_only, size_t jobs) {
+// Generated cases on every lane count (the RTL target: every lane count it has models of) and the directed cases
+// (the RTL target: those of its widths, on the first lane count it has when it has none of theirs).
+std::vector<Case> conformance_cases(uint64_t seed, bool rtl_models_only, size_t jobs) {
+  const std::vector<int> lanes = rtl_models_only ? rtl_target_lanes() : std::vector<int>{1, 2, 4, 8};
   std::vector<Case> out;
-  for (int lanes : {1, 2, 4, 8}) out.push_back(generated(seed + uint64_t(lanes), lanes, jobs));
+  for (int l : lanes) out.push_back(generated(seed + uint64_t(l), l, jobs));
   for (const auto& d : testing::directed_cases()) {
-    DeviceConfig built;
-    built.LANES = d.config.LANES;
-    if (rtl_widths_only && !d.config.same_widths(built)) continue;
-    Case c{"directed " + d.name, d.config, d.memory, d.jobs, run_stream(d.config, d.memory, d.jobs)};
+    DeviceConfig cfg = d.config;
+    if (rtl_models_only) {
+      DeviceConfig built;
+      built.LANES = cfg.LANES;
+      if (!cfg.same_widths(built)) continue;
+      cfg.LANES = built_lanes(cfg.LANES);
+    }
+    Case c{"directed " + d.name, cfg, d.memory, d.jobs, run_stream(cfg, d.memory, d.jobs)};
     annotate_cycles(c.config, c.jobs, c.expected);
     out.push_back(c);
   }
@@ -112,14 +120,14 @@ void conformance(TargetKind k, size_t jobs) {
   run_cases(k, cases);
 }
 
-// Every distance device the build has a SystemC RTL model of (SB 4, 8, 16): generated jobs with thresholds, their
+// Every distance device the build has a SystemC RTL model of (SB 4, 8, 16 by default): generated jobs with thresholds, their
 // hit records with distances, and cycles (three more slot registers); the TLM target on the same configurations.
 void distance_conformance(TargetKind k) {
   const uint64_t seed = test_seed();
   std::vector<Case> cases;
   for (const DeviceConfig& cfg : rtl_target_configs())
     if (cfg.distance()) cases.push_back(generated(seed + uint64_t(cfg.SB), cfg, 150));
-  ASSERT_GE(cases.size(), 3u) << "the build's distance models (VOXCD_SYSC_DIST_MODELS)";
+  ASSERT_FALSE(cases.empty()) << "the build's distance models (VOXCD_SYSC_DIST_MODELS)";
   size_t with_dist = 0;
   for (const Case& c : cases)
     for (const Record& r : c.expected) with_dist += r.kind == Record::Hit && r.dist != 0;
@@ -137,7 +145,7 @@ TEST(SyscTlm, DistanceDevicesWithCycles) { distance_conformance(TargetKind::Tlm)
 // the read that returns the last record ends at (edge_after(t) + 2 + sum of cycles) * T, and the CYCLES register
 // holds the sum.
 TEST(Sysc, AnnotatedTimeIsCyclesTimesClockPeriod) {
-  const Case c = generated(test_seed(), 4, 120);
+  const Case c = generated(test_seed(), built_lanes(4), 120);
   uint64_t sum = 0;
   for (const Record& r : c.expected)
     if (r.kind == Record::Done) sum += *r.cycles;
@@ -256,7 +264,7 @@ TEST(Sysc, RtlAndTlmGiveIdenticalTransactionLogs) {
   const uint64_t seed = test_seed();
   // FIRST jobs last in a batch leave squashed slots draining: the generator's mix has them, and so do these
   // lane counts' different slot sizes.
-  std::vector<Case> cases = {generated(seed, 4, 160), generated(seed + 1, 1, 80)};
+  std::vector<Case> cases = {generated(seed, built_lanes(4), 160), generated(seed + 1, built_lanes(1), 80)};
   std::vector<std::unique_ptr<Platform>> rtl, tlm;
   for (size_t i = 0; i < cases.size(); ++i) {
     rtl.push_back(make_platform("rtl" + std::to_string(i), TargetKind::Rtl, cases[i].config, sc_time(1, SC_US), 512));
@@ -282,7 +290,7 @@ TEST(Sysc, RtlAndTlmGiveIdenticalTransactionLogs) {
 
 // Every kind of malformed access gets its error response, on both targets, and the device still works after.
 TEST(Sysc, MalformedAccessesGetErrorResponses) {
-  const Case c = generated(test_seed(), 2, 20);
+  const Case c = generated(test_seed(), built_lanes(2), 20);
   auto rtl = make_platform("rtl", TargetKind::Rtl, c.config);
   auto tlm = make_platform("tlm", TargetKind::Tlm, c.config);
   for (Platform* p : {rtl.get(), tlm.get()}) {

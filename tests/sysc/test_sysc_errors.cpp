@@ -15,6 +15,7 @@
 #include "voxcd/sysc/rtl_target.h"
 #include "tests/error_text.h"
 #include "tests/origin_stimulus.h"
+#include "tests/sysc/built_lanes.h"
 
 namespace voxcd::sysc {
 namespace {
@@ -48,7 +49,7 @@ void expect_stream(const std::vector<Record>& want, const std::vector<Record>& g
 // which is the context of the RTL target made last (docs/robustness.md).
 TEST(SyscErrors, FaultedRtlTargetAnswersOnlyItsRegisters) {
   DeviceConfig cfg;
-  cfg.LANES = 2;
+  cfg.LANES = built_lanes(2);
   const DeviceMemory mem = origin_memory(cfg, 600);
   auto p = make_platform("rtl", TargetKind::Rtl, cfg);
   dynamic_cast<RtlTarget&>(p->target()).start_writes_while_busy();
@@ -92,7 +93,8 @@ TEST(SyscErrors, FaultedRtlTargetAnswersOnlyItsRegisters) {
 // read_reg, write_reg and load throw BusError naming the access, its address and the response; the target's
 // last_error says why. A refused load burst writes nothing, and the bursts before it stay loaded.
 TEST(SyscErrors, HostCpuHelpersRaiseBusErrorsNamingTheAccess) {
-  const DeviceConfig cfg;
+  DeviceConfig cfg;
+  cfg.LANES = built_lanes(cfg.LANES);
   auto rtl = make_platform("rtl", TargetKind::Rtl, cfg);
   auto tlm = make_platform("tlm", TargetKind::Tlm, cfg);
   for (Platform* p : {rtl.get(), tlm.get()}) {
@@ -129,7 +131,8 @@ TEST(SyscErrors, HostCpuHelpersRaiseBusErrorsNamingTheAccess) {
 // A shell word's bytes 12..15 and a descriptor's bytes 6, 7, 0x44..0x47 and 0x68..0x7f are reserved: a non-zero one
 // refuses the whole write, names the word or descriptor and the byte, and stages or writes nothing of it.
 TEST(SyscErrors, NonZeroReservedBytesAreRefusedWhole) {
-  const DeviceConfig cfg;
+  DeviceConfig cfg;
+  cfg.LANES = built_lanes(cfg.LANES);
   auto rtl = make_platform("rtl", TargetKind::Rtl, cfg);
   auto tlm = make_platform("tlm", TargetKind::Tlm, cfg);
   const DeviceMemory mem = origin_memory(cfg, 64);
