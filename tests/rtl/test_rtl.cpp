@@ -1,6 +1,6 @@
-// The RTL against ref/: every directed case, 10^5 random jobs over 1, 2, 4 and 8 lanes with bit-exact streams and
-// exact cycles (ref/timing.h), and random back-pressure on both output streams with a scoreboard. Seed: printed;
-// VOXCD_SEED replays.
+// The RTL against ref/: every directed case, 25000 random jobs on each lane count of the build (1, 2, 4 and 8 by
+// default) with bit-exact streams and exact cycles (ref/timing.h), and random back-pressure on both output streams
+// with a scoreboard. Seed: printed; VOXCD_SEED replays.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +13,7 @@
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "tests/ref/directed_cases.h"
+#include "tests/rtl/built_lanes.h"
 #include "tests/rtl/scoreboard.h"
 
 namespace voxcd {
@@ -143,7 +144,7 @@ TEST(Rtl, TraceWritesAWaveform) {
     DeviceOptions opt;
     opt.trace_path = path;
     DeviceConfig cfg = c.config;
-    cfg.LANES = 2;
+    cfg.LANES = built_rtl_lanes(2);
     auto dev = make_device("rtl", cfg, opt);
     dev->load(c.memory);
     dev->run(c.jobs);

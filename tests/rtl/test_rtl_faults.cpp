@@ -14,6 +14,7 @@
 #include "voxcd/ref/pipeline.h"
 #include "tests/error_text.h"
 #include "tests/origin_stimulus.h"
+#include "tests/rtl/built_lanes.h"
 
 namespace voxcd {
 namespace {
@@ -39,7 +40,7 @@ const std::regex kAssertion(R"(rtl: an assertion in the RTL failed at cycle \d+ 
 
 TEST(RtlFaults, FailedAssertionIsADeviceErrorOfTheDeviceThatFailed) {
   DeviceConfig cfg;
-  cfg.LANES = 2;
+  cfg.LANES = built_rtl_lanes(2);
   const DeviceMemory mem = origin_memory(cfg, 64);
   const std::vector<Job> jobs = {origin_job(1, Mode::All, 64)};
   RtlFaults faults;
