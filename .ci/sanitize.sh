@@ -8,8 +8,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # -O1 -g1: about half the compile time of RelWithDebInfo's -O2 -g under the sanitizers, and reports still name
 # every frame's file and line (docs/build.md, "Where the time goes").
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-      -DVOXCD_SANITIZE=ON -DVOXCD_DEVICE_MODELS=OFF -DVOXCD_BENCH=OFF >/dev/null
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DVOXCD_SANITIZE=ON -DVOXCD_DEVICE_MODELS=OFF -DVOXCD_BENCH=OFF >/dev/null
 # Everything this configuration has: the libraries, the tool, the Python module and the tests (no benchmarks).
 cmake --build build-asan -j2
 # UBSan stops at the first error (the build also has -fno-sanitize-recover); LeakSanitizer runs at every exit, with

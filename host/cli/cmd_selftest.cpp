@@ -1,5 +1,6 @@
-// voxcd selftest: generated conformance vectors on every backend that can run here (a line names each that cannot), at 1, 2, 4 and 8 lanes, with
-// cycles compared where the backend models them. A summary table, then "N passed, N failed".
+// voxcd selftest: generated conformance vectors on every backend that can run here (a line names each that
+// cannot), at 1, 2, 4 and 8 lanes, with cycles compared where the backend models them. A summary table, then
+// "N passed, N failed".
 #include <chrono>
 #include <cstdio>
 #include <iostream>

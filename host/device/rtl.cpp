@@ -66,8 +66,9 @@ Loaded load() {
   try {
     path = rtl_module_path();
   } catch (const std::runtime_error&) {
-    if (models_build_command().empty()) return {nullptr, "this installation has no RTL models (" + rebuild_hint() + ")"};
-    return {nullptr, "the RTL models are not built (" + rebuild_hint() + ")"};
+    const bool installed = models_build_command().empty();
+    return {nullptr, std::string(installed ? "this installation has no RTL models" : "the RTL models are not built") +
+                         " (" + rebuild_hint() + ")"};
   }
   // One load per path; a failure is tried again next time (the models may have been built meanwhile).
   static std::mutex mutex;
