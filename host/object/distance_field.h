@@ -47,8 +47,12 @@ struct DistanceOptions {
 
 // The field of a mesh as repair() left it, on the voxmap's grid: each node's exact distance to the nearest
 // triangle (point-triangle distance), its sign from the solid voxelize computed (inside: negative; sheets, which
-// bound no solid, give the unsigned distance). Only the voxmap's grid is used. MeshError for bits not 4, 8 or 16, a
-// band that is not finite and > 0, or a point cloud. The result never depends on opt.threads.
-DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt);
+// bound no solid, give the unsigned distance). Then every cell whose surface the nodes do not resolve (a part thinner
+// than a voxel, a sharp edge, a sheet) is made conservative: its nodes are lowered to at most 0, so that every point
+// in it is a hit (docs/objects.md, "Conservative cells"); *conservative, when given, gets their number. Only the
+// voxmap's grid is used. MeshError for bits not 4, 8 or 16, a band that is not finite and > 0, or a point cloud.
+// The result never depends on opt.threads.
+DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt,
+                             uint64_t* conservative = nullptr);
 
 }  // namespace voxcd
