@@ -24,6 +24,7 @@ std::vector<Model> corpus() {
                           diff::from_defect(box_with_internal_face()), diff::from_defect(wedge_union()),
                           diff::from_defect(pinwheel()), diff::from_defect(box_with_fin()),
                           diff::from_defect(box_with_t_junction()), diff::from_defect(edge_sharing_cubes()),
+                          diff::from_defect(overlapping_boxes_sharing_an_edge()),
                           diff::thin_plate(0.004), diff::thin_plate(0.012), diff::thin_plate(0.03),
                           diff::open_tube(), diff::open_square()};
   Model torus;

@@ -668,6 +668,27 @@ inline Defect pinwheel(int n = 8) {
   return d;
 }
 
+// Two closed boxes that overlap and share an edge (an L exported as two overlapping parts): the edge has four
+// triangles, two pairs of them coplanar. Each box keeps its inside: the solid is their union.
+inline Defect overlapping_boxes_sharing_an_edge() {
+  const Eigen::Vector3d a0(0, 0, 0), a1(2, 1, 1), b0(1.5, 0, 0), b1(2, 3, 1);
+  Defect d;
+  d.mesh = make_box(a0, a1);
+  append(d.mesh, make_box(b0, b1));
+  d.name = "two overlapping boxes sharing an edge";
+  d.mesh.name = d.name;
+  d.solid = {make_box(a0, a1), make_box(b0, b1)};
+  d.volume = 2 + 1.5 - 0.5;
+  d.expect.nonmanifold_edges = 1;
+  d.expect.nonmanifold_parts = 1;
+  d.expect.dropped_internal = 0;
+  d.expect.fin_triangles = 0;
+  d.expect.sheet_components = 0;
+  d.expect.surface_only = 0;
+  d.expect.closed = 0;
+  return d;
+}
+
 // A unit cube with a fin: a flat flap on one of its edges, sticking out (empty space on both sides). The fin is a
 // sheet; the cube stays solid.
 inline Defect box_with_fin() {
@@ -879,6 +900,7 @@ inline std::vector<Defect> all_defects(int level, uint64_t seed) {
   v.push_back(wedge_union());
   v.push_back(pinwheel());
   v.push_back(box_with_fin());
+  v.push_back(overlapping_boxes_sharing_an_edge());
   v.push_back(box_with_t_junction());
   for (int k = 0; k < 3; ++k) v.push_back(hollow(std::max(level - 1, 1), k));
   v.push_back(sphere_and_sheet(std::max(level - 1, 1)));

@@ -77,7 +77,8 @@ TEST(Differential, RobotInTheRoom) {
 // lies inside by more than a voxel.
 TEST(Differential, NonManifoldSolidsHaveTheirInterior) {
   for (const test::Defect& d :
-       {test::face_sharing_boxes(), test::box_with_internal_face(), test::wedge_union(), test::pinwheel(), test::box_with_fin()}) {
+       {test::face_sharing_boxes(), test::box_with_internal_face(), test::wedge_union(), test::pinwheel(), test::box_with_fin(),
+        test::overlapping_boxes_sharing_an_edge()}) {
     Mesh m = d.mesh;
     MeshReport rep = repair(m);
     EXPECT_FALSE(rep.surface_only) << d.name;

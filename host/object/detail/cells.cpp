@@ -1,5 +1,5 @@
-// classify_cells() (host/object/detail/cells.h): sides joined around edges by angle, then by rays; cells labelled
-// by their distance from the unbounded cell.
+// classify_cells() (host/object/detail/cells.h): sides joined around edges by angle; the unbounded cell found by one
+// ray; cells labelled by their distance from it.
 #include "voxcd/host/object/detail/cells.h"
 
 #include <algorithm>
@@ -12,8 +12,9 @@ namespace voxcd::detail {
 
 namespace {
 
-// Rays cast from each group of joined sides, spread over its triangles.
-constexpr size_t kRaysPerGroup = 4;
+// Triangles around an edge whose angles differ by at most this (radians) lie on one another.
+constexpr double kSameAngle = 1e-9;
+constexpr double kPi = 3.14159265358979323846;
 
 struct Sets {
   std::vector<uint32_t> parent;
@@ -37,8 +38,37 @@ struct Use {
   uint32_t tri;  // local index
 };
 
+struct Around {
+  double angle;
+  uint32_t tri;
+  bool front_ahead;  // the side facing increasing angle is the normal's
+};
+
+// The uses [i, j) of one edge, sorted by the angle of their triangles around it.
+void around_edge(const Mesh& m, const std::vector<uint32_t>& tris, const std::vector<Use>& uses, size_t i, size_t j,
+                 std::vector<Around>& around) {
+  const uint32_t va = uint32_t(uses[i].key >> 32), vb = uint32_t(uses[i].key);
+  const Eigen::Vector3d& a = m.vertices[va];
+  const Eigen::Vector3d e = (m.vertices[vb] - a).normalized();
+  const Eigen::Vector3d u = e.unitOrthogonal(), w = e.cross(u);
+  around.clear();
+  for (size_t k = i; k < j; ++k) {
+    const auto& t = m.triangles[tris[uses[k].tri]];
+    Eigen::Vector3d c = m.vertices[t[0]];  // the corner off the edge
+    for (uint32_t v : t)
+      if (v != va && v != vb) c = m.vertices[v];
+    const Eigen::Vector3d r = (c - a) - (c - a).dot(e) * e;
+    const Eigen::Vector3d n = (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]);
+    around.push_back({std::atan2(r.dot(w), r.dot(u)), uses[k].tri, n.dot(e.cross(r)) > 0});
+  }
+  std::sort(around.begin(), around.end(),
+            [](const Around& x, const Around& y) { return x.angle != y.angle ? x.angle < y.angle : x.tri < y.tri; });
+}
+
 // Joins, around every edge used by two triangles or more, the two sides facing each wedge between neighbours in
-// angular order.
+// angular order. Triangles at the same angle (within kSameAngle: coplanar faces on one side of the edge, as two
+// touching parts give them) form a stack: the wedges on either side are bounded by its first and its last
+// triangle, and the sides facing each other inside the stack bound no space and are joined to nothing here.
 void join_around_edges(const Mesh& m, const std::vector<uint32_t>& tris, Sets& sides) {
   std::vector<Use> uses;
   uses.reserve(3 * tris.size());
@@ -48,34 +78,28 @@ void join_around_edges(const Mesh& m, const std::vector<uint32_t>& tris, Sets& s
       uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), i});
     }
   std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
-  struct Around {
-    double angle;
-    uint32_t tri;
-    bool front_ahead;  // the side facing increasing angle is the normal's
-  };
   std::vector<Around> around;
   for (size_t i = 0; i < uses.size();) {
     size_t j = i;
     while (j < uses.size() && uses[j].key == uses[i].key) ++j;
     if (j - i >= 2) {
-      const Eigen::Vector3d& a = m.vertices[uint32_t(uses[i].key >> 32)];
-      const Eigen::Vector3d e = (m.vertices[uint32_t(uses[i].key)] - a).normalized();
-      const Eigen::Vector3d u = e.unitOrthogonal(), w = e.cross(u);
-      around.clear();
-      for (size_t k = i; k < j; ++k) {
-        const auto& t = m.triangles[tris[uses[k].tri]];
-        Eigen::Vector3d c = m.vertices[t[0]];  // the corner off the edge
-        for (uint32_t v : t)
-          if (v != uint32_t(uses[i].key >> 32) && v != uint32_t(uses[i].key)) c = m.vertices[v];
-        const Eigen::Vector3d r = (c - a) - (c - a).dot(e) * e;
-        const Eigen::Vector3d n = (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]);
-        around.push_back({std::atan2(r.dot(w), r.dot(u)), uses[k].tri, n.dot(e.cross(r)) > 0});
+      around_edge(m, tris, uses, i, j, around);
+      // Stacks: runs of equal angles (the last run may continue the first across the angle's wrap).
+      std::vector<std::pair<size_t, size_t>> stacks;  // [first, last] in `around`
+      for (size_t k = 0; k < around.size();) {
+        size_t e = k;
+        while (e + 1 < around.size() && around[e + 1].angle - around[e].angle <= kSameAngle) ++e;
+        stacks.push_back({k, e});
+        k = e + 1;
       }
-      std::sort(around.begin(), around.end(),
-                [](const Around& x, const Around& y) { return x.angle != y.angle ? x.angle < y.angle : x.tri < y.tri; });
-      for (size_t k = 0; k < around.size(); ++k) {
-        const Around& p = around[k];
-        const Around& q = around[(k + 1) % around.size()];
+      if (stacks.size() > 1 &&
+          around.front().angle + 2 * kPi - around.back().angle <= kSameAngle) {  // the wrap joins two runs
+        stacks.front().first = stacks.back().first;
+        stacks.pop_back();
+      }
+      for (size_t k = 0; k < stacks.size(); ++k) {
+        const Around& p = around[stacks[k].second];                        // the last of this stack
+        const Around& q = around[stacks[(k + 1) % stacks.size()].first];   // the first of the next
         sides.unite(side(p.tri, p.front_ahead), side(q.tri, !q.front_ahead));
       }
     }
@@ -83,60 +107,29 @@ void join_around_edges(const Mesh& m, const std::vector<uint32_t>& tris, Sets& s
   }
 }
 
-// Casts rays from a few sides of every group of joined sides along the side's normal: the side a ray meets first
-// faces the same cell (joined); a ray that meets nothing marks its cell unbounded. One more ray from outside the
-// part's box marks the side it meets first. Returns, per side, whether its cell is the unbounded one (after the
-// joins, of its root).
-std::vector<uint8_t> join_by_rays(const Mesh& m, const std::vector<uint32_t>& tris, Sets& sides) {
+// The side of the part that a ray from beyond its box meets first, towards the centroid of the triangle with the
+// largest centroid x: it faces the unbounded cell.
+uint32_t outer_side(const Mesh& m, const std::vector<uint32_t>& tris) {
   std::vector<std::array<uint32_t, 3>> local(tris.size());
   for (size_t i = 0; i < tris.size(); ++i) local[i] = m.triangles[tris[i]];
-  const TriangleTree tree(m.vertices, local);
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
-  for (const auto& t : local)
-    for (uint32_t v : t) lo = lo.cwiseMin(m.vertices[v]), hi = hi.cwiseMax(m.vertices[v]);
-  const double diag = (hi - lo).norm();
-  const double min_l = 1e-12 * diag;
-  // A direction off the axes and off simple ratios, so that rays seldom graze an edge.
-  const Eigen::Vector3d tilt = Eigen::Vector3d(0.0137, -0.0071, 0.0213);
-  std::vector<std::vector<uint32_t>> groups(2 * tris.size());
-  for (uint32_t s = 0; s < 2 * tris.size(); ++s) groups[sides.find(s)].push_back(s);
-  std::vector<uint8_t> unbounded(2 * tris.size(), 0);
-  for (const auto& g : groups) {
-    if (g.empty()) continue;
-    const size_t n = std::min(kRaysPerGroup, g.size());
-    for (size_t k = 0; k < n; ++k) {
-      const uint32_t s = g[g.size() * k / n], i = s / 2;
-      const auto& t = local[i];
-      const Eigen::Vector3d a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
-      Eigen::Vector3d d = (b - a).cross(c - a).normalized() + tilt;
-      if (s & 1) d = -(d - 2 * tilt);
-      d.normalize();
-      bool front = false;
-      const uint32_t hit = tree.first_hit((a + b + c) / 3, d, i, min_l, nullptr, &front);
-      if (hit == UINT32_MAX)
-        unbounded[s] = 1;
-      else
-        sides.unite(s, side(hit, front));
-    }
-  }
-  // From outside: towards the centroid of the triangle with the largest centroid x, from beyond the box.
   uint32_t far = 0;
   double far_x = -HUGE_VAL;
   for (uint32_t i = 0; i < local.size(); ++i) {
+    for (uint32_t v : local[i]) lo = lo.cwiseMin(m.vertices[v]), hi = hi.cwiseMax(m.vertices[v]);
     const double x = m.vertices[local[i][0]].x() + m.vertices[local[i][1]].x() + m.vertices[local[i][2]].x();
     if (x > far_x) far_x = x, far = i;
   }
   const Eigen::Vector3d target =
       (m.vertices[local[far][0]] + m.vertices[local[far][1]] + m.vertices[local[far][2]]) / 3;
-  const Eigen::Vector3d d = Eigen::Vector3d(-1, tilt.y(), tilt.z()).normalized();
-  const Eigen::Vector3d o = target - d * (hi.x() - target.x() + diag + 1);
+  // A direction off the axes and off simple ratios, so that the ray seldom meets an edge.
+  const Eigen::Vector3d d = Eigen::Vector3d(-1, 0.0071, -0.0137).normalized();
+  const Eigen::Vector3d o = target - d * ((hi.x() - target.x() + (hi - lo).norm() + 1) / -d.x());
+  const TriangleTree tree(m.vertices, local);
   bool front = false;
   const uint32_t hit = tree.first_hit(o, d, UINT32_MAX, 0, nullptr, &front);
-  if (hit != UINT32_MAX) unbounded[side(hit, front)] = 1;
-  std::vector<uint8_t> out(2 * tris.size(), 0);
-  for (uint32_t s = 0; s < 2 * tris.size(); ++s)
-    if (unbounded[s]) out[sides.find(s)] = 1;
-  return out;
+  // (The ray aims at the inside of a triangle of the part, so it meets one.)
+  return hit == UINT32_MAX ? side(far, true) : side(hit, front);
 }
 
 }  // namespace
@@ -149,16 +142,7 @@ CellRoles classify_cells(const Mesh& m, const std::vector<uint32_t>& tris) {
   if (n == 0) return r;
   Sets sides(2 * n);
   join_around_edges(m, tris, sides);
-  const std::vector<uint8_t> unbounded_root = join_by_rays(m, tris, sides);
-  // The unbounded cell: every root a ray escaped from, joined.
-  uint32_t outer = UINT32_MAX;
-  for (uint32_t s = 0; s < 2 * n; ++s)
-    if (unbounded_root[s]) {
-      if (outer == UINT32_MAX)
-        outer = sides.find(s);
-      else
-        sides.unite(outer, s), outer = sides.find(s);
-    }
+  const uint32_t outer = sides.find(outer_side(m, tris));
   // Cells and the triangles between them; breadth first from the unbounded cell.
   std::vector<uint32_t> cell(2 * n);
   std::vector<std::vector<uint32_t>> next(2 * n);
@@ -171,7 +155,6 @@ CellRoles classify_cells(const Mesh& m, const std::vector<uint32_t>& tris) {
   }
   std::vector<uint32_t> dist(2 * n, UINT32_MAX);
   for (uint32_t s = 0; s < 2 * n; ++s) r.cells += cell[s] == s;
-  if (outer == UINT32_MAX) outer = cell[0];  // (no ray reached the part: cannot happen for a finite part)
   std::vector<uint32_t> queue = {outer};
   dist[outer] = 0;
   for (size_t q = 0; q < queue.size(); ++q)

@@ -23,11 +23,12 @@ struct CellRoles {
 
 // The cells of an edge-connected part `tris` of m (indices into m.triangles) and each triangle's role. Around every
 // edge the triangles are sorted by angle, and the two sides that face one wedge between neighbours belong to one
-// cell; rays join the sides of one cell that no edge connects (nested surfaces), and the cell a ray from outside
-// meets first is the unbounded one. Cells alternate empty and solid from the unbounded one inwards: a cell is solid
-// when the fewest triangles a path from outside must cross is odd, as for nested closed surfaces. An edge of one
-// triangle (a hole) joins nothing: the hole's two sides stay apart, as if capped. Orientation of the input plays no
-// part. Deterministic.
+// cell (triangles lying on one another at an edge, as coplanar faces of touching parts do, bound no wedge between
+// them); the side a ray from beyond the part's box meets first faces the unbounded cell. Cells alternate empty and
+// solid from the unbounded one inwards: a cell is solid when the fewest triangles a path from outside must cross is
+// odd, as for nested closed surfaces. An edge of one triangle (a hole) joins nothing: the hole's two sides stay
+// apart, as if capped. Orientation of the input plays no part; overlapping closed parts that share an edge keep
+// each its own inside (their union). Deterministic.
 CellRoles classify_cells(const Mesh& m, const std::vector<uint32_t>& tris);
 
 }  // namespace voxcd::detail
