@@ -726,6 +726,7 @@ inline Defect box_with_t_junction() {
   m.triangles.push_back({mid, 5, 6});
   d.mesh = m;
   d.name = "a box with a T-junction";
+  d.expect.open_edges = 3;  // the long edge, and its two halves
   d.mesh.name = d.name;
   d.solid = {make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1))};
   d.volume = 1;

@@ -167,7 +167,7 @@ DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const Dista
     }
   });
   // 4. What the nodes cannot resolve becomes conservative.
-  const uint64_t lowered = detail::make_unresolved_conservative(mesh, g, f, opt.threads);
+  const uint64_t lowered = opt.conservative ? detail::make_unresolved_conservative(mesh, g, f, opt.threads) : 0;
   if (conservative) *conservative = lowered;
   return f;
 }

@@ -1,5 +1,6 @@
 // make_unresolved_conservative() (host/object/detail/unresolved.h): each triangle's piece in each cell it crosses,
-// clipped to the cell, sampled at its corners and centroid against the field's interpolant.
+// clipped to the cell, sampled at its corners and centroid against the field's interpolant, on the surface and a
+// little inside it.
 #include "voxcd/host/object/detail/unresolved.h"
 
 #include <algorithm>
@@ -38,14 +39,21 @@ Polygon piece_in_cell(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
   return p;
 }
 
-bool resolved(const DistanceField& f, const Polygon& piece) {
+// The piece's corners and centroid on the surface within the tolerance, and the same points kResolvedDepth inside
+// (along `inward`, a unit vector in grid units) hits.
+bool resolved(const DistanceField& f, const Polygon& piece, const Eigen::Vector3d& inward) {
   if (piece.empty()) return true;  // the cell holds the triangle only through the voxeliser's growth
+  const double tolerance = kResolvedTolerance + f.step / 2;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& x : piece) {
-    if (f.sample(x) > kResolvedTolerance) return false;
-    centroid += x;
-  }
-  return f.sample(centroid / double(piece.size())) <= kResolvedTolerance;
+  for (const Eigen::Vector3d& x : piece) centroid += x;
+  centroid /= double(piece.size());
+  auto fine = [&](const Eigen::Vector3d& x) {
+    return f.sample(x) <= tolerance && f.sample(x + kResolvedDepth * inward) <= 0;
+  };
+  if (!fine(centroid)) return false;
+  for (const Eigen::Vector3d& x : piece)
+    if (!fine(x)) return false;
+  return true;
 }
 
 }  // namespace
@@ -64,9 +72,15 @@ uint64_t make_unresolved_conservative(const Mesh& mesh, const GridPlacement& g, 
       const uint64_t i = x + nx * y + nxy * z;
       if (flags[i >> 6].load(std::memory_order_relaxed) >> (i & 63) & 1) return;
       const auto& tri = mesh.triangles[t];
-      if (!mesh.is_sheet(t) &&
-          resolved(f, piece_in_cell(gv[tri[0]], gv[tri[1]], gv[tri[2]], Eigen::Vector3d(x, y, z))))
-        return;
+      if (!mesh.is_sheet(t)) {
+        const Eigen::Vector3d& a = gv[tri[0]];
+        const Eigen::Vector3d& b = gv[tri[1]];
+        const Eigen::Vector3d& c = gv[tri[2]];
+        const Eigen::Vector3d n = (b - a).cross(c - a);
+        // (repair orients every non-sheet triangle outward; a degenerate one has no inside to test)
+        if (n.squaredNorm() > 0 && resolved(f, piece_in_cell(a, b, c, Eigen::Vector3d(x, y, z)), -n.normalized()))
+          return;
+      }
       flags[i >> 6].fetch_or(uint64_t{1} << (i & 63), std::memory_order_relaxed);
     });
   });
