@@ -26,6 +26,7 @@
 #include "voxcd/host/object/point_shell.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
+#include "voxcd/host/object/voxmap_surface.h"
 
 // Devices: the interface and the backend registry (device_backends, make_device), conformance vectors on them.
 #include "voxcd/host/device/clock.h"
@@ -45,6 +46,7 @@
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/scene/ccd.h"
 #include "voxcd/host/scene/distance_bound.h"
+#include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/scene/simulate.h"

@@ -178,6 +178,7 @@ Scene make_scene(const SceneSpec& spec) {
   scene.side = spec.side;
   auto type = std::make_shared<ObjectType>(
       make_object_type(make_object(mesh, source, hash, oo), spec.shape + " x" + std::to_string(s)));
+  type->mesh = std::make_shared<const Mesh>(std::move(mesh));
   scene.types.push_back(type);
   const double r = type->radius;
   if (2 * r >= spec.side) throw std::invalid_argument("scene: the objects do not fit the cube");
