@@ -68,6 +68,8 @@ PYBIND11_MODULE(voxcd, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const PlacementError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const RecordError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
 
@@ -82,4 +84,5 @@ PYBIND11_MODULE(voxcd, m) {
   voxcd::python::bind_pairs(m);
   voxcd::python::bind_scenes(m);
   voxcd::python::bind_conformance(m);
+  voxcd::python::bind_record(m);
 }
