@@ -11,6 +11,7 @@
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/cli/object_report.h"
 #include "voxcd/host/object/object_type.h"
+#include "voxcd/host/object/shapes.h"
 #include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/simulate.h"
 #include "voxcd/host/view/detail/base64.h"

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "voxcd/host/object/object_type.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxmap_surface.h"
 #include "voxcd/host/view/detail/base64.h"

@@ -71,7 +71,7 @@ async function shot(page, name) {
 
 async function recordingCase(browser) {
   const run = path.join(WORK, 'run.vxr');
-  voxcd('simulate', '--objects', '64', '--density', '0.2', '--frames', '20', '--seed', '3', '--record', run,
+  voxcd('simulate', '--objects', '64', '--density', '0.1', '--frames', '20', '--seed', '3', '--record', run,
     '--no-progress');
   const rec = lib.readRecording(fs.readFileSync(run));
   check(rec.frames.length === 20, 'the recording has 20 frames (' + rec.frames.length + ')');
@@ -128,7 +128,7 @@ async function objectCase(browser) {
       window.voxcdView.view.drawnInteriorVoxels()]);
     check(drawn[0] === info.shell_points, 'shell points drawn = the file\'s (' + drawn[0] + ' vs ' + info.shell_points + ')');
     check(drawn[1] === info.surface && drawn[2] === info.interior,
-      'surface and interior voxels drawn = the file\'s (' + drawn + ' vs ' + info.surface + ', ' + info.interior + ')');
+      'surface and interior voxels drawn = the file\'s (' + drawn.slice(1) + ' vs ' + info.surface + ', ' + info.interior + ')');
     const report = await v(() => window.voxcdView.view.d.report);
     check(report && report.input_triangles > 0, 'the repair report is shown (' + JSON.stringify(report).slice(0, 80) + ')');
     await v(() => { window.voxcdView.view.showSlices(true); });

@@ -29,7 +29,7 @@ class VoxcdStage {
     this.camera.add(sun);
     this.scene.add(this.camera);
     this.onFrame = [];
-    window.addEventListener('resize', () => this.resize());
+    new ResizeObserver(() => this.resize()).observe(viewport);
     this.resize();
     const loop = (t) => {
       for (const f of this.onFrame) f(t);

@@ -15,7 +15,7 @@ class VoxcdPairView {
     this.show(d.result);
     const r = Math.max(d.a.radius, d.b.radius);
     const c = new THREE.Vector3(...d.a.centre);
-    stage.frame(c.clone().subScalar(2 * r), c.clone().addScalar(2 * r));
+    stage.frame(c.clone().subScalar(r), c.clone().addScalar(r));
   }
 
   object(t, color) {

@@ -34,7 +34,7 @@ class VoxcdPlot {
     for (const s of this.series) for (const v of s.values) top = Math.max(top, v);
     top = top > 0 ? top * 1.1 : 1;
     const x = (i) => 4 + (n > 1 ? i / (n - 1) : 0.5) * (w - 8);
-    const y = (v) => h - 4 - v / top * (h - 22);
+    const y = (v) => h - 4 - v / top * (h - 34);
     for (const s of this.series) {
       g.strokeStyle = s.color;
       g.beginPath();
@@ -43,7 +43,7 @@ class VoxcdPlot {
     }
     g.strokeStyle = '#fff';
     g.beginPath();
-    g.moveTo(x(cursor), 14);
+    g.moveTo(x(cursor), 28);
     g.lineTo(x(cursor), h);
     g.stroke();
     this.legend(g, cursor, top);
@@ -53,12 +53,12 @@ class VoxcdPlot {
     g.font = '11px sans-serif';
     g.fillStyle = '#aab';
     g.fillText(this.title + ' (' + this.unit + ', top ' + top.toPrecision(3) + ')', 4, 11);
-    let at = g.measureText(this.title).width + 140;
+    let at = 4;
     for (const s of this.series) {
       const v = s.values[cursor];
       const text = s.name + ' ' + (v === undefined ? '' : +v.toPrecision(4));
       g.fillStyle = s.color;
-      g.fillText(text, at, 11);
+      g.fillText(text, at, 24);
       at += g.measureText(text).width + 10;
     }
   }
