@@ -159,7 +159,13 @@ int view_pair(const ViewArgs& a) {
                 if (r.path == "/api/pair") {
                   const std::string key = "pose=";
                   if (r.query.rfind(key, 0) != 0) throw std::invalid_argument("/api/pair: give ?pose=tx,ty,tz,rx,ry,rz");
-                  return json_response(pv.contacts_json(view::parse_pair_pose(r.query.substr(key.size()))));
+                  view::PairPose p;
+                  try {
+                    p = view::parse_pair_pose(r.query.substr(key.size()));
+                  } catch (const std::invalid_argument& e) {
+                    throw std::invalid_argument(std::string("pose: ") + e.what());
+                  }
+                  return json_response(pv.contacts_json(p));
                 }
                 return std::nullopt;
               });

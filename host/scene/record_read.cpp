@@ -200,8 +200,7 @@ Recording parse_recording(const std::string& b, const std::string& name) {
   while (at < b.size() && read_record(b, at, name, r)) {
   }
   if (r.body_types.empty())
-    throw RecordError(name + ": " + (r.truncated ? r.note : "ends") +
-                      (r.truncated ? "" : " at byte " + std::to_string(b.size())) +
+    throw RecordError(name + ": ends at byte " + std::to_string(b.size()) +
                       " before its types and bodies were written: nothing to show");
   return r;
 }

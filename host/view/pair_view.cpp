@@ -44,11 +44,11 @@ PairPose parse_pair_pose(const std::string& s) {
     char* end = nullptr;
     const double d = std::strtod(item.c_str(), &end);
     if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(d))
-      throw std::invalid_argument("pose: '" + item + "' in '" + s + "' is not a finite number");
+      throw std::invalid_argument("'" + item + "' in '" + s + "' is not a finite number");
     v.push_back(d);
   }
   if (v.size() != 3 && v.size() != 6)
-    throw std::invalid_argument("pose: '" + s + "' has " + std::to_string(v.size()) +
+    throw std::invalid_argument("'" + s + "' has " + std::to_string(v.size()) +
                                 " numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz");
   PairPose p{};
   for (size_t i = 0; i < v.size(); ++i) p[i] = v[i];

@@ -14,7 +14,8 @@ namespace voxcd::view {
 // B's pose in A's frame as `voxcd pair --pose` takes it: translation, then degrees about x, y and z.
 using PairPose = std::array<double, 6>;
 
-// "tx,ty,tz[,rx,ry,rz]"; std::invalid_argument saying what is wrong with `s` (not six finite numbers ...).
+// "tx,ty,tz[,rx,ry,rz]"; std::invalid_argument saying what is wrong with `s` ("'x' in '1,x,3' is not a finite
+// number", "'1,2' has 2 numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz").
 PairPose parse_pair_pose(const std::string& s);
 
 struct PairViewOptions {
