@@ -10,6 +10,7 @@
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/python/bindings.h"
+#include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/sizing/size.h"

@@ -57,9 +57,10 @@ py::dict frame_dict(const RecordedFrame& f) {
   d["pairs"] = rows<uint32_t>(pairs, 2);
   d["pair_flags"] = py::array_t<uint8_t>(py::ssize_t(f.pair_flags.size()), f.pair_flags.data());
   const size_t n = f.contacts.size();
-  py::array_t<uint32_t> pair(py::ssize_t(n)), point(py::ssize_t(n));
-  py::array_t<bool> a_in_b(py::ssize_t(n));
-  py::array_t<float> position({n, size_t(3)}), normal({n, size_t(3)}), depth(py::ssize_t(n));
+  const py::ssize_t len = py::ssize_t(n);
+  py::array_t<uint32_t> pair(len), point(len);
+  py::array_t<bool> a_in_b(len);
+  py::array_t<float> position({n, size_t(3)}), normal({n, size_t(3)}), depth(len);
   for (size_t i = 0; i < n; ++i) {
     const RecordedContact& c = f.contacts[i];
     pair.mutable_at(i) = c.pair;
