@@ -90,6 +90,11 @@ async function recordingCase(browser) {
     }
     check(withContacts > 0, 'contacts drawn = contacts recorded in every frame (' + withContacts + ' frames have contacts)');
     await sliderMoves(page, rec);
+    await page.select('#controls select:nth-of-type(2)', 'spheres');
+    check(await v(() => window.voxcdView.view.detail === 'spheres' && window.voxcdView.view.drawnBodies()) === rec.bodies,
+      'bodies drawn as spheres = bodies recorded');
+    await shot(page, 'view_scene_spheres.png');
+    await page.select('#controls select:nth-of-type(2)', 'meshes');
     await shot(page, 'view_scene.png');
     check(errors.length === 0 && (await v(() => window.voxcdView.errors.length)) === 0,
       'no console error (' + errors.concat(await v(() => window.voxcdView.errors)).join('; ') + ')');

@@ -19,6 +19,32 @@ function voxcdInstanceMaterial() {
   return m;
 }
 
+// Bodies as lit spheres of their bounding radius, one point each: what software rendering can draw at 30 frames per
+// second for tens of thousands of bodies (docs/view.md, "Large runs"), where a mesh per body cannot.
+function voxcdSphereMaterial() {
+  return new THREE.ShaderMaterial({
+    uniforms: { scale: { value: 1 } },
+    vertexShader: `attribute vec3 bcolor; attribute float radius; uniform float scale; varying vec3 vColor;
+      void main() {
+        vec4 mv = modelViewMatrix * vec4(position, 1.0);
+        gl_Position = projectionMatrix * mv;
+        gl_PointSize = max(2.0, 2.0 * scale * radius / -mv.z);
+        vColor = bcolor;
+      }`,
+    fragmentShader: `varying vec3 vColor;
+      void main() {
+        vec2 p = gl_PointCoord * 2.0 - 1.0;
+        float r2 = dot(p, p);
+        if (r2 > 1.0) discard;
+        vec3 n = vec3(p.x, -p.y, sqrt(1.0 - r2));
+        gl_FragColor = vec4(vColor * (0.45 + 0.55 * max(0.0, dot(n, normalize(vec3(0.4, 0.6, 0.7))))), 1.0);
+      }`,
+  });
+}
+
+// Above this many bodies the page draws them as spheres by default (the "bodies as" menu changes it).
+const VOXCD_SPHERES_ABOVE = 8192;
+
 class VoxcdSceneView {
   constructor(stage, rec, data) {
     this.stage = stage;
@@ -30,6 +56,7 @@ class VoxcdSceneView {
     this.picked = -1;
     this.state = new Uint8Array(rec.bodyTypes.length);  // 0 free, 1 in a broadphase pair, 2 touching
     this.makeBodies();
+    this.makeSpheres();
     this.makeContacts();
     this.makeWorld();
     this.makeControls();
@@ -54,6 +81,32 @@ class VoxcdSceneView {
       this.stage.scene.add(m);
       return m;
     });
+  }
+
+  makeSpheres() {
+    const n = this.rec.bodyTypes.length, g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
+    g.setAttribute('bcolor', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
+    const r = new Float32Array(n);
+    for (let i = 0; i < n; ++i) r[i] = this.rec.types[this.rec.bodyTypes[i]].radius;
+    g.setAttribute('radius', new THREE.BufferAttribute(r, 1));
+    this.spheres = new THREE.Points(g, voxcdSphereMaterial());
+    this.spheres.frustumCulled = false;
+    this.stage.scene.add(this.spheres);
+    this.stage.onFrame.push(() => {
+      const c = this.stage.camera;
+      this.spheres.material.uniforms.scale.value =
+        this.stage.renderer.domElement.height / (2 * Math.tan(c.fov * Math.PI / 360));
+    });
+    this.setDetail(n > VOXCD_SPHERES_ABOVE ? 'spheres' : 'meshes');
+  }
+
+  // 'meshes': every body with its type's mesh (instanced); 'spheres': every body as its bounding sphere.
+  setDetail(d) {
+    this.detail = d;
+    for (const m of this.meshes) m.visible = d === 'meshes';
+    this.spheres.visible = d === 'spheres';
+    if (this.slider) this.setFrame(this.frame);
   }
 
   makeContacts() {
@@ -92,6 +145,10 @@ class VoxcdSceneView {
     const speed = el('select', {}, c);
     for (const s of [0.25, 0.5, 1, 2, 4, 8]) el('option', { value: s, textContent: s + 'x', selected: s === 1 }, speed);
     speed.addEventListener('change', () => { this.speed = +speed.value; });
+    el('span', { textContent: ' bodies as ' }, c);
+    const detail = el('select', {}, c);
+    for (const d of ['meshes', 'spheres']) el('option', { value: d, textContent: d, selected: d === this.detail }, detail);
+    detail.addEventListener('change', () => this.setDetail(detail.value));
     el('span', { textContent: '  ' }, c);
     VoxcdUtil.toggle(c, 'contacts', true, (on) => { this.contactPoints.visible = on; });
     VoxcdUtil.toggle(c, 'normals', true, (on) => { this.contactNormals.visible = on; });
@@ -157,8 +214,16 @@ class VoxcdSceneView {
   }
 
   updateBodies(f) {
-    const p = f.poses, types = this.rec.bodyTypes, C = VOXCD_COLOURS;
-    const names = ['free', 'pair', 'touching'];
+    if (this.detail === 'spheres') this.updateSpheres(f);
+    else this.updateMeshes(f);
+  }
+
+  colour(i) {
+    return i === this.picked ? VOXCD_COLOURS.picked : VOXCD_COLOURS[['free', 'pair', 'touching'][this.state[i]]];
+  }
+
+  updateMeshes(f) {
+    const p = f.poses, types = this.rec.bodyTypes;
     for (let i = 0; i < types.length; ++i) {
       const mesh = this.meshes[types[i]], at = this.slot[i];
       const e = mesh.instanceMatrix.array, o = 16 * at, q = 7 * i;
@@ -167,13 +232,30 @@ class VoxcdSceneView {
       e[o + 4] = 2 * (x * y - w * z); e[o + 5] = 1 - 2 * (x * x + z * z); e[o + 6] = 2 * (y * z + w * x); e[o + 7] = 0;
       e[o + 8] = 2 * (x * z + w * y); e[o + 9] = 2 * (y * z - w * x); e[o + 10] = 1 - 2 * (x * x + y * y); e[o + 11] = 0;
       e[o + 12] = p[q]; e[o + 13] = p[q + 1]; e[o + 14] = p[q + 2]; e[o + 15] = 1;
-      const col = i === this.picked ? C.picked : C[names[this.state[i]]];
-      mesh.geometry.attributes.icolor.array.set(col, 3 * at);
+      mesh.geometry.attributes.icolor.array.set(this.colour(i), 3 * at);
     }
     for (const m of this.meshes) {
       m.instanceMatrix.needsUpdate = true;
       m.geometry.attributes.icolor.needsUpdate = true;
     }
+  }
+
+  // Each body's sphere at its bounding sphere's centre: rotation * the type's centre + position.
+  updateSpheres(f) {
+    const p = f.poses, types = this.rec.bodyTypes, g = this.spheres.geometry;
+    const pos = g.attributes.position.array, col = g.attributes.bcolor.array;
+    for (let i = 0; i < types.length; ++i) {
+      const c = this.rec.types[types[i]].centre, q = 7 * i;
+      const w = p[q + 3], x = p[q + 4], y = p[q + 5], z = p[q + 6];
+      // v + 2w(u x v) + 2u x (u x v), u = (x, y, z): the quaternion's rotation of c.
+      const tx = 2 * (y * c[2] - z * c[1]), ty = 2 * (z * c[0] - x * c[2]), tz = 2 * (x * c[1] - y * c[0]);
+      pos[3 * i] = p[q] + c[0] + w * tx + y * tz - z * ty;
+      pos[3 * i + 1] = p[q + 1] + c[1] + w * ty + z * tx - x * tz;
+      pos[3 * i + 2] = p[q + 2] + c[2] + w * tz + x * ty - y * tx;
+      col.set(this.colour(i), 3 * i);
+    }
+    g.attributes.position.needsUpdate = true;
+    g.attributes.bcolor.needsUpdate = true;
   }
 
   updateContacts(f) {
@@ -196,7 +278,10 @@ class VoxcdSceneView {
   }
 
   // Bodies drawn (instances of every type's mesh) and contact points drawn, for tests.
-  drawnBodies() { return this.meshes.reduce((s, m) => s + (m.visible ? m.count : 0), 0); }
+  drawnBodies() {
+    const spheres = this.spheres.visible ? this.spheres.geometry.attributes.position.count : 0;
+    return this.meshes.reduce((s, m) => s + (m.visible ? m.count : 0), spheres);
+  }
   drawnContacts() { return this.contactPoints.visible ? this.contactPoints.geometry.drawRange.count : 0; }
   bodyMatrix(i) {
     const m = this.meshes[this.rec.bodyTypes[i]];
