@@ -253,3 +253,26 @@ TEST(VoxmapSurface, ClosedOutwardAndOnTheVoxelsFaces) {
 
 }  // namespace
 }  // namespace voxcd
+
+namespace voxcd {
+namespace {
+
+// A frame whose broadphase finds no pair tests none (the recorder found a frame that tested a pair of body 0 with
+// itself: the mid-phase's count of an unvisited range was never set).
+TEST(Simulation, FrameWithoutPairsTestsNone) {
+  SceneSpec spec;
+  spec.objects = 2;
+  Simulation sim(make_scene(spec), SimOptions{});
+  for (int f = 0; f < 3; ++f) {
+    const FrameStats st = sim.step();
+    ASSERT_EQ(sim.broadphase().pairs().size(), st.pairs);
+    if (st.pairs == 0) {
+      EXPECT_EQ(st.tested, 0u);
+      EXPECT_TRUE(sim.tested_pairs().empty());
+      EXPECT_EQ(st.lookups, 0u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace voxcd
