@@ -90,6 +90,7 @@ async function recordingCase(browser) {
     }
     check(withContacts > 0, 'contacts drawn = contacts recorded in every frame (' + withContacts + ' frames have contacts)');
     await sliderMoves(page, rec);
+    await picking(page);
     await page.select('#controls select:nth-of-type(2)', 'spheres');
     check(await v(() => window.voxcdView.view.detail === 'spheres' && window.voxcdView.view.drawnBodies()) === rec.bodies,
       'bodies drawn as spheres = bodies recorded');
@@ -117,6 +118,22 @@ async function sliderMoves(page, rec) {
   check(after.slice(12, 15).some((x, k) => x !== before[12 + k]), 'the slider changed the drawn pose of body ' + body);
   check(after.slice(12, 15).every((x, k) => Math.fround(x) === last[k]),
     'the drawn pose is the recorded one (' + after.slice(12, 15) + ' vs ' + last + ')');
+}
+
+// A click on a body picks it: the side panel shows its pairs, contacts and history, and the view its path.
+async function picking(page) {
+  const xy = await page.evaluate(() => {
+    const v = window.voxcdView.view, p = v.rec.frames[v.frame].poses, c = v.stage.camera;
+    const r = v.stage.renderer.domElement.getBoundingClientRect();
+    const s = new THREE.Vector3(p[0], p[1], p[2]).project(c);
+    return [r.left + (s.x + 1) / 2 * r.width, r.top + (1 - s.y) / 2 * r.height];
+  });
+  await page.mouse.click(xy[0], xy[1]);
+  const picked = await page.evaluate(() => window.voxcdView.view.picked);
+  const side = await page.evaluate(() => document.getElementById('side').textContent);
+  const path = await page.evaluate(() => window.voxcdView.view.path.geometry.attributes.position.count);
+  check(picked >= 0 && side.includes('body ' + picked) && side.includes('touching in frames') && path === 20,
+    'a click picks body ' + picked + ': its pairs, contacts and history are shown, its path has ' + path + ' points');
 }
 
 async function objectCase(browser) {
