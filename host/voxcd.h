@@ -26,7 +26,6 @@
 #include "voxcd/host/object/point_shell.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
-#include "voxcd/host/object/voxmap_surface.h"
 
 // Devices: the interface and the backend registry (device_backends, make_device), conformance vectors on them.
 #include "voxcd/host/device/clock.h"
