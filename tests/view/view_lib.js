@@ -19,7 +19,7 @@ function launch(puppeteer, profile) {
 // The bodies and, per frame, the contact count and body positions of a recording (docs/view.md's layout).
 function readRecording(b) {
   if (b.toString('latin1', 0, 8) !== 'VOXCDREC' || b.readUInt32LE(8) !== 1) throw new Error('not a version 1 recording');
-  const out = { bodies: 0, frames: [] };
+  const out = { bodies: 0, frames: [], frameEnds: [] };
   for (let at = 16; at + 8 <= b.length;) {
     const kind = b.readUInt32LE(at), len = b.readUInt32LE(at + 4), p = at + 8;
     if (p + len + 4 > b.length) break;
@@ -33,6 +33,7 @@ function readRecording(b) {
       const pairs = b.readUInt32LE(p + 172 + 28 * n);
       const contacts = b.readUInt32LE(p + 176 + 28 * n + 9 * pairs);
       out.frames.push({ contacts, positions, statsContacts: Number(b.readBigUInt64LE(p + 64)) });
+      out.frameEnds.push(p + len + 4);
     }
     at = p + len + 4;
   }

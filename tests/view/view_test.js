@@ -1,7 +1,7 @@
 // The browser tests of `voxcd view` (tests/view/CMakeLists.txt): Debian's chromium, headless with software WebGL,
 // driven through the DevTools protocol by puppeteer-core, loads the page the tool serves (or writes with --html) and
 // checks what it draws against the tool's own output. Usage:
-//   node view_test.js CASE VOXCD WORK SHOTS    CASE: recording, object, pair or html
+//   node view_test.js CASE VOXCD WORK SHOTS    CASE: recording, live, object, pair or html
 // Prints "N passed, M failed" and exits non-zero on any failure.
 'use strict';
 
@@ -136,6 +136,31 @@ async function picking(page) {
     'a click picks body ' + picked + ': its pairs, contacts and history are shown, its path has ' + path + ' points');
 }
 
+// A recording still being written: the page shows its whole frames, and its new ones once it follows the file.
+async function liveCase(browser) {
+  const run = path.join(WORK, 'whole.vxr'), live = path.join(WORK, 'live.vxr');
+  voxcd('simulate', '--objects', '64', '--density', '0.1', '--frames', '20', '--seed', '3', '--record', run, '--no-progress');
+  const bytes = fs.readFileSync(run), rec = lib.readRecording(bytes);
+  const cut = rec.frameEnds[9] + 100;  // frames 0-9 whole, frame 10 begun
+  fs.writeFileSync(live, bytes.subarray(0, cut));
+  const { proc, url } = await serve([live]);
+  try {
+    const { page, errors } = await open(browser, url);
+    const frames = () => page.evaluate(() => window.voxcdView.view.rec.frames.length);
+    check(await frames() === 10, 'a recording cut inside frame 10 shows its 10 whole frames (' + await frames() + ')');
+    await page.focus('#controls input[type=range]');
+    await page.keyboard.press('End');  // at the last frame, the page keeps to the last frame as the file grows
+    fs.appendFileSync(live, bytes.subarray(cut));
+    const follow = await page.$$('#controls input[type=checkbox]');
+    await follow[follow.length - 1].click();
+    await page.waitForFunction(() => window.voxcdView.view.rec.frames.length === 20, { timeout: 20000 });
+    check(await page.evaluate(() => window.voxcdView.view.frame) === 19, 'following the file, the page shows its new frames');
+    check(errors.length === 0, 'no console error (' + errors.join('; ') + ')');
+  } finally {
+    proc.kill();
+  }
+}
+
 async function objectCase(browser) {
   const mesh = '/usr/share/assimp/models/OBJ/spider.obj';
   const obj = path.join(WORK, 'spider.vxo');
@@ -207,7 +232,7 @@ async function htmlCase(browser) {
   fs.mkdirSync(SHOTS, { recursive: true });
   const browser = await lib.launch(puppeteer, fs.mkdtempSync(path.join(WORK, 'profile-')));
   try {
-    const cases = { recording: recordingCase, object: objectCase, pair: pairCase, html: htmlCase };
+    const cases = { recording: recordingCase, live: liveCase, object: objectCase, pair: pairCase, html: htmlCase };
     if (!cases[CASE]) throw new Error('no case ' + CASE);
     await cases[CASE](browser);
   } catch (e) {
