@@ -2,6 +2,7 @@
 // on 127.0.0.1 and prints its URL, or writes it as one self-contained HTML file (docs/view.md).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -171,11 +172,26 @@ int view_pair(const ViewArgs& a) {
               });
 }
 
+// Refuses the options given that do not apply to what is shown (`what`), rather than ignore them.
+void only(const ViewArgs& a, const std::string& what, const std::vector<std::string>& allowed) {
+  for (const char* o : {"--frames", "--voxel", "--resolution", "--distance-bits", "--band", "--pose", "--backend",
+                        "--both", "--margin"})
+    if (a.app->count(o) && std::find(allowed.begin(), allowed.end(), o) == allowed.end())
+      throw CLI::ValidationError(o, "does not apply to " + what);
+}
+
 int view_cmd(const ViewArgs& a) {
-  if (a.files.size() == 2) return view_pair(a);
+  const std::vector<std::string> object = {"--voxel", "--resolution", "--distance-bits", "--band"};
+  if (a.files.size() == 2) {
+    std::vector<std::string> pair = object;
+    pair.insert(pair.end(), {"--pose", "--backend", "--both", "--margin"});
+    only(a, "a pair", pair);
+    return view_pair(a);
+  }
   const std::string& f = a.files[0];
-  if (is_recording(f)) return view_recording(a, f, f);
-  if (is_scene_file(f)) return view_scene(a, f);
+  if (is_recording(f)) return only(a, "a recording (" + f + ")", {}), view_recording(a, f, f);
+  if (is_scene_file(f)) return only(a, "a scene file (" + f + ")", {"--frames"}), view_scene(a, f);
+  only(a, "one object (" + f + ")", object);
   return view_object(a, f);
 }
 
