@@ -97,6 +97,11 @@ ObjectView make_object_view(const std::string& file_or_shape, double voxel, uint
   v.object = make_object(v.surface, source, hash, opt, &report);
   v.from_mesh = true;
   if (source.rfind("shape:", 0) != 0) v.places = places_of(file_or_shape, v.surface, report);
+  if (v.surface.triangles.empty()) {
+    v.surface = voxmap_surface(v.object.voxmap);
+    v.from_mesh = false;
+    v.note = "a point cloud: drawing the voxmap's surface";
+  }
   return v;
 }
 
