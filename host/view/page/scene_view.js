@@ -350,7 +350,7 @@ class VoxcdSceneView {
       if (n++ < 8) h += 'contact depth ' + c.depth[k].toFixed(3) + ' normal (' +
         [0, 1, 2].map((a) => c.normal[3 * k + a].toFixed(2)).join(', ') + ')<br>';
     }
-    h += n + ' contacts this frame<br>touching in frames: ' + this.history(i) + '</p>';
+    h += n + (n === 1 ? ' contact' : ' contacts') + ' this frame<br>touching in frames: ' + this.history(i) + '</p>';
     return h;
   }
 
