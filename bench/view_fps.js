@@ -1,7 +1,7 @@
 // Frame rate of `voxcd view` for a large recording in Debian's headless chromium (bench/view_fps.sh runs it):
 // the page's own work per frame (setFrame: every body's matrix and colour, the contacts), and the rendered frames
 // per second with a new recorded frame every rendered frame, and with none. Usage:
-//   node view_fps.js VOXCD WORK OBJECTS FRAMES WIDTHxHEIGHT SECONDS DETAIL   (DETAIL: meshes or spheres)
+//   node view_fps.js VOXCD WORK OBJECTS FRAMES WIDTHxHEIGHT SECONDS DETAIL SCALE   (meshes or spheres; 1 or 0.5)
 'use strict';
 
 const { spawn, execFileSync } = require('child_process');
@@ -10,7 +10,7 @@ const path = require('path');
 const puppeteer = require('puppeteer-core');
 const lib = require(path.join(__dirname, '..', 'tests', 'view', 'view_lib.js'));
 
-const [, , VOXCD, WORK, OBJECTS, FRAMES, SIZE, SECONDS, DETAIL] = process.argv;
+const [, , VOXCD, WORK, OBJECTS, FRAMES, SIZE, SECONDS, DETAIL, SCALE] = process.argv;
 const median = (v) => { const s = [...v].sort((a, b) => a - b); return s.length ? s[Math.floor(s.length / 2)] : NaN; };
 
 function serve(file) {
@@ -52,7 +52,7 @@ async function fps(page, seconds, advance) {
     await page.setViewport({ width: w, height: h });
     await page.goto(url);
     await page.waitForFunction(() => window.voxcdView.ready, { timeout: 600000 });
-    await page.evaluate((d) => window.voxcdView.view.setDetail(d), DETAIL);
+    await page.evaluate((d, s) => { window.voxcdView.view.setDetail(d); window.voxcdView.view.setScale(s); }, DETAIL, +SCALE);
     const bodies = await page.evaluate(() => window.voxcdView.view.drawnBodies());
     const work = await page.evaluate(() => {
       const v = window.voxcdView.view, t = [];
@@ -67,7 +67,7 @@ async function fps(page, seconds, advance) {
     const moving = await fps(page, +SECONDS, true);
     const viewport = await page.evaluate(() => [window.innerWidth, window.innerHeight]);
     const canvas = await page.evaluate(() => { const c = document.querySelector('#viewport canvas'); return [c.width, c.height]; });
-    console.log('| ' + bodies + ' | ' + DETAIL + ' | ' + median(work).toFixed(1) + ' ms | ' + moving.fps.toFixed(1) + ' (' + moving.frames +
+    console.log('| ' + bodies + ' | ' + DETAIL + ' | ' + (+SCALE === 1 ? 'full' : 'half') + ' | ' + median(work).toFixed(1) + ' ms | ' + moving.fps.toFixed(1) + ' (' + moving.frames +
       ' frames) | ' + still.fps.toFixed(1) + ' | ' + canvas.join('x') + ' canvas in a ' + viewport.join('x') + ' page | ' +
       (await browser.version()) + ', SwiftShader (software WebGL) |');
   } finally {

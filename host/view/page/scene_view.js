@@ -42,8 +42,9 @@ function voxcdSphereMaterial() {
   });
 }
 
-// Above this many bodies the page draws them as spheres by default (the "bodies as" menu changes it).
-const VOXCD_SPHERES_ABOVE = 8192;
+// Above this many bodies the page draws them as spheres by default (the "bodies as" menu changes it), and above
+// VOXCD_HALF_ABOVE at half resolution (the "resolution" menu): software rendering is bound by the pixels it fills.
+const VOXCD_SPHERES_ABOVE = 8192, VOXCD_HALF_ABOVE = 32768;
 
 class VoxcdSceneView {
   constructor(stage, rec, data) {
@@ -109,6 +110,13 @@ class VoxcdSceneView {
     if (this.slider) this.setFrame(this.frame);
   }
 
+  // Renders at `s` times the page's pixels (1 or 0.5).
+  setScale(s) {
+    this.scale = s;
+    this.stage.renderer.setPixelRatio(s);
+    this.stage.resize();
+  }
+
   makeContacts() {
     const most = Math.max(1, ...this.rec.frames.map((f) => f.contacts.count));
     const r = this.rec.types.reduce((s, t) => s + t.radius, 0) / this.rec.types.length;
@@ -149,6 +157,12 @@ class VoxcdSceneView {
     const detail = el('select', {}, c);
     for (const d of ['meshes', 'spheres']) el('option', { value: d, textContent: d, selected: d === this.detail }, detail);
     detail.addEventListener('change', () => this.setDetail(detail.value));
+    el('span', { textContent: ' resolution ' }, c);
+    const scale = el('select', {}, c);
+    const half = this.rec.bodyTypes.length > VOXCD_HALF_ABOVE;
+    for (const [v, t] of [[1, 'full'], [0.5, 'half']]) el('option', { value: v, textContent: t, selected: (v < 1) === half }, scale);
+    scale.addEventListener('change', () => this.setScale(+scale.value));
+    this.setScale(half ? 0.5 : 1);
     el('span', { textContent: '  ' }, c);
     VoxcdUtil.toggle(c, 'contacts', true, (on) => { this.contactPoints.visible = on; });
     VoxcdUtil.toggle(c, 'normals', true, (on) => { this.contactNormals.visible = on; });
