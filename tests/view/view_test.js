@@ -91,6 +91,7 @@ async function recordingCase(browser) {
     check(withContacts > 0, 'contacts drawn = contacts recorded in every frame (' + withContacts + ' frames have contacts)');
     await sliderMoves(page, rec);
     await picking(page);
+    await playing(page);
     await page.select('#controls select:nth-of-type(2)', 'spheres');
     check(await v(() => window.voxcdView.view.detail === 'spheres' && window.voxcdView.view.drawnBodies()) === rec.bodies,
       'bodies drawn as spheres = bodies recorded');
@@ -118,6 +119,20 @@ async function sliderMoves(page, rec) {
   check(after.slice(12, 15).some((x, k) => x !== before[12 + k]), 'the slider changed the drawn pose of body ' + body);
   check(after.slice(12, 15).every((x, k) => Math.fround(x) === last[k]),
     'the drawn pose is the recorded one (' + after.slice(12, 15) + ' vs ' + last + ')');
+}
+
+// Play advances the frames (at 30 recorded frames a second times the speed); pause stops them.
+async function playing(page) {
+  await page.evaluate(() => window.voxcdView.view.setFrame(0));
+  await page.select('#controls select', '4');
+  await page.click('#controls button');
+  await page.waitForFunction(() => window.voxcdView.view.frame >= 5, { timeout: 20000 });
+  await page.click('#controls button');
+  const stopped = await page.evaluate(() => window.voxcdView.view.frame);
+  await new Promise((r) => setTimeout(r, 300));
+  check(!(await page.evaluate(() => window.voxcdView.view.playing)) &&
+    (await page.evaluate(() => window.voxcdView.view.frame)) === stopped,
+    'play at 4x advanced the frames to ' + stopped + ', pause stopped them');
 }
 
 // A click on a body picks it: the side panel shows its pairs, contacts and history, and the view its path.
