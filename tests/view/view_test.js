@@ -178,7 +178,7 @@ async function liveCase(browser) {
 
 async function objectCase(browser) {
   const mesh = '/usr/share/assimp/models/OBJ/spider.obj';
-  const obj = path.join(WORK, 'spider.vxo');
+  const obj = path.join(WORK, 'spider.vox');
   voxcd('voxelize', mesh, '--resolution', '48', '-o', obj, '--distance-bits', '8');
   const info = JSON.parse(voxcd('info', obj, '--json'));
   const { proc, url } = await serve([obj]);
