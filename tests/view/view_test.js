@@ -41,6 +41,17 @@ function serve(args) {
   });
 }
 
+// [status, body] of a GET, outside the page (so that a refusal is not a console error of the page's).
+function get(url) {
+  return new Promise((resolve, reject) => {
+    require('http').get(url, (res) => {
+      let body = '';
+      res.on('data', (d) => { body += d; });
+      res.on('end', () => resolve([res.statusCode, body]));
+    }).on('error', reject);
+  });
+}
+
 // Opens `url` with the console and page errors collected; waits until the page says it is ready.
 async function open(browser, url) {
   const page = await browser.newPage();
@@ -217,6 +228,9 @@ async function pairCase(browser) {
     const second = await page.evaluate(() => window.voxcdView.view.drawnContacts());
     const want2 = pose('0.9,0.2,0,0,0,30');
     check(second === want2 && want2 !== want, 'contacts recomputed by the tool at the edited pose (' + second + ' vs ' + want2 + ')');
+    const bad = await get(url + 'api/pair?pose=1,x,3');
+    check(bad[0] === 400 && bad[1] === "pose: 'x' in '1,x,3' is not a finite number",
+      'a pose that is not numbers is refused with a message (' + bad + ')');
     await shot(page, 'view_pair.png');
     check(errors.length === 0, 'no console error (' + errors.join('; ') + ')');
   } finally {
