@@ -79,6 +79,7 @@ constexpr double kCrackCloseRelative = 2e-3;
 
 struct LoadOptions {
   bool strict = false;  // refuse anything that is not a closed, edge-manifold, consistently oriented mesh
+  bool repair = true;   // false (and not strict): the triangles as read, nothing dropped or welded (to show repairs)
 };
 
 // Loads a mesh by file extension: .raw through parse_raw, .ply through its own reader (assimp 5.2's hangs on
