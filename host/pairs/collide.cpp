@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "voxcd/host/pairs/detail/cull.h"
 #include "voxcd/ref/banks.h"
@@ -87,11 +88,40 @@ DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& 
   return cfg;
 }
 
+int matrix_width_for(const DeviceConfig& cfg, const std::vector<const ObjectType*>& types, double* ratio) {
+  // M = R * (A's shell spacing / B's voxel): its entries reach that ratio for some rotation, and must lie below
+  // 2^(MW - MF - 1).
+  double r = 0;
+  for (const ObjectType* a : types)
+    for (const ObjectType* b : types) r = std::max(r, a->shell().grid.voxel / b->voxmap().voxel());
+  if (ratio) *ratio = r;
+  int mw = cfg.MF + 2;
+  while (std::ldexp(1.0, mw - cfg.MF - 1) <= r) ++mw;
+  return std::max(cfg.MW, mw);
+}
+
 DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types,
                                int distance_bits) {
   DeviceConfig cfg;
   cfg.LANES = lanes;
   if (distance_bits > 0) cfg.SB = distance_bits;
+  double ratio = 0;
+  const int mw = matrix_width_for(cfg, types, &ratio);
+  if (mw != cfg.MW) {
+    if (backend == "rtl") {
+      char b[512];
+      std::snprintf(b, sizeof b,
+                    "the objects' voxels differ too much for the rtl backend's models (MW %d, MF %d: matrix entries "
+                    "below %g): a shell spacing over another object's voxel reaches %.4g and needs MW %d. Voxelise "
+                    "the objects at voxels within a factor of %.3g of each other, or use the cpu or ref backend "
+                    "(which take any width)",
+                    cfg.MW, cfg.MF, std::ldexp(1.0, cfg.MW - cfg.MF - 1), ratio, mw,
+                    std::ldexp(1.0, cfg.MW - cfg.MF - 1) * std::sqrt(2.0));
+      throw CapacityError(b);
+    }
+    cfg.MW = mw;
+    cfg.validate();
+  }
   return backend == "rtl" ? cfg : fit_memory(cfg, types);
 }
 

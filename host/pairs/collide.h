@@ -12,6 +12,7 @@
 
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_type.h"
+#include "voxcd/host/pairs/contact.h"
 #include "voxcd/host/pairs/pose.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/timing.h"
@@ -54,33 +55,20 @@ class DeviceImage {
 // largest memories allowed (SAW 24, MAW 28) are too small, or a voxmap exceeds 2^DW voxels on an axis.
 DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& types);
 
+// The matrix width that holds every pose of types of such different sizes: M's entries reach A's shell spacing over
+// B's voxel (*ratio, the largest), and must lie below 2^(MW - MF - 1); cfg.MW when it suffices.
+int matrix_width_for(const DeviceConfig& cfg, const std::vector<const ObjectType*>& types, double* ratio = nullptr);
+
 // The device configuration for testing `types` on `backend`: the default widths at `lanes` (and SB =
-// distance_bits when > 0: a distance device), memories grown to fit the types (fit_memory) on every backend but
-// rtl, whose models are built for the default depths. `voxcd pair` and Simulation (without a whole configuration)
-// use it.
+// distance_bits when > 0: a distance device), MW widened for types of very different voxels (matrix_width_for),
+// memories grown to fit the types (fit_memory) on every backend but rtl, whose models are built for the default
+// widths and depths (CapacityError saying what to change when the types need a wider MW there). `voxcd pair`,
+// collide() and Simulation (without a whole configuration) use it.
 DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types,
                                int distance_bits = 0);
 
 // Voxmap words a type takes on cfg's device: its states, or its distance field in parity banks (a multiple of 8).
 uint64_t type_map_words(const DeviceConfig& cfg, const ObjectType& t);
-
-// One contact: a shell point of one object that lies in a voxel of the other whose state is in the hit mask, or
-// (distance device) where the other's interpolated distance is at most the margin.
-struct Contact {
-  uint32_t pair = 0;          // index of the request
-  bool a_in_b = true;         // the shell is A's and the voxmap B's (else the reverse)
-  uint32_t point = 0;         // index of the shell point in its object's shell
-  Eigen::Vector3d position;   // the shell point, world coordinates
-  // Its object's outward surface normal there, world coordinates. Distance device: the other object's field
-  // gradient there, negated and normalised (the direction that outward normal has at a contact; the shell's own
-  // normal where the gradient vanishes).
-  Eigen::Vector3d normal;
-  std::array<uint32_t, 3> voxel = {0, 0, 0};  // the voxel (cell) of the other object's voxmap it lies in
-  uint8_t state = 0;          // that voxel's state (0 on a distance device)
-  // Penetration into the other object, world units: the voxel estimate (docs/pairs.md); on a distance device the
-  // interpolated distance negated (positive inside, negative for a contact within the margin outside).
-  double depth = 0;
-};
 
 struct PairRequest {
   uint32_t a = 0, b = 0;  // object types, as PairCollider numbers them
@@ -107,13 +95,6 @@ struct JobSource {
   uint32_t pair = 0;
   bool a_in_b = true;
   uint32_t first = 0;
-};
-
-struct PairResult {
-  std::vector<Contact> contacts;  // A in B first, then B in A; each in ascending point order
-  uint32_t hits = 0;              // over both directions (COUNT: the count; FIRST: up to 1 per direction)
-  uint64_t lookups = 0;           // shell points submitted
-  uint64_t cycles = 0;            // device cycles of the pair's jobs, where the backend models them
 };
 
 class PairCollider {

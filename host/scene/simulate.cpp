@@ -53,8 +53,9 @@ std::string SimulationSummary::device_rate_text() const {
   return t;
 }
 
-SimulationSummary simulate(const SimulateRequest& req, const std::function<void(uint64_t, uint64_t)>& progress) {
-  SimulationSummary s;
+ResolvedRun resolve_run(const SimulateRequest& req) {
+  ResolvedRun out;
+  SimulationSummary& s = out.summary;
   SceneSpec spec;
   SimOptions sim;
   std::string mode = req.mode.value_or("ALL");
@@ -178,7 +179,16 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
 
   sim.exchange = req.exchange;
   s.ranks = req.exchange ? req.exchange->ranks() : 1;
-  Simulation run(std::move(scene), sim);
+  out.scene = std::move(scene);
+  out.options = std::move(sim);
+  return out;
+}
+
+SimulationSummary simulate(const SimulateRequest& req, const std::function<void(uint64_t, uint64_t)>& progress) {
+  ResolvedRun r = resolve_run(req);
+  SimulationSummary& s = r.summary;
+  const uint64_t frames = s.frames;
+  Simulation run(std::move(r.scene), r.options);
   s.device = run.device_config();
   std::unique_ptr<RecordWriter> rec;
   if (!req.record.empty()) rec = std::make_unique<RecordWriter>(req.record, run, record_settings(s));
@@ -190,7 +200,7 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
   }
   if (rec) rec->close();
   s.state_hash = run.state_hash();
-  return s;
+  return std::move(s);
 }
 
 }  // namespace voxcd

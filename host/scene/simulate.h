@@ -109,7 +109,18 @@ struct SimulationSummary {
   std::string device_rate_text() const;
 };
 
-// Resolves the request, makes the scene (make_scene of the file or of the SceneSpec) and runs it, calling
+// A run as its request resolves: the scene made (types voxelised, bodies placed), the simulation's options, and
+// the summary's description of the run (every field but the device's configuration, the totals and the state
+// hash, which the run fills). SimulateOptionError for an option that cannot be used; SceneFileError,
+// std::invalid_argument, MeshError, PlacementError ... from what it calls. A World can start from it (World::scene).
+struct ResolvedRun {
+  Scene scene;
+  SimOptions options;
+  SimulationSummary summary;
+};
+ResolvedRun resolve_run(const SimulateRequest& req);
+
+// Resolves the request (resolve_run), makes the scene (make_scene of the file or of the SceneSpec) and runs it, calling
 // progress(done, frames) after each frame when given. SimulateOptionError for an option that cannot be used;
 // SceneFileError, std::invalid_argument, MeshError, PlacementError, DeviceError ... from what it calls.
 SimulationSummary simulate(const SimulateRequest& req,
