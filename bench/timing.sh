@@ -6,8 +6,8 @@
 # device has no such parameter), or those of --depths:
 #   1. ASIC: voxcd_device at the default configuration (LANES 4, default widths, SAW = MAW = 12 as in
 #      bench/rtl_cost.sh), its RAMs as SRAM macros (black boxes with a stated access time, bench/timing/sram_models.py),
-#      yosys `synth -flatten`, `dfflibmap` and `abc -D <goal period>` (buffering, upsizing and downsizing, ABC_SCRIPT
-#      below) onto the OSU 0.18 um standard cells (Debian qflow-tech-osu018), buffer trees on
+#      yosys `synth -flatten` (adders as Kogge-Stone prefixes, host/sizing/kogge_stone.v), `dfflibmap` and
+#      `abc -D <goal period>` (buffering, upsizing and downsizing, ABC_SCRIPT below) onto the OSU 0.18 um standard cells (Debian qflow-tech-osu018), buffer trees on
 #      every net with more than 8 loads (bench/timing/fanout_buffers.py: ABC leaves flip-flop outputs unbuffered),
 #      then OpenSTA (`sta`) at the goal clock with a wire load model: worst slack, so the largest clock, and the
 #      cell area from the liberty file (yosys `stat -liberty`).
@@ -34,6 +34,10 @@ WIRE_UM=25              # wire load model: micrometres of wire per net and per l
 WIRE_FF_UM=0.2          # ... at this capacitance per micrometre (metal 2 at 0.18 um with fringe)
 FANOUT=8                # largest fanout after the buffer trees
 LIB=/usr/share/qflow/tech/osu018/osu018_stdcells.lib
+# yosys `synth -flatten` with adders and comparators as Kogge-Stone prefixes (host/sizing/kogge_stone.v) rather than
+# ripples, as datapath synthesis builds them; host/sizing/asic_cost.cpp (voxcd size --cost) runs the same commands.
+ASIC_SYNTH="synth -top voxcd_device -flatten -run begin:fine; opt -fast -full; memory_map; opt -full;
+  techmap -map +/techmap.v -map kogge_stone.v; opt -fast; abc -fast; opt -fast; synth -top voxcd_device -run check:"
 # ABC's mapping onto the cells for the goal period ({D} is "-D <ps>"), then buffering (at most 12 loads on a net ABC
 # sees), upsizing and downsizing for it; commas are blanks (yosys `abc -script +...`). voxcd size --cost uses the same.
 ABC_SCRIPT="+strash;&get,-n;&fraig,-x;&put;dc2;strash;&get,-n;&dch,-f;&nf,{D};&put;buffer,-N,12;upsize,{D};dnsize,{D};stime,-p"
@@ -106,7 +110,7 @@ cleanup() {
 }
 trap cleanup EXIT
 for f in "${rtl_files[@]}"; do cp "$root/rtl/$f" "$tmp/$f"; done
-cp "$root/bench/voxcd_fmax_top.sv" "$root/bench/timing/"*.py "$tmp/"
+cp "$root/bench/voxcd_fmax_top.sv" "$root/bench/timing/"*.py "$root/host/sizing/kogge_stone.v" "$tmp/"
 cd "$tmp"
 define=""
 ((has_depth)) && define="-DVOXCD_DEVICE_DEPTH"
@@ -145,7 +149,7 @@ asic_flow() {
   period_ps=$(python3 -c "print(round(1e6 / $GOAL_MHZ))")
   mkdir -p "$dir"
   cp ./*.sv "$dir/"
-  cp sram_models.py fanout_buffers.py "$dir/"
+  cp sram_models.py fanout_buffers.py kogge_stone.v "$dir/"
   cd "$dir"
   # Pass 1: the RAM shapes of this configuration.
   yosys -q -l pass1.log -p "$read_rtl; chparam $default_cfg $(depth_set "$d") voxcd_device;
@@ -154,7 +158,7 @@ asic_flow() {
   # Pass 2: the RAMs become macros, the rest is mapped onto the standard cells for the goal period.
   yosys -q -l synth.log -p "read_verilog srams.v; $read_rtl; chparam $default_cfg $(depth_set "$d") voxcd_device;
     hierarchy -top voxcd_device; proc; rename -top voxcd_device; script srams.ys; hierarchy -top voxcd_device;
-    synth -top voxcd_device -flatten; dfflibmap -liberty $LIB;
+    $ASIC_SYNTH; dfflibmap -liberty $LIB;
     abc -liberty $LIB -D $period_ps -script \"$ABC_SCRIPT\"; opt_clean -purge; write_json mapped.json"
   yosys -q -p "read_liberty -lib $LIB; read_json mapped.json; write_json directions.json"
   python3 fanout_buffers.py directions.json buffered.json voxcd_device BUFX4 A Y "$FANOUT" clk_i >buffers.txt

@@ -11,7 +11,7 @@ import os
 import re
 import statistics
 
-LUT_NS, CARRY_NS = 0.5, 0.1  # round per-cell figures for the 7-series logic-depth estimate (as bench/fmax.sh)
+LUT_NS, CARRY_NS = 0.5, 0.1  # round per-cell figures of ours for a 7-series -1 part (not a vendor timing model)
 GOALS = {"hx8k": 100, "up5k": 45, "levels": 5, "asic": 200}
 TARGETS = ("asic-osu018", "ice40-hx8k", "ice40-up5k", "xilinx-7")
 
@@ -36,6 +36,17 @@ def cells_of(stat):
     return module["num_cells_by_type"]
 
 
+def register_names(netlist):
+    """{flip-flop instance: the register it holds}: the net on its Q pin, which keeps the RTL's register name."""
+    names = {}
+    text = open(netlist).read()
+    for inst, body in re.findall(r"\n\s*DFF\w*\s+(\S+)\s*\((.*?)\);", text, re.S):
+        q = re.search(r"\.Q\(\s*(\\?\S+?)\s*\)", body)
+        if q:
+            names[inst.lstrip("\\")] = q.group(1).lstrip("\\")
+    return names
+
+
 def asic(d, goal_mhz):
     text = open(f"asic-d{d}/sta.txt").read()
     slacks = [float(x) for x in re.findall(r"(-?[\d.]+)\s+slack \((?:MET|VIOLATED)\)", text)]
@@ -43,14 +54,16 @@ def asic(d, goal_mhz):
         raise SystemExit(f"report.py: asic-d{d}/sta.txt has no slack: {text[-400:]}")
     period = 1e3 / goal_mhz
     worst = min(slacks)
-    # The path whose slack is the worst: its start and end points.
+    # The path whose slack is the worst: its start and end points, named by the register (or port, or macro) there.
     paths = re.split(r"\n(?=Startpoint:)", text)
     start = end = "?"
+    names = register_names(f"asic-d{d}/netlist.v")
     for p in paths:
         m = re.search(r"(-?[\d.]+)\s+slack \(", p)
         if m and float(m.group(1)) == worst:
             start = re.search(r"Startpoint: (\S+)", p).group(1)
             end = re.search(r"Endpoint: (\S+)", p).group(1)
+            start, end = names.get(start, start), names.get(end, end)
     area_text = open(f"asic-d{d}/area.txt").read()
     area = float(re.search(r"Chip area for module '\\voxcd_device': ([\d.]+)", area_text).group(1))
     counts = dict((k, int(v)) for k, v in re.findall(r"^\s+(\w+)\s+(\d+)$", area_text, re.M))
@@ -148,12 +161,14 @@ def markdown(a, res):
     s0 = res["asic"][d0]
     macros = ", ".join(f"{m['count']} x {name} ({m['words']} words of {m['width']} bits)"
                        for name, m in sorted(s0["srams"].items()))
-    p(f"**ASIC** (OSU 0.18 um, `osu018_stdcells.lib` of Debian's qflow-tech-osu018; {a.sta_version}): voxcd_device at "
+    p(f"**ASIC** (OSU 0.18 um, `osu018_stdcells.lib` of Debian's qflow-tech-osu018; OpenSTA {a.sta_version}): voxcd_device at "
       f"{params_text(a.default)} and the default widths ({config_text(a.default)}). Its RAMs are SRAM macros, "
       f"black boxes whose Liberty model (bench/timing/sram_models.py) has the read data valid {a.sram[0]} ns after "
       f"the clock edge (plus 2 ns/pF of load) and samples address, data and enables with {a.sram[1]} ns of setup and "
       f"{a.sram[2]} ns of hold: {macros} at depth {d0}; their area is not in the cell area (a macro's area is its "
-      f"compiler's). The rest: yosys `synth -flatten`, `dfflibmap`, then ABC mapping for a {a.goal_mhz:g} MHz "
+      f"compiler's). The rest: yosys `synth -flatten` with adders and comparators as Kogge-Stone prefixes "
+      f"(host/sizing/kogge_stone.v, as datapath synthesis builds them, not ripples), `dfflibmap`, then ABC mapping for a "
+      f"{a.goal_mhz:g} MHz "
       f"period with `buffer -N 12; upsize; dnsize` (ABC_SCRIPT in bench/timing.sh). ABC sees flip-flop outputs and "
       f"input ports as the inputs of its network and does not buffer them (at depth {d0} one net had "
       f"{s0['fanout_before']} loads); bench/timing/fanout_buffers.py then builds a balanced BUFX4 tree on every net "
@@ -164,7 +179,8 @@ def markdown(a, res):
       f"setup and recovery checks. Cell area: yosys `stat -liberty` of the buffered netlist (standard cells only). "
       f"Lookups per second per mm^2: Fmax x LANES (4) over that area.")
     p("")
-    p("| depth | worst slack at 200 MHz (ns) | Fmax (MHz) | worst path | cells | flip-flops | buffers added |")
+    p(f"| depth | worst slack at {a.goal_mhz:g} MHz (ns) | Fmax (MHz) | worst path (from register to register) | cells | "
+      f"flip-flops | buffers added |")
     p("|--:|--:|--:|---|--:|--:|--:|")
     for d in depths:
         s = res["asic"][d]

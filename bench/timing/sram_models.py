@@ -34,12 +34,19 @@ def shapes(design):
 
 
 def instances(design, old_names):
-    """How many cells of each derived voxcd_ram type the design holds."""
+    """How many cells of each derived voxcd_ram type the top module holds, through every level of the hierarchy."""
+    modules = design["modules"]
+    top = next(name for name, m in modules.items() if m.get("attributes", {}).get("top"))
     count = {n: 0 for n in old_names}
-    for module in design["modules"].values():
-        for cell in module.get("cells", {}).values():
+
+    def walk(name, times):
+        for cell in modules[name].get("cells", {}).values():
             if cell["type"] in count:
-                count[cell["type"]] += 1
+                count[cell["type"]] += times
+            elif cell["type"] in modules:
+                walk(cell["type"], times)
+
+    walk(top, 1)
     return count
 
 

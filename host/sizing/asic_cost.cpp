@@ -11,6 +11,9 @@
 
 namespace voxcd {
 
+// host/sizing/kogge_stone.v, generated into the build (host/CMakeLists.txt).
+extern const char* const kKoggeStoneMap;
+
 namespace {
 
 // ABC_SCRIPT of bench/timing.sh: ABC's mapping for the clock ({D}) with buffering and gate sizing; commas are blanks.
@@ -18,6 +21,14 @@ const char* const kAbcScript =
     "+strash;&get,-n;&fraig,-x;&put;dc2;strash;&get,-n;&dch,-f;&nf,{D};&put;buffer,-N,12;upsize,{D};dnsize,{D};stime,-p";
 
 }  // namespace
+
+const char* kogge_stone_map() { return kKoggeStoneMap; }
+
+std::string asic_synth_commands() {
+  return "synth -top voxcd_device -flatten -run begin:fine; opt -fast -full; memory_map; opt -full; "
+         "techmap -map +/techmap.v -map kogge_stone.v; opt -fast; abc -fast; opt -fast; "
+         "synth -top voxcd_device -run check:";
+}
 
 AsicCost asic_cost(const DeviceConfig& cfg, double clock_mhz, const std::string& dir) {
   if (!std::filesystem::exists(kOsu018Liberty))
@@ -27,10 +38,11 @@ AsicCost asic_cost(const DeviceConfig& cfg, double clock_mhz, const std::string&
   const std::string lib = kOsu018Liberty;
   std::ostringstream script;
   script << detail::chparam_device(cfg) << "; hierarchy -top voxcd_device; proc; rename -top voxcd_device; "
-         << "blackbox $paramod*voxcd_ram; synth -top voxcd_device -flatten; dfflibmap -liberty " << lib
+         << "blackbox $paramod*voxcd_ram; " << asic_synth_commands() << "; dfflibmap -liberty " << lib
          << "; abc -liberty " << lib << " -D " << std::lround(1e6 / clock_mhz) << " -script \"" << kAbcScript
          << "\"; opt_clean -purge; tee -q -o area.txt stat -liberty " << lib;
-  const detail::YosysRun run = detail::run_yosys(dir.empty() ? rtl_dir() : dir, script.str(), "area.txt");
+  const detail::YosysRun run = detail::run_yosys(dir.empty() ? rtl_dir() : dir, script.str(), "area.txt",
+                                                 {{"kogge_stone.v", kogge_stone_map()}});
   AsicCost c;
   c.command = run.command;
   c.seconds = run.seconds;

@@ -1,7 +1,8 @@
 // The standard-cell area of a configuration at 0.18 um (voxcd size --cost with a target): yosys maps voxcd_device
-// onto the OSU 0.18 um cells (Debian qflow-tech-osu018) as bench/timing.sh does, with ABC sizing and buffering for
-// the clock, but without that script's buffer trees on register outputs and without static timing; the RAMs are
-// black boxes (SRAM macros), not in the area. docs/size.md, "Depth and target".
+// onto the OSU 0.18 um cells (Debian qflow-tech-osu018) as bench/timing.sh does, adders as Kogge-Stone prefixes
+// (host/sizing/kogge_stone.v), ABC sizing and buffering for the clock, but without that script's buffer trees on
+// register outputs and without static timing; the RAMs are black boxes (SRAM macros), not in the area.
+// docs/size.md, "Depth and target".
 #pragma once
 
 #include <string>
@@ -26,5 +27,12 @@ struct AsicCost {
 // clock_mhz. std::runtime_error when the liberty file is missing (naming the Debian package), or yosys is missing
 // or fails.
 AsicCost asic_cost(const DeviceConfig& cfg, double clock_mhz, const std::string& rtl_dir = "");
+
+// The ASIC flows' techmap of yosys's carry unit ($lcu) into a Kogge-Stone prefix: host/sizing/kogge_stone.v, as the
+// library has it compiled in.
+const char* kogge_stone_map();
+// The yosys commands of `synth -flatten` with that map in its techmap step (bench/timing.sh runs the same), for a
+// design read, with its parameters set, whose top is voxcd_device.
+std::string asic_synth_commands();
 
 }  // namespace voxcd

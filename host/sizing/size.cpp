@@ -461,11 +461,11 @@ std::string size_text(const SizeReport& r) {
       << m.max_cycles << " cycles, mean " << fmt(m.mean_cycles, 6) << ") at " << r.clock.text() << "\n";
   o << "latency         " << r.latency() << " cycles (" << fmt(r.latency_ns(), 4)
     << " ns) from a job's acceptance to its first record on the pins, at depth " << depth_of(c) << "\n";
-  if (r.depth) o << depth_lines(r);
   o << "memory          shell 2^" << c.SAW << " x " << 3 * c.PW << " bit = " << bits_text(r.shell_bits())
     << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.voxmap_copies()
     << (c.banked() ? " (shared banks)" : " lane copies") << " = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
     << bits_text(r.shell_bits() + r.map_bits()) << "\n";
+  if (r.depth) o << depth_lines(r);
   if (r.cost)
     o << "cost            " << r.cost->luts << " LUTs, " << r.cost->ffs << " FFs, " << r.cost->dsps << " DSPs, "
       << fmt(r.cost->brams) << " block RAMs (RAMB36) for Xilinx 7-series (yosys synth_xilinx, " << r.cost->version

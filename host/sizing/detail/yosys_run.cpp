@@ -44,8 +44,14 @@ std::string log_tail(const fs::path& log) {
 
 }  // namespace
 
-YosysRun run_yosys(const std::string& rtl_dir, const std::string& script, const std::string& output) {
+YosysRun run_yosys(const std::string& rtl_dir, const std::string& script, const std::string& output,
+                   const std::vector<std::pair<std::string, std::string>>& files) {
   const TempDir tmp;
+  for (const auto& [name, text] : files) {
+    std::ofstream out(tmp.path / name, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw std::runtime_error("yosys: cannot write " + (tmp.path / name).string());
+  }
   std::string read = "read_verilog -sv";
   for (const std::string& src : rtl_files(rtl_dir)) {
     const fs::path f = fs::path(src).filename();

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "voxcd/ref/config.h"
 
@@ -15,9 +17,11 @@ struct YosysRun {
 };
 
 // Runs `yosys -p "read_verilog -sv <the sources of rtl_dir's voxcd.f>; <script>"` in a temporary directory (removed
-// afterwards) and returns the text of `output`, a file the script writes there. std::runtime_error when the sources
-// cannot be copied, yosys is missing or fails (with the end of its log), or it did not write `output`.
-YosysRun run_yosys(const std::string& rtl_dir, const std::string& script, const std::string& output);
+// afterwards), with the `files` ({name, text}) written there first, and returns the text of `output`, a file the
+// script writes there. std::runtime_error when the sources cannot be copied, yosys is missing or fails (with the end
+// of its log), or it did not write `output`.
+YosysRun run_yosys(const std::string& rtl_dir, const std::string& script, const std::string& output,
+                   const std::vector<std::pair<std::string, std::string>>& files = {});
 
 // "Yosys 0.23 (git sha1 ...)", or "" when yosys cannot be run.
 std::string yosys_version();
