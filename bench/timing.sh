@@ -177,6 +177,7 @@ set_output_delay 0 -clock clk [all_outputs]
 report_checks -path_delay max -fields {fanout cap slew} -digits 3
 report_wns
 report_tns
+report_checks -path_delay max -group_count 100000 -format end
 EOF
   sta -exit sta.tcl >sta.txt 2>&1
   grep -q "^wns" sta.txt || { cat sta.txt; return 1; }

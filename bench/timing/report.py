@@ -47,6 +47,21 @@ def register_names(netlist):
     return names
 
 
+def slowest_groups(text, names, count=8):
+    """The register groups whose inputs arrive latest: from the endpoint list (`report_checks -format end`), every
+    setup endpoint named by its register with lane, bank and bit indices folded ("g_lane[*].u_lane.px_q[]"), the
+    latest arrival of each group, latest first."""
+    groups = {}
+    for inst, pin, arrival in re.findall(r"^(\S+)/(\w+) \(\w+\)\s+[-\d.]+\s+([-\d.]+)\s+[-\d.]+ \((?:MET|VIOLATED)\)",
+                                         text, re.M):
+        if pin in ("S", "R"):  # asynchronous set and reset: recovery checks, not data
+            continue
+        name = names.get(inst, f"{inst}/{pin}")
+        name = re.sub(r"\[\d+\]", "[]", re.sub(r"(g_lane|g_bank)\[\d+\]", r"\1[*]", name))
+        groups[name] = max(groups.get(name, 0.0), float(arrival))
+    return sorted(groups.items(), key=lambda kv: -kv[1])[:count]
+
+
 def asic(d, goal_mhz):
     text = open(f"asic-d{d}/sta.txt").read()
     slacks = [float(x) for x in re.findall(r"(-?[\d.]+)\s+slack \((?:MET|VIOLATED)\)", text)]
@@ -70,6 +85,7 @@ def asic(d, goal_mhz):
     added, before = (int(x) for x in open(f"asic-d{d}/buffers.txt").read().split())
     srams = json.load(open(f"asic-d{d}/srams.json"))
     return {"wns": worst, "mhz": 1e3 / (period - worst), "start": start, "end": end, "area_mm2": area / 1e6,
+            "groups": slowest_groups(text, names),
             "cells": sum(v for k, v in counts.items() if not k.startswith("voxcd_sram")),
             "ffs": sum(v for k, v in counts.items() if k.startswith("DFF")), "buffers": added, "fanout_before": before,
             "srams": srams}
@@ -186,6 +202,17 @@ def markdown(a, res):
         s = res["asic"][d]
         p(f"| {d} | {s['wns']:.3f} | {fmt_mhz(s['mhz'])} | `{s['start']}` -> `{s['end']}` | {s['cells']} | "
           f"{s['ffs']} | {s['buffers']} |")
+    p("")
+    p(f"What else is slow: the {len(res['asic'][d0]['groups'])} register groups whose data arrive latest at each depth "
+      f"(OpenSTA's every endpoint, `report_checks -group_count 100000 -format end`; lanes, banks and bits folded, the "
+      f"latest arrival of each group, in ns after the clock edge; a group meets {a.goal_mhz:g} MHz when its arrival "
+      f"plus the register's setup is within {1e3 / a.goal_mhz:g} ns):")
+    p("")
+    p("| depth | register group | latest arrival (ns) |")
+    p("|--:|---|--:|")
+    for d in depths:
+        for name, arrival in res["asic"][d]["groups"]:
+            p(f"| {d} | `{name}` | {arrival:.2f} |")
     p("")
     up = res["up5k"][d0]
     p(f"**iCE40**: voxcd_device at {params_text(a.small)} inside bench/voxcd_fmax_top.sv (a shift register drives "

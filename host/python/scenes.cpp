@@ -235,8 +235,8 @@ tool's option of the same name does; config is a whole device configuration as N
 --distance-bits, --band, --margin and --ccd (ccd=False also turns off a scene file's "ccd"); with distance voxmaps
 the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling. clock (MHz) is the
 device clock of device_frame_rate_hz (default: the scene file's "clock", or the OpenSTA clock of the default
-configuration at 0.18 um, docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and device_frame_rate_hz is None when no
-frame needed device cycles.)");
+configuration at 0.18 um, docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and
+device_frame_rate_hz is None when no frame needed device cycles.)");
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
         py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),

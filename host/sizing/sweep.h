@@ -35,7 +35,7 @@ struct SweepSpec {
   uint64_t sample_frames = 4;         // of those, frames whose contacts are checked against the meshes
   double clock = 0;                   // MHz (0: the scene file's)
   // Where clock comes from (DeviceClock::source): "given by --clock", "given by <sweep file>'s \"clock\"", or the
-  // scene file's clock's source (its "clock", or the default estimate of docs/hardware.md).
+  // scene file's clock's source (its "clock", or the default clock of docs/hardware.md).
   std::string clock_source;
   bool cost = false;                  // yosys per point
   std::string rtl_dir;                // the RTL for cost ("" = the package's)

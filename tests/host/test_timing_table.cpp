@@ -5,6 +5,8 @@
 // latency a depth costs, and the standard-cell area at 0.18 um (asic_cost.h).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -231,6 +233,50 @@ TEST(AsicCost, ASmallConfigurationMapsOntoTheCellLibrary) {
   EXPECT_GE(c.area_mm2 * 1e6, 16.0 * double(c.cells));
   EXPECT_LE(c.area_mm2 * 1e6, 176.0 * double(c.cells));
   EXPECT_NE(c.command.find("-D 10000"), std::string::npos) << "mapped for 100 MHz: " << c.command;
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Adders, subtractors and comparators of 1 to 64 bits mapped with the Kogge-Stone carry unit are equal to their RTL
+// (a SAT proof over every input), and the map was used.
+TEST(AsicCost, TheKoggeStoneCarryUnitEqualsTheAdders) {
+  EXPECT_EQ(std::string(kogge_stone_map()), file_text(VOXCD_SOURCE_DIR "/host/sizing/kogge_stone.v"))
+      << "the library's map is not the source tree's: reconfigure";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "voxcd_test_kogge_stone";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "kogge_stone.v") << kogge_stone_map();
+  std::ofstream(dir / "adders.v")
+      << "module adders(input a1, b1, input [1:0] a2, b2, input [2:0] a3, b3, input [6:0] a7, b7,\n"
+         "  input signed [31:0] a32, b32, input [63:0] a64, b64, input ci,\n"
+         "  output [1:0] s1, output [2:0] s2, output [2:0] s3, output [6:0] d7, output [31:0] d32,\n"
+         "  output lt32, ge64, output [64:0] s64);\n"
+         "  assign s1 = a1 + b1; assign s2 = a2 + b2; assign s3 = a3 + b3 + ci; assign d7 = a7 - b7;\n"
+         "  assign d32 = a32 - b32; assign lt32 = a32 < b32; assign ge64 = a64 >= b64; assign s64 = a64 + b64;\n"
+         "endmodule\n";
+  const std::string script =
+      "read_verilog adders.v; synth -top adders -run begin:fine; opt -fast -full; memory_map; opt -full; "
+      "techmap -map +/techmap.v -map kogge_stone.v; opt -fast; rename adders gate; read_verilog adders.v; proc; "
+      "rename adders gold; miter -equiv -flatten -make_outputs gold gate miter; hierarchy -top miter; "
+      "sat -verify -prove trigger 0 miter";
+  const std::string cmd =
+      "cd '" + dir.string() + "' && yosys -l log.txt -q -p '" + script + "' > /dev/null 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << "not equal, or yosys failed; see " << (dir / "log.txt").string();
+  EXPECT_NE(file_text((dir / "log.txt").string()).find("_80_voxcd_lcu_kogge_stone"), std::string::npos)
+      << "the Kogge-Stone map was not used";
+  // A broken map (one prefix step dropped) must fail the same proof, so the proof can fail.
+  std::string broken = kogge_stone_map();
+  const size_t at = broken.find("(p[k*WIDTH + j] & g[k*WIDTH + j - (1 << k)])");
+  ASSERT_NE(at, std::string::npos);
+  broken.replace(at, std::string("(p[k*WIDTH + j] & g[k*WIDTH + j - (1 << k)])").size(), "1'b0");
+  std::ofstream(dir / "kogge_stone.v") << broken;
+  EXPECT_NE(std::system(cmd.c_str()), 0) << "a broken carry unit passed the proof";
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
