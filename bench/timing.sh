@@ -58,13 +58,9 @@ while (($#)); do
   esac
 done
 
-missing=0
-need() {  # tool debian-package
-  if ! command -v "$1" >/dev/null 2>&1; then
-    echo "timing.sh: $1 not found: install the Debian package $2 (apt-get install $2)" >&2
-    missing=1
-  fi
-}
+runs_name=timing.sh
+# shellcheck source=bench/tool_runs.sh
+source "$root/bench/tool_runs.sh"
 need yosys yosys
 need sta opensta
 need nextpnr-ice40 nextpnr-ice40
@@ -99,16 +95,7 @@ done
 
 # The RTL in the order of rtl/voxcd.f (// lines are comments; yosys skips Verilator's *.vlt).
 mapfile -t rtl_files < <(grep -v -e "^[[:space:]]*//" -e "^[[:space:]]*$" -e "\.vlt[[:space:]]*$" "$root/rtl/voxcd.f")
-tmp="$(mktemp -d)"
-pids=()
-logs=()
-cleanup() {
-  local p
-  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
+work_dir
 for f in "${rtl_files[@]}"; do cp "$root/rtl/$f" "$tmp/$f"; done
 cp "$root/bench/voxcd_fmax_top.sv" "$root/bench/timing/"*.py "$root/host/sizing/kogge_stone.v" "$tmp/"
 cd "$tmp"
@@ -119,29 +106,6 @@ default_cfg="-set LANES 4 -set SAW 12 -set MAW 12"
 small_cfg="-set LANES 1 -set PW 10 -set PF 2 -set MW 8 -set MF 6 -set TW 20 -set DW 5 -set MEMW 16 -set SAW 8"
 small_cfg+=" -set MAW 9 -set TAGW 4"
 depth_set() { if (($1 > 0)); then echo "-set Depth $1"; fi; }  # Depth 0 is every RTL's default
-
-# launch LOG CMD...: runs CMD in the background, stdout and stderr to LOG, at most JOBS at a time.
-launch() {
-  local log="$1"
-  shift
-  while (($(jobs -pr | wc -l) >= JOBS)); do wait -n || true; done
-  "$@" >"$log" 2>&1 &
-  pids+=("$!")
-  logs+=("$log")
-}
-# finish: waits for every launched command; on a failure shows the end of its log and exits non-zero.
-finish() {
-  local i
-  for i in "${!pids[@]}"; do
-    if ! wait "${pids[$i]}"; then
-      echo "timing.sh: failed, see the end of ${logs[$i]}:" >&2
-      tail -n 20 "${logs[$i]}" >&2
-      exit 1
-    fi
-  done
-  pids=()
-  logs=()
-}
 
 # asic_flow D: synthesis onto OSU 0.18 um and static timing of the default configuration at depth D, in asic-dD/.
 asic_flow() {
