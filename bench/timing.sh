@@ -19,7 +19,7 @@
 #      RAM counts and the logic depth (LUT levels and CARRY4 cells on the longest path between state-holding cells).
 #
 # Needs yosys, berkeley-abc (with yosys), opensta, qflow-tech-osu018, nextpnr-ice40, fpga-icestorm and python3 (Debian
-# packages). JOBS tool runs at a time (default 2); about 12 minutes per depth on 2 cores.
+# packages). JOBS tool runs at a time (default 2); about half an hour per depth on 2 busy cores.
 # Usage: bash bench/timing.sh [--depths 0,1,2] [--out DIR]
 #   --depths  the depths to measure (default: every depth the RTL offers)
 #   --out     write the Markdown block and the table into DIR instead of docs/hardware.md and host/sizing/timing.tsv

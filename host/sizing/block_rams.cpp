@@ -65,7 +65,7 @@ BlockRams block_rams(const DeviceConfig& cfg, const std::string& target) {
   if (target == "xilinx-7")
     b.unit = "RAMB36";
   else if (target == "ice40-hx8k" || target == "ice40-up5k")
-    b.unit = "SB_RAM40_4K (4 kbit)";
+    b.unit = "SB_RAM40_4K (4 kbit)", b.available = target == "ice40-hx8k" ? 32 : 30;
   else
     throw std::invalid_argument("target '" + target + "' has no block RAMs that voxcd counts");
   for (const MemoryShape& m : memory_shapes(cfg)) b.count += m.count * blocks(m, target);

@@ -22,7 +22,8 @@ std::vector<MemoryShape> memory_shapes(const DeviceConfig& cfg);
 
 struct BlockRams {
   double count = 0;
-  std::string unit;  // "RAMB36", "SB_RAM40_4K (4 kbit)", "SRAM macros"
+  std::string unit;   // "RAMB36", "SB_RAM40_4K (4 kbit)", "SRAM macros"
+  int available = 0;  // what the target's part has (iCE40 HX8K 32, UP5K 30); 0: no fixed part
 };
 // For one of timing_targets() (timing_table.h); std::invalid_argument for another.
 BlockRams block_rams(const DeviceConfig& cfg, const std::string& target);

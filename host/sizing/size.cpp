@@ -393,7 +393,11 @@ std::string rams_text(const SizeReport& r) {
   for (const MemoryShape& m : memory_shapes(r.config))
     shapes += (shapes.empty() ? "" : ", ") + std::to_string(m.count) + " x " + m.what + " " + std::to_string(m.words) +
               " x " + std::to_string(m.width) + " bit";
-  return fmt(r.rams->count) + " " + r.rams->unit + " on " + r.target + " (" + shapes + ")";
+  std::string s = fmt(r.rams->count) + " " + r.rams->unit + " on " + r.target + " (" + shapes + ")";
+  if (r.rams->available > 0)
+    s += r.rams->count <= r.rams->available ? "; the part has " + std::to_string(r.rams->available)
+                                            : "; more than the part's " + std::to_string(r.rams->available);
+  return s;
 }
 
 // The lines of the depth choice (with a target): depth, area and block RAMs.
@@ -519,7 +523,8 @@ nlohmann::ordered_json depth_json(const SizeReport& r) {
                      {"config", r.asic_row->config}};
   else
     j["area_mm2"] = nullptr;
-  j["block_rams"] = {{"count", r.rams->count}, {"unit", r.rams->unit}};
+  j["block_rams"] = {{"count", r.rams->count}, {"unit", r.rams->unit},
+                     {"available", r.rams->available ? nlohmann::ordered_json(r.rams->available) : nullptr}};
   return j;
 }
 }  // namespace

@@ -209,6 +209,9 @@ TEST(BlockRams, CountsMatchWhatSynthesisBuilt) {
   small.MEMW = 16;
   EXPECT_EQ(block_rams(small, "ice40-hx8k").count, 4);
   EXPECT_EQ(block_rams(small, "ice40-up5k").count, 4);
+  EXPECT_EQ(block_rams(small, "ice40-hx8k").available, 32) << "the HX8K's 32 RAMs (nextpnr: 4 / 32)";
+  EXPECT_EQ(block_rams(small, "ice40-up5k").available, 30);
+  EXPECT_EQ(block_rams(small, "xilinx-7").available, 0) << "no one 7-series part";
   // ASIC: one SRAM macro per memory (bench/timing.sh's 4 shell banks and 4 voxmap copies at LANES 4).
   EXPECT_EQ(block_rams(lanes(4), "asic-osu018").count, 8);
   EXPECT_EQ(block_rams(lanes(4), "asic-osu018").unit, "SRAM macros");
