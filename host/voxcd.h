@@ -45,6 +45,7 @@
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/scene/ccd.h"
 #include "voxcd/host/scene/distance_bound.h"
+#include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/scene/simulate.h"

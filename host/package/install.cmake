@@ -11,11 +11,13 @@
 # Included last by the top-level CMakeLists.txt, when every target exists.
 include(CMakePackageConfigHelpers)
 
-# Public headers: every header of ref/, host/ and sysc/ except those under detail/, the tool's (cli/, mpi/) and the server's.
+# Public headers: every header of ref/, host/ and sysc/ except those under detail/, the tool's (cli/, mpi/, view/) and
+# the server's.
 foreach(part ref host sysc)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd/${part}
           FILES_MATCHING PATTERN "*.h"
           PATTERN "detail" EXCLUDE PATTERN "cli" EXCLUDE PATTERN "mpi" EXCLUDE PATTERN "python" EXCLUDE PATTERN "dpi" EXCLUDE
+          PATTERN "view" EXCLUDE
           PATTERN "server_protocol.h" EXCLUDE PATTERN "voxcd.h" EXCLUDE)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/host/voxcd.h ${VOXCD_INCLUDE_ROOT}/voxcd/version.h

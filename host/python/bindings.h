@@ -19,6 +19,7 @@ void bind_objects(py::module_& m);
 void bind_pairs(py::module_& m);
 void bind_scenes(py::module_& m);
 void bind_conformance(py::module_& m);
+void bind_record(py::module_& m);
 
 // A path argument: a str or an os.PathLike giving one. TypeError naming `what` for anything else.
 std::string path_arg(const py::handle& h, const char* what);

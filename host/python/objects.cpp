@@ -74,16 +74,20 @@ py::object repair_dict(const ObjectFile& obj) {
   dropped["repeated_vertex"] = r.dropped_repeated;
   dropped["collinear"] = r.dropped_collinear;
   dropped["duplicate"] = r.dropped_duplicate;
+  dropped["internal"] = r.dropped_internal;
   d["dropped"] = dropped;
   d["reoriented"] = r.reoriented;
   d["open_edges"] = r.open_edges;
   d["nonmanifold_edges"] = r.nonmanifold_edges;
+  d["nonmanifold_parts"] = r.nonmanifold_parts;
+  d["fin_triangles"] = r.fin_triangles;
   d["inconsistent_edges"] = r.inconsistent_edges;
   d["components"] = r.components;
   d["closed_components"] = r.closed_components;
   d["sheet_components"] = r.sheet_components;
   d["uncertain_voxels"] = obj.voxelize_report.uncertain;
   d["evaluated_voxels"] = obj.voxelize_report.evaluated;
+  d["conservative_cells"] = obj.voxelize_report.conservative;
   return std::move(d);
 }
 

@@ -134,7 +134,7 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
                         std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
                         std::optional<double> clock, std::optional<std::string> config, unsigned threads,
                         bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
-                        std::optional<double> margin, std::optional<bool> ccd) {
+                        std::optional<double> margin, std::optional<bool> ccd, const py::object& record) {
   SimulateRequest req;
   if (!scene.is_none()) scene_arg(scene, req.file, req.text);
   req.frames = count_arg(frames, "frames");
@@ -162,6 +162,7 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
   req.threads = threads;
   req.midphase = midphase;
   req.cull = cull;
+  if (!record.is_none()) req.record = path_arg(record, "record");
   return with_file(req.text ? "" : req.file, [&] {
     SimulationSummary s;
     {
@@ -227,6 +228,7 @@ void bind_scenes(py::module_& m) {
         py::arg("clock") = py::none(), py::arg("config") = py::none(), py::arg("threads") = 0u,
         py::arg("midphase") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
         py::arg("band") = py::none(), py::arg("margin") = py::none(), py::arg("ccd") = py::none(),
+        py::arg("record") = py::none(),
         R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
 `voxcd simulate --json` (the state hash as a hex string). scene: None (the paper's built-in scene), a scene file,
 or a dict with a scene file's keys (docs/scenes.md). Each option given (not None) overrides the scene file, as the
@@ -236,7 +238,8 @@ tool's option of the same name does; config is a whole device configuration as N
 the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling. clock (MHz) is the
 device clock of device_frame_rate_hz (default: the scene file's "clock", or the OpenSTA clock of the default
 configuration at 0.18 um, docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and
-device_frame_rate_hz is None when no frame needed device cycles.)");
+device_frame_rate_hz is None when no frame needed device cycles. record (a path) records the run as it goes
+(docs/view.md; read_recording reads it, `voxcd view` replays it).)");
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
         py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),

@@ -51,6 +51,9 @@ struct SimulateRequest {
   std::shared_ptr<FrameExchange> exchange;
   bool midphase = true;                // SimOptions::midphase
   bool cull = true;                    // SimOptions::cull
+  // A file to record the run to as it goes (host/scene/record.h, docs/view.md); "" records nothing. Not with
+  // `exchange`.
+  std::string record;
 };
 
 // An option that cannot be used, before anything is loaded: `options` names it (or the options in conflict) as

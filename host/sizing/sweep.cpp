@@ -240,6 +240,9 @@ std::string sweep_row_line(const SweepRow& r) {
   j["contact_bound"] = r.contact_bound;
   j["contact_measured"] = r.contact_measured;
   j["contacts_checked"] = r.contacts_checked;
+  j["contacts_conservative"] = r.contacts_conservative;
+  j["contact_measured_conservative"] = r.contact_measured_conservative;
+  j["contact_bound_conservative"] = r.contact_bound_conservative;
   j["latency"] = r.latency;
   j["max_cycles"] = r.max_cycles;
   j["mean_cycles"] = r.mean_cycles;
@@ -272,6 +275,10 @@ SweepRow parse_sweep_row(const std::string& line, const std::string& where) {
     r.contact_bound = j.at("contact_bound").get<double>();
     r.contact_measured = j.at("contact_measured").get<double>();
     r.contacts_checked = j.at("contacts_checked").get<uint64_t>();
+    // (results files written before conservative cells have none of these)
+    r.contacts_conservative = j.value("contacts_conservative", uint64_t{0});
+    r.contact_measured_conservative = j.value("contact_measured_conservative", 0.0);
+    r.contact_bound_conservative = j.value("contact_bound_conservative", 0.0);
     r.latency = j.value("latency", 0);
     r.max_cycles = j.at("max_cycles").get<uint64_t>();
     r.mean_cycles = j.at("mean_cycles").get<double>();
@@ -357,6 +364,11 @@ SweepRow SweepRunner::run(uint64_t index) {
     const ContactMeasure c = measure_contacts(scene, f, cfg, meshes_, frames_, spec_.sample_frames);
     r.contact_measured = c.worst_outside;
     r.contacts_checked = c.contacts;
+    if (kind.distance()) {
+      r.contacts_conservative = c.conservative;
+      r.contact_measured_conservative = c.worst_outside_conservative;
+      r.contact_bound_conservative = contact_error_bound(cfg, e, VoxmapKind{}, convex_);
+    }
     r.shell_bits = shell_memory_bits(cfg);
     r.map_bits = map_memory_bits(cfg);
     if (spec_.cost) r.cost = yosys_cost(cfg, spec_.rtl_dir);

@@ -83,6 +83,10 @@ struct SweepRow {
   double contact_bound = 0;   // how far outside the other surface a contact can lie, world units (contact_error_bound)
   double contact_measured = 0;  // the farthest checked contact lies outside the other mesh, world units (>= 0)
   uint64_t contacts_checked = 0;
+  // Distance voxmaps: the contacts in or next to conservative cells (a surface the nodes do not resolve), checked
+  // apart against the 2-bit voxmap's bound (docs/pairs.md), world units; all 0 on a 2-bit row.
+  uint64_t contacts_conservative = 0;
+  double contact_measured_conservative = 0, contact_bound_conservative = 0;
   int latency = 0;            // cycles from a job's acceptance to its first record (latency_cycles, depth.h)
   uint64_t max_cycles = 0;    // device cycles of the largest frame
   double mean_cycles = 0;

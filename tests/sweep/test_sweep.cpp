@@ -227,11 +227,16 @@ TEST(SweepRows, MeasuredContactErrorWithinTheBoundOnEveryRow) {
     std::printf("%s: contact bound %.4g, measured %.4g over %llu contacts, %llu cycles\n", r.point.text().c_str(),
                 r.contact_bound, r.contact_measured, (unsigned long long)r.contacts_checked,
                 (unsigned long long)r.max_cycles);
-    EXPECT_GT(r.contacts_checked, 0u) << r.point.text();
+    EXPECT_GT(r.contacts_checked + r.contacts_conservative, 0u) << r.point.text();
     EXPECT_LE(r.contact_measured, r.contact_bound) << r.point.text();
+    // Next to conservative cells of a distance voxmap, the 2-bit bound.
+    EXPECT_LE(r.contact_measured_conservative, r.contact_bound_conservative) << r.point.text();
+    if (r.point.distance_bits == 0) {
+      EXPECT_EQ(r.contacts_conservative, 0u);
+    }
     EXPECT_GT(r.max_cycles, 0u);
     EXPECT_LE(r.mean_cycles, double(r.max_cycles));
-    checked += r.contacts_checked;
+    checked += r.contacts_checked + r.contacts_conservative;
   }
   EXPECT_GT(checked, 100u);
 }
