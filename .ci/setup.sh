@@ -10,7 +10,7 @@ mode="${1:-run}"
 
 pkgs=(cmake ninja-build g++ pkg-config ccache verilator libsystemc-dev libgtest-dev libeigen3-dev libcli11-dev
       zlib1g-dev libassimp-dev libfcl-dev libbullet-dev nlohmann-json3-dev libopenvdb-dev libboost-iostreams-dev
-      assimp-testmodels yosys pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dev
+      assimp-testmodels yosys qflow-tech-osu018 pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dev
       openmpi-bin libopenmpi-dev chromium libjs-three nodejs npm)
 missing=()
 for p in "${pkgs[@]}"; do

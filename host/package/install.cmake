@@ -6,6 +6,7 @@
 #   P/lib/pkgconfig/       voxcd.pc
 #   P/bin/voxcd            the tool; P/libexec/voxcd/voxcd_sysc_server, the sysc backends' platform
 #   P/share/voxcd/rtl/     the RTL, its file list voxcd.f and the DPI package voxcd_dpi_pkg.sv
+#   P/share/voxcd/timing.tsv  the timing table of bench/timing.sh (the library has it compiled in)
 #   P/lib/python3/dist-packages/  the Python module (import voxcd)
 # Included last by the top-level CMakeLists.txt, when every target exists.
 include(CMakePackageConfigHelpers)
@@ -75,3 +76,5 @@ endif()
 
 # The RTL with its file list (and the DPI package, ref/dpi/CMakeLists.txt adds it).
 install(FILES ${PROJECT_SOURCE_DIR}/rtl/voxcd.f ${VOXCD_RTL_SOURCES} DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd/rtl)
+# The timing table `voxcd size --target` chooses a depth from (compiled in; here for reading and for --timing-table).
+install(FILES ${PROJECT_SOURCE_DIR}/host/sizing/timing.tsv DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd)

@@ -38,7 +38,7 @@ struct SimulateRequest {
   std::optional<bool> both_directions;
   std::optional<uint64_t> frames;      // default 1000 (a scene file's `frames` otherwise)
   // The device clock for the modelled frame rate (given_clock names where it was given); unset: the scene file's
-  // "clock", or default_device_clock() (an estimate, docs/hardware.md).
+  // "clock", or default_device_clock() (OpenSTA's clock of the default configuration, docs/hardware.md).
   std::optional<DeviceClock> clock;
   std::optional<int> lanes;            // default 4; overrides the LANES of `device`
   std::optional<DeviceConfig> device;  // the device's whole configuration (SimOptions::device)
@@ -104,7 +104,7 @@ struct SimulationSummary {
   double frame_rate() const;        // frames per second of the host (0 when no time was measured)
   double cycles_per_frame() const;  // mean device cycles
   double device_rate() const;       // frames per second the device's mean cycles allow at `clock` (0 without cycles)
-  // The device's frame rate as printed: "4181 Hz at 122 MHz (estimate: ...)", with "; 3 of 10 frames needed no device
+  // The device's frame rate as printed: "4181 Hz at 93.6 MHz (OpenSTA, ...)", with "; 3 of 10 frames needed no device
   // cycles" when some did not, or "none: the frames needed no device cycles" when none did.
   std::string device_rate_text() const;
 };
