@@ -1,5 +1,5 @@
 # cmake --install build --prefix P:
-#   P/include/voxcd/       the public headers (<voxcd/voxcd.h> and what it includes, <voxcd/sysc/...>)
+#   P/include/voxcd/       the public headers (<voxcd/voxcd.h> and what it includes, <voxcd/ref/...>, <voxcd/sysc/...>)
 #   P/lib/                 libvoxcd (voxcd::host), libvoxcd_ref (voxcd::ref), libvoxcd_ref_fast (voxcd::fast),
 #                          libvoxcd_sysc (voxcd::sysc), libvoxcd_dpi (voxcd::dpi) and the Verilated models they load
 #   P/lib/cmake/voxcd/     the CMake package: find_package(voxcd CONFIG REQUIRED)
@@ -11,14 +11,23 @@
 # Included last by the top-level CMakeLists.txt, when every target exists.
 include(CMakePackageConfigHelpers)
 
-# Public headers: every header of ref/, host/ and sysc/ except those under detail/, the tool's (cli/, mpi/, view/) and
-# the server's.
-foreach(part ref host sysc)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd/${part}
-          FILES_MATCHING PATTERN "*.h"
-          PATTERN "detail" EXCLUDE PATTERN "cli" EXCLUDE PATTERN "mpi" EXCLUDE PATTERN "python" EXCLUDE PATTERN "dpi" EXCLUDE
-          PATTERN "view" EXCLUDE
-          PATTERN "server_protocol.h" EXCLUDE PATTERN "voxcd.h" EXCLUDE)
+# Public headers, and only those (docs/api.md): the umbrella <voxcd/voxcd.h> and what it includes (the public API of
+# host/api/ and the few plain types it names), the device contract's own headers (the ref door), and the SystemC
+# models' (the sysc door). Every other header is internal: not installed. tests/install/consumers.sh checks that each
+# installed header includes only installed headers and compiles on its own.
+set(VOXCD_PUBLIC_HEADERS
+  host/api/object.h host/api/collide.h host/api/world.h host/api/devices.h
+  host/object/mesh.h host/object/frame.h host/pairs/contact.h host/scene/body.h
+  host/device/device.h host/device/conform.h host/device/clock.h
+  ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
+  ref/float_model.h ref/fast/fast.h)
+if(TARGET voxcd_sysc)
+  list(APPEND VOXCD_PUBLIC_HEADERS sysc/address_map.h sysc/axi_target.h sysc/host_cpu.h sysc/platform.h
+                                   sysc/rtl_target.h sysc/target.h sysc/tlm_target.h)
+endif()
+foreach(h ${VOXCD_PUBLIC_HEADERS})
+  get_filename_component(dir ${h} DIRECTORY)
+  install(FILES ${PROJECT_SOURCE_DIR}/${h} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd/${dir})
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/host/voxcd.h ${VOXCD_INCLUDE_ROOT}/voxcd/version.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd)

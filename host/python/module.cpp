@@ -86,4 +86,5 @@ PYBIND11_MODULE(voxcd, m) {
   voxcd::python::bind_scenes(m);
   voxcd::python::bind_conformance(m);
   voxcd::python::bind_record(m);
+  voxcd::python::bind_api(m);
 }

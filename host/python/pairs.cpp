@@ -12,6 +12,47 @@
 
 namespace voxcd::python {
 
+py::dict contacts_dict(const PairResult& r, bool cycles) {
+  const py::ssize_t k = py::ssize_t(r.contacts.size());
+  py::array_t<bool> a_in_b(k);
+  py::array_t<uint32_t> points(k);
+  py::array_t<double> positions({k, py::ssize_t(3)}), normals({k, py::ssize_t(3)});
+  py::array_t<uint32_t> voxels({k, py::ssize_t(3)});
+  py::array_t<uint8_t> states(k);
+  py::array_t<double> depths(k);
+  auto ab = a_in_b.mutable_unchecked<1>();
+  auto pt = points.mutable_unchecked<1>();
+  auto ps = positions.mutable_unchecked<2>();
+  auto nm = normals.mutable_unchecked<2>();
+  auto vx = voxels.mutable_unchecked<2>();
+  auto st = states.mutable_unchecked<1>();
+  auto dp = depths.mutable_unchecked<1>();
+  for (py::ssize_t i = 0; i < k; ++i) {
+    const Contact& c = r.contacts[size_t(i)];
+    ab(i) = c.a_in_b;
+    pt(i) = c.point;
+    for (int j = 0; j < 3; ++j) {
+      ps(i, j) = c.position[j];
+      nm(i, j) = c.normal[j];
+      vx(i, j) = c.voxel[size_t(j)];
+    }
+    st(i) = c.state;
+    dp(i) = c.depth;
+  }
+  py::dict d;
+  d["hits"] = r.hits;
+  d["lookups"] = r.lookups;
+  d["device_cycles"] = cycles ? py::object(py::int_(r.cycles)) : py::none();
+  d["a_in_b"] = a_in_b;
+  d["points"] = points;
+  d["positions"] = positions;
+  d["normals"] = normals;
+  d["voxels"] = voxels;
+  d["states"] = states;
+  d["depths"] = depths;
+  return d;
+}
+
 namespace {
 
 struct Pair {
@@ -118,47 +159,6 @@ std::vector<RigidPose> poses(const py::object& pose, bool& many) {
   return out;
 }
 
-py::dict result_dict(const PairResult& r, bool cycles) {
-  const py::ssize_t k = py::ssize_t(r.contacts.size());
-  py::array_t<bool> a_in_b(k);
-  py::array_t<uint32_t> points(k);
-  py::array_t<double> positions({k, py::ssize_t(3)}), normals({k, py::ssize_t(3)});
-  py::array_t<uint32_t> voxels({k, py::ssize_t(3)});
-  py::array_t<uint8_t> states(k);
-  py::array_t<double> depths(k);
-  auto ab = a_in_b.mutable_unchecked<1>();
-  auto pt = points.mutable_unchecked<1>();
-  auto ps = positions.mutable_unchecked<2>();
-  auto nm = normals.mutable_unchecked<2>();
-  auto vx = voxels.mutable_unchecked<2>();
-  auto st = states.mutable_unchecked<1>();
-  auto dp = depths.mutable_unchecked<1>();
-  for (py::ssize_t i = 0; i < k; ++i) {
-    const Contact& c = r.contacts[size_t(i)];
-    ab(i) = c.a_in_b;
-    pt(i) = c.point;
-    for (int j = 0; j < 3; ++j) {
-      ps(i, j) = c.position[j];
-      nm(i, j) = c.normal[j];
-      vx(i, j) = c.voxel[size_t(j)];
-    }
-    st(i) = c.state;
-    dp(i) = c.depth;
-  }
-  py::dict d;
-  d["hits"] = r.hits;
-  d["lookups"] = r.lookups;
-  d["device_cycles"] = cycles ? py::object(py::int_(r.cycles)) : py::none();
-  d["a_in_b"] = a_in_b;
-  d["points"] = points;
-  d["positions"] = positions;
-  d["normals"] = normals;
-  d["voxels"] = voxels;
-  d["states"] = states;
-  d["depths"] = depths;
-  return d;
-}
-
 py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
   const auto m = parse_mode(mode);
   if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
@@ -183,9 +183,9 @@ py::object query(Pair& p, const py::object& pose, const std::string& mode, bool 
     res = p.collider->collide(reqs, opt);
   }
   const bool cycles = p.collider->device().models_cycles();
-  if (!many) return result_dict(res.at(0), cycles);
+  if (!many) return contacts_dict(res.at(0), cycles);
   py::list out;
-  for (const PairResult& r : res) out.append(result_dict(r, cycles));
+  for (const PairResult& r : res) out.append(contacts_dict(r, cycles));
   return std::move(out);
 }
 

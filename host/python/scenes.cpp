@@ -127,14 +127,18 @@ py::dict summary_dict(const SimulationSummary& s) {
   return r;
 }
 
-py::dict simulate_scene(const py::object& scene, const py::object& frames, const py::object& objects,
-                        std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
-                        std::optional<double> density, std::optional<double> speed, const py::object& seed,
-                        std::optional<std::string> pruning, std::optional<std::string> backend,
-                        std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
-                        std::optional<double> clock, std::optional<std::string> config, unsigned threads,
-                        bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
-                        std::optional<double> margin, std::optional<bool> ccd, const py::object& record) {
+}  // namespace
+
+SimulateRequest simulate_request(const py::object& scene, const py::object& frames, const py::object& objects,
+                                 std::optional<std::string> shape, std::optional<double> voxel,
+                                 const py::object& resolution, std::optional<double> density,
+                                 std::optional<double> speed, const py::object& seed,
+                                 std::optional<std::string> pruning, std::optional<std::string> backend,
+                                 std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
+                                 std::optional<double> clock, std::optional<std::string> config, unsigned threads,
+                                 bool midphase, bool cull, std::optional<int> distance_bits,
+                                 std::optional<double> band, std::optional<double> margin, std::optional<bool> ccd,
+                                 const py::object& record) {
   SimulateRequest req;
   if (!scene.is_none()) scene_arg(scene, req.file, req.text);
   req.frames = count_arg(frames, "frames");
@@ -163,6 +167,23 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
   req.midphase = midphase;
   req.cull = cull;
   if (!record.is_none()) req.record = path_arg(record, "record");
+  return req;
+}
+
+namespace {
+
+py::dict simulate_scene(const py::object& scene, const py::object& frames, const py::object& objects,
+                        std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
+                        std::optional<double> density, std::optional<double> speed, const py::object& seed,
+                        std::optional<std::string> pruning, std::optional<std::string> backend,
+                        std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
+                        std::optional<double> clock, std::optional<std::string> config, unsigned threads,
+                        bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
+                        std::optional<double> margin, std::optional<bool> ccd, const py::object& record) {
+  const SimulateRequest req = simulate_request(scene, frames, objects, std::move(shape), voxel, resolution, density,
+                                               speed, seed, std::move(pruning), std::move(backend), lanes,
+                                               std::move(mode), both, clock, std::move(config), threads, midphase,
+                                               cull, distance_bits, band, margin, ccd, record);
   return with_file(req.text ? "" : req.file, [&] {
     SimulationSummary s;
     {
@@ -219,17 +240,7 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
 
 }  // namespace
 
-void bind_scenes(py::module_& m) {
-  m.def("simulate", &simulate_scene, py::arg("scene") = py::none(), py::kw_only(), py::arg("frames") = py::none(),
-        py::arg("objects") = py::none(), py::arg("shape") = py::none(), py::arg("voxel") = py::none(),
-        py::arg("resolution") = py::none(), py::arg("density") = py::none(), py::arg("speed") = py::none(),
-        py::arg("seed") = py::none(), py::arg("pruning") = py::none(), py::arg("backend") = py::none(),
-        py::arg("lanes") = py::none(), py::arg("mode") = py::none(), py::arg("both") = py::none(),
-        py::arg("clock") = py::none(), py::arg("config") = py::none(), py::arg("threads") = 0u,
-        py::arg("midphase") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
-        py::arg("band") = py::none(), py::arg("margin") = py::none(), py::arg("ccd") = py::none(),
-        py::arg("record") = py::none(),
-        R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
+const char* const kSimulateDoc = R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
 `voxcd simulate --json` (the state hash as a hex string). scene: None (the paper's built-in scene), a scene file,
 or a dict with a scene file's keys (docs/scenes.md). Each option given (not None) overrides the scene file, as the
 tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs. distance_bits
@@ -239,7 +250,11 @@ the summary has distance_bits, band, margin and ccd, and with ccd the counters o
 device clock of device_frame_rate_hz (default: the scene file's "clock", or the OpenSTA clock of the default
 configuration at 0.18 um, docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and
 device_frame_rate_hz is None when no frame needed device cycles. record (a path) records the run as it goes
-(docs/view.md; read_recording reads it, `voxcd view` replays it).)");
+(docs/view.md; read_recording reads it, `voxcd view` replays it).)";
+
+void bind_scenes(py::module_& m) {
+  std::apply([&](auto... args) { m.def("simulate", &simulate_scene, args..., kSimulateDoc); },
+             std::tuple_cat(run_args(), std::make_tuple(py::arg("record") = py::none())));
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
         py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),
