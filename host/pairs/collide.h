@@ -18,6 +18,10 @@
 
 namespace voxcd {
 
+namespace detail {
+class EmptySpace;
+}  // namespace detail
+
 // Object types that do not fit the device's memories or formats; names the type and the sizes.
 struct CapacityError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -91,10 +95,12 @@ struct PairOptions {
   Mode mode = Mode::All;
   uint8_t hit_mask = kDefaultHitMask;
   bool both_directions = false;  // also B's shell in A's voxmap (needed to see A deep inside B's hollow, ...)
-  // Submit only the shell points that can land in the other object's voxmap: the shell's clusters of up to
-  // kClusterPoints consecutive points whose box, through the quantised pose, meets the voxmap's grid (host/pairs/detail/cull.h).
-  // Each run of kept clusters is one job. The points left out are outside the voxmap on the device, so contacts and
-  // hits never depend on it; lookups and device cycles do. docs/pairs.md.
+  // Submit only the shell points that can hit in the other object's voxmap: the shell's clusters of up to
+  // kClusterPoints consecutive points whose box, through the quantised pose, meets a voxel of the voxmap's grid that
+  // could give a hit (a state in the hit mask; on a distance device, a cell whose nodes reach the threshold), found
+  // in a pyramid of the voxmap's empty space (host/pairs/detail/cull.h, empty_space.h). Each run of kept clusters is
+  // one job. The points left out could not hit on the device, so contacts and hits never depend on it; lookups and
+  // device cycles do. docs/pairs.md.
   bool cull = true;
   // Distance device: a point is a contact where the other object's interpolated distance is at most `margin`
   // world units (0: touching or inside). RangeError when it does not fit the job's threshold (beyond the band).
@@ -116,6 +122,28 @@ struct PairResult {
   uint64_t cycles = 0;            // device cycles of the pair's jobs, where the backend models them
 };
 
+// Every contact of a batch in flat arrays, one row per contact (the fields of Contact), pair i's rows at
+// [first[i], first[i + 1]) in the order PairResult::contacts has them: for callers that hand contacts on as arrays
+// (the Python module's numpy arrays) or query every frame. The arrays keep their capacity from batch to batch, so a
+// query allocates nothing once they have grown.
+struct ContactArrays {
+  std::vector<uint64_t> first;              // per pair its first row, then one past the last row
+  std::vector<uint32_t> hits;               // per pair, PairResult::hits
+  std::vector<uint64_t> lookups, cycles;    // per pair, PairResult::lookups and cycles
+  std::vector<uint32_t> pair, point;        // per row
+  std::vector<uint8_t> a_in_b, state;       // per row
+  std::vector<double> position, normal;     // per row x, y, z (3 values a row)
+  std::vector<uint32_t> voxel;              // per row x, y, z
+  std::vector<double> depth;                // per row
+
+  size_t size() const { return point.size(); }  // rows
+  size_t pairs() const { return hits.size(); }
+  // Row k as a Contact.
+  Contact contact(size_t k) const;
+  // Sizes every array for `pairs` pairs and `rows` rows (what a batch writes; the values are left to it).
+  void resize(size_t pairs, size_t rows);
+};
+
 class PairCollider {
  public:
   // Loads the types into the device (its config must fit them: see fit_memory). The host's part of a query (the
@@ -135,12 +163,21 @@ class PairCollider {
   std::vector<PairResult> collide(const std::vector<PairRequest>& pairs, const PairOptions& opt = {});
   // The same into `out`, reusing its capacity (and the collider's buffers): for callers that query every frame.
   void collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
+  // The same into flat arrays (the same contacts, hits, lookups and cycles): no Contact is constructed, and arrays
+  // kept from batch to batch allocate nothing.
+  void collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, ContactArrays& out);
 
   // A batch in parts, for a device that runs parts (the cpu backend: Device::runs_parts): the caller splits the
   // batch into consecutive runs of pairs, calls collide_part for each on threads of its own (each part with a Part of
   // its own, kept from batch to batch for its buffers), then join_parts with every part in order. The results are
   // those collide() gives for the whole batch: a part's first job is timed as if it began a stream until join_parts
   // counts it after the previous part's last job.
+  // What a pair's jobs found: PairResult's numbers and how many contacts it has.
+  struct PairTally {
+    uint32_t hits = 0;
+    uint64_t lookups = 0, cycles = 0;
+    size_t contacts = 0;
+  };
   struct Part {
     std::vector<Job> jobs;
     std::vector<JobSource> sources;
@@ -148,6 +185,7 @@ class PairCollider {
     std::vector<Record> records;
     std::vector<size_t> first_job;
     std::vector<Eigen::Matrix3d> rot_a, rot_b;
+    std::vector<PairTally> tally;
     struct JobRecords {
       size_t first = 0, kept = 0, at = 0;
     };
@@ -186,27 +224,44 @@ class PairCollider {
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
   std::shared_ptr<ThreadPool> pool_;
-  // collide() of a batch of `points` shell points or more on a device that runs parts, with a pool: the jobs (in
-  // jobs_) in pieces on the pool, each piece's hit records kept where its task put them and made into contacts
-  // there, each job timed from its pieces (ref/timing.h): no stream is put together.
-  void collide_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
+  // A run of hit records of one job that make contacts: the records, their number, the job, and where the first
+  // goes in its pair's contacts.
+  struct ContactRun {
+    const Record* recs;
+    size_t n;
+    size_t job;
+    size_t at;
+  };
+  // The jobs of a batch run, and what they found (tally_, runs_, rot_a_, rot_b_), before any contact is written.
+  // Errors (a bad pose, a misbehaving device) are thrown here, before the caller's results are touched.
+  void run_batch(const std::vector<PairRequest>& pairs, const PairOptions& opt);
+  // run_batch as one stream from the device.
+  void run_stream(const std::vector<PairRequest>& pairs, const PairOptions& opt);
+  // run_batch of `points` shell points or more on a device that runs parts, with a pool: the jobs (in jobs_) in
+  // pieces on the pool, each piece's hit records kept where its task put them, each job timed from its pieces
+  // (ref/timing.h): no stream is put together.
+  void run_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt);
+  // The contacts of runs_ through `out(pair)`, the writer of a pair's contacts (on the pool when they are many).
+  template <class Out>
+  void write_contacts(const std::vector<PairRequest>& pairs, const Out& out);
   // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), their first hit records
   // job_records[j].first, `nrec` records in all): which hit records make contacts, its hits, lookups, cycles and
-  // contacts' places; the contacts vectors sized, the rotations of the pairs with contacts. Returns the contacts.
+  // contacts' places; the rotations of the pairs with contacts. Returns the contacts.
   size_t tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
                const JobSource* sources, size_t njobs, const size_t* first_job, Part::JobRecords* job_records,
-               const Record* records, size_t nrec, PairResult* out, Eigen::Matrix3d* rot_a,
+               const Record* records, size_t nrec, PairTally* out, Eigen::Matrix3d* rot_a,
                Eigen::Matrix3d* rot_b) const;
   // The jobs of pair i, appended to out and sources (tags: their index in `out`); bits: add_runs' scratch.
   void pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
                  std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The culled runs of one direction of one pair, appended to out and sources.
-  void add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
+  void add_runs(const Job& whole, uint32_t shell_type, uint32_t map_type, const JobSource& src, std::vector<Job>& out,
                 std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The contacts of hit records [recs, recs + n) of a job from `src`, of the pair `req` (its rotations Ra, Rb; its
-  // index `pair`), written to `to`.
+  // index `pair`), written through `to` (host/pairs/detail/contact_out.h; instantiated in contacts.cpp).
+  template <class Out>
   void make_contacts(const PairRequest& req, uint32_t pair, const JobSource& src, const Record* recs, size_t n,
-                     const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, Contact* to) const;
+                     const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const;
 
   // Per type, its shell in clusters of consecutive points: the first point of each (one past the end last), and
   // each cluster's box in the shell's grid (centre and half-extent per axis).
@@ -214,11 +269,13 @@ class PairCollider {
     std::vector<uint32_t> first;
     std::vector<double> centre[3], half[3];
   };
-  static constexpr uint32_t kClusterPoints = 32;
+  static constexpr uint32_t kClusterPoints = 32, kClusterExtent = 8;
+  static Clusters clusters_of(const std::vector<std::array<uint32_t, 3>>& cells);
   static constexpr uint32_t kMergeGap = 32;
 
   DeviceImage image_;
   std::vector<Clusters> clusters_;
+  std::vector<std::shared_ptr<const detail::EmptySpace>> space_;  // per type, its voxmap's empty space
   // Scratch of jobs() (per task of the pool: its jobs, their sources and add_runs' bits of which clusters
   // survive), kept to avoid allocations per pair: jobs() is const but, like collide(), not to be called on one
   // collider from two threads at once.
@@ -237,11 +294,9 @@ class PairCollider {
   // pair's contacts.
   std::vector<Part::JobRecords> job_records_;
   std::vector<std::vector<size_t>> done_parts_;  // Done record indices found by each part of a parallel scan
-  struct ContactPiece {
-    size_t job, first, n;  // job j's kept records [first, first + n) of the stream
-    Contact* to;
-  };
-  std::vector<ContactPiece> contact_pieces_;
+  std::vector<PairTally> tally_;
+  std::vector<ContactRun> runs_;
+  size_t kept_total_ = 0;  // contacts of the batch
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
   // collide_pieces: points [begin, end) of a job; its task and where its hit records are in the task's list; its
   // hits, the summary of its records, how many make contacts and where they go in the pair's contacts.

@@ -1,6 +1,7 @@
 #include "voxcd/host/pairs/detail/cull.h"
 
 #include <algorithm>
+#include <cmath>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #include <immintrin.h>
@@ -95,6 +96,26 @@ void cull_clusters(const ClusterBoxes& boxes, const double (&M)[3][3], const dou
   (void)vector;
 #endif
   cull_portable(boxes, M, aM, lo, hi, bits);
+}
+
+void cull_empty(const ClusterBoxes& b, const double (&M)[3][3], const double (&aM)[3][3], const double (&t)[3],
+                const HitTest& test, uint64_t* bits) {
+  if (!test.space || test.space->empty()) return;
+  for (size_t w = 0; w * 64 < b.n; ++w) {
+    for (uint64_t x = bits[w]; x; x &= x - 1) {
+      const size_t k = w * 64 + size_t(__builtin_ctzll(x));
+      std::array<int64_t, 3> lo, hi;
+      for (int i = 0; i < 3; ++i) {
+        const double c = M[i][0] * b.centre[0][k] + M[i][1] * b.centre[1][k] + M[i][2] * b.centre[2][k] + t[i];
+        const double h = aM[i][0] * b.half[0][k] + aM[i][1] * b.half[1][k] + aM[i][2] * b.half[2][k] + kSlack;
+        lo[size_t(i)] = int64_t(std::floor(c - h));
+        hi[size_t(i)] = int64_t(std::floor(c + h));
+      }
+      const bool may = test.field ? test.space->may_hit_field(lo, hi, test.threshold, test.wb)
+                                  : test.space->may_hit_states(lo, hi, test.mask);
+      if (!may) bits[w] &= ~(uint64_t{1} << (k & 63));
+    }
+  }
 }
 
 }  // namespace voxcd::detail
