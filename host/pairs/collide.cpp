@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "voxcd/host/pairs/detail/cull.h"
+#include "voxcd/host/pairs/detail/shell_order.h"
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/fixed.h"
@@ -43,7 +44,7 @@ uint64_t type_map_words(const DeviceConfig& cfg, const ObjectType& t) {
   return map_words(cfg, j);  // ref/: states, or the distance field's parity banks
 }
 
-uint32_t DeviceImage::add(const ObjectType& t) {
+uint32_t DeviceImage::add(const ObjectType& t, const std::vector<uint32_t>& order) {
   check_dims(cfg_, t);
   check_distance(cfg_, t);
   // A distance map starts on a bank boundary: the words before it up to one are padding.
@@ -57,6 +58,14 @@ uint32_t DeviceImage::add(const ObjectType& t) {
                         std::to_string(map_free) + " of 2^MAW = " + std::to_string(cfg_.map_depth()) +
                         " voxmap words free");
   std::vector<ShellWord> sw = t.shell().words(cfg_);
+  if (!order.empty()) {
+    if (order.size() != sw.size())
+      throw std::invalid_argument("DeviceImage::add: an order of " + std::to_string(order.size()) + " slots for '" +
+                                  t.name + "', whose shell has " + std::to_string(sw.size()) + " points");
+    std::vector<ShellWord> in_order(sw.size());
+    for (size_t k = 0; k < sw.size(); ++k) in_order[k] = sw.at(order[k]);
+    sw = std::move(in_order);
+  }
   std::vector<uint64_t> mw = cfg_.distance() ? t.object.distance.device_words(cfg_) : t.voxmap().device_words(cfg_.MEMW);
   mem_.map.resize(mem_.map.size() + pad, 0);
   Placement p;
@@ -95,29 +104,24 @@ DeviceConfig device_config_for(const std::string& backend, int lanes, const std:
   return backend == "rtl" ? cfg : fit_memory(cfg, types);
 }
 
-PairCollider::Clusters PairCollider::clusters_of(const std::vector<std::array<uint32_t, 3>>& cells) {
-  // Clusters of up to kClusterPoints consecutive points, never across a z-slice of the shell grid (cells come in
-  // linear-index order, z slowest) and never wider than kClusterExtent cells on an axis: a run of a row closes at the
-  // row's end or at a jump to another part of the slice, so that each box holds little besides its points.
+PairCollider::Clusters PairCollider::clusters_of(const std::vector<std::array<uint32_t, 3>>& cells,
+                                                 const std::vector<uint32_t>& order,
+                                                 const std::vector<uint32_t>& block_first) {
   Clusters cl;
-  for (uint32_t k = 0; k < cells.size();) {
-    uint32_t end = k + 1;
-    std::array<uint32_t, 3> lo = cells[k], hi = cells[k];
-    while (end < cells.size() && end - k < kClusterPoints && cells[end][2] == cells[k][2]) {
-      std::array<uint32_t, 3> l = lo, h = hi;
-      for (int i = 0; i < 3; ++i) l[i] = std::min(l[i], cells[end][i]), h[i] = std::max(h[i], cells[end][i]);
-      if (h[0] - l[0] >= kClusterExtent || h[1] - l[1] >= kClusterExtent) break;
-      lo = l, hi = h;
-      ++end;
+  for (uint32_t b = 0; b + 1 < block_first.size(); ++b)
+    for (uint32_t k = block_first[b]; k < block_first[b + 1]; k += kClusterPoints) {
+      const uint32_t end = std::min(block_first[b + 1], k + kClusterPoints);
+      std::array<uint32_t, 3> lo = cells[order[k]], hi = lo;
+      for (uint32_t s = k + 1; s < end; ++s)
+        for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], cells[order[s]][i]), hi[i] = std::max(hi[i], cells[order[s]][i]);
+      cl.first.push_back(k);
+      cl.block.push_back(b);
+      for (int i = 0; i < 3; ++i) {
+        // Point k is at cells[k] + 0.5 exactly (within half a cell more when PF = 0: the margin of 0.5).
+        cl.centre[i].push_back(0.5 * (double(lo[i]) + double(hi[i])) + 0.5);
+        cl.half[i].push_back(0.5 * (double(hi[i]) - double(lo[i])) + 0.5);
+      }
     }
-    cl.first.push_back(k);
-    for (int i = 0; i < 3; ++i) {
-      // Point k is at cells[k] + 0.5 exactly (within half a cell more when PF = 0: the margin of 0.5).
-      cl.centre[i].push_back(0.5 * (double(lo[i]) + double(hi[i])) + 0.5);
-      cl.half[i].push_back(0.5 * (double(hi[i]) - double(lo[i])) + 0.5);
-    }
-    k = end;
-  }
   cl.first.push_back(uint32_t(cells.size()));
   return cl;
 }
@@ -128,9 +132,11 @@ PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shar
   if (!pool_) pool_ = device_->pool();
   if (pool_ && pool_->size() <= 1) pool_ = nullptr;
   for (const auto& t : types_) {
-    image_.add(*t);
-    Clusters cl = clusters_of(t->shell().cells);
-    clusters_.push_back(std::move(cl));
+    detail::ShellOrder o = detail::block_order(t->shell().cells);
+    image_.add(*t, o.point);
+    clusters_.push_back(clusters_of(t->shell().cells, o.point, o.block_first));
+    order_.push_back(std::move(o.point));
+    block_first_.push_back(std::move(o.block_first));
     space_.push_back(std::make_shared<const detail::EmptySpace>(
         device_->config().distance() ? detail::EmptySpace::of_field(t->object.distance)
                                      : detail::EmptySpace::of_states(t->voxmap())));
@@ -197,6 +203,23 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, uint32_t map_
   // halves of a run split by a word boundary.
   uint32_t run_first = 0, run_end = 0;
   bool open = false;
+  if (whole.mode == Mode::First) {
+    // FIRST: runs within one block, whose slots are in ascending point order, so that each job's first hit is the
+    // lowest point among its hits (the pair keeps the lowest over its jobs).
+    uint32_t block = 0;
+    for (size_t w = 0; w < bits_.size(); ++w)
+      for (uint64_t x = bits_[w]; x; x &= x - 1) {
+        const size_t c = w * 64 + size_t(__builtin_ctzll(x));
+        if (open && cl.block[c] == block && cl.first[c] == run_end) {
+          run_end = cl.first[c + 1];
+          continue;
+        }
+        if (open) emit(run_first, run_end);
+        run_first = cl.first[c], run_end = cl.first[c + 1], block = cl.block[c], open = true;
+      }
+    if (open) emit(run_first, run_end);
+    return;
+  }
   for (size_t w = 0; w < bits_.size(); ++w) {
     for (uint64_t x = bits_[w]; x;) {
       const unsigned s = unsigned(__builtin_ctzll(x));
@@ -257,9 +280,19 @@ void PairCollider::pair_jobs(size_t i, const PairRequest& r, const PairOptions& 
     const JobSource src{uint32_t(i), dir == 0, 0};
     if (opt.cull) {
       add_runs(j, s, m, src, out, sources, bits);
-    } else {
+    } else if (opt.mode != Mode::First) {
       out.push_back(j);
       sources.push_back(src);
+    } else {
+      // FIRST: a job per block (see add_runs).
+      const std::vector<uint32_t>& blocks = block_first_[s];
+      for (size_t b = 0; b + 1 < blocks.size(); ++b) {
+        Job& jb = out.emplace_back(j);
+        jb.shell_base = j.shell_base + blocks[b];
+        jb.shell_count = blocks[b + 1] - blocks[b];
+        jb.tag = uint32_t((out.size() - 1) & cfg.max_tag());
+        sources.push_back({src.pair, src.a_in_b, blocks[b]});
+      }
     }
   }
 }

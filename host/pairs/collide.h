@@ -41,8 +41,9 @@ class DeviceImage {
   explicit DeviceImage(const DeviceConfig& cfg) : cfg_(cfg) {}
   // Places a type and returns its index. CapacityError naming the type and what it needs against what is left,
   // a dimension above 2^DW, or (on a distance device) a type without a distance field of at most SB bits;
-  // RangeError from the shell's quantisation into PW/PF.
-  uint32_t add(const ObjectType& t);
+  // RangeError from the shell's quantisation into PW/PF. With `order`, shell word k is the type's point order[k]
+  // (a permutation of its points), else point k.
+  uint32_t add(const ObjectType& t, const std::vector<uint32_t>& order = {});
   const Placement& placement(uint32_t i) const { return placements_.at(i); }
   size_t size() const { return placements_.size(); }
   const DeviceMemory& memory() const { return mem_; }
@@ -107,8 +108,8 @@ struct PairOptions {
   double margin = 0;
 };
 
-// Where a job came from: its pair, its direction, and the index in the shell of its first point (a hit's point
-// index is relative to that).
+// Where a job came from: its pair, its direction, and the slot of its first point in the type's shell as the device
+// holds it (a hit's point index is relative to that; PairCollider::shell_point gives the shell's point of a slot).
 struct JobSource {
   uint32_t pair = 0;
   bool a_in_b = true;
@@ -152,8 +153,9 @@ class PairCollider {
   PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types,
                std::shared_ptr<ThreadPool> pool = nullptr);
 
-  // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked; one job per
-  // direction without opt.cull, zero or more (runs of the shell in ascending order) with it. RangeError naming
+  // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked. The device holds
+  // each shell in blocks of nearby points (detail::block_order); a direction is one job without opt.cull (FIRST: one
+  // per block), zero or more (runs of slots in ascending order; FIRST: within one block) with it. RangeError naming
   // the pair when a pose is not finite or does not fit the fixed-point formats.
   std::vector<Job> jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt = {}) const;
   void jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out,
@@ -172,6 +174,8 @@ class PairCollider {
   // its own, kept from batch to batch for its buffers), then join_parts with every part in order. The results are
   // those collide() gives for the whole batch: a part's first job is timed as if it began a stream until join_parts
   // counts it after the previous part's last job.
+  // Working buffers of tallying a batch (host/pairs/collide_batch.cpp).
+  struct Scratch;
   // What a pair's jobs found: PairResult's numbers and how many contacts it has.
   struct PairTally {
     uint32_t hits = 0;
@@ -186,8 +190,10 @@ class PairCollider {
     std::vector<size_t> first_job;
     std::vector<Eigen::Matrix3d> rot_a, rot_b;
     std::vector<PairTally> tally;
+    std::vector<uint32_t> dest;  // per record, its place among its pair's contacts
+    std::shared_ptr<Scratch> scratch;
     struct JobRecords {
-      size_t first = 0, kept = 0, at = 0;
+      size_t first = 0, kept = 0;  // its first record, and how many of its records make contacts
     };
     std::vector<JobRecords> job_records;
     // For join_parts: whether the part had a job; the pair of its first job, and its first and last jobs' spans.
@@ -214,9 +220,13 @@ class PairCollider {
   static constexpr size_t kParallelContacts = 256;
   static constexpr size_t kContactPiece = 256;
   static constexpr size_t kParallelScan = 2048;
-  // collide_pieces: batches of this many points or more; points per piece and (at least) per task.
+  // Groups of this many points (or one pair) of a batch run one after the other (PairCollider::run_groups).
+  static constexpr size_t kGroupPoints = 16384;
+  // A group of this many points or more runs in pieces on the pool; points per piece and (at least) per task.
   static constexpr size_t kParallelPoints = 4096, kPiecePoints = 2048, kTaskPoints = 2048;
   const ObjectType& type(uint32_t i) const { return *types_.at(i); }
+  // The shell point of type i in slot k of the device's copy of its shell (a job's first + a hit's point).
+  uint32_t shell_point(uint32_t i, uint32_t k) const { return order_.at(i).at(k); }
   size_t types() const { return types_.size(); }
   const DeviceImage& image() const { return image_; }
 
@@ -224,19 +234,38 @@ class PairCollider {
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
   std::shared_ptr<ThreadPool> pool_;
-  // A run of hit records of one job that make contacts: the records, their number, the job, and where the first
-  // goes in its pair's contacts.
+  // A run of hit records of one job that make contacts: the records, the place of each in its pair's contacts, their
+  // number, the job.
   struct ContactRun {
     const Record* recs;
+    const uint32_t* dest;
     size_t n;
     size_t job;
-    size_t at;
   };
-  // The jobs of a batch run, and what they found (tally_, runs_, rot_a_, rot_b_), before any contact is written.
-  // Errors (a bad pose, a misbehaving device) are thrown here, before the caller's results are touched.
-  void run_batch(const std::vector<PairRequest>& pairs, const PairOptions& opt);
-  // run_batch as one stream from the device.
-  void run_stream(const std::vector<PairRequest>& pairs, const PairOptions& opt);
+  // The jobs of a batch (all_jobs_), then the batch in groups of consecutive pairs: each group's jobs (jobs_) run,
+  // what they found (tally_, runs_, rot_a_, rot_b_), then emit(p0, p1) for its pairs [p0, p1), which writes their
+  // results and contacts. A bad pose is refused before anything runs; a DeviceError leaves the results of the
+  // groups before it written.
+  template <class Emit>
+  void run_groups(const std::vector<PairRequest>& pairs, const PairOptions& opt, const Emit& emit);
+  // A group of pairs [p0, p1) (its jobs in jobs_) as one stream from the device.
+  void run_stream(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt);
+  // A group of `points` shell points or more on a device that runs parts, with a pool: the jobs in pieces on the
+  // pool, each piece's hit records kept where its task put them, each job timed from its pieces (ref/timing.h): no
+  // stream is put together.
+  void run_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt);
+  // The span of job j of the group's stream (for the timing of the next group's first job).
+  JobSpan stream_span(size_t j) const;
+  // The first record of each job of the stream in records_ (job_records_); DeviceError when the completions do not
+  // match the jobs.
+  void find_completions(const std::vector<Job>& js);
+  // The pieces and tasks of run_pieces.
+  void plan_pieces();
+  // run_pieces' records that make contacts, their places, the pairs' contacts and hits (FIRST), and the runs.
+  void keep_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt);
+  // The cycles of a part's jobs as a stream of its own.
+  void time_part(Part& part) const;
+  static Scratch& scratch(std::shared_ptr<Scratch>& s);
   // run_batch of `points` shell points or more on a device that runs parts, with a pool: the jobs (in jobs_) in
   // pieces on the pool, each piece's hit records kept where its task put them, each job timed from its pieces
   // (ref/timing.h): no stream is put together.
@@ -245,12 +274,13 @@ class PairCollider {
   template <class Out>
   void write_contacts(const std::vector<PairRequest>& pairs, const Out& out);
   // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), their first hit records
-  // job_records[j].first, `nrec` records in all): which hit records make contacts, its hits, lookups, cycles and
-  // contacts' places; the rotations of the pairs with contacts. Returns the contacts.
+  // job_records[j].first, `nrec` records in all): which hit records make contacts and their places (dest, parallel
+  // to records), its hits, lookups, cycles and contacts; the rotations of the pairs with contacts. Returns the
+  // contacts.
   size_t tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
                const JobSource* sources, size_t njobs, const size_t* first_job, Part::JobRecords* job_records,
-               const Record* records, size_t nrec, PairTally* out, Eigen::Matrix3d* rot_a,
-               Eigen::Matrix3d* rot_b) const;
+               const Record* records, uint32_t* dest, size_t nrec, PairTally* out, Eigen::Matrix3d* rot_a,
+               Eigen::Matrix3d* rot_b, Scratch& scratch) const;
   // The jobs of pair i, appended to out and sources (tags: their index in `out`); bits: add_runs' scratch.
   void pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
                  std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
@@ -258,24 +288,30 @@ class PairCollider {
   void add_runs(const Job& whole, uint32_t shell_type, uint32_t map_type, const JobSource& src, std::vector<Job>& out,
                 std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The contacts of hit records [recs, recs + n) of a job from `src`, of the pair `req` (its rotations Ra, Rb; its
-  // index `pair`), written through `to` (host/pairs/detail/contact_out.h; instantiated in contacts.cpp).
+  // index `pair`), record k written through `to` as the pair's contact dest[k] (host/pairs/detail/contact_out.h;
+  // instantiated in contacts.cpp).
   template <class Out>
-  void make_contacts(const PairRequest& req, uint32_t pair, const JobSource& src, const Record* recs, size_t n,
-                     const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const;
+  void make_contacts(const PairRequest& req, uint32_t pair, const JobSource& src, const Record* recs,
+                     const uint32_t* dest, size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb,
+                     const Out& to) const;
 
-  // Per type, its shell in clusters of consecutive points: the first point of each (one past the end last), and
-  // each cluster's box in the shell's grid (centre and half-extent per axis).
+  // Per type, its shell as the device holds it (in blocks: detail::block_order) in clusters of up to
+  // kClusterPoints consecutive slots of one block: the first slot of each (one past the end last), its block, and
+  // its box in the shell's grid (centre and half-extent per axis).
   struct Clusters {
-    std::vector<uint32_t> first;
+    std::vector<uint32_t> first, block;
     std::vector<double> centre[3], half[3];
   };
-  static constexpr uint32_t kClusterPoints = 32, kClusterExtent = 8;
-  static Clusters clusters_of(const std::vector<std::array<uint32_t, 3>>& cells);
+  static constexpr uint32_t kClusterPoints = 32;
+  static Clusters clusters_of(const std::vector<std::array<uint32_t, 3>>& cells, const std::vector<uint32_t>& order,
+                              const std::vector<uint32_t>& block_first);
   static constexpr uint32_t kMergeGap = 32;
 
   DeviceImage image_;
   std::vector<Clusters> clusters_;
   std::vector<std::shared_ptr<const detail::EmptySpace>> space_;  // per type, its voxmap's empty space
+  // Per type, the shell's point in each slot of the device's copy, and the first slot of each block (then the size).
+  std::vector<std::vector<uint32_t>> order_, block_first_;
   // Scratch of jobs() (per task of the pool: its jobs, their sources and add_runs' bits of which clusters
   // survive), kept to avoid allocations per pair: jobs() is const but, like collide(), not to be called on one
   // collider from two threads at once.
@@ -285,8 +321,9 @@ class PairCollider {
     std::vector<uint64_t> bits;
   };
   mutable std::vector<JobsTask> jobs_tasks_;
-  std::vector<Job> jobs_;
-  std::vector<JobSource> sources_;
+  std::vector<Job> all_jobs_, jobs_;  // the batch's jobs, and those of the group running
+  std::vector<JobSource> all_sources_, sources_;
+  JobSpan first_span_, last_span_;    // of the group's first and last jobs
   std::vector<Record> records_;
   std::vector<size_t> first_job_;
   std::vector<PartSlot<size_t>> kept_parts_;
@@ -296,9 +333,11 @@ class PairCollider {
   std::vector<std::vector<size_t>> done_parts_;  // Done record indices found by each part of a parallel scan
   std::vector<PairTally> tally_;
   std::vector<ContactRun> runs_;
+  std::vector<uint32_t> dest_;  // per record of records_, its place among its pair's contacts
+  std::vector<std::shared_ptr<Scratch>> scratch_;  // per part of a tally on the pool
   size_t kept_total_ = 0;  // contacts of the batch
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
-  // collide_pieces: points [begin, end) of a job; its task and where its hit records are in the task's list; its
+  // run_pieces: points [begin, end) of a job; its task and where its hit records are in the task's list; its
   // hits, the summary of its records, how many make contacts and where they go in the pair's contacts.
   struct Piece {
     size_t job = 0;
@@ -306,11 +345,12 @@ class PairCollider {
     size_t task = 0, first = 0, records = 0;
     uint32_t count = 0;
     JobHits sum;
-    size_t kept = 0, at = 0;
+    size_t kept = 0;
   };
   std::vector<Piece> pieces_;
   std::vector<size_t> job_first_piece_, task_first_piece_, contact_count_;
   std::vector<PartSlot<std::vector<Record>>> piece_hits_;
+  std::vector<PartSlot<std::vector<uint32_t>>> piece_dest_;  // per task, the places of its records
 };
 
 }  // namespace voxcd

@@ -1,15 +1,22 @@
 // PairCollider's batches: the jobs of a batch run on the device (as one stream, or in pieces on the pool), what
-// they found tallied per pair, and their contacts written into PairResults or ContactArrays; the parts of a batch
-// that a caller runs on its own threads (collide_part, join_parts).
+// they found tallied per pair, which hit records make contacts and where each goes (ascending point order per
+// direction: the device holds shells in blocks, detail/shell_order.h), and the contacts written into PairResults or
+// ContactArrays; the parts of a batch that a caller runs on its own threads (collide_part, join_parts).
 #include <algorithm>
 
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/pairs/detail/contact_out.h"
+#include "voxcd/host/pairs/detail/shell_order.h"
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/timing.h"
 
 namespace voxcd {
+
+struct PairCollider::Scratch {
+  detail::RankBits ranks;
+  std::vector<detail::HitSpan> spans;
+};
 
 std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt) {
   std::vector<PairResult> out;
@@ -19,37 +26,76 @@ std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pa
 
 void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt,
                            std::vector<PairResult>& out) {
-  run_batch(pairs, opt);
-  // A contacts vector that holds more already only shrinks: no contact is constructed twice.
-  out.resize(pairs.size());
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    const PairTally& t = tally_[i];
-    out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].cycles = t.cycles;
-    out[i].contacts.resize(t.contacts);
-  }
-  write_contacts(pairs, [&](uint32_t pair) { return detail::ToContacts{out[pair].contacts.data()}; });
+  run_groups(pairs, opt, [&](size_t p0, size_t p1) {
+    // A contacts vector that holds more already only shrinks: no contact is constructed twice.
+    if (p0 == 0) out.resize(pairs.size());
+    for (size_t i = p0; i < p1; ++i) {
+      const PairTally& t = tally_[i];
+      out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].cycles = t.cycles;
+      out[i].contacts.resize(t.contacts);
+    }
+    write_contacts(pairs, [&](uint32_t pair) { return detail::ToContacts{out[pair].contacts.data()}; });
+  });
+  if (pairs.empty()) out.clear();
 }
 
 void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, ContactArrays& out) {
-  run_batch(pairs, opt);
-  out.resize(pairs.size(), kept_total_);
   uint64_t row = 0;
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    const PairTally& t = tally_[i];
-    out.first[i] = row;
-    out.hits[i] = t.hits, out.lookups[i] = t.lookups, out.cycles[i] = t.cycles;
-    row += t.contacts;
+  run_groups(pairs, opt, [&](size_t p0, size_t p1) {
+    out.resize(pairs.size(), size_t(row + kept_total_));
+    for (size_t i = p0; i < p1; ++i) {
+      const PairTally& t = tally_[i];
+      out.first[i] = row;
+      out.hits[i] = t.hits, out.lookups[i] = t.lookups, out.cycles[i] = t.cycles;
+      row += t.contacts;
+    }
+    out.first[p1] = row;
+    write_contacts(pairs, [&](uint32_t pair) { return detail::ToArrays{&out, size_t(out.first[pair])}; });
+  });
+  if (pairs.empty()) out.resize(0, 0), out.first[0] = 0;
+}
+
+template <class Emit>
+void PairCollider::run_groups(const std::vector<PairRequest>& pairs, const PairOptions& opt, const Emit& emit) {
+  // Every job first (a bad pose is refused before anything is run or written), then the batch in groups of
+  // consecutive pairs of about kGroupPoints points: each group's hit records and contacts are made while they are
+  // in the cache (one stream of a whole large batch would not be), and its contacts written before the next runs.
+  jobs(pairs, opt, all_jobs_, all_sources_);
+  tally_.resize(pairs.size());
+  rot_a_.resize(pairs.size());
+  rot_b_.resize(pairs.size());
+  const bool cycles = device_->models_cycles();
+  JobSpan last;
+  bool after = false;  // a group ran before this one: its last job's span is `last`
+  for (size_t p0 = 0, j0 = 0; p0 < pairs.size();) {
+    size_t p1 = p0, j1 = j0, points = 0;
+    while (p1 < pairs.size()) {
+      size_t jk = j1, more = 0;
+      for (; jk < all_jobs_.size() && all_sources_[jk].pair == p1; ++jk) more += all_jobs_[jk].shell_count;
+      if (p1 > p0 && points + more > kGroupPoints) break;
+      points += more, j1 = jk, ++p1;
+    }
+    jobs_.assign(all_jobs_.begin() + std::ptrdiff_t(j0), all_jobs_.begin() + std::ptrdiff_t(j1));
+    sources_.assign(all_sources_.begin() + std::ptrdiff_t(j0), all_sources_.begin() + std::ptrdiff_t(j1));
+    if (pool_ && device_->runs_parts() && points >= kParallelPoints) run_pieces(pairs, p0, p1, opt);
+    else run_stream(pairs, p0, p1, opt);
+    if (cycles && !jobs_.empty()) {
+      // The group's first job was timed as the start of a stream; it follows the previous group's last job.
+      if (after) tally_[sources_[0].pair].cycles += span_cycles(device_->config(), &last, first_span_) -
+                                                     span_cycles(device_->config(), nullptr, first_span_);
+      last = last_span_, after = true;
+    }
+    emit(p0, p1);
+    p0 = p1, j0 = j1;
   }
-  out.first[pairs.size()] = row;
-  write_contacts(pairs, [&](uint32_t pair) { return detail::ToArrays{&out, size_t(out.first[pair])}; });
 }
 
 template <class Out>
 void PairCollider::write_contacts(const std::vector<PairRequest>& pairs, const Out& out) {
   auto write = [&](const ContactRun& r) {
     const JobSource& src = sources_[r.job];
-    make_contacts(pairs[src.pair], src.pair, src, r.recs, r.n, rot_a_[src.pair], rot_b_[src.pair],
-                  out(src.pair).shifted(r.at));
+    make_contacts(pairs[src.pair], src.pair, src, r.recs, r.dest, r.n, rot_a_[src.pair], rot_b_[src.pair],
+                  out(src.pair));
   };
   if (!pool_ || kept_total_ < kParallelContacts) {
     for (const ContactRun& r : runs_) write(r);
@@ -58,70 +104,67 @@ void PairCollider::write_contacts(const std::vector<PairRequest>& pairs, const O
   pool_->parallel_for(runs_.size(), [&](size_t i) { write(runs_[i]); });
 }
 
-void PairCollider::run_batch(const std::vector<PairRequest>& pairs, const PairOptions& opt) {
-  jobs(pairs, opt, jobs_, sources_);
-  if (pool_ && device_->runs_parts()) {
-    size_t points = 0;
-    for (const Job& j : jobs_) points += j.shell_count;
-    if (points >= kParallelPoints) return run_pieces(pairs, opt);
-  }
-  run_stream(pairs, opt);
+PairCollider::Scratch& PairCollider::scratch(std::shared_ptr<Scratch>& s) {
+  if (!s) s = std::make_shared<Scratch>();
+  return *s;
 }
 
-void PairCollider::run_stream(const std::vector<PairRequest>& pairs, const PairOptions& opt) {
+void PairCollider::find_completions(const std::vector<Job>& js) {
+  // The stream is checked whole before the caller's results are touched, so a misbehaving device leaves them as
+  // they were: the completion records, one per job, the last record one of them.
+  const size_t nrec = records_.size();
+  job_records_.resize(js.size());
+  size_t job = 0, last = SIZE_MAX;
+  auto done = [&](size_t r) {
+    if (job == js.size())
+      throw DeviceError("the device returned records after the completions of all " + std::to_string(js.size()) +
+                        " jobs");
+    job_records_[job++].first = last + 1;
+    last = r;
+  };
+  if (pool_ && nrec >= kParallelScan) {
+    const Ranges parts = Ranges::of(nrec, kParallelScan / 4, pool_->size());
+    if (done_parts_.size() < parts.parts) done_parts_.resize(parts.parts);
+    pool_->parallel_for(parts.parts, [&](size_t p) {
+      std::vector<size_t>& d = done_parts_[p];
+      d.clear();
+      for (size_t r = parts.begin(p); r < parts.end(p); ++r)
+        if (records_[r].kind == Record::Done) d.push_back(r);
+    });
+    for (size_t p = 0; p < parts.parts; ++p)
+      for (size_t r : done_parts_[p]) done(r);
+  } else {
+    for (size_t r = 0; r < nrec; ++r)
+      if (records_[r].kind == Record::Done) done(r);
+  }
+  if (job != js.size() || last + 1 != nrec)
+    throw DeviceError(job != js.size() ? "the device returned fewer completions than the " + std::to_string(js.size()) +
+                                             " jobs it was given"
+                                       : "the device returned records after the completions of all " +
+                                             std::to_string(js.size()) + " jobs");
+}
+
+void PairCollider::run_stream(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt) {
   device_->run_into(jobs_, records_);
   const std::vector<Job>& js = jobs_;
+  find_completions(js);
   const size_t nrec = records_.size();
-  // The stream is checked whole before `out` is touched, so a misbehaving device leaves the caller's results as
-  // they were: the completion records, one per job, the last record one of them.
-  job_records_.resize(js.size());
-  {
-    size_t job = 0, last = SIZE_MAX;
-    auto done = [&](size_t r) {
-      if (job == js.size())
-        throw DeviceError("the device returned records after the completions of all " + std::to_string(js.size()) +
-                          " jobs");
-      job_records_[job++].first = last + 1;
-      last = r;
-    };
-    if (pool_ && nrec >= kParallelScan) {
-      const Ranges parts = Ranges::of(nrec, kParallelScan / 4, pool_->size());
-      if (done_parts_.size() < parts.parts) done_parts_.resize(parts.parts);
-      pool_->parallel_for(parts.parts, [&](size_t p) {
-        std::vector<size_t>& d = done_parts_[p];
-        d.clear();
-        for (size_t r = parts.begin(p); r < parts.end(p); ++r)
-          if (records_[r].kind == Record::Done) d.push_back(r);
-      });
-      for (size_t p = 0; p < parts.parts; ++p)
-        for (size_t r : done_parts_[p]) done(r);
-    } else {
-      for (size_t r = 0; r < nrec; ++r)
-        if (records_[r].kind == Record::Done) done(r);
-    }
-    if (job != js.size() || last + 1 != nrec)
-      throw DeviceError(job != js.size() ? "the device returned fewer completions than the " + std::to_string(js.size()) +
-                                               " jobs it was given"
-                                         : "the device returned records after the completions of all " +
-                                               std::to_string(js.size()) + " jobs");
-  }
   // Pair by pair (on the pool in ranges of pairs when they are many; a pair's jobs are consecutive): which hit
-  // records make contacts (FIRST: only the first hit of a direction, over its jobs), the pair's hits, lookups,
-  // cycles and contacts and, for a pair with contacts, the pose of its objects as matrices.
-  tally_.resize(pairs.size());
+  // records make contacts and where they go, the pair's hits, lookups, cycles and contacts and, for a pair with
+  // contacts, the pose of its objects as matrices.
+  dest_.resize(nrec);
   first_job_.resize(pairs.size() + 1);  // pair i's jobs: [first_job_[i], first_job_[i + 1])
-  for (size_t i = 0, j = 0; i <= pairs.size(); ++i) {
+  for (size_t i = p0, j = 0; i <= p1; ++i) {
     while (j < js.size() && sources_[j].pair < i) ++j;
     first_job_[i] = j;
   }
-  rot_a_.resize(pairs.size());
-  rot_b_.resize(pairs.size());
-  const Ranges parts = pool_ranges(pool_.get(), pairs.size(), kParallelPairs);
+  const Ranges parts = pool_ranges(pool_.get(), p1 - p0, kParallelPairs);
   if (kept_parts_.size() < parts.parts) kept_parts_.resize(parts.parts);
-  for_ranges(pool_.get(), parts, [&](size_t part, size_t p0, size_t p1) {
-    kept_parts_[part].value = tally(pairs.data(), p0, p1, opt, js.data(), sources_.data(), js.size(), first_job_.data(),
-                                    job_records_.data(), records_.data(), nrec, tally_.data(), rot_a_.data(),
-                                    rot_b_.data());
+  if (scratch_.size() < parts.parts) scratch_.resize(parts.parts);
+  for_ranges(pool_.get(), parts, [&](size_t part, size_t q0, size_t q1) {
+    kept_parts_[part].value = tally(pairs.data(), p0 + q0, p0 + q1, opt, js.data(), sources_.data(), js.size(),
+                                    first_job_.data(), job_records_.data(), records_.data(), dest_.data(), nrec,
+                                    tally_.data(), rot_a_.data(), rot_b_.data(), scratch(scratch_[part]));
   });
   kept_total_ = 0;
   for (size_t p = 0; p < parts.parts; ++p) kept_total_ += kept_parts_[p].value;
@@ -130,15 +173,25 @@ void PairCollider::run_stream(const std::vector<PairRequest>& pairs, const PairO
   for (size_t j = 0; j < js.size(); ++j) {
     const Part::JobRecords& jr = job_records_[j];
     for (size_t k = 0; k < jr.kept; k += kContactPiece)
-      runs_.push_back({records_.data() + jr.first + k, std::min(kContactPiece, jr.kept - k), j, jr.at + k});
+      runs_.push_back({records_.data() + jr.first + k, dest_.data() + jr.first + k, std::min(kContactPiece, jr.kept - k), j});
   }
+  if (device_->models_cycles() && !js.empty()) first_span_ = stream_span(0), last_span_ = stream_span(js.size() - 1);
 }
 
-void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt) {
-  const std::vector<Job>& js = jobs_;
+JobSpan PairCollider::stream_span(size_t j) const {
   const DeviceConfig& cfg = device_->config();
-  const bool cycles = device_->models_cycles(), first_only = opt.mode == Mode::First;
+  const Job& job = jobs_[j];
+  const size_t first = job_records_[j].first;
+  const size_t end = j + 1 < jobs_.size() ? job_records_[j + 1].first - 1 : records_.size() - 1;
+  const uint32_t hits = records_[end].hits;
+  const JobHits h = job_hits(cfg, job, j, records_.data() + first, end - first, first);
+  const uint64_t conflicts = cfg.banked() ? device_->bank_conflicts(job, read_groups(cfg, job, h, hits)) : 0;
+  return job_span(cfg, job, j, h, hits, conflicts);
+}
+
+void PairCollider::plan_pieces() {
   // Pieces of at most kPiecePoints points; tasks: runs of consecutive pieces of at least kTaskPoints points.
+  const std::vector<Job>& js = jobs_;
   pieces_.clear();
   job_first_piece_.resize(js.size() + 1);
   for (size_t j = 0; j < js.size(); ++j) {
@@ -157,10 +210,17 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, const PairO
     acc += pieces_[i].end - pieces_[i].begin;
   }
   task_first_piece_.push_back(pieces_.size());
+}
+
+void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt) {
+  const std::vector<Job>& js = jobs_;
+  const DeviceConfig& cfg = device_->config();
+  const bool cycles = device_->models_cycles();
+  plan_pieces();
   const size_t tasks = task_first_piece_.size() - 1;
-  if (piece_hits_.size() < tasks) piece_hits_.resize(tasks);
+  if (piece_hits_.size() < tasks) piece_hits_.resize(tasks), piece_dest_.resize(tasks);
   // The lookups. A task validates a job before its first piece of it, so the lowest task that throws names the first
-  // invalid job (the error run_into gives); `out` is not touched before every task has finished.
+  // invalid job (the error run_into gives); nothing of the caller's is touched before every task has finished.
   pool_->parallel_for(tasks, [&](size_t t) {
     std::vector<Record>& hits = piece_hits_[t].value;
     hits.clear();
@@ -176,102 +236,148 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, const PairO
       p.records = hits.size() - p.first;
       if (cycles) p.sum = job_hits(cfg, j, p.job, hits.data() + p.first, p.records);
     }
+    piece_dest_[t].value.resize(hits.size());
   });
   // Job by job, in order: its hits and summary as the device's stream would have them (FIRST: the first piece with a
-  // hit holds the job's record), its cycles after the previous job's, and which records make contacts (FIRST: only
-  // the first hit of a direction, over its jobs) and where they go in their pair's contacts.
-  tally_.assign(pairs.size(), PairTally());
+  // hit holds the job's record), its cycles after the previous job's.
+  std::fill(tally_.begin() + std::ptrdiff_t(p0), tally_.begin() + std::ptrdiff_t(p1), PairTally());
   JobSpan prev;
-  bool found = false;  // FIRST: the current direction has its hit
-  size_t kept_total = 0;
   for (size_t j = 0; j < js.size(); ++j) {
-    const JobSource& src = sources_[j];
-    if (j == 0 || src.pair != sources_[j - 1].pair || src.a_in_b != sources_[j - 1].a_in_b) found = false;
-    PairTally& res = tally_[src.pair];
+    PairTally& res = tally_[sources_[j].pair];
     uint32_t hits = 0;
     JobHits sum;
     sum.first_group = sum.last_group = job_groups(cfg, js[j]);
     for (size_t i = job_first_piece_[j]; i < job_first_piece_[j + 1]; ++i) {
-      Piece& p = pieces_[i];
-      p.kept = 0;
-      if (first_only) {
-        if (hits == 0 && p.records) {
-          hits = 1;
-          sum = p.sum;
-          p.kept = found ? 0 : 1;
-        }
-      } else {
+      const Piece& p = pieces_[i];
+      if (opt.mode != Mode::First) {
         hits += p.count;
         if (cycles) sum = join_job_hits(sum, p.sum);
-        p.kept = p.records;
+      } else if (hits == 0 && p.records) {
+        hits = 1, sum = p.sum;
       }
-      p.at = res.contacts;
-      res.contacts += p.kept;
-      kept_total += p.kept;
     }
-    if (first_only) {
-      if (!found && hits) ++res.hits, found = true;
-    } else {
-      res.hits += hits;
-    }
+    res.hits += hits;  // FIRST: made 0 or 1 per direction below
     res.lookups += js[j].shell_count;
     if (cycles) {
-      const uint64_t conflicts =
-          cfg.banked() ? device_->bank_conflicts(js[j], read_groups(cfg, js[j], sum, hits)) : 0;
+      const uint64_t conflicts = cfg.banked() ? device_->bank_conflicts(js[j], read_groups(cfg, js[j], sum, hits)) : 0;
       const JobSpan span = job_span(cfg, js[j], j, sum, hits, conflicts);
       res.cycles += span_cycles(cfg, j ? &prev : nullptr, span);
+      if (j == 0) first_span_ = span;
       prev = span;
     }
   }
-  rot_a_.resize(pairs.size());
-  rot_b_.resize(pairs.size());
-  for (size_t i = 0; i < pairs.size(); ++i) {
+  last_span_ = prev;
+  keep_pieces(pairs, p0, p1, opt);
+}
+
+void PairCollider::keep_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1,
+                               const PairOptions& opt) {
+  // Direction by direction: which records make contacts and where they go; then the runs of those records.
+  const bool first_only = opt.mode == Mode::First;
+  if (scratch_.empty()) scratch_.resize(1);
+  Scratch& sc = scratch(scratch_[0]);
+  kept_total_ = 0;
+  for (size_t j0 = 0, j1 = 0; j0 < jobs_.size(); j0 = j1) {
+    const JobSource& src = sources_[j0];
+    while (j1 < jobs_.size() && sources_[j1].pair == src.pair && sources_[j1].a_in_b == src.a_in_b) ++j1;
+    sc.spans.clear();
+    for (size_t i = job_first_piece_[j0]; i < job_first_piece_[j1]; ++i) {
+      const Piece& p = pieces_[i];
+      sc.spans.push_back({piece_hits_[p.task].value.data() + p.first, piece_dest_[p.task].value.data() + p.first,
+                          p.records, sources_[p.job].first});
+    }
+    PairTally& res = tally_[src.pair];
+    const uint32_t shell_type = src.a_in_b ? pairs[src.pair].a : pairs[src.pair].b;
+    const size_t kept = detail::keep_direction(sc.spans.data(), sc.spans.size(), first_only,
+                                               order_[shell_type].data(), order_[shell_type].size(),
+                                               uint32_t(res.contacts), sc.ranks);
+    for (size_t i = job_first_piece_[j0], s = 0; i < job_first_piece_[j1]; ++i, ++s) pieces_[i].kept = sc.spans[s].n;
+    res.contacts += kept;
+    kept_total_ += kept;
+  }
+  if (first_only) {
+    // FIRST: a direction counts one hit when any of its jobs had one.
+    for (size_t i = p0; i < p1; ++i) tally_[i].hits = 0;
+    for (size_t j0 = 0, j1 = 0; j0 < jobs_.size(); j0 = j1) {
+      const JobSource& src = sources_[j0];
+      bool any = false;
+      for (; j1 < jobs_.size() && sources_[j1].pair == src.pair && sources_[j1].a_in_b == src.a_in_b; ++j1)
+        for (size_t i = job_first_piece_[j1]; i < job_first_piece_[j1 + 1]; ++i) any |= pieces_[i].records > 0;
+      tally_[src.pair].hits += any;
+    }
+  }
+  for (size_t i = p0; i < p1; ++i) {
     if (tally_[i].contacts == 0) continue;
     rot_a_[i] = pairs[i].pose_a.rotation.toRotationMatrix();
     rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
   }
-  kept_total_ = kept_total;
-  // The runs of records that make contacts: each piece's, where its task put them.
   runs_.clear();
   for (const Piece& p : pieces_)
-    if (p.kept) runs_.push_back({piece_hits_[p.task].value.data() + p.first, p.kept, p.job, p.at});
+    if (p.kept)
+      runs_.push_back({piece_hits_[p.task].value.data() + p.first, piece_dest_[p.task].value.data() + p.first, p.kept,
+                       p.job});
 }
 
 size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
                            const JobSource* sources, size_t njobs, const size_t* first_job,
-                           Part::JobRecords* job_records, const Record* records, size_t nrec, PairTally* out,
-                           Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b) const {
+                           Part::JobRecords* job_records, const Record* records, uint32_t* dest, size_t nrec,
+                           PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b, Scratch& sc) const {
   const bool first_only = opt.mode == Mode::First;
   size_t kept_total = 0;
   for (size_t i = p0; i < p1; ++i) {
     PairTally& res = out[i];
     res = PairTally();
-    size_t count = 0;
-    bool found = false;  // FIRST: the current direction has its hit
-    for (size_t j = first_job[i]; j < first_job[i + 1]; ++j) {
-      const JobSource& src = sources[j];
-      if (j == first_job[i] || src.a_in_b != sources[j - 1].a_in_b) found = false;
-      Part::JobRecords& jr = job_records[j];
-      const size_t end = j + 1 < njobs ? job_records[j + 1].first - 1 : nrec - 1;  // its completion record
-      const Record& done = records[end];
-      jr.kept = first_only && found ? 0 : end - jr.first;
-      jr.at = count;
-      count += jr.kept;
-      if (first_only) {
-        if (!found && done.hits) ++res.hits, found = true;
-      } else {
-        res.hits += done.hits;
+    // Direction by direction (its jobs [j0, j1)): every hit record one span.
+    for (size_t j0 = first_job[i], j1 = j0; j0 < first_job[i + 1]; j0 = j1) {
+      sc.spans.clear();
+      bool any = false;
+      for (; j1 < first_job[i + 1] && sources[j1].a_in_b == sources[j0].a_in_b; ++j1) {
+        const Part::JobRecords& jr = job_records[j1];
+        const size_t end = j1 + 1 < njobs ? job_records[j1 + 1].first - 1 : nrec - 1;  // its completion record
+        const Record& done = records[end];
+        sc.spans.push_back({records + jr.first, dest + jr.first, end - jr.first, sources[j1].first});
+        any |= done.hits > 0;
+        if (!first_only) res.hits += done.hits;
+        res.lookups += js[j1].shell_count;
+        if (done.cycles) res.cycles += *done.cycles;
       }
-      res.lookups += js[j].shell_count;
-      if (done.cycles) res.cycles += *done.cycles;
+      if (first_only) res.hits += any;
+      const uint32_t shell_type = sources[j0].a_in_b ? pairs[i].a : pairs[i].b;
+      res.contacts += detail::keep_direction(sc.spans.data(), sc.spans.size(), first_only, order_[shell_type].data(),
+                                             order_[shell_type].size(), uint32_t(res.contacts), sc.ranks);
+      for (size_t j = j0; j < j1; ++j) job_records[j].kept = sc.spans[j - j0].n;
     }
-    res.contacts = count;
-    kept_total += count;
-    if (count == 0) continue;
+    kept_total += res.contacts;
+    if (res.contacts == 0) continue;
     rot_a[i] = pairs[i].pose_a.rotation.toRotationMatrix();
     rot_b[i] = pairs[i].pose_b.rotation.toRotationMatrix();
   }
   return kept_total;
+}
+
+void PairCollider::time_part(Part& part) const {
+  // The cycles of the timing model (annotate_cycles' of the part as a stream of its own), and the spans of its first
+  // and last jobs for join_parts.
+  const std::vector<Job>& js = part.jobs;
+  const DeviceConfig& cfg = device_->config();
+  const size_t nrec = part.records.size();
+  part.any = !js.empty() && device_->models_cycles();
+  if (!part.any) return;
+  JobSpan prev;
+  for (size_t j = 0; j < js.size(); ++j) {
+    const Part::JobRecords& jr = part.job_records[j];
+    const size_t end = j + 1 < js.size() ? part.job_records[j + 1].first - 1 : nrec - 1;
+    Record& done = part.records[end];
+    const JobHits h = job_hits(cfg, js[j], j, part.records.data() + jr.first, end - jr.first, jr.first);
+    const uint64_t conflicts = cfg.banked() ? device_->bank_conflicts(js[j], read_groups(cfg, js[j], h, done.hits)) : 0;
+    const JobSpan span = job_span(cfg, js[j], j, h, done.hits, conflicts);
+    done.cycles = span_cycles(cfg, j ? &prev : nullptr, span);
+    done.points = span.points;
+    done.stalls = 0;
+    if (j == 0) part.first = span;
+    prev = span;
+  }
+  part.last = prev;
 }
 
 void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base, const PairOptions& opt,
@@ -286,32 +392,11 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
   }
   const std::vector<Job>& js = part.jobs;
   device_->run_part(js.data(), js.size(), part.records);
-  const DeviceConfig& cfg = device_->config();
   const size_t nrec = part.records.size();
   part.job_records.resize(js.size());
   for (size_t r = 0, j = 0, first = 0; r < nrec; ++r)
     if (part.records[r].kind == Record::Done) part.job_records[j++].first = first, first = r + 1;
-  // The cycles of the timing model (annotate_cycles' of the part as a stream of its own), and the spans of its first
-  // and last jobs for join_parts.
-  part.any = !js.empty() && device_->models_cycles();
-  if (part.any) {
-    JobSpan prev;
-    for (size_t j = 0; j < js.size(); ++j) {
-      const Part::JobRecords& jr = part.job_records[j];
-      const size_t end = j + 1 < js.size() ? part.job_records[j + 1].first - 1 : nrec - 1;
-      Record& done = part.records[end];
-      const JobHits h = job_hits(cfg, js[j], j, part.records.data() + jr.first, end - jr.first, jr.first);
-      const uint64_t conflicts =
-          cfg.banked() ? device_->bank_conflicts(js[j], read_groups(cfg, js[j], h, done.hits)) : 0;
-      const JobSpan span = job_span(cfg, js[j], j, h, done.hits, conflicts);
-      done.cycles = span_cycles(cfg, j ? &prev : nullptr, span);
-      done.points = span.points;
-      done.stalls = 0;
-      if (j == 0) part.first = span;
-      prev = span;
-    }
-    part.last = prev;
-  }
+  time_part(part);
   part.first_job.resize(n + 1);
   for (size_t i = 0, j = 0; i <= n; ++i) {
     while (j < js.size() && part.sources[j].pair < i) ++j;
@@ -320,8 +405,10 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
   part.rot_a.resize(n);
   part.rot_b.resize(n);
   part.tally.resize(n);
+  part.dest.resize(nrec);
   tally(pairs, 0, n, opt, js.data(), part.sources.data(), js.size(), part.first_job.data(), part.job_records.data(),
-        part.records.data(), nrec, part.tally.data(), part.rot_a.data(), part.rot_b.data());
+        part.records.data(), part.dest.data(), nrec, part.tally.data(), part.rot_a.data(), part.rot_b.data(),
+        scratch(part.scratch));
   for (size_t i = 0; i < n; ++i) {
     const PairTally& t = part.tally[i];
     out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].cycles = t.cycles;
@@ -333,8 +420,8 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
     const size_t i = part.sources[j].pair;
     JobSource src = part.sources[j];
     src.pair = uint32_t(base + i);
-    make_contacts(pairs[i], uint32_t(base + i), src, part.records.data() + jr.first, jr.kept, part.rot_a[i],
-                  part.rot_b[i], detail::ToContacts{out[i].contacts.data() + jr.at});
+    make_contacts(pairs[i], uint32_t(base + i), src, part.records.data() + jr.first, part.dest.data() + jr.first,
+                  jr.kept, part.rot_a[i], part.rot_b[i], detail::ToContacts{out[i].contacts.data()});
   }
   if (part.any) part.first_result = out + part.sources[0].pair;
 }

@@ -38,7 +38,8 @@ void ContactArrays::resize(size_t pairs, size_t rows) {
 
 template <class Out>
 void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const JobSource& src, const Record* recs,
-                                 size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const {
+                                 const uint32_t* dest, size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb,
+                                 const Out& to) const {
   // The depth lookups land all over B's depth field (4 bytes per voxel, often larger than the cache), so the loop
   // prefetches the depth of the hit a few records ahead.
   constexpr size_t kAhead = 16;
@@ -48,8 +49,9 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const Jo
   const RigidPose& pose = a_in_b ? req.pose_a : req.pose_b;
   const Eigen::Matrix3d R = a_in_b ? Ra : Rb;
   const Eigen::Vector3d t = pose.translation;
-  const Eigen::Vector3d* points = shell_t.shell().points.data() + src.first;
-  const Eigen::Vector3d* normals = shell_t.shell().normals.data() + src.first;
+  const Eigen::Vector3d* points = shell_t.shell().points.data();
+  const Eigen::Vector3d* normals = shell_t.shell().normals.data();
+  const uint32_t* order = order_[a_in_b ? req.a : req.b].data() + src.first;  // a hit's slot -> its shell point
   const Voxmap& vm = map_t.voxmap();
   const float* depth = map_t.depth.data();
   const size_t nvox = map_t.depth.size();
@@ -63,8 +65,8 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const Jo
         if (i < nvox) __builtin_prefetch(depth + i);
       }
       const Record& rec = recs[k];
-      const uint32_t point = rec.point;
-      to.put(k, pair, a_in_b, point + src.first, R * points[point] + t, R * normals[point], rec,
+      const uint32_t point = order[rec.point];
+      to.put(dest[k], pair, a_in_b, point, R * points[point] + t, R * normals[point], rec,
              double(depth[rec.x + nx * rec.y + nxy * rec.z]) * voxel);
     }
     return;
@@ -75,8 +77,9 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const Jo
   const Eigen::Matrix3d& Rm = a_in_b ? Rb : Ra;
   for (size_t k = 0; k < n; ++k) {
     const Record& rec = recs[k];
-    const Eigen::Vector3d position = R * points[rec.point] + t;
-    Eigen::Vector3d normal = R * normals[rec.point];
+    const uint32_t point = order[rec.point];
+    const Eigen::Vector3d position = R * points[point] + t;
+    Eigen::Vector3d normal = R * normals[point];
     // The field's gradient at the point, in the map's grid, to the world; negated, it points the way the shell
     // object's outward normal does at a contact.
     const Eigen::Vector3d g = (Rm.transpose() * (position - map_pose.translation) - vm.origin()) / voxel;
@@ -84,15 +87,17 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const Jo
     field.sample(g, &grad);
     const Eigen::Vector3d nrm = -(Rm * grad);
     if (nrm.squaredNorm() > 1e-24) normal = nrm.normalized();
-    to.put(k, pair, a_in_b, rec.point + src.first, position, normal, rec, -double(rec.dist) * dist_unit);
+    to.put(dest[k], pair, a_in_b, point, position, normal, rec, -double(rec.dist) * dist_unit);
   }
 }
 
 template void PairCollider::make_contacts<detail::ToContacts>(const PairRequest&, uint32_t, const JobSource&,
-                                                              const Record*, size_t, const Eigen::Matrix3d&,
-                                                              const Eigen::Matrix3d&, const detail::ToContacts&) const;
+                                                              const Record*, const uint32_t*, size_t,
+                                                              const Eigen::Matrix3d&, const Eigen::Matrix3d&,
+                                                              const detail::ToContacts&) const;
 template void PairCollider::make_contacts<detail::ToArrays>(const PairRequest&, uint32_t, const JobSource&,
-                                                            const Record*, size_t, const Eigen::Matrix3d&,
-                                                            const Eigen::Matrix3d&, const detail::ToArrays&) const;
+                                                            const Record*, const uint32_t*, size_t,
+                                                            const Eigen::Matrix3d&, const Eigen::Matrix3d&,
+                                                            const detail::ToArrays&) const;
 
 }  // namespace voxcd
