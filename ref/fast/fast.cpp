@@ -12,6 +12,7 @@
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/fast/detail/distance_kernel.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/timing.h"
 
@@ -157,8 +158,9 @@ struct BlockKernel {
   static Choice choose() {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
     __builtin_cpu_init();
-    if (have_avx512()) return {avx512, "avx512"};
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return {avx2, "avx2"};
+    const std::string want = detail::kernel_override();
+    if (have_avx512() && (want.empty() || want == "avx512")) return {avx512, "avx512"};
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && want != "baseline") return {avx2, "avx2"};
 #endif
     return {base, "baseline"};
   }
@@ -169,7 +171,9 @@ const BlockKernel<int32_t>::Choice block_fetch = BlockKernel<int32_t>::choose();
 using SparseFn = uint32_t (*)(const int32_t*, const int32_t*, const int32_t*, size_t, const double*, const double*,
                               const double*, const uint64_t*, int, uint32_t, int32_t*, uint8_t*, uint32_t*);
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-const SparseFn block_sparse = have_avx512() ? block_sparse_avx512 : nullptr;
+const SparseFn block_sparse =
+    have_avx512() && (detail::kernel_override().empty() || detail::kernel_override() == "avx512") ? block_sparse_avx512
+                                                                                                   : nullptr;
 #else
 const SparseFn block_sparse = nullptr;
 #endif
@@ -279,6 +283,8 @@ const char* FastRunner::path_name(Path p) {
 }
 
 const char* FastRunner::double_kernel() { return block_fetch.name; }
+
+const char* FastRunner::distance_kernel() { return detail::distance_block_name(); }
 
 unsigned FastRunner::threads() const { return pool_ ? pool_->size() : 1; }
 
