@@ -22,7 +22,6 @@ namespace {
 
 constexpr size_t kChunk = 2048;  // points per piece
 constexpr size_t kBlock = 256;   // points per vector block inside a piece
-constexpr size_t kProbeBlock = 64;  // points of a piece's first block with the skipping kernel (run_chunk)
 // Points per task (runs of consecutive pieces, so that the many small jobs of a simulation frame make tasks of a
 // few microseconds: about 1.5 ns a point).
 constexpr size_t kTaskPoints = 2048;
@@ -30,7 +29,7 @@ constexpr size_t kTaskPoints = 2048;
 // The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
 // bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
 // state | hit << 2; returns the number of hits. Outside points read the map's first word and are masked.
-// Compiled three times (AVX-512 with 512-bit vectors, AVX2 with FMA, baseline) and chosen once at run time.
+// Compiled twice (AVX2 with FMA, baseline; a processor with AVX-512 takes block_avx512) and chosen once at run time.
 #define VOXCD_BLOCK_DOUBLE_FETCH_BODY                                                                           \
   {                                                                                                             \
     const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6],            \
@@ -67,21 +66,21 @@ bool have_avx512() {
          __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
 }
 
-// The block lookup for blocks whose points mostly land outside the map, written for AVX-512 by hand, eight points
-// at a time: it skips the fetch (the dearest step, a gather) for eight points none of which is inside, and tests the
-// bounds on the exact accumulator (for an integer n, floor(a) is in [0, n) exactly when a is, and for such an a
-// truncation is the floor, so it needs no floor instruction). Outputs as the generic body for the hits; a point that
-// is no hit has state 0 and an unspecified linear index. *kept: the groups of eight that had a point inside. Where
-// most of them do, the generic kernel is faster (run_chunk switches to it).
+// The block lookup on AVX-512, written by hand, eight points at a time: it tests the bounds on the exact accumulator
+// (for an integer n, floor(a) is in [0, n) exactly when a is, and for such an a truncation is the floor, so it needs
+// no floor instruction), computes y and z only where a point is inside along x, skips the fetch for eight points none
+// of which is inside, and fetches the words of the others with one gather instruction (measured by CPU time, faster
+// than eight scalar loads and than the compiler's vectorisation of the generic body, in and out of cache). Outputs
+// as the generic body for the hits; a point that is no hit has state 0 and an unspecified linear index.
 // GCC 12's intrinsics fill unused lanes from a self-initialised "undefined" vector, which -Wmaybe-uninitialized
 // reports once inlined here.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block_sparse_avx512(
+__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block_avx512(
     const int32_t* __restrict x, const int32_t* __restrict y, const int32_t* __restrict z, size_t n,
     const double* __restrict mp, const double* __restrict tp, const double* __restrict dp,
     const uint64_t* __restrict map, int slot_bits, uint32_t mask, int32_t* __restrict lin,
-    uint8_t* __restrict state, uint32_t* kept) {
+    uint8_t* __restrict state) {
   const __m512d m0 = _mm512_set1_pd(mp[0]), m1 = _mm512_set1_pd(mp[1]), m2 = _mm512_set1_pd(mp[2]);
   const __m512d m3 = _mm512_set1_pd(mp[3]), m4 = _mm512_set1_pd(mp[4]), m5 = _mm512_set1_pd(mp[5]);
   const __m512d m6 = _mm512_set1_pd(mp[6]), m7 = _mm512_set1_pd(mp[7]), m8 = _mm512_set1_pd(mp[8]);
@@ -93,7 +92,7 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block
   const __m128i word_shift = _mm_cvtsi32_si128(slot_bits);
   const __m512i hit_mask = _mm512_set1_epi64(int64_t(mask)), three = _mm512_set1_epi64(3);
   const __m512i one = _mm512_set1_epi64(1), four = _mm512_set1_epi64(4);
-  uint32_t count = 0, groups = 0;
+  uint32_t count = 0;
   for (size_t k = 0; k < n; k += 8) {
     const __mmask8 live = n - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (n - k)) - 1);
     const __m512d px = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, x + k));
@@ -115,19 +114,12 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block
       _mm_mask_storeu_epi8(state + k, live, _mm_setzero_si128());
       continue;
     }
-    ++groups;
     // Inside lanes: below 2^31 voxels, so the index fits int32; outside lanes are masked from here on.
     const __m256i ix = _mm512_cvttpd_epi32(ax), iy = _mm512_cvttpd_epi32(ay), iz = _mm512_cvttpd_epi32(az);
     const __m256i li = _mm256_maskz_mov_epi32(
         in, _mm256_add_epi32(ix, _mm256_mullo_epi32(inx, _mm256_add_epi32(iy, _mm256_mullo_epi32(iny, iz)))));
-    // The eight words by scalar loads (outside lanes read word 0): faster here than the gather instruction.
-    alignas(32) int32_t wi[8];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(wi), _mm256_srl_epi32(li, word_shift));
-    const __m256i w0 = _mm256_set_epi64x(int64_t(map[wi[3]]), int64_t(map[wi[2]]), int64_t(map[wi[1]]),
-                                         int64_t(map[wi[0]]));
-    const __m256i w1 = _mm256_set_epi64x(int64_t(map[wi[7]]), int64_t(map[wi[6]]), int64_t(map[wi[5]]),
-                                         int64_t(map[wi[4]]));
-    const __m512i word = _mm512_inserti64x4(_mm512_castsi256_si512(w0), w1, 1);
+    const __m512i word = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), in, _mm256_srl_epi32(li, word_shift),
+                                                     reinterpret_cast<const long long*>(map), 8);
     const __m512i shift = _mm512_slli_epi64(_mm512_cvtepi32_epi64(_mm256_and_si256(li, slot_mask)), 1);
     const __m512i st = _mm512_and_si512(_mm512_srlv_epi64(word, shift), three);
     const __mmask8 hit = _mm512_mask_test_epi64_mask(in, _mm512_srlv_epi64(hit_mask, st), one);
@@ -135,7 +127,6 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block
     _mm_mask_storeu_epi8(state + k, live, _mm512_cvtepi64_epi8(_mm512_maskz_or_epi64(hit, st, four)));
     _mm256_mask_storeu_epi32(lin + k, live, li);
   }
-  *kept = groups;
   return count;
 }
 #pragma GCC diagnostic pop
@@ -148,8 +139,6 @@ struct BlockKernel {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
   __attribute__((target("arch=haswell"))) static uint32_t avx2(VOXCD_BLOCK_DOUBLE_FETCH_ARGS)
       VOXCD_BLOCK_DOUBLE_FETCH_BODY
-  __attribute__((target("arch=skylake-avx512,prefer-vector-width=512"))) static uint32_t
-      avx512(VOXCD_BLOCK_DOUBLE_FETCH_ARGS) VOXCD_BLOCK_DOUBLE_FETCH_BODY
 #endif
   struct Choice {
     Fn fn;
@@ -159,7 +148,7 @@ struct BlockKernel {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
     __builtin_cpu_init();
     const std::string want = detail::kernel_override();
-    if (have_avx512() && (want.empty() || want == "avx512")) return {avx512, "avx512"};
+    if (have_avx512() && (want.empty() || want == "avx512")) return {block_avx512, "avx512"};
     if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && want != "baseline") return {avx2, "avx2"};
 #endif
     return {base, "baseline"};
@@ -168,15 +157,6 @@ struct BlockKernel {
 
 // Coordinates are int32 on the double path: DeviceConfig::validate keeps PW within 2..32.
 const BlockKernel<int32_t>::Choice block_fetch = BlockKernel<int32_t>::choose();
-using SparseFn = uint32_t (*)(const int32_t*, const int32_t*, const int32_t*, size_t, const double*, const double*,
-                              const double*, const uint64_t*, int, uint32_t, int32_t*, uint8_t*, uint32_t*);
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-const SparseFn block_sparse =
-    have_avx512() && (detail::kernel_override().empty() || detail::kernel_override() == "avx512") ? block_sparse_avx512
-                                                                                                   : nullptr;
-#else
-const SparseFn block_sparse = nullptr;
-#endif
 
 void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n, const Job& j, int tf,
                  int64_t* lin) {
@@ -540,25 +520,13 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
   }
   const uint64_t slot_mask = (uint64_t{1} << slot_bits_) - 1;
   const uint64_t* map = map_.data() + j.map_base;
-  // The skipping kernel while a block's points mostly land outside the map, the generic one from the first block
-  // where most groups of eight had a point inside (the points of a job tend to stay on one side or the other). The
-  // first block is short, so that a job whose points land inside pays little for finding out.
-  bool sparse = fused && block_sparse != nullptr;
   size_t n = 0;
   for (uint32_t b = begin; b < end; b += uint32_t(n)) {
-    n = std::min<size_t>(b == begin && sparse ? kProbeBlock : kBlock, end - b);
+    n = std::min<size_t>(kBlock, end - b);
     const size_t base = size_t(j.shell_base) + b;
     if (fused) {
-      uint32_t count = 0;
-      if (sparse) {
-        uint32_t kept = 0;
-        count = block_sparse(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_, j.hit_mask, lin32,
-                             state, &kept);
-        sparse = 2 * size_t(kept) * 8 <= n;
-      } else {
-        count = block_fetch.fn(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_, j.hit_mask, lin32,
-                               state);
-      }
+      const uint32_t count = block_fetch.fn(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_,
+                                            j.hit_mask, lin32, state);
       if (count == 0) continue;
       if (j.mode == Mode::Count) {
         hit_count += count;
