@@ -20,6 +20,7 @@ namespace voxcd {
 
 namespace detail {
 class EmptySpace;
+struct SortedHit;
 }  // namespace detail
 
 // Object types that do not fit the device's memories or formats; names the type and the sizes.
@@ -190,10 +191,9 @@ class PairCollider {
     std::vector<size_t> first_job;
     std::vector<Eigen::Matrix3d> rot_a, rot_b;
     std::vector<PairTally> tally;
-    std::vector<uint32_t> dest;  // per record, its place among its pair's contacts
     std::shared_ptr<Scratch> scratch;
     struct JobRecords {
-      size_t first = 0, kept = 0;  // its first record, and how many of its records make contacts
+      size_t first = 0;  // its first record
     };
     std::vector<JobRecords> job_records;
     // For join_parts: whether the part had a job; the pair of its first job, and its first and last jobs' spans.
@@ -234,13 +234,14 @@ class PairCollider {
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
   std::shared_ptr<ThreadPool> pool_;
-  // A run of hit records of one job that make contacts: the records, the place of each in its pair's contacts, their
-  // number, the job.
+  // A run of hit records of one direction of a pair that make contacts, in contact order (with their shell points),
+  // and the place of the first in the pair's contacts.
   struct ContactRun {
-    const Record* recs;
-    const uint32_t* dest;
+    const detail::SortedHit* hits;
     size_t n;
-    size_t job;
+    uint32_t pair;
+    bool a_in_b;
+    size_t at;
   };
   // The jobs of a batch (all_jobs_), then the batch in groups of consecutive pairs: each group's jobs (jobs_) run,
   // what they found (tally_, runs_, rot_a_, rot_b_), then emit(p0, p1) for its pairs [p0, p1), which writes their
@@ -274,26 +275,25 @@ class PairCollider {
   template <class Out>
   void write_contacts(const std::vector<PairRequest>& pairs, const Out& out);
   // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), their first hit records
-  // job_records[j].first, `nrec` records in all): which hit records make contacts and their places (dest, parallel
-  // to records), its hits, lookups, cycles and contacts; the rotations of the pairs with contacts. Returns the
+  // job_records[j].first, `nrec` records in all): which hit records make contacts, in contact order into the
+  // scratch's runs, its hits, lookups, cycles and contacts; the rotations of the pairs with contacts. Returns the
   // contacts.
   size_t tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
-               const JobSource* sources, size_t njobs, const size_t* first_job, Part::JobRecords* job_records,
-               const Record* records, uint32_t* dest, size_t nrec, PairTally* out, Eigen::Matrix3d* rot_a,
-               Eigen::Matrix3d* rot_b, Scratch& scratch) const;
+               const JobSource* sources, size_t njobs, const size_t* first_job, const Part::JobRecords* job_records,
+               const Record* records, size_t nrec, PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b,
+               Scratch& scratch) const;
   // The jobs of pair i, appended to out and sources (tags: their index in `out`); bits: add_runs' scratch.
   void pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
                  std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The culled runs of one direction of one pair, appended to out and sources.
   void add_runs(const Job& whole, uint32_t shell_type, uint32_t map_type, const JobSource& src, std::vector<Job>& out,
                 std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
-  // The contacts of hit records [recs, recs + n) of a job from `src`, of the pair `req` (its rotations Ra, Rb; its
-  // index `pair`), record k written through `to` as the pair's contact dest[k] (host/pairs/detail/contact_out.h;
-  // instantiated in contacts.cpp).
+  // The contacts of hits [hits, hits + n) of one direction (a_in_b) of the pair `req` (its rotations Ra, Rb; its
+  // index `pair`), hit k written through `to` as contact k (host/pairs/detail/contact_out.h; instantiated in
+  // contacts.cpp).
   template <class Out>
-  void make_contacts(const PairRequest& req, uint32_t pair, const JobSource& src, const Record* recs,
-                     const uint32_t* dest, size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb,
-                     const Out& to) const;
+  void make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const detail::SortedHit* hits, size_t n,
+                     const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const;
 
   // Per type, its shell as the device holds it (in blocks: detail::block_order) in clusters of up to
   // kClusterPoints consecutive slots of one block: the first slot of each (one past the end last), its block, and
@@ -333,7 +333,6 @@ class PairCollider {
   std::vector<std::vector<size_t>> done_parts_;  // Done record indices found by each part of a parallel scan
   std::vector<PairTally> tally_;
   std::vector<ContactRun> runs_;
-  std::vector<uint32_t> dest_;  // per record of records_, its place among its pair's contacts
   std::vector<std::shared_ptr<Scratch>> scratch_;  // per part of a tally on the pool
   size_t kept_total_ = 0;  // contacts of the batch
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
@@ -345,12 +344,10 @@ class PairCollider {
     size_t task = 0, first = 0, records = 0;
     uint32_t count = 0;
     JobHits sum;
-    size_t kept = 0;
   };
   std::vector<Piece> pieces_;
   std::vector<size_t> job_first_piece_, task_first_piece_, contact_count_;
   std::vector<PartSlot<std::vector<Record>>> piece_hits_;
-  std::vector<PartSlot<std::vector<uint32_t>>> piece_dest_;  // per task, the places of its records
 };
 
 }  // namespace voxcd

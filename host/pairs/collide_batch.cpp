@@ -13,9 +13,38 @@
 
 namespace voxcd {
 
+// Per part of a tally: its directions' hit records that make contacts in contact order (`sorted`), and where each
+// direction's run of them is and goes.
 struct PairCollider::Scratch {
+  struct Run {
+    size_t off, n;  // sorted[off, off + n)
+    uint32_t pair;
+    bool a_in_b;
+    size_t at;      // the first one's place in the pair's contacts
+  };
   detail::RankBits ranks;
   std::vector<detail::HitSpan> spans;
+  std::vector<detail::SortedHit> sorted;
+  std::vector<Run> runs;
+  void clear() { sorted.clear(), runs.clear(); }
+  // One direction of `pair` (its spans in `spans`): its kept records into `sorted`, a run for them; the kept.
+  size_t keep(uint32_t pair, bool a_in_b, size_t at, bool first_only, const std::vector<uint32_t>& order) {
+    size_t total = 0;
+    for (const detail::HitSpan& h : spans) total += h.n;
+    const size_t off = sorted.size();
+    sorted.resize(off + total);
+    const size_t kept = detail::keep_direction(spans.data(), spans.size(), first_only, order.data(), order.size(),
+                                               sorted.data() + off, ranks);
+    sorted.resize(off + kept);
+    if (kept) runs.push_back({off, kept, pair, a_in_b, at});
+    return kept;
+  }
+  // Its runs as ContactRuns of at most `piece` contacts each, appended to `out`.
+  void runs_into(std::vector<ContactRun>& out, size_t piece) const {
+    for (const Run& r : runs)
+      for (size_t k = 0; k < r.n; k += piece)
+        out.push_back({sorted.data() + r.off + k, std::min(piece, r.n - k), r.pair, r.a_in_b, r.at + k});
+  }
 };
 
 std::vector<PairResult> PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt) {
@@ -42,7 +71,9 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
 void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, ContactArrays& out) {
   uint64_t row = 0;
   run_groups(pairs, opt, [&](size_t p0, size_t p1) {
-    out.resize(pairs.size(), size_t(row + kept_total_));
+    // Grown, never shrunk, until the last group: the rows of the last batch are overwritten, not made anew.
+    if (p0 == 0 || out.size() < row + kept_total_)
+      out.resize(pairs.size(), std::max<size_t>(out.size(), size_t(row + kept_total_)));
     for (size_t i = p0; i < p1; ++i) {
       const PairTally& t = tally_[i];
       out.first[i] = row;
@@ -52,7 +83,8 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     out.first[p1] = row;
     write_contacts(pairs, [&](uint32_t pair) { return detail::ToArrays{&out, size_t(out.first[pair])}; });
   });
-  if (pairs.empty()) out.resize(0, 0), out.first[0] = 0;
+  out.resize(pairs.size(), size_t(row));
+  if (pairs.empty()) out.first[0] = 0;
 }
 
 template <class Emit>
@@ -93,9 +125,7 @@ void PairCollider::run_groups(const std::vector<PairRequest>& pairs, const PairO
 template <class Out>
 void PairCollider::write_contacts(const std::vector<PairRequest>& pairs, const Out& out) {
   auto write = [&](const ContactRun& r) {
-    const JobSource& src = sources_[r.job];
-    make_contacts(pairs[src.pair], src.pair, src, r.recs, r.dest, r.n, rot_a_[src.pair], rot_b_[src.pair],
-                  out(src.pair));
+    make_contacts(pairs[r.pair], r.pair, r.a_in_b, r.hits, r.n, rot_a_[r.pair], rot_b_[r.pair], out(r.pair).shifted(r.at));
   };
   if (!pool_ || kept_total_ < kParallelContacts) {
     for (const ContactRun& r : runs_) write(r);
@@ -152,7 +182,6 @@ void PairCollider::run_stream(const std::vector<PairRequest>& pairs, size_t p0, 
   // Pair by pair (on the pool in ranges of pairs when they are many; a pair's jobs are consecutive): which hit
   // records make contacts and where they go, the pair's hits, lookups, cycles and contacts and, for a pair with
   // contacts, the pose of its objects as matrices.
-  dest_.resize(nrec);
   first_job_.resize(pairs.size() + 1);  // pair i's jobs: [first_job_[i], first_job_[i + 1])
   for (size_t i = p0, j = 0; i <= p1; ++i) {
     while (j < js.size() && sources_[j].pair < i) ++j;
@@ -163,18 +192,14 @@ void PairCollider::run_stream(const std::vector<PairRequest>& pairs, size_t p0, 
   if (scratch_.size() < parts.parts) scratch_.resize(parts.parts);
   for_ranges(pool_.get(), parts, [&](size_t part, size_t q0, size_t q1) {
     kept_parts_[part].value = tally(pairs.data(), p0 + q0, p0 + q1, opt, js.data(), sources_.data(), js.size(),
-                                    first_job_.data(), job_records_.data(), records_.data(), dest_.data(), nrec,
-                                    tally_.data(), rot_a_.data(), rot_b_.data(), scratch(scratch_[part]));
+                                    first_job_.data(), job_records_.data(), records_.data(), nrec, tally_.data(),
+                                    rot_a_.data(), rot_b_.data(), scratch(scratch_[part]));
   });
   kept_total_ = 0;
   for (size_t p = 0; p < parts.parts; ++p) kept_total_ += kept_parts_[p].value;
   // The runs of records that make contacts, in pieces of up to kContactPiece records for the pool.
   runs_.clear();
-  for (size_t j = 0; j < js.size(); ++j) {
-    const Part::JobRecords& jr = job_records_[j];
-    for (size_t k = 0; k < jr.kept; k += kContactPiece)
-      runs_.push_back({records_.data() + jr.first + k, dest_.data() + jr.first + k, std::min(kContactPiece, jr.kept - k), j});
-  }
+  for (size_t p = 0; p < parts.parts; ++p) scratch_[p]->runs_into(runs_, kContactPiece);
   if (device_->models_cycles() && !js.empty()) first_span_ = stream_span(0), last_span_ = stream_span(js.size() - 1);
 }
 
@@ -218,7 +243,7 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
   const bool cycles = device_->models_cycles();
   plan_pieces();
   const size_t tasks = task_first_piece_.size() - 1;
-  if (piece_hits_.size() < tasks) piece_hits_.resize(tasks), piece_dest_.resize(tasks);
+  if (piece_hits_.size() < tasks) piece_hits_.resize(tasks);
   // The lookups. A task validates a job before its first piece of it, so the lowest task that throws names the first
   // invalid job (the error run_into gives); nothing of the caller's is touched before every task has finished.
   pool_->parallel_for(tasks, [&](size_t t) {
@@ -236,7 +261,6 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
       p.records = hits.size() - p.first;
       if (cycles) p.sum = job_hits(cfg, j, p.job, hits.data() + p.first, p.records);
     }
-    piece_dest_[t].value.resize(hits.size());
   });
   // Job by job, in order: its hits and summary as the device's stream would have them (FIRST: the first piece with a
   // hit holds the job's record), its cycles after the previous job's.
@@ -272,10 +296,11 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
 
 void PairCollider::keep_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1,
                                const PairOptions& opt) {
-  // Direction by direction: which records make contacts and where they go; then the runs of those records.
+  // Direction by direction: which records make contacts, in contact order; then the runs of those records.
   const bool first_only = opt.mode == Mode::First;
   if (scratch_.empty()) scratch_.resize(1);
   Scratch& sc = scratch(scratch_[0]);
+  sc.clear();
   kept_total_ = 0;
   for (size_t j0 = 0, j1 = 0; j0 < jobs_.size(); j0 = j1) {
     const JobSource& src = sources_[j0];
@@ -283,15 +308,11 @@ void PairCollider::keep_pieces(const std::vector<PairRequest>& pairs, size_t p0,
     sc.spans.clear();
     for (size_t i = job_first_piece_[j0]; i < job_first_piece_[j1]; ++i) {
       const Piece& p = pieces_[i];
-      sc.spans.push_back({piece_hits_[p.task].value.data() + p.first, piece_dest_[p.task].value.data() + p.first,
-                          p.records, sources_[p.job].first});
+      sc.spans.push_back({piece_hits_[p.task].value.data() + p.first, p.records, sources_[p.job].first});
     }
     PairTally& res = tally_[src.pair];
     const uint32_t shell_type = src.a_in_b ? pairs[src.pair].a : pairs[src.pair].b;
-    const size_t kept = detail::keep_direction(sc.spans.data(), sc.spans.size(), first_only,
-                                               order_[shell_type].data(), order_[shell_type].size(),
-                                               uint32_t(res.contacts), sc.ranks);
-    for (size_t i = job_first_piece_[j0], s = 0; i < job_first_piece_[j1]; ++i, ++s) pieces_[i].kept = sc.spans[s].n;
+    const size_t kept = sc.keep(src.pair, src.a_in_b, res.contacts, first_only, order_[shell_type]);
     res.contacts += kept;
     kept_total_ += kept;
   }
@@ -312,30 +333,28 @@ void PairCollider::keep_pieces(const std::vector<PairRequest>& pairs, size_t p0,
     rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
   }
   runs_.clear();
-  for (const Piece& p : pieces_)
-    if (p.kept)
-      runs_.push_back({piece_hits_[p.task].value.data() + p.first, piece_dest_[p.task].value.data() + p.first, p.kept,
-                       p.job});
+  sc.runs_into(runs_, kContactPiece);
 }
 
 size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
                            const JobSource* sources, size_t njobs, const size_t* first_job,
-                           Part::JobRecords* job_records, const Record* records, uint32_t* dest, size_t nrec,
-                           PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b, Scratch& sc) const {
+                           const Part::JobRecords* job_records, const Record* records, size_t nrec, PairTally* out,
+                           Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b, Scratch& sc) const {
   const bool first_only = opt.mode == Mode::First;
   size_t kept_total = 0;
+  sc.clear();
   for (size_t i = p0; i < p1; ++i) {
     PairTally& res = out[i];
     res = PairTally();
-    // Direction by direction (its jobs [j0, j1)): every hit record one span.
+    // Direction by direction (its jobs [j0, j1)): every job's hit records one span.
     for (size_t j0 = first_job[i], j1 = j0; j0 < first_job[i + 1]; j0 = j1) {
       sc.spans.clear();
       bool any = false;
       for (; j1 < first_job[i + 1] && sources[j1].a_in_b == sources[j0].a_in_b; ++j1) {
-        const Part::JobRecords& jr = job_records[j1];
+        const size_t first = job_records[j1].first;
         const size_t end = j1 + 1 < njobs ? job_records[j1 + 1].first - 1 : nrec - 1;  // its completion record
         const Record& done = records[end];
-        sc.spans.push_back({records + jr.first, dest + jr.first, end - jr.first, sources[j1].first});
+        sc.spans.push_back({records + first, end - first, sources[j1].first});
         any |= done.hits > 0;
         if (!first_only) res.hits += done.hits;
         res.lookups += js[j1].shell_count;
@@ -343,9 +362,7 @@ size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const
       }
       if (first_only) res.hits += any;
       const uint32_t shell_type = sources[j0].a_in_b ? pairs[i].a : pairs[i].b;
-      res.contacts += detail::keep_direction(sc.spans.data(), sc.spans.size(), first_only, order_[shell_type].data(),
-                                             order_[shell_type].size(), uint32_t(res.contacts), sc.ranks);
-      for (size_t j = j0; j < j1; ++j) job_records[j].kept = sc.spans[j - j0].n;
+      res.contacts += sc.keep(uint32_t(i), sources[j0].a_in_b, res.contacts, first_only, order_[shell_type]);
     }
     kept_total += res.contacts;
     if (res.contacts == 0) continue;
@@ -405,24 +422,17 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
   part.rot_a.resize(n);
   part.rot_b.resize(n);
   part.tally.resize(n);
-  part.dest.resize(nrec);
+  Scratch& sc = scratch(part.scratch);
   tally(pairs, 0, n, opt, js.data(), part.sources.data(), js.size(), part.first_job.data(), part.job_records.data(),
-        part.records.data(), part.dest.data(), nrec, part.tally.data(), part.rot_a.data(), part.rot_b.data(),
-        scratch(part.scratch));
+        part.records.data(), nrec, part.tally.data(), part.rot_a.data(), part.rot_b.data(), sc);
   for (size_t i = 0; i < n; ++i) {
     const PairTally& t = part.tally[i];
     out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].cycles = t.cycles;
     out[i].contacts.resize(t.contacts);
   }
-  for (size_t j = 0; j < js.size(); ++j) {
-    const Part::JobRecords& jr = part.job_records[j];
-    if (!jr.kept) continue;
-    const size_t i = part.sources[j].pair;
-    JobSource src = part.sources[j];
-    src.pair = uint32_t(base + i);
-    make_contacts(pairs[i], uint32_t(base + i), src, part.records.data() + jr.first, part.dest.data() + jr.first,
-                  jr.kept, part.rot_a[i], part.rot_b[i], detail::ToContacts{out[i].contacts.data()});
-  }
+  for (const Scratch::Run& r : sc.runs)
+    make_contacts(pairs[r.pair], uint32_t(base + r.pair), r.a_in_b, sc.sorted.data() + r.off, r.n,
+                  part.rot_a[r.pair], part.rot_b[r.pair], detail::ToContacts{out[r.pair].contacts.data() + r.at});
   if (part.any) part.first_result = out + part.sources[0].pair;
 }
 

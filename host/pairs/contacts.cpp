@@ -5,6 +5,7 @@
 
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/pairs/detail/contact_out.h"
+#include "voxcd/host/pairs/detail/shell_order.h"
 
 namespace voxcd {
 
@@ -37,13 +38,11 @@ void ContactArrays::resize(size_t pairs, size_t rows) {
 }
 
 template <class Out>
-void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const JobSource& src, const Record* recs,
-                                 const uint32_t* dest, size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb,
-                                 const Out& to) const {
+void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const detail::SortedHit* hits,
+                                 size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const {
   // The depth lookups land all over B's depth field (4 bytes per voxel, often larger than the cache), so the loop
   // prefetches the depth of the hit a few records ahead.
   constexpr size_t kAhead = 16;
-  const bool a_in_b = src.a_in_b;
   const ObjectType& shell_t = *types_[a_in_b ? req.a : req.b];
   const ObjectType& map_t = *types_[a_in_b ? req.b : req.a];
   const RigidPose& pose = a_in_b ? req.pose_a : req.pose_b;
@@ -51,7 +50,6 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const Jo
   const Eigen::Vector3d t = pose.translation;
   const Eigen::Vector3d* points = shell_t.shell().points.data();
   const Eigen::Vector3d* normals = shell_t.shell().normals.data();
-  const uint32_t* order = order_[a_in_b ? req.a : req.b].data() + src.first;  // a hit's slot -> its shell point
   const Voxmap& vm = map_t.voxmap();
   const float* depth = map_t.depth.data();
   const size_t nvox = map_t.depth.size();
@@ -60,13 +58,13 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const Jo
   if (!device_->config().distance()) {
     for (size_t k = 0; k < n; ++k) {
       if (k + kAhead < n) {
-        const Record& ahead = recs[k + kAhead];
+        const Record& ahead = *hits[k + kAhead].rec;
         const uint64_t i = ahead.x + nx * ahead.y + nxy * ahead.z;
         if (i < nvox) __builtin_prefetch(depth + i);
       }
-      const Record& rec = recs[k];
-      const uint32_t point = order[rec.point];
-      to.put(dest[k], pair, a_in_b, point, R * points[point] + t, R * normals[point], rec,
+      const Record& rec = *hits[k].rec;
+      const uint32_t point = hits[k].point;
+      to.put(k, pair, a_in_b, point, R * points[point] + t, R * normals[point], rec,
              double(depth[rec.x + nx * rec.y + nxy * rec.z]) * voxel);
     }
     return;
@@ -76,8 +74,8 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const Jo
   const RigidPose& map_pose = a_in_b ? req.pose_b : req.pose_a;
   const Eigen::Matrix3d& Rm = a_in_b ? Rb : Ra;
   for (size_t k = 0; k < n; ++k) {
-    const Record& rec = recs[k];
-    const uint32_t point = order[rec.point];
+    const Record& rec = *hits[k].rec;
+    const uint32_t point = hits[k].point;
     const Eigen::Vector3d position = R * points[point] + t;
     Eigen::Vector3d normal = R * normals[point];
     // The field's gradient at the point, in the map's grid, to the world; negated, it points the way the shell
@@ -87,17 +85,16 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, const Jo
     field.sample(g, &grad);
     const Eigen::Vector3d nrm = -(Rm * grad);
     if (nrm.squaredNorm() > 1e-24) normal = nrm.normalized();
-    to.put(dest[k], pair, a_in_b, point, position, normal, rec, -double(rec.dist) * dist_unit);
+    to.put(k, pair, a_in_b, point, position, normal, rec, -double(rec.dist) * dist_unit);
   }
 }
 
-template void PairCollider::make_contacts<detail::ToContacts>(const PairRequest&, uint32_t, const JobSource&,
-                                                              const Record*, const uint32_t*, size_t,
+template void PairCollider::make_contacts<detail::ToContacts>(const PairRequest&, uint32_t, bool,
+                                                              const detail::SortedHit*, size_t,
                                                               const Eigen::Matrix3d&, const Eigen::Matrix3d&,
                                                               const detail::ToContacts&) const;
-template void PairCollider::make_contacts<detail::ToArrays>(const PairRequest&, uint32_t, const JobSource&,
-                                                            const Record*, const uint32_t*, size_t,
-                                                            const Eigen::Matrix3d&, const Eigen::Matrix3d&,
-                                                            const detail::ToArrays&) const;
+template void PairCollider::make_contacts<detail::ToArrays>(const PairRequest&, uint32_t, bool,
+                                                            const detail::SortedHit*, size_t, const Eigen::Matrix3d&,
+                                                            const Eigen::Matrix3d&, const detail::ToArrays&) const;
 
 }  // namespace voxcd

@@ -12,6 +12,7 @@ namespace voxcd::detail {
 
 struct ToContacts {
   Contact* to;
+  ToContacts shifted(size_t k) const { return {to + k}; }
   void put(size_t k, uint32_t pair, bool a_in_b, uint32_t point, const Eigen::Vector3d& position,
            const Eigen::Vector3d& normal, const Record& rec, double depth) const {
     Contact& c = to[k];
@@ -30,6 +31,7 @@ struct ToContacts {
 struct ToArrays {
   ContactArrays* a;
   size_t at;
+  ToArrays shifted(size_t k) const { return {a, at + k}; }
   void put(size_t k, uint32_t pair, bool a_in_b, uint32_t point, const Eigen::Vector3d& position,
            const Eigen::Vector3d& normal, const Record& rec, double depth) const {
     const size_t i = at + k;

@@ -27,7 +27,10 @@ ShellOrder block_order(const std::vector<std::array<uint32_t, 3>>& cells) {
   return o;
 }
 
-void RankBits::place(const HitSpan* spans, size_t n, const uint32_t* order, size_t points, uint32_t base) {
+// Compiled for processors with and without the popcnt instruction (a library call per word without it).
+__attribute__((target_clones("popcnt", "default"))) void RankBits::place(const HitSpan* spans, size_t n,
+                                                                         const uint32_t* order, size_t points,
+                                                                         SortedHit* out) {
   // Already in ascending point order (a direction whose hits all lie in one block, or one hit): in place.
   uint32_t prev = 0, k = 0;
   bool ascending = true;
@@ -41,9 +44,9 @@ void RankBits::place(const HitSpan* spans, size_t n, const uint32_t* order, size
       prev = p;
     }
   if (ascending) {
-    k = base;
+    k = 0;
     for (size_t s = 0; s < n; ++s)
-      for (size_t r = 0; r < spans[s].n; ++r) spans[s].dest[r] = k++;
+      for (size_t r = 0; r < spans[s].n; ++r) out[k++] = {spans[s].recs + r, order[spans[s].first + spans[s].recs[r].point]};
     return;
   }
   // Else a bit per point: a hit's rank is the bits set below its own.
@@ -56,18 +59,19 @@ void RankBits::place(const HitSpan* spans, size_t n, const uint32_t* order, size
       bits_[p >> 6] |= uint64_t{1} << (p & 63);
       lo = std::min<size_t>(lo, p >> 6), hi = std::max<size_t>(hi, p >> 6);
     }
-  uint32_t sum = base;
+  uint32_t sum = 0;
   for (size_t w = lo; w <= hi; ++w) below_[w] = sum, sum += uint32_t(__builtin_popcountll(bits_[w]));
   for (size_t s = 0; s < n; ++s)
     for (size_t r = 0; r < spans[s].n; ++r) {
       const uint32_t p = order[spans[s].first + spans[s].recs[r].point];
-      spans[s].dest[r] = below_[p >> 6] + uint32_t(__builtin_popcountll(bits_[p >> 6] & ((uint64_t{1} << (p & 63)) - 1)));
+      const uint32_t rank = below_[p >> 6] + uint32_t(__builtin_popcountll(bits_[p >> 6] & ((uint64_t{1} << (p & 63)) - 1)));
+      out[rank] = {spans[s].recs + r, p};
     }
   std::fill(bits_.begin() + std::ptrdiff_t(lo), bits_.begin() + std::ptrdiff_t(hi + 1), uint64_t(0));
 }
 
-size_t keep_direction(HitSpan* spans, size_t n, bool first_only, const uint32_t* order, size_t points, uint32_t base,
-                      RankBits& bits) {
+size_t keep_direction(const HitSpan* spans, size_t n, bool first_only, const uint32_t* order, size_t points,
+                      SortedHit* out, RankBits& bits) {
   if (first_only) {
     size_t best = n;
     uint32_t lowest = UINT32_MAX;
@@ -76,14 +80,13 @@ size_t keep_direction(HitSpan* spans, size_t n, bool first_only, const uint32_t*
       const uint32_t p = order[spans[s].first + spans[s].recs[0].point];
       if (p < lowest) lowest = p, best = s;
     }
-    for (size_t s = 0; s < n; ++s) spans[s].n = s == best ? 1 : 0;
     if (best == n) return 0;
-    spans[best].dest[0] = base;
+    out[0] = {spans[best].recs, lowest};
     return 1;
   }
   size_t kept = 0;
   for (size_t s = 0; s < n; ++s) kept += spans[s].n;
-  if (kept) bits.place(spans, n, order, points, base);
+  if (kept) bits.place(spans, n, order, points, out);
   return kept;
 }
 

@@ -23,29 +23,33 @@ struct ShellOrder {
 // keeps them): blocks in linear order of the block grid, each block's points in ascending point order.
 ShellOrder block_order(const std::vector<std::array<uint32_t, 3>>& cells);
 
-// The hit records of one job of a direction: recs[0, n), their slots first + rec.point, and where each one's place
-// among the direction's contacts goes.
+// The hit records of one job of a direction: recs[0, n), their slots first + rec.point.
 struct HitSpan {
   const Record* recs;
-  uint32_t* dest;
   size_t n;
   uint32_t first;
 };
 
+// A hit record that makes a contact, with its shell point.
+struct SortedHit {
+  const Record* rec;
+  uint32_t point;
+};
+
 class RankBits;
 
-// Which hit records of one direction make contacts, and their places: ALL every record, in ascending point order from
-// `base`; FIRST (first_only, each span holding its job's first hit first) only the record of the lowest point. Sets
-// each span's n to the records it keeps and their dest; returns the records kept.
-size_t keep_direction(HitSpan* spans, size_t n, bool first_only, const uint32_t* order, size_t points, uint32_t base,
-                      RankBits& bits);
+// The hit records of one direction that make contacts, into out[0, kept) in ascending point order: ALL every record,
+// FIRST (first_only; each span holding its job's first hit first) only the record of the lowest point. `out` has room
+// for every record of the spans; order: slot -> point; `points`: the shell's size. Returns the records kept.
+size_t keep_direction(const HitSpan* spans, size_t n, bool first_only, const uint32_t* order, size_t points,
+                      SortedHit* out, RankBits& bits);
 
 // Bits over a shell's points, for ranking the points of a direction's hits.
 class RankBits {
  public:
-  // Gives every record of `spans` (the hits of one direction, each point once) base + its rank among them in
-  // ascending point order (order: slot -> point; `points`: the shell's size).
-  void place(const HitSpan* spans, size_t n, const uint32_t* order, size_t points, uint32_t base);
+  // Every record of `spans` (the hits of one direction, each point once) into out[its rank among them in ascending
+  // point order] (order: slot -> point; `points`: the shell's size).
+  void place(const HitSpan* spans, size_t n, const uint32_t* order, size_t points, SortedHit* out);
 
  private:
   std::vector<uint64_t> bits_;
