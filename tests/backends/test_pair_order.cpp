@@ -290,12 +290,15 @@ TEST(PairOrder, BlockOrderAndRanks) {
     for (uint32_t k = 0; k < o.point.size(); ++k)
       if (rng() % 7 == 0) recs.push_back(Record::hit(0, k, 0, 0, 0, 1));
     const size_t half = recs.size() / 2;
-    std::vector<uint32_t> dest(recs.size());
-    detail::HitSpan spans[2] = {{recs.data(), dest.data(), half, 0}, {recs.data() + half, dest.data() + half,
-                                                                       recs.size() - half, 0}};
-    ranks.place(spans, 2, o.point.data(), o.point.size(), 5);
+    detail::HitSpan spans[2] = {{recs.data(), half, 0}, {recs.data() + half, recs.size() - half, 0}};
+    std::vector<detail::SortedHit> sorted(recs.size(), detail::SortedHit{nullptr, 0});
+    ranks.place(spans, 2, o.point.data(), o.point.size(), sorted.data());
     std::vector<uint32_t> at(recs.size());
-    for (size_t k = 0; k < recs.size(); ++k) at[dest[k] - 5] = o.point[recs[k].point];
+    for (size_t k = 0; k < recs.size(); ++k) {
+      ASSERT_NE(sorted[k].rec, nullptr) << "trial " << trial << ": no record at " << k;
+      ASSERT_EQ(sorted[k].point, o.point[sorted[k].rec->point]);
+      at[k] = sorted[k].point;
+    }
     ASSERT_TRUE(std::is_sorted(at.begin(), at.end())) << "trial " << trial;
     ASSERT_EQ(std::adjacent_find(at.begin(), at.end()), at.end());
   }
