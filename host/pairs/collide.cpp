@@ -179,6 +179,7 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, uint32_t map_
   test.mask = whole.hit_mask;
   test.threshold = whole.threshold;
   test.wb = cfg.WB;
+  for (int i = 0; i < 3; ++i) test.n[i] = n[i];
   if (pool_ && nc >= kParallelClusters) {
     // A large shell (a query of one pair of fine objects): word-aligned ranges of its clusters on the pool (a call
     // from inside a task of the pool runs them in turn).

@@ -104,15 +104,26 @@ void cull_empty(const ClusterBoxes& b, const double (&M)[3][3], const double (&a
   for (size_t w = 0; w * 64 < b.n; ++w) {
     for (uint64_t x = bits[w]; x; x &= x - 1) {
       const size_t k = w * 64 + size_t(__builtin_ctzll(x));
-      std::array<int64_t, 3> lo, hi;
+      std::array<int64_t, 3> lo, hi, mid;
+      double reach = 0;
+      bool inside = true;
       for (int i = 0; i < 3; ++i) {
         const double c = M[i][0] * b.centre[0][k] + M[i][1] * b.centre[1][k] + M[i][2] * b.centre[2][k] + t[i];
         const double h = aM[i][0] * b.half[0][k] + aM[i][1] * b.half[1][k] + aM[i][2] * b.half[2][k] + kSlack;
         lo[size_t(i)] = int64_t(std::floor(c - h));
         hi[size_t(i)] = int64_t(std::floor(c + h));
+        mid[size_t(i)] = int64_t(std::floor(c));
+        inside &= mid[size_t(i)] >= 0 && mid[size_t(i)] < int64_t(test.n[i]);
+        reach = std::max(reach, h);
       }
-      const bool may = test.field ? test.space->may_hit_field(lo, hi, test.threshold, test.wb)
-                                  : test.space->may_hit_states(lo, hi, test.mask);
+      // A box whose centre lies in the grid, for a mask of surface and interior states: one read of the distance to
+      // the nearest such voxel (every voxel of the box is within floor(h) + 1 of the centre's, per axis).
+      bool may;
+      if (inside && !test.field && (test.mask & ~6u) == 0)
+        may = test.space->may_hit_near(mid, int64_t(reach) + 1);
+      else
+        may = test.field ? test.space->may_hit_field(lo, hi, test.threshold, test.wb)
+                         : test.space->may_hit_states(lo, hi, test.mask);
       if (!may) bits[w] &= ~(uint64_t{1} << (k & 63));
     }
   }

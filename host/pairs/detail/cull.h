@@ -32,6 +32,7 @@ struct HitTest {
   uint32_t mask = 0;
   int64_t threshold = 0;
   int wb = 0;
+  double n[3] = {0, 0, 0};  // the voxmap's voxels per axis
 };
 
 // Clears the bit of every box k in [0, boxes.n) whose points (through p -> M p + t, the box of cull_clusters with its

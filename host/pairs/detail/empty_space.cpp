@@ -46,8 +46,53 @@ EmptySpace EmptySpace::of_states(const Voxmap& vm) {
       for (uint32_t x = 0; x < e.n_[0]; ++x) l.v[row + (x >> e.base_)] |= int16_t(1 << int(vm.at(first + x)));
     }
   e.levels_.push_back(std::move(l));
+  e.build_near();
   e.build_coarser();
   return e;
+}
+
+void EmptySpace::build_near() {
+  const Level& l = levels_.front();
+  const int64_t nx = l.dims[0], ny = l.dims[1], nz = l.dims[2];
+  // Padded by one block of "far" on every side, so that no neighbour needs a bounds test.
+  const int64_t px = nx + 2, py = ny + 2, pz = nz + 2;
+  std::vector<uint8_t> d(size_t(px * py * pz), 255);
+  for (int64_t z = 0; z < nz; ++z)
+    for (int64_t y = 0; y < ny; ++y)
+      for (int64_t x = 0; x < nx; ++x)
+        if (uint16_t(l.v[size_t(x + nx * (y + ny * z))]) & 6u) d[size_t((x + 1) + px * ((y + 1) + py * (z + 1)))] = 0;
+  // The 13 neighbours before a block in raster order (and, backwards, the 13 after it).
+  int64_t off[13];
+  int k = 0;
+  for (int64_t dz = -1; dz <= 0; ++dz)
+    for (int64_t dy = -1; dy <= 1; ++dy)
+      for (int64_t dx = -1; dx <= 1; ++dx)
+        if (dz < 0 || dy < 0 || (dy == 0 && dx < 0)) off[k++] = dx + px * (dy + py * dz);
+  auto relax = [&](int64_t i, int sign) {
+    uint8_t best = d[size_t(i)];
+    for (int64_t o : off) best = std::min<uint8_t>(best, uint8_t(std::min(255, d[size_t(i + sign * o)] + 1)));
+    d[size_t(i)] = best;
+  };
+  for (int64_t z = 1; z <= nz; ++z)
+    for (int64_t y = 1; y <= ny; ++y)
+      for (int64_t x = 1; x <= nx; ++x) relax(x + px * (y + py * z), 1);
+  for (int64_t z = nz; z >= 1; --z)
+    for (int64_t y = ny; y >= 1; --y)
+      for (int64_t x = nx; x >= 1; --x) relax(x + px * (y + py * z), -1);
+  near_.resize(size_t(nx * ny * nz));
+  for (int64_t z = 0; z < nz; ++z)
+    for (int64_t y = 0; y < ny; ++y)
+      for (int64_t x = 0; x < nx; ++x)
+        near_[size_t(x + nx * (y + ny * z))] = d[size_t((x + 1) + px * ((y + 1) + py * (z + 1)))];
+}
+
+bool EmptySpace::may_hit_near(const std::array<int64_t, 3>& c, int64_t r) const {
+  if (near_.empty()) return true;
+  const Dims& bd = levels_.front().dims;
+  // A voxel within r of c lies in a block within ceil(r / b) blocks of c's.
+  const int64_t rb = (r + (int64_t{1} << base_) - 1) >> base_;
+  const uint64_t i = uint64_t(c[0] >> base_) + bd[0] * (uint64_t(c[1] >> base_) + bd[1] * uint64_t(c[2] >> base_));
+  return int64_t(near_[i]) <= rb;
 }
 
 EmptySpace EmptySpace::of_field(const DistanceField& f) {

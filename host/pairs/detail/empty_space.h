@@ -37,6 +37,10 @@ class EmptySpace {
   // Whether a point of cells [lo, hi] can interpolate a distance D <= threshold (a job's threshold: D is the nodes'
   // weighted mean times 2^(3 wb)). False only when none can.
   bool may_hit_field(std::array<int64_t, 3> lo, std::array<int64_t, 3> hi, int64_t threshold, int wb) const;
+  // One read for the common question: whether a voxel within Chebyshev distance r of voxel c (inside the grid) may
+  // hold a state of {surface, interior} (a mask without the empty state's bit: masks of those states only). False
+  // only when none does. On 2-bit states only (true otherwise).
+  bool may_hit_near(const std::array<int64_t, 3>& c, int64_t r) const;
   // The finest level's block edge in voxels (a power of two), for tests.
   uint32_t base_block() const { return uint32_t(1) << base_; }
 
@@ -50,6 +54,12 @@ class EmptySpace {
   std::array<uint32_t, 3> n_ = {0, 0, 0};  // voxels (cells) per axis
   int base_ = 0;
   bool min_ = false;  // entries combine by min (distance) or by OR (states)
+  // States: per block of the finest level, the Chebyshev distance in blocks to the nearest block with a surface or
+  // interior voxel (0 for such a block), at most 255.
+  std::vector<uint8_t> near_;
+
+  // near_ from the finest level (two raster passes over the 26 neighbours: exact for the Chebyshev distance).
+  void build_near();
 
   // The levels above the finest, each block combining its 2x2x2 children.
   void build_coarser();
