@@ -27,8 +27,8 @@ constexpr size_t kBlock = 256;   // points per vector block inside a piece
 constexpr size_t kTaskPoints = 2048;
 
 // The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
-// bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
-// state | hit << 2; returns the number of hits. Outside points read the map's first word and are masked.
+// bounds, linear address, word fetch, state select and hit test. Outputs per point state | hit << 2 and, for hits,
+// the voxel (cx, cy, cz); returns the number of hits. Outside points read the map's first word and are masked.
 // Compiled twice (AVX2 with FMA, baseline; a processor with AVX-512 takes block_avx512) and chosen once at run time.
 #define VOXCD_BLOCK_DOUBLE_FETCH_BODY                                                                           \
   {                                                                                                             \
@@ -47,7 +47,9 @@ constexpr size_t kTaskPoints = 2048;
       const int32_t li = int32_t(inside ? ax + nx * (ay + ny * az) : 0.0);                                      \
       const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;                        \
       const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;                                                \
-      lin[k] = li;                                                                                              \
+      cx[k] = inside ? int32_t(ax) : 0;                                                                         \
+      cy[k] = inside ? int32_t(ay) : 0;                                                                         \
+      cz[k] = inside ? int32_t(az) : 0;                                                                         \
       state[k] = uint8_t(st | (hit << 2));                                                                      \
       count += hit;                                                                                             \
     }                                                                                                           \
@@ -56,8 +58,8 @@ constexpr size_t kTaskPoints = 2048;
 #define VOXCD_BLOCK_DOUBLE_FETCH_ARGS                                                                           \
   const Coord *__restrict x, const Coord *__restrict y, const Coord *__restrict z, size_t n,                    \
       const double *__restrict mp, const double *__restrict tp, const double *__restrict dp,                    \
-      const uint64_t *__restrict map, int slot_bits, uint32_t mask, int32_t *__restrict lin,                    \
-      uint8_t *__restrict state
+      const uint64_t *__restrict map, int slot_bits, uint32_t mask, int32_t *__restrict cx,                     \
+      int32_t *__restrict cy, int32_t *__restrict cz, uint8_t *__restrict state
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 bool have_avx512() {
@@ -71,7 +73,7 @@ bool have_avx512() {
 // no floor instruction), computes y and z only where a point is inside along x, skips the fetch for eight points none
 // of which is inside, and fetches the words of the others with one gather instruction (measured by CPU time, faster
 // than eight scalar loads and than the compiler's vectorisation of the generic body, in and out of cache). Outputs
-// as the generic body for the hits; a point that is no hit has state 0 and an unspecified linear index.
+// as the generic body for the hits; a point that is no hit has state 0 and an unspecified voxel.
 // GCC 12's intrinsics fill unused lanes from a self-initialised "undefined" vector, which -Wmaybe-uninitialized
 // reports once inlined here.
 #pragma GCC diagnostic push
@@ -79,8 +81,8 @@ bool have_avx512() {
 __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block_avx512(
     const int32_t* __restrict x, const int32_t* __restrict y, const int32_t* __restrict z, size_t n,
     const double* __restrict mp, const double* __restrict tp, const double* __restrict dp,
-    const uint64_t* __restrict map, int slot_bits, uint32_t mask, int32_t* __restrict lin,
-    uint8_t* __restrict state) {
+    const uint64_t* __restrict map, int slot_bits, uint32_t mask, int32_t* __restrict cx, int32_t* __restrict cy,
+    int32_t* __restrict cz, uint8_t* __restrict state) {
   const __m512d m0 = _mm512_set1_pd(mp[0]), m1 = _mm512_set1_pd(mp[1]), m2 = _mm512_set1_pd(mp[2]);
   const __m512d m3 = _mm512_set1_pd(mp[3]), m4 = _mm512_set1_pd(mp[4]), m5 = _mm512_set1_pd(mp[5]);
   const __m512d m6 = _mm512_set1_pd(mp[6]), m7 = _mm512_set1_pd(mp[7]), m8 = _mm512_set1_pd(mp[8]);
@@ -125,7 +127,9 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block
     const __mmask8 hit = _mm512_mask_test_epi64_mask(in, _mm512_srlv_epi64(hit_mask, st), one);
     count += uint32_t(__builtin_popcount(hit));
     _mm_mask_storeu_epi8(state + k, live, _mm512_cvtepi64_epi8(_mm512_maskz_or_epi64(hit, st, four)));
-    _mm256_mask_storeu_epi32(lin + k, live, li);
+    _mm256_mask_storeu_epi32(cx + k, hit, ix);
+    _mm256_mask_storeu_epi32(cy + k, hit, iy);
+    _mm256_mask_storeu_epi32(cz + k, hit, iz);
   }
   return count;
 }
@@ -197,8 +201,34 @@ Record& push_record(std::vector<Record>& out, Record::Kind kind, uint32_t tag) {
   return r;
 }
 
-// Appends the block's hit records; true when FIRST has its answer. Walks the states eight at a time: most of a
-// block's points are no hit.
+// Appends the block's hit records, their voxels given; true when FIRST has its answer. Walks the states eight at a
+// time: most of a block's points are no hit.
+bool emit_cells(const Job& j, uint32_t b, size_t n, const int32_t* cx, const int32_t* cy, const int32_t* cz,
+                const uint8_t* state, std::vector<Record>& hits, uint32_t& count) {
+  for (size_t k0 = 0; k0 < n; k0 += 8) {
+    uint64_t word = 0;  // state k0 + i in byte i, so the lowest set bit is the next hit in point order
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    if (n - k0 >= 8)
+      std::memcpy(&word, state + k0, 8);
+    else
+#endif
+      for (size_t i = 0; i < std::min<size_t>(8, n - k0); ++i) word |= uint64_t(state[k0 + i]) << (8 * i);
+    for (uint64_t flags = word & 0x0404040404040404ull; flags; flags &= flags - 1) {
+      const size_t k = k0 + size_t(__builtin_ctzll(flags) / 8);
+      ++count;
+      Record& r = push_record(hits, Record::Hit, j.tag);
+      r.point = b + uint32_t(k);
+      r.x = uint32_t(cx[k]);
+      r.y = uint32_t(cy[k]);
+      r.z = uint32_t(cz[k]);
+      r.state = uint8_t(state[k] & 3u);
+      if (j.mode == Mode::First) return true;
+    }
+  }
+  return false;
+}
+
+// Appends the block's hit records from their linear indices; true when FIRST has its answer.
 template <class Lin>
 bool emit_hits(const Job& j, uint32_t b, size_t n, const Lin* lin, const uint8_t* state, std::vector<Record>& hits,
                uint32_t& count) {
@@ -506,7 +536,7 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
                            uint32_t& hit_count) const {
   if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count);
   int64_t lin[kBlock];
-  int32_t lin32[kBlock];
+  int32_t cx[kBlock], cy[kBlock], cz[kBlock];
   uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit
   const bool fused = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
   // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is every
@@ -526,13 +556,13 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
     const size_t base = size_t(j.shell_base) + b;
     if (fused) {
       const uint32_t count = block_fetch.fn(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_,
-                                            j.hit_mask, lin32, state);
+                                            j.hit_mask, cx, cy, cz, state);
       if (count == 0) continue;
       if (j.mode == Mode::Count) {
         hit_count += count;
         continue;
       }
-      if (emit_hits(j, b, n, lin32, state, hits, hit_count)) return;
+      if (emit_cells(j, b, n, cx, cy, cz, state, hits, hit_count)) return;
       continue;
     }
     switch (path_) {
