@@ -79,7 +79,7 @@ void EmptySpace::build_near() {
   for (int64_t z = nz; z >= 1; --z)
     for (int64_t y = ny; y >= 1; --y)
       for (int64_t x = nx; x >= 1; --x) relax(x + px * (y + py * z), -1);
-  near_.resize(size_t(nx * ny * nz));
+  near_.assign(size_t(nx * ny * nz) + 3, 255);  // 3 bytes of padding (Near)
   for (int64_t z = 0; z < nz; ++z)
     for (int64_t y = 0; y < ny; ++y)
       for (int64_t x = 0; x < nx; ++x)

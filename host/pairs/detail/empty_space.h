@@ -18,6 +18,7 @@ namespace voxcd::detail {
 
 class EmptySpace {
  public:
+  using Dims3 = std::array<uint32_t, 3>;
   // Blocks of the finest level hold at most this many entries (coarser blocks than voxels above it).
   static constexpr uint64_t kMaxBaseCells = uint64_t{1} << 21;
   // A box is tested from the level where it spans at most two blocks per axis down this many levels.
@@ -41,6 +42,14 @@ class EmptySpace {
   // hold a state of {surface, interior} (a mask without the empty state's bit: masks of those states only). False
   // only when none does. On 2-bit states only (true otherwise).
   bool may_hit_near(const std::array<int64_t, 3>& c, int64_t r) const;
+  // may_hit_near's table, for a vector kernel: per block of the finest level (edge 2^base voxels, dims blocks per
+  // axis) its distance, then 3 bytes of padding (a 32-bit read at any block stays inside). Null on a distance field.
+  struct Near {
+    const uint8_t* d = nullptr;
+    int base = 0;
+    std::array<uint32_t, 3> dims = {0, 0, 0};
+  };
+  Near near() const { return {near_.empty() ? nullptr : near_.data(), base_, levels_.empty() ? Dims3{} : levels_.front().dims}; }
   // The finest level's block edge in voxels (a power of two), for tests.
   uint32_t base_block() const { return uint32_t(1) << base_; }
 
