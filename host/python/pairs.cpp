@@ -82,7 +82,8 @@ std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const
 std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::optional<double> voxel,
                                 std::optional<int64_t> resolution, const std::string& backend, int lanes,
                                 std::optional<int> distance_bits, std::optional<double> band,
-                                std::optional<double> margin) {
+                                std::optional<double> margin, int64_t threads) {
+  if (threads < 0 || threads > 4096) value_error("threads: " + std::to_string(threads) + " is not a count of threads (0: all)");
   if (voxel && resolution) value_error("give voxel (world units) or resolution (voxels along the longest side), not both");
   if (resolution && (*resolution < 0 || *resolution > int64_t(UINT32_MAX)))
     value_error("resolution: " + std::to_string(*resolution) + " is not a count of voxels");
@@ -105,7 +106,10 @@ std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::o
   py::gil_scoped_release unlocked;
   const DeviceConfig cfg = device_config_for(backend, lanes, {p->a.get(), p->b.get()}, d.bits);
   p->distance_bits = cfg.distance() ? cfg.SB : 0;
-  p->collider = std::make_unique<PairCollider>(make_device(backend, cfg), std::vector<std::shared_ptr<const ObjectType>>{p->a, p->b});
+  DeviceOptions dopt;
+  dopt.threads = unsigned(threads);
+  p->collider = std::make_unique<PairCollider>(make_device(backend, cfg, dopt),
+                                               std::vector<std::shared_ptr<const ObjectType>>{p->a, p->b});
   return p;
 }
 
@@ -300,10 +304,12 @@ void bind_pairs(py::module_& m) {
 by default at the larger one's longest side / resolution, 32 unless given). distance_bits (4, 8 or 16) loads
 distance voxmaps on a distance device, as `--distance-bits`: meshes and shapes get signed distance fields over
 +-band voxels (4 unless given), Objects and object files must carry fields of that many bits; every query then
-reports the points within margin (world units, 0 unless given) of the other object, as `--margin`.)")
+reports the points within margin (world units, 0 unless given) of the other object, as `--margin`. threads: the cpu
+backend's threads (0, the default: one per hardware thread; 1: the calling thread alone); results never depend on it.)")
       .def(py::init(&make_pair), py::arg("a"), py::arg("b"), py::kw_only(), py::arg("voxel") = py::none(),
            py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4,
-           py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none())
+           py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
+           py::arg("threads") = 0)
       .def("query", &query, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
            py::arg("both") = false, py::arg("cull") = true, kQueryDoc)
       .def("contacts", &contacts, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
@@ -335,7 +341,7 @@ reports the points within margin (world units, 0 unless given) of the other obje
       [](const py::object& a, const py::object& b, const py::object& pose, std::optional<double> voxel,
          std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode, bool both,
          bool cull, std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin) {
-        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin);
+        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin, 0);
         return query(*p, pose, mode, both, cull);
       },
       py::arg("a"), py::arg("b"), py::arg("pose") = py::none(), py::kw_only(), py::arg("voxel") = py::none(),
