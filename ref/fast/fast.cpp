@@ -44,12 +44,13 @@ constexpr size_t kTaskPoints = 2048;
       const double ay = std::floor(m3 * px + m4 * py + m5 * pz + t1);                                           \
       const double az = std::floor(m6 * px + m7 * py + m8 * pz + t2);                                           \
       const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);                \
-      const int32_t li = int32_t(inside ? ax + nx * (ay + ny * az) : 0.0);                                      \
+      const double vx = inside ? ax : 0.0, vy = inside ? ay : 0.0, vz = inside ? az : 0.0;                      \
+      const int32_t li = int32_t(vx + nx * (vy + ny * vz));                                                     \
       const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;                        \
       const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;                                                \
-      cx[k] = inside ? int32_t(ax) : 0;                                                                         \
-      cy[k] = inside ? int32_t(ay) : 0;                                                                         \
-      cz[k] = inside ? int32_t(az) : 0;                                                                         \
+      cx[k] = int32_t(vx);                                                                                      \
+      cy[k] = int32_t(vy);                                                                                      \
+      cz[k] = int32_t(vz);                                                                                      \
       state[k] = uint8_t(st | (hit << 2));                                                                      \
       count += hit;                                                                                             \
     }                                                                                                           \
