@@ -56,29 +56,13 @@ void as_euler(std::vector<PairRequest>& poses) {
   }
 }
 
-void run_scene(const Scene& s, int repeats, bool profile, const std::string& write_dir, bool json,
-               std::ostringstream& md) {
-  ObjectOptions o;
-  o.voxel = s.voxel;
-  o.threads = 1;
-  auto ta = std::make_shared<ObjectType>(make_object_type(make_object(s.a, s.a.name, 0, o), s.a.name));
-  auto tb = std::make_shared<ObjectType>(make_object_type(make_object(s.b, s.b.name, 0, o), s.b.name));
-  if (!write_dir.empty()) {
-    write_object(write_dir + "/" + s.name + "_a.vxo", ta->object);
-    write_object(write_dir + "/" + s.name + "_b.vxo", tb->object);
-    std::ofstream poses(write_dir + "/" + s.name + "_poses.txt");
-    for (const PairRequest& r : s.poses) poses << pose_line(r.pose_b) << "\n";
-  }
-  DeviceOptions dopt;
-  dopt.threads = 1;
-  PairCollider col(make_device("cpu", fit_memory(DeviceConfig{}, {ta.get(), tb.get()}), dopt), {ta, tb});
-  PairOptions opt;
-  opt.both_directions = true;
+// Every method in turn within each repeat, each timed by the thread's CPU time; the last repeat's batch results in
+// `batch` and `arrays`, FCL's contacts in `fcl_contacts`.
+Times time_methods(const Scene& s, PairCollider& col, const PairOptions& opt, int repeats, bool profile,
+                   std::vector<PairResult>& batch, ContactArrays& arrays, size_t& fcl_contacts) {
   auto fa = bench::bvh_of(s.a), fb = bench::bvh_of(s.b);
-  std::vector<PairResult> batch, one;
-  ContactArrays arrays;
+  std::vector<PairResult> one;
   std::vector<PairRequest> req(1);
-  size_t contacts = 0, lookups = 0, fcl_contacts = 0;
   Times t;
   for (int r = 0; r < repeats; ++r) {
     if (!profile) {
@@ -107,7 +91,32 @@ void run_scene(const Scene& s, int repeats, bool profile, const std::string& wri
     }
     t.one.push_back(bench::thread_cpu_seconds() - t0);
   }
-  contacts = 0, lookups = 0;
+  return t;
+}
+
+void run_scene(const Scene& s, int repeats, bool profile, const std::string& write_dir, bool json,
+               std::ostringstream& md) {
+  ObjectOptions o;
+  o.voxel = s.voxel;
+  o.threads = 1;
+  auto ta = std::make_shared<ObjectType>(make_object_type(make_object(s.a, s.a.name, 0, o), s.a.name));
+  auto tb = std::make_shared<ObjectType>(make_object_type(make_object(s.b, s.b.name, 0, o), s.b.name));
+  if (!write_dir.empty()) {
+    write_object(write_dir + "/" + s.name + "_a.vxo", ta->object);
+    write_object(write_dir + "/" + s.name + "_b.vxo", tb->object);
+    std::ofstream poses(write_dir + "/" + s.name + "_poses.txt");
+    for (const PairRequest& r : s.poses) poses << pose_line(r.pose_b) << "\n";
+  }
+  DeviceOptions dopt;
+  dopt.threads = 1;
+  PairCollider col(make_device("cpu", fit_memory(DeviceConfig{}, {ta.get(), tb.get()}), dopt), {ta, tb});
+  PairOptions opt;
+  opt.both_directions = true;
+  size_t fcl_contacts = 0;
+  ContactArrays arrays;
+  std::vector<PairResult> batch;
+  const Times t = time_methods(s, col, opt, repeats, profile, batch, arrays, fcl_contacts);
+  size_t contacts = 0, lookups = 0;
   for (const PairResult& r : batch) contacts += r.contacts.size(), lookups += r.lookups;
   if (arrays.size() != contacts) {
     std::fprintf(stderr, "%s: ContactArrays holds %zu contacts, the PairResults %zu\n", s.name.c_str(), arrays.size(),
@@ -185,7 +194,8 @@ int main(int argc, char** argv) {
     as_euler(s.poses);
     run_scene(s, repeats, profile, write_dir, json, md);
   }
-  md << "\nOne thread each, CPU time of the thread. room: " << scenes.front().a.size() << " + " << scenes.front().b.size()
+  md << "\nOne thread each, CPU time of the thread. room: " << bench::make_room().size() << " + "
+     << bench::make_robot().size()
      << " triangles; torus: 10,000 + 10,000. voxcd: cpu backend, both directions, every contact (position, normal, "
         "voxel, state, depth). FCL "
      << FCL_VERSION << ": `fcl::collide` on OBBRSS hierarchies, every contact (exact triangle pairs). Machine: "

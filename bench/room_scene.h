@@ -1,7 +1,7 @@
 // The room-and-robot scene of bench_contacts (docs/pairs.md, "Speed near the machine's limit"): objects of few
 // triangles that fill a large space, where most of a query's shell points land in empty air. The room (4 x 4 x 2.5
-// units, 2,188 triangles): a floor, thin walls with a door, a table, two chairs, a shelf, a sofa, two lamps and
-// open tubes (pipes without caps: an open mesh, as exports have them). The robot (1.1 units tall, 216 triangles):
+// units, 2,148 triangles): a floor, thin walls with a door, a table, two chairs, a shelf, a sofa, two lamps and
+// open tubes (pipes without caps: an open mesh, as exports have them). The robot (1.1 units tall, 212 triangles):
 // a base, a column, two arm links, a wrist, a gripper of two fingers and a shoulder joint.
 #pragma once
 

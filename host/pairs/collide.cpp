@@ -144,6 +144,51 @@ PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shar
   device_->load(image_.memory());
 }
 
+template <class Emit>
+void PairCollider::runs_of(const Clusters& cl, const std::vector<uint64_t>& bits_, bool first_mode, const Emit& emit) {
+  // Runs of kept clusters, a run at a time from the bit mask (ctz of the word, then of its complement: the keep
+  // pattern is hard to predict, so a branch per cluster costs more than the whole cull); runs closer than kMergeGap
+  // points apart are one job (a job costs more on the host than a few extra lookups), which also joins the two
+  // halves of a run split by a word boundary.
+  uint32_t run_first = 0, run_end = 0;
+  bool open = false;
+  if (first_mode) {
+    // FIRST: runs within one block, whose slots are in ascending point order, so that each job's first hit is the
+    // lowest point among its hits (the pair keeps the lowest over its jobs).
+    uint32_t block = 0;
+    for (size_t w = 0; w < bits_.size(); ++w)
+      for (uint64_t x = bits_[w]; x; x &= x - 1) {
+        const size_t c = w * 64 + size_t(__builtin_ctzll(x));
+        if (open && cl.block[c] == block && cl.first[c] == run_end) {
+          run_end = cl.first[c + 1];
+          continue;
+        }
+        if (open) emit(run_first, run_end);
+        run_first = cl.first[c], run_end = cl.first[c + 1], block = cl.block[c], open = true;
+      }
+    if (open) emit(run_first, run_end);
+    return;
+  }
+  for (size_t w = 0; w < bits_.size(); ++w) {
+    for (uint64_t x = bits_[w]; x;) {
+      const unsigned s = unsigned(__builtin_ctzll(x));
+      const uint64_t zeros = ~(x >> s);  // 0 only when the run fills the word from bit 0 up
+      const unsigned len = zeros ? unsigned(__builtin_ctzll(zeros)) : 64u;
+      x = s + len >= 64 ? 0 : x & (~uint64_t(0) << (s + len));
+      const uint32_t first = cl.first[w * 64 + s], end = cl.first[w * 64 + s + len];
+      if (open && first - run_end <= kMergeGap) {
+        run_end = end;
+      } else {
+        if (open) emit(run_first, run_end);
+        run_first = first;
+        run_end = end;
+        open = true;
+      }
+    }
+  }
+  if (open) emit(run_first, run_end);
+}
+
 void PairCollider::add_runs(const Job& whole, uint32_t shell_type, uint32_t map_type, const JobSource& src,
                             std::vector<Job>& out, std::vector<JobSource>& sources,
                             std::vector<uint64_t>& bits_) const {
@@ -198,47 +243,7 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, uint32_t map_
     detail::cull_clusters(boxes, M, aM, t, n, bits_.data());
     detail::cull_empty(boxes, M, aM, t, test, bits_.data());
   }
-  // Runs of kept clusters, a run at a time from the bit mask (ctz of the word, then of its complement: the keep
-  // pattern is hard to predict, so a branch per cluster costs more than the whole cull); runs closer than kMergeGap
-  // points apart are one job (a job costs more on the host than a few extra lookups), which also joins the two
-  // halves of a run split by a word boundary.
-  uint32_t run_first = 0, run_end = 0;
-  bool open = false;
-  if (whole.mode == Mode::First) {
-    // FIRST: runs within one block, whose slots are in ascending point order, so that each job's first hit is the
-    // lowest point among its hits (the pair keeps the lowest over its jobs).
-    uint32_t block = 0;
-    for (size_t w = 0; w < bits_.size(); ++w)
-      for (uint64_t x = bits_[w]; x; x &= x - 1) {
-        const size_t c = w * 64 + size_t(__builtin_ctzll(x));
-        if (open && cl.block[c] == block && cl.first[c] == run_end) {
-          run_end = cl.first[c + 1];
-          continue;
-        }
-        if (open) emit(run_first, run_end);
-        run_first = cl.first[c], run_end = cl.first[c + 1], block = cl.block[c], open = true;
-      }
-    if (open) emit(run_first, run_end);
-    return;
-  }
-  for (size_t w = 0; w < bits_.size(); ++w) {
-    for (uint64_t x = bits_[w]; x;) {
-      const unsigned s = unsigned(__builtin_ctzll(x));
-      const uint64_t zeros = ~(x >> s);  // 0 only when the run fills the word from bit 0 up
-      const unsigned len = zeros ? unsigned(__builtin_ctzll(zeros)) : 64u;
-      x = s + len >= 64 ? 0 : x & (~uint64_t(0) << (s + len));
-      const uint32_t first = cl.first[w * 64 + s], end = cl.first[w * 64 + s + len];
-      if (open && first - run_end <= kMergeGap) {
-        run_end = end;
-      } else {
-        if (open) emit(run_first, run_end);
-        run_first = first;
-        run_end = end;
-        open = true;
-      }
-    }
-  }
-  if (open) emit(run_first, run_end);
+  runs_of(cl, bits_, whole.mode == Mode::First, emit);
 }
 
 std::vector<Job> PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt) const {

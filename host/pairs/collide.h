@@ -306,6 +306,10 @@ class PairCollider {
   static Clusters clusters_of(const std::vector<std::array<uint32_t, 3>>& cells, const std::vector<uint32_t>& order,
                               const std::vector<uint32_t>& block_first);
   static constexpr uint32_t kMergeGap = 32;
+  // The runs of kept clusters (bit k of bits: cluster k kept) as emit(first slot, end slot) calls, in order; runs
+  // closer than kMergeGap points merged, or with first_mode (FIRST) runs within one block.
+  template <class Emit>
+  static void runs_of(const Clusters& cl, const std::vector<uint64_t>& bits, bool first_mode, const Emit& emit);
 
   DeviceImage image_;
   std::vector<Clusters> clusters_;

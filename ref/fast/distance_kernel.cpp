@@ -82,6 +82,30 @@ __attribute__((target("avx2,fma"), always_inline)) inline __m256d lerp256(__m256
   return _mm256_fmadd_pd(_mm256_sub_pd(b, a), f, _mm256_mul_pd(a, W));
 }
 
+// The eight node values of eight cells (in lanes `in`) from their parity banks, per axis the cells' two halves and
+// two parities given: per (dy, dz) the half-index's y and z part and the bank's y and z bits, then per corner one add
+// and one or, the word by a gather, the node's bits shifted down and sign-extended.
+__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline)) inline void nodes512(
+    const DistanceJob& J, __mmask8 in, const __m256i (&half)[3][2], const __m256i (&par)[3][2], __m256i hx,
+    __m256i hxy, __m256i slot_mask, __m128i npw, __m128i sb_shift, __m512i vmask, __m512i sign, __m512d (&q)[8]) {
+  __m256i row[4], rbank[4];
+  for (int r = 0; r < 4; ++r) {
+    row[r] = _mm256_add_epi32(_mm256_mullo_epi32(hx, half[1][r & 1]), _mm256_mullo_epi32(hxy, half[2][r >> 1]));
+    rbank[r] = _mm256_or_si256(par[1][r & 1], par[2][r >> 1]);
+  }
+#pragma GCC unroll 8
+  for (int cn = 0; cn < 8; ++cn) {
+    const __m256i h = _mm256_add_epi32(half[0][cn & 1], row[cn >> 1]);
+    const __m256i word = _mm256_or_si256(_mm256_slli_epi32(_mm256_sra_epi32(h, npw), 3),
+                                         _mm256_or_si256(par[0][cn & 1], rbank[cn >> 1]));
+    const __m256i slot = _mm256_sll_epi32(_mm256_and_si256(h, slot_mask), sb_shift);
+    const __m512i w = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), in, word,
+                                                  reinterpret_cast<const long long*>(J.map), 8);
+    const __m512i raw = _mm512_and_si512(_mm512_srlv_epi64(w, _mm512_cvtepu32_epi64(slot)), vmask);
+    q[cn] = _mm512_cvtepi64_pd(_mm512_sub_epi64(_mm512_xor_si512(raw, sign), sign));
+  }
+}
+
 // Eight points a step. The node of corner (dx, dy, dz) of cell (X, Y, Z) is in bank (X+dx)&1 | ... at half-index
 // ((X+dx)>>1) + hx ((Y+dy)>>1) + hx hy ((Z+dz)>>1): per axis two halves and two parities, combined per corner.
 __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t distance_avx512(
@@ -125,24 +149,8 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t dista
       par[i][0] = _mm256_slli_epi32(_mm256_and_si256(X[i], one), i);
       par[i][1] = _mm256_xor_si256(par[i][0], _mm256_set1_epi32(1 << i));
     }
-    // Per (dy, dz) the half-index's y and z part and the bank's y and z bits; per corner then one add and one or.
-    __m256i row[4], rbank[4];
-    for (int r = 0; r < 4; ++r) {
-      row[r] = _mm256_add_epi32(_mm256_mullo_epi32(hx, half[1][r & 1]), _mm256_mullo_epi32(hxy, half[2][r >> 1]));
-      rbank[r] = _mm256_or_si256(par[1][r & 1], par[2][r >> 1]);
-    }
     __m512d q[8];
-#pragma GCC unroll 8
-    for (int cn = 0; cn < 8; ++cn) {
-      const __m256i h = _mm256_add_epi32(half[0][cn & 1], row[cn >> 1]);
-      const __m256i word = _mm256_or_si256(_mm256_slli_epi32(_mm256_sra_epi32(h, npw), 3),
-                                           _mm256_or_si256(par[0][cn & 1], rbank[cn >> 1]));
-      const __m256i slot = _mm256_sll_epi32(_mm256_and_si256(h, slot_mask), sb_shift);
-      const __m512i w = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), in, word,
-                                                    reinterpret_cast<const long long*>(J.map), 8);
-      const __m512i raw = _mm512_and_si512(_mm512_srlv_epi64(w, _mm512_cvtepu32_epi64(slot)), vmask);
-      q[cn] = _mm512_cvtepi64_pd(_mm512_sub_epi64(_mm512_xor_si512(raw, sign), sign));
-    }
+    nodes512(J, in, half, par, hx, hxy, slot_mask, npw, sb_shift, vmask, sign, q);
     // a * 2^WB + (b - a) * f, x then y then z: exact integers.
     const __m512d a0 = lerp512(q[0], q[1], f[0], W), a1 = lerp512(q[2], q[3], f[0], W);
     const __m512d a2 = lerp512(q[4], q[5], f[0], W), a3 = lerp512(q[6], q[7], f[0], W);
@@ -157,6 +165,32 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t dista
     _mm512_mask_storeu_pd(dist + k, h, d);
   }
   return count;
+}
+
+// nodes512 for four cells with AVX2 (outside lanes read word 0 of the map: their cells were made 0).
+__attribute__((target("avx2,fma"), always_inline)) inline void nodes256(
+    const DistanceJob& J, const __m128i (&half)[3][2], const __m128i (&par)[3][2], __m128i hx, __m128i hxy,
+    __m128i slot_mask, __m128i npw, __m128i sb_shift, __m256i vmask, __m128i sign, __m256i low32, __m256d (&q)[8]) {
+  __m128i row[4], rbank[4];
+  for (int r = 0; r < 4; ++r) {
+    row[r] = _mm_add_epi32(_mm_mullo_epi32(hx, half[1][r & 1]), _mm_mullo_epi32(hxy, half[2][r >> 1]));
+    rbank[r] = _mm_or_si128(par[1][r & 1], par[2][r >> 1]);
+  }
+#pragma GCC unroll 8
+  for (int cn = 0; cn < 8; ++cn) {
+    const __m128i h = _mm_add_epi32(half[0][cn & 1], row[cn >> 1]);
+    const __m128i word = _mm_or_si128(_mm_slli_epi32(_mm_sra_epi32(h, npw), 3), _mm_or_si128(par[0][cn & 1], rbank[cn >> 1]));
+    const __m128i slot = _mm_sll_epi32(_mm_and_si128(h, slot_mask), sb_shift);
+    // Four scalar loads: AVX2's gather is no faster here and slower on some processors.
+    alignas(16) int32_t wi[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(wi), word);
+    const __m256i w = _mm256_set_epi64x(int64_t(J.map[wi[3]]), int64_t(J.map[wi[2]]), int64_t(J.map[wi[1]]),
+                                        int64_t(J.map[wi[0]]));
+    const __m256i raw = _mm256_and_si256(_mm256_srlv_epi64(w, _mm256_cvtepu32_epi64(slot)), vmask);
+    // The node value fits 16 bits: its low 32 bits, sign-extended from SB bits.
+    const __m128i r32 = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(raw, low32));
+    q[cn] = _mm256_cvtepi32_pd(_mm_sub_epi32(_mm_xor_si128(r32, sign), sign));
+  }
 }
 
 // Four points a step; the tail (fewer than four) one at a time.
@@ -200,27 +234,8 @@ __attribute__((target("avx2,fma"))) uint32_t distance_avx2(const int32_t* x, con
       par[i][0] = _mm_slli_epi32(_mm_and_si128(X[i], one), i);
       par[i][1] = _mm_xor_si128(par[i][0], _mm_set1_epi32(1 << i));
     }
-    __m128i row[4], rbank[4];
-    for (int r = 0; r < 4; ++r) {
-      row[r] = _mm_add_epi32(_mm_mullo_epi32(hx, half[1][r & 1]), _mm_mullo_epi32(hxy, half[2][r >> 1]));
-      rbank[r] = _mm_or_si128(par[1][r & 1], par[2][r >> 1]);
-    }
     __m256d q[8];
-#pragma GCC unroll 8
-    for (int cn = 0; cn < 8; ++cn) {
-      const __m128i h = _mm_add_epi32(half[0][cn & 1], row[cn >> 1]);
-      const __m128i word = _mm_or_si128(_mm_slli_epi32(_mm_sra_epi32(h, npw), 3), _mm_or_si128(par[0][cn & 1], rbank[cn >> 1]));
-      const __m128i slot = _mm_sll_epi32(_mm_and_si128(h, slot_mask), sb_shift);
-      // Four scalar loads (outside lanes read word 0): AVX2's gather is no faster here and slower on some processors.
-      alignas(16) int32_t wi[4];
-      _mm_store_si128(reinterpret_cast<__m128i*>(wi), word);
-      const __m256i w = _mm256_set_epi64x(int64_t(J.map[wi[3]]), int64_t(J.map[wi[2]]), int64_t(J.map[wi[1]]),
-                                          int64_t(J.map[wi[0]]));
-      const __m256i raw = _mm256_and_si256(_mm256_srlv_epi64(w, _mm256_cvtepu32_epi64(slot)), vmask);
-      // The node value fits 16 bits: its low 32 bits, sign-extended from SB bits.
-      const __m128i r32 = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(raw, low32));
-      q[cn] = _mm256_cvtepi32_pd(_mm_sub_epi32(_mm_xor_si128(r32, sign), sign));
-    }
+    nodes256(J, half, par, hx, hxy, slot_mask, npw, sb_shift, vmask, sign, low32, q);
     const __m256d a0 = lerp256(q[0], q[1], f[0], W), a1 = lerp256(q[2], q[3], f[0], W);
     const __m256d a2 = lerp256(q[4], q[5], f[0], W), a3 = lerp256(q[6], q[7], f[0], W);
     const __m256d d = lerp256(lerp256(a0, a1, f[1], W), lerp256(a2, a3, f[1], W), f[2], W);

@@ -285,8 +285,15 @@ void CapField::certify(const std::array<uint32_t, 3>& lo, const std::array<uint3
         for (uint32_t x = lo[0]; x < hi[0]; ++x) need(x, y, z, NAN, bound);
     return;
   }
-  // Open leaves stay open for the children, with the bound gathered so far: each child starts from a copy.
+  // Open leaves stay open for the children, with the bound gathered so far.
   for (uint32_t id : nodes) open.push_back(id);
+  certify_children(lo, hi, depth, lists, bound, limit, need);
+}
+
+void CapField::certify_children(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, size_t depth,
+                                std::vector<std::vector<uint32_t>>& lists, double bound, double limit,
+                                const NeedFn& need) const {
+  // Each child of the block starts from a copy of lists[depth + 1].
   for (int oz = 0; oz < 2; ++oz)
     for (int oy = 0; oy < 2; ++oy)
       for (int ox = 0; ox < 2; ++ox) {

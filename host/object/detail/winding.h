@@ -67,6 +67,10 @@ class CapField {
   // after `depth` are the recursion's working lists.
   void certify(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, size_t depth,
                std::vector<std::vector<uint32_t>>& lists, double bound, double limit, const NeedFn& need) const;
+  // certify on the block's eight children, each from the open nodes in lists[depth + 1].
+  void certify_children(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, size_t depth,
+                        std::vector<std::vector<uint32_t>>& lists, double bound, double limit,
+                        const NeedFn& need) const;
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;
 };
