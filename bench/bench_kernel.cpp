@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/lookup_scene.h"
 #include "voxcd/ref/fast/fast.h"
 #include "voxcd/ref/float_model.h"
 #include "voxcd/ref/pipeline.h"
@@ -44,34 +45,6 @@ DeviceConfig config_of(const Case& c) {
   cfg.MAW = c.sb ? 25 : 22;  // room for the largest map
   if (c.sb) cfg.SB = c.sb;
   return cfg;
-}
-
-// A shell of random points over a cube, a pose that spreads them over the whole map (as bench_device's), and a map
-// of random words (a quarter surface voxels; random node values on a distance map, a threshold near their middle).
-void build(const DeviceConfig& cfg, const Case& c, DeviceMemory& mem, Job& job) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(0, 1);
-  const double span = std::max({c.nx, c.ny, c.nz});
-  mem.shell.clear();
-  for (size_t k = 0; k < c.points; ++k) {
-    const double p[3] = {span * u(rng), span * u(rng), span * u(rng)};
-    mem.shell.push_back(quantize_point(cfg, p, "p"));
-  }
-  job = Job{};
-  job.mode = Mode::Count;
-  job.shell_count = uint32_t(c.points);
-  job.nx = c.nx, job.ny = c.ny, job.nz = c.nz;
-  FloatPose pose;
-  const double co = std::cos(0.5236), sn = std::sin(0.5236);
-  const double sx = c.nx / span / 1.4, sy = c.ny / span / 1.4, sz = c.nz / span;
-  pose.M[0][0] = co * sx, pose.M[0][1] = -sn * sx, pose.M[0][2] = 0;
-  pose.M[1][0] = sn * sy, pose.M[1][1] = co * sy, pose.M[1][2] = 0;
-  pose.M[2][0] = 0, pose.M[2][1] = 0, pose.M[2][2] = sz * 0.999;
-  pose.t[0] = c.nx * 0.3, pose.t[1] = c.ny * 0.05, pose.t[2] = 0;
-  quantize_pose(cfg, pose, job);
-  mem.map.resize(map_words(cfg, job));
-  for (auto& w : mem.map) w = c.sb ? rng() : (rng() & 0x5555555555555555ull & rng());
-  job.threshold = 0;
 }
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
@@ -105,7 +78,7 @@ int main(int argc, char** argv) {
     const DeviceConfig cfg = config_of(c);
     DeviceMemory mem;
     Job job;
-    build(cfg, c, mem, job);
+    bench::lookup_scene(cfg, c.nx, c.ny, c.nz, c.points, 7, mem, job);
     std::vector<Record> out;
     if (!count_case.empty()) {
       FastRunner runner(cfg, 1);

@@ -40,7 +40,7 @@ for rev in "$@"; do
       { echo "kernel_revisions.sh: $rev does not build ($dir/build.log):" >&2; tail -20 "$dir/build.log" >&2; exit 1; }
     objs+=("$obj")
   done
-  g++ -O3 -DNDEBUG -std=c++17 -I"$dir/include" "$root/bench/bench_kernel.cpp" "${objs[@]}" -o "$dir/bench_kernel" \
+  g++ -O3 -DNDEBUG -std=c++17 -I"$dir/include" -I"$root" "$root/bench/bench_kernel.cpp" "${objs[@]}" -o "$dir/bench_kernel" \
     -pthread 2>>"$dir/build.log" || { echo "kernel_revisions.sh: $rev does not link ($dir/build.log)" >&2; exit 1; }
   bins+=("$dir/bench_kernel")
 done

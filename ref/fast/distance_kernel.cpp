@@ -62,12 +62,6 @@ uint32_t distance_base(const int32_t* x, const int32_t* y, const int32_t* z, siz
 }
 
 #ifdef VOXCD_DISTANCE_X86
-bool have_avx512() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
-}
-
 // GCC 12's intrinsics fill unused lanes from a self-initialised "undefined" vector, which -Wmaybe-uninitialized
 // reports once inlined here.
 #pragma GCC diagnostic push
@@ -267,7 +261,7 @@ Choice choose() {
 #ifdef VOXCD_DISTANCE_X86
   __builtin_cpu_init();
   const std::string want = kernel_override();
-  if (have_avx512() && (want.empty() || want == "avx512")) return {distance_avx512, "avx512"};
+  if (cpu_has_avx512() && (want.empty() || want == "avx512")) return {distance_avx512, "avx512"};
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && want != "baseline")
     return {distance_avx2, "avx2"};
 #endif
@@ -277,6 +271,16 @@ Choice choose() {
 const Choice kChoice = choose();
 
 }  // namespace
+
+bool cpu_has_avx512() {
+#ifdef VOXCD_DISTANCE_X86
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
+#else
+  return false;
+#endif
+}
 
 std::string kernel_override() {
   const char* v = std::getenv("VOXCD_KERNEL");

@@ -63,11 +63,7 @@ constexpr size_t kTaskPoints = 2048;
       int32_t *__restrict cy, int32_t *__restrict cz, uint8_t *__restrict state
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-bool have_avx512() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
-}
+bool have_avx512() { return detail::cpu_has_avx512(); }
 
 // The block lookup on AVX-512, written by hand, eight points at a time: it tests the bounds on the exact accumulator
 // (for an integer n, floor(a) is in [0, n) exactly when a is, and for such an a truncation is the floor, so it needs
@@ -202,10 +198,11 @@ Record& push_record(std::vector<Record>& out, Record::Kind kind, uint32_t tag) {
   return r;
 }
 
-// Appends the block's hit records, their voxels given; true when FIRST has its answer. Walks the states eight at a
-// time: most of a block's points are no hit.
-bool emit_cells(const Job& j, uint32_t b, size_t n, const int32_t* cx, const int32_t* cy, const int32_t* cz,
-                const uint8_t* state, std::vector<Record>& hits, uint32_t& count) {
+// Appends the block's hit records, voxel(k, r) setting point k's voxel in r; true when FIRST has its answer. Walks
+// the states eight at a time: most of a block's points are no hit.
+template <class Voxel>
+bool emit(const Job& j, uint32_t b, size_t n, const uint8_t* state, std::vector<Record>& hits, uint32_t& count,
+          const Voxel& voxel) {
   for (size_t k0 = 0; k0 < n; k0 += 8) {
     uint64_t word = 0;  // state k0 + i in byte i, so the lowest set bit is the next hit in point order
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
@@ -219,9 +216,7 @@ bool emit_cells(const Job& j, uint32_t b, size_t n, const int32_t* cx, const int
       ++count;
       Record& r = push_record(hits, Record::Hit, j.tag);
       r.point = b + uint32_t(k);
-      r.x = uint32_t(cx[k]);
-      r.y = uint32_t(cy[k]);
-      r.z = uint32_t(cz[k]);
+      voxel(k, r);
       r.state = uint8_t(state[k] & 3u);
       if (j.mode == Mode::First) return true;
     }
@@ -229,37 +224,26 @@ bool emit_cells(const Job& j, uint32_t b, size_t n, const int32_t* cx, const int
   return false;
 }
 
-// Appends the block's hit records from their linear indices; true when FIRST has its answer.
+// The voxels given by the kernel.
+bool emit_cells(const Job& j, uint32_t b, size_t n, const int32_t* cx, const int32_t* cy, const int32_t* cz,
+                const uint8_t* state, std::vector<Record>& hits, uint32_t& count) {
+  return emit(j, b, n, state, hits, count, [&](size_t k, Record& r) {
+    r.x = uint32_t(cx[k]), r.y = uint32_t(cy[k]), r.z = uint32_t(cz[k]);
+  });
+}
+
+// The voxels from their linear indices.
 template <class Lin>
 bool emit_hits(const Job& j, uint32_t b, size_t n, const Lin* lin, const uint8_t* state, std::vector<Record>& hits,
                uint32_t& count) {
   const Dividers div(j);
-  for (size_t k0 = 0; k0 < n; k0 += 8) {
-    // State k0 + i in byte i of `word`, so the lowest set bit is the next hit in point order.
-    uint64_t word = 0;
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-    if (n - k0 >= 8)
-      std::memcpy(&word, state + k0, 8);
-    else
-#endif
-      for (size_t i = 0; i < std::min<size_t>(8, n - k0); ++i) word |= uint64_t(state[k0 + i]) << (8 * i);
-    uint64_t flags = word & 0x0404040404040404ull;
-    while (flags) {
-      const size_t k = k0 + size_t(__builtin_ctzll(flags) / 8);
-      flags &= flags - 1;
-      ++count;
-      const uint64_t li = uint64_t(lin[k]);
-      const uint64_t yz = div.x(li), z = div.y(yz);
-      Record& r = push_record(hits, Record::Hit, j.tag);
-      r.point = b + uint32_t(k);
-      r.x = uint32_t(li - yz * j.nx);
-      r.y = uint32_t(yz - z * j.ny);
-      r.z = uint32_t(z);
-      r.state = uint8_t(state[k] & 3u);
-      if (j.mode == Mode::First) return true;
-    }
-  }
-  return false;
+  return emit(j, b, n, state, hits, count, [&](size_t k, Record& r) {
+    const uint64_t li = uint64_t(lin[k]);
+    const uint64_t yz = div.x(li), z = div.y(yz);
+    r.x = uint32_t(li - yz * j.nx);
+    r.y = uint32_t(yz - z * j.ny);
+    r.z = uint32_t(z);
+  });
 }
 
 }  // namespace

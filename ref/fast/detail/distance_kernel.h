@@ -33,6 +33,8 @@ using DistanceBlockFn = uint32_t (*)(const int32_t* x, const int32_t* y, const i
 // variable VOXCD_KERNEL names a narrower one ("avx2", "baseline"), that one: tests run every kernel the machine has
 // through the same paths. Empty when unset.
 std::string kernel_override();
+// Whether this processor has the AVX-512 subsets the kernels use (F, DQ, VL, BW).
+bool cpu_has_avx512();
 
 // The kernel for this processor: AVX-512, AVX2 with FMA, or the baseline; and its name.
 DistanceBlockFn distance_block();
