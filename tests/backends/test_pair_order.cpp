@@ -251,7 +251,7 @@ TEST(PairOrder, EmptySpaceNeverHidesAHitAndFindsTheEmptyBoxes) {
           int least = f.qmax();
           for (int c = 0; c < 8; ++c) least = std::min(least, f.at(uint64_t(x + (c & 1)), uint64_t(y + (c >> 1 & 1)),
                                                                   uint64_t(z + (c >> 2 & 1))));
-          any |= (int64_t(least) << (3 * wb)) <= threshold;
+          any |= int64_t(least) * (int64_t{1} << (3 * wb)) <= threshold;
         }
     const bool may = field.may_hit_field(lo, hi, threshold, wb);
     ASSERT_TRUE(may || !any) << "trial " << trial;
