@@ -13,3 +13,8 @@ voxcd_warnings(bench_distance_error)
 add_executable(bench_differential ${CMAKE_CURRENT_LIST_DIR}/bench_differential.cpp)
 target_link_libraries(bench_differential PRIVATE voxcd_host fcl)
 voxcd_warnings(bench_differential)
+# bench_contacts: every contact of pair queries against FCL's exhaustive collide, one thread each: the room-and-robot
+# scene and the tori (docs/pairs.md, "Speed near the machine's limit").
+add_executable(bench_contacts ${CMAKE_CURRENT_LIST_DIR}/bench_contacts.cpp)
+target_link_libraries(bench_contacts PRIVATE voxcd_host fcl)
+voxcd_warnings(bench_contacts)

@@ -55,6 +55,26 @@ py::dict contacts_dict(const PairResult& r, bool cycles) {
 
 namespace {
 
+// ContactArrays whose numpy arrays have all been freed, kept for the next query (up to kKeep): a query into them
+// writes over pages already mapped instead of asking the allocator for new ones (which, for arrays of megabytes,
+// maps fresh pages and takes a fault on each).
+struct ArrayPool {
+  static constexpr size_t kKeep = 2;
+  std::mutex m;
+  std::vector<std::unique_ptr<ContactArrays>> free;
+  std::unique_ptr<ContactArrays> take() {
+    const std::lock_guard<std::mutex> lock(m);
+    if (free.empty()) return std::make_unique<ContactArrays>();
+    auto a = std::move(free.back());
+    free.pop_back();
+    return a;
+  }
+  void give(std::unique_ptr<ContactArrays> a) {
+    const std::lock_guard<std::mutex> lock(m);
+    if (free.size() < kKeep) free.push_back(std::move(a));
+  }
+};
+
 struct Pair {
   std::shared_ptr<ObjectType> a, b;
   double voxel = 0;
@@ -63,6 +83,7 @@ struct Pair {
   double margin = 0;      // PairOptions::margin of every query (`--margin`; used on a distance device only)
   std::unique_ptr<PairCollider> collider;
   std::mutex busy;  // one query at a time: the collider reuses its buffers
+  std::shared_ptr<ArrayPool> arrays = std::make_shared<ArrayPool>();
 };
 
 // What `voxcd pair --distance-bits B --band K --margin M` is given, checked as the module checks voxelize's (None:
@@ -102,7 +123,8 @@ std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const
 std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::optional<double> voxel,
                                 std::optional<int64_t> resolution, const std::string& backend, int lanes,
                                 std::optional<int> distance_bits, std::optional<double> band,
-                                std::optional<double> margin) {
+                                std::optional<double> margin, int64_t threads) {
+  if (threads < 0 || threads > 4096) value_error("threads: " + std::to_string(threads) + " is not a count of threads (0: all)");
   if (voxel && resolution) value_error("give voxel (world units) or resolution (voxels along the longest side), not both");
   if (resolution && (*resolution < 0 || *resolution > int64_t(UINT32_MAX)))
     value_error("resolution: " + std::to_string(*resolution) + " is not a count of voxels");
@@ -125,7 +147,10 @@ std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::o
   py::gil_scoped_release unlocked;
   const DeviceConfig cfg = device_config_for(backend, lanes, {p->a.get(), p->b.get()}, d.bits);
   p->distance_bits = cfg.distance() ? cfg.SB : 0;
-  p->collider = std::make_unique<PairCollider>(make_device(backend, cfg), std::vector<std::shared_ptr<const ObjectType>>{p->a, p->b});
+  DeviceOptions dopt;
+  dopt.threads = unsigned(threads);
+  p->collider = std::make_unique<PairCollider>(make_device(backend, cfg, dopt),
+                                               std::vector<std::shared_ptr<const ObjectType>>{p->a, p->b});
   return p;
 }
 
@@ -159,10 +184,8 @@ std::vector<RigidPose> poses(const py::object& pose, bool& many) {
   return out;
 }
 
-py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
-  const auto m = parse_mode(mode);
-  if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
-  bool many = false;
+// The requests and options of a query (pose, mode, both, cull as query() takes them).
+std::vector<PairRequest> requests(const py::object& pose, bool& many) {
   std::vector<PairRequest> reqs;
   for (const RigidPose& b : poses(pose, many)) {
     PairRequest r;
@@ -171,11 +194,77 @@ py::object query(Pair& p, const py::object& pose, const std::string& mode, bool 
     r.pose_b = b;
     reqs.push_back(r);
   }
+  return reqs;
+}
+
+PairOptions options(const Pair& p, const std::string& mode, bool both, bool cull) {
+  const auto m = parse_mode(mode);
+  if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
   PairOptions opt;
   opt.mode = *m;
   opt.both_directions = both;
   opt.cull = cull;
   opt.margin = p.margin;
+  return opt;
+}
+
+// A numpy array over `data` (no copy), of `rows` rows of `cols` values (cols 0: one dimension), kept alive by `owner`.
+template <class T>
+py::array view(const T* data, size_t rows, size_t cols, const py::object& owner) {
+  if (cols == 0) return py::array_t<T>({py::ssize_t(rows)}, {py::ssize_t(sizeof(T))}, data, owner);
+  return py::array_t<T>({py::ssize_t(rows), py::ssize_t(cols)}, {py::ssize_t(cols * sizeof(T)), py::ssize_t(sizeof(T))},
+                        data, owner);
+}
+
+// What contacts() returns: the arrays of `a` as numpy arrays without a copy, owned by a capsule that gives `a` back
+// to the pool once the last of them is freed.
+py::dict arrays_dict(std::unique_ptr<ContactArrays> a, const std::shared_ptr<ArrayPool>& pool, bool cycles) {
+  struct Owned {
+    std::unique_ptr<ContactArrays> arrays;
+    std::shared_ptr<ArrayPool> pool;
+  };
+  const ContactArrays& c = *a;
+  auto* owned = new Owned{std::move(a), pool};
+  const py::capsule owner(owned, [](void* v) {
+    auto* o = static_cast<Owned*>(v);
+    o->pool->give(std::move(o->arrays));
+    delete o;
+  });
+  const size_t k = c.size(), n = c.pairs();
+  static_assert(sizeof(bool) == sizeof(uint8_t), "a_in_b is viewed as a bool array");
+  py::dict d;
+  d["first"] = view(c.first.data(), n + 1, 0, owner);
+  d["hits"] = view(c.hits.data(), n, 0, owner);
+  d["lookups"] = view(c.lookups.data(), n, 0, owner);
+  d["device_cycles"] = cycles ? py::object(view(c.cycles.data(), n, 0, owner)) : py::none();
+  d["pose"] = view(c.pair.data(), k, 0, owner);
+  d["a_in_b"] = py::array(py::dtype::of<bool>(), {py::ssize_t(k)}, {py::ssize_t(1)}, c.a_in_b.data(), owner);
+  d["points"] = view(c.point.data(), k, 0, owner);
+  d["positions"] = view(c.position.data(), k, 3, owner);
+  d["normals"] = view(c.normal.data(), k, 3, owner);
+  d["voxels"] = view(c.voxel.data(), k, 3, owner);
+  d["states"] = view(c.state.data(), k, 0, owner);
+  d["depths"] = view(c.depth.data(), k, 0, owner);
+  return d;
+}
+
+py::dict contacts(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
+  const PairOptions opt = options(p, mode, both, cull);
+  bool many = false;
+  const std::vector<PairRequest> reqs = requests(pose, many);
+  std::unique_ptr<ContactArrays> a = p.arrays->take();
+  {
+    py::gil_scoped_release unlocked;
+    const std::lock_guard<std::mutex> one_at_a_time(p.busy);
+    p.collider->collide(reqs, opt, *a);
+  }
+  return arrays_dict(std::move(a), p.arrays, p.collider->device().models_cycles());
+}
+
+py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
+  const PairOptions opt = options(p, mode, both, cull);
+  bool many = false;
+  const std::vector<PairRequest> reqs = requests(pose, many);
   std::vector<PairResult> res;
   {
     py::gil_scoped_release unlocked;
@@ -200,6 +289,13 @@ poses. On a distance device (distance_bits) a contact is a point where the other
 at most the margin: depths is that distance negated (positive inside, negative within the margin outside), normals
 the other field's gradient negated and normalised, states 0.)";
 
+const char* kContactsDoc = R"(query() for any number of poses in one batch, its contacts in flat arrays that are no copies:
+the arrays the library wrote them into, handed to numpy (and reused for a later call once all of them are freed).
+pose, mode, both and cull as query(). Returns one dict: per pose (N of them) first ((N + 1,): pose i's contacts are
+rows first[i] to first[i + 1]), hits, lookups, device_cycles (None where the backend models none); per contact (K of
+them, in the order query() gives them, pose by pose) pose (the index of its pose), a_in_b, points, positions and
+normals ((K, 3)), voxels ((K, 3)), states, depths, as query() defines them.)";
+
 }  // namespace
 
 void bind_pairs(py::module_& m) {
@@ -208,12 +304,16 @@ void bind_pairs(py::module_& m) {
 by default at the larger one's longest side / resolution, 32 unless given). distance_bits (4, 8 or 16) loads
 distance voxmaps on a distance device, as `--distance-bits`: meshes and shapes get signed distance fields over
 +-band voxels (4 unless given), Objects and object files must carry fields of that many bits; every query then
-reports the points within margin (world units, 0 unless given) of the other object, as `--margin`.)")
+reports the points within margin (world units, 0 unless given) of the other object, as `--margin`. threads: the cpu
+backend's threads (0, the default: one per hardware thread; 1: the calling thread alone); results never depend on it.)")
       .def(py::init(&make_pair), py::arg("a"), py::arg("b"), py::kw_only(), py::arg("voxel") = py::none(),
            py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4,
-           py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none())
+           py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
+           py::arg("threads") = 0)
       .def("query", &query, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
            py::arg("both") = false, py::arg("cull") = true, kQueryDoc)
+      .def("contacts", &contacts, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
+           py::arg("both") = false, py::arg("cull") = true, kContactsDoc)
       .def_readonly("voxel", &Pair::voxel, "The voxel meshes and shapes were voxelised at (0 if both were objects).")
       .def_readonly("backend", &Pair::backend)
       .def_readonly("distance_bits", &Pair::distance_bits,
@@ -241,7 +341,7 @@ reports the points within margin (world units, 0 unless given) of the other obje
       [](const py::object& a, const py::object& b, const py::object& pose, std::optional<double> voxel,
          std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode, bool both,
          bool cull, std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin) {
-        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin);
+        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin, 0);
         return query(*p, pose, mode, both, cull);
       },
       py::arg("a"), py::arg("b"), py::arg("pose") = py::none(), py::kw_only(), py::arg("voxel") = py::none(),
