@@ -20,13 +20,15 @@ esac
 
 # What the tool and the device models need; the tests, benchmarks and the Python module need the rest.
 run_pkgs=(cmake ninja-build g++ pkg-config ccache libeigen3-dev libcli11-dev zlib1g-dev libassimp-dev
-          nlohmann-json3-dev libopenmpi-dev openmpi-bin verilator libsystemc-dev)
+          nlohmann-json3-dev libopenmpi-dev openmpi-bin verilator libsystemc-dev libjs-three)
 test_pkgs=(libgtest-dev libfcl-dev libbullet-dev libopenvdb-dev libboost-iostreams-dev assimp-testmodels yosys
-           pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dev)
+           qflow-tech-osu018 pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dev chromium nodejs npm)
 pkgs=("${run_pkgs[@]}")
 [ "$mode" = test ] && pkgs+=("${test_pkgs[@]}")
 missing=()
 for p in "${pkgs[@]}"; do
+  # A node.js from elsewhere may bring its own npm (and conflict with Debian's): the command is what is needed.
+  [ "$p" = npm ] && command -v npm >/dev/null && continue
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]})); then

@@ -28,6 +28,14 @@ inline double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// The calling thread's CPU time, in seconds: on a shared machine the time it ran, not the time it waited for a core.
+// For comparing single-threaded methods in one run (the load inflates wall times unevenly).
+inline double thread_cpu_seconds() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 // Runs fn `repeats` times and returns the median wall time of one run, in seconds.
 template <class Fn>
 double median_time(int repeats, Fn&& fn) {
@@ -102,7 +110,7 @@ inline DeviceClock clock_arg(const char* text) {
 }
 
 // The two comment lines a benchmark's CSV starts with, so that its rates and plots name their clock:
-// "# clock_mhz: 122" and "# clock_source: estimate: ...". bench/results.sh reads them for the plots' labels.
+// "# clock_mhz: 93.6" and "# clock_source: OpenSTA, ...". bench/results.sh reads them for the plots' labels.
 inline std::string clock_csv_lines(const DeviceClock& c) {
   char mhz[32];
   std::snprintf(mhz, sizeof mhz, "%g", c.mhz);

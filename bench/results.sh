@@ -42,7 +42,7 @@ mkdir -p "$data" "$plots"
 start=$SECONDS
 echo "results.sh: building in $build" >&2
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" -j2 --target bench_results bench_simulate bench_pair bench_broadphase >/dev/null
+cmake --build "$build" -j2 --target bench_results bench_simulate bench_pair bench_broadphase bench_differential >/dev/null
 
 if ((quick)); then
   reps=3 pair_reps=5 poses=32 err_poses=300 points=200000 frames=200 big_frames=10
@@ -50,6 +50,7 @@ if ((quick)); then
   voxels=0.4,0.2,0.1,0.05 widths=8:2,12:4,16:8,20:8 cost_widths=(8:2 16:8)
   fig14_counts=2,4,8,16,32,64,128,256 big_counts=256,1024,4096,16384
   pair_args=(--repeats 3 --poses 20 --voxel 0.04) bp_args=(--max-n 4096 --frames 60 --repeats 3)
+  diff_args=(--poses 20)
 else
   reps=7 pair_reps=21 poses=256 err_poses=2000 points=2000000 frames=1000 big_frames=50
   shells=25,92,219,384,606,840,1150,1509,1909,2314,5321,9337
@@ -57,6 +58,7 @@ else
   voxels=0.4,0.2,0.1,0.05,0.025 widths=8:2,10:4,12:4,14:6,16:8,20:8 cost_widths=(8:2 12:4 16:8 20:8)
   fig14_counts=2,4,8,16,32,48,64,128,192,256 big_counts=256,1024,4096,16384,65536
   pair_args=(--repeats 5 --poses 60) bp_args=(--max-n 65536 --frames 50 --repeats 3 --budget 30)
+  diff_args=(--poses 150)
 fi
 
 run() {  # label command...: runs a bench program, its progress to the log
@@ -80,6 +82,8 @@ run "N-body: Fig. 14 with the mid-phase" "$build/bench_simulate" --counts "$fig1
 run "N-body: large N" "$build/bench_simulate" --counts "$big_counts" --prunings sap,tree,grid --frames "$big_frames" \
   --repeats 3 --out "$data/large.md" --csv "$data/large.csv"
 run "peers: pair queries (bench_pair)" "$build/bench_pair" "${pair_args[@]}" --out "$data/peers_pair.md"
+run "exact geometry: every kind of model (bench_differential)" "$build/bench_differential" "${diff_args[@]}" \
+  --out "$data/differential.md"
 # bench_broadphase's own table names its command and machine but not the date and load: add the line the other
 # programs write (bench::provenance).
 provenance() {  # command load
@@ -166,7 +170,7 @@ for gp in bench/plot/*.gp; do
 done
 
 # ---- the document ----
-for block in pairs error fixed cost nbody nbody_mid large peers_pair peers_bp; do
+for block in pairs error fixed cost nbody nbody_mid large peers_pair peers_bp differential; do
   bash bench/splice.sh docs/results.md "results-$block" "$data/$block.md" >/dev/null
 done
 bash bench/splice.sh docs/broadphase.md broadphase "$data/peers_bp.md" >/dev/null

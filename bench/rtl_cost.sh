@@ -24,58 +24,22 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # Verilator's lint waivers (*.vlt) are not Verilog: yosys skips them.
 mapfile -t rtl_files < <(grep -v -e "^[[:space:]]*//" -e "^[[:space:]]*$" -e "\.vlt[[:space:]]*$" "$root/rtl/voxcd.f")
 
-missing=0
-need() {  # tool debian-package
-  if ! command -v "$1" >/dev/null 2>&1; then
-    echo "rtl_cost.sh: $1 not found: install the Debian package $2 (apt-get install $2)" >&2
-    missing=1
-  fi
-}
+runs_name=rtl_cost.sh
+# shellcheck source=bench/tool_runs.sh
+source "$root/bench/tool_runs.sh"
 need yosys yosys
 need nextpnr-ice40 nextpnr-ice40
 need icepack fpga-icestorm
 need python3 python3
 if ((missing)); then exit 1; fi
 
-tmp="$(mktemp -d)"
-pids=()
-logs=()
-cleanup() {
-  local p
-  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
+work_dir
 
 # Sources are copied so that the tools see short relative paths (the repository path may contain spaces).
 for f in "${rtl_files[@]}"; do cp "$root/rtl/$f" "$tmp/$f"; done
 cp "$root/bench/voxcd_fmax_top.sv" "$tmp/voxcd_fmax_top.sv"
 cd "$tmp"
 read_rtl="read_verilog -sv ${rtl_files[*]}"
-
-# launch LOG CMD...: runs CMD in the background with stdout and stderr to LOG, at most JOBS at a time.
-launch() {
-  local log="$1"
-  shift
-  while (($(jobs -pr | wc -l) >= JOBS)); do wait -n || true; done
-  "$@" >"$log" 2>&1 &
-  pids+=("$!")
-  logs+=("$log")
-}
-# finish: waits for every launched command; on a failure shows the end of its log and exits non-zero.
-finish() {
-  local i
-  for i in "${!pids[@]}"; do
-    if ! wait "${pids[$i]}"; then
-      echo "rtl_cost.sh: failed, see the end of ${logs[$i]}:" >&2
-      tail -n 20 "${logs[$i]}" >&2
-      exit 1
-    fi
-  done
-  pids=()
-  logs=()
-}
 
 start=$SECONDS
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# bench/size_doc.sh: regenerates the worked example, the accuracy sweep and the contact-accuracy sweep of
-# docs/size.md by running voxcd size on tests/scenes/mixed.json (the example at 10,000 frames/s with --cost: two yosys runs, about 30 s).
+# bench/size_doc.sh: regenerates the worked example, the accuracy sweep, the contact-accuracy sweep and the depth
+# choices of docs/size.md by running voxcd size on tests/scenes/mixed.json (the example at 10,000 frames/s with --cost:
+# two yosys runs, about 30 s; the depth choice with --cost maps onto the OSU 0.18 um cells, about a minute).
 # Usage: bash bench/size_doc.sh [BUILD_DIR]   (default build/)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -32,6 +33,17 @@ trap 'rm -rf "$tmp"' EXIT
   done
   echo '```'
 } >"$tmp/contact.md"
+{
+  echo '```'
+  for a in "--clock 50 --target asic-osu018 --cost" "--clock 40 --target ice40-hx8k" "--clock 100 --target xilinx-7" \
+           "--clock 250 --target asic-osu018"; do
+    echo "\$ build/voxcd size tests/scenes/mixed.json $a | grep -E '^(configuration|frame rate|latency|depth|area|block RAMs) '"
+    # shellcheck disable=SC2086
+    "$voxcd" size tests/scenes/mixed.json $a 2>&1 | grep -E '^(configuration|frame rate|latency|depth|area|block RAMs) |cannot be met' || true
+  done
+  echo '```'
+} >"$tmp/target.md"
 bash bench/splice.sh docs/size.md size-example "$tmp/example.md"
+bash bench/splice.sh docs/size.md size-target "$tmp/target.md"
 bash bench/splice.sh docs/size.md size-contact "$tmp/contact.md"
 bash bench/splice.sh docs/size.md size-accuracy "$tmp/accuracy.md"

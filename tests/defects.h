@@ -33,7 +33,8 @@ namespace voxcd::test {
 struct ExpectedReport {
   long long open_edges = -1, nonmanifold_edges = -1, dropped_duplicate = -1, dropped_repeated = -1,
             dropped_collinear = -1, reoriented = -1, welded = -1, components = -1, closed_components = -1,
-            sheet_components = -1, triangles = -1, vertices = -1;
+            sheet_components = -1, triangles = -1, vertices = -1, nonmanifold_parts = -1, dropped_internal = -1,
+            fin_triangles = -1;
   int closed = -1, flipped = -1, surface_only = -1, points_only = -1;
 };
 
@@ -524,6 +525,218 @@ inline Defect edge_sharing_cubes() {
   return d;
 }
 
+// Two unit cubes side by side, each a closed box as a modeller exports it: the face they share is given twice, once by
+// each cube (opposite orientations). After welding one copy is an exact duplicate; the other has solid on both
+// sides and must go: the solid is the 2 x 1 x 1 box.
+inline Defect face_sharing_boxes() {
+  const Eigen::Vector3d a0(0, 0, 0), a1(1, 1, 1), b0(1, 0, 0), b1(2, 1, 1);
+  Defect d;
+  d.mesh = make_box(a0, a1);
+  append(d.mesh, make_box(b0, b1));
+  d.name = "two boxes sharing a face";
+  d.mesh.name = d.name;
+  d.solid = {make_box(a0, a1), make_box(b0, b1)};
+  d.volume = 2;
+  d.expect.welded = 4;
+  d.expect.dropped_duplicate = 2;
+  d.expect.nonmanifold_edges = 4;  // the shared face's sides: a triangle of each cube and the face's
+  d.expect.nonmanifold_parts = 1;
+  d.expect.dropped_internal = 2;
+  d.expect.fin_triangles = 0;
+  d.expect.open_edges = 0;
+  d.expect.components = d.expect.closed_components = 1;
+  d.expect.triangles = 20;
+  d.expect.sheet_components = 0;
+  d.expect.surface_only = 0;
+  d.expect.closed = 0;
+  return d;
+}
+
+// A closed box with an internal face: the 2 x 1 x 1 box triangulated to meet the plane x = 1, with a partition
+// wall there (one copy, as CAD exports of multi-body parts give it). The wall has solid on both sides.
+inline Defect box_with_internal_face() {
+  Defect d;
+  d.mesh = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1));
+  Mesh right = make_box(Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(2, 1, 1));
+  right.triangles.erase(right.triangles.begin() + 8, right.triangles.begin() + 10);  // its x = 1 face
+  append(d.mesh, right);
+  d.name = "a box with an internal face";
+  d.mesh.name = d.name;
+  d.solid = {make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 1, 1))};
+  d.volume = 2;
+  d.expect.dropped_duplicate = 0;
+  d.expect.nonmanifold_edges = 4;
+  d.expect.nonmanifold_parts = 1;
+  d.expect.dropped_internal = 2;
+  d.expect.fin_triangles = 0;
+  d.expect.open_edges = 0;
+  d.expect.components = d.expect.closed_components = 1;
+  d.expect.triangles = 20;
+  d.expect.sheet_components = 0;
+  d.expect.surface_only = 0;
+  d.expect.closed = 0;
+  return d;
+}
+
+// A closed triangular prism with corners a, b, c at z0 and z1, each face's triangles facing away from its centroid;
+// quads split along the diagonal from the bottom corner that is lower in (x, y) order, so every prism that shares a
+// face splits it the same way.
+inline Mesh prism(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double z0, double z1) {
+  Mesh p;
+  for (double z : {z0, z1})
+    for (const Eigen::Vector3d& v : {a, b, c}) p.vertices.emplace_back(v.x(), v.y(), z);
+  p.triangles = {{0, 1, 2}, {3, 4, 5}};
+  auto lower = [&](uint32_t i, uint32_t j) {
+    const Eigen::Vector3d &u = p.vertices[i], &v = p.vertices[j];
+    return u.x() != v.x() ? u.x() < v.x() : u.y() < v.y();
+  };
+  for (uint32_t k = 0; k < 3; ++k) {
+    const uint32_t i = k, j = (k + 1) % 3;
+    if (lower(i, j)) {  // the diagonal from i's bottom corner to j's top corner
+      p.triangles.push_back({i, j, j + 3});
+      p.triangles.push_back({i, j + 3, i + 3});
+    } else {  // from j's bottom corner to i's top corner
+      p.triangles.push_back({i, j, i + 3});
+      p.triangles.push_back({j, j + 3, i + 3});
+    }
+  }
+  const Eigen::Vector3d mid = (p.vertices[0] + p.vertices[1] + p.vertices[2] + p.vertices[3] + p.vertices[4] +
+                               p.vertices[5]) / 6;
+  for (auto& t : p.triangles) {
+    const Eigen::Vector3d n = (p.vertices[t[1]] - p.vertices[t[0]]).cross(p.vertices[t[2]] - p.vertices[t[0]]);
+    if (n.dot(p.vertices[t[0]] - mid) < 0) std::swap(t[1], t[2]);
+  }
+  p.name = "prism";
+  return p;
+}
+
+// A hexagonal prism given as the union of `n` triangular wedges around its axis, each a closed prism: the axis is
+// an edge of every wedge (2n triangles before repair), each radial face is shared by two wedges (given twice), the
+// caps' radial edges have three triangles. The solid is the whole prism.
+inline Defect wedge_union(int n = 6) {
+  Defect d;
+  const double pi = std::acos(-1.0);
+  double area = 0;
+  for (int i = 0; i < n; ++i) {
+    const double t0 = 2 * pi * i / n, t1 = 2 * pi * (i + 1) / n;
+    const Eigen::Vector3d a(0, 0, 0), b(std::cos(t0), std::sin(t0), 0), c(std::cos(t1), std::sin(t1), 0);
+    const Mesh w = prism(a, b, c, -0.25, 0.5);
+    append(d.mesh, w);
+    d.solid.push_back(w);
+    area += 0.5 * b.cross(c).norm();
+  }
+  d.name = "a union of " + std::to_string(n) + " prisms sharing edges and faces";
+  d.mesh.name = d.name;
+  d.volume = 0.75 * area;
+  d.expect.nonmanifold_parts = 1;
+  d.expect.dropped_internal = n * 2;  // each radial face once (its duplicate goes as a duplicate)
+  d.expect.dropped_duplicate = n * 2;
+  d.expect.fin_triangles = 0;
+  d.expect.open_edges = 0;
+  d.expect.components = d.expect.closed_components = 1;
+  d.expect.sheet_components = 0;
+  d.expect.surface_only = 0;
+  d.expect.closed = 0;
+  return d;
+}
+
+// Prisms that share only edges: a ring of `n` wedges with every other one left out (a pinwheel), so the axis has
+// four or more triangles and no face is shared. Each wedge is solid.
+inline Defect pinwheel(int n = 8) {
+  Defect d;
+  const double pi = std::acos(-1.0);
+  double area = 0;
+  for (int i = 0; i < n; i += 2) {
+    const double t0 = 2 * pi * i / n, t1 = 2 * pi * (i + 1) / n;
+    const Eigen::Vector3d a(0, 0, 0), b(std::cos(t0), std::sin(t0), 0), c(std::cos(t1), std::sin(t1), 0);
+    const Mesh w = prism(a, b, c, 0, 0.6);
+    append(d.mesh, w);
+    d.solid.push_back(w);
+    area += 0.5 * b.cross(c).norm();
+  }
+  d.name = "a pinwheel of " + std::to_string(n / 2) + " prisms sharing an edge";
+  d.mesh.name = d.name;
+  d.volume = 0.6 * area;
+  d.expect.nonmanifold_parts = 1;
+  d.expect.nonmanifold_edges = 1;
+  d.expect.dropped_internal = 0;
+  d.expect.fin_triangles = 0;
+  d.expect.open_edges = 0;
+  d.expect.sheet_components = 0;
+  d.expect.surface_only = 0;
+  d.expect.closed = 0;
+  return d;
+}
+
+// Two closed boxes that overlap and share an edge (an L exported as two overlapping parts): the edge has four
+// triangles, two pairs of them coplanar. Each box keeps its inside: the solid is their union.
+inline Defect overlapping_boxes_sharing_an_edge() {
+  const Eigen::Vector3d a0(0, 0, 0), a1(2, 1, 1), b0(1.5, 0, 0), b1(2, 3, 1);
+  Defect d;
+  d.mesh = make_box(a0, a1);
+  append(d.mesh, make_box(b0, b1));
+  d.name = "two overlapping boxes sharing an edge";
+  d.mesh.name = d.name;
+  d.solid = {make_box(a0, a1), make_box(b0, b1)};
+  d.volume = 2 + 1.5 - 0.5;
+  d.expect.nonmanifold_edges = 1;
+  d.expect.nonmanifold_parts = 1;
+  d.expect.dropped_internal = 0;
+  d.expect.fin_triangles = 0;
+  d.expect.sheet_components = 0;
+  d.expect.surface_only = 0;
+  d.expect.closed = 0;
+  return d;
+}
+
+// A unit cube with a fin: a flat flap on one of its edges, sticking out (empty space on both sides). The fin is a
+// sheet; the cube stays solid.
+inline Defect box_with_fin() {
+  Defect d;
+  const Mesh box = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1));
+  d.mesh = box;
+  Mesh fin;
+  fin.vertices = {{0, 0, 1}, {1, 0, 1}, {1, -0.4, 1.5}, {0, -0.4, 1.5}};
+  fin.triangles = {{0, 1, 2}, {0, 2, 3}};
+  append(d.mesh, fin);
+  d.name = "a box with a fin on an edge";
+  d.mesh.name = d.name;
+  d.solid = {box};
+  d.volume = 1;
+  d.expect.nonmanifold_edges = 1;
+  d.expect.nonmanifold_parts = 1;
+  d.expect.dropped_internal = 0;
+  d.expect.fin_triangles = 2;
+  d.expect.sheet_components = 1;
+  d.expect.surface_only = 0;
+  d.expect.closed = 0;
+  return d;
+}
+
+// A unit cube whose top face is split at the midpoint of one of its edges while the side face below keeps the whole
+// edge: a T-junction, so that edge shows as open on both sides although the surface is closed.
+inline Defect box_with_t_junction() {
+  Defect d;
+  Mesh m = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1));
+  // Top face (z = 1): vertices 4 (0,0,1), 5 (1,0,1), 6 (0,1,1), 7 (1,1,1), triangles {4,5,6}, {5,7,6}. Split the
+  // edge 4-5 at its midpoint in the top face only.
+  m.vertices.emplace_back(0.5, 0, 1);
+  const uint32_t mid = uint32_t(m.vertices.size() - 1);
+  m.triangles[2] = {4, mid, 6};
+  m.triangles.push_back({mid, 5, 6});
+  d.mesh = m;
+  d.name = "a box with a T-junction";
+  d.expect.open_edges = 3;  // the long edge, and its two halves
+  d.mesh.name = d.name;
+  d.solid = {make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1))};
+  d.volume = 1;
+  d.expect.nonmanifold_edges = 0;
+  d.expect.sheet_components = 0;
+  d.expect.surface_only = 0;
+  d.expect.closed = 0;
+  return d;
+}
+
 // A ball with a cavity, given three ways: right (outer outward, inner inward), inside out (every triangle reversed),
 // and with the cavity's shell outward like the outer one. The intended solid is the shell each time: nested closed
 // parts alternate in orientation, so the cavity stays empty.
@@ -683,6 +896,13 @@ inline std::vector<Defect> all_defects(int level, uint64_t seed) {
   v.push_back(overlapping_boxes());
   v.push_back(overlapping_spheres(std::max(level - 1, 1)));
   v.push_back(edge_sharing_cubes());
+  v.push_back(face_sharing_boxes());
+  v.push_back(box_with_internal_face());
+  v.push_back(wedge_union());
+  v.push_back(pinwheel());
+  v.push_back(box_with_fin());
+  v.push_back(overlapping_boxes_sharing_an_edge());
+  v.push_back(box_with_t_junction());
   for (int k = 0; k < 3; ++k) v.push_back(hollow(std::max(level - 1, 1), k));
   v.push_back(sphere_and_sheet(std::max(level - 1, 1)));
   v.push_back(sphere_with_inner_sheet(std::max(level - 1, 1)));

@@ -121,7 +121,15 @@ int pair_cmd(const PairArgs& a) {
   const bool has_cycles = collider.device().models_cycles();
   if (a.json) {
     std::ostringstream o;
-    o << "{\"a\": " << json_string(a.a) << ", \"b\": " << json_string(a.b) << ", \"voxel\": " << voxel
+    // The voxel the objects were built at (an object file brings its own): one number when they share it.
+    const double va = ta->voxmap().voxel(), vb = tb->voxmap().voxel();
+    std::ostringstream vox;
+    vox.precision(17);
+    if (va == vb)
+      vox << va;
+    else
+      vox << "[" << va << ", " << vb << "]";
+    o << "{\"a\": " << json_string(a.a) << ", \"b\": " << json_string(a.b) << ", \"voxel\": " << vox.str()
       << ", \"backend\": " << json_string(a.backend) << ", \"mode\": " << json_string(a.mode)
       << ", \"both_directions\": " << (a.both ? "true" : "false") << ", \"pairs\": " << res.size()
       << ", \"touching\": " << touching << ", \"hits\": " << hits << ", \"lookups\": " << lookups
@@ -156,10 +164,10 @@ int pair_cmd(const PairArgs& a) {
     std::cout << o.str();
     return 0;
   }
-  std::printf("A %s: %zu shell points, voxmap %ux%ux%u; B %s: %zu shell points, voxmap %ux%ux%u; voxel %g\n",
+  std::printf("A %s: %zu shell points, voxmap %ux%ux%u, voxel %g; B %s: %zu shell points, voxmap %ux%ux%u, voxel %g\n",
               a.a.c_str(), ta->shell().size(), ta->voxmap().dims()[0], ta->voxmap().dims()[1],
-              ta->voxmap().dims()[2], a.b.c_str(), tb->shell().size(), tb->voxmap().dims()[0],
-              tb->voxmap().dims()[1], tb->voxmap().dims()[2], voxel);
+              ta->voxmap().dims()[2], ta->voxmap().voxel(), a.b.c_str(), tb->shell().size(), tb->voxmap().dims()[0],
+              tb->voxmap().dims()[1], tb->voxmap().dims()[2], tb->voxmap().voxel());
   std::printf("backend %s, mode %s%s: %zu pair%s, %llu touching, %llu hits, %llu contacts, %llu lookups in %.3f ms "
               "(%.2f ns per lookup)\n",
               a.backend.c_str(), a.mode.c_str(), a.both ? ", both directions" : "", res.size(),

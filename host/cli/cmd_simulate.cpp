@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -33,6 +34,7 @@ struct SimulateArgs {
   bool ccd = false;
   bool json = false;
   bool progress = true;
+  std::string record;  // --record FILE
   double mpi_timeout = 300;  // seconds a rank waits for a frame's messages
 };
 
@@ -63,6 +65,7 @@ SimulateRequest request(const SimulateArgs& a) {
   r.threads = a.sim.threads;
   r.midphase = a.sim.midphase;
   r.cull = a.sim.cull;
+  r.record = a.record;
   return r;
 }
 
@@ -149,6 +152,8 @@ int simulate_cmd(const SimulateArgs& a) {
     // No device cycles: no device rate (null), not a rate of frames that took no time.
     if (tot.cycles) o << device_rate;
     else o << "null";
+    if (!a.record.empty())
+      o << ", \"record\": " << json_string(a.record) << ", \"record_bytes\": " << std::filesystem::file_size(a.record);
     o << ", \"state_hash\": \"" << std::hex << s.state_hash
       << std::dec << "\"}\n";
     std::cout << o.str();
@@ -204,6 +209,12 @@ int simulate_cmd(const SimulateArgs& a) {
                                                              : "the exact timing model of ref/",
               s.device_rate_text().c_str());
   std::printf("state hash      %016llx\n", (unsigned long long)s.state_hash);
+  if (!a.record.empty()) {
+    const double bytes = double(std::filesystem::file_size(a.record));
+    std::printf("recording       %s: %llu frames, %.0f bytes (%.0f bytes per frame with the types once); "
+                "voxcd view %s replays it\n",
+                a.record.c_str(), (unsigned long long)s.frames, bytes, bytes / F, a.record.c_str());
+  }
   return 0;
 }
 
@@ -272,6 +283,9 @@ void add_simulate(CLI::App& app) {
               "the other object's voxmap; the results are the same)");
   c->add_flag("!--no-progress", a->progress, "No progress bar");
   c->add_flag("--json", a->json, "Print the summary as JSON");
+  c->add_option("--record", a->record,
+                "Record the run to FILE as it goes: poses, pairs, contacts and statistics of every frame "
+                "(replay it with voxcd view FILE; docs/view.md)");
   c->callback([a] { exit_code() = simulate_cmd(*a); });
 }
 

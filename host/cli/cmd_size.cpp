@@ -1,5 +1,6 @@
 // voxcd size: the smallest device for a scene file at a requested accuracy and frame rate (widths, memories,
-// lanes), with its predicted error, cycles per frame, memory and, with --cost, its yosys cost. docs/size.md.
+// lanes, and with --target the pipeline depth for the clock), with its predicted error, cycles per frame, latency,
+// memory and, with --cost, its yosys cost. docs/size.md.
 #include <iostream>
 
 #include "voxcd/host/cli/commands.h"
@@ -13,6 +14,7 @@ struct SizeArgs {
   std::string file;
   SizeRequest req;
   double clock_mhz = 0;  // --clock when given
+  std::string timing_table;  // --timing-table when given
   bool json = false;
   std::string rtl_dir = default_rtl_dir();
 };
@@ -23,6 +25,10 @@ int size_cmd(const SizeArgs& a, const CLI::App& cmd) {
   SizeRequest req = a.req;
   if (cmd.count("--clock")) req.clock = clock_option(a.clock_mhz, "--clock");
   req.rtl_dir = a.rtl_dir;
+  if (!a.timing_table.empty()) {
+    if (req.target.empty()) throw CLI::ValidationError("--timing-table", "needs --target (the table chooses a depth for it)");
+    req.timing = read_timing_table(a.timing_table);
+  }
   SizeReport r;
   try {
     r = derive_size(f, scene, req);
@@ -52,6 +58,13 @@ void add_size(CLI::App& app) {
   c->add_option("--rate", a->req.rate, "Frames per second (default: the scene file's)")->check(CLI::PositiveNumber);
   c->add_option("--clock", a->clock_mhz,
                 "Device clock, MHz (default: the scene file's \"clock\", or " + default_device_clock().text() + ")");
+  c->add_option("--target", a->req.target,
+                "Choose the pipeline depth for the clock on this target: the shallowest whose measured clock meets it "
+                "(the timing table of bench/timing.sh, docs/size.md); reports its latency, area at 0.18 um and block RAMs")
+      ->check(CLI::IsMember(timing_targets()));
+  c->add_option("--timing-table", a->timing_table,
+                "The timing table to choose the depth from (default: the one built in, host/sizing/timing.tsv)")
+      ->check(CLI::ExistingFile);
   c->add_option("--frames", a->req.frames, "Frames simulated to measure cycles (default: the scene file's)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1000000}));
   c->add_flag("--cost", a->req.cost,

@@ -1,4 +1,4 @@
-// voxcd sweep: a design-space sweep of a scene file (lanes x voxel scales x distance bits x accuracies), each point
+// voxcd sweep: a design-space sweep of a scene file (lanes x depths x voxel scales x distance bits x accuracies), each point
 // sized and measured as voxcd size does, sharded over MPI ranks with a results file that lets a stopped sweep
 // resume; one table (text, CSV, JSON) with the Pareto front, and a plot. docs/sweep.md.
 #include <chrono>
@@ -23,7 +23,7 @@ namespace {
 
 struct SweepArgs {
   std::string scene, sweep_file;
-  std::string lanes, voxel_scale, distance_bits, accuracy;
+  std::string lanes, depth, voxel_scale, distance_bits, accuracy;
   uint64_t frames = 0, sample_frames = 0;
   double clock = 0;
   bool cost = false;
@@ -74,6 +74,7 @@ SweepSpec make_spec(const SweepArgs& a, const CLI::App& cmd) {
   s.sample_frames = 4;
   if (!a.sweep_file.empty()) s = read_sweep_file(a.sweep_file, s);
   if (cmd.count("--lanes")) s.lanes = int_items(a.lanes, "--lanes");
+  if (cmd.count("--depth")) s.depths = int_items(a.depth, "--depth");
   if (cmd.count("--voxel-scale")) s.voxel_scales = parse_number_list(a.voxel_scale, "--voxel-scale");
   if (cmd.count("--distance-bits")) s.distance_bits = int_items(a.distance_bits, "--distance-bits");
   if (cmd.count("--accuracy")) s.accuracies = parse_number_list(a.accuracy, "--accuracy");
@@ -180,13 +181,16 @@ int sweep_cmd(const SweepArgs& a, const CLI::App& cmd) {
 void add_sweep(CLI::App& app) {
   auto a = std::make_shared<SweepArgs>();
   CLI::App* c = app.add_subcommand(
-      "sweep", "A design-space sweep of a scene file (lanes x voxel scales x distance bits x accuracies): error, "
+      "sweep", "A design-space sweep of a scene file (lanes x depths x voxel scales x distance bits x accuracies): error, "
                "contact error (bound and measured), cycles, memory and cost per point, the Pareto front, sharded "
                "over MPI ranks and resumable (docs/sweep.md)");
   c->add_option("scene", a->scene, "A scene file (docs/scenes.md)")->required()->check(CLI::ExistingFile);
   c->add_option("--sweep", a->sweep_file, "Sweep file (JSON, docs/sweep.md); the options below override its keys")
       ->check(CLI::ExistingFile);
   c->add_option("--lanes", a->lanes, "Lane counts, powers of two (default 1,2,4)");
+  c->add_option("--depth", a->depth,
+                "Pipeline depths, the register stages added to the lanes (default 0; the timing table of "
+                "docs/hardware.md gives each depth's clock)");
   c->add_option("--voxel-scale", a->voxel_scale, "Factors on every type's voxel (default 1)");
   c->add_option("--distance-bits", a->distance_bits,
                 "0 (2-bit states) or 4, 8, 16 (distance voxmaps with the scene's band) (default: the scene file's)");

@@ -28,5 +28,6 @@ void add_simulate(CLI::App& app);
 void add_size(CLI::App& app);
 void add_regress(CLI::App& app);
 void add_sweep(CLI::App& app);
+void add_view(CLI::App& app);
 
 }  // namespace voxcd::cli

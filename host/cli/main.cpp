@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   voxcd::cli::add_size(app);
   voxcd::cli::add_regress(app);
   voxcd::cli::add_sweep(app);
+  voxcd::cli::add_view(app);
   // CLI11 reports a first word that is no subcommand only as a missing subcommand: name it, and the known ones.
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;

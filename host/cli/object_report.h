@@ -92,13 +92,16 @@ inline std::string repair_json(const ObjectFile& obj) {
     << ", \"vertices\": " << r.vertices << ", \"triangles\": " << r.triangles << ", \"welded\": " << r.welded
     << ", \"welded_near\": " << r.welded_near << ", \"weld_tolerance\": " << num(r.weld_tolerance)
     << ", \"dropped\": {\"nonfinite\": " << r.dropped_nonfinite << ", \"repeated_vertex\": " << r.dropped_repeated
-    << ", \"collinear\": " << r.dropped_collinear << ", \"duplicate\": " << r.dropped_duplicate << "}"
+    << ", \"collinear\": " << r.dropped_collinear << ", \"duplicate\": " << r.dropped_duplicate
+    << ", \"internal\": " << r.dropped_internal << "}"
     << ", \"reoriented\": " << r.reoriented << ", \"open_edges\": " << r.open_edges
-    << ", \"nonmanifold_edges\": " << r.nonmanifold_edges << ", \"inconsistent_edges\": " << r.inconsistent_edges
+    << ", \"nonmanifold_edges\": " << r.nonmanifold_edges << ", \"nonmanifold_parts\": " << r.nonmanifold_parts
+    << ", \"fin_triangles\": " << r.fin_triangles << ", \"inconsistent_edges\": " << r.inconsistent_edges
     << ", \"components\": " << r.components << ", \"closed_components\": " << r.closed_components
     << ", \"sheet_components\": " << r.sheet_components
     << ", \"uncertain_voxels\": " << obj.voxelize_report.uncertain
-    << ", \"evaluated_voxels\": " << obj.voxelize_report.evaluated << "}";
+    << ", \"evaluated_voxels\": " << obj.voxelize_report.evaluated
+    << ", \"conservative_cells\": " << obj.voxelize_report.conservative << "}";
   return j.str();
 }
 
@@ -120,11 +123,18 @@ inline std::string repair_text(const ObjectFile& obj) {
     << " with a repeated vertex, " << r.dropped_collinear << " collinear, " << r.dropped_duplicate
     << " duplicate triangles; reoriented " << r.reoriented << " triangles" << (r.flipped ? "; reversed the whole mesh" : "")
     << "\n";
+  if (r.nonmanifold_parts)
+    t << "  nonmanifold " << r.nonmanifold_edges << " edges of three triangles or more in " << r.nonmanifold_parts
+      << " parts, decided by the cells they bound: dropped " << r.dropped_internal
+      << " internal triangles (solid on both sides), kept " << r.fin_triangles << " fin triangles as sheets\n";
   if (!r.points_only)
     t << "  parts    " << r.components << " components, " << r.closed_components << " closed, " << r.sheet_components
       << " sheets (surface only)" << (r.surface_only ? "; nothing encloses a volume: no interior" : "") << "\n";
   t << "  solid    " << obj.voxelize_report.uncertain << " uncertain voxels (winding number in [" << kUncertainLow << ", "
     << kUncertainHigh << "]), " << obj.voxelize_report.evaluated << " evaluated one by one\n";
+  if (!obj.distance.empty())
+    t << "  distance " << obj.voxelize_report.conservative
+      << " conservative cells (a surface the nodes do not resolve: every point in them is a hit)\n";
   return t.str();
 }
 

@@ -18,15 +18,11 @@ std::string DeviceClock::text() const { return num(mhz) + " MHz (" + source + ")
 
 double DeviceClock::rate(double cycles) const { return cycles > 0 ? mhz * 1e6 / cycles : 0; }
 
-double default_path_ns() { return kEstimateLutLevels * kEstimateNsPerLut + kEstimateCarry4 * kEstimateNsPerCarry4; }
-
 DeviceClock default_device_clock() {
   DeviceClock c;
   c.mhz = kDefaultClockMhz;
-  c.estimate = true;
-  c.source = "estimate: synth_xilinx logic depth of the default configuration, " + num(kEstimateLutLevels) +
-             " LUT levels x " + num(kEstimateNsPerLut) + " ns + " + num(kEstimateCarry4) + " CARRY4 x " +
-             num(kEstimateNsPerCarry4) + " ns = " + num(default_path_ns()) + " ns (docs/hardware.md)";
+  c.estimate = false;
+  c.source = kDefaultClockSource;
   return c;
 }
 

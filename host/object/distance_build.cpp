@@ -9,6 +9,7 @@
 
 #include "voxcd/host/object/detail/closest.h"
 #include "voxcd/host/object/detail/solid.h"
+#include "voxcd/host/object/detail/unresolved.h"
 #include "voxcd/host/object/distance_field.h"
 #include "voxcd/ref/fast/thread_pool.h"
 
@@ -81,7 +82,8 @@ std::vector<uint8_t> near_nodes(const std::vector<uint64_t>& surface, const std:
 
 }  // namespace
 
-DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt) {
+DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt,
+                             uint64_t* conservative) {
   if (opt.bits != 4 && opt.bits != 8 && opt.bits != 16)
     throw MeshError(mesh.name + ": distance bits must be 4, 8 or 16, got " + std::to_string(opt.bits));
   if (!(std::isfinite(opt.band) && opt.band > 0)) {
@@ -164,6 +166,9 @@ DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const Dista
       }
     }
   });
+  // 4. What the nodes cannot resolve becomes conservative.
+  const uint64_t lowered = opt.conservative ? detail::make_unresolved_conservative(mesh, g, f, opt.threads) : 0;
+  if (conservative) *conservative = lowered;
   return f;
 }
 

@@ -33,6 +33,19 @@ double DistanceField::sample(const Eigen::Vector3d& g, Eigen::Vector3d* gradient
   return lerp(y0, y1, f[2]);
 }
 
+bool DistanceField::near_conservative(const Voxmap& vm, uint32_t x, uint32_t y, uint32_t z) const {
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int64_t cx = int64_t(x) + dx, cy = int64_t(y) + dy, cz = int64_t(z) + dz;
+        if (cx < 0 || cy < 0 || cz < 0 || cx >= dims[0] || cy >= dims[1] || cz >= dims[2]) continue;
+        if (vm.at(vm.index(uint32_t(cx), uint32_t(cy), uint32_t(cz))) == kSurface &&
+            hits_everywhere(uint64_t(cx), uint64_t(cy), uint64_t(cz)))
+          return true;
+      }
+  return false;
+}
+
 std::vector<uint64_t> DistanceField::device_words(const DeviceConfig& cfg) const {
   Job j;
   j.nx = dims[0];

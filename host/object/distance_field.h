@@ -28,6 +28,18 @@ struct DistanceField {
     return X + (uint64_t(dims[0]) + 1) * (Y + (uint64_t(dims[1]) + 1) * Z);
   }
   int at(uint64_t X, uint64_t Y, uint64_t Z) const { return q[node_index(X, Y, Z)]; }
+  // Every node of cell (x, y, z) is <= 0: at any margin >= 0 every point of the cell is a hit. Such a cell lies
+  // inside, or is a conservative cell (a surface the nodes do not resolve: docs/objects.md), where a contact has the
+  // 2-bit voxmap's bound rather than the field's (docs/pairs.md).
+  bool hits_everywhere(uint64_t x, uint64_t y, uint64_t z) const {
+    for (int k = 0; k < 8; ++k)
+      if (at(x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1)) > 0) return false;
+    return true;
+  }
+  // Cell (x, y, z) shares a node with a conservative cell of this field on voxmap `vm` (its grid): a surface cell
+  // whose nodes are all <= 0. A hit there has the 2-bit voxmap's bound, (sqrt(3) + e) voxels, rather than the
+  // field's (docs/pairs.md): the lowered nodes reach into the cells around.
+  bool near_conservative(const Voxmap& vm, uint32_t x, uint32_t y, uint32_t z) const;
 
   // The trilinear interpolant of the node values at grid coordinates g (voxel units from the grid's origin),
   // in voxels (value * step), with its gradient (per voxel) when `gradient` is not null. g outside the grid is
@@ -43,12 +55,19 @@ struct DistanceOptions {
   int bits = 8;            // SB: 4, 8 or 16
   double band = 4.0;       // voxels: the step is band / 2^(bits-1)
   unsigned threads = 0;    // 0: one per hardware thread; never changes the result
+  // Lower the nodes of the cells the field does not resolve (docs/objects.md, "Conservative cells"). Off gives the
+  // measured field alone (tests compare it with brute force); every object voxcd builds has it on.
+  bool conservative = true;
 };
 
 // The field of a mesh as repair() left it, on the voxmap's grid: each node's exact distance to the nearest
 // triangle (point-triangle distance), its sign from the solid voxelize computed (inside: negative; sheets, which
-// bound no solid, give the unsigned distance). Only the voxmap's grid is used. MeshError for bits not 4, 8 or 16, a
-// band that is not finite and > 0, or a point cloud. The result never depends on opt.threads.
-DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt);
+// bound no solid, give the unsigned distance). Then (opt.conservative) every cell whose surface the nodes do not
+// resolve (a part thinner than a voxel, a sharp edge, a sheet) is made conservative: its nodes are lowered to at most 0, so that every point
+// in it is a hit (docs/objects.md, "Conservative cells"); *conservative, when given, gets their number. Only the
+// voxmap's grid is used. MeshError for bits not 4, 8 or 16, a band that is not finite and > 0, or a point cloud.
+// The result never depends on opt.threads.
+DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt,
+                             uint64_t* conservative = nullptr);
 
 }  // namespace voxcd

@@ -770,8 +770,11 @@ Mesh load_mesh(const std::string& path, MeshReport* report, const LoadOptions& o
     r.input_vertices = in_v;
     r.input_triangles = in_t;
     r.closed = true;
-  } else {
+  } else if (opt.repair) {
     r = repair(m);
+  } else {
+    r.input_vertices = r.vertices = m.vertices.size();
+    r.input_triangles = r.triangles = m.triangles.size();
   }
   if (report) *report = r;
   return m;

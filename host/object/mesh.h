@@ -54,7 +54,10 @@ struct MeshReport {
   size_t dropped_duplicate = 0;     // exact duplicates of another triangle (same vertices, either orientation)
   size_t reoriented = 0;            // triangles reversed to make orientation consistent
   size_t open_edges = 0;            // edges used by one triangle (after repair)
-  size_t nonmanifold_edges = 0;     // edges used by more than two triangles
+  size_t nonmanifold_edges = 0;     // edges used by more than two triangles (found, before what repair did)
+  size_t nonmanifold_parts = 0;     // edge-connected parts with such edges, decided by the cells they bound
+  size_t dropped_internal = 0;      // of those parts, triangles with solid on both sides (shared faces, membranes)
+  size_t fin_triangles = 0;         // of those parts, triangles with empty space on both sides (fins): sheets
   size_t inconsistent_edges = 0;    // edges whose two triangles still disagree (a non-orientable surface)
   size_t components = 0;            // edge-connected parts
   size_t closed_components = 0;     // parts that are closed and consistently oriented
@@ -63,7 +66,8 @@ struct MeshReport {
   bool points_only = false;         // a point cloud (no triangles)
   bool surface_only = false;        // nothing encloses a volume: no interior (sheets only, or a point cloud)
   bool repaired() const {
-    return welded_near || dropped_nonfinite || dropped_repeated || dropped_collinear || dropped_duplicate || reoriented || flipped;
+    return welded_near || dropped_nonfinite || dropped_repeated || dropped_collinear || dropped_duplicate ||
+           dropped_internal || reoriented || flipped;
   }
 };
 
@@ -75,6 +79,7 @@ constexpr double kCrackCloseRelative = 2e-3;
 
 struct LoadOptions {
   bool strict = false;  // refuse anything that is not a closed, edge-manifold, consistently oriented mesh
+  bool repair = true;   // false (and not strict): the triangles as read, nothing dropped or welded (to show repairs)
 };
 
 // Loads a mesh by file extension: .raw through parse_raw, .ply through its own reader (assimp 5.2's hangs on
@@ -104,8 +109,10 @@ void validate(Mesh& m, MeshReport* report = nullptr);
 MeshReport prepare(Mesh& m);
 
 // Repairs a triangle soup (host/object/repair.cpp): drops non-finite and degenerate triangles and exact duplicates, welds
-// vertices within kWeldRelative of the model's size, closes cracks between parts (kCrackCloseRelative), orients each part consistently where the surface allows
-// it (outward, nested closed parts alternating, so cavities stay empty), marks sheets, and reports it all.
+// vertices within kWeldRelative of the model's size, closes cracks between parts (kCrackCloseRelative), decides parts
+// with non-manifold edges by the cells of space they bound (internal faces dropped, fins made sheets), orients each
+// part consistently where the surface allows it (outward, nested closed parts alternating, so cavities stay empty),
+// marks sheets, and reports it all.
 // MeshError only when nothing is left: no triangle and no finite point.
 MeshReport repair(Mesh& m);
 

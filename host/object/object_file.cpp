@@ -22,7 +22,11 @@ constexpr char kMagic[8] = {'V', 'O', 'X', 'C', 'D', 'O', 'B', 'J'};
 // Version 3 adds the distance section and shell points on the surface; it is written only for objects that have
 // either, so every other object is written as version 2, byte for byte as before. Versions 1 (no report section)
 // and 2 are still read.
-constexpr uint32_t kVersion = 2, kVersionDistance = 3;
+// Version 4 adds the report's second section (after the distance section): the counts of non-manifold parts and
+// conservative distance cells, written only when one of them is not 0.
+constexpr uint32_t kVersion = 2, kVersionDistance = 3, kVersionReport2 = 4;
+// The report's second section (version 4): its count, then the counts, in file order.
+constexpr uint32_t kReport2Counts = 4;
 // Header flags (version 3 only): the shell's points lie on the surface (PointShell::on_surface).
 constexpr uint32_t kFlagSurfaceShell = 1;
 // The report section's fields (version 2), in file order.
@@ -40,6 +44,10 @@ std::array<uint64_t*, kReportCounts> report_fields(MeshReport& m, VoxelizeReport
           reinterpret_cast<uint64_t*>(&m.inconsistent_edges), reinterpret_cast<uint64_t*>(&m.components),
           reinterpret_cast<uint64_t*>(&m.closed_components), reinterpret_cast<uint64_t*>(&m.sheet_components),
           &v.uncertain, &v.evaluated};
+}
+std::array<uint64_t*, kReport2Counts> report2_fields(MeshReport& m, VoxelizeReport& v) {
+  return {reinterpret_cast<uint64_t*>(&m.nonmanifold_parts), reinterpret_cast<uint64_t*>(&m.dropped_internal),
+          reinterpret_cast<uint64_t*>(&m.fin_triangles), &v.conservative};
 }
 static_assert(sizeof(size_t) == sizeof(uint64_t), "report counts are stored as u64");
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the object file is little-endian; add byte swaps here");
@@ -238,7 +246,7 @@ ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t sou
     d.bits = opt.distance_bits;
     d.band = opt.band;
     d.threads = opt.threads;
-    obj.distance = distance_field(mesh, obj.voxmap, d);
+    obj.distance = distance_field(mesh, obj.voxmap, d, &obj.voxelize_report.conservative);
     so.on_surface = true;
   }
   obj.shell = point_shell(mesh, so);
@@ -254,14 +262,18 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   const DistanceField& df = obj.distance;
   if (!df.empty() && (df.dims != obj.voxmap.dims() || df.q.size() != df.node_index(0, 0, df.dims[2] + 1)))
     throw ObjectFileError(path + ": the distance field's grid is not the voxmap's");
-  const bool v3 = !df.empty() || sh.on_surface;
+  MeshReport mr = obj.has_report ? obj.mesh_report : MeshReport{};
+  VoxelizeReport vr = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
+  bool v4 = false;
+  for (uint64_t* f : report2_fields(mr, vr)) v4 |= *f != 0;
+  const bool v3 = !df.empty() || sh.on_surface || v4;
   for (const GridPlacement* g : {&obj.voxmap.grid(), &sh.grid})
     for (uint32_t d : g->dims)
       if (d == 0 || d > kObjectMaxDim)
         throw ObjectFileError(path + ": grid dimension " + std::to_string(d) + " does not fit an object file");
   Writer w;
   w.buf.append(kMagic, 8);
-  w.put(v3 ? kVersionDistance : kVersion);
+  w.put(v4 ? kVersionReport2 : v3 ? kVersionDistance : kVersion);
   w.put(sh.on_surface ? kFlagSurfaceShell : uint32_t{0});
   w.put(obj.source_hash);
   w.str(obj.source);
@@ -315,6 +327,11 @@ void write_object(const std::string& path, const ObjectFile& obj) {
       if (have > 0) w.buf += char(acc & 0xff);
     }
   }
+  // The report's second section (version 4): u32 count, then the counts as u64.
+  if (v4) {
+    w.put(kReport2Counts);
+    for (uint64_t* f : report2_fields(mr, vr)) w.put(*f);
+  }
   const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
   w.put(crc);
 
@@ -344,9 +361,9 @@ ObjectFile read_object(const std::string& path) {
   if (std::memcmp(buf.data(), kMagic, 8) != 0) r.bad("not a voxcd object file (bad magic)");
   r.pos = 8;
   const uint32_t version = r.get<uint32_t>("the version");
-  if (version < 1 || version > kVersionDistance)
+  if (version < 1 || version > kVersionReport2)
     r.bad("object file version " + std::to_string(version) + " is not supported (this reader knows versions 1 to " +
-          std::to_string(kVersionDistance) + ")");
+          std::to_string(kVersionReport2) + ")");
   const uint32_t stored_crc = [&] {
     uint32_t v;
     std::memcpy(&v, buf.data() + buf.size() - 4, 4);
@@ -450,6 +467,14 @@ ObjectFile read_object(const std::string& path) {
     for (uint64_t* f : report_fields(m, obj.voxelize_report)) *f = r.get<uint64_t>("the report counts");
   }
   if (version >= kVersionDistance) read_distance(r, g, obj.distance);
+  if (version >= kVersionReport2) {
+    const uint32_t k = r.get<uint32_t>("the count of the report's second section");
+    if (k != kReport2Counts)
+      r.bad("the report's second section holds " + std::to_string(k) + " counts; version 4 has " +
+            std::to_string(kReport2Counts));
+    for (uint64_t* f : report2_fields(obj.mesh_report, obj.voxelize_report))
+      *f = r.get<uint64_t>("the report's second section");
+  }
   r.get<uint32_t>("the checksum");
   if (r.pos != buf.size()) {
     r.field = r.pos;

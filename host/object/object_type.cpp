@@ -146,7 +146,9 @@ ObjectType load_object_type(const std::string& file_or_shape, double voxel, int 
   opt.voxel = voxel;
   opt.distance_bits = distance_bits;
   opt.band = band;
-  return make_object_type(make_object(mesh, source, hash, opt), file_or_shape);
+  ObjectType t = make_object_type(make_object(mesh, source, hash, opt), file_or_shape);
+  t.mesh = std::make_shared<const Mesh>(mesh);
+  return t;
 }
 
 double shared_voxel(const std::vector<std::string>& sources, uint32_t resolution) {

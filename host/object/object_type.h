@@ -22,6 +22,9 @@ struct ObjectType {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // of the smallest enclosing sphere (host/object/bounds.h)
   double radius = 0;
+  // The mesh the type was voxelised from, in the type's frame (as scaled and centred by the scene); null for an
+  // object file used as it is. Recordings draw the type with it (host/scene/record.h).
+  std::shared_ptr<const Mesh> mesh;
 
   const Voxmap& voxmap() const { return object.voxmap; }
   const PointShell& shell() const { return object.shell; }

@@ -92,6 +92,9 @@ struct VoxelizeReport {
   uint64_t uncertain = 0;
   // Voxels whose winding number was evaluated one by one (the rest were decided by the integer part alone).
   uint64_t evaluated = 0;
+  // Cells of the distance field (when one is built) whose surface its nodes do not resolve, made conservative
+  // (detail/unresolved.h): a part thinner than a voxel, a sharp edge, a sheet.
+  uint64_t conservative = 0;
 };
 constexpr double kUncertainLow = 0.25, kUncertainHigh = 0.75;
 

@@ -1,5 +1,5 @@
 # cmake --install build --prefix P:
-#   P/include/voxcd/       the public headers (<voxcd/voxcd.h> and what it includes, <voxcd/sysc/...>)
+#   P/include/voxcd/       the public headers (<voxcd/voxcd.h> and what it includes, <voxcd/ref/...>, <voxcd/sysc/...>)
 #   P/lib/                 libvoxcd (voxcd::host), libvoxcd_ref (voxcd::ref), libvoxcd_ref_fast (voxcd::fast),
 #                          libvoxcd_sysc (voxcd::sysc), libvoxcd_dpi (voxcd::dpi) and the Verilated models they load;
 #                          P/lib/voxcd/voxcd_rtl_backend.so, the rtl backend's module (it loads libvoxcd_rtl_models)
@@ -7,16 +7,28 @@
 #   P/lib/pkgconfig/       voxcd.pc
 #   P/bin/voxcd            the tool; P/libexec/voxcd/voxcd_sysc_server, the sysc backends' platform
 #   P/share/voxcd/rtl/     the RTL, its file list voxcd.f and the DPI package voxcd_dpi_pkg.sv
+#   P/share/voxcd/timing.tsv  the timing table of bench/timing.sh (the library has it compiled in)
 #   P/lib/python3/dist-packages/  the Python module (import voxcd)
 # Included last by the top-level CMakeLists.txt, when every target exists.
 include(CMakePackageConfigHelpers)
 
-# Public headers: every header of ref/, host/ and sysc/ except those under detail/, the tool's (cli/, mpi/) and the server's.
-foreach(part ref host sysc)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd/${part}
-          FILES_MATCHING PATTERN "*.h"
-          PATTERN "detail" EXCLUDE PATTERN "cli" EXCLUDE PATTERN "mpi" EXCLUDE PATTERN "python" EXCLUDE PATTERN "dpi" EXCLUDE
-          PATTERN "server_protocol.h" EXCLUDE PATTERN "voxcd.h" EXCLUDE)
+# Public headers, and only those (docs/api.md): the umbrella <voxcd/voxcd.h> and what it includes (the public API of
+# host/api/ and the few plain types it names), the device contract's own headers (the ref door), and the SystemC
+# models' (the sysc door). Every other header is internal: not installed. tests/install/consumers.sh checks that each
+# installed header includes only installed headers and compiles on its own.
+set(VOXCD_PUBLIC_HEADERS
+  host/api/object.h host/api/collide.h host/api/world.h host/api/devices.h
+  host/object/mesh.h host/object/frame.h host/pairs/contact.h host/scene/body.h
+  host/device/device.h host/device/conform.h host/device/clock.h
+  ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
+  ref/float_model.h ref/fast/fast.h)
+if(TARGET voxcd_sysc)
+  list(APPEND VOXCD_PUBLIC_HEADERS sysc/address_map.h sysc/axi_target.h sysc/host_cpu.h sysc/platform.h
+                                   sysc/rtl_target.h sysc/target.h sysc/tlm_target.h)
+endif()
+foreach(h ${VOXCD_PUBLIC_HEADERS})
+  get_filename_component(dir ${h} DIRECTORY)
+  install(FILES ${PROJECT_SOURCE_DIR}/${h} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd/${dir})
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/host/voxcd.h ${VOXCD_INCLUDE_ROOT}/voxcd/version.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxcd)
@@ -90,3 +102,5 @@ endif()
 
 # The RTL with its file list (and the DPI package, ref/dpi/CMakeLists.txt adds it).
 install(FILES ${PROJECT_SOURCE_DIR}/rtl/voxcd.f ${VOXCD_RTL_SOURCES} DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd/rtl)
+# The timing table `voxcd size --target` chooses a depth from (compiled in; here for reading and for --timing-table).
+install(FILES ${PROJECT_SOURCE_DIR}/host/sizing/timing.tsv DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd)

@@ -12,11 +12,17 @@
 
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_type.h"
+#include "voxcd/host/pairs/contact.h"
 #include "voxcd/host/pairs/pose.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/timing.h"
 
 namespace voxcd {
+
+namespace detail {
+class EmptySpace;
+struct SortedHit;
+}  // namespace detail
 
 // Object types that do not fit the device's memories or formats; names the type and the sizes.
 struct CapacityError : std::runtime_error {
@@ -37,8 +43,9 @@ class DeviceImage {
   explicit DeviceImage(const DeviceConfig& cfg) : cfg_(cfg) {}
   // Places a type and returns its index. CapacityError naming the type and what it needs against what is left,
   // a dimension above 2^DW, or (on a distance device) a type without a distance field of at most SB bits;
-  // RangeError from the shell's quantisation into PW/PF.
-  uint32_t add(const ObjectType& t);
+  // RangeError from the shell's quantisation into PW/PF. With `order`, shell word k is the type's point order[k]
+  // (a permutation of its points), else point k.
+  uint32_t add(const ObjectType& t, const std::vector<uint32_t>& order = {});
   const Placement& placement(uint32_t i) const { return placements_.at(i); }
   size_t size() const { return placements_.size(); }
   const DeviceMemory& memory() const { return mem_; }
@@ -54,33 +61,20 @@ class DeviceImage {
 // largest memories allowed (SAW 24, MAW 28) are too small, or a voxmap exceeds 2^DW voxels on an axis.
 DeviceConfig fit_memory(DeviceConfig cfg, const std::vector<const ObjectType*>& types);
 
+// The matrix width that holds every pose of types of such different sizes: M's entries reach A's shell spacing over
+// B's voxel (*ratio, the largest), and must lie below 2^(MW - MF - 1); cfg.MW when it suffices.
+int matrix_width_for(const DeviceConfig& cfg, const std::vector<const ObjectType*>& types, double* ratio = nullptr);
+
 // The device configuration for testing `types` on `backend`: the default widths at `lanes` (and SB =
-// distance_bits when > 0: a distance device), memories grown to fit the types (fit_memory) on every backend but
-// rtl, whose models are built for the default depths. `voxcd pair` and Simulation (without a whole configuration)
-// use it.
+// distance_bits when > 0: a distance device), MW widened for types of very different voxels (matrix_width_for),
+// memories grown to fit the types (fit_memory) on every backend but rtl, whose models are built for the default
+// widths and depths (CapacityError saying what to change when the types need a wider MW there). `voxcd pair`,
+// collide() and Simulation (without a whole configuration) use it.
 DeviceConfig device_config_for(const std::string& backend, int lanes, const std::vector<const ObjectType*>& types,
                                int distance_bits = 0);
 
 // Voxmap words a type takes on cfg's device: its states, or its distance field in parity banks (a multiple of 8).
 uint64_t type_map_words(const DeviceConfig& cfg, const ObjectType& t);
-
-// One contact: a shell point of one object that lies in a voxel of the other whose state is in the hit mask, or
-// (distance device) where the other's interpolated distance is at most the margin.
-struct Contact {
-  uint32_t pair = 0;          // index of the request
-  bool a_in_b = true;         // the shell is A's and the voxmap B's (else the reverse)
-  uint32_t point = 0;         // index of the shell point in its object's shell
-  Eigen::Vector3d position;   // the shell point, world coordinates
-  // Its object's outward surface normal there, world coordinates. Distance device: the other object's field
-  // gradient there, negated and normalised (the direction that outward normal has at a contact; the shell's own
-  // normal where the gradient vanishes).
-  Eigen::Vector3d normal;
-  std::array<uint32_t, 3> voxel = {0, 0, 0};  // the voxel (cell) of the other object's voxmap it lies in
-  uint8_t state = 0;          // that voxel's state (0 on a distance device)
-  // Penetration into the other object, world units: the voxel estimate (docs/pairs.md); on a distance device the
-  // interpolated distance negated (positive inside, negative for a contact within the margin outside).
-  double depth = 0;
-};
 
 struct PairRequest {
   uint32_t a = 0, b = 0;  // object types, as PairCollider numbers them
@@ -91,29 +85,46 @@ struct PairOptions {
   Mode mode = Mode::All;
   uint8_t hit_mask = kDefaultHitMask;
   bool both_directions = false;  // also B's shell in A's voxmap (needed to see A deep inside B's hollow, ...)
-  // Submit only the shell points that can land in the other object's voxmap: the shell's clusters of up to
-  // kClusterPoints consecutive points whose box, through the quantised pose, meets the voxmap's grid (host/pairs/detail/cull.h).
-  // Each run of kept clusters is one job. The points left out are outside the voxmap on the device, so contacts and
-  // hits never depend on it; lookups and device cycles do. docs/pairs.md.
+  // Submit only the shell points that can hit in the other object's voxmap: the shell's clusters of up to
+  // kClusterPoints consecutive points whose box, through the quantised pose, meets a voxel of the voxmap's grid that
+  // could give a hit (a state in the hit mask; on a distance device, a cell whose nodes reach the threshold), found
+  // in a pyramid of the voxmap's empty space (host/pairs/detail/cull.h, empty_space.h). Each run of kept clusters is
+  // one job. The points left out could not hit on the device, so contacts and hits never depend on it; lookups and
+  // device cycles do. docs/pairs.md.
   bool cull = true;
   // Distance device: a point is a contact where the other object's interpolated distance is at most `margin`
   // world units (0: touching or inside). RangeError when it does not fit the job's threshold (beyond the band).
   double margin = 0;
 };
 
-// Where a job came from: its pair, its direction, and the index in the shell of its first point (a hit's point
-// index is relative to that).
+// Where a job came from: its pair, its direction, and the slot of its first point in the type's shell as the device
+// holds it (a hit's point index is relative to that; PairCollider::shell_point gives the shell's point of a slot).
 struct JobSource {
   uint32_t pair = 0;
   bool a_in_b = true;
   uint32_t first = 0;
 };
 
-struct PairResult {
-  std::vector<Contact> contacts;  // A in B first, then B in A; each in ascending point order
-  uint32_t hits = 0;              // over both directions (COUNT: the count; FIRST: up to 1 per direction)
-  uint64_t lookups = 0;           // shell points submitted
-  uint64_t cycles = 0;            // device cycles of the pair's jobs, where the backend models them
+// Every contact of a batch in flat arrays, one row per contact (the fields of Contact), pair i's rows at
+// [first[i], first[i + 1]) in the order PairResult::contacts has them: for callers that hand contacts on as arrays
+// (the Python module's numpy arrays) or query every frame. The arrays keep their capacity from batch to batch, so a
+// query allocates nothing once they have grown.
+struct ContactArrays {
+  std::vector<uint64_t> first;              // per pair its first row, then one past the last row
+  std::vector<uint32_t> hits;               // per pair, PairResult::hits
+  std::vector<uint64_t> lookups, cycles;    // per pair, PairResult::lookups and cycles
+  std::vector<uint32_t> pair, point;        // per row
+  std::vector<uint8_t> a_in_b, state;       // per row
+  std::vector<double> position, normal;     // per row x, y, z (3 values a row)
+  std::vector<uint32_t> voxel;              // per row x, y, z
+  std::vector<double> depth;                // per row
+
+  size_t size() const { return point.size(); }  // rows
+  size_t pairs() const { return hits.size(); }
+  // Row k as a Contact.
+  Contact contact(size_t k) const;
+  // Sizes every array for `pairs` pairs and `rows` rows (what a batch writes; the values are left to it).
+  void resize(size_t pairs, size_t rows);
 };
 
 class PairCollider {
@@ -124,8 +135,9 @@ class PairCollider {
   PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types,
                std::shared_ptr<ThreadPool> pool = nullptr);
 
-  // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked; one job per
-  // direction without opt.cull, zero or more (runs of the shell in ascending order) with it. RangeError naming
+  // Jobs for the requests, in order: per pair A-in-B, then B-in-A when both directions are asked. The device holds
+  // each shell in blocks of nearby points (detail::block_order); a direction is one job without opt.cull (FIRST: one
+  // per block), zero or more (runs of slots in ascending order; FIRST: within one block) with it. RangeError naming
   // the pair when a pose is not finite or does not fit the fixed-point formats.
   std::vector<Job> jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt = {}) const;
   void jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<Job>& out,
@@ -135,12 +147,23 @@ class PairCollider {
   std::vector<PairResult> collide(const std::vector<PairRequest>& pairs, const PairOptions& opt = {});
   // The same into `out`, reusing its capacity (and the collider's buffers): for callers that query every frame.
   void collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
+  // The same into flat arrays (the same contacts, hits, lookups and cycles): no Contact is constructed, and arrays
+  // kept from batch to batch allocate nothing.
+  void collide(const std::vector<PairRequest>& pairs, const PairOptions& opt, ContactArrays& out);
 
   // A batch in parts, for a device that runs parts (the cpu backend: Device::runs_parts): the caller splits the
   // batch into consecutive runs of pairs, calls collide_part for each on threads of its own (each part with a Part of
   // its own, kept from batch to batch for its buffers), then join_parts with every part in order. The results are
   // those collide() gives for the whole batch: a part's first job is timed as if it began a stream until join_parts
   // counts it after the previous part's last job.
+  // Working buffers of tallying a batch (host/pairs/collide_batch.cpp).
+  struct Scratch;
+  // What a pair's jobs found: PairResult's numbers and how many contacts it has.
+  struct PairTally {
+    uint32_t hits = 0;
+    uint64_t lookups = 0, cycles = 0;
+    size_t contacts = 0;
+  };
   struct Part {
     std::vector<Job> jobs;
     std::vector<JobSource> sources;
@@ -148,8 +171,10 @@ class PairCollider {
     std::vector<Record> records;
     std::vector<size_t> first_job;
     std::vector<Eigen::Matrix3d> rot_a, rot_b;
+    std::vector<PairTally> tally;
+    std::shared_ptr<Scratch> scratch;
     struct JobRecords {
-      size_t first = 0, kept = 0, at = 0;
+      size_t first = 0;  // its first record
     };
     std::vector<JobRecords> job_records;
     // For join_parts: whether the part had a job; the pair of its first job, and its first and last jobs' spans.
@@ -176,9 +201,13 @@ class PairCollider {
   static constexpr size_t kParallelContacts = 256;
   static constexpr size_t kContactPiece = 256;
   static constexpr size_t kParallelScan = 2048;
-  // collide_pieces: batches of this many points or more; points per piece and (at least) per task.
+  // Groups of this many points (or one pair) of a batch run one after the other (PairCollider::run_groups).
+  static constexpr size_t kGroupPoints = 16384;
+  // A group of this many points or more runs in pieces on the pool; points per piece and (at least) per task.
   static constexpr size_t kParallelPoints = 4096, kPiecePoints = 2048, kTaskPoints = 2048;
   const ObjectType& type(uint32_t i) const { return *types_.at(i); }
+  // The shell point of type i in slot k of the device's copy of its shell (a job's first + a hit's point).
+  uint32_t shell_point(uint32_t i, uint32_t k) const { return order_.at(i).at(k); }
   size_t types() const { return types_.size(); }
   const DeviceImage& image() const { return image_; }
 
@@ -186,39 +215,88 @@ class PairCollider {
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
   std::shared_ptr<ThreadPool> pool_;
-  // collide() of a batch of `points` shell points or more on a device that runs parts, with a pool: the jobs (in
-  // jobs_) in pieces on the pool, each piece's hit records kept where its task put them and made into contacts
-  // there, each job timed from its pieces (ref/timing.h): no stream is put together.
-  void collide_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt, std::vector<PairResult>& out);
+  // A run of hit records of one direction of a pair that make contacts, in contact order (with their shell points),
+  // and the place of the first in the pair's contacts.
+  struct ContactRun {
+    const detail::SortedHit* hits;
+    size_t n;
+    uint32_t pair;
+    bool a_in_b;
+    size_t at;
+  };
+  // The jobs of a batch (all_jobs_), then the batch in groups of consecutive pairs: each group's jobs (jobs_) run,
+  // what they found (tally_, runs_, rot_a_, rot_b_), then emit(p0, p1) for its pairs [p0, p1), which writes their
+  // results and contacts. A bad pose is refused before anything runs; a DeviceError leaves the results of the
+  // groups before it written.
+  template <class Emit>
+  void run_groups(const std::vector<PairRequest>& pairs, const PairOptions& opt, const Emit& emit);
+  // A group of pairs [p0, p1) (its jobs in jobs_) as one stream from the device.
+  void run_stream(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt);
+  // A group of `points` shell points or more on a device that runs parts, with a pool: the jobs in pieces on the
+  // pool, each piece's hit records kept where its task put them, each job timed from its pieces (ref/timing.h): no
+  // stream is put together.
+  void run_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt);
+  // The span of job j of the group's stream (for the timing of the next group's first job).
+  JobSpan stream_span(size_t j) const;
+  // The first record of each job of the stream in records_ (job_records_); DeviceError when the completions do not
+  // match the jobs.
+  void find_completions(const std::vector<Job>& js);
+  // The pieces and tasks of run_pieces.
+  void plan_pieces();
+  // run_pieces' records that make contacts, their places, the pairs' contacts and hits (FIRST), and the runs.
+  void keep_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt);
+  // The cycles of a part's jobs as a stream of its own.
+  void time_part(Part& part) const;
+  static Scratch& scratch(std::shared_ptr<Scratch>& s);
+  // run_batch of `points` shell points or more on a device that runs parts, with a pool: the jobs (in jobs_) in
+  // pieces on the pool, each piece's hit records kept where its task put them, each job timed from its pieces
+  // (ref/timing.h): no stream is put together.
+  void run_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt);
+  // The contacts of runs_ through `out(pair)`, the writer of a pair's contacts (on the pool when they are many).
+  template <class Out>
+  void write_contacts(const std::vector<PairRequest>& pairs, const Out& out);
   // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), their first hit records
-  // job_records[j].first, `nrec` records in all): which hit records make contacts, its hits, lookups, cycles and
-  // contacts' places; the contacts vectors sized, the rotations of the pairs with contacts. Returns the contacts.
+  // job_records[j].first, `nrec` records in all): which hit records make contacts, in contact order into the
+  // scratch's runs, its hits, lookups, cycles and contacts; the rotations of the pairs with contacts. Returns the
+  // contacts.
   size_t tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
-               const JobSource* sources, size_t njobs, const size_t* first_job, Part::JobRecords* job_records,
-               const Record* records, size_t nrec, PairResult* out, Eigen::Matrix3d* rot_a,
-               Eigen::Matrix3d* rot_b) const;
+               const JobSource* sources, size_t njobs, const size_t* first_job, const Part::JobRecords* job_records,
+               const Record* records, size_t nrec, PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b,
+               Scratch& scratch) const;
   // The jobs of pair i, appended to out and sources (tags: their index in `out`); bits: add_runs' scratch.
   void pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
                  std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The culled runs of one direction of one pair, appended to out and sources.
-  void add_runs(const Job& whole, uint32_t shell_type, const JobSource& src, std::vector<Job>& out,
+  void add_runs(const Job& whole, uint32_t shell_type, uint32_t map_type, const JobSource& src, std::vector<Job>& out,
                 std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
-  // The contacts of hit records [recs, recs + n) of a job from `src`, of the pair `req` (its rotations Ra, Rb; its
-  // index `pair`), written to `to`.
-  void make_contacts(const PairRequest& req, uint32_t pair, const JobSource& src, const Record* recs, size_t n,
-                     const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, Contact* to) const;
+  // The contacts of hits [hits, hits + n) of one direction (a_in_b) of the pair `req` (its rotations Ra, Rb; its
+  // index `pair`), hit k written through `to` as contact k (host/pairs/detail/contact_out.h; instantiated in
+  // contacts.cpp).
+  template <class Out>
+  void make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const detail::SortedHit* hits, size_t n,
+                     const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const;
 
-  // Per type, its shell in clusters of consecutive points: the first point of each (one past the end last), and
-  // each cluster's box in the shell's grid (centre and half-extent per axis).
+  // Per type, its shell as the device holds it (in blocks: detail::block_order) in clusters of up to
+  // kClusterPoints consecutive slots of one block: the first slot of each (one past the end last), its block, and
+  // its box in the shell's grid (centre and half-extent per axis).
   struct Clusters {
-    std::vector<uint32_t> first;
+    std::vector<uint32_t> first, block;
     std::vector<double> centre[3], half[3];
   };
   static constexpr uint32_t kClusterPoints = 32;
+  static Clusters clusters_of(const std::vector<std::array<uint32_t, 3>>& cells, const std::vector<uint32_t>& order,
+                              const std::vector<uint32_t>& block_first);
   static constexpr uint32_t kMergeGap = 32;
+  // The runs of kept clusters (bit k of bits: cluster k kept) as emit(first slot, end slot) calls, in order; runs
+  // closer than kMergeGap points merged, or with first_mode (FIRST) runs within one block.
+  template <class Emit>
+  static void runs_of(const Clusters& cl, const std::vector<uint64_t>& bits, bool first_mode, const Emit& emit);
 
   DeviceImage image_;
   std::vector<Clusters> clusters_;
+  std::vector<std::shared_ptr<const detail::EmptySpace>> space_;  // per type, its voxmap's empty space
+  // Per type, the shell's point in each slot of the device's copy, and the first slot of each block (then the size).
+  std::vector<std::vector<uint32_t>> order_, block_first_;
   // Scratch of jobs() (per task of the pool: its jobs, their sources and add_runs' bits of which clusters
   // survive), kept to avoid allocations per pair: jobs() is const but, like collide(), not to be called on one
   // collider from two threads at once.
@@ -228,8 +306,9 @@ class PairCollider {
     std::vector<uint64_t> bits;
   };
   mutable std::vector<JobsTask> jobs_tasks_;
-  std::vector<Job> jobs_;
-  std::vector<JobSource> sources_;
+  std::vector<Job> all_jobs_, jobs_;  // the batch's jobs, and those of the group running
+  std::vector<JobSource> all_sources_, sources_;
+  JobSpan first_span_, last_span_;    // of the group's first and last jobs
   std::vector<Record> records_;
   std::vector<size_t> first_job_;
   std::vector<PartSlot<size_t>> kept_parts_;
@@ -237,13 +316,12 @@ class PairCollider {
   // pair's contacts.
   std::vector<Part::JobRecords> job_records_;
   std::vector<std::vector<size_t>> done_parts_;  // Done record indices found by each part of a parallel scan
-  struct ContactPiece {
-    size_t job, first, n;  // job j's kept records [first, first + n) of the stream
-    Contact* to;
-  };
-  std::vector<ContactPiece> contact_pieces_;
+  std::vector<PairTally> tally_;
+  std::vector<ContactRun> runs_;
+  std::vector<std::shared_ptr<Scratch>> scratch_;  // per part of a tally on the pool
+  size_t kept_total_ = 0;  // contacts of the batch
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
-  // collide_pieces: points [begin, end) of a job; its task and where its hit records are in the task's list; its
+  // run_pieces: points [begin, end) of a job; its task and where its hit records are in the task's list; its
   // hits, the summary of its records, how many make contacts and where they go in the pair's contacts.
   struct Piece {
     size_t job = 0;
@@ -251,7 +329,6 @@ class PairCollider {
     size_t task = 0, first = 0, records = 0;
     uint32_t count = 0;
     JobHits sum;
-    size_t kept = 0, at = 0;
   };
   std::vector<Piece> pieces_;
   std::vector<size_t> job_first_piece_, task_first_piece_, contact_count_;

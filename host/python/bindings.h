@@ -7,18 +7,55 @@
 #include <pybind11/stl.h>
 
 #include <exception>
+#include <optional>
+#include <tuple>
 #include <filesystem>
 #include <string>
 #include <system_error>
+
+namespace voxcd {
+struct PairResult;
+struct SimulateRequest;
+}  // namespace voxcd
 
 namespace voxcd::python {
 
 namespace py = pybind11;
 
+// The arguments of a run after `scene` (keyword-only), as simulate() and World.scene() take them (scenes.cpp).
+inline auto run_args() {
+  return std::make_tuple(
+      py::arg("scene") = py::none(), py::kw_only(), py::arg("frames") = py::none(), py::arg("objects") = py::none(),
+      py::arg("shape") = py::none(), py::arg("voxel") = py::none(), py::arg("resolution") = py::none(),
+      py::arg("density") = py::none(), py::arg("speed") = py::none(), py::arg("seed") = py::none(),
+      py::arg("pruning") = py::none(), py::arg("backend") = py::none(), py::arg("lanes") = py::none(),
+      py::arg("mode") = py::none(), py::arg("both") = py::none(), py::arg("clock") = py::none(),
+      py::arg("config") = py::none(), py::arg("threads") = 0u, py::arg("midphase") = true, py::arg("cull") = true,
+      py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
+      py::arg("ccd") = py::none());
+}
+// The request of those arguments (and `record`), checked as simulate() checks them.
+SimulateRequest simulate_request(const py::object& scene, const py::object& frames, const py::object& objects,
+                                 std::optional<std::string> shape, std::optional<double> voxel,
+                                 const py::object& resolution, std::optional<double> density,
+                                 std::optional<double> speed, const py::object& seed,
+                                 std::optional<std::string> pruning, std::optional<std::string> backend,
+                                 std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
+                                 std::optional<double> clock, std::optional<std::string> config, unsigned threads,
+                                 bool midphase, bool cull, std::optional<int> distance_bits,
+                                 std::optional<double> band, std::optional<double> margin, std::optional<bool> ccd,
+                                 const py::object& record);
+
+// A pair's result as the module gives it: hits, lookups, device_cycles (None without cycles) and the contacts as
+// numpy arrays (pairs.cpp).
+py::dict contacts_dict(const PairResult& r, bool cycles);
+
 void bind_objects(py::module_& m);
 void bind_pairs(py::module_& m);
 void bind_scenes(py::module_& m);
 void bind_conformance(py::module_& m);
+void bind_record(py::module_& m);
+void bind_api(py::module_& m);
 
 // A path argument: a str or an os.PathLike giving one. TypeError naming `what` for anything else.
 std::string path_arg(const py::handle& h, const char* what);

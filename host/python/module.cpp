@@ -10,6 +10,7 @@
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/python/bindings.h"
+#include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/sizing/size.h"
@@ -68,6 +69,8 @@ PYBIND11_MODULE(voxcd, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const PlacementError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const RecordError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
 
@@ -92,4 +95,6 @@ PYBIND11_MODULE(voxcd, m) {
   voxcd::python::bind_pairs(m);
   voxcd::python::bind_scenes(m);
   voxcd::python::bind_conformance(m);
+  voxcd::python::bind_record(m);
+  voxcd::python::bind_api(m);
 }

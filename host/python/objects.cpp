@@ -74,22 +74,68 @@ py::object repair_dict(const ObjectFile& obj) {
   dropped["repeated_vertex"] = r.dropped_repeated;
   dropped["collinear"] = r.dropped_collinear;
   dropped["duplicate"] = r.dropped_duplicate;
+  dropped["internal"] = r.dropped_internal;
   d["dropped"] = dropped;
   d["reoriented"] = r.reoriented;
   d["open_edges"] = r.open_edges;
   d["nonmanifold_edges"] = r.nonmanifold_edges;
+  d["nonmanifold_parts"] = r.nonmanifold_parts;
+  d["fin_triangles"] = r.fin_triangles;
   d["inconsistent_edges"] = r.inconsistent_edges;
   d["components"] = r.components;
   d["closed_components"] = r.closed_components;
   d["sheet_components"] = r.sheet_components;
   d["uncertain_voxels"] = obj.voxelize_report.uncertain;
   d["evaluated_voxels"] = obj.voxelize_report.evaluated;
+  d["conservative_cells"] = obj.voxelize_report.conservative;
   return std::move(d);
+}
+
+// A mesh given as arrays: a (vertices, faces) pair, or an object with .vertices and .faces (trimesh) or
+// .vertices and .triangles (Open3D); vertices (V, 3) numbers, faces (F, 3) non-negative integers. None for anything
+// else (a path). ValueError naming the array for a wrong shape or an index that is negative or does not fit.
+std::optional<Mesh> mesh_arg(const py::object& source) {
+  py::object v, f;
+  if (py::isinstance<py::tuple>(source) || py::isinstance<py::list>(source)) {
+    const py::sequence seq = source;
+    if (py::len(seq) != 2) value_error("source: give (vertices, faces), a mesh file, a shape or an object with "
+                                       ".vertices and .faces");
+    v = seq[0], f = seq[1];
+  } else if (py::hasattr(source, "vertices") && (py::hasattr(source, "faces") || py::hasattr(source, "triangles"))) {
+    v = source.attr("vertices");
+    f = py::hasattr(source, "faces") ? source.attr("faces") : source.attr("triangles");
+  } else {
+    return std::nullopt;
+  }
+  const auto np = py::module_::import("numpy");
+  const py::array_t<double, py::array::c_style | py::array::forcecast> va = np.attr("asarray")(v, "float64");
+  const py::array fa = np.attr("asarray")(f);
+  if (va.ndim() != 2 || va.shape(1) != 3) value_error("vertices: give a (V, 3) array of numbers");
+  if (fa.ndim() != 2 || fa.shape(1) != 3 || !(fa.dtype().kind() == 'i' || fa.dtype().kind() == 'u'))
+    value_error("faces: give an (F, 3) array of integer vertex indices");
+  const py::array_t<int64_t, py::array::c_style | py::array::forcecast> fi = fa;
+  Mesh m;
+  m.name = py::hasattr(source, "metadata") ? "mesh" : "arrays";
+  for (py::ssize_t i = 0; i < va.shape(0); ++i)
+    m.vertices.emplace_back(va.at(i, 0), va.at(i, 1), va.at(i, 2));
+  for (py::ssize_t t = 0; t < fi.shape(0); ++t) {
+    std::array<uint32_t, 3> tri{};
+    for (int k = 0; k < 3; ++k) {
+      const int64_t x = fi.at(t, k);
+      if (x < 0 || x > int64_t(UINT32_MAX))
+        value_error("faces: face " + std::to_string(t) + " has vertex index " + std::to_string(x) +
+                    (x < 0 ? " (negative)" : " (too large)"));
+      tri[size_t(k)] = uint32_t(x);
+    }
+    m.triangles.push_back(tri);
+  }
+  return m;
 }
 
 ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel, std::optional<int64_t> resolution,
                           double shell_ratio, bool strict, unsigned threads, int distance_bits, double band) {
-  const std::string input = path_arg(source, "source");
+  std::optional<Mesh> given = mesh_arg(source);
+  const std::string input = given ? std::string() : path_arg(source, "source");
   if (voxel.has_value() == resolution.has_value())
     value_error("give voxel (the voxel edge in mesh units) or resolution (voxels along the longest side), " +
                 std::string(voxel ? "not both" : "one of them"));
@@ -109,6 +155,15 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
   std::string src;
   uint64_t hash = 0;
   MeshReport report;
+  if (given) {
+    // Repaired (or checked) as a file's mesh is; named "arrays".
+    report = strict ? prepare(*given) : repair(*given);
+    src = given->name;
+    std::string bytes;
+    for (const auto& p : given->vertices) bytes.append(reinterpret_cast<const char*>(p.data()), 3 * sizeof(double));
+    hash = hash_bytes(bytes);
+    return std::make_shared<ObjectFile>(make_object(*given, src, hash, opt, &report));
+  }
   const Mesh mesh = load_source(input, &src, &hash, &report, LoadOptions{strict});
   return std::make_shared<ObjectFile>(make_object(mesh, src, hash, opt, &report));
 }
@@ -200,8 +255,10 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
   m.def("voxelize", &voxelize_source, py::arg("source"), py::kw_only(), py::arg("voxel") = py::none(),
         py::arg("resolution") = py::none(), py::arg("shell_ratio") = std::sqrt(2.0), py::arg("strict") = false,
         py::arg("threads") = 0u, py::arg("distance_bits") = 0, py::arg("band") = 4.0,
-        R"(Voxelises a mesh file (any format `voxcd voxelize` reads; repaired unless strict) or a built-in shape
-(voxcd.shapes()) at `voxel` (mesh units) or at `resolution` voxels along its longest side: exactly one of the two.
+        R"(Voxelises a mesh file (any format `voxcd voxelize` reads; repaired unless strict), a built-in shape
+(voxcd.shapes()), or a mesh as arrays: (vertices, faces), or any object with .vertices and .faces (a trimesh mesh;
+.triangles for Open3D), vertices (V, 3) numbers and faces (F, 3) integer indices, repaired as a file is; at `voxel`
+(mesh units) or at `resolution` voxels along its longest side: exactly one of the two.
 distance_bits (4, 8 or 16) also stores the signed distance field over a band of +-band voxels, with the shell on
 the surface. Returns an Object, the same as `voxcd voxelize SOURCE --voxel V | --resolution R [--distance-bits B
 --band K]` writes.)");

@@ -12,113 +12,7 @@
 
 namespace voxcd::python {
 
-namespace {
-
-struct Pair {
-  std::shared_ptr<ObjectType> a, b;
-  double voxel = 0;
-  std::string backend;
-  int distance_bits = 0;  // the device's SB on a distance device (`voxcd pair --distance-bits`), else 0
-  double margin = 0;      // PairOptions::margin of every query (`--margin`; used on a distance device only)
-  std::unique_ptr<PairCollider> collider;
-  std::mutex busy;  // one query at a time: the collider reuses its buffers
-};
-
-// What `voxcd pair --distance-bits B --band K --margin M` is given, checked as the module checks voxelize's (None:
-// not given; distance_bits 0 is None).
-struct DistanceArgs {
-  int bits = 0;
-  double band = 4.0;
-  double margin = 0;
-};
-
-DistanceArgs distance_args(std::optional<int> bits, std::optional<double> band, std::optional<double> margin) {
-  DistanceArgs d;
-  d.bits = bits.value_or(0);
-  d.band = band.value_or(4.0);
-  check_distance_args(d.bits, d.band);
-  if (margin && !std::isfinite(*margin))
-    value_error("margin: " + py::repr(py::float_(*margin)).cast<std::string>() + " is not a finite number");
-  d.margin = margin.value_or(0);
-  return d;
-}
-
-// An object argument: an Object, or an object file, a mesh file or a built-in shape (voxelised at `voxel`, with a
-// distance field of d.bits over d.band voxels when d.bits > 0). Objects and object files are used as they are: with
-// d.bits > 0 they must carry a field of that many bits, as `voxcd pair --distance-bits` requires of object files.
-std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const DistanceArgs& d, const char* which) {
-  if (py::isinstance<ObjectFile>(o)) {
-    const ObjectFile obj = o.cast<const ObjectFile&>();
-    py::gil_scoped_release unlocked;
-    require_distance_bits(obj, d.bits, std::string(which) + " (" + obj.source + ")");
-    return std::make_shared<ObjectType>(make_object_type(obj, obj.source));
-  }
-  const std::string s = path_arg(o, which);
-  py::gil_scoped_release unlocked;
-  return std::make_shared<ObjectType>(load_object_type(s, voxel, d.bits, d.band));
-}
-
-std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::optional<double> voxel,
-                                std::optional<int64_t> resolution, const std::string& backend, int lanes,
-                                std::optional<int> distance_bits, std::optional<double> band,
-                                std::optional<double> margin) {
-  if (voxel && resolution) value_error("give voxel (world units) or resolution (voxels along the longest side), not both");
-  if (resolution && (*resolution < 0 || *resolution > int64_t(UINT32_MAX)))
-    value_error("resolution: " + std::to_string(*resolution) + " is not a count of voxels");
-  const DistanceArgs d = distance_args(distance_bits, band, margin);
-  auto p = std::make_unique<Pair>();
-  p->backend = backend;
-  p->margin = d.margin;
-  if (voxel) {
-    p->voxel = *voxel;
-  } else {
-    // As `voxcd pair` without --voxel: the larger mesh's longest side / resolution (32), shared by both.
-    std::vector<std::string> sources;
-    for (const py::object* o : {&a, &b})
-      if (!py::isinstance<ObjectFile>(*o)) sources.push_back(path_arg(*o, o == &a ? "a" : "b"));
-    py::gil_scoped_release unlocked;
-    p->voxel = shared_voxel(sources, uint32_t(resolution.value_or(32)));
-  }
-  p->a = object_type(a, p->voxel, d, "a");
-  p->b = object_type(b, p->voxel, d, "b");
-  py::gil_scoped_release unlocked;
-  const DeviceConfig cfg = device_config_for(backend, lanes, {p->a.get(), p->b.get()}, d.bits);
-  p->distance_bits = cfg.distance() ? cfg.SB : 0;
-  p->collider = std::make_unique<PairCollider>(make_device(backend, cfg), std::vector<std::shared_ptr<const ObjectType>>{p->a, p->b});
-  return p;
-}
-
-// B's poses in A's frame: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z,
-// as `voxcd pair --pose`), or an (N, 3) or (N, 6) array of them. `many` tells whether it was an array of rows.
-std::vector<RigidPose> poses(const py::object& pose, bool& many) {
-  many = false;
-  if (pose.is_none()) return {RigidPose{}};
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pose);
-  } catch (const py::error_already_set&) {
-    a = {};
-  }
-  if (!a) value_error("pose: not numbers: " + py::repr(pose).cast<std::string>());
-  const bool flat = a.ndim() == 1;
-  const py::ssize_t n = flat ? 1 : a.shape(0), w = flat ? a.shape(0) : (a.ndim() == 2 ? a.shape(1) : 0);
-  if ((a.ndim() != 1 && a.ndim() != 2) || (w != 3 && w != 6)) {
-    std::string shape;
-    for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
-    value_error("pose: give tx, ty, tz or tx, ty, tz, rx, ry, rz (degrees), or an (N, 3) or (N, 6) array of them; "
-                "got shape (" + shape + ")");
-  }
-  many = !flat;
-  std::vector<RigidPose> out;
-  const double* v = a.data();
-  for (py::ssize_t k = 0; k < n; ++k, v += w) {
-    const Eigen::Vector3d t(v[0], v[1], v[2]);
-    out.push_back(w == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t));
-  }
-  return out;
-}
-
-py::dict result_dict(const PairResult& r, bool cycles) {
+py::dict contacts_dict(const PairResult& r, bool cycles) {
   const py::ssize_t k = py::ssize_t(r.contacts.size());
   py::array_t<bool> a_in_b(k);
   py::array_t<uint32_t> points(k);
@@ -159,10 +53,139 @@ py::dict result_dict(const PairResult& r, bool cycles) {
   return d;
 }
 
-py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
-  const auto m = parse_mode(mode);
-  if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
-  bool many = false;
+namespace {
+
+// ContactArrays whose numpy arrays have all been freed, kept for the next query (up to kKeep): a query into them
+// writes over pages already mapped instead of asking the allocator for new ones (which, for arrays of megabytes,
+// maps fresh pages and takes a fault on each).
+struct ArrayPool {
+  static constexpr size_t kKeep = 2;
+  std::mutex m;
+  std::vector<std::unique_ptr<ContactArrays>> free;
+  std::unique_ptr<ContactArrays> take() {
+    const std::lock_guard<std::mutex> lock(m);
+    if (free.empty()) return std::make_unique<ContactArrays>();
+    auto a = std::move(free.back());
+    free.pop_back();
+    return a;
+  }
+  void give(std::unique_ptr<ContactArrays> a) {
+    const std::lock_guard<std::mutex> lock(m);
+    if (free.size() < kKeep) free.push_back(std::move(a));
+  }
+};
+
+struct Pair {
+  std::shared_ptr<ObjectType> a, b;
+  double voxel = 0;
+  std::string backend;
+  int distance_bits = 0;  // the device's SB on a distance device (`voxcd pair --distance-bits`), else 0
+  double margin = 0;      // PairOptions::margin of every query (`--margin`; used on a distance device only)
+  std::unique_ptr<PairCollider> collider;
+  std::mutex busy;  // one query at a time: the collider reuses its buffers
+  std::shared_ptr<ArrayPool> arrays = std::make_shared<ArrayPool>();
+};
+
+// What `voxcd pair --distance-bits B --band K --margin M` is given, checked as the module checks voxelize's (None:
+// not given; distance_bits 0 is None).
+struct DistanceArgs {
+  int bits = 0;
+  double band = 4.0;
+  double margin = 0;
+};
+
+DistanceArgs distance_args(std::optional<int> bits, std::optional<double> band, std::optional<double> margin) {
+  DistanceArgs d;
+  d.bits = bits.value_or(0);
+  d.band = band.value_or(4.0);
+  check_distance_args(d.bits, d.band);
+  if (margin && !std::isfinite(*margin))
+    value_error("margin: " + py::repr(py::float_(*margin)).cast<std::string>() + " is not a finite number");
+  d.margin = margin.value_or(0);
+  return d;
+}
+
+// An object argument: an Object, or an object file, a mesh file or a built-in shape (voxelised at `voxel`, with a
+// distance field of d.bits over d.band voxels when d.bits > 0). Objects and object files are used as they are: with
+// d.bits > 0 they must carry a field of that many bits, as `voxcd pair --distance-bits` requires of object files.
+std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const DistanceArgs& d, const char* which) {
+  if (py::isinstance<ObjectFile>(o)) {
+    const ObjectFile obj = o.cast<const ObjectFile&>();
+    py::gil_scoped_release unlocked;
+    require_distance_bits(obj, d.bits, std::string(which) + " (" + obj.source + ")");
+    return std::make_shared<ObjectType>(make_object_type(obj, obj.source));
+  }
+  const std::string s = path_arg(o, which);
+  py::gil_scoped_release unlocked;
+  return std::make_shared<ObjectType>(load_object_type(s, voxel, d.bits, d.band));
+}
+
+std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::optional<double> voxel,
+                                std::optional<int64_t> resolution, const std::string& backend, int lanes,
+                                std::optional<int> distance_bits, std::optional<double> band,
+                                std::optional<double> margin, int64_t threads) {
+  if (threads < 0 || threads > 4096) value_error("threads: " + std::to_string(threads) + " is not a count of threads (0: all)");
+  if (voxel && resolution) value_error("give voxel (world units) or resolution (voxels along the longest side), not both");
+  if (resolution && (*resolution < 0 || *resolution > int64_t(UINT32_MAX)))
+    value_error("resolution: " + std::to_string(*resolution) + " is not a count of voxels");
+  const DistanceArgs d = distance_args(distance_bits, band, margin);
+  auto p = std::make_unique<Pair>();
+  p->backend = backend;
+  p->margin = d.margin;
+  if (voxel) {
+    p->voxel = *voxel;
+  } else {
+    // As `voxcd pair` without --voxel: the larger mesh's longest side / resolution (32), shared by both.
+    std::vector<std::string> sources;
+    for (const py::object* o : {&a, &b})
+      if (!py::isinstance<ObjectFile>(*o)) sources.push_back(path_arg(*o, o == &a ? "a" : "b"));
+    py::gil_scoped_release unlocked;
+    p->voxel = shared_voxel(sources, uint32_t(resolution.value_or(32)));
+  }
+  p->a = object_type(a, p->voxel, d, "a");
+  p->b = object_type(b, p->voxel, d, "b");
+  py::gil_scoped_release unlocked;
+  const DeviceConfig cfg = device_config_for(backend, lanes, {p->a.get(), p->b.get()}, d.bits);
+  p->distance_bits = cfg.distance() ? cfg.SB : 0;
+  DeviceOptions dopt;
+  dopt.threads = unsigned(threads);
+  p->collider = std::make_unique<PairCollider>(make_device(backend, cfg, dopt),
+                                               std::vector<std::shared_ptr<const ObjectType>>{p->a, p->b});
+  return p;
+}
+
+// B's poses in A's frame: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z,
+// as `voxcd pair --pose`), or an (N, 3) or (N, 6) array of them. `many` tells whether it was an array of rows.
+std::vector<RigidPose> poses(const py::object& pose, bool& many) {
+  many = false;
+  if (pose.is_none()) return {RigidPose{}};
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
+  try {
+    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pose);
+  } catch (const py::error_already_set&) {
+    a = {};
+  }
+  if (!a) value_error("pose: not numbers: " + py::repr(pose).cast<std::string>());
+  const bool flat = a.ndim() == 1;
+  const py::ssize_t n = flat ? 1 : a.shape(0), w = flat ? a.shape(0) : (a.ndim() == 2 ? a.shape(1) : 0);
+  if ((a.ndim() != 1 && a.ndim() != 2) || (w != 3 && w != 6)) {
+    std::string shape;
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
+    value_error("pose: give tx, ty, tz or tx, ty, tz, rx, ry, rz (degrees), or an (N, 3) or (N, 6) array of them; "
+                "got shape (" + shape + ")");
+  }
+  many = !flat;
+  std::vector<RigidPose> out;
+  const double* v = a.data();
+  for (py::ssize_t k = 0; k < n; ++k, v += w) {
+    const Eigen::Vector3d t(v[0], v[1], v[2]);
+    out.push_back(w == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t));
+  }
+  return out;
+}
+
+// The requests and options of a query (pose, mode, both, cull as query() takes them).
+std::vector<PairRequest> requests(const py::object& pose, bool& many) {
   std::vector<PairRequest> reqs;
   for (const RigidPose& b : poses(pose, many)) {
     PairRequest r;
@@ -171,11 +194,77 @@ py::object query(Pair& p, const py::object& pose, const std::string& mode, bool 
     r.pose_b = b;
     reqs.push_back(r);
   }
+  return reqs;
+}
+
+PairOptions options(const Pair& p, const std::string& mode, bool both, bool cull) {
+  const auto m = parse_mode(mode);
+  if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
   PairOptions opt;
   opt.mode = *m;
   opt.both_directions = both;
   opt.cull = cull;
   opt.margin = p.margin;
+  return opt;
+}
+
+// A numpy array over `data` (no copy), of `rows` rows of `cols` values (cols 0: one dimension), kept alive by `owner`.
+template <class T>
+py::array view(const T* data, size_t rows, size_t cols, const py::object& owner) {
+  if (cols == 0) return py::array_t<T>({py::ssize_t(rows)}, {py::ssize_t(sizeof(T))}, data, owner);
+  return py::array_t<T>({py::ssize_t(rows), py::ssize_t(cols)}, {py::ssize_t(cols * sizeof(T)), py::ssize_t(sizeof(T))},
+                        data, owner);
+}
+
+// What contacts() returns: the arrays of `a` as numpy arrays without a copy, owned by a capsule that gives `a` back
+// to the pool once the last of them is freed.
+py::dict arrays_dict(std::unique_ptr<ContactArrays> a, const std::shared_ptr<ArrayPool>& pool, bool cycles) {
+  struct Owned {
+    std::unique_ptr<ContactArrays> arrays;
+    std::shared_ptr<ArrayPool> pool;
+  };
+  const ContactArrays& c = *a;
+  auto* owned = new Owned{std::move(a), pool};
+  const py::capsule owner(owned, [](void* v) {
+    auto* o = static_cast<Owned*>(v);
+    o->pool->give(std::move(o->arrays));
+    delete o;
+  });
+  const size_t k = c.size(), n = c.pairs();
+  static_assert(sizeof(bool) == sizeof(uint8_t), "a_in_b is viewed as a bool array");
+  py::dict d;
+  d["first"] = view(c.first.data(), n + 1, 0, owner);
+  d["hits"] = view(c.hits.data(), n, 0, owner);
+  d["lookups"] = view(c.lookups.data(), n, 0, owner);
+  d["device_cycles"] = cycles ? py::object(view(c.cycles.data(), n, 0, owner)) : py::none();
+  d["pose"] = view(c.pair.data(), k, 0, owner);
+  d["a_in_b"] = py::array(py::dtype::of<bool>(), {py::ssize_t(k)}, {py::ssize_t(1)}, c.a_in_b.data(), owner);
+  d["points"] = view(c.point.data(), k, 0, owner);
+  d["positions"] = view(c.position.data(), k, 3, owner);
+  d["normals"] = view(c.normal.data(), k, 3, owner);
+  d["voxels"] = view(c.voxel.data(), k, 3, owner);
+  d["states"] = view(c.state.data(), k, 0, owner);
+  d["depths"] = view(c.depth.data(), k, 0, owner);
+  return d;
+}
+
+py::dict contacts(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
+  const PairOptions opt = options(p, mode, both, cull);
+  bool many = false;
+  const std::vector<PairRequest> reqs = requests(pose, many);
+  std::unique_ptr<ContactArrays> a = p.arrays->take();
+  {
+    py::gil_scoped_release unlocked;
+    const std::lock_guard<std::mutex> one_at_a_time(p.busy);
+    p.collider->collide(reqs, opt, *a);
+  }
+  return arrays_dict(std::move(a), p.arrays, p.collider->device().models_cycles());
+}
+
+py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
+  const PairOptions opt = options(p, mode, both, cull);
+  bool many = false;
+  const std::vector<PairRequest> reqs = requests(pose, many);
   std::vector<PairResult> res;
   {
     py::gil_scoped_release unlocked;
@@ -183,9 +272,9 @@ py::object query(Pair& p, const py::object& pose, const std::string& mode, bool 
     res = p.collider->collide(reqs, opt);
   }
   const bool cycles = p.collider->device().models_cycles();
-  if (!many) return result_dict(res.at(0), cycles);
+  if (!many) return contacts_dict(res.at(0), cycles);
   py::list out;
-  for (const PairResult& r : res) out.append(result_dict(r, cycles));
+  for (const PairResult& r : res) out.append(contacts_dict(r, cycles));
   return std::move(out);
 }
 
@@ -200,6 +289,13 @@ poses. On a distance device (distance_bits) a contact is a point where the other
 at most the margin: depths is that distance negated (positive inside, negative within the margin outside), normals
 the other field's gradient negated and normalised, states 0.)";
 
+const char* kContactsDoc = R"(query() for any number of poses in one batch, its contacts in flat arrays that are no copies:
+the arrays the library wrote them into, handed to numpy (and reused for a later call once all of them are freed).
+pose, mode, both and cull as query(). Returns one dict: per pose (N of them) first ((N + 1,): pose i's contacts are
+rows first[i] to first[i + 1]), hits, lookups, device_cycles (None where the backend models none); per contact (K of
+them, in the order query() gives them, pose by pose) pose (the index of its pose), a_in_b, points, positions and
+normals ((K, 3)), voxels ((K, 3)), states, depths, as query() defines them.)";
+
 }  // namespace
 
 void bind_pairs(py::module_& m) {
@@ -208,12 +304,16 @@ void bind_pairs(py::module_& m) {
 by default at the larger one's longest side / resolution, 32 unless given). distance_bits (4, 8 or 16) loads
 distance voxmaps on a distance device, as `--distance-bits`: meshes and shapes get signed distance fields over
 +-band voxels (4 unless given), Objects and object files must carry fields of that many bits; every query then
-reports the points within margin (world units, 0 unless given) of the other object, as `--margin`.)")
+reports the points within margin (world units, 0 unless given) of the other object, as `--margin`. threads: the cpu
+backend's threads (0, the default: one per hardware thread; 1: the calling thread alone); results never depend on it.)")
       .def(py::init(&make_pair), py::arg("a"), py::arg("b"), py::kw_only(), py::arg("voxel") = py::none(),
            py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4,
-           py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none())
+           py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
+           py::arg("threads") = 0)
       .def("query", &query, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
            py::arg("both") = false, py::arg("cull") = true, kQueryDoc)
+      .def("contacts", &contacts, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
+           py::arg("both") = false, py::arg("cull") = true, kContactsDoc)
       .def_readonly("voxel", &Pair::voxel, "The voxel meshes and shapes were voxelised at (0 if both were objects).")
       .def_readonly("backend", &Pair::backend)
       .def_readonly("distance_bits", &Pair::distance_bits,
@@ -241,7 +341,7 @@ reports the points within margin (world units, 0 unless given) of the other obje
       [](const py::object& a, const py::object& b, const py::object& pose, std::optional<double> voxel,
          std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode, bool both,
          bool cull, std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin) {
-        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin);
+        const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin, 0);
         return query(*p, pose, mode, both, cull);
       },
       py::arg("a"), py::arg("b"), py::arg("pose") = py::none(), py::kw_only(), py::arg("voxel") = py::none(),

@@ -1,5 +1,6 @@
 // Scenes: voxcd.simulate (the built-in scene, a scene file or a scene as a dict, run as `voxcd simulate` runs it,
 // with the same summary) and voxcd.size (the smallest device for a scene, the report of `voxcd size --json`).
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <optional>
@@ -126,14 +127,18 @@ py::dict summary_dict(const SimulationSummary& s) {
   return r;
 }
 
-py::dict simulate_scene(const py::object& scene, const py::object& frames, const py::object& objects,
-                        std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
-                        std::optional<double> density, std::optional<double> speed, const py::object& seed,
-                        std::optional<std::string> pruning, std::optional<std::string> backend,
-                        std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
-                        std::optional<double> clock, std::optional<std::string> config, unsigned threads,
-                        bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
-                        std::optional<double> margin, std::optional<bool> ccd) {
+}  // namespace
+
+SimulateRequest simulate_request(const py::object& scene, const py::object& frames, const py::object& objects,
+                                 std::optional<std::string> shape, std::optional<double> voxel,
+                                 const py::object& resolution, std::optional<double> density,
+                                 std::optional<double> speed, const py::object& seed,
+                                 std::optional<std::string> pruning, std::optional<std::string> backend,
+                                 std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
+                                 std::optional<double> clock, std::optional<std::string> config, unsigned threads,
+                                 bool midphase, bool cull, std::optional<int> distance_bits,
+                                 std::optional<double> band, std::optional<double> margin, std::optional<bool> ccd,
+                                 const py::object& record) {
   SimulateRequest req;
   if (!scene.is_none()) scene_arg(scene, req.file, req.text);
   req.frames = count_arg(frames, "frames");
@@ -161,6 +166,24 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
   req.threads = threads;
   req.midphase = midphase;
   req.cull = cull;
+  if (!record.is_none()) req.record = path_arg(record, "record");
+  return req;
+}
+
+namespace {
+
+py::dict simulate_scene(const py::object& scene, const py::object& frames, const py::object& objects,
+                        std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
+                        std::optional<double> density, std::optional<double> speed, const py::object& seed,
+                        std::optional<std::string> pruning, std::optional<std::string> backend,
+                        std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
+                        std::optional<double> clock, std::optional<std::string> config, unsigned threads,
+                        bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
+                        std::optional<double> margin, std::optional<bool> ccd, const py::object& record) {
+  const SimulateRequest req = simulate_request(scene, frames, objects, std::move(shape), voxel, resolution, density,
+                                               speed, seed, std::move(pruning), std::move(backend), lanes,
+                                               std::move(mode), both, clock, std::move(config), threads, midphase,
+                                               cull, distance_bits, band, margin, ccd, record);
   return with_file(req.text ? "" : req.file, [&] {
     SimulationSummary s;
     {
@@ -173,7 +196,7 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
 
 py::object size_scene(const py::object& scene, std::optional<double> accuracy, std::optional<double> contact_accuracy,
                       std::optional<double> rate, std::optional<double> clock, const py::object& frames, bool cost,
-                      const std::optional<py::object>& rtl) {
+                      const std::optional<py::object>& rtl, const std::optional<std::string>& target) {
   std::string file;
   std::optional<std::string> text;
   scene_arg(scene, file, text);
@@ -192,6 +215,15 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
   }
   req.cost = cost;
   if (rtl && !rtl->is_none()) req.rtl_dir = path_arg(*rtl, "rtl");
+  if (target) {
+    const auto& targets = timing_targets();
+    if (std::find(targets.begin(), targets.end(), *target) == targets.end()) {
+      std::string list;
+      for (const std::string& t : targets) list += (list.empty() ? "" : ", ") + t;
+      value_error("target: '" + *target + "' is not one of " + list);
+    }
+    req.target = *target;
+  }
   std::string json;
   with_file(text ? "" : file, [&] {
     py::gil_scoped_release unlocked;
@@ -208,34 +240,32 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
 
 }  // namespace
 
-void bind_scenes(py::module_& m) {
-  m.def("simulate", &simulate_scene, py::arg("scene") = py::none(), py::kw_only(), py::arg("frames") = py::none(),
-        py::arg("objects") = py::none(), py::arg("shape") = py::none(), py::arg("voxel") = py::none(),
-        py::arg("resolution") = py::none(), py::arg("density") = py::none(), py::arg("speed") = py::none(),
-        py::arg("seed") = py::none(), py::arg("pruning") = py::none(), py::arg("backend") = py::none(),
-        py::arg("lanes") = py::none(), py::arg("mode") = py::none(), py::arg("both") = py::none(),
-        py::arg("clock") = py::none(), py::arg("config") = py::none(), py::arg("threads") = 0u,
-        py::arg("midphase") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
-        py::arg("band") = py::none(), py::arg("margin") = py::none(), py::arg("ccd") = py::none(),
-        R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
+const char* const kSimulateDoc = R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
 `voxcd simulate --json` (the state hash as a hex string). scene: None (the paper's built-in scene), a scene file,
 or a dict with a scene file's keys (docs/scenes.md). Each option given (not None) overrides the scene file, as the
 tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs. distance_bits
 (4, 8 or 16), band (voxels), margin (world units) and ccd (continuous collision, which needs distance voxmaps) are
 --distance-bits, --band, --margin and --ccd (ccd=False also turns off a scene file's "ccd"); with distance voxmaps
 the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling. clock (MHz) is the
-device clock of device_frame_rate_hz (default: the scene file's "clock", or the 122 MHz estimate of
-docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and device_frame_rate_hz is None when no
-frame needed device cycles.)");
+device clock of device_frame_rate_hz (default: the scene file's "clock", or the OpenSTA clock of the default
+configuration at 0.18 um, docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and
+device_frame_rate_hz is None when no frame needed device cycles. record (a path) records the run as it goes
+(docs/view.md; read_recording reads it, `voxcd view` replays it).)";
+
+void bind_scenes(py::module_& m) {
+  std::apply([&](auto... args) { m.def("simulate", &simulate_scene, args..., kSimulateDoc); },
+             std::tuple_cat(run_args(), std::make_tuple(py::arg("record") = py::none())));
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
         py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),
-        py::arg("cost") = false, py::arg("rtl") = py::none(),
+        py::arg("cost") = false, py::arg("rtl") = py::none(), py::arg("target") = py::none(),
         R"(The smallest device for a scene file (or a dict with a scene file's keys), as `voxcd size --json` reports
 it, as a dict. The options override the file's accuracy (world units), contact_accuracy (world units: chooses the
 voxmaps, docs/size.md), rate (Hz), clock (MHz; clock_source in the dict says where it comes from) and frames; cost
-also synthesises the configuration with yosys (about 10 s each; rtl: the directory of the RTL's voxcd.f).
-ValueError '<scene>: cannot be met: ...' when no device meets the request.)");
+also synthesises the configuration with yosys (about 10 s each; rtl: the directory of the RTL's voxcd.f). target
+("asic-osu018", "ice40-hx8k", "ice40-up5k" or "xilinx-7") chooses the pipeline depth for the clock from the measured
+timing table, as --target does (depth_choice in the dict). ValueError '<scene>: cannot be met: ...' when no device
+meets the request (or no depth meets the clock).)");
 }
 
 }  // namespace voxcd::python

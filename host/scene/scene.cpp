@@ -178,6 +178,7 @@ Scene make_scene(const SceneSpec& spec) {
   scene.side = spec.side;
   auto type = std::make_shared<ObjectType>(
       make_object_type(make_object(mesh, source, hash, oo), spec.shape + " x" + std::to_string(s)));
+  type->mesh = std::make_shared<const Mesh>(std::move(mesh));
   scene.types.push_back(type);
   const double r = type->radius;
   if (2 * r >= spec.side) throw std::invalid_argument("scene: the objects do not fit the cube");
@@ -477,6 +478,8 @@ void Simulation::narrow(const std::vector<BodyPair>& pairs, const PairOptions& p
   keep_.resize(pairs.size());
   const Ranges r = pool_ranges(pool_.get(), pairs.size(), kGrainNarrow, kPartsNarrow);
   if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
+  // A range with no pairs is never visited: its count must not be a previous frame's (or uninitialised).
+  for (size_t p = 0; p < r.parts; ++p) part_counts_[p].value = 0;
   for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
     uint64_t kept = 0;
     for (size_t k = first; k < end; ++k) {

@@ -404,8 +404,9 @@ Scene make_scene(const SceneFile& f) {
     oo.distance_bits = f.distance_bits;
     oo.band = f.band;
     try {
-      scene.types.push_back(
-          std::make_shared<ObjectType>(make_object_type(make_object(l.mesh, l.source, l.hash, oo), t.name)));
+      auto type = std::make_shared<ObjectType>(make_object_type(make_object(l.mesh, l.source, l.hash, oo), t.name));
+      type->mesh = std::make_shared<const Mesh>(l.mesh);
+      scene.types.push_back(std::move(type));
     } catch (const std::exception& e) {
       throw fail(t.key, e.what());
     }

@@ -50,7 +50,7 @@ struct SceneFile {
                                 // 0: not given
   double rate = 1000;    // frames per second
   // The device clock for its frame rates: the file's "clock" (MHz), "given by <file>'s \"clock\"", or without
-  // it default_device_clock() (an estimate, docs/hardware.md).
+  // it default_device_clock() (OpenSTA's clock of the default configuration, docs/hardware.md).
   DeviceClock clock = default_device_clock();
   uint64_t frames = 100; // frames `voxcd size` simulates to measure pairs and points
   // How the scene is run.

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/ref/types.h"
 
@@ -52,8 +53,9 @@ std::string SimulationSummary::device_rate_text() const {
   return t;
 }
 
-SimulationSummary simulate(const SimulateRequest& req, const std::function<void(uint64_t, uint64_t)>& progress) {
-  SimulationSummary s;
+ResolvedRun resolve_run(const SimulateRequest& req) {
+  ResolvedRun out;
+  SimulationSummary& s = out.summary;
   SceneSpec spec;
   SimOptions sim;
   std::string mode = req.mode.value_or("ALL");
@@ -77,6 +79,8 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
   if (req.band && !(*req.band > 0 && std::isfinite(*req.band)))
     throw SimulateOptionError({"band"}, "must be a positive number of voxels");
   if (req.margin && !std::isfinite(*req.margin)) throw SimulateOptionError({"margin"}, "must be a finite number");
+  if (!req.record.empty() && req.exchange)
+    throw SimulateOptionError({"record"}, "a distributed run cannot be recorded yet: record it in one process");
   if (req.objects) spec.objects = *req.objects;
   if (req.shape) spec.shape = *req.shape;
   if (req.voxel) spec.voxel = *req.voxel;
@@ -175,14 +179,28 @@ SimulationSummary simulate(const SimulateRequest& req, const std::function<void(
 
   sim.exchange = req.exchange;
   s.ranks = req.exchange ? req.exchange->ranks() : 1;
-  Simulation run(std::move(scene), sim);
+  out.scene = std::move(scene);
+  out.options = std::move(sim);
+  return out;
+}
+
+SimulationSummary simulate(const SimulateRequest& req, const std::function<void(uint64_t, uint64_t)>& progress) {
+  ResolvedRun r = resolve_run(req);
+  SimulationSummary& s = r.summary;
+  const uint64_t frames = s.frames;
+  Simulation run(std::move(r.scene), r.options);
   s.device = run.device_config();
+  std::unique_ptr<RecordWriter> rec;
+  if (!req.record.empty()) rec = std::make_unique<RecordWriter>(req.record, run, record_settings(s));
   for (uint64_t f = 0; f < frames; ++f) {
-    s.totals.add(run.step());
+    const FrameStats st = run.step();
+    s.totals.add(st);
+    if (rec) rec->frame(run, st);
     if (progress) progress(f + 1, frames);
   }
+  if (rec) rec->close();
   s.state_hash = run.state_hash();
-  return s;
+  return std::move(s);
 }
 
 }  // namespace voxcd

@@ -38,7 +38,7 @@ struct SimulateRequest {
   std::optional<bool> both_directions;
   std::optional<uint64_t> frames;      // default 1000 (a scene file's `frames` otherwise)
   // The device clock for the modelled frame rate (given_clock names where it was given); unset: the scene file's
-  // "clock", or default_device_clock() (an estimate, docs/hardware.md).
+  // "clock", or default_device_clock() (OpenSTA's clock of the default configuration, docs/hardware.md).
   std::optional<DeviceClock> clock;
   std::optional<int> lanes;            // default 4; overrides the LANES of `device`
   std::optional<DeviceConfig> device;  // the device's whole configuration (SimOptions::device)
@@ -51,6 +51,9 @@ struct SimulateRequest {
   std::shared_ptr<FrameExchange> exchange;
   bool midphase = true;                // SimOptions::midphase
   bool cull = true;                    // SimOptions::cull
+  // A file to record the run to as it goes (host/scene/record.h, docs/view.md); "" records nothing. Not with
+  // `exchange`.
+  std::string record;
 };
 
 // An option that cannot be used, before anything is loaded: `options` names it (or the options in conflict) as
@@ -101,12 +104,23 @@ struct SimulationSummary {
   double frame_rate() const;        // frames per second of the host (0 when no time was measured)
   double cycles_per_frame() const;  // mean device cycles
   double device_rate() const;       // frames per second the device's mean cycles allow at `clock` (0 without cycles)
-  // The device's frame rate as printed: "4181 Hz at 122 MHz (estimate: ...)", with "; 3 of 10 frames needed no device
+  // The device's frame rate as printed: "4181 Hz at 93.6 MHz (OpenSTA, ...)", with "; 3 of 10 frames needed no device
   // cycles" when some did not, or "none: the frames needed no device cycles" when none did.
   std::string device_rate_text() const;
 };
 
-// Resolves the request, makes the scene (make_scene of the file or of the SceneSpec) and runs it, calling
+// A run as its request resolves: the scene made (types voxelised, bodies placed), the simulation's options, and
+// the summary's description of the run (every field but the device's configuration, the totals and the state
+// hash, which the run fills). SimulateOptionError for an option that cannot be used; SceneFileError,
+// std::invalid_argument, MeshError, PlacementError ... from what it calls. A World can start from it (World::scene).
+struct ResolvedRun {
+  Scene scene;
+  SimOptions options;
+  SimulationSummary summary;
+};
+ResolvedRun resolve_run(const SimulateRequest& req);
+
+// Resolves the request (resolve_run), makes the scene (make_scene of the file or of the SceneSpec) and runs it, calling
 // progress(done, frames) after each frame when given. SimulateOptionError for an option that cannot be used;
 // SceneFileError, std::invalid_argument, MeshError, PlacementError, DeviceError ... from what it calls.
 SimulationSummary simulate(const SimulateRequest& req,

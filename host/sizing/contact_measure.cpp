@@ -26,7 +26,7 @@ std::vector<PairRequest> frame_requests(const Simulation& sim) {
 }
 
 // The signed distance of each checked contact from the other object's mesh, folded into m.
-void check_contacts(const std::vector<PairRequest>& reqs, const std::vector<PairResult>& res,
+void check_contacts(const Scene& scene, const std::vector<PairRequest>& reqs, const std::vector<PairResult>& res,
                     const std::vector<Mesh>& meshes, uint64_t per_pair, ContactMeasure& m, double& worst) {
   for (size_t i = 0; i < reqs.size(); ++i) {
     const std::vector<Contact>& cs = res[i].contacts;
@@ -36,7 +36,15 @@ void check_contacts(const std::vector<PairRequest>& reqs, const std::vector<Pair
       const uint32_t other = ct.a_in_b ? reqs[i].b : reqs[i].a;
       const RigidPose& pose = ct.a_in_b ? reqs[i].pose_b : reqs[i].pose_a;
       const Eigen::Vector3d local = pose.rotation.conjugate() * (ct.position - pose.translation);
-      worst = std::max(worst, detail::signed_mesh_distance(meshes.at(other), local));
+      const double d = detail::signed_mesh_distance(meshes.at(other), local);
+      const ObjectType& t = *scene.types.at(other);
+      const auto& v = ct.voxel;
+      if (!t.object.distance.empty() && t.object.distance.near_conservative(t.voxmap(), v[0], v[1], v[2])) {
+        m.worst_outside_conservative = std::max(m.worst_outside_conservative, d);
+        ++m.conservative;
+        continue;
+      }
+      worst = std::max(worst, d);
       ++m.contacts;
     }
   }
@@ -67,9 +75,9 @@ ContactMeasure measure_contacts(const Scene& scene, const SceneFile& f, const De
     if (k < due) continue;
     const std::vector<PairRequest> reqs = frame_requests(sim);
     collider.collide(reqs, po, res);
-    const uint64_t before = m.contacts;
-    check_contacts(reqs, res, meshes, per_pair, m, worst);
-    if (m.contacts == before) continue;
+    const uint64_t before = m.contacts + m.conservative;
+    check_contacts(scene, reqs, res, meshes, per_pair, m, worst);
+    if (m.contacts + m.conservative == before) continue;
     m.pairs += reqs.size();
     ++m.frames;
     due = std::max(k + 1, due + every);

@@ -15,7 +15,12 @@ namespace voxcd {
 struct ContactMeasure {
   double worst_outside = 0;  // world units: the largest signed distance of a checked contact outside the other
                              // object's mesh (0 when every one lies inside or on it)
-  uint64_t contacts = 0;     // contacts checked
+  uint64_t contacts = 0;     // contacts checked (those in conservative cells apart, below)
+  // Contacts in or next to a conservative cell of a distance voxmap (a surface its nodes do not resolve: the 2-bit
+  // voxmap's bound applies there, docs/pairs.md, DistanceField::near_conservative), and the largest distance of one
+  // outside the other mesh.
+  double worst_outside_conservative = 0;
+  uint64_t conservative = 0;
   uint64_t pairs = 0;        // pairs tested in the sampled frames
   uint64_t frames = 0;       // frames sampled (each with at least one contact)
 };

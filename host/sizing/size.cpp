@@ -1,19 +1,13 @@
 #include "voxcd/host/sizing/size.h"
 #include "voxcd/host/package/paths.h"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/sizing/detail/yosys_run.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/types.h"
 
@@ -227,51 +221,17 @@ std::string default_rtl_dir() {
 }
 
 YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& dir) {
-  const std::string rtl = dir.empty() ? rtl_dir() : dir;
-  namespace fs = std::filesystem;
-  char tmpl[] = "/tmp/voxcd-size-XXXXXX";
-  if (!mkdtemp(tmpl)) throw std::runtime_error("yosys: cannot make a temporary directory");
-  const fs::path tmp = tmpl;
-  struct Cleanup {
-    fs::path p;
-    ~Cleanup() {
-      std::error_code ec;
-      fs::remove_all(p, ec);
-    }
-  } cleanup{tmp};
-  std::string read = "read_verilog -sv";
-  for (const std::string& src : rtl_files(rtl)) {
-    const fs::path f = fs::path(src).filename();
-    if (f.extension() == ".vlt") continue;  // Verilator's lint waivers, not Verilog
-    std::error_code ec;
-    fs::copy_file(src, tmp / f, ec);
-    if (ec) throw std::runtime_error("yosys: cannot copy " + src + ": " + ec.message());
-    read += " " + f.string();
-  }
-  std::ostringstream chparam;
-  chparam << "chparam -set PW " << cfg.PW << " -set PF " << cfg.PF << " -set MW " << cfg.MW << " -set MF " << cfg.MF
-          << " -set TW " << cfg.TW << " -set DW " << cfg.DW << " -set MEMW " << cfg.MEMW << " -set LANES "
-          << cfg.LANES << " -set SAW " << cfg.SAW << " -set MAW " << cfg.MAW << " -set TAGW " << cfg.TAGW
-          << " -set SB " << cfg.SB << " -set WB " << cfg.WB << " -set BANKS " << cfg.BANKS << " voxcd_device";
-  YosysCost c;
   // The same method as bench/rtl_cost.sh's xilinx rows.
-  c.command = read + "; " + chparam.str() + "; synth_xilinx -noiopad -top voxcd_device; flatten; tee -q -o stat.json stat -json";
-  const std::string cmd = "cd '" + tmp.string() + "' && yosys -q -l yosys.log -p '" + c.command + "' >/dev/null 2>&1";
-  const auto t0 = std::chrono::steady_clock::now();
-  const int rc = std::system(cmd.c_str());
-  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (rc != 0) {
-    std::ifstream log(tmp / "yosys.log");
-    std::string line, tail;
-    std::vector<std::string> lines;
-    while (std::getline(log, line)) lines.push_back(line);
-    for (size_t i = lines.size() > 10 ? lines.size() - 10 : 0; i < lines.size(); ++i) tail += "\n  " + lines[i];
-    throw std::runtime_error("yosys failed (is the Debian package yosys installed?); the end of its log:" + tail);
-  }
-  std::ifstream in(tmp / "stat.json");
+  const detail::YosysRun run = detail::run_yosys(
+      dir.empty() ? rtl_dir() : dir,
+      detail::chparam_device(cfg) + "; synth_xilinx -noiopad -top voxcd_device; flatten; tee -q -o stat.json stat -json",
+      "stat.json");
+  YosysCost c;
+  c.command = run.command;
+  c.seconds = run.seconds;
   nlohmann::json stat;
   try {
-    in >> stat;
+    stat = nlohmann::json::parse(run.output);
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("yosys: cannot read its statistics: ") + e.what());
   }
@@ -285,13 +245,7 @@ YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& dir) {
     if (name == "RAMB36E1") c.brams += double(k);
     if (name == "RAMB18E1") c.brams += 0.5 * double(k);
   }
-  FILE* v = popen("yosys -V 2>&1", "r");
-  if (v) {
-    char buf[256] = {0};
-    if (fgets(buf, sizeof buf, v)) c.version = buf;
-    pclose(v);
-    while (!c.version.empty() && (c.version.back() == '\n' || c.version.back() == '\r')) c.version.pop_back();
-  }
+  c.version = detail::yosys_version();
   return c;
 }
 
@@ -335,6 +289,16 @@ void bound_contacts(SizeReport& r) {
   r.contact_error = contact_error_bound(r.config, r.extents, r.kind, r.convex, &r.contact_type, &r.contact_terms);
 }
 
+// The depth for the clock on req.target (r.target, r.depth, r.asic_row), and base at that depth.
+DeviceConfig choose_target_depth(SizeReport& r, const SizeRequest& req, const DeviceConfig& base) {
+  const TimingTable& table = req.timing ? *req.timing : builtin_timing_table();
+  r.target = req.target;
+  r.depth = choose_depth(table, req.target, r.clock.mhz, base);
+  for (const TimingRow& row : table.target_rows("asic-osu018"))
+    if (row.depth == r.depth->depth() && row.area_mm2) r.asic_row = row;
+  return at_depth(base, r.depth->depth());
+}
+
 }  // namespace
 
 SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeRequest& req) {
@@ -352,6 +316,7 @@ SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeR
   DeviceConfig base;
   base.SB = r.kind.SB;
   base.WB = r.kind.WB;
+  if (!req.target.empty()) base = choose_target_depth(r, req, base);
   DeviceConfig cfg = derive_widths(r.extents, r.accuracy, base, r.kind.distance() ? r.kind.WB : 0);
   r.error = size_error_bound(cfg, r.extents, &r.worst_pair);
   // Lanes: the fewest (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget.
@@ -387,6 +352,8 @@ SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeR
     b.measure = measure_frames(scene, sized, b.config, r.frames);
     r.banked = b;
   }
+  if (r.depth) r.rams = block_rams(r.config, r.target);
+  if (req.cost && r.depth) r.asic = asic_cost(r.config, r.clock.mhz, req.rtl_dir);
   if (req.cost) {
     r.cost = yosys_cost(r.config, req.rtl_dir);
     r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
@@ -416,6 +383,41 @@ std::string contact_terms_text(const SizeReport& r) {
     s += "(" + fmt(t.quantisation) + " quantisation + " + fmt(t.weights) + " weights + " + fmt(t.interpolation) +
          " interpolation)";
   return s + " + " + fmt(fixed) + " fixed-point";
+}
+}  // namespace
+
+namespace {
+// "16 RAMB36 (ice40...)": the block RAMs' count and unit.
+std::string rams_text(const SizeReport& r) {
+  std::string shapes;
+  for (const MemoryShape& m : memory_shapes(r.config))
+    shapes += (shapes.empty() ? "" : ", ") + std::to_string(m.count) + " x " + m.what + " " + std::to_string(m.words) +
+              " x " + std::to_string(m.width) + " bit";
+  std::string s = fmt(r.rams->count) + " " + r.rams->unit + " on " + r.target + " (" + shapes + ")";
+  if (r.rams->available > 0)
+    s += r.rams->count <= r.rams->available ? "; the part has " + std::to_string(r.rams->available)
+                                            : "; more than the part's " + std::to_string(r.rams->available);
+  return s;
+}
+
+// The lines of the depth choice (with a target): depth, area and block RAMs.
+std::string depth_lines(const SizeReport& r) {
+  std::ostringstream o;
+  const DepthChoice& d = *r.depth;
+  o << "depth           " << d.depth() << " on " << r.target << " for " << fmt(d.clock_mhz, 6) << " MHz (" << d.why()
+    << "; " << d.row.source << ", " << d.table << ")\n";
+  if (r.asic)
+    o << "area            " << fmt(r.asic->area_mm2) << " mm^2 of standard cells at 0.18 um for this configuration at "
+      << "depth " << d.depth() << " (yosys + abc onto OSU 0.18 um for " << fmt(r.asic->clock_mhz, 6) << " MHz, "
+      << r.asic->cells << " cells, " << fmt(r.asic->seconds, 3) << " s; RAMs not included)\n";
+  else if (r.asic_row)
+    o << "area            " << fmt(*r.asic_row->area_mm2) << " mm^2 of standard cells at 0.18 um at depth "
+      << d.depth() << " for the timing table's configuration (" << r.asic_row->config
+      << "; RAMs not included); --cost synthesises this one\n";
+  else
+    o << "area            none in the timing table at depth " << d.depth() << "; --cost synthesises this one\n";
+  o << "block RAMs      " << rams_text(r) << "\n";
+  return o.str();
 }
 }  // namespace
 
@@ -461,10 +463,13 @@ std::string size_text(const SizeReport& r) {
   else
     o << "frame rate      " << fmt(r.modelled_rate(), 6) << " frames/s with LANES " << c.LANES << " (largest frame "
       << m.max_cycles << " cycles, mean " << fmt(m.mean_cycles, 6) << ") at " << r.clock.text() << "\n";
+  o << "latency         " << r.latency() << " cycles (" << fmt(r.latency_ns(), 4)
+    << " ns) from a job's acceptance to its first record on the pins, at depth " << depth_of(c) << "\n";
   o << "memory          shell 2^" << c.SAW << " x " << 3 * c.PW << " bit = " << bits_text(r.shell_bits())
     << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.voxmap_copies()
     << (c.banked() ? " (shared banks)" : " lane copies") << " = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
     << bits_text(r.shell_bits() + r.map_bits()) << "\n";
+  if (r.depth) o << depth_lines(r);
   if (r.cost)
     o << "cost            " << r.cost->luts << " LUTs, " << r.cost->ffs << " FFs, " << r.cost->dsps << " DSPs, "
       << fmt(r.cost->brams) << " block RAMs (RAMB36) for Xilinx 7-series (yosys synth_xilinx, " << r.cost->version
@@ -497,6 +502,32 @@ std::string size_text(const SizeReport& r) {
   }
   return o.str();
 }
+
+namespace {
+nlohmann::ordered_json depth_json(const SizeReport& r) {
+  const DepthChoice& d = *r.depth;
+  nlohmann::ordered_json j;
+  j["depth"] = d.depth();
+  j["mhz"] = d.row.mhz;
+  j["source"] = d.row.source;
+  j["estimate"] = d.row.estimate();
+  j["why"] = d.why();
+  j["table"] = d.table;
+  j["shallower"] = nlohmann::ordered_json::array();
+  for (const TimingRow& row : d.shallower) j["shallower"].push_back({{"depth", row.depth}, {"mhz", row.mhz}});
+  if (r.asic)
+    j["area_mm2"] = {{"value", r.asic->area_mm2}, {"of", "this configuration (yosys + abc onto OSU 0.18 um)"},
+                     {"cells", r.asic->cells}, {"seconds", r.asic->seconds}};
+  else if (r.asic_row)
+    j["area_mm2"] = {{"value", *r.asic_row->area_mm2}, {"of", "the timing table's configuration"},
+                     {"config", r.asic_row->config}};
+  else
+    j["area_mm2"] = nullptr;
+  j["block_rams"] = {{"count", r.rams->count}, {"unit", r.rams->unit},
+                     {"available", r.rams->available ? nlohmann::ordered_json(r.rams->available) : nullptr}};
+  return j;
+}
+}  // namespace
 
 std::string size_json(const SizeReport& r) {
   const Scene& scene = r.scene;
@@ -548,6 +579,11 @@ std::string size_json(const SizeReport& r) {
   // At clock_mhz (clock_source above); null when the frames needed no device cycles.
   j["modelled_rate_hz"] = m.max_cycles ? nlohmann::ordered_json(r.modelled_rate()) : nullptr;
   j["memory_bits"] = {{"shell", r.shell_bits()}, {"voxmap", r.map_bits()}, {"total", r.shell_bits() + r.map_bits()}};
+  j["depth"] = depth_of(c);
+  j["latency_cycles"] = r.latency();
+  j["latency_ns"] = r.latency_ns();
+  j["target"] = r.target.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.target);
+  j["depth_choice"] = r.depth ? depth_json(r) : nlohmann::ordered_json(nullptr);
   j["words_used"] = {{"shell", r.shell_words}, {"voxmap", r.map_words}};
   if (r.cost)
     j["cost"] = {{"target", "xilinx 7-series (synth_xilinx)"}, {"luts", r.cost->luts}, {"ffs", r.cost->ffs},

@@ -14,12 +14,17 @@
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/sizing/asic_cost.h"
+#include "voxcd/host/sizing/block_rams.h"
 #include "voxcd/host/sizing/contact_bound.h"
+#include "voxcd/host/sizing/depth.h"
+#include "voxcd/host/sizing/timing_table.h"
 #include "voxcd/ref/config.h"
 
 namespace voxcd {
 
-// A request no device can meet. `constraint` is "accuracy", "contact", "rate", "memory" or "extent"; the message
+// A request no device can meet. `constraint` is "accuracy", "contact", "rate", "memory", "extent" or "clock" (no
+// pipeline depth meets the clock on the target, depth.h); the message
 // says by how much it fails (`factor`: how many times finer, faster or larger than the best device allows).
 struct SizeError : std::runtime_error {
   SizeError(const std::string& constraint_, double factor_, const std::string& what)
@@ -110,6 +115,11 @@ struct SizeRequest {
   // rtl_dir ("" = the package's); yosys_cost's errors.
   bool cost = false;
   std::string rtl_dir;
+  // The implementation target (timing_targets(): "asic-osu018", "ice40-hx8k", "ice40-up5k", "xilinx-7") whose
+  // measured clocks choose the pipeline depth: the shallowest that meets the clock (choose_depth). "": the default
+  // depth, no choice. With cost, the configuration's standard-cell area at 0.18 um is synthesised too (asic_cost).
+  std::string target;
+  std::optional<TimingTable> timing;  // the table to choose from; unset: builtin_timing_table()
 };
 
 struct SizeReport {
@@ -151,6 +161,17 @@ struct SizeReport {
   // The same LANES, SAW and MAW at the default widths, synthesised the same way (the peer for the cost).
   std::optional<YosysCost> default_cost;
   DeviceConfig default_widths() const;
+  // With a target: the chosen depth and why, the timing table's asic-osu018 measurement at that depth (the area of
+  // the table's configuration, when the table has one), the block RAMs the configuration takes on the target, and
+  // with cost the configuration's own standard-cell area.
+  std::string target;
+  std::optional<DepthChoice> depth;
+  std::optional<TimingRow> asic_row;
+  std::optional<BlockRams> rams;
+  std::optional<AsicCost> asic;
+  // Cycles from a job's acceptance to its first record on the pins (latency_cycles) and that time at the clock, ns.
+  int latency() const { return latency_cycles(config); }
+  double latency_ns() const { return latency() * 1e3 / clock.mhz; }
 };
 
 // The whole derivation (with the costs when req.cost) for the scene made from f (make_scene(f)); with a contact

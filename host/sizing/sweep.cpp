@@ -10,6 +10,7 @@
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/contact_measure.h"
+#include "voxcd/host/sizing/depth.h"
 
 namespace voxcd {
 
@@ -29,7 +30,8 @@ using json = nlohmann::ordered_json;
 }  // namespace
 
 std::string SweepPoint::text() const {
-  return "lanes " + std::to_string(lanes) + ", voxel x" + num(voxel_scale) + ", distance bits " +
+  return "lanes " + std::to_string(lanes) + ", depth " + std::to_string(depth) + ", voxel x" + num(voxel_scale) +
+         ", distance bits " +
          std::to_string(distance_bits) + ", accuracy " + num(accuracy);
 }
 
@@ -45,6 +47,8 @@ SweepPoint point_at(const SweepSpec& s, uint64_t index) {
   i /= s.distance_bits.size();
   p.voxel_scale = s.voxel_scales[i % s.voxel_scales.size()];
   i /= s.voxel_scales.size();
+  p.depth = s.depths[i % s.depths.size()];
+  i /= s.depths.size();
   p.lanes = s.lanes[i];
   return p;
 }
@@ -73,6 +77,7 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
 void check_sweep(const SweepSpec& s, const std::string& where) {
   auto fail = [&](const std::string& key, const std::string& what) { return SweepError(where + ": " + key + ": " + what); };
   if (s.lanes.empty()) throw fail("lanes", "is empty");
+  if (s.depths.empty()) throw fail("depth", "is empty");
   if (s.voxel_scales.empty()) throw fail("voxel_scale", "is empty");
   if (s.distance_bits.empty()) throw fail("distance_bits", "is empty");
   if (s.accuracies.empty()) throw fail("accuracy", "is empty");
@@ -80,6 +85,13 @@ void check_sweep(const SweepSpec& s, const std::string& where) {
     if (!power_of_two(s.lanes[i]) || s.lanes[i] > 64)
       throw fail("lanes[" + std::to_string(i) + "]", std::to_string(s.lanes[i]) +
                                                          " is not a power of two from 1 to 64 (the RTL's lanes)");
+  for (size_t i = 0; i < s.depths.size(); ++i) {
+    try {
+      at_depth(DeviceConfig{}, s.depths[i]);
+    } catch (const ConfigError& e) {
+      throw fail("depth[" + std::to_string(i) + "]", e.what());
+    }
+  }
   for (size_t i = 0; i < s.voxel_scales.size(); ++i)
     if (!(s.voxel_scales[i] > 0) || !std::isfinite(s.voxel_scales[i]))
       throw fail("voxel_scale[" + std::to_string(i) + "]", num(s.voxel_scales[i]) + " is not a positive number");
@@ -144,6 +156,7 @@ SweepSpec parse_sweep_file(const std::string& text, const std::string& where, Sw
   if (!j.is_object()) throw SweepError(where + ": expected a JSON object of sweep keys, got " + j.dump());
   for (const auto& [key, v] : j.items()) {
     if (key == "lanes") s.lanes = int_list(v, where, key);
+    else if (key == "depth") s.depths = int_list(v, where, key);
     else if (key == "voxel_scale") s.voxel_scales = number_list(v, where, key);
     else if (key == "distance_bits") s.distance_bits = int_list(v, where, key);
     else if (key == "accuracy") s.accuracies = number_list(v, where, key);
@@ -159,8 +172,8 @@ SweepSpec parse_sweep_file(const std::string& text, const std::string& where, Sw
       if (!v.is_boolean()) throw SweepError(where + ": cost: expected true or false, got " + v.dump());
       s.cost = v.get<bool>();
     } else {
-      throw SweepError(where + ": " + key + ": unknown key (the keys: lanes, voxel_scale, distance_bits, accuracy, "
-                                            "frames, sample_frames, clock, cost)");
+      throw SweepError(where + ": " + key + ": unknown key (the keys: lanes, depth, voxel_scale, distance_bits, "
+                                            "accuracy, frames, sample_frames, clock, cost)");
     }
   }
   return s;
@@ -178,6 +191,7 @@ std::string sweep_json(const SweepSpec& s) {
   json j;
   j["scene"] = s.scene;
   j["lanes"] = s.lanes;
+  j["depth"] = s.depths;
   j["voxel_scale"] = s.voxel_scales;
   j["distance_bits"] = s.distance_bits;
   j["accuracy"] = s.accuracies;
@@ -196,6 +210,7 @@ SweepSpec sweep_from_json(const std::string& text, const std::string& where) {
     SweepSpec s;
     s.scene = j.at("scene").get<std::string>();
     s.lanes = j.at("lanes").get<std::vector<int>>();
+    if (j.contains("depth")) s.depths = j.at("depth").get<std::vector<int>>();  // results files before depths: {0}
     s.voxel_scales = j.at("voxel_scale").get<std::vector<double>>();
     s.distance_bits = j.at("distance_bits").get<std::vector<int>>();
     s.accuracies = j.at("accuracy").get<std::vector<double>>();
@@ -215,6 +230,7 @@ std::string sweep_row_line(const SweepRow& r) {
   json j;
   j["point"] = r.point.index;
   j["lanes"] = r.point.lanes;
+  j["depth"] = r.point.depth;
   j["voxel_scale"] = r.point.voxel_scale;
   j["distance_bits"] = r.point.distance_bits;
   j["accuracy"] = r.point.accuracy;
@@ -224,6 +240,10 @@ std::string sweep_row_line(const SweepRow& r) {
   j["contact_bound"] = r.contact_bound;
   j["contact_measured"] = r.contact_measured;
   j["contacts_checked"] = r.contacts_checked;
+  j["contacts_conservative"] = r.contacts_conservative;
+  j["contact_measured_conservative"] = r.contact_measured_conservative;
+  j["contact_bound_conservative"] = r.contact_bound_conservative;
+  j["latency"] = r.latency;
   j["max_cycles"] = r.max_cycles;
   j["mean_cycles"] = r.mean_cycles;
   j["rate"] = r.rate;
@@ -245,6 +265,7 @@ SweepRow parse_sweep_row(const std::string& line, const std::string& where) {
     SweepRow r;
     r.point.index = j.at("point").get<uint64_t>();
     r.point.lanes = j.at("lanes").get<int>();
+    r.point.depth = j.value("depth", 0);  // rows before depths: 0
     r.point.voxel_scale = j.at("voxel_scale").get<double>();
     r.point.distance_bits = j.at("distance_bits").get<int>();
     r.point.accuracy = j.at("accuracy").get<double>();
@@ -254,6 +275,11 @@ SweepRow parse_sweep_row(const std::string& line, const std::string& where) {
     r.contact_bound = j.at("contact_bound").get<double>();
     r.contact_measured = j.at("contact_measured").get<double>();
     r.contacts_checked = j.at("contacts_checked").get<uint64_t>();
+    // (results files written before conservative cells have none of these)
+    r.contacts_conservative = j.value("contacts_conservative", uint64_t{0});
+    r.contact_measured_conservative = j.value("contact_measured_conservative", 0.0);
+    r.contact_bound_conservative = j.value("contact_bound_conservative", 0.0);
+    r.latency = j.value("latency", 0);
     r.max_cycles = j.at("max_cycles").get<uint64_t>();
     r.mean_cycles = j.at("mean_cycles").get<double>();
     r.rate = j.at("rate").get<double>();
@@ -323,10 +349,12 @@ SweepRow SweepRunner::run(uint64_t index) {
     base.SB = kind.SB;
     base.WB = kind.WB;
     base.LANES = p.lanes;
+    base = at_depth(base, p.depth);
     DeviceConfig cfg = derive_widths(e, p.accuracy, base, kind.distance() ? kind.WB : 0);
     cfg = derive_memory(cfg, scene);
     cfg.validate();
     r.config = cfg.to_string();
+    r.latency = latency_cycles(cfg);
     r.error_bound = size_error_bound(cfg, e);
     r.contact_bound = contact_error_bound(cfg, e, kind, convex_);
     const LaneMeasure m = measure_frames(scene, f, cfg, frames_);
@@ -336,6 +364,11 @@ SweepRow SweepRunner::run(uint64_t index) {
     const ContactMeasure c = measure_contacts(scene, f, cfg, meshes_, frames_, spec_.sample_frames);
     r.contact_measured = c.worst_outside;
     r.contacts_checked = c.contacts;
+    if (kind.distance()) {
+      r.contacts_conservative = c.conservative;
+      r.contact_measured_conservative = c.worst_outside_conservative;
+      r.contact_bound_conservative = contact_error_bound(cfg, e, VoxmapKind{}, convex_);
+    }
     r.shell_bits = shell_memory_bits(cfg);
     r.map_bits = map_memory_bits(cfg);
     if (spec_.cost) r.cost = yosys_cost(cfg, spec_.rtl_dir);

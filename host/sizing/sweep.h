@@ -1,5 +1,5 @@
-// A design-space sweep of a scene file (`voxcd sweep`, docs/sweep.md): the cross product of lane counts, voxel
-// scales, distance bits and accuracies, each point derived and measured with the sizing steps of size.h and
+// A design-space sweep of a scene file (`voxcd sweep`, docs/sweep.md): the cross product of lane counts, pipeline
+// depths, voxel scales, distance bits and accuracies, each point derived and measured with the sizing steps of size.h and
 // contact_measure.h: widths, memories, predicted and measured contact error, cycles per frame, memory and cost.
 #pragma once
 
@@ -27,6 +27,7 @@ struct SweepError : std::runtime_error {
 struct SweepSpec {
   std::string scene;                  // the scene file
   std::vector<int> lanes;             // powers of two, 1 to 64
+  std::vector<int> depths = {0};      // pipeline depths the device offers (depth.h); a results file without: {0}
   std::vector<double> voxel_scales;   // factors on every type's voxel, > 0
   std::vector<int> distance_bits;     // 0 (2-bit states), 4, 8 or 16 (distance voxmaps with the scene's band)
   std::vector<double> accuracies;     // the fixed-point path's accuracy, world units, > 0
@@ -34,21 +35,24 @@ struct SweepSpec {
   uint64_t sample_frames = 4;         // of those, frames whose contacts are checked against the meshes
   double clock = 0;                   // MHz (0: the scene file's)
   // Where clock comes from (DeviceClock::source): "given by --clock", "given by <sweep file>'s \"clock\"", or the
-  // scene file's clock's source (its "clock", or the default estimate of docs/hardware.md).
+  // scene file's clock's source (its "clock", or the default clock of docs/hardware.md).
   std::string clock_source;
   bool cost = false;                  // yosys per point
   std::string rtl_dir;                // the RTL for cost ("" = the package's)
-  uint64_t points() const { return lanes.size() * voxel_scales.size() * distance_bits.size() * accuracies.size(); }
+  uint64_t points() const {
+    return lanes.size() * depths.size() * voxel_scales.size() * distance_bits.size() * accuracies.size();
+  }
 };
 
-// One design point: the index-th of the cross product, lanes outermost, accuracy innermost.
+// One design point: the index-th of the cross product, lanes outermost, then depth, accuracy innermost.
 struct SweepPoint {
   uint64_t index = 0;
   int lanes = 1;
+  int depth = 0;
   double voxel_scale = 1;
   int distance_bits = 0;
   double accuracy = 0;
-  std::string text() const;  // "lanes 2, voxel x0.5, distance bits 8, accuracy 0.01"
+  std::string text() const;  // "lanes 2, depth 1, voxel x0.5, distance bits 8, accuracy 0.01"
 };
 SweepPoint point_at(const SweepSpec& s, uint64_t index);
 
@@ -56,10 +60,10 @@ SweepPoint point_at(const SweepSpec& s, uint64_t index);
 std::vector<double> parse_number_list(const std::string& text, const std::string& what);
 
 // Checks every list and value (SweepError naming `where` and the key): lists not empty, lanes powers of two up to
-// 64, distance bits 0, 4, 8 or 16, scales and accuracies positive and finite, sample_frames <= frames.
+// 64, depths the device offers, distance bits 0, 4, 8 or 16, scales and accuracies positive and finite, sample_frames <= frames.
 void check_sweep(const SweepSpec& s, const std::string& where);
 
-// The sweep file (docs/sweep.md): a JSON object with the lists "lanes", "voxel_scale", "distance_bits",
+// The sweep file (docs/sweep.md): a JSON object with the lists "lanes", "depth", "voxel_scale", "distance_bits",
 // "accuracy" and the numbers "frames", "sample_frames", "clock" and the flag "cost"; the scene comes from the
 // command line. Keys it leaves out keep their value in `base`. SweepError naming the file and the key for malformed
 // JSON, an unknown key, a wrong type or a value out of range.
@@ -79,6 +83,11 @@ struct SweepRow {
   double contact_bound = 0;   // how far outside the other surface a contact can lie, world units (contact_error_bound)
   double contact_measured = 0;  // the farthest checked contact lies outside the other mesh, world units (>= 0)
   uint64_t contacts_checked = 0;
+  // Distance voxmaps: the contacts in or next to conservative cells (a surface the nodes do not resolve), checked
+  // apart against the 2-bit voxmap's bound (docs/pairs.md), world units; all 0 on a 2-bit row.
+  uint64_t contacts_conservative = 0;
+  double contact_measured_conservative = 0, contact_bound_conservative = 0;
+  int latency = 0;            // cycles from a job's acceptance to its first record (latency_cycles, depth.h)
   uint64_t max_cycles = 0;    // device cycles of the largest frame
   double mean_cycles = 0;
   double rate = 0;            // frames per second at the sweep's clock for the largest frame

@@ -18,7 +18,7 @@ void check_point(const SweepRow& r, const SweepSpec& s, const std::string& where
     throw SweepError(where + ": point " + std::to_string(r.point.index) + " is not in the sweep (it has " +
                      std::to_string(s.points()) + " points)");
   const SweepPoint p = point_at(s, r.point.index);
-  if (p.lanes != r.point.lanes || p.voxel_scale != r.point.voxel_scale || p.distance_bits != r.point.distance_bits ||
+  if (p.lanes != r.point.lanes || p.depth != r.point.depth || p.voxel_scale != r.point.voxel_scale || p.distance_bits != r.point.distance_bits ||
       p.accuracy != r.point.accuracy)
     throw SweepError(where + ": point " + std::to_string(p.index) + " is " + r.point.text() + ", but in this sweep " +
                      p.text());

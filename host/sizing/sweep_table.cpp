@@ -58,18 +58,18 @@ void finish_table(SweepTable& t) {
 
 std::string sweep_csv(const SweepTable& t) {
   std::ostringstream o;
-  o << "point,lanes,voxel_scale,distance_bits,accuracy,status,config,error_bound,contact_bound,contact_measured,"
-       "contacts_checked,max_cycles,mean_cycles,rate_fps,shell_bits,map_bits,memory_bits,luts,ffs,dsps,brams,"
+  o << "point,lanes,depth,voxel_scale,distance_bits,accuracy,status,config,error_bound,contact_bound,"
+       "contact_measured,contacts_checked,latency_cycles,max_cycles,mean_cycles,rate_fps,shell_bits,map_bits,memory_bits,luts,ffs,dsps,brams,"
        "pareto,clock_mhz,clock_source\n";
   for (const SweepRow& r : t.rows) {
-    o << r.point.index << ',' << r.point.lanes << ',' << g(r.point.voxel_scale) << ',' << r.point.distance_bits
+    o << r.point.index << ',' << r.point.lanes << ',' << r.point.depth << ',' << g(r.point.voxel_scale) << ',' << r.point.distance_bits
       << ',' << g(r.point.accuracy) << ',' << csv_field(r.status) << ',' << csv_field(r.config) << ',';
     if (r.ok())
       o << g(r.error_bound) << ',' << g(r.contact_bound) << ',' << g(r.contact_measured) << ',' << r.contacts_checked
-        << ',' << r.max_cycles << ',' << g(r.mean_cycles) << ',' << g(r.rate) << ',' << r.shell_bits << ','
+        << ',' << r.latency << ',' << r.max_cycles << ',' << g(r.mean_cycles) << ',' << g(r.rate) << ',' << r.shell_bits << ','
         << r.map_bits << ',' << r.memory_bits() << ',';
     else
-      o << ",,,,,,,,,,";
+      o << ",,,,,,,,,,,";
     if (r.cost)
       o << r.cost->luts << ',' << r.cost->ffs << ',' << r.cost->dsps << ',' << g(r.cost->brams) << ',';
     else
@@ -83,7 +83,7 @@ std::string sweep_table_json(const SweepTable& t) {
   nlohmann::ordered_json j;
   j["scene"] = t.spec.scene;
   j["points"] = t.spec.points();
-  j["lists"] = {{"lanes", t.spec.lanes}, {"voxel_scale", t.spec.voxel_scales},
+  j["lists"] = {{"lanes", t.spec.lanes}, {"depth", t.spec.depths}, {"voxel_scale", t.spec.voxel_scales},
                 {"distance_bits", t.spec.distance_bits}, {"accuracy", t.spec.accuracies}};
   j["frames"] = t.frames;
   j["sample_frames"] = t.spec.sample_frames;
@@ -112,24 +112,24 @@ std::string sweep_text(const SweepTable& t) {
   std::ostringstream o;
   const SweepSpec& s = t.spec;
   o << "voxcd sweep: " << s.scene << ": " << s.points() << " points (" << s.lanes.size() << " lanes x "
-    << s.voxel_scales.size() << " voxel scales x " << s.distance_bits.size() << " distance bits x "
+    << s.depths.size() << " depths x " << s.voxel_scales.size() << " voxel scales x " << s.distance_bits.size() << " distance bits x "
     << s.accuracies.size() << " accuracies), " << t.frames << " frames each (" << s.sample_frames
     << " checked against the meshes); frames/s at clock " << g(t.clock) << " MHz (" << s.clock_source << ")\n";
   char line[512];
-  std::snprintf(line, sizeof line, "%5s %5s %6s %4s %9s %10s %10s %10s %9s %10s %10s %10s %s\n", "point", "lanes",
-                "voxel", "dist", "accuracy", "error", "contact", "measured", "cycles", "mean", "frames/s", "kbit",
+  std::snprintf(line, sizeof line, "%5s %5s %5s %6s %4s %9s %10s %10s %10s %9s %10s %10s %10s %s\n", "point", "lanes",
+                "depth", "voxel", "dist", "accuracy", "error", "contact", "measured", "cycles", "mean", "frames/s", "kbit",
                 "front");
   o << line;
   for (const SweepRow& r : t.rows) {
     if (!r.ok()) {
-      std::snprintf(line, sizeof line, "%5llu %5d %6s %4d %9s  %s\n", (unsigned long long)r.point.index, r.point.lanes,
-                    ("x" + g(r.point.voxel_scale, 3)).c_str(), r.point.distance_bits, g(r.point.accuracy, 3).c_str(),
+      std::snprintf(line, sizeof line, "%5llu %5d %5d %6s %4d %9s  %s\n", (unsigned long long)r.point.index,
+                    r.point.lanes, r.point.depth, ("x" + g(r.point.voxel_scale, 3)).c_str(), r.point.distance_bits, g(r.point.accuracy, 3).c_str(),
                     r.status.c_str());
       o << line;
       continue;
     }
-    std::snprintf(line, sizeof line, "%5llu %5d %6s %4d %9s %10s %10s %10s %9llu %10s %10s %10s %s\n",
-                  (unsigned long long)r.point.index, r.point.lanes, ("x" + g(r.point.voxel_scale, 3)).c_str(),
+    std::snprintf(line, sizeof line, "%5llu %5d %5d %6s %4d %9s %10s %10s %10s %9llu %10s %10s %10s %s\n",
+                  (unsigned long long)r.point.index, r.point.lanes, r.point.depth, ("x" + g(r.point.voxel_scale, 3)).c_str(),
                   r.point.distance_bits, g(r.point.accuracy, 3).c_str(), g(r.error_bound, 4).c_str(),
                   g(r.contact_bound, 4).c_str(), g(r.contact_measured, 4).c_str(), (unsigned long long)r.max_cycles,
                   g(r.mean_cycles, 6).c_str(), g(r.rate, 6).c_str(), kbit(r.memory_bits()).c_str(),

@@ -1,9 +1,18 @@
-// FastRunner on a distance voxmap (SB > 2): transform, floor and bounds in 64-bit integers (the double and int64
-// paths' accumulators fit 63 bits; the wide path takes ref/'s transform), the 8 node values from their parity banks,
-// and the trilinear interpolation as three exact linear interpolations (docs/contract.md, "Distance voxmaps"):
-// a * 2^WB + (b - a) * f, x then y then z, in 64-bit integers and in 128 bits for the last step when IW > 62.
+// FastRunner on a distance voxmap (SB > 2). Two paths give ref/'s bits (docs/contract.md, "Distance voxmaps"):
+//  - vector: on the double path (the accumulator fits 53 bits, the default widths) when an interpolated distance fits
+//    51 bits (IW <= 51) and the map's node words fit int32 indices: a block of points at a time, transform, floor,
+//    bounds, the 8 node values from their parity banks (gathers), the trilinear interpolation and the threshold test
+//    in one loop of doubles, where every value is an integer below 2^53 and so exact (the 2-bit path's argument):
+//    fast/distance_kernel.cpp, for AVX-512, AVX2 with FMA or the baseline, chosen at run time. Only the hits go on to
+//    records.
+//  - scalar: otherwise, transform, floor and bounds in 64-bit integers (the double and int64 paths' accumulators fit
+//    63 bits; the wide path takes ref/'s transform), and the interpolation as three exact linear interpolations,
+//    a * 2^WB + (b - a) * f, x then y then z, in 64-bit integers and in 128 bits for the last step when IW > 62.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
+#include "voxcd/ref/fast/detail/distance_kernel.h"
 #include "voxcd/ref/fast/fast.h"
 #include "voxcd/ref/pipeline.h"
 
@@ -17,10 +26,69 @@ inline T lerp(T a, T b, int64_t f, int wb) {
   return a * (T{1} << wb) + (b - a) * T(f);
 }
 
+constexpr size_t kDistanceBlock = 256;
+
 }  // namespace
+
+bool FastRunner::distance_vector(const Job& j) const {
+  // Indices of node words as int32 and exact doubles throughout (see the file's comment).
+  const uint64_t nodes = (uint64_t{j.nx} / 2 + 1) * (uint64_t{j.ny} / 2 + 1) * (uint64_t{j.nz} / 2 + 1);
+  const int npw = cfg_.nodes_per_word(), sb = cfg_.SB;
+  return path_ == Path::Double && cfg_.IW() <= 51 && (npw & (npw - 1)) == 0 && (sb & (sb - 1)) == 0 &&
+         nodes < (uint64_t{1} << 31) &&
+         8 * (nodes / uint64_t(npw) + 2) < (uint64_t{1} << 31);
+}
+
+void FastRunner::run_distance_vector(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
+                                     uint32_t& hit_count) const {
+  detail::DistanceJob J;
+  const int shift = cfg_.TF() - cfg_.WB;
+  const double scale = std::ldexp(1.0, -shift);
+  for (int i = 0; i < 9; ++i) J.m[i] = double(j.M[i / 3][i % 3]) * scale;
+  for (int i = 0; i < 3; ++i) J.t[i] = double(j.t[i]) * scale;
+  J.n[0] = j.nx, J.n[1] = j.ny, J.n[2] = j.nz;
+  J.weight = std::ldexp(1.0, cfg_.WB);
+  J.inv_weight = std::ldexp(1.0, -cfg_.WB);
+  J.threshold = double(j.threshold);
+  J.hx = int32_t(j.nx / 2 + 1), J.hy = int32_t(j.ny / 2 + 1);
+  J.npw_bits = 0;
+  while ((1 << J.npw_bits) < cfg_.nodes_per_word()) ++J.npw_bits;
+  J.sb = cfg_.SB;
+  J.sb_bits = 0;
+  while ((1 << J.sb_bits) < J.sb) ++J.sb_bits;
+  J.map = map_.data() + j.map_base;
+  uint8_t hit[kDistanceBlock];
+  int32_t cx[kDistanceBlock], cy[kDistanceBlock], cz[kDistanceBlock];
+  double dist[kDistanceBlock];
+  const detail::DistanceBlockFn block = detail::distance_block();
+  for (uint32_t b = begin; b < end; b += uint32_t(kDistanceBlock)) {
+    const size_t n = std::min<size_t>(kDistanceBlock, end - b);
+    const size_t base = size_t(j.shell_base) + b;
+    const uint32_t count = block(&sx_[base], &sy_[base], &sz_[base], n, J, hit, cx, cy, cz, dist);
+    if (count == 0) continue;
+    if (j.mode == Mode::Count) {
+      hit_count += count;
+      continue;
+    }
+    for (size_t k = 0; k < n; ++k) {
+      if (!hit[k]) continue;
+      ++hit_count;
+      Record& r = hits.emplace_back();
+      r.kind = Record::Hit;
+      r.tag = j.tag;
+      r.point = b + uint32_t(k);
+      r.x = uint32_t(cx[k]);
+      r.y = uint32_t(cy[k]);
+      r.z = uint32_t(cz[k]);
+      r.dist = int64_t(dist[k]);
+      if (j.mode == Mode::First) return;
+    }
+  }
+}
 
 void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
                                     uint32_t& hit_count) const {
+  if (distance_vector(j)) return run_distance_vector(j, begin, end, hits, hit_count);
   const int tf = cfg_.TF(), wb = cfg_.WB, sb = cfg_.SB;
   const int64_t fmask = (int64_t{1} << wb) - 1;
   const uint64_t vmask = (uint64_t{1} << sb) - 1, sign = uint64_t{1} << (sb - 1);

@@ -12,6 +12,7 @@
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/fast/detail/distance_kernel.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/timing.h"
 
@@ -21,15 +22,14 @@ namespace {
 
 constexpr size_t kChunk = 2048;  // points per piece
 constexpr size_t kBlock = 256;   // points per vector block inside a piece
-constexpr size_t kProbeBlock = 64;  // points of a piece's first block with the skipping kernel (run_chunk)
 // Points per task (runs of consecutive pieces, so that the many small jobs of a simulation frame make tasks of a
 // few microseconds: about 1.5 ns a point).
 constexpr size_t kTaskPoints = 2048;
 
 // The whole lookup of a block on the double path, for maps of fewer than 2^31 voxels: transform, floor,
-// bounds, linear address, word fetch, state select and hit test. Outputs the linear index and, per point,
-// state | hit << 2; returns the number of hits. Outside points read the map's first word and are masked.
-// Compiled three times (AVX-512 with 512-bit vectors, AVX2 with FMA, baseline) and chosen once at run time.
+// bounds, linear address, word fetch, state select and hit test. Outputs per point state | hit << 2 and, for hits,
+// the voxel (cx, cy, cz); returns the number of hits. Outside points read the map's first word and are masked.
+// Compiled twice (AVX2 with FMA, baseline; a processor with AVX-512 takes block_avx512) and chosen once at run time.
 #define VOXCD_BLOCK_DOUBLE_FETCH_BODY                                                                           \
   {                                                                                                             \
     const double m0 = mp[0], m1 = mp[1], m2 = mp[2], m3 = mp[3], m4 = mp[4], m5 = mp[5], m6 = mp[6],            \
@@ -44,10 +44,13 @@ constexpr size_t kTaskPoints = 2048;
       const double ay = std::floor(m3 * px + m4 * py + m5 * pz + t1);                                           \
       const double az = std::floor(m6 * px + m7 * py + m8 * pz + t2);                                           \
       const bool inside = (ax >= 0) & (ax < nx) & (ay >= 0) & (ay < ny) & (az >= 0) & (az < nz);                \
-      const int32_t li = int32_t(inside ? ax + nx * (ay + ny * az) : 0.0);                                      \
+      const double vx = inside ? ax : 0.0, vy = inside ? ay : 0.0, vz = inside ? az : 0.0;                      \
+      const int32_t li = int32_t(vx + nx * (vy + ny * vz));                                                     \
       const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;                        \
       const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;                                                \
-      lin[k] = li;                                                                                              \
+      cx[k] = int32_t(vx);                                                                                      \
+      cy[k] = int32_t(vy);                                                                                      \
+      cz[k] = int32_t(vz);                                                                                      \
       state[k] = uint8_t(st | (hit << 2));                                                                      \
       count += hit;                                                                                             \
     }                                                                                                           \
@@ -56,31 +59,27 @@ constexpr size_t kTaskPoints = 2048;
 #define VOXCD_BLOCK_DOUBLE_FETCH_ARGS                                                                           \
   const Coord *__restrict x, const Coord *__restrict y, const Coord *__restrict z, size_t n,                    \
       const double *__restrict mp, const double *__restrict tp, const double *__restrict dp,                    \
-      const uint64_t *__restrict map, int slot_bits, uint32_t mask, int32_t *__restrict lin,                    \
-      uint8_t *__restrict state
+      const uint64_t *__restrict map, int slot_bits, uint32_t mask, int32_t *__restrict cx,                     \
+      int32_t *__restrict cy, int32_t *__restrict cz, uint8_t *__restrict state
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-bool have_avx512() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
-}
+bool have_avx512() { return detail::cpu_has_avx512(); }
 
-// The block lookup for blocks whose points mostly land outside the map, written for AVX-512 by hand, eight points
-// at a time: it skips the fetch (the dearest step, a gather) for eight points none of which is inside, and tests the
-// bounds on the exact accumulator (for an integer n, floor(a) is in [0, n) exactly when a is, and for such an a
-// truncation is the floor, so it needs no floor instruction). Outputs as the generic body for the hits; a point that
-// is no hit has state 0 and an unspecified linear index. *kept: the groups of eight that had a point inside. Where
-// most of them do, the generic kernel is faster (run_chunk switches to it).
+// The block lookup on AVX-512, written by hand, eight points at a time: it tests the bounds on the exact accumulator
+// (for an integer n, floor(a) is in [0, n) exactly when a is, and for such an a truncation is the floor, so it needs
+// no floor instruction), computes y and z only where a point is inside along x, skips the fetch for eight points none
+// of which is inside, and fetches the words of the others with one gather instruction (measured by CPU time, faster
+// than eight scalar loads and than the compiler's vectorisation of the generic body, in and out of cache). Outputs
+// as the generic body for the hits; a point that is no hit has state 0 and an unspecified voxel.
 // GCC 12's intrinsics fill unused lanes from a self-initialised "undefined" vector, which -Wmaybe-uninitialized
 // reports once inlined here.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block_sparse_avx512(
+__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block_avx512(
     const int32_t* __restrict x, const int32_t* __restrict y, const int32_t* __restrict z, size_t n,
     const double* __restrict mp, const double* __restrict tp, const double* __restrict dp,
-    const uint64_t* __restrict map, int slot_bits, uint32_t mask, int32_t* __restrict lin,
-    uint8_t* __restrict state, uint32_t* kept) {
+    const uint64_t* __restrict map, int slot_bits, uint32_t mask, int32_t* __restrict cx, int32_t* __restrict cy,
+    int32_t* __restrict cz, uint8_t* __restrict state) {
   const __m512d m0 = _mm512_set1_pd(mp[0]), m1 = _mm512_set1_pd(mp[1]), m2 = _mm512_set1_pd(mp[2]);
   const __m512d m3 = _mm512_set1_pd(mp[3]), m4 = _mm512_set1_pd(mp[4]), m5 = _mm512_set1_pd(mp[5]);
   const __m512d m6 = _mm512_set1_pd(mp[6]), m7 = _mm512_set1_pd(mp[7]), m8 = _mm512_set1_pd(mp[8]);
@@ -92,7 +91,7 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block
   const __m128i word_shift = _mm_cvtsi32_si128(slot_bits);
   const __m512i hit_mask = _mm512_set1_epi64(int64_t(mask)), three = _mm512_set1_epi64(3);
   const __m512i one = _mm512_set1_epi64(1), four = _mm512_set1_epi64(4);
-  uint32_t count = 0, groups = 0;
+  uint32_t count = 0;
   for (size_t k = 0; k < n; k += 8) {
     const __mmask8 live = n - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (n - k)) - 1);
     const __m512d px = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, x + k));
@@ -114,27 +113,21 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t block
       _mm_mask_storeu_epi8(state + k, live, _mm_setzero_si128());
       continue;
     }
-    ++groups;
     // Inside lanes: below 2^31 voxels, so the index fits int32; outside lanes are masked from here on.
     const __m256i ix = _mm512_cvttpd_epi32(ax), iy = _mm512_cvttpd_epi32(ay), iz = _mm512_cvttpd_epi32(az);
     const __m256i li = _mm256_maskz_mov_epi32(
         in, _mm256_add_epi32(ix, _mm256_mullo_epi32(inx, _mm256_add_epi32(iy, _mm256_mullo_epi32(iny, iz)))));
-    // The eight words by scalar loads (outside lanes read word 0): faster here than the gather instruction.
-    alignas(32) int32_t wi[8];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(wi), _mm256_srl_epi32(li, word_shift));
-    const __m256i w0 = _mm256_set_epi64x(int64_t(map[wi[3]]), int64_t(map[wi[2]]), int64_t(map[wi[1]]),
-                                         int64_t(map[wi[0]]));
-    const __m256i w1 = _mm256_set_epi64x(int64_t(map[wi[7]]), int64_t(map[wi[6]]), int64_t(map[wi[5]]),
-                                         int64_t(map[wi[4]]));
-    const __m512i word = _mm512_inserti64x4(_mm512_castsi256_si512(w0), w1, 1);
+    const __m512i word = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), in, _mm256_srl_epi32(li, word_shift),
+                                                     reinterpret_cast<const long long*>(map), 8);
     const __m512i shift = _mm512_slli_epi64(_mm512_cvtepi32_epi64(_mm256_and_si256(li, slot_mask)), 1);
     const __m512i st = _mm512_and_si512(_mm512_srlv_epi64(word, shift), three);
     const __mmask8 hit = _mm512_mask_test_epi64_mask(in, _mm512_srlv_epi64(hit_mask, st), one);
     count += uint32_t(__builtin_popcount(hit));
     _mm_mask_storeu_epi8(state + k, live, _mm512_cvtepi64_epi8(_mm512_maskz_or_epi64(hit, st, four)));
-    _mm256_mask_storeu_epi32(lin + k, live, li);
+    _mm256_mask_storeu_epi32(cx + k, hit, ix);
+    _mm256_mask_storeu_epi32(cy + k, hit, iy);
+    _mm256_mask_storeu_epi32(cz + k, hit, iz);
   }
-  *kept = groups;
   return count;
 }
 #pragma GCC diagnostic pop
@@ -147,8 +140,6 @@ struct BlockKernel {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
   __attribute__((target("arch=haswell"))) static uint32_t avx2(VOXCD_BLOCK_DOUBLE_FETCH_ARGS)
       VOXCD_BLOCK_DOUBLE_FETCH_BODY
-  __attribute__((target("arch=skylake-avx512,prefer-vector-width=512"))) static uint32_t
-      avx512(VOXCD_BLOCK_DOUBLE_FETCH_ARGS) VOXCD_BLOCK_DOUBLE_FETCH_BODY
 #endif
   struct Choice {
     Fn fn;
@@ -157,8 +148,9 @@ struct BlockKernel {
   static Choice choose() {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
     __builtin_cpu_init();
-    if (have_avx512()) return {avx512, "avx512"};
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return {avx2, "avx2"};
+    const std::string want = detail::kernel_override();
+    if (have_avx512() && (want.empty() || want == "avx512")) return {block_avx512, "avx512"};
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && want != "baseline") return {avx2, "avx2"};
 #endif
     return {base, "baseline"};
   }
@@ -166,13 +158,6 @@ struct BlockKernel {
 
 // Coordinates are int32 on the double path: DeviceConfig::validate keeps PW within 2..32.
 const BlockKernel<int32_t>::Choice block_fetch = BlockKernel<int32_t>::choose();
-using SparseFn = uint32_t (*)(const int32_t*, const int32_t*, const int32_t*, size_t, const double*, const double*,
-                              const double*, const uint64_t*, int, uint32_t, int32_t*, uint8_t*, uint32_t*);
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-const SparseFn block_sparse = have_avx512() ? block_sparse_avx512 : nullptr;
-#else
-const SparseFn block_sparse = nullptr;
-#endif
 
 void block_int64(const int64_t* x, const int64_t* y, const int64_t* z, size_t n, const Job& j, int tf,
                  int64_t* lin) {
@@ -213,38 +198,52 @@ Record& push_record(std::vector<Record>& out, Record::Kind kind, uint32_t tag) {
   return r;
 }
 
-// Appends the block's hit records; true when FIRST has its answer. Walks the states eight at a time: most of a
-// block's points are no hit.
-template <class Lin>
-bool emit_hits(const Job& j, uint32_t b, size_t n, const Lin* lin, const uint8_t* state, std::vector<Record>& hits,
-               uint32_t& count) {
-  const Dividers div(j);
+// Appends the block's hit records, voxel(k, r) setting point k's voxel in r; true when FIRST has its answer. Walks
+// the states eight at a time: most of a block's points are no hit.
+template <class Voxel>
+bool emit(const Job& j, uint32_t b, size_t n, const uint8_t* state, std::vector<Record>& hits, uint32_t& count,
+          const Voxel& voxel) {
   for (size_t k0 = 0; k0 < n; k0 += 8) {
-    // State k0 + i in byte i of `word`, so the lowest set bit is the next hit in point order.
-    uint64_t word = 0;
+    uint64_t word = 0;  // state k0 + i in byte i, so the lowest set bit is the next hit in point order
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
     if (n - k0 >= 8)
       std::memcpy(&word, state + k0, 8);
     else
 #endif
       for (size_t i = 0; i < std::min<size_t>(8, n - k0); ++i) word |= uint64_t(state[k0 + i]) << (8 * i);
-    uint64_t flags = word & 0x0404040404040404ull;
-    while (flags) {
+    for (uint64_t flags = word & 0x0404040404040404ull; flags; flags &= flags - 1) {
       const size_t k = k0 + size_t(__builtin_ctzll(flags) / 8);
-      flags &= flags - 1;
       ++count;
-      const uint64_t li = uint64_t(lin[k]);
-      const uint64_t yz = div.x(li), z = div.y(yz);
       Record& r = push_record(hits, Record::Hit, j.tag);
       r.point = b + uint32_t(k);
-      r.x = uint32_t(li - yz * j.nx);
-      r.y = uint32_t(yz - z * j.ny);
-      r.z = uint32_t(z);
+      voxel(k, r);
       r.state = uint8_t(state[k] & 3u);
       if (j.mode == Mode::First) return true;
     }
   }
   return false;
+}
+
+// The voxels given by the kernel.
+bool emit_cells(const Job& j, uint32_t b, size_t n, const int32_t* cx, const int32_t* cy, const int32_t* cz,
+                const uint8_t* state, std::vector<Record>& hits, uint32_t& count) {
+  return emit(j, b, n, state, hits, count, [&](size_t k, Record& r) {
+    r.x = uint32_t(cx[k]), r.y = uint32_t(cy[k]), r.z = uint32_t(cz[k]);
+  });
+}
+
+// The voxels from their linear indices.
+template <class Lin>
+bool emit_hits(const Job& j, uint32_t b, size_t n, const Lin* lin, const uint8_t* state, std::vector<Record>& hits,
+               uint32_t& count) {
+  const Dividers div(j);
+  return emit(j, b, n, state, hits, count, [&](size_t k, Record& r) {
+    const uint64_t li = uint64_t(lin[k]);
+    const uint64_t yz = div.x(li), z = div.y(yz);
+    r.x = uint32_t(li - yz * j.nx);
+    r.y = uint32_t(yz - z * j.ny);
+    r.z = uint32_t(z);
+  });
 }
 
 }  // namespace
@@ -279,6 +278,8 @@ const char* FastRunner::path_name(Path p) {
 }
 
 const char* FastRunner::double_kernel() { return block_fetch.name; }
+
+const char* FastRunner::distance_kernel() { return detail::distance_block_name(); }
 
 unsigned FastRunner::threads() const { return pool_ ? pool_->size() : 1; }
 
@@ -520,7 +521,7 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
                            uint32_t& hit_count) const {
   if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count);
   int64_t lin[kBlock];
-  int32_t lin32[kBlock];
+  int32_t cx[kBlock], cy[kBlock], cz[kBlock];
   uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit
   const bool fused = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
   // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is every
@@ -534,31 +535,19 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
   }
   const uint64_t slot_mask = (uint64_t{1} << slot_bits_) - 1;
   const uint64_t* map = map_.data() + j.map_base;
-  // The skipping kernel while a block's points mostly land outside the map, the generic one from the first block
-  // where most groups of eight had a point inside (the points of a job tend to stay on one side or the other). The
-  // first block is short, so that a job whose points land inside pays little for finding out.
-  bool sparse = fused && block_sparse != nullptr;
   size_t n = 0;
   for (uint32_t b = begin; b < end; b += uint32_t(n)) {
-    n = std::min<size_t>(b == begin && sparse ? kProbeBlock : kBlock, end - b);
+    n = std::min<size_t>(kBlock, end - b);
     const size_t base = size_t(j.shell_base) + b;
     if (fused) {
-      uint32_t count = 0;
-      if (sparse) {
-        uint32_t kept = 0;
-        count = block_sparse(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_, j.hit_mask, lin32,
-                             state, &kept);
-        sparse = 2 * size_t(kept) * 8 <= n;
-      } else {
-        count = block_fetch.fn(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_, j.hit_mask, lin32,
-                               state);
-      }
+      const uint32_t count = block_fetch.fn(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_,
+                                            j.hit_mask, cx, cy, cz, state);
       if (count == 0) continue;
       if (j.mode == Mode::Count) {
         hit_count += count;
         continue;
       }
-      if (emit_hits(j, b, n, lin32, state, hits, hit_count)) return;
+      if (emit_cells(j, b, n, cx, cy, cz, state, hits, hit_count)) return;
       continue;
     }
     switch (path_) {

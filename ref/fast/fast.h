@@ -3,7 +3,8 @@
 // on every arithmetic path below). The cpu backend (host/device/cpu.cpp) and the SystemC loosely-timed model
 // (sysc/tlm_target.cpp) both compute jobs with it.
 //
-// Distance voxmaps (SB > 2) take fast/distance.cpp's integer path whatever the widths.
+// Distance voxmaps (SB > 2) take fast/distance.cpp's paths: a vector kernel in doubles where every value is exact (the
+// default widths), else 64- and 128-bit integers one point at a time.
 // Three arithmetic paths, chosen by the widths, give the same bits as ref/:
 //  - double: when the accumulator fits 53 bits (the default widths: 49), every product M*p and every partial sum
 //    is an integer below 2^53, so double arithmetic is exact (fused multiply-adds included), and so is
@@ -45,8 +46,9 @@ class FastRunner {
   const DeviceConfig& config() const { return cfg_; }
   Path path() const { return path_; }
   static const char* path_name(Path p);  // "double", "int64", "wide"
-  // The double path's kernel on this processor: "avx512", "avx2" or "baseline".
+  // The double path's kernel on this processor: "avx512", "avx2" or "baseline"; and the distance path's.
   static const char* double_kernel();
+  static const char* distance_kernel();
   unsigned threads() const;
   // The pool the batches run on (null without one).
   const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
@@ -106,9 +108,13 @@ class FastRunner {
   // Looks up points [begin, end) of job j: appends their hit records (ALL: every one; FIRST: the first, then stops)
   // to `hits` and adds their number to `count`.
   void run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits, uint32_t& count) const;
-  // run_chunk on a distance voxmap (SB > 2), in fast/distance.cpp.
+  // run_chunk on a distance voxmap (SB > 2), in fast/distance.cpp: the vector kernel where distance_vector(j), else
+  // one point at a time.
   void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
                           uint32_t& count) const;
+  bool distance_vector(const Job& j) const;
+  void run_distance_vector(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
+                           uint32_t& count) const;
 
   DeviceConfig cfg_;
   Path path_ = Path::Double;

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang, ASan and UBSan into build-fuzz/ and runs each for EXECS executions
 # (default 10^6), one after the other, each from its seed corpus and its regressions:
-#   bash tests/fuzz/run.sh [EXECS] [TARGET...]        targets: mesh mesh_obj vectors object_file scene scene_file
+#   bash tests/fuzz/run.sh [EXECS] [TARGET...]        targets: mesh mesh_obj vectors object_file scene scene_file recording
 # Inputs a run finds interesting go to <build>/corpus/<target>/; a crash, leak, timeout or out-of-memory input
 # goes to <build>/findings/<target>/ (copy it to tests/fuzz/regressions/<target>/ once fixed). Prints, per
 # target: executions, seconds, findings. Exit status 1 when any target found something. FUZZ_SECONDS=N stops each
@@ -14,7 +14,7 @@ cd "$(dirname "$0")/../.."
 execs="${1:-1000000}"
 [ $# -gt 0 ] && shift
 targets=("$@")
-((${#targets[@]})) || targets=(mesh mesh_obj vectors object_file scene scene_file)
+((${#targets[@]})) || targets=(mesh mesh_obj vectors object_file scene scene_file recording)
 
 command -v clang++ >/dev/null || { echo "run.sh needs clang++: apt-get install -y clang libclang-rt-14-dev" >&2; exit 2; }
 sanitizers="${FUZZ_SANITIZERS:-address,undefined}"

@@ -213,5 +213,72 @@ TEST(Cli, ErrorsNameWhatAndWhere) {
   std::remove(vox.c_str());
 }
 
+// A triangle with a NaN corner is dropped and counted, also when what is left is a point cloud of the other corners.
+TEST(Cli, NonFiniteCornerIsCountedInEveryReport) {
+  const std::string obj = test::tmp_path("nan_corner.obj"), vox = test::tmp_path("nan_corner.vxo");
+  test::write_file(obj, "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  MeshReport rep;
+  const Mesh m = load_mesh(obj, &rep);
+  EXPECT_EQ(rep.dropped_nonfinite, 1u);
+  EXPECT_TRUE(rep.points_only);
+  EXPECT_EQ(m.vertices.size(), 2u);
+  CliRun r = run("voxelize " + obj + " --voxel 0.1 -o " + vox);
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("dropped 1 non-finite"), std::string::npos) << r.out;
+  r = run("info " + vox + " --json");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("\"nonfinite\": 1"), std::string::npos) << r.out;
+  std::remove(obj.c_str());
+  std::remove(vox.c_str());
+}
+
+// Two boxes sharing a face: the report says how many non-manifold edges and parts repair found and what it did,
+// and the object file keeps it (version 4).
+TEST(Cli, NonManifoldPartsAreReported) {
+  const std::string raw = test::tmp_path("face_sharing.raw"), vox = test::tmp_path("face_sharing.vxo");
+  std::ostringstream text;
+  for (const Eigen::Vector3d& lo : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0)}) {
+    const Mesh b = make_box(lo, lo + Eigen::Vector3d::Ones());
+    for (size_t t = 0; t < b.size(); ++t) {
+      for (int k = 0; k < 3; ++k) text << b.corner(t, k).x() << " " << b.corner(t, k).y() << " " << b.corner(t, k).z() << " ";
+      text << "\n";
+    }
+  }
+  test::write_file(raw, text.str());
+  CliRun r = run("voxelize " + raw + " --resolution 32 --distance-bits 8 -o " + vox);
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("nonmanifold 4 edges of three triangles or more in 1 parts"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("dropped 2 internal triangles"), std::string::npos) << r.out;
+  r = run("info " + vox + " --json");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_EQ(json_number(r.out, "nonmanifold_parts"), 1);
+  EXPECT_EQ(json_number(r.out, "internal"), 2);
+  EXPECT_GT(json_number(r.out, "interior"), 0);
+  const ObjectFile o = read_object(vox);
+  EXPECT_EQ(o.mesh_report.dropped_internal, 2u);
+  EXPECT_EQ(o.voxelize_report.conservative, json_number(r.out, "conservative_cells"));
+  std::remove(raw.c_str());
+  std::remove(vox.c_str());
+}
+
+// voxcd pair --json prints the voxel the objects were built at, also when they come from object files.
+TEST(Cli, PairJsonGivesTheObjectFilesVoxel) {
+  const std::string a = test::tmp_path("pair_a.vxo"), b = test::tmp_path("pair_b.vxo");
+  ASSERT_EQ(run("voxelize torus --voxel 0.07 -o " + a).rc, 0);
+  ASSERT_EQ(run("voxelize cube --voxel 0.07 -o " + b).rc, 0);
+  CliRun r = run("pair " + a + " " + b + " --json");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_EQ(json_number(r.out, "voxel"), read_object(a).voxmap.voxel()) << r.out;
+  ASSERT_EQ(run("voxelize cube --voxel 0.09 -o " + b).rc, 0);
+  r = run("pair " + a + " " + b + " --json");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex("\"voxel\": \\[([0-9.eE+-]+), ([0-9.eE+-]+)\\]"))) << r.out;
+  EXPECT_EQ(std::stod(m[1]), read_object(a).voxmap.voxel());
+  EXPECT_EQ(std::stod(m[2]), read_object(b).voxmap.voxel());
+  std::remove(a.c_str());
+  std::remove(b.c_str());
+}
+
 }  // namespace
 }  // namespace voxcd

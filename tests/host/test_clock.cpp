@@ -1,71 +1,70 @@
-// The device clock (host/device/clock.h): the default estimate equals docs/hardware.md's bench:fmax block, every
-// clock says where it comes from, and a clock that is no frequency is refused naming where it was given.
+// The device clock (host/device/clock.h): the default is the OpenSTA figure of docs/hardware.md's bench:timing block
+// and of the timing table, every clock says where it comes from, and a clock that is no frequency is refused naming
+// where it was given.
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "voxcd/host/device/clock.h"
+#include "voxcd/host/sizing/depth.h"
+#include "voxcd/host/sizing/timing_table.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/scene/simulate.h"
 
 namespace voxcd {
 namespace {
 
-// The text between docs/hardware.md's bench:fmax markers (what bench/fmax.sh wrote).
-std::string fmax_block() {
+// The text between docs/hardware.md's bench:timing markers (what bench/timing.sh wrote).
+std::string timing_block() {
   std::ifstream in(std::string(VOXCD_SOURCE_DIR) + "/docs/hardware.md");
   std::stringstream s;
   s << in.rdbuf();
   const std::string doc = s.str();
-  const auto begin = doc.find("<!-- bench:fmax:begin -->"), end = doc.find("<!-- bench:fmax:end -->");
+  const auto begin = doc.find("<!-- bench:timing:begin -->"), end = doc.find("<!-- bench:timing:end -->");
   if (begin == std::string::npos || end == std::string::npos || end < begin) return "";
   return doc.substr(begin, end - begin);
 }
 
-bool numeric(char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == '.'; }
-
-// The number (digits and points) right before the first `after` in `text`, or "" when there is none.
-std::string number_before(const std::string& text, const std::string& after) {
-  const size_t at = text.find(after);
-  if (at == std::string::npos) return "";
-  size_t b = at;
-  while (b > 0 && numeric(text[b - 1])) --b;
-  return text.substr(b, at - b);
+// The cells of the first table row of `text` that starts with "| <first> |", trimmed; empty when there is none.
+std::vector<std::string> table_row(const std::string& text, const std::string& first) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("| " + first + " |", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::istringstream row(line.substr(1));
+    for (std::string cell; std::getline(row, cell, '|');) {
+      const size_t b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
+      cells.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+    }
+    return cells;
+  }
+  return {};
 }
 
-// The number right after the first `before` in `text`, or "".
-std::string number_after(const std::string& text, const std::string& before) {
-  const size_t at = text.find(before);
-  if (at == std::string::npos) return "";
-  size_t e = at + before.size();
-  while (e < text.size() && numeric(text[e])) ++e;
-  return text.substr(at + before.size(), e - at - before.size());
-}
-
-TEST(DeviceClock, DefaultEqualsTheLogicDepthEstimateOfHardwareMd) {
-  const std::string block = fmax_block();
-  ASSERT_FALSE(block.empty()) << "docs/hardware.md has no bench:fmax block";
-  const std::string levels = number_before(block, " LUT levels and ");
-  const std::string carry = number_before(block, " CARRY4 cells");
-  const std::string ns_lut = number_after(block, "Assuming ");
-  const std::string ns_carry = number_before(block, " ns per CARRY4");
-  const std::string path = number_after(block, "the path takes ");
-  const std::string mhz = number_after(block, "an estimated clock of ");
-  ASSERT_FALSE(levels.empty() || carry.empty() || ns_lut.empty() || ns_carry.empty() || path.empty() || mhz.empty())
-      << "the bench:fmax block no longer states the logic-depth estimate as bench/fmax.sh wrote it:\n" << block;
-  // When bench/fmax.sh gives another figure, host/device/clock.h's constants must follow it.
-  EXPECT_EQ(std::stoi(levels), kEstimateLutLevels);
-  EXPECT_EQ(std::stoi(carry), kEstimateCarry4);
-  EXPECT_DOUBLE_EQ(std::stod(ns_lut), kEstimateNsPerLut);
-  EXPECT_DOUBLE_EQ(std::stod(ns_carry), kEstimateNsPerCarry4);
-  EXPECT_NEAR(std::stod(path), default_path_ns(), 1e-9);
-  EXPECT_DOUBLE_EQ(std::stod(mhz), kDefaultClockMhz);
-  EXPECT_EQ(std::lround(1000 / default_path_ns()), std::lround(kDefaultClockMhz));
+TEST(DeviceClock, DefaultIsTheOpenStaClockOfHardwareMdAndTheTimingTable) {
+  const std::string block = timing_block();
+  ASSERT_FALSE(block.empty()) << "docs/hardware.md has no bench:timing block";
+  const int depth = depth_of(DeviceConfig{});
+  // The summary table: depth, latency, ASIC Fmax (MHz), ...
+  const std::vector<std::string> cells = table_row(block, std::to_string(depth));
+  ASSERT_GE(cells.size(), 3u) << "the bench:timing block has no row for depth " << depth << ":\n" << block;
+  EXPECT_NE(block.find("| depth | latency (cycles) | ASIC Fmax (MHz) |"), std::string::npos)
+      << "the summary table's columns moved:\n" << block;
+  // When bench/timing.sh gives another figure, host/device/clock.h's constant must follow it.
+  EXPECT_DOUBLE_EQ(std::stod(cells[2]), kDefaultClockMhz) << "docs/hardware.md's ASIC Fmax at depth " << depth;
+  bool found = false;
+  for (const TimingRow& r : builtin_timing_table().target_rows("asic-osu018"))
+    if (r.depth == depth) {
+      found = true;
+      EXPECT_DOUBLE_EQ(r.mhz, kDefaultClockMhz) << "host/sizing/timing.tsv's asic-osu018 row at depth " << depth;
+      EXPECT_EQ(r.source + ", docs/hardware.md", kDefaultClockSource);
+    }
+  EXPECT_TRUE(found) << "host/sizing/timing.tsv has no asic-osu018 row at depth " << depth;
 }
 
 TEST(DeviceClock, TheDecisionIsWrittenDown) {
@@ -76,14 +75,14 @@ TEST(DeviceClock, TheDecisionIsWrittenDown) {
       << "docs/hardware.md should say which clock the tool uses by default, and why";
 }
 
-TEST(DeviceClock, TheDefaultSaysItIsAnEstimateAndWhere) {
+TEST(DeviceClock, TheDefaultSaysItIsAMeasurementAndWhere) {
   const DeviceClock c = default_device_clock();
   EXPECT_EQ(c.mhz, kDefaultClockMhz);
-  EXPECT_TRUE(c.estimate);
-  EXPECT_EQ(c.source,
-            "estimate: synth_xilinx logic depth of the default configuration, 16 LUT levels x 0.5 ns + 2 CARRY4 x "
-            "0.1 ns = 8.2 ns (docs/hardware.md)");
-  EXPECT_EQ(c.text(), "122 MHz (" + c.source + ")");
+  EXPECT_FALSE(c.estimate);
+  EXPECT_EQ(c.source, "OpenSTA, OSU 0.18 um, docs/hardware.md");
+  std::ostringstream mhz;
+  mhz << kDefaultClockMhz;
+  EXPECT_EQ(c.text(), mhz.str() + " MHz (OpenSTA, OSU 0.18 um, docs/hardware.md)");
 }
 
 TEST(DeviceClock, AGivenClockNamesWhereItWasGiven) {
@@ -109,7 +108,7 @@ TEST(DeviceClock, AClockThatIsNoFrequencyIsRefusedNamingTheOption) {
   EXPECT_EQ(clock_problem(0.5), "");
 }
 
-TEST(DeviceClock, ASceneFileWithoutClockUsesTheEstimate) {
+TEST(DeviceClock, ASceneFileWithoutClockUsesTheDefault) {
   const SceneFile none = parse_scene_file(R"({"types": [{"shape": "cube"}]})", "a.json");
   EXPECT_EQ(none.clock.mhz, kDefaultClockMhz);
   EXPECT_EQ(none.clock.source, default_device_clock().source);
@@ -132,6 +131,7 @@ TEST(DeviceClock, FramesWithoutDeviceCyclesHaveNoDeviceRate) {
   s.totals.idle_frames = 10;
   EXPECT_EQ(s.device_rate(), 0);
   EXPECT_EQ(s.device_rate_text(), "none: the frames needed no device cycles");
+  s.clock = given_clock(122, "--clock");
   s.totals.cycles = 1220;  // one frame of 1220 cycles, nine of none: 122 cycles a frame on average
   s.totals.max_cycles = 1220;
   s.totals.idle_frames = 9;

@@ -65,6 +65,9 @@ void expect_report(const MeshReport& r, const test::ExpectedReport& e, const std
   num(e.sheet_components, r.sheet_components, "sheet_components");
   num(e.triangles, r.triangles, "triangles");
   num(e.vertices, r.vertices, "vertices");
+  num(e.nonmanifold_parts, r.nonmanifold_parts, "nonmanifold_parts");
+  num(e.dropped_internal, r.dropped_internal, "dropped_internal");
+  num(e.fin_triangles, r.fin_triangles, "fin_triangles");
   flag(e.closed, r.closed, "closed");
   flag(e.flipped, r.flipped, "flipped");
   flag(e.surface_only, r.surface_only, "surface_only");

@@ -14,6 +14,7 @@
 #include "tests/defects.h"
 #include "tests/error_text.h"
 #include "tests/host/test_util.h"
+#include "voxcd/host/object/detail/unresolved.h"
 #include "voxcd/host/object/distance_field.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
@@ -142,11 +143,14 @@ Voxmap voxmap_of(const Mesh& m, double voxel, const Eigen::Vector3d& shift = Eig
   return voxelize(m, o);
 }
 
-DistanceField field_of(const Mesh& m, const Voxmap& vm, int bits = 8, double band = 4, unsigned threads = 0) {
+// The measured field, without conservative cells (ConservativeCells* below checks those).
+DistanceField field_of(const Mesh& m, const Voxmap& vm, int bits = 8, double band = 4, unsigned threads = 0,
+                       bool conservative = false) {
   DistanceOptions o;
   o.bits = bits;
   o.band = band;
   o.threads = threads;
+  o.conservative = conservative;
   return distance_field(m, vm, o);
 }
 
@@ -253,8 +257,94 @@ TEST(DistanceField, SheetsAreUnsigned) {
 TEST(DistanceField, ThreadCountNeverChangesTheField) {
   const Mesh m = make_shape("torus");
   const Voxmap vm = voxmap_of(m, longest(m) / 40);
-  const DistanceField a = field_of(m, vm, 16, 4, 1), b = field_of(m, vm, 16, 4, 3);
-  EXPECT_EQ(a.q, b.q);
+  for (bool conservative : {false, true}) {
+    const DistanceField a = field_of(m, vm, 16, 4, 1, conservative), b = field_of(m, vm, 16, 4, 3, conservative);
+    EXPECT_EQ(a.q, b.q);
+  }
+}
+
+// ---- Conservative cells ----
+
+// The conservative field against the measured one: it only lowers nodes, and only to 0; every lowered node is a
+// corner of a cell the surface crosses whose eight nodes are all <= 0 (so every point in it is a hit); and in every
+// other cell the surface crosses, the interpolant is at most 1/4 voxel (plus rounding) at random points of the
+// surface (sheets: no such cell). Returns the cells whose nodes are all <= 0 among the surface cells.
+uint64_t check_conservative(const Mesh& m, const Voxmap& vm, uint64_t seed) {
+  const DistanceField raw = field_of(m, vm, 8, 4, 0, false), f = field_of(m, vm, 8, 4, 0, true);
+  EXPECT_EQ(raw.q.size(), f.q.size());
+  auto all_hit = [&](uint64_t x, uint64_t y, uint64_t z) {
+    for (int k = 0; k < 8; ++k)
+      if (f.at(x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1)) > 0) return false;
+    return true;
+  };
+  const std::vector<uint64_t> sb = surface_bits(m, vm.grid());
+  auto surface = [&](uint64_t x, uint64_t y, uint64_t z) {
+    const uint64_t i = vm.index(uint32_t(x), uint32_t(y), uint32_t(z));
+    return (sb[i >> 6] >> (i & 63)) & 1;
+  };
+  int failures = 0;
+  for (uint64_t Z = 0; Z <= f.dims[2]; ++Z)
+    for (uint64_t Y = 0; Y <= f.dims[1]; ++Y)
+      for (uint64_t X = 0; X <= f.dims[0]; ++X) {
+        const int a = raw.at(X, Y, Z), b = f.at(X, Y, Z);
+        if (a == b) continue;
+        bool explained = false;
+        for (int k = 0; k < 8 && !explained; ++k) {
+          const int64_t x = int64_t(X) - (k & 1), y = int64_t(Y) - (k >> 1 & 1), z = int64_t(Z) - (k >> 2 & 1);
+          if (x < 0 || y < 0 || z < 0 || x >= f.dims[0] || y >= f.dims[1] || z >= f.dims[2]) continue;
+          explained = surface(x, y, z) && all_hit(x, y, z);
+        }
+        if (!(a > 0 && b == 0 && explained) && ++failures <= 5)
+          ADD_FAILURE() << m.name << ": node (" << X << ", " << Y << ", " << Z << ") measured " << a << ", stored " << b;
+      }
+  // Random points of the surface.
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (size_t t = 0; t < m.size(); ++t)
+    for (int k = 0; k < 40; ++k) {
+      double r1 = u(rng), r2 = u(rng);
+      if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;
+      const Eigen::Vector3d p = m.corner(t, 0) + r1 * (m.corner(t, 1) - m.corner(t, 0)) + r2 * (m.corner(t, 2) - m.corner(t, 0));
+      const Eigen::Vector3d g = (p - vm.origin()) / vm.voxel();
+      const uint64_t x = uint64_t(g.x()), y = uint64_t(g.y()), z = uint64_t(g.z());
+      if (all_hit(x, y, z)) continue;
+      EXPECT_FALSE(m.is_sheet(t)) << m.name << ": a sheet's cell is not conservative";
+      const double v = f.sample(g);
+      if (v > detail::kResolvedTolerance + f.step && ++failures <= 10)
+        ADD_FAILURE() << m.name << ": the interpolant is " << v << " voxels at a surface point in cell (" << x << ", "
+                      << y << ", " << z << "), which is not conservative";
+    }
+  EXPECT_EQ(failures, 0) << m.name;
+  uint64_t conservative = 0;
+  for (uint64_t z = 0; z < f.dims[2]; ++z)
+    for (uint64_t y = 0; y < f.dims[1]; ++y)
+      for (uint64_t x = 0; x < f.dims[0]; ++x) conservative += surface(x, y, z) && all_hit(x, y, z);
+  return conservative;
+}
+
+TEST(DistanceField, ConservativeCellsWhereTheNodesDoNotResolveTheSurface) {
+  // A plate a quarter voxel thick: no node lies inside it, so every cell it crosses is conservative.
+  Mesh plate = make_box(Eigen::Vector3d(-1, -1, -0.0125), Eigen::Vector3d(1, 1, 0.0125));
+  plate.name = "plate a quarter voxel thick";
+  const Voxmap pv = voxmap_of(plate, 0.1);
+  EXPECT_EQ(check_conservative(plate, pv, test::seed()), pv.counts()[kSurface]);
+  // A sheet: the same.
+  Mesh sheet;
+  sheet.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.2}, {0, 1, 0.2}};
+  sheet.triangles = {{0, 1, 2}, {0, 2, 3}};
+  sheet.name = "sheet";
+  repair(sheet);
+  const Voxmap sv = voxmap_of(sheet, 0.1);
+  EXPECT_EQ(check_conservative(sheet, sv, test::seed() + 1), sv.counts()[kSurface]);
+  // Smooth and sharp closed shapes: some conservative cells at most, and the rest resolved.
+  for (const char* name : {"sphere", "torus", "cube", "stellated"}) {
+    const Mesh m = make_shape(name);
+    const Voxmap vm = voxmap_of(m, longest(m) / 24);
+    const uint64_t n = check_conservative(m, vm, test::seed() + 2);
+    std::printf("%s: %llu of %llu surface cells conservative\n", name, (unsigned long long)n,
+                (unsigned long long)vm.counts()[kSurface]);
+    EXPECT_LT(n, vm.counts()[kSurface]) << name;
+  }
 }
 
 // ---- The device's memory image ----

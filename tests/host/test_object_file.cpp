@@ -11,6 +11,7 @@
 
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
+#include "tests/defects.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {
@@ -159,6 +160,56 @@ TEST(ObjectFile, ByteLayoutIsTheDocumentedOne) {
   EXPECT_EQ(r.pos, b.size());
 }
 
+// Version 4: an object with non-manifold parts or conservative distance cells keeps those counts in the report's
+// second section, the last field before the checksum; damaged, it is refused with the byte.
+TEST(ObjectFile, Version4KeepsTheSecondReportSection) {
+  const test::Defect d = test::face_sharing_boxes();
+  Mesh m = d.mesh;
+  const MeshReport rep = repair(m);
+  ObjectOptions o;
+  o.resolution = 24;
+  o.distance_bits = 8;
+  const ObjectFile a = make_object(m, "faces.raw", 7, o, &rep);
+  ASSERT_EQ(a.mesh_report.dropped_internal, 2u);
+  ASSERT_GT(a.voxelize_report.conservative, 0u);
+  const std::string p = test::tmp_path("v4.vox");
+  write_object(p, a);
+  const std::string b = read_bytes(p);
+  uint32_t version = 0;
+  std::memcpy(&version, b.data() + 8, 4);
+  EXPECT_EQ(version, 4u);
+  // Count, four counts, checksum.
+  LayoutReader r{b};
+  r.pos = b.size() - 4 - 32 - 4;
+  EXPECT_EQ(r.get<uint32_t>(), 4u);
+  for (uint64_t v : {uint64_t(a.mesh_report.nonmanifold_parts), uint64_t(a.mesh_report.dropped_internal),
+                     uint64_t(a.mesh_report.fin_triangles), a.voxelize_report.conservative})
+    EXPECT_EQ(r.get<uint64_t>(), v);
+  const ObjectFile back = read_object(p);
+  EXPECT_EQ(back.mesh_report.nonmanifold_parts, 1u);
+  EXPECT_EQ(back.mesh_report.dropped_internal, 2u);
+  EXPECT_EQ(back.voxelize_report.conservative, a.voxelize_report.conservative);
+  EXPECT_EQ(back.distance.q, a.distance.q);
+  // A count that is not 4 (checksum fixed up), and the file cut inside the section.
+  std::string c = b;
+  c[b.size() - 40] = 5;
+  const uint32_t crc = uint32_t(crc32(0, reinterpret_cast<const Bytef*>(c.data()), uInt(c.size() - 4)));
+  std::memcpy(&c[c.size() - 4], &crc, 4);
+  test::write_file(p, c);
+  EXPECT_NE(read_error(p).find("holds 5 counts; version 4 has 4 (byte " + std::to_string(b.size() - 40) + ")"),
+            std::string::npos)
+      << read_error(p);
+  test::write_file(p, b.substr(0, b.size() - 20));
+  EXPECT_NE(read_error(p).find("truncated"), std::string::npos) << read_error(p);
+  std::remove(p.c_str());
+  // An object without either keeps its version: a closed shape without a field is version 2.
+  const ObjectFile plain = small_object("icosahedron", 0.15);
+  write_object(p, plain);
+  std::memcpy(&version, read_bytes(p).data() + 8, 4);
+  EXPECT_EQ(version, 2u);
+  std::remove(p.c_str());
+}
+
 TEST(ObjectFile, DamagedFilesNameTheFileAndTheByte) {
   const uint64_t seed = test::seed();
   std::printf("seed %llu (VOXCD_SEED)\n", (unsigned long long)seed);
@@ -199,9 +250,9 @@ TEST(ObjectFile, DamagedFilesNameTheFileAndTheByte) {
     c[0] = 'W';
     EXPECT_EQ(expect_error(c, "bad magic", "magic"), where + "not a voxcd object file (bad magic) (byte 0)");
     c = b;
-    c[8] = 4;
-    EXPECT_EQ(expect_error(c, "version 4 is not supported", "version"),
-              where + "object file version 4 is not supported (this reader knows versions 1 to 3) (byte 8)");
+    c[8] = 5;
+    EXPECT_EQ(expect_error(c, "version 5 is not supported", "version"),
+              where + "object file version 5 is not supported (this reader knows versions 1 to 4) (byte 8)");
     c = b;
     c[12] = 1;
     expect_error(c, "unknown flags 1", "flags");

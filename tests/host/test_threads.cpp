@@ -149,8 +149,8 @@ std::vector<SimCase> sim_cases() {
     v.push_back(c);
   }
   {
-    SimCase c{"crowded, distance voxmaps, ccd", {}, {}, 12, 4096};
-    c.spec.objects = 400, c.spec.density = 0.1, c.spec.speed = 0.5, c.spec.seed = 10, c.spec.distance_bits = 8;
+    SimCase c{"crowded, distance voxmaps, ccd", {}, {}, 8, 4096};
+    c.spec.objects = 1600, c.spec.density = 0.12, c.spec.speed = 0.5, c.spec.seed = 10, c.spec.distance_bits = 8;
     c.opt.distance_bits = 8;
     c.opt.ccd = true;
     v.push_back(c);

@@ -30,6 +30,26 @@ if find "$P/include" -path '*detail*' -o -name server_protocol.h -o -path '*/cli
   fail "internal headers were installed: $(find "$P/include" -path '*detail*' -o -name server_protocol.h -o -path '*/cli/*')"
 fi
 
+step "the public headers: each includes only installed headers and compiles on its own"
+inc="$P/include"
+while IFS= read -r h; do
+  rel=${h#"$inc/"}
+  while IFS= read -r dep; do
+    [ -e "$inc/$dep" ] || fail "$rel includes $dep, which is not installed (an internal header)"
+  done < <(sed -n 's/^#include "\(voxcd\/[^"]*\)".*/\1/p' "$h")
+  case "$rel" in
+    voxcd/sysc/*) flags=$(pkg-config --cflags systemc) ;;
+    *) flags="" ;;
+  esac
+  # shellcheck disable=SC2086
+  echo "#include <$rel>" | c++ -std=c++17 -fsyntax-only -I"$inc" -isystem /usr/include/eigen3 $flags -x c++ - ||
+    fail "$rel does not compile on its own"
+done < <(find "$inc" -name '*.h')
+# The umbrella includes the public API and nothing of the library's inside.
+if grep -n '#include "voxcd/host/\(object/\(voxelize\|object_type\|object_file\)\|scene/scene\|pairs/collide\|regress\|sizing\)' "$inc/voxcd/voxcd.h"; then
+  fail "the umbrella header includes an internal header"
+fi
+
 step "the installed tool"
 "$P/bin/voxcd" --version | tee "$work/version.txt"
 # Every backend of a full build is installed ready: the rtl backend's module from lib/voxcd, the server from libexec.
@@ -53,7 +73,8 @@ fi
 step "C++ example with CMake (find_package(voxcd), voxcd::host)"
 cmake -S "$src/docs/examples/cpp" -B "$work/cpp" -G Ninja -DCMAKE_PREFIX_PATH="$P" >/dev/null
 cmake --build "$work/cpp" >/dev/null
-"$work/cpp/contacts"
+"$work/cpp/contacts" >/dev/null
+"$work/cpp/world"
 
 step "C++ example with pkg-config"
 export PKG_CONFIG_PATH="$P/lib/pkgconfig"

@@ -236,3 +236,50 @@ def test_bad_distance_keywords_are_refused_as_the_tool_refuses_them(cli, cli_err
     plain = voxcd.pair("cube", "torus", [1.2, 0, 0])
     with_margin = voxcd.pair("cube", "torus", [1.2, 0, 0], margin=0.1, band=6.0)
     assert with_margin["hits"] == plain["hits"] and np.array_equal(with_margin["depths"], plain["depths"])
+
+
+def test_contacts_in_flat_arrays_are_those_of_query():
+    pair = voxcd.Pair("torus", "cube", voxel=0.1)
+    poses = np.array([[0.2 * k, 0.1, -0.1, 7 * k, 0, 3 * k] for k in range(8)])
+    for both in (False, True):
+        flat = pair.contacts(poses, both=both)
+        per_pose = pair.query(poses, both=both)
+        assert flat["first"].shape == (len(poses) + 1,) and flat["first"][0] == 0
+        assert flat["first"][-1] == len(flat["points"]) == sum(len(r["points"]) for r in per_pose) > 0
+        for i, want in enumerate(per_pose):
+            rows = slice(flat["first"][i], flat["first"][i + 1])
+            assert flat["hits"][i] == want["hits"] and flat["lookups"][i] == want["lookups"]
+            assert flat["device_cycles"][i] == want["device_cycles"]
+            assert (flat["pose"][rows] == i).all()
+            for key in ("a_in_b", "points", "positions", "normals", "voxels", "states", "depths"):
+                np.testing.assert_array_equal(flat[key][rows], want[key], err_msg=key)
+    one = pair.contacts([0.2, 0.1, -0.1])
+    assert one["first"].shape == (2,) and one["hits"][0] == pair.query([0.2, 0.1, -0.1])["hits"]
+    with pytest.raises(ValueError, match="mode"):
+        pair.contacts(poses, mode="SOME")
+
+
+def test_contact_arrays_are_views_reused_once_freed():
+    import gc
+
+    pair = voxcd.Pair("torus", "cube", voxel=0.1)
+    poses = np.array([[0.1 * k, 0, 0, 5 * k, 0, 0] for k in range(6)])
+    first = pair.contacts(poses, both=True)
+    assert not first["positions"].flags["OWNDATA"] and first["positions"].base is not None
+    kept = first["positions"]
+    address = kept.__array_interface__["data"][0]
+    values = kept.copy()
+    del first
+    gc.collect()
+    # One array still alive keeps every array of its query: a second query writes elsewhere.
+    second = pair.contacts(poses, both=True)
+    assert second["positions"].__array_interface__["data"][0] != address
+    np.testing.assert_array_equal(kept, values)
+    del second
+    gc.collect()
+    del kept
+    gc.collect()
+    # All freed (the first query's last): the next query of the same size writes into the first's memory again.
+    third = pair.contacts(poses, both=True)
+    assert third["positions"].__array_interface__["data"][0] == address
+    np.testing.assert_array_equal(third["positions"], values)

@@ -8,9 +8,8 @@ import voxcd
 
 # Host times differ from run to run; everything else is deterministic.
 TIMES = {"seconds", "frame_rate_hz", "stage_seconds"}
-# The estimate every rate uses when no clock is given (docs/hardware.md, "Measured clock").
-ESTIMATE = ("estimate: synth_xilinx logic depth of the default configuration, 16 LUT levels x 0.5 ns + 2 CARRY4 x "
-            "0.1 ns = 8.2 ns (docs/hardware.md)")
+# The source of the clock every rate uses when no clock is given (docs/hardware.md, "The default clock").
+DEFAULT_SOURCE = "OpenSTA, OSU 0.18 um, docs/hardware.md"
 
 
 def assert_same_summary(got, want):
@@ -63,15 +62,28 @@ def test_options_override_the_file_as_the_tools_do(cli_json, scenes):
     assert (got["clock_source"], got["clock_estimate"]) == ("given by the clock argument", False)
 
 
-def test_every_rate_names_its_clock(scenes):
+def test_every_rate_names_its_clock(cli_json, scenes):
     default = voxcd.simulate(frames=5)
-    assert (default["clock_mhz"], default["clock_source"], default["clock_estimate"]) == (122, ESTIMATE, True)
-    assert default["device_frame_rate_hz"] == pytest.approx(122e6 / default["device_cycles_per_frame"])
+    mhz = cli_json("simulate", "--frames", "1")["clock_mhz"]  # the tool's default, the same figure
+    assert (default["clock_mhz"], default["clock_source"], default["clock_estimate"]) == (mhz, DEFAULT_SOURCE, False)
+    assert default["device_frame_rate_hz"] == pytest.approx(mhz * 1e6 / default["device_cycles_per_frame"])
     given = voxcd.simulate(scenes / "small.json", frames=5)
     assert given["clock_mhz"] == 100 and given["clock_source"] == f"given by {scenes / 'small.json'}'s \"clock\""
     sized = voxcd.size(scenes / "small.json", frames=5, clock=80)
     assert (sized["clock_mhz"], sized["clock_source"], sized["clock_estimate"]) == (80, "given by the clock argument",
                                                                                      False)
+    assert sized["target"] is None and sized["depth_choice"] is None and sized["latency_cycles"] == 8
+
+
+def test_size_chooses_the_depth_for_a_target(cli_json, scenes):
+    want = cli_json("size", scenes / "small.json", "--frames", "5", "--clock", "20", "--target", "ice40-hx8k")
+    got = voxcd.size(scenes / "small.json", frames=5, clock=20, target="ice40-hx8k")
+    assert got["depth_choice"] == want["depth_choice"] and got["depth_choice"]["depth"] == 0
+    assert got["depth_choice"]["why"].startswith("depth 0: ") and got["target"] == "ice40-hx8k"
+    with pytest.raises(ValueError, match="target: 'ice40-hx9k' is not one of asic-osu018"):
+        voxcd.size(scenes / "small.json", frames=5, target="ice40-hx9k")
+    with pytest.raises(ValueError, match="cannot be met: clock: no depth meets 100000 MHz on xilinx-7"):
+        voxcd.size(scenes / "small.json", frames=5, clock=100000, target="xilinx-7")
 
 
 def test_frames_without_device_cycles_have_no_device_rate():

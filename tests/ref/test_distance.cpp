@@ -351,12 +351,13 @@ TEST(DistanceTiming, ThreeMoreSlotsBeforeTheHitTest) {
 
 TEST(DistanceFast, CpuBackendMatchesTheSpecificationOnEveryPath) {
   const uint64_t seed = test_seed();
+  std::printf("distance kernel: %s, 2-bit kernel: %s\n", FastRunner::distance_kernel(), FastRunner::double_kernel());
   struct Named {
     const char* name;
     DeviceConfig cfg;
   };
   std::vector<Named> cfgs = {{"SB8", distance_config(8, 8)}, {"SB4 WB2", distance_config(4, 2)},
-                             {"SB16 WB16", distance_config(16, 16)}};
+                             {"SB16 WB16", distance_config(16, 16)}, {"SB16 WB8 (vector path)", distance_config(16, 8)}};
   DeviceConfig wide = distance_config(16, 12);
   wide.PW = 32, wide.PF = 16, wide.MW = 26, wide.MF = 24, wide.TW = 64, wide.MEMW = 32, wide.LANES = 2;
   cfgs.push_back({"wide path SB16 WB12", wide});

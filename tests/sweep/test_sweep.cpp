@@ -71,11 +71,56 @@ TEST(SweepPoints, CrossProductLanesOutermostAccuracyInnermost) {
   const SweepSpec s = spec4();
   ASSERT_EQ(s.points(), 16u);
   const SweepPoint p0 = point_at(s, 0), p1 = point_at(s, 1), p2 = point_at(s, 2), p15 = point_at(s, 15);
-  EXPECT_EQ(p0.text(), "lanes 1, voxel x1, distance bits 0, accuracy 0.02");
-  EXPECT_EQ(p1.text(), "lanes 1, voxel x1, distance bits 0, accuracy 0.005");
-  EXPECT_EQ(p2.text(), "lanes 1, voxel x1, distance bits 8, accuracy 0.02");
-  EXPECT_EQ(p15.text(), "lanes 2, voxel x0.5, distance bits 8, accuracy 0.005");
+  EXPECT_EQ(p0.text(), "lanes 1, depth 0, voxel x1, distance bits 0, accuracy 0.02");
+  EXPECT_EQ(p1.text(), "lanes 1, depth 0, voxel x1, distance bits 0, accuracy 0.005");
+  EXPECT_EQ(p2.text(), "lanes 1, depth 0, voxel x1, distance bits 8, accuracy 0.02");
+  EXPECT_EQ(p15.text(), "lanes 2, depth 0, voxel x0.5, distance bits 8, accuracy 0.005");
   EXPECT_THROW(point_at(s, 16), std::out_of_range);
+}
+
+TEST(SweepPoints, DepthIsTheSecondAxis) {
+  SweepSpec s = spec4();
+  s.depths = {0, 3};  // the order of the points, whether or not the device offers depth 3
+  ASSERT_EQ(s.points(), 32u);
+  EXPECT_EQ(point_at(s, 0).text(), "lanes 1, depth 0, voxel x1, distance bits 0, accuracy 0.02");
+  EXPECT_EQ(point_at(s, 7).text(), "lanes 1, depth 0, voxel x0.5, distance bits 8, accuracy 0.005");
+  EXPECT_EQ(point_at(s, 8).text(), "lanes 1, depth 3, voxel x1, distance bits 0, accuracy 0.02");
+  EXPECT_EQ(point_at(s, 16).text(), "lanes 2, depth 0, voxel x1, distance bits 0, accuracy 0.02");
+  EXPECT_EQ(point_at(s, 31).text(), "lanes 2, depth 3, voxel x0.5, distance bits 8, accuracy 0.005");
+  // The sweep file's key, and through the results file's JSON; a file written before depths has depth 0.
+  const SweepSpec f = parse_sweep_file(R"({"depth": [0]})", "s.json", spec4());
+  EXPECT_EQ(f.depths, std::vector<int>{0});
+  EXPECT_EQ(sweep_from_json(sweep_json(s), "x").depths, (std::vector<int>{0, 3}));
+  std::string old = sweep_json(spec4());
+  const size_t at = old.find("\"depth\":[0],");
+  ASSERT_NE(at, std::string::npos) << old;
+  old.erase(at, std::string("\"depth\":[0],").size());
+  EXPECT_EQ(sweep_from_json(old, "old").depths, std::vector<int>{0});
+  SweepRow r;
+  r.point = point_at(s, 8);
+  r.latency = 11;
+  const SweepRow back = parse_sweep_row(sweep_row_line(r), "x");
+  EXPECT_EQ(back.point.depth, 3);
+  EXPECT_EQ(back.latency, 11);
+  std::string line = sweep_row_line(r);
+  line.erase(line.find("\"depth\":3,"), std::string("\"depth\":3,").size());
+  EXPECT_EQ(parse_sweep_row(line, "old").point.depth, 0) << "a row written before depths";
+}
+
+TEST(SweepPoints, ADepthTheDeviceDoesNotOfferIsRefusedNamingIt) {
+  for (int bad : {-1, 1000}) {
+    SweepSpec s = spec4();
+    s.depths = {0, bad};
+    try {
+      check_sweep(s, "s.json");
+      ADD_FAILURE() << "depth " << bad << " was taken";
+    } catch (const SweepError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("s.json: depth[1]: ", 0), 0u) << e.what();
+    }
+  }
+  SweepSpec s = spec4();
+  s.depths = {};
+  EXPECT_THROW(check_sweep(s, "s.json"), SweepError);
 }
 
 std::string error_of(const std::string& text) {
@@ -182,11 +227,16 @@ TEST(SweepRows, MeasuredContactErrorWithinTheBoundOnEveryRow) {
     std::printf("%s: contact bound %.4g, measured %.4g over %llu contacts, %llu cycles\n", r.point.text().c_str(),
                 r.contact_bound, r.contact_measured, (unsigned long long)r.contacts_checked,
                 (unsigned long long)r.max_cycles);
-    EXPECT_GT(r.contacts_checked, 0u) << r.point.text();
+    EXPECT_GT(r.contacts_checked + r.contacts_conservative, 0u) << r.point.text();
     EXPECT_LE(r.contact_measured, r.contact_bound) << r.point.text();
+    // Next to conservative cells of a distance voxmap, the 2-bit bound.
+    EXPECT_LE(r.contact_measured_conservative, r.contact_bound_conservative) << r.point.text();
+    if (r.point.distance_bits == 0) {
+      EXPECT_EQ(r.contacts_conservative, 0u);
+    }
     EXPECT_GT(r.max_cycles, 0u);
     EXPECT_LE(r.mean_cycles, double(r.max_cycles));
-    checked += r.contacts_checked;
+    checked += r.contacts_checked + r.contacts_conservative;
   }
   EXPECT_GT(checked, 100u);
 }

@@ -167,6 +167,63 @@ Closest TriangleTree::closest(const Eigen::Vector3d& p, double max_d2) const {
   return best;
 }
 
+uint32_t TriangleTree::first_hit(const Eigen::Vector3d& o, const Eigen::Vector3d& d, uint32_t skip, double min_l,
+                                 double* l_out, bool* front_out) const {
+  uint32_t best = UINT32_MAX;
+  double best_l = HUGE_VAL;
+  bool best_front = false;
+  if (nodes_.empty()) return best;
+  const Eigen::Vector3d inv(1 / d[0], 1 / d[1], 1 / d[2]);
+  // The ray's parameter interval inside a node's box (slabs); empty when the box is missed or beyond best_l.
+  auto enter = [&](const Node& n) {
+    double t0 = min_l, t1 = best_l;
+    for (int k = 0; k < 3; ++k) {
+      double a = (n.lo[k] - o[k]) * inv[k], b = (n.hi[k] - o[k]) * inv[k];
+      if (a > b) std::swap(a, b);
+      if (!(a <= t1 && b >= t0)) return HUGE_VAL;  // NaN (a ray in the box's plane) enters too
+      t0 = std::max(t0, a);
+      t1 = std::min(t1, b);
+    }
+    return t0;
+  };
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const uint32_t id = stack[--top];
+    const Node& n = nodes_[id];
+    if (enter(n) == HUGE_VAL) continue;
+    if (n.count) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+        const Tri& t = tris_[i];
+        if (t.index == skip) continue;
+        // Moller-Trumbore.
+        const Eigen::Vector3d e1 = t.b - t.a, e2 = t.c - t.a, h = d.cross(e2);
+        const double det = e1.dot(h);
+        if (det == 0) continue;
+        const Eigen::Vector3d s = o - t.a;
+        const double u = s.dot(h) / det;
+        if (u < 0 || u > 1) continue;
+        const Eigen::Vector3d q = s.cross(e1);
+        const double v = d.dot(q) / det;
+        if (v < 0 || u + v > 1) continue;
+        const double l = e2.dot(q) / det;
+        if (l > min_l && (l < best_l || (l == best_l && t.index < best))) {
+          best = t.index;
+          best_l = l;
+          best_front = det > 0;  // det = -d . (e1 x e2): positive when the ray comes from the normal's side
+        }
+      }
+      continue;
+    }
+    stack[top++] = n.right;
+    stack[top++] = id + 1;  // the left child follows its parent
+  }
+  if (l_out) *l_out = best_l;
+  if (front_out) *front_out = best_front;
+  return best;
+}
+
 PseudoNormals::PseudoNormals(const std::vector<Eigen::Vector3d>& vertices,
                              const std::vector<std::array<uint32_t, 3>>& triangles)
     : triangles_(triangles), face_(triangles.size()), edge_(3 * triangles.size()),

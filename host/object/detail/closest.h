@@ -43,6 +43,11 @@ class TriangleTree {
   // there is none. The result is the minimum over every triangle, whatever max_d2 is as long as it admits one.
   Closest closest(const Eigen::Vector3d& p, double max_d2 = HUGE_VAL) const;
 
+  // The first triangle the ray o + l d (l > min_l) meets, other than `skip`: its index in UINT32_MAX when none;
+  // *l_out its l, *front_out whether it meets the side its normal points to (d . normal < 0).
+  uint32_t first_hit(const Eigen::Vector3d& o, const Eigen::Vector3d& d, uint32_t skip, double min_l, double* l_out,
+                     bool* front_out) const;
+
   size_t size() const { return tris_.size(); }
 
  private:

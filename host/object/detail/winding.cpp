@@ -225,11 +225,22 @@ double CapField::value(const Eigen::Vector3d& p) const {
 void CapField::uncertain_voxels(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, double limit,
                                 const NeedFn& need) const {
   if (nodes_.empty()) return;
-  certify(lo, hi, {0}, 0, limit, need);
+  // Each level of the recursion works in its own list, kept by the thread from block to block: no allocation per
+  // block once the lists have grown (a block recurses down to single voxels, hundreds of levels' lists each).
+  thread_local std::vector<std::vector<uint32_t>> lists;
+  if (lists.empty()) lists.resize(1);
+  lists[0].assign(1, 0);
+  certify(lo, hi, 0, lists, 0, limit, need);
 }
 
-void CapField::certify(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
-                       std::vector<uint32_t> nodes, double bound, double limit, const NeedFn& need) const {
+void CapField::certify(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, size_t depth,
+                       std::vector<std::vector<uint32_t>>& lists, double bound, double limit,
+                       const NeedFn& need) const {
+  // lists[depth]: the nodes to visit here (as the parent left them); lists[depth + 1]: the children's.
+  if (lists.size() < depth + 2) lists.resize(depth + 2);
+  std::vector<uint32_t>& nodes = lists[depth];
+  std::vector<uint32_t>& open = lists[depth + 1];
+  open.clear();
   // The block's voxel centres lie in a ball of radius rho around c.
   Eigen::Vector3d c, half;
   for (int a = 0; a < 3; ++a) {
@@ -238,7 +249,6 @@ void CapField::certify(const std::array<uint32_t, 3>& lo, const std::array<uint3
   }
   const double rho = half.norm();
   const bool single = rho == 0;
-  std::vector<uint32_t> open;
   double near = 0;  // a single voxel: the exact winding number of the open leaves
   while (!nodes.empty() && bound < limit) {
     const uint32_t id = nodes.back();
@@ -277,6 +287,13 @@ void CapField::certify(const std::array<uint32_t, 3>& lo, const std::array<uint3
   }
   // Open leaves stay open for the children, with the bound gathered so far.
   for (uint32_t id : nodes) open.push_back(id);
+  certify_children(lo, hi, depth, lists, bound, limit, need);
+}
+
+void CapField::certify_children(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, size_t depth,
+                                std::vector<std::vector<uint32_t>>& lists, double bound, double limit,
+                                const NeedFn& need) const {
+  // Each child of the block starts from a copy of lists[depth + 1].
   for (int oz = 0; oz < 2; ++oz)
     for (int oy = 0; oy < 2; ++oy)
       for (int ox = 0; ox < 2; ++ox) {
@@ -294,7 +311,10 @@ void CapField::certify(const std::array<uint32_t, 3>& lo, const std::array<uint3
           else
             h[a] = mid;
         }
-        if (!empty) certify(l, h, open, bound, limit, need);
+        if (empty) continue;
+        if (lists.size() < depth + 3) lists.resize(depth + 3);
+        lists[depth + 2].assign(lists[depth + 1].begin(), lists[depth + 1].end());
+        certify(l, h, depth + 2, lists, bound, limit, need);
       }
 }
 

@@ -63,8 +63,14 @@ class CapField {
     uint32_t left = 0, right = 0;   // inner: children (count == 0)
   };
   uint32_t build(uint32_t first, uint32_t count);
-  void certify(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, std::vector<uint32_t> nodes,
-               double bound, double limit, const NeedFn& need) const;
+  // The voxels of block [lo, hi) from the nodes in lists[depth] (consumed), the bound gathered so far; the lists
+  // after `depth` are the recursion's working lists.
+  void certify(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, size_t depth,
+               std::vector<std::vector<uint32_t>>& lists, double bound, double limit, const NeedFn& need) const;
+  // certify on the block's eight children, each from the open nodes in lists[depth + 1].
+  void certify_children(const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, size_t depth,
+                        std::vector<std::vector<uint32_t>>& lists, double bound, double limit,
+                        const NeedFn& need) const;
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;
 };

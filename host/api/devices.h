@@ -1,0 +1,39 @@
+// Devices (public: <voxcd/voxcd.h>): the backends by name (device/device.h: device_backends, make_device), their
+// configuration (ref/config.h), conformance vectors run on them (device/conform.h), and the smallest device for a
+// scene (size_device, as `voxcd size` derives it: docs/size.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "voxcd/host/device/clock.h"
+#include "voxcd/host/device/conform.h"
+#include "voxcd/host/device/device.h"
+#include "voxcd/ref/config.h"
+
+namespace voxcd {
+
+// What is asked of the device; 0 (or unset) takes the scene file's value, or its default.
+struct SizeOptions {
+  double accuracy = 0;          // world units: the fixed-point path's worst error
+  double contact_accuracy = 0;  // world units: how far outside the other surface a contact may lie
+  double rate = 0;              // frames per second
+  double clock_mhz = 0;         // the device clock of the rate
+  uint64_t frames = 0;          // frames simulated to measure the scene
+  bool cost = false;            // also synthesise the configuration with yosys (LUTs, FFs, DSPs, block RAMs)
+};
+
+struct DeviceSize {
+  DeviceConfig config;  // the smallest device that meets the request
+  double error = 0;     // its fixed-point path's worst error, world units
+  double frame_rate = 0;  // the frame rate its largest frame allows at the clock (0: no frame needed the device)
+  std::string text;     // the report of `voxcd size SCENE`
+  std::string json;     // the report of `voxcd size SCENE --json`
+};
+
+// The smallest device for the scene file `scene_file` (docs/scenes.md). SizeError when the request cannot be met,
+// SceneFileError for the file, MeshError for a type's mesh; std::invalid_argument for a clock that is not a positive
+// number.
+DeviceSize size_device(const std::string& scene_file, const SizeOptions& options = {});
+
+}  // namespace voxcd

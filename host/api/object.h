@@ -1,0 +1,61 @@
+// Objects (public: <voxcd/voxcd.h>): a mesh voxelised once into a voxmap (or a distance field) and a point shell,
+// ready for collide() and a World. Made from a mesh file, arrays, a built-in shape or an object file.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "voxcd/host/object/mesh.h"
+
+namespace voxcd {
+
+struct ObjectType;  // the library's own form of an object (internal)
+
+// How an object is made; the defaults make a 2-bit voxmap 32 voxels along the mesh's longest side.
+struct ObjectDef {
+  double voxel = 0;          // voxel edge in mesh units; 0: from `resolution`
+  uint32_t resolution = 32;  // voxels along the longest side, when `voxel` is 0
+  int distance_bits = 0;     // 4, 8 or 16: a distance field too (sub-voxel contacts, docs/pairs.md); 0: none
+  double band = 4;           // the distance field's band, voxels
+  bool strict = false;       // refuse a mesh that is not a closed manifold instead of repairing it
+  unsigned threads = 0;      // 0: every hardware thread; never changes the object
+  std::string name;          // for messages and reports; by default the file, the shape or "arrays"
+};
+
+class Object {
+ public:
+  // A mesh file (any format `voxcd voxelize` reads), a built-in shape (shape_names()), or an object file (which
+  // brings its own voxel; with distance_bits it must carry a field of that many bits). MeshError or
+  // ObjectFileError saying what is wrong and where.
+  static Object load(const std::string& file_or_shape, const ObjectDef& def = {});
+  // A mesh given as arrays: `vertices` x, y, z each (row-major, n_vertices rows), `triangles` three vertex indices
+  // each. Repaired as a file is (unless def.strict); MeshError for an index out of range or nothing usable.
+  static Object from_arrays(const double* vertices, size_t n_vertices, const uint32_t* triangles, size_t n_triangles,
+                            const ObjectDef& def = {});
+  static Object from_arrays(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>& vertices,
+                            const Eigen::Ref<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>& triangles,
+                            const ObjectDef& def = {});
+  // A mesh already in memory (repaired unless def.strict).
+  static Object from_mesh(Mesh mesh, const ObjectDef& def = {});
+
+  const std::string& name() const;
+  double voxel() const;                      // voxel edge, mesh units
+  std::array<uint32_t, 3> dims() const;      // voxels along x, y, z
+  size_t shell_points() const;
+  int distance_bits() const;                 // 0 without a distance field
+  const MeshReport& report() const;          // what loading and repair found and did
+  // Writes the object file (as `voxcd voxelize -o`), atomically; ObjectFileError when it cannot.
+  void save(const std::string& path) const;
+
+  // The library's form of the object, for its internal interfaces.
+  const std::shared_ptr<const ObjectType>& type() const { return type_; }
+  explicit Object(std::shared_ptr<const ObjectType> type) : type_(std::move(type)) {}
+
+ private:
+  std::shared_ptr<const ObjectType> type_;
+};
+
+}  // namespace voxcd

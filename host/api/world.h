@@ -1,0 +1,73 @@
+// A world the caller steps (public: <voxcd/voxcd.h>): bodies of objects in a cube with walls, a broadphase and pair
+// tests on a device each frame, a response. Made from a WorldDef and bodies, or from the built-in scene or a scene
+// file (World::scene). docs/simulate.md describes a frame.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "voxcd/host/api/collide.h"
+#include "voxcd/host/api/object.h"
+#include "voxcd/host/scene/body.h"
+#include "voxcd/ref/types.h"
+
+namespace voxcd {
+
+struct SimulateRequest;  // a run's options, as `voxcd simulate` takes them (host/scene/simulate.h)
+
+struct WorldDef {
+  double side = 100;                // bodies move in the cube [0, side]^3 and bounce off its walls
+  std::string broadphase = "grid";  // broadphase_names()
+  std::string backend = "cpu";      // device_backends()
+  int lanes = 4;
+  Mode mode = Mode::All;            // All: every contact; First: whether pairs touch
+  bool both_directions = false;     // also test B's shell in A's voxmap
+  int distance_bits = 0;            // 4, 8, 16: a distance device (every object must carry such a field)
+  double margin = 0;                // distance device: contacts within this distance outside, world units
+  bool ccd = false;                 // continuous collision: no body passes through another (distance device)
+  unsigned threads = 0;             // 0: every hardware thread; never changes the results
+};
+
+class World {
+ public:
+  explicit World(const WorldDef& def = {});
+  // The scene `voxcd simulate` runs for the same options: the built-in scene, or a scene file with the options given
+  // overriding it (the same checks and errors). Stepped as many frames, it has the tool's state hash.
+  static World scene(const SimulateRequest& request);
+  static World scene();  // the built-in scene with its defaults
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+
+  // Adds a body of `object` at `pose`, moving by `velocity` world units and turning by `spin` radians (about the
+  // world axes) per frame; its index. A body added after a frame joins from the next frame.
+  uint32_t add_body(const Object& object, const Pose& pose, const Eigen::Vector3d& velocity = Eigen::Vector3d::Zero(),
+                    const Eigen::Vector3d& spin = Eigen::Vector3d::Zero());
+  // One frame: integrate, walls, broadphase, pair tests, response. std::invalid_argument for options the bodies
+  // cannot have (ccd without distance fields, a broadphase or backend that does not exist).
+  const FrameStats& step();
+
+  size_t size() const;                     // bodies
+  const std::vector<Body>& bodies() const; // their state now; Body::type indexes the world's objects
+  const Object& object(uint32_t type) const;
+  uint64_t frame() const;                  // frames stepped
+  // The last frame's pairs tested on the device (body indices, first < second) and their contacts, in one order.
+  const std::vector<std::pair<uint32_t, uint32_t>>& pairs() const;
+  const std::vector<Contacts>& contacts() const;
+  const FrameStats& stats() const;         // the last frame's
+  uint64_t state_hash() const;             // of every body's state: equal runs, equal hash
+  // Records every frame from now on into `path` (docs/view.md; `voxcd view` replays it); stop_recording closes it.
+  void record(const std::string& path);
+  void stop_recording();
+
+ private:
+  struct Impl;
+  explicit World(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace voxcd

@@ -1,0 +1,103 @@
+// make_unresolved_conservative() (host/object/detail/unresolved.h): each triangle's piece in each cell it crosses,
+// clipped to the cell, sampled at its corners and centroid against the field's interpolant, on the surface and a
+// little inside it.
+#include "voxcd/host/object/detail/unresolved.h"
+
+#include <algorithm>
+#include <atomic>
+#include <vector>
+
+#include "voxcd/ref/fast/thread_pool.h"
+
+namespace voxcd::detail {
+
+namespace {
+
+using Polygon = std::vector<Eigen::Vector3d>;
+
+// The part of polygon p on the side x[axis] * sign <= bound * sign (Sutherland-Hodgman, one plane).
+Polygon clip(const Polygon& p, int axis, double bound, double sign) {
+  Polygon out;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector3d& a = p[i];
+    const Eigen::Vector3d& b = p[(i + 1) % p.size()];
+    const double da = (a[axis] - bound) * sign, db = (b[axis] - bound) * sign;
+    if (da <= 0) out.push_back(a);
+    if ((da < 0 && db > 0) || (da > 0 && db < 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+// Triangle abc (grid coordinates) clipped to the cell [c, c + 1]^3.
+Polygon piece_in_cell(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& lo) {
+  Polygon p = {a, b, c};
+  for (int axis = 0; axis < 3 && !p.empty(); ++axis) {
+    p = clip(p, axis, lo[axis], -1);
+    if (!p.empty()) p = clip(p, axis, lo[axis] + 1, 1);
+  }
+  return p;
+}
+
+// The piece's corners and centroid on the surface within the tolerance, and the same points kResolvedDepth inside
+// (along `inward`, a unit vector in grid units) hits.
+bool resolved(const DistanceField& f, const Polygon& piece, const Eigen::Vector3d& inward) {
+  if (piece.empty()) return true;  // the cell holds the triangle only through the voxeliser's growth
+  const double tolerance = kResolvedTolerance + f.step / 2;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& x : piece) centroid += x;
+  centroid /= double(piece.size());
+  auto fine = [&](const Eigen::Vector3d& x) {
+    return f.sample(x) <= tolerance && f.sample(x + kResolvedDepth * inward) <= 0;
+  };
+  if (!fine(centroid)) return false;
+  for (const Eigen::Vector3d& x : piece)
+    if (!fine(x)) return false;
+  return true;
+}
+
+}  // namespace
+
+uint64_t make_unresolved_conservative(const Mesh& mesh, const GridPlacement& g, DistanceField& f, unsigned threads) {
+  const uint64_t nx = g.dims[0], nxy = nx * g.dims[1];
+  std::vector<std::atomic<uint64_t>> flags((g.size() + 63) / 64);
+  for (auto& w : flags) w.store(0, std::memory_order_relaxed);
+  std::vector<Eigen::Vector3d> gv(mesh.vertices.size());
+  for (size_t i = 0; i < gv.size(); ++i) gv[i] = (mesh.vertices[i] - g.origin) / g.voxel;
+  ThreadPool pool(threads);
+  const size_t parts = std::max<size_t>(1, std::min<size_t>(mesh.size(), size_t(pool.size()) * 16));
+  pool.parallel_for(parts, [&](size_t part) {
+    const size_t t0 = mesh.size() * part / parts, t1 = mesh.size() * (part + 1) / parts;
+    for_each_overlap(mesh, g, t0, t1, [&](size_t t, uint32_t x, uint32_t y, uint32_t z) {
+      const uint64_t i = x + nx * y + nxy * z;
+      if (flags[i >> 6].load(std::memory_order_relaxed) >> (i & 63) & 1) return;
+      const auto& tri = mesh.triangles[t];
+      if (!mesh.is_sheet(t)) {
+        const Eigen::Vector3d& a = gv[tri[0]];
+        const Eigen::Vector3d& b = gv[tri[1]];
+        const Eigen::Vector3d& c = gv[tri[2]];
+        const Eigen::Vector3d n = (b - a).cross(c - a);
+        // (repair orients every non-sheet triangle outward; a degenerate one has no inside to test)
+        if (n.squaredNorm() > 0 && resolved(f, piece_in_cell(a, b, c, Eigen::Vector3d(x, y, z)), -n.normalized()))
+          return;
+      }
+      flags[i >> 6].fetch_or(uint64_t{1} << (i & 63), std::memory_order_relaxed);
+    });
+  });
+  // Lower the nodes only once every cell is judged, so that the result does not depend on the order.
+  uint64_t count = 0;
+  for (uint64_t z = 0; z < g.dims[2]; ++z)
+    for (uint64_t y = 0; y < g.dims[1]; ++y)
+      for (uint64_t x = 0; x < nx; ++x) {
+        const uint64_t i = x + nx * y + nxy * z;
+        if (!(flags[i >> 6].load(std::memory_order_relaxed) >> (i & 63) & 1)) continue;
+        ++count;
+        for (int k = 0; k < 8; ++k) {
+          int16_t& q = f.q[f.node_index(x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1))];
+          q = std::min<int16_t>(q, 0);
+        }
+      }
+  return count;
+}
+
+}  // namespace voxcd::detail

@@ -1,0 +1,100 @@
+// Contacts from hit records: a shell point's world position and normal, the voxel and its state, the depth (the
+// voxel's penetration estimate, or on a distance device the interpolated distance and the field's gradient), written
+// into a PairResult's Contacts or into ContactArrays (host/pairs/detail/contact_out.h).
+#include <cmath>
+
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/detail/contact_out.h"
+#include "voxcd/host/pairs/detail/shell_order.h"
+
+namespace voxcd {
+
+Contact ContactArrays::contact(size_t k) const {
+  Contact c;
+  c.pair = pair.at(k);
+  c.a_in_b = a_in_b[k] != 0;
+  c.point = point[k];
+  c.position = Eigen::Vector3d(position[3 * k], position[3 * k + 1], position[3 * k + 2]);
+  c.normal = Eigen::Vector3d(normal[3 * k], normal[3 * k + 1], normal[3 * k + 2]);
+  c.voxel = {voxel[3 * k], voxel[3 * k + 1], voxel[3 * k + 2]};
+  c.state = state[k];
+  c.depth = depth[k];
+  return c;
+}
+
+void ContactArrays::resize(size_t pairs, size_t rows) {
+  first.resize(pairs + 1);
+  hits.resize(pairs);
+  lookups.resize(pairs);
+  cycles.resize(pairs);
+  pair.resize(rows);
+  point.resize(rows);
+  a_in_b.resize(rows);
+  state.resize(rows);
+  position.resize(3 * rows);
+  normal.resize(3 * rows);
+  voxel.resize(3 * rows);
+  depth.resize(rows);
+}
+
+template <class Out>
+void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const detail::SortedHit* hits,
+                                 size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const {
+  // The depth lookups land all over B's depth field (4 bytes per voxel, often larger than the cache), so the loop
+  // prefetches the depth of the hit a few records ahead.
+  constexpr size_t kAhead = 16;
+  const ObjectType& shell_t = *types_[a_in_b ? req.a : req.b];
+  const ObjectType& map_t = *types_[a_in_b ? req.b : req.a];
+  const RigidPose& pose = a_in_b ? req.pose_a : req.pose_b;
+  const Eigen::Matrix3d R = a_in_b ? Ra : Rb;
+  const Eigen::Vector3d t = pose.translation;
+  const Eigen::Vector3d* points = shell_t.shell().points.data();
+  const Eigen::Vector3d* normals = shell_t.shell().normals.data();
+  const Voxmap& vm = map_t.voxmap();
+  const float* depth = map_t.depth.data();
+  const size_t nvox = map_t.depth.size();
+  const double voxel = vm.voxel();
+  const uint64_t nx = vm.dims()[0], nxy = nx * vm.dims()[1];
+  if (!device_->config().distance()) {
+    for (size_t k = 0; k < n; ++k) {
+      if (k + kAhead < n) {
+        const Record& ahead = *hits[k + kAhead].rec;
+        const uint64_t i = ahead.x + nx * ahead.y + nxy * ahead.z;
+        if (i < nvox) __builtin_prefetch(depth + i);
+      }
+      const Record& rec = *hits[k].rec;
+      const uint32_t point = hits[k].point;
+      to.put(k, pair, a_in_b, point, R * points[point] + t, R * normals[point], rec,
+             double(depth[rec.x + nx * rec.y + nxy * rec.z]) * voxel);
+    }
+    return;
+  }
+  const DistanceField& field = map_t.object.distance;
+  const double dist_unit = voxel * field.step / std::ldexp(1.0, 3 * device_->config().WB);
+  const RigidPose& map_pose = a_in_b ? req.pose_b : req.pose_a;
+  const Eigen::Matrix3d& Rm = a_in_b ? Rb : Ra;
+  for (size_t k = 0; k < n; ++k) {
+    const Record& rec = *hits[k].rec;
+    const uint32_t point = hits[k].point;
+    const Eigen::Vector3d position = R * points[point] + t;
+    Eigen::Vector3d normal = R * normals[point];
+    // The field's gradient at the point, in the map's grid, to the world; negated, it points the way the shell
+    // object's outward normal does at a contact.
+    const Eigen::Vector3d g = (Rm.transpose() * (position - map_pose.translation) - vm.origin()) / voxel;
+    Eigen::Vector3d grad;
+    field.sample(g, &grad);
+    const Eigen::Vector3d nrm = -(Rm * grad);
+    if (nrm.squaredNorm() > 1e-24) normal = nrm.normalized();
+    to.put(k, pair, a_in_b, point, position, normal, rec, -double(rec.dist) * dist_unit);
+  }
+}
+
+template void PairCollider::make_contacts<detail::ToContacts>(const PairRequest&, uint32_t, bool,
+                                                              const detail::SortedHit*, size_t,
+                                                              const Eigen::Matrix3d&, const Eigen::Matrix3d&,
+                                                              const detail::ToContacts&) const;
+template void PairCollider::make_contacts<detail::ToArrays>(const PairRequest&, uint32_t, bool,
+                                                            const detail::SortedHit*, size_t, const Eigen::Matrix3d&,
+                                                            const Eigen::Matrix3d&, const detail::ToArrays&) const;
+
+}  // namespace voxcd

@@ -1,0 +1,59 @@
+// The order in which the pair tests place a shell in device memory (host/pairs/collide.cpp): its points grouped by
+// blocks of kBlock^3 cells of the shell's grid, so that consecutive points lie close together and a cluster of them
+// has a small box that culling can leave out as a whole; and the ranks that put the hits of such an order back in
+// ascending point order, which the contacts keep.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "voxcd/ref/types.h"
+
+namespace voxcd::detail {
+
+struct ShellOrder {
+  static constexpr uint32_t kBlock = 8;
+  std::vector<uint32_t> point;        // slot k of the device's copy holds shell point point[k]
+  std::vector<uint32_t> block_first;  // per non-empty block its first slot, then the number of points
+};
+
+// The block order of a shell whose point k lies in cell cells[k] (cells in ascending linear order, as a PointShell
+// keeps them): blocks in linear order of the block grid, each block's points in ascending point order.
+ShellOrder block_order(const std::vector<std::array<uint32_t, 3>>& cells);
+
+// The hit records of one job of a direction: recs[0, n), their slots first + rec.point.
+struct HitSpan {
+  const Record* recs;
+  size_t n;
+  uint32_t first;
+};
+
+// A hit record that makes a contact, with its shell point.
+struct SortedHit {
+  const Record* rec;
+  uint32_t point;
+};
+
+class RankBits;
+
+// The hit records of one direction that make contacts, into out[0, kept) in ascending point order: ALL every record,
+// FIRST (first_only; each span holding its job's first hit first) only the record of the lowest point. `out` has room
+// for every record of the spans; order: slot -> point; `points`: the shell's size. Returns the records kept.
+size_t keep_direction(const HitSpan* spans, size_t n, bool first_only, const uint32_t* order, size_t points,
+                      SortedHit* out, RankBits& bits);
+
+// Bits over a shell's points, for ranking the points of a direction's hits.
+class RankBits {
+ public:
+  // Every record of `spans` (the hits of one direction, each point once) into out[its rank among them in ascending
+  // point order] (order: slot -> point; `points`: the shell's size).
+  void place(const HitSpan* spans, size_t n, const uint32_t* order, size_t points, SortedHit* out);
+
+ private:
+  std::vector<uint64_t> bits_;
+  std::vector<uint32_t> below_;  // per word, the bits set in the words before it
+};
+
+}  // namespace voxcd::detail

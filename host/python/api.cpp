@@ -1,0 +1,265 @@
+// The public API in Python (docs/api.md, docs/python.md): voxcd.collide(a, pose_a, b, pose_b) and voxcd.World, over
+// the library's collide() and World; objects from arrays (numpy, or anything with .vertices and .faces).
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <mutex>
+
+#include "voxcd/host/api/collide.h"
+#include "voxcd/host/api/world.h"
+#include "voxcd/host/object/object_type.h"
+#include "voxcd/host/pairs/pose.h"
+#include "voxcd/host/python/bindings.h"
+#include "voxcd/host/scene/simulate.h"
+
+namespace voxcd::python {
+
+namespace {
+
+// The library's form of a voxcd.Object, made once per Object (the last few kept: a query loads them once).
+std::shared_ptr<const ObjectType> type_of(const std::shared_ptr<ObjectFile>& obj) {
+  static std::mutex lock;
+  static std::vector<std::pair<std::weak_ptr<ObjectFile>, std::shared_ptr<const ObjectType>>> cache;
+  const std::lock_guard<std::mutex> hold(lock);
+  for (auto& [w, t] : cache)
+    if (w.lock() == obj) return t;
+  auto t = std::make_shared<const ObjectType>(make_object_type(*obj, obj->source));
+  if (cache.size() >= 8) cache.erase(cache.begin());
+  cache.emplace_back(obj, t);
+  return t;
+}
+
+// An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).
+Object object_arg(const py::object& o) {
+  if (py::isinstance<ObjectFile>(o)) return Object(type_of(o.cast<std::shared_ptr<ObjectFile>>()));
+  py::object made = py::module_::import("voxcd").attr("voxelize")(o, py::arg("resolution") = 32);
+  return Object(type_of(made.cast<std::shared_ptr<ObjectFile>>()));
+}
+
+// A pose: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z, as `voxcd pair
+// --pose`), or a 4 x 4 homogeneous matrix (rotation and translation; the last row 0 0 0 1).
+Pose pose_arg(const py::object& pose, const char* what) {
+  if (pose.is_none()) return Pose{};
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
+  try {
+    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pose);
+  } catch (const py::error_already_set&) {
+    a = {};
+  }
+  if (!a) value_error(std::string(what) + ": not numbers: " + py::repr(pose).cast<std::string>());
+  const double* v = a.data();
+  if (a.ndim() == 1 && (a.shape(0) == 3 || a.shape(0) == 6)) {
+    const Eigen::Vector3d t(v[0], v[1], v[2]);
+    return a.shape(0) == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t);
+  }
+  if (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4) {
+    Eigen::Matrix3d R;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) R(i, j) = v[4 * i + j];
+    if (!((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 && R.determinant() > 0))
+      value_error(std::string(what) + ": the 4 x 4 matrix's upper left 3 x 3 is not a rotation");
+    Pose p;
+    p.rotation = Eigen::Quaterniond(R).normalized();
+    p.translation = Eigen::Vector3d(v[3], v[7], v[11]);
+    return p;
+  }
+  std::string shape;
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
+  value_error(std::string(what) + ": give tx, ty, tz, or tx, ty, tz, rx, ry, rz (degrees), or a 4 x 4 matrix; got "
+                                  "shape (" + shape + ")");
+}
+
+py::dict collide_py(const py::object& a, const py::object& pose_a, const py::object& b, const py::object& pose_b,
+                    const std::string& mode, bool both, double margin, const std::string& backend, int lanes,
+                    unsigned threads) {
+  const auto m = parse_mode(mode);
+  if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
+  if (!std::isfinite(margin)) value_error("margin: not a finite number");
+  const Object oa = object_arg(a), ob = object_arg(b);
+  const Pose pa = pose_arg(pose_a, "pose_a"), pb = pose_arg(pose_b, "pose_b");
+  CollideOptions o;
+  o.mode = *m;
+  o.both_directions = both;
+  o.margin = margin;
+  o.backend = backend;
+  o.lanes = lanes;
+  o.threads = threads;
+  Contacts c;
+  {
+    py::gil_scoped_release unlocked;
+    c = collide(oa, pa, ob, pb, o);
+  }
+  return contacts_dict(c, true);
+}
+
+// A strided view of one vector field of every body (N x width doubles), kept alive by `owner`.
+py::array body_view(const std::vector<Body>& bodies, const double* first, py::ssize_t width, py::handle owner) {
+  const py::ssize_t n = py::ssize_t(bodies.size());
+  return py::array(py::dtype::of<double>(), {n, width}, {py::ssize_t(sizeof(Body)), py::ssize_t(sizeof(double))},
+                   n ? first : nullptr, owner);
+}
+
+py::dict stats_dict(const FrameStats& f) {
+  py::dict d;
+  d["frame"] = f.frame;
+  d["pairs"] = f.pairs;
+  d["tested"] = f.tested;
+  d["touching"] = f.touching;
+  d["responses"] = f.responses;
+  d["wall_hits"] = f.wall_hits;
+  d["lookups"] = f.lookups;
+  d["hits"] = f.hits;
+  d["contacts"] = f.contacts;
+  d["device_cycles"] = f.device_cycles;
+  d["seconds"] = f.seconds();
+  return d;
+}
+
+World world_def(double side, const std::string& broadphase, const std::string& backend, int lanes,
+                const std::string& mode, bool both, int distance_bits, double margin, bool ccd, unsigned threads) {
+  const auto m = parse_mode(mode);
+  if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
+  WorldDef d;
+  d.side = side;
+  d.broadphase = broadphase;
+  d.backend = backend;
+  d.lanes = lanes;
+  d.mode = *m;
+  d.both_directions = both;
+  d.distance_bits = distance_bits;
+  d.margin = margin;
+  d.ccd = ccd;
+  d.threads = threads;
+  return World(d);
+}
+
+World world_scene(const py::object& scene, const py::object& frames, const py::object& objects,
+                  std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
+                  std::optional<double> density, std::optional<double> speed, const py::object& seed,
+                  std::optional<std::string> pruning, std::optional<std::string> backend, std::optional<int> lanes,
+                  std::optional<std::string> mode, std::optional<bool> both, std::optional<double> clock,
+                  std::optional<std::string> config, unsigned threads, bool midphase, bool cull,
+                  std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin,
+                  std::optional<bool> ccd) {
+  if (!frames.is_none()) value_error("frames: a World is stepped by its caller (World.step())");
+  const SimulateRequest req = simulate_request(scene, frames, objects, std::move(shape), voxel, resolution, density,
+                                               speed, seed, std::move(pruning), std::move(backend), lanes,
+                                               std::move(mode), both, clock, std::move(config), threads, midphase,
+                                               cull, distance_bits, band, margin, ccd, py::none());
+  return with_file(req.text ? "" : req.file, [&] {
+    py::gil_scoped_release unlocked;
+    return World::scene(req);
+  });
+}
+
+std::string hex(uint64_t v) {
+  char b[24];
+  std::snprintf(b, sizeof b, "%llx", static_cast<unsigned long long>(v));
+  return b;
+}
+
+}  // namespace
+
+void bind_api(py::module_& m) {
+  m.def("collide", &collide_py, py::arg("a"), py::arg("pose_a") = py::none(), py::arg("b"),
+        py::arg("pose_b") = py::none(), py::kw_only(), py::arg("mode") = "ALL", py::arg("both") = true,
+        py::arg("margin") = 0.0, py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("threads") = 0u,
+        R"(The contacts of b at pose_b against a at pose_a, in one call (the library's collide(), docs/api.md).
+a and b: Objects, or anything voxelize() takes (a mesh file, a shape, (vertices, faces) arrays, an object with
+.vertices and .faces such as a trimesh mesh), voxelised at 32 voxels along the longest side. Poses: None, 3 or 6
+numbers (tx, ty, tz[, rx, ry, rz] in degrees), or a 4 x 4 matrix. mode ALL, FIRST or COUNT; both (default True)
+also tests b's shell in a; margin: contacts within this distance outside (distance voxmaps, both objects with
+fields). Returns the dict Pair.query returns: hits, lookups, device_cycles, and the contacts as arrays.)");
+
+  auto world = py::class_<World>(m, "World", R"(A world the caller steps (the library's World, docs/api.md): bodies of Objects
+in the cube [0, side]^3 with walls, a broadphase and pair tests on a device each frame, a response. World(...) is
+empty; World.scene(...) is the scene `voxcd simulate` runs for the same options.)")
+      .def(py::init(&world_def), py::kw_only(), py::arg("side") = 100.0, py::arg("broadphase") = "grid",
+           py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL", py::arg("both") = false,
+           py::arg("distance_bits") = 0, py::arg("margin") = 0.0, py::arg("ccd") = false, py::arg("threads") = 0u)
+      .def("add_body",
+           [](World& w, const py::object& obj, const py::object& pose, const py::object& velocity,
+              const py::object& spin) {
+             auto vec = [](const py::object& v, const char* what) {
+               if (v.is_none()) return Eigen::Vector3d(Eigen::Vector3d::Zero());
+               const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
+               if (!a || a.ndim() != 1 || a.shape(0) != 3) value_error(std::string(what) + ": give three numbers");
+               return Eigen::Vector3d(a.data()[0], a.data()[1], a.data()[2]);
+             };
+             return w.add_body(object_arg(obj), pose_arg(pose, "pose"), vec(velocity, "velocity"), vec(spin, "spin"));
+           },
+           py::arg("object"), py::arg("pose") = py::none(), py::kw_only(), py::arg("velocity") = py::none(),
+           py::arg("spin") = py::none(),
+           "Adds a body of `object` at `pose` (None, 3 or 6 numbers, or a 4 x 4 matrix) moving by velocity (world "
+           "units) and turning by spin (radians about the world axes) per frame; returns its index.")
+      .def("step",
+           [](World& w) {
+             FrameStats st;
+             {
+               py::gil_scoped_release unlocked;
+               st = w.step();
+             }
+             return stats_dict(st);
+           },
+           "One frame; returns its statistics as a dict (pairs, tested, touching, contacts, device_cycles, ...).")
+      .def("__len__", &World::size)
+      .def_property_readonly("frame", &World::frame, "Frames stepped.")
+      .def_property_readonly("state_hash", [](const World& w) { return hex(w.state_hash()); },
+                             "The hash of every body's state as a hex string: `voxcd simulate --json`'s state_hash "
+                             "after as many frames of the same scene.")
+      .def_property_readonly(
+          "positions",
+          [](py::object self) {
+            const World& w = self.cast<const World&>();
+            const auto& b = w.bodies();
+            return body_view(b, b.empty() ? nullptr : b[0].pose.translation.data(), 3, self);
+          },
+          "Every body's position, an (N, 3) float64 view of the world's own state (no copy; valid until a body is "
+          "added).")
+      .def_property_readonly(
+          "orientations",
+          [](py::object self) {
+            const World& w = self.cast<const World&>();
+            const auto& b = w.bodies();
+            return body_view(b, b.empty() ? nullptr : b[0].pose.rotation.coeffs().data(), 4, self);
+          },
+          "Every body's orientation as a unit quaternion (x, y, z, w: scalar last, as scipy's Rotation.from_quat), an "
+          "(N, 4) float64 view (no copy; valid until a body is added).")
+      .def_property_readonly(
+          "velocities",
+          [](py::object self) {
+            const auto& b = self.cast<const World&>().bodies();
+            return body_view(b, b.empty() ? nullptr : b[0].velocity.data(), 3, self);
+          },
+          "Every body's velocity (world units per frame), an (N, 3) float64 view.")
+      .def_property_readonly(
+          "pairs",
+          [](const World& w) {
+            const auto& p = w.pairs();
+            py::array_t<uint32_t> a({py::ssize_t(p.size()), py::ssize_t(2)});
+            if (!p.empty()) std::memcpy(a.mutable_data(), p.data(), p.size() * 2 * sizeof(uint32_t));
+            return a;
+          },
+          "The last frame's pairs tested on the device, a (P, 2) uint32 array of body indices.")
+      .def_property_readonly(
+          "contacts",
+          [](const World& w) {
+            py::list out;
+            for (const Contacts& c : w.contacts()) out.append(contacts_dict(c, true));
+            return out;
+          },
+          "The last frame's contacts: per tested pair (in the order of pairs), the dict collide() returns.")
+      .def("record", &World::record, py::arg("path"),
+           "Records every frame from now on into `path` (docs/view.md; read_recording reads it, `voxcd view` replays "
+           "it).")
+      .def("stop_recording", &World::stop_recording, "Closes the recording.");
+  std::apply(
+      [&](auto... args) {
+        world.def_static("scene", &world_scene, args...,
+                         "The scene `voxcd simulate` runs for the same options (simulate()'s; frames are the caller's "
+                         "World.step()s).");
+      },
+      run_args());
+}
+
+}  // namespace voxcd::python

@@ -1,0 +1,157 @@
+#include "voxcd/host/sizing/timing_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace voxcd {
+
+// The text of host/sizing/timing.tsv, generated into the build (host/CMakeLists.txt).
+extern const char* const kBuiltinTimingTable;
+
+namespace {
+
+const std::vector<std::string> kColumns = {"target", "depth", "mhz",   "source", "lanes",      "area_mm2",
+                                           "luts",   "ffs",   "dsps",  "brams",  "lut_levels", "config"};
+
+std::vector<std::string> split_tabs(const std::string& line) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (;;) {
+    const size_t tab = line.find('\t', start);
+    out.push_back(line.substr(start, tab == std::string::npos ? std::string::npos : tab - start));
+    if (tab == std::string::npos) return out;
+    start = tab + 1;
+  }
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& x : v) s += (s.empty() ? "" : " ") + x;
+  return s;
+}
+
+// A number that parses whole; false otherwise.
+bool to_number(const std::string& text, double* v) {
+  if (text.empty()) return false;
+  std::istringstream in(text);
+  in >> *v;
+  return in && in.peek() == std::char_traits<char>::eof() && std::isfinite(*v);
+}
+
+struct RowReader {
+  const std::string& where;
+  int line;
+  const std::vector<std::string>& cells;
+  TimingTableError fail(size_t column, const std::string& what) const {
+    return TimingTableError(where + ":" + std::to_string(line) + ": " + kColumns[column] + ": '" + cells[column] +
+                            "' " + what);
+  }
+  double number(size_t column) const {
+    double v = 0;
+    if (!to_number(cells[column], &v) || v < 0) throw fail(column, "is not a number >= 0");
+    return v;
+  }
+  int whole(size_t column, int least) const {
+    const double v = number(column);
+    if (v != std::floor(v) || v < least || v > 1e6)
+      throw fail(column, "is not a whole number from " + std::to_string(least));
+    return int(v);
+  }
+  std::optional<double> figure(size_t column) const {
+    if (cells[column] == "-") return std::nullopt;
+    return number(column);
+  }
+};
+
+TimingRow parse_row(const RowReader& r) {
+  TimingRow row;
+  row.line = r.line;
+  row.target = r.cells[0];
+  const auto& targets = timing_targets();
+  if (std::find(targets.begin(), targets.end(), row.target) == targets.end())
+    throw r.fail(0, "is not a target (" + joined(targets) + ")");
+  row.depth = r.whole(1, 0);
+  row.mhz = r.number(2);
+  if (!(row.mhz > 0)) throw r.fail(2, "is not a positive number of MHz");
+  row.source = r.cells[3];
+  if (row.source.empty()) throw r.fail(3, "is empty (say how the clock was found)");
+  row.lanes = r.whole(4, 1);
+  row.area_mm2 = r.figure(5);
+  row.luts = r.figure(6);
+  row.ffs = r.figure(7);
+  row.dsps = r.figure(8);
+  row.brams = r.figure(9);
+  if (r.cells[10] != "-") row.lut_levels = r.whole(10, 0);
+  row.config = r.cells[11];
+  return row;
+}
+
+}  // namespace
+
+const std::vector<std::string>& timing_targets() {
+  static const std::vector<std::string> t = {"asic-osu018", "ice40-hx8k", "ice40-up5k", "xilinx-7"};
+  return t;
+}
+
+std::vector<TimingRow> TimingTable::target_rows(const std::string& target) const {
+  std::vector<TimingRow> out;
+  for (const TimingRow& r : rows)
+    if (r.target == target) out.push_back(r);
+  std::sort(out.begin(), out.end(), [](const TimingRow& a, const TimingRow& b) { return a.depth < b.depth; });
+  return out;
+}
+
+TimingTable parse_timing_table(const std::string& text, const std::string& where) {
+  TimingTable t;
+  t.where = where;
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  bool header = false;
+  std::set<std::pair<std::string, int>> seen;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    const std::vector<std::string> cells = split_tabs(line);
+    if (!header) {
+      if (cells != kColumns)
+        throw TimingTableError(where + ":" + std::to_string(number) + ": the header is '" + joined(cells) +
+                               "', expected the tab-separated columns '" + joined(kColumns) + "'");
+      header = true;
+      continue;
+    }
+    if (cells.size() != kColumns.size())
+      throw TimingTableError(where + ":" + std::to_string(number) + ": " + std::to_string(cells.size()) +
+                             " tab-separated columns, expected " + std::to_string(kColumns.size()) + " (" +
+                             joined(kColumns) + ")");
+    TimingRow row = parse_row(RowReader{where, number, cells});
+    if (!seen.insert({row.target, row.depth}).second)
+      throw TimingTableError(where + ":" + std::to_string(number) + ": " + row.target + " at depth " +
+                             std::to_string(row.depth) + " is given twice");
+    t.rows.push_back(std::move(row));
+  }
+  if (!header) throw TimingTableError(where + ": no header line (the columns '" + joined(kColumns) + "')");
+  if (t.rows.empty()) throw TimingTableError(where + ": no rows after the header");
+  return t;
+}
+
+TimingTable read_timing_table(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw TimingTableError(path + ": cannot read");
+  std::stringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw TimingTableError(path + ": cannot read");
+  return parse_timing_table(s.str(), path);
+}
+
+const TimingTable& builtin_timing_table() {
+  static const TimingTable t = parse_timing_table(kBuiltinTimingTable, "host/sizing/timing.tsv (built in)");
+  return t;
+}
+
+}  // namespace voxcd

@@ -1,0 +1,180 @@
+// The public API (<voxcd/voxcd.h>, docs/api.md): objects from files, shapes, arrays and meshes; collide() against
+// the collider it stands for; objects of very different voxels; a world stepped by its caller against `voxcd
+// simulate`'s run; errors that say what to change.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include <voxcd/voxcd.h>
+
+#include "tests/defects.h"
+#include "tests/host/test_util.h"
+#include "voxcd/host/object/object_type.h"
+#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/scene/simulate.h"
+
+namespace voxcd {
+namespace {
+
+TEST(Api, ObjectsFromShapesFilesArraysAndMeshes) {
+  ObjectDef def;
+  def.voxel = 0.1;
+  const Object torus = Object::load("torus", def);
+  EXPECT_EQ(torus.voxel(), 0.1);
+  EXPECT_GT(torus.shell_points(), 0u);
+  EXPECT_TRUE(torus.report().closed);
+  // By default 32 voxels along the longest side.
+  const Object cube = Object::load("cube");
+  EXPECT_NEAR(cube.voxel(), 2.0 / 32, 1e-12);
+  // An object file brings its voxel; arrays and a Mesh give the same object as the mesh itself.
+  const std::string path = test::tmp_path("api_torus.vxo");
+  torus.save(path);
+  const Object back = Object::load(path);
+  EXPECT_EQ(back.voxel(), 0.1);
+  EXPECT_EQ(back.dims(), torus.dims());
+  const Mesh box = make_box({0, 0, 0}, {1, 2, 3});
+  std::vector<double> xyz;
+  for (const auto& v : box.vertices) xyz.insert(xyz.end(), {v.x(), v.y(), v.z()});
+  std::vector<uint32_t> tri;
+  for (const auto& t : box.triangles) tri.insert(tri.end(), t.begin(), t.end());
+  const Object from_arrays = Object::from_arrays(xyz.data(), box.vertices.size(), tri.data(), box.size());
+  const Object from_mesh = Object::from_mesh(box);
+  EXPECT_EQ(from_arrays.dims(), from_mesh.dims());
+  EXPECT_EQ(from_arrays.type()->voxmap().words(), from_mesh.type()->voxmap().words());
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> V(box.vertices.size(), 3);
+  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> F(box.size(), 3);
+  for (size_t i = 0; i < box.vertices.size(); ++i) V.row(Eigen::Index(i)) = box.vertices[i].transpose();
+  for (size_t t = 0; t < box.size(); ++t)
+    for (int k = 0; k < 3; ++k) F(Eigen::Index(t), k) = int(box.triangles[t][size_t(k)]);
+  EXPECT_EQ(Object::from_arrays(V, F).type()->voxmap().words(), from_mesh.type()->voxmap().words());
+  // Bad input says what and where.
+  tri[4] = 99;
+  try {
+    Object::from_arrays(xyz.data(), box.vertices.size(), tri.data(), box.size());
+    ADD_FAILURE() << "an index out of range was taken";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 1 has vertex index 99 out of range (8 vertices)"), std::string::npos)
+        << e.what();
+  }
+  F(0, 0) = -1;
+  EXPECT_THROW(Object::from_arrays(V, F), MeshError);
+  EXPECT_THROW(Object::load("no/such/mesh.stl"), MeshError);
+  std::remove(path.c_str());
+}
+
+TEST(Api, CollideIsTheCollidersQuery) {
+  ObjectDef def;
+  def.voxel = 0.08;
+  const Object a = Object::load("torus", def), b = Object::load("polytope36", def);
+  Pose pb;
+  pb.translation = {1.0, 0.2, 0};
+  pb.rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+  const Contacts c = collide(a, Pose{}, b, pb);
+  ASSERT_GT(c.hits, 0u);
+  // The same query through the collider the API stands for.
+  const DeviceConfig cfg = device_config_for("cpu", 4, {a.type().get(), b.type().get()});
+  PairCollider col(make_device("cpu", cfg), {a.type(), b.type()});
+  PairRequest r;
+  r.a = 0, r.b = 1, r.pose_b = pb;
+  PairOptions o;
+  o.both_directions = true;
+  const PairResult want = col.collide({r}, o).at(0);
+  ASSERT_EQ(c.contacts.size(), want.contacts.size());
+  EXPECT_EQ(c.hits, want.hits);
+  for (size_t i = 0; i < want.contacts.size(); ++i) EXPECT_EQ(c.contacts[i].position, want.contacts[i].position);
+  // Modes, and a batch equal to one pose at a time.
+  CollideOptions count;
+  count.mode = Mode::Count;
+  EXPECT_EQ(collide(a, Pose{}, b, pb, count).hits, c.hits);
+  EXPECT_TRUE(collide(a, Pose{}, b, pb, count).contacts.empty());
+  Pose far;
+  far.translation = {10, 0, 0};
+  const std::vector<Contacts> batch = collide(a, b, {{Pose{}, pb}, {Pose{}, far}});
+  ASSERT_EQ(batch.size(), 2u);
+  EXPECT_EQ(batch[0].contacts.size(), c.contacts.size());
+  EXPECT_EQ(batch[1].hits, 0u);
+}
+
+TEST(Api, ObjectsOfVeryDifferentVoxelsShareADevice) {
+  // A small voxel for one, a voxel 5 times larger for the other: M's entries reach 0.2 / 0.04 / sqrt(2) = 3.5.
+  ObjectDef fine, coarse;
+  fine.voxel = 0.04;
+  coarse.voxel = 0.2;
+  const Object a = Object::load("torus", coarse), b = Object::load("sphere", fine);
+  Pose pb;
+  pb.translation = {1.0, 0, 0};
+  const Contacts c = collide(a, Pose{}, b, pb);
+  EXPECT_GT(c.hits, 0u);
+  double ratio = 0;
+  EXPECT_GT(matrix_width_for(DeviceConfig{}, {a.type().get(), b.type().get()}, &ratio), 18);
+  EXPECT_GT(ratio, 3.0);
+  // The rtl backend's models have MW 18: the error says what to change.
+  try {
+    device_config_for("rtl", 4, {a.type().get(), b.type().get()});
+    ADD_FAILURE() << "the rtl backend took a matrix it cannot hold";
+  } catch (const CapacityError& e) {
+    EXPECT_NE(std::string(e.what()).find("Voxelise the objects at voxels within a factor of 2.83"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Api, AWorldSteppedByItsCallerIsTheToolsRun) {
+  // The built-in scene stepped 100 frames: the state hash of `voxcd simulate --frames 100`.
+  SimulateRequest req;
+  req.frames = 100;
+  const SimulationSummary s = simulate(req);
+  World w = World::scene();
+  for (int f = 0; f < 100; ++f) w.step();
+  EXPECT_EQ(w.state_hash(), s.state_hash);
+  EXPECT_EQ(w.frame(), 100u);
+  EXPECT_EQ(w.size(), 64u);
+  // A world of one's own: two bodies that meet.
+  World own;
+  ObjectDef def;
+  def.voxel = 0.1;
+  const Object torus = Object::load("torus", def), cube = Object::load("cube", def);
+  Pose p;
+  p.translation = {40, 50, 50};
+  EXPECT_EQ(own.add_body(torus, p, Eigen::Vector3d(0.25, 0, 0)), 0u);
+  p.translation = {46, 50, 50};
+  EXPECT_EQ(own.add_body(cube, p, Eigen::Vector3d(-0.25, 0, 0)), 1u);
+  uint64_t touching = 0;
+  for (int f = 0; f < 30; ++f) touching += own.step().touching;
+  EXPECT_GT(touching, 0u);
+  EXPECT_NE(own.bodies()[0].pose.translation.x(), 40.0);
+  // A body added after frames joins the next; the others keep their state.
+  const Eigen::Vector3d before = own.bodies()[1].pose.translation;
+  p.translation = {80, 80, 80};
+  EXPECT_EQ(own.add_body(torus, p), 2u);
+  EXPECT_EQ(own.bodies()[1].pose.translation, before);
+  own.step();
+  EXPECT_EQ(own.size(), 3u);
+  // Recording from the API.
+  const std::string path = test::tmp_path("api_world.vxr");
+  own.record(path);
+  for (int f = 0; f < 3; ++f) own.step();
+  own.stop_recording();
+  std::FILE* fp = std::fopen(path.c_str(), "rb");
+  ASSERT_NE(fp, nullptr);
+  std::fclose(fp);
+  std::remove(path.c_str());
+}
+
+TEST(Api, DevicesBackendsAndSizing) {
+  const std::vector<std::string> b = device_backends();
+  EXPECT_NE(std::find(b.begin(), b.end(), "cpu"), b.end());
+  EXPECT_NE(std::find(b.begin(), b.end(), "ref"), b.end());
+  SizeOptions o;
+  o.frames = 20;
+  const DeviceSize d = size_device(VOXCD_SCENES_DIR "/small.json", o);
+  EXPECT_GT(d.config.LANES, 0);
+  EXPECT_GT(d.error, 0);
+  EXPECT_NE(d.text.find("config"), std::string::npos) << d.text;
+  EXPECT_EQ(d.json.front(), '{');
+  o.clock_mhz = -1;
+  EXPECT_THROW(size_device(VOXCD_SCENES_DIR "/small.json", o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace voxcd

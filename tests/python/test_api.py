@@ -1,0 +1,76 @@
+"""The public API in Python (docs/api.md): objects from arrays and trimesh-style meshes, collide() in one call, and a
+World stepped from Python that gives `voxcd simulate`'s state hash."""
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import voxcd
+
+TETRA_V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+TETRA_F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+
+
+def test_objects_from_arrays_and_trimesh_style_meshes():
+    a = voxcd.voxelize((TETRA_V, TETRA_F), resolution=16)
+    b = voxcd.voxelize(SimpleNamespace(vertices=TETRA_V, faces=TETRA_F), resolution=16)
+    c = voxcd.voxelize(SimpleNamespace(vertices=TETRA_V.tolist(), triangles=TETRA_F.tolist()), resolution=16)  # Open3D
+    assert np.array_equal(a.states, b.states) and np.array_equal(a.states, c.states)
+    assert a.counts["interior"] > 0 and a.repair["closed"]
+    with pytest.raises(ValueError, match=r"vertices: give a \(V, 3\) array"):
+        voxcd.voxelize((TETRA_V[:, :2], TETRA_F), resolution=16)
+    with pytest.raises(ValueError, match=r"faces: face 1 has vertex index -1 \(negative\)"):
+        voxcd.voxelize((TETRA_V, np.array([[0, 2, 1], [0, 1, -1]])), resolution=16)
+    with pytest.raises(ValueError, match=r"faces: give an \(F, 3\) array of integer"):
+        voxcd.voxelize((TETRA_V, TETRA_F.astype(float)), resolution=16)
+
+
+def test_collide_in_one_call():
+    torus = voxcd.voxelize("torus", resolution=32)
+    mesh = SimpleNamespace(vertices=TETRA_V, faces=TETRA_F)
+    c = voxcd.collide(torus, None, mesh, [0.9, 0, 0, 0, 0, 30])
+    assert c["hits"] > 0 and len(c["positions"]) == len(c["depths"]) > 0
+    # The same pose as a 4 x 4 matrix, and the same query through Pair (both directions).
+    t = np.radians(30)
+    m = np.array([[np.cos(t), -np.sin(t), 0, 0.9], [np.sin(t), np.cos(t), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    b = voxcd.voxelize(mesh, resolution=32)
+    c2 = voxcd.collide(torus, np.eye(4), b, m)
+    want = voxcd.Pair(torus, b).query([0.9, 0, 0, 0, 0, 30], both=True)
+    assert c2["hits"] == want["hits"]
+    assert np.allclose(c2["positions"], want["positions"])
+    assert voxcd.collide(torus, None, b, [0.9, 0, 0, 0, 0, 30], mode="COUNT")["hits"] == want["hits"]
+    assert voxcd.collide(torus, None, b, [9, 0, 0])["hits"] == 0
+    with pytest.raises(ValueError, match=r"pose_b: the 4 x 4 matrix's upper left 3 x 3 is not a rotation"):
+        voxcd.collide(torus, None, b, 2 * np.eye(4))
+    with pytest.raises(ValueError, match=r"mode: 'ANY' is not ALL, FIRST or COUNT"):
+        voxcd.collide(torus, None, b, None, mode="ANY")
+
+
+def test_a_world_stepped_from_python_is_the_tools_run(cli):
+    import json
+
+    w = voxcd.World.scene()
+    for _ in range(100):
+        w.step()
+    assert w.frame == 100 and len(w) == 64
+    assert w.state_hash == json.loads(cli("simulate", "--frames", 100, "--json"))["state_hash"]
+    # Positions are a view of the world's state: it follows the world.
+    p = w.positions
+    assert p.shape == (64, 3) and not p.flags["OWNDATA"]
+    w.step()
+    assert np.shares_memory(p, w.positions) and np.array_equal(p, w.positions)
+    q = w.orientations
+    assert q.shape == (64, 4) and np.allclose(np.linalg.norm(q, axis=1), 1)
+    with pytest.raises(ValueError, match=r"frames: a World is stepped by its caller"):
+        voxcd.World.scene(frames=5)
+
+
+def test_a_world_of_ones_own():
+    w = voxcd.World()
+    torus = voxcd.voxelize("torus", voxel=0.1)
+    assert w.add_body(torus, [40, 50, 50], velocity=[0.25, 0, 0]) == 0
+    assert w.add_body((TETRA_V * 2, TETRA_F), [46, 50, 50], velocity=[-0.25, 0, 0]) == 1
+    touching = sum(w.step()["touching"] for _ in range(30))
+    assert touching > 0
+    assert w.positions[0, 0] > 40
+    assert w.pairs.shape[1] == 2
