@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,6 +18,45 @@ namespace {
 // ABC_SCRIPT of bench/timing.sh: ABC's mapping for the clock ({D}) with buffering and gate sizing; commas are blanks.
 const char* const kAbcScript =
     "+strash;&get,-n;&fraig,-x;&put;dc2;strash;&get,-n;&dch,-f;&nf,{D};&put;buffer,-N,12;upsize,{D};dnsize,{D};stime,-p";
+
+// The chip area yosys's `stat -liberty` prints for the top module, in the liberty's units (square micrometres).
+double chip_area_um2(const std::string& out) {
+  const std::string key = "Chip area for module '\\voxcd_device': ";
+  const size_t at = out.find(key);
+  if (at == std::string::npos)
+    throw std::runtime_error("yosys: its statistics name no chip area:\n" + out.substr(0, 2000));
+  return std::stod(out.substr(at + key.size()));
+}
+
+// A standard cell of the OSU library in a `stat` line: a drive-strength name (NAND2X1, DFFPOSX1) or one of the few
+// without one.
+bool is_cell_name(const std::string& w) {
+  if (w == "DFFSR" || w == "LATCH" || w == "FAX1" || w == "HAX1") return true;
+  if (w.empty() || w[0] < 'A' || w[0] > 'Z') return false;
+  const size_t x = w.rfind('X');
+  if (x == std::string::npos || x == 0 || x + 1 == w.size()) return false;
+  for (size_t i = 0; i < w.size(); ++i) {
+    const char ch = w[i];
+    const bool digit = ch >= '0' && ch <= '9';
+    if (i > x ? !digit : !(digit || (ch >= 'A' && ch <= 'Z'))) return false;
+  }
+  return true;
+}
+
+// Adds every "<cell> <count>" line of the statistics to c.cells, the flip-flops to c.flip_flops as well.
+void count_cells(const std::string& out, AsicCost& c) {
+  std::istringstream lines(out);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string name, count;
+    if (!(words >> name >> count) || !is_cell_name(name)) continue;
+    if (count.find_first_not_of("0123456789") != std::string::npos) continue;
+    const uint64_t n = std::stoull(count);
+    c.cells += n;
+    if (name.rfind("DFF", 0) == 0) c.flip_flops += n;
+  }
+}
 
 }  // namespace
 
@@ -47,16 +85,8 @@ AsicCost asic_cost(const DeviceConfig& cfg, double clock_mhz, const std::string&
   c.command = run.command;
   c.seconds = run.seconds;
   c.clock_mhz = clock_mhz;
-  std::smatch m;
-  if (!std::regex_search(run.output, m, std::regex(R"(Chip area for module '\\voxcd_device': ([0-9.]+))")))
-    throw std::runtime_error("yosys: its statistics name no chip area:\n" + run.output.substr(0, 2000));
-  c.area_mm2 = std::stod(m[1].str()) / 1e6;  // the liberty's areas are square micrometres
-  const std::regex cell(R"(\n\s+([A-Z][A-Z0-9]*X[0-9]+|DFFSR|LATCH|FAX1|HAX1)\s+([0-9]+))");
-  for (auto it = std::sregex_iterator(run.output.begin(), run.output.end(), cell); it != std::sregex_iterator(); ++it) {
-    const uint64_t n = std::stoull((*it)[2].str());
-    c.cells += n;
-    if ((*it)[1].str().rfind("DFF", 0) == 0) c.flip_flops += n;
-  }
+  c.area_mm2 = chip_area_um2(run.output) / 1e6;  // the liberty's areas are square micrometres
+  count_cells(run.output, c);
   c.version = detail::yosys_version();
   return c;
 }
