@@ -20,7 +20,7 @@ struct SizeArgs {
 };
 
 int size_cmd(const SizeArgs& a, const CLI::App& cmd) {
-  const SceneFile f = read_scene_file(a.file);
+  const RunConfig f = read_scene_file(a.file);
   const Scene scene = make_scene(f);
   SizeRequest req = a.req;
   if (cmd.count("--clock")) req.clock = clock_option(a.clock_mhz, "--clock");
