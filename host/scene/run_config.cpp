@@ -37,14 +37,14 @@ class Checker {
     return it != c_.given.end() && !it->second.file.empty();
   }
   // Throws for `field`: "<file>: <JSON path>: <file_text>" for a scene file's key, SimulateOptionError with
-  // option_text (file_text when empty) for an option, "<field>: <option_text>" for a value set in code.
+  // option_text (file_text when empty) for an option, std::invalid_argument "<field>: <file_text>" for a value set
+  // in code.
   [[noreturn]] void fail(const std::string& field, const std::string& file_text,
                          const std::string& option_text = "") const {
-    const std::string text = option_text.empty() ? file_text : option_text;
     const auto it = c_.given.find(field);
-    if (it == c_.given.end()) throw std::invalid_argument(field + ": " + text);
+    if (it == c_.given.end()) throw std::invalid_argument(field + ": " + file_text);
     if (!it->second.file.empty()) throw SceneFileError(it->second.file + ": " + it->second.name + ": " + file_text);
-    throw SimulateOptionError({it->second.name}, text);
+    throw SimulateOptionError({it->second.name}, option_text.empty() ? file_text : option_text);
   }
   // A number in [lo, hi] (or (lo, hi] when lo_open).
   void number(const std::string& field, double v, double lo, double hi, bool lo_open,
@@ -67,23 +67,23 @@ class Checker {
 
 void check_type(const Checker& k, const SceneTypeSpec& t) {
   const std::string p = t.key + ".";
+  // A value set in code counts as given when it is not the "not given" 0.
+  const auto set = [&](const char* f, double v) { return k.given(p + f) || v != 0; };
   k.integer(p + "count", t.count, 1, kMaxObjects);
-  // A value set in code is checked when it is not the "not given" 0.
-  if (k.given(p + "size") || t.size != 0) k.number(p + "size", t.size, 0, kMaxLength, true);
-  if (k.given(p + "scale") || t.scale != 0) k.number(p + "scale", t.scale, 0, kMaxLength, true);
-  if (k.given(p + "size") && k.given(p + "scale")) k.fail(t.key, "give \"size\" or \"scale\", not both");
-  if (k.given(p + "voxel") && k.given(p + "resolution")) {
-    if (!k.from_file(p + "voxel"))
+  if (set("size", t.size)) k.number(p + "size", t.size, 0, kMaxLength, true);
+  if (set("scale", t.scale)) k.number(p + "scale", t.scale, 0, kMaxLength, true);
+  if (set("size", t.size) && set("scale", t.scale)) k.fail(t.key, "give \"size\" or \"scale\", not both");
+  if (set("voxel", t.voxel) && set("resolution", t.resolution)) {
+    if (k.given(p + "voxel") && !k.from_file(p + "voxel"))
       throw SimulateOptionError({"voxel", "resolution"},
                                 "give the voxel size in world units (--voxel) or the voxels along an object's longest "
                                 "side (--resolution), not both");
     k.fail(t.key, "give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), not both");
   }
-  if (k.given(p + "voxel") || t.voxel != 0)
+  if (set("voxel", t.voxel))
     k.number(p + "voxel", t.voxel, 0, kMaxLength, true,
              k.from_file(p + "voxel") ? "" : "must be a positive number of world units");
-  if (k.given(p + "resolution") || t.resolution != 0)
-    k.integer(p + "resolution", t.resolution, kMinVoxelsAcross, kMaxVoxelsAcross);
+  if (set("resolution", t.resolution)) k.integer(p + "resolution", t.resolution, kMinVoxelsAcross, kMaxVoxelsAcross);
 }
 
 void check_scene(const Checker& k, const RunConfig& c) {
