@@ -234,6 +234,22 @@ int simulate_cmd(const SimulateArgs& a) {
   return 0;
 }
 
+// The options of the scene: objects, shape, voxel or resolution, density, speed.
+void add_scene_options(CLI::App* c, SimulateArgs& args) {
+  SimulateArgs* a = &args;
+  c->add_option("--objects", a->options.types[0].count, "Number of objects")->capture_default_str()->check(CLI::Range(uint64_t{1}, kMaxObjects));
+  c->add_option("--shape", a->options.types[0].shape, "A built-in shape name or a mesh file")->capture_default_str();
+  c->add_option("--voxel", a->options.types[0].voxel,
+                "Voxel size in world units (default: the paper's 1 scaled with the object, so 1 for its 64 objects at "
+                "2.5% and (64/N)^(1/3) for N; docs/simulate.md)");
+  c->add_option("--resolution", a->options.types[0].resolution,
+                "Or the voxels along an object's longest side (voxel = longest side / N)")
+      ->check(CLI::Range(kMinVoxelsAcross, kMaxVoxelsAcross));
+  c->add_option("--density", a->options.density, "Fraction of the cube the objects fill")->capture_default_str();
+  c->add_option("--speed", a->options.speed, "Largest initial speed per frame, as a fraction of the object's radius")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 void add_simulate(CLI::App& app) {
@@ -247,17 +263,7 @@ void add_simulate(CLI::App& app) {
   c->add_option("--config", a->config,
                 "The device's whole configuration as NAME VALUE pairs (e.g. as voxcd size prints it); "
                 "--lanes overrides its LANES");
-  c->add_option("--objects", a->options.types[0].count, "Number of objects")->capture_default_str()->check(CLI::Range(uint64_t{1}, kMaxObjects));
-  c->add_option("--shape", a->options.types[0].shape, "A built-in shape name or a mesh file")->capture_default_str();
-  c->add_option("--voxel", a->options.types[0].voxel,
-                "Voxel size in world units (default: the paper's 1 scaled with the object, so 1 for its 64 objects at "
-                "2.5% and (64/N)^(1/3) for N; docs/simulate.md)");
-  c->add_option("--resolution", a->options.types[0].resolution,
-                "Or the voxels along an object's longest side (voxel = longest side / N)")
-      ->check(CLI::Range(kMinVoxelsAcross, kMaxVoxelsAcross));
-  c->add_option("--density", a->options.density, "Fraction of the cube the objects fill")->capture_default_str();
-  c->add_option("--speed", a->options.speed, "Largest initial speed per frame, as a fraction of the object's radius")
-      ->capture_default_str();
+  add_scene_options(c, *a);
   c->add_option("--pruning", a->options.broadphase, "Broadphase: " + [] {
     std::string s;
     for (const auto& b : broadphase_names()) s += (s.empty() ? "" : ", ") + b;

@@ -49,12 +49,11 @@ DeviceClock clock_arg(double mhz) {
   return given_clock(mhz, "the clock argument");
 }
 
-py::dict summary_dict(const SimulationSummary& s) {
+// The summary's configuration: the scene and how it ran, in the order of `voxcd simulate --json`.
+void put_config(py::dict& r, const SimulationSummary& s) {
   const RunConfig& c = s.config;
-  const SimulationTotals& t = s.totals;
   const ObjectType& type = *s.types[0];
   const auto& d = type.voxmap().dims();
-  py::dict r;
   if (!c.builtin()) {
     r["scene"] = c.where;
     py::list types;
@@ -85,6 +84,13 @@ py::dict summary_dict(const SimulationSummary& s) {
   }
   r["frames"] = c.frames;
   r["seed"] = c.seed;
+}
+
+py::dict summary_dict(const SimulationSummary& s) {
+  const RunConfig& c = s.config;
+  const SimulationTotals& t = s.totals;
+  py::dict r;
+  put_config(r, s);
   r["seconds"] = t.seconds();
   r["frame_rate_hz"] = s.frame_rate();
   r["broadphase_pairs"] = t.pairs;

@@ -66,9 +66,10 @@ class Reader {
     note(key, field);
     return true;
   }
-  // A whole number in [0, 2^64).
+  // A whole number. [lo, hi] is the setting's range (check()'s), named here only for a value the field cannot hold
+  // (negative, or too large): check() refuses the others.
   template <class T>
-  bool integer(const std::string& key, T& out, const std::string& field = "") const {
+  bool integer(const std::string& key, T& out, uint64_t lo, uint64_t hi, const std::string& field = "") const {
     if (!has(key)) return false;
     const json& v = at(key);
     if (!v.is_number_integer() && !(v.is_number_float() && std::floor(v.get<double>()) == v.get<double>()))
@@ -76,7 +77,7 @@ class Reader {
     const double d = v.get<double>();
     if ((v.is_number_integer() && !v.is_number_unsigned() && v.get<int64_t>() < 0) || d < 0 ||
         d >= double(std::numeric_limits<T>::max()) + 1.0)
-      fail(key_path(key), v.dump() + " is outside [0, " + std::to_string(std::numeric_limits<T>::max()) + "]");
+      fail(key_path(key), v.dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     out = v.is_number_unsigned() ? T(v.get<uint64_t>()) : T(d);
     note(key, field);
     return true;
@@ -200,8 +201,8 @@ void parse_types(const Reader& top, const std::string& where, RunConfig& f) {
     r.number("size", t.size);
     r.number("scale", t.scale);
     r.number("voxel", t.voxel);
-    r.integer("resolution", t.resolution);
-    r.integer("count", t.count);
+    r.integer("resolution", t.resolution, kMinVoxelsAcross, kMaxVoxelsAcross);
+    r.integer("count", t.count, 1, kMaxObjects);
     f.types.push_back(t);
   }
 }
@@ -211,7 +212,7 @@ void parse_run(const Reader& top, const std::string& where, RunConfig& f) {
   top.number("contact_accuracy", f.contact_accuracy);
   top.number("rate", f.rate);
   if (top.number("clock", f.clock.mhz)) f.clock = DeviceClock{f.clock.mhz, "given by " + where + "'s \"clock\"", false};
-  top.integer("frames", f.frames);
+  top.integer("frames", f.frames, 1, kMaxFrames);
   if (top.string("broadphase", f.broadphase)) top.one_of("broadphase", f.broadphase, broadphase_names());
   if (top.string("backend", f.backend)) top.one_of("backend", f.backend, backend_names());
   std::string mode;
@@ -220,7 +221,7 @@ void parse_run(const Reader& top, const std::string& where, RunConfig& f) {
     f.mode = *parse_mode(mode);
   }
   top.boolean("both_directions", f.both_directions);
-  top.integer("distance_bits", f.distance_bits);
+  top.integer("distance_bits", f.distance_bits, uint64_t(kDistanceBits.front()), uint64_t(kDistanceBits.back()));
   top.number("band", f.band);
   top.boolean("ccd", f.ccd);
 }
@@ -252,7 +253,7 @@ RunConfig parse_scene_file(std::string_view text, const std::string& where) {
     e.number("density", f.density, "density");
     e.number("speed", f.speed, "speed");
     e.number("spin", f.spin, "spin");
-    e.integer("seed", f.seed, "seed");
+    e.integer("seed", f.seed, 0, ~uint64_t{0}, "seed");
   }
   parse_run(top, where, f);
   check(f);
@@ -352,23 +353,24 @@ std::vector<Mesh> scene_meshes(const RunConfig& f) {
   return meshes;
 }
 
-Scene make_file_scene(const RunConfig& f) {
+namespace {
+
+// Each type's voxel: given, from its resolution, or the default (the built-in scene's rule, evaluated alike so that
+// one auto-scaled type gets exactly the built-in scene's voxel); SceneFileError naming the key at fault for a voxel
+// that makes an object too large or too small for a voxmap.
+std::vector<double> type_voxels(const RunConfig& f, const LoadedTypes& lt) {
   auto fail = [&](const std::string& path, const std::string& what) -> SceneFileError {
     return SceneFileError(f.where + ": " + path + ": " + what);
   };
-  LoadedTypes lt = load_types(f);
-  std::vector<LoadedType>& loaded = lt.types;
-  const double fixed_volume = lt.fixed_volume;
-  const uint64_t auto_count = lt.auto_count;
-  // Each type's voxel: given, from its resolution, or the default (make_scene(SceneSpec)'s rule, evaluated alike so
-  // that one auto-scaled type gets exactly the built-in scene's voxel).
+  const std::vector<LoadedType>& loaded = lt.types;
   std::vector<double> voxel(f.types.size());
   for (size_t i = 0; i < f.types.size(); ++i) {
     const SceneTypeSpec& t = f.types[i];
     const LoadedType& l = loaded[i];
     const double extent = l.extent * l.s;
-    const double one = t.auto_scaled() ? (f.density * f.side * f.side * f.side - fixed_volume) / double(auto_count)
-                                       : l.volume * l.s * l.s * l.s;
+    const double one = t.auto_scaled()
+                           ? (f.density * f.side * f.side * f.side - lt.fixed_volume) / double(lt.auto_count)
+                           : l.volume * l.s * l.s * l.s;
     try {
       voxel[i] = t.voxel > 0 ? t.voxel : t.resolution > 0 ? voxel_for_resolution(l.mesh, t.resolution)
                                                           : default_voxel(one, extent);
@@ -393,6 +395,19 @@ Scene make_file_scene(const RunConfig& f) {
                           " are needed: a voxel of at most " + num_text(extent / kMinVoxelsAcross) +
                           ", or a \"resolution\"");
   }
+  return voxel;
+}
+
+}  // namespace
+
+Scene make_file_scene(const RunConfig& f) {
+  auto fail = [&](const std::string& path, const std::string& what) -> SceneFileError {
+    return SceneFileError(f.where + ": " + path + ": " + what);
+  };
+  LoadedTypes lt = load_types(f);
+  const std::vector<LoadedType>& loaded = lt.types;
+  const uint64_t auto_count = lt.auto_count;
+  const std::vector<double> voxel = type_voxels(f, lt);
   // Every shell is fine enough for the smallest voxmap of the scene (the paper's sqrt(2) rule against it).
   const double vmin = *std::min_element(voxel.begin(), voxel.end());
   Scene scene;
@@ -416,7 +431,7 @@ Scene make_file_scene(const RunConfig& f) {
       throw fail(t.key, "the object (radius " + num_text(scene.types.back()->radius) +
                             ") does not fit the cube of side " + num_text(f.side));
   }
-  // With one type, the same draws as make_scene(SceneSpec), so the same bodies.
+  // With one type, the same draws as the built-in scene, so the same bodies.
   std::vector<uint64_t> counts;
   for (const auto& t : f.types) counts.push_back(t.count);
   try {
