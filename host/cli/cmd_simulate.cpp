@@ -237,7 +237,7 @@ int simulate_cmd(const SimulateArgs& a) {
 // The options of the scene: objects, shape, voxel or resolution, density, speed.
 void add_scene_options(CLI::App* c, SimulateArgs& args) {
   SimulateArgs* a = &args;
-  c->add_option("--objects", a->options.types[0].count, "Number of objects")->capture_default_str()->check(CLI::Range(uint64_t{1}, kMaxObjects));
+  c->add_option("--objects", a->options.types[0].count, "Number of objects")->capture_default_str()->check(CLI::Range(1, int(kMaxObjects)));
   c->add_option("--shape", a->options.types[0].shape, "A built-in shape name or a mesh file")->capture_default_str();
   c->add_option("--voxel", a->options.types[0].voxel,
                 "Voxel size in world units (default: the paper's 1 scaled with the object, so 1 for its 64 objects at "

@@ -220,7 +220,7 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
   req.rate = rate.value_or(0);
   if (clock) req.clock = clock_arg(*clock);
   if (const auto f = count_arg(frames, "frames")) {
-    if (*f < 1 || *f > 1000000) value_error("frames: " + std::to_string(*f) + " is outside [1, 1000000]");
+    if (*f < 1 || *f > kMaxFrames) value_error("frames: " + outside(*f, 1, kMaxFrames));
     req.frames = *f;
   }
   req.cost = cost;

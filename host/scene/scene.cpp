@@ -387,7 +387,7 @@ void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double spee
   scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
 }
 
-std::unique_ptr<Broadphase> Simulation::make_pruning() const {
+std::unique_ptr<Broadphase> Simulation::new_broadphase() const {
   std::unique_ptr<Broadphase> b = make_broadphase(opt_.broadphase);
   b->set_pool(pool_.get());
   return b;
@@ -397,7 +397,7 @@ Simulation::Simulation(Scene scene, const RunConfig& opt) : scene_(std::move(sce
   // One pool for every stage and the device (a loop inside a loop of it runs on the thread that asked).
   const unsigned threads = opt.threads ? opt.threads : ThreadPool::available_cpus();
   if (threads > 1) pool_ = std::make_shared<ThreadPool>(threads);
-  broadphase_ = make_pruning();
+  broadphase_ = new_broadphase();
   if (opt.exchange && broadphase_->predicate() == "all")
     throw std::invalid_argument("broadphase " + opt.broadphase + ": it pairs every body with every other, so it cannot "
                                 "be split over ranks by space; a distributed run needs grid, sap, tree, ...");
@@ -563,7 +563,7 @@ const std::vector<BodyPair>& Simulation::find_pairs() {
   const int me = opt_.exchange->rank();
   std::vector<uint32_t> local = slab_bodies(slabs_, me, bounds_);
   // A broadphase that keeps state between frames keys it by index: another set of bodies starts a fresh one.
-  if (broadphase_->keeps_state() && local != local_) broadphase_ = make_pruning();
+  if (broadphase_->keeps_state() && local != local_) broadphase_ = new_broadphase();
   local_ = std::move(local);
   local_bounds_.clear();
   for (uint32_t i : local_) local_bounds_.push_back(bounds_[i]);

@@ -82,7 +82,7 @@ class Simulation {
   // The mid-phase, the pair tests and the tested pairs' outcomes (requests_, requests_pairs_, results_, outcomes_).
   void narrow(const std::vector<BodyPair>& pairs, const PairOptions& po);
   void outcome(size_t q);
-  std::unique_ptr<Broadphase> make_pruning() const;
+  std::unique_ptr<Broadphase> new_broadphase() const;
   // The broadphase's pairs, or in a distributed run those of this rank's slab (global body indices, sorted).
   const std::vector<BodyPair>& find_pairs();
   // The outcomes of the tested pairs, in pair order (every rank's in a distributed run).

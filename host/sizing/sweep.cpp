@@ -106,7 +106,7 @@ void check_sweep(const SweepSpec& s, const std::string& where) {
       throw fail("accuracy[" + std::to_string(i) + "]", num(s.accuracies[i]) + " is not a positive number of world "
                                                                                "units");
   if (!(s.clock >= 0) || !std::isfinite(s.clock)) throw fail("clock", num(s.clock) + " is not a positive number of MHz");
-  if (s.frames > 1000000) throw fail("frames", std::to_string(s.frames) + " is above 1000000");
+  if (s.frames > kMaxFrames) throw fail("frames", std::to_string(s.frames) + " is above " + std::to_string(kMaxFrames));
   if (s.frames > 0 && s.sample_frames > s.frames)
     throw fail("sample_frames", std::to_string(s.sample_frames) + " is more than the " + std::to_string(s.frames) +
                                     " frames measured");
