@@ -130,8 +130,8 @@ void print_scene(const SimulationSummary& s) {
   if (c.builtin()) {
     std::printf("voxcd simulate: %llu x %s in a cube of side %g at density %g, voxel %g (%zu shell points, voxmap "
                 "%ux%ux%u), seed %llu\n",
-                (unsigned long long)c.objects(), s.shape().c_str(), c.side, c.density, s.voxel(), type.shell().size(), d[0],
-                d[1], d[2], (unsigned long long)c.seed);
+                (unsigned long long)c.objects(), s.shape().c_str(), c.side, c.density, s.voxel(),
+                type.shell().size(), d[0], d[1], d[2], (unsigned long long)c.seed);
   } else {
     std::ostringstream side;
     side << c.side;
@@ -237,7 +237,9 @@ int simulate_cmd(const SimulateArgs& a) {
 // The options of the scene: objects, shape, voxel or resolution, density, speed.
 void add_scene_options(CLI::App* c, SimulateArgs& args) {
   SimulateArgs* a = &args;
-  c->add_option("--objects", a->options.types[0].count, "Number of objects")->capture_default_str()->check(CLI::Range(1, int(kMaxObjects)));
+  c->add_option("--objects", a->options.types[0].count, "Number of objects")
+      ->capture_default_str()
+      ->check(CLI::Range(1, int(kMaxObjects)));
   c->add_option("--shape", a->options.types[0].shape, "A built-in shape name or a mesh file")->capture_default_str();
   c->add_option("--voxel", a->options.types[0].voxel,
                 "Voxel size in world units (default: the paper's 1 scaled with the object, so 1 for its 64 objects at "

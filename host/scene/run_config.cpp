@@ -19,13 +19,6 @@ std::string joined(const std::vector<std::string>& names, const char* sep = ", "
   return s;
 }
 
-std::string num_text(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
-
 // Checks the settings of one RunConfig, naming each where it was given.
 class Checker {
  public:
@@ -50,7 +43,8 @@ class Checker {
   void number(const std::string& field, double v, double lo, double hi, bool lo_open,
               const std::string& option_text = "") const {
     if (std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi) return;
-    fail(field, num_text(v) + " is outside " + (lo_open ? "(" : "[") + num_text(lo) + ", " + num_text(hi) + "]",
+    fail(field,
+         number_text(v) + " is outside " + (lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + "]",
          option_text);
   }
   void integer(const std::string& field, uint64_t v, uint64_t lo, uint64_t hi) const {
@@ -143,9 +137,17 @@ Mode mode_option(const std::string& text) {
   const auto m = parse_mode(text);
   if (!m) {
     const auto& n = mode_names();
-    throw SimulateOptionError({"mode"}, "'" + text + "' is not " + joined({n.begin(), n.end() - 1}) + " or " + n.back());
+    throw SimulateOptionError({"mode"},
+                              "'" + text + "' is not " + joined({n.begin(), n.end() - 1}) + " or " + n.back());
   }
   return *m;
+}
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
 }
 
 std::string outside(uint64_t v, uint64_t lo, uint64_t hi) {

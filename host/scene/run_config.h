@@ -41,6 +41,8 @@ const std::vector<std::string>& mode_names();  // ALL, FIRST, COUNT
 Mode mode_option(const std::string& text);
 // "3 is outside [4, 1020]": an integer setting out of its range, as every layer says it.
 std::string outside(uint64_t v, uint64_t lo, uint64_t hi);
+// A number as the messages about settings print it (up to 10 significant digits: "1e+12", "0.025").
+std::string number_text(double v);
 
 // A run setting or option that cannot be used: the message starts with where it was given. From a scene file:
 // "mixed.json: types[1].voxel: -1 is outside (0, 1e+12]" (the file, then the JSON path of the key).

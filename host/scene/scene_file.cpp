@@ -23,13 +23,6 @@ namespace {
 
 using json = nlohmann::json;
 
-std::string num_text(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
-
 // Reads one JSON object's keys with their types, naming the file and the JSON path in every error, and notes each
 // key read in the configuration's `given` (by its field) so that check() names it.
 class Reader {
@@ -331,14 +324,14 @@ LoadedTypes load_types(const RunConfig& f) {
     // Evaluated as make_scene does, so that one auto-scaled type gets exactly its scale.
     const double left = f.density * f.side * f.side * f.side - fixed_volume;
     if (!(left > 0))
-      throw fail("environment.density", num_text(f.density) + " of the cube is " + num_text(f.density * cube) +
+      throw fail("environment.density", number_text(f.density) + " of the cube is " + number_text(f.density * cube) +
                                             ", and the types with a size or scale already fill " +
-                                            num_text(fixed_volume));
+                                            number_text(fixed_volume));
     for (size_t i = 0; i < f.types.size(); ++i)
       if (f.types[i].auto_scaled()) loaded[i].s = std::cbrt(left / double(auto_count) / loaded[i].volume);
   } else if (fixed_volume > kMaxDensity * cube) {
-    throw fail("types", "the objects fill " + num_text(fixed_volume / cube) + " of the cube, above " +
-                            num_text(kMaxDensity));
+    throw fail("types", "the objects fill " + number_text(fixed_volume / cube) + " of the cube, above " +
+                            number_text(kMaxDensity));
   }
   for (LoadedType& l : loaded)
     for (auto& v : l.mesh.vertices) v *= l.s;
@@ -379,20 +372,20 @@ std::vector<double> type_voxels(const RunConfig& f, const LoadedTypes& lt) {
     }
     // The key at fault, and what it asked.
     const std::string key = t.key + (t.voxel > 0 ? ".voxel" : t.resolution > 0 ? ".resolution" : "");
-    const std::string what = t.voxel > 0        ? num_text(t.voxel)
+    const std::string what = t.voxel > 0        ? number_text(t.voxel)
                               : t.resolution > 0 ? "resolution " + std::to_string(t.resolution) + " (voxel " +
-                                                       num_text(voxel[i]) + ")"
-                                                 : "the default voxel " + num_text(voxel[i]);
+                                                       number_text(voxel[i]) + ")"
+                                                 : "the default voxel " + number_text(voxel[i]);
     if (extent / voxel[i] > kMaxVoxelsAcross)
-      throw fail(key, what + " makes the object " + num_text(std::ceil(extent / voxel[i])) + " voxels across (" +
-                          num_text(extent) + " world units), above 2^10");
+      throw fail(key, what + " makes the object " + number_text(std::ceil(extent / voxel[i])) + " voxels across (" +
+                          number_text(extent) + " world units), above 2^10");
     if (extent / voxel[i] < 2)
-      throw fail(key, what + " is larger than half the object (" + num_text(extent) +
+      throw fail(key, what + " is larger than half the object (" + number_text(extent) +
                           " across); it would be a voxel or two");
     if (extent / voxel[i] < kMinVoxelsAcross)
-      throw fail(key, what + " leaves " + num_text(extent / voxel[i]) + " voxels along the object's longest side (" +
-                          num_text(extent) + " world units); at least " + std::to_string(kMinVoxelsAcross) +
-                          " are needed: a voxel of at most " + num_text(extent / kMinVoxelsAcross) +
+      throw fail(key, what + " leaves " + number_text(extent / voxel[i]) + " voxels along the object's longest side (" +
+                          number_text(extent) + " world units); at least " + std::to_string(kMinVoxelsAcross) +
+                          " are needed: a voxel of at most " + number_text(extent / kMinVoxelsAcross) +
                           ", or a \"resolution\"");
   }
   return voxel;
@@ -428,8 +421,8 @@ Scene make_file_scene(const RunConfig& f) {
       throw fail(t.key, e.what());
     }
     if (2 * scene.types.back()->radius >= f.side)
-      throw fail(t.key, "the object (radius " + num_text(scene.types.back()->radius) +
-                            ") does not fit the cube of side " + num_text(f.side));
+      throw fail(t.key, "the object (radius " + number_text(scene.types.back()->radius) +
+                            ") does not fit the cube of side " + number_text(f.side));
   }
   // With one type, the same draws as the built-in scene, so the same bodies.
   std::vector<uint64_t> counts;
@@ -440,10 +433,10 @@ Scene make_file_scene(const RunConfig& f) {
     const auto& t = f.types[e.type];
     throw fail(t.key + ".count", "could not place instance " + std::to_string(e.instance) + " of " +
                                      std::to_string(t.count) + " without overlapping another (the cube is too full): " +
-                                     "even packed on a lattice, bounding spheres of radius " + num_text(e.radius) +
+                                     "even packed on a lattice, bounding spheres of radius " + number_text(e.radius) +
                                      " (the scene's largest) fit at most " + std::to_string(e.capacity) + " of the " +
                                      std::to_string(f.objects()) + " objects" +
-                                     (auto_count > 0 ? "; lower environment.density (" + num_text(f.density) +
+                                     (auto_count > 0 ? "; lower environment.density (" + number_text(f.density) +
                                                            ") or the counts"
                                                      : "; lower the counts or sizes"));
   }

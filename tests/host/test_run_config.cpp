@@ -54,10 +54,12 @@ TEST(RunConfig, EachLimitOfAFileNamesTheFileAndTheKey) {
   EXPECT_EQ(file_error(scene("", ", \"resolution\": " + res)),
             "s.json: types[0].resolution: " + res + " is outside [4, " + std::to_string(kMaxVoxelsAcross) + "]");
   EXPECT_EQ(file_error(scene("", R"(, "count": 0)")), "s.json: types[0].count: 0 is outside [1, 1048576]");
-  EXPECT_EQ(file_error(scene("", ", \"count\": " + objs)), "s.json: types[0].count: " + objs + " is outside [1, 1048576]");
+  EXPECT_EQ(file_error(scene("", ", \"count\": " + objs)),
+            "s.json: types[0].count: " + objs + " is outside [1, 1048576]");
   EXPECT_EQ(file_error(scene("", R"(, "voxel": -1)")), "s.json: types[0].voxel: -1 is outside (0, 1e+12]");
   EXPECT_EQ(file_error(scene("", R"(, "voxel": 1, "resolution": 8)")),
-            "s.json: types[0]: give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), not both");
+            "s.json: types[0]: give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), "
+            "not both");
   EXPECT_EQ(file_error(scene(R"(, "environment": {"density": 0.31})")),
             "s.json: environment.density: 0.31 is outside (0, 0.3]");
   EXPECT_EQ(file_error(scene(R"(, "frames": 0)")), "s.json: frames: 0 is outside [1, 1000000]");
