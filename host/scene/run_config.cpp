@@ -109,7 +109,8 @@ void check_run(const Checker& k, const RunConfig& c) {
       k.fail("distance_bits", std::to_string(c.distance_bits) + " is not " + distance_bits_text());
   if (k.given("band")) {
     k.number("band", c.band, 0, kMaxBand, true, k.from_file("band") ? "" : "must be a positive number of voxels");
-    if (k.from_file("band") && c.distance_bits == 0)
+    // The file's band without the file's distance bits (an option may turn its fields off).
+    if (k.from_file("band") && c.distance_bits == 0 && (!k.given("distance_bits") || k.from_file("distance_bits")))
       k.fail("band", "is the band of distance fields: it needs \"distance_bits\"");
   }
   if (!std::isfinite(c.margin)) k.fail("margin", "must be a finite number");

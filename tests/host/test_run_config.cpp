@@ -173,6 +173,13 @@ TEST(RunConfig, OptionsOverrideTheFileInOrder) {
   EXPECT_EQ(error_text<SimulateOptionError>(
                 [&] { run_config(o, R"({"types": [{"shape": "cube"}, {"shape": "sphere"}]})"); }),
             "objects, shape, voxel, resolution: apply only to a scene file with one object type; two.json has 2");
+  // An option turns the file's distance fields off, its band with them.
+  RunConfig off;
+  off.where = "d.json";
+  off = given(off, "distance_bits", "distance_bits");
+  const RunConfig two_bit = run_config(off, scene(R"(, "distance_bits": 8, "band": 3)"));
+  EXPECT_EQ(two_bit.distance_bits, 0);
+  EXPECT_EQ(two_bit.device_distance_bits(), 0);
   // A whole distance configuration brings its SB; lanes overrides its LANES.
   RunConfig d;
   d.device = DeviceConfig{};
