@@ -29,11 +29,11 @@ class FrameExchange;
 // kDistanceBits, in host/object).
 constexpr uint64_t kMaxObjects = uint64_t{1} << 20;  // instances in one scene
 constexpr double kMaxDensity = 0.3;                  // the fraction of the cube the objects may fill
-constexpr uint64_t kMaxFrames = 1000000;             // a scene file's "frames"
+constexpr uint64_t kMaxFrames = 1000000;             // frames of a run (a scene file's "frames", --frames)
 constexpr double kMaxLength = 1e12;                  // side, size, scale, voxel, accuracy, rate: world units or Hz
 constexpr double kMaxBand = 1e6;                     // voxels
 constexpr double kMaxMotion = 1e6;                   // speed (of the radius) and spin (radians) per frame
-constexpr double kMaxClockMhz = 1e6;
+constexpr double kMaxClockMhz = 1e6;                 // the device clock
 // The device's job modes by name (ref/types.h parse_mode); broadphases: broadphase_names(); backends:
 // backend_names().
 const std::vector<std::string>& mode_names();  // ALL, FIRST, COUNT
