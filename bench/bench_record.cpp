@@ -27,8 +27,8 @@ uint64_t frame_record_bytes(const RecordedFrame& f) {
 }
 
 Row measure(uint64_t objects, uint64_t frames, int repeats, const std::string& path) {
-  SimulateRequest req;
-  req.objects = objects;
+  RunConfig req;
+  req.types[0].count = objects;
   req.frames = frames;
   Row r;
   r.objects = objects;

@@ -121,11 +121,11 @@ int main(int argc, char** argv) {
     double pairs = 0, cycles = 0;
     // The quadratic broadphases are measured up to 1024 objects.
     auto runs = [&](const std::string& p) { return !((p == "all" || p == "sphere") && n > 1024); };
-    SceneSpec spec;
-    spec.objects = n;
+    RunConfig spec;
+    spec.types[0].count = n;
     // The same resolution per object at every N (objects shrink as N grows at a fixed density): voxel 1 at the
     // paper's 64 objects.
-    spec.voxel = fixed_voxel > 0 ? fixed_voxel : std::cbrt(64.0 / double(n));
+    spec.types[0].voxel = fixed_voxel > 0 ? fixed_voxel : std::cbrt(64.0 / double(n));
     // Repeats outermost: each repeat runs every broadphase in turn, so a burst of load on this shared machine falls
     // on all of them alike rather than on one.
     std::vector<std::vector<double>> rates(prunings.size());
@@ -133,8 +133,8 @@ int main(int argc, char** argv) {
       for (size_t k = 0; k < prunings.size(); ++k) {
         const std::string& p = prunings[k];
         if (!runs(p)) continue;
-        SimOptions opt;
-        opt.pruning = p;
+        RunConfig opt;
+        opt.broadphase = p;
         opt.threads = 1;
         opt.midphase = midphase;
         Simulation sim(make_scene(spec), opt);

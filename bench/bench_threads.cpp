@@ -231,8 +231,8 @@ int main(int argc, char** argv) {
               "threads | integrate | bounds | broadphase | pair tests | response | frame | in loops | outside "
               "loops | loops |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (size_t n : counts) {
-      SceneSpec spec;
-      spec.objects = n;
+      RunConfig spec;
+      spec.types[0].count = n;
       const Scene scene = make_scene(spec);
       const uint64_t frames = n <= 1024 ? frames_small : frames_large;
       Series hz(nt, true);
@@ -240,7 +240,7 @@ int main(int argc, char** argv) {
       std::vector<uint64_t> hashes;
       for (int r = 0; r < repeats; ++r)
         for (size_t k : order(nt, r)) {
-          SimOptions opt;
+          RunConfig opt;
           opt.threads = threads[k];
           Simulation sim(scene, opt);
           for (uint64_t f = 0; f < warm; ++f) sim.step();

@@ -19,7 +19,7 @@ DeviceSize size_device(const std::string& scene_file, const SizeOptions& options
     if (!problem.empty()) throw std::invalid_argument("clock_mhz: " + problem);
     req.clock = given_clock(options.clock_mhz, "SizeOptions::clock_mhz");
   }
-  const SceneFile f = read_scene_file(scene_file);
+  const RunConfig f = read_scene_file(scene_file);
   const Scene scene = make_scene(f);
   const SizeReport r = derive_size(f, scene, req);
   DeviceSize d;

@@ -8,7 +8,7 @@ namespace voxcd {
 
 struct World::Impl {
   Scene scene;                       // the bodies until the first frame (then the simulation's)
-  SimOptions options;
+  RunConfig options;                 // how it runs (the scene is `scene`)
   std::vector<Object> objects;       // in type order
   std::unique_ptr<Simulation> sim;
   bool stale = true;                 // bodies were added since the simulation was made
@@ -32,29 +32,20 @@ World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   impl_->scene.side = def.side;
-  SimOptions& o = impl_->options;
-  o.pruning = def.broadphase;
-  o.backend = def.backend;
-  o.lanes = def.lanes;
-  o.mode = def.mode;
-  o.both_directions = def.both_directions;
-  o.distance_bits = def.distance_bits;
-  o.margin = def.margin;
-  o.ccd = def.ccd;
-  o.threads = def.threads;
+  static_cast<WorldDef&>(impl_->options) = def;
+  check(impl_->options);
 }
 
-World World::scene(const SimulateRequest& request) {
-  ResolvedRun r = resolve_run(request);
+World World::scene(const RunConfig& config) {
   auto impl = std::make_unique<Impl>();
-  for (const auto& t : r.scene.types) impl->objects.emplace_back(t);
-  impl->scene = std::move(r.scene);
-  impl->options = std::move(r.options);
-  impl->settings = record_settings(r.summary);
+  impl->scene = make_scene(config);
+  for (const auto& t : impl->scene.types) impl->objects.emplace_back(t);
+  impl->options = config;
+  impl->settings = record_settings(summary_of(config, impl->scene));
   return World(std::move(impl));
 }
 
-World World::scene() { return scene(SimulateRequest{}); }
+World World::scene() { return scene(RunConfig{}); }
 
 World::~World() = default;
 World::World(World&&) noexcept = default;

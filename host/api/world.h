@@ -17,27 +17,15 @@
 
 namespace voxcd {
 
-struct SimulateRequest;  // a run's options, as `voxcd simulate` takes them (host/scene/simulate.h)
+struct RunConfig;  // a run's configuration, as `voxcd simulate` takes it (host/scene/run_config.h)
 
-struct WorldDef {
-  double side = 100;                // bodies move in the cube [0, side]^3 and bounce off its walls
-  std::string broadphase = "grid";  // broadphase_names()
-  std::string backend = "cpu";      // device_backends()
-  int lanes = 4;
-  Mode mode = Mode::All;            // All: every contact; First: whether pairs touch
-  bool both_directions = false;     // also test B's shell in A's voxmap
-  int distance_bits = 0;            // 4, 8, 16: a distance device (every object must carry such a field)
-  double margin = 0;                // distance device: contacts within this distance outside, world units
-  bool ccd = false;                 // continuous collision: no body passes through another (distance device)
-  unsigned threads = 0;             // 0: every hardware thread; never changes the results
-};
-
+// WorldDef (how a world runs) is in voxcd/host/scene/body.h.
 class World {
  public:
   explicit World(const WorldDef& def = {});
-  // The scene `voxcd simulate` runs for the same options: the built-in scene, or a scene file with the options given
-  // overriding it (the same checks and errors). Stepped as many frames, it has the tool's state hash.
-  static World scene(const SimulateRequest& request);
+  // The scene `voxcd simulate` runs for the same configuration (run_config: the built-in scene, or a scene file with
+  // the options given overriding it, checked). Stepped as many frames, it has the tool's state hash.
+  static World scene(const RunConfig& config);
   static World scene();  // the built-in scene with its defaults
   ~World();
   World(World&&) noexcept;

@@ -211,7 +211,7 @@ void add_pair(CLI::App& app) {
   c->add_option("--distance-bits", a->distance_bits,
                 "Distance voxmaps of B bits (4, 8 or 16) on a distance device instead of 2-bit states "
                 "(meshes and shapes get a distance field; object files must have one)")
-      ->check(CLI::IsMember({4, 8, 16}));
+      ->check(CLI::IsMember(kDistanceBits));
   c->add_option("--band", a->band, "Band of the distance fields, voxels (with --distance-bits)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

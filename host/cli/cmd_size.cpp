@@ -20,7 +20,7 @@ struct SizeArgs {
 };
 
 int size_cmd(const SizeArgs& a, const CLI::App& cmd) {
-  const SceneFile f = read_scene_file(a.file);
+  const RunConfig f = read_scene_file(a.file);
   const Scene scene = make_scene(f);
   SizeRequest req = a.req;
   if (cmd.count("--clock")) req.clock = clock_option(a.clock_mhz, "--clock");
@@ -66,7 +66,7 @@ void add_size(CLI::App& app) {
                 "The timing table to choose the depth from (default: the one built in, host/sizing/timing.tsv)")
       ->check(CLI::ExistingFile);
   c->add_option("--frames", a->req.frames, "Frames simulated to measure cycles (default: the scene file's)")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1000000}));
+      ->check(CLI::Range(uint64_t{1}, kMaxFrames));
   c->add_flag("--cost", a->req.cost,
               "Also synthesise the configuration, and the default widths at its LANES, SAW and MAW, with yosys "
               "(synth_xilinx) for LUTs, FFs, DSPs and block RAMs; about 10 s each");

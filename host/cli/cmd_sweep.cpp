@@ -86,11 +86,11 @@ SweepSpec make_spec(const SweepArgs& a, const CLI::App& cmd) {
   }
   if (a.cost) s.cost = true;
   s.rtl_dir = a.rtl_dir;
-  const SceneFile f = read_scene_file(a.scene);
+  const RunConfig f = read_scene_file(a.scene);
   if (s.lanes.empty()) s.lanes = {1, 2, 4};
   if (s.voxel_scales.empty()) s.voxel_scales = {1};
   if (s.distance_bits.empty()) s.distance_bits = {f.distance_bits};
-  if (s.accuracies.empty()) s.accuracies = {f.accuracy > 0 ? f.accuracy : f.accuracy_or_default(make_scene(f))};
+  if (s.accuracies.empty()) s.accuracies = {f.accuracy > 0 ? f.accuracy : accuracy_or_default(f, make_scene(f))};
   if (s.frames == 0) s.frames = f.frames;
   if (!(s.clock > 0)) s.clock = f.clock.mhz, s.clock_source = f.clock.source;
   check_sweep(s, a.sweep_file.empty() ? std::string("the sweep options") : a.sweep_file + " with the options");

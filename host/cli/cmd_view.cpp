@@ -112,12 +112,12 @@ int view_scene(const ViewArgs& a, const std::string& file) {
     std::string path;
     ~Remove() { std::filesystem::remove(path); }
   } remove{tmpl};
-  SimulateRequest req;
-  req.file = file;
-  if (a.frames) req.frames = a.frames;
-  req.record = tmpl;
-  const SimulationSummary s = simulate(req);
-  std::printf("voxcd view: simulated %llu frames of %s\n", (unsigned long long)s.frames, file.c_str());
+  RunConfig options;
+  options.where = file;
+  if (a.frames) options.frames = a.frames, options.given["frames"] = SettingSource{"", "frames"};
+  options.record = tmpl;
+  const SimulationSummary s = simulate(run_config(options));
+  std::printf("voxcd view: simulated %llu frames of %s\n", (unsigned long long)s.config.frames, file.c_str());
   return view_recording(a, tmpl, file);
 }
 
@@ -218,11 +218,11 @@ void add_view(CLI::App& app) {
                            ->check(CLI::PositiveNumber);
   CLI::Option* res = c->add_option("--resolution", a->resolution,
                                    "Meshes and shapes: voxels along the longest side (default 64; 32 for a pair)")
-                         ->check(CLI::Range(uint32_t(kMinVoxelsAcross), uint32_t(1020)));
+                         ->check(CLI::Range(kMinVoxelsAcross, kMaxVoxelsAcross));
   voxel->excludes(res);
   res->excludes(voxel);
   c->add_option("--distance-bits", a->distance_bits, "Meshes and shapes: also a distance field of B bits (4, 8, 16)")
-      ->check(CLI::IsMember({4, 8, 16}));
+      ->check(CLI::IsMember(kDistanceBits));
   c->add_option("--band", a->band, "Band of the distance field, voxels")->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--pose", a->pose, "Pair: B's first pose in A's frame, tx,ty,tz[,rx,ry,rz] (degrees)");
   c->add_option("--backend", a->backend, "Pair: device backend")->capture_default_str();

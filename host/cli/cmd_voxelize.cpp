@@ -25,9 +25,11 @@ const CLI::Validator kPositive(
     "POSITIVE");
 
 // The node value widths a distance device has (docs/contract.md, "Distance voxmaps").
-const CLI::Validator kDistanceBits(
+const CLI::Validator kDistanceBitsCheck(
     [](std::string& v) -> std::string {
-      return v == "4" || v == "8" || v == "16" ? "" : "'" + v + "' is not 4, 8 or 16 (bits per node value)";
+      for (int b : kDistanceBits)
+        if (v == std::to_string(b)) return "";
+      return "'" + v + "' is not " + distance_bits_text() + " (bits per node value)";
     },
     "4|8|16");
 
@@ -95,7 +97,7 @@ void add_voxelize(CLI::App& app) {
       c->add_option("--distance-bits", a->distance_bits,
                     "Also store the signed distance field at the voxmap's nodes, quantised to 4, 8 or 16 bits over "
                     "the band (object file version 3; the shell then lies on the surface)")
-          ->check(kDistanceBits);
+          ->check(kDistanceBitsCheck);
   c->add_option("--band", a->band, "Half-width of the distance field's band in voxels (with --distance-bits): "
                                    "the step is band / 2^(bits-1)")
       ->check(kPositive)

@@ -84,8 +84,9 @@ std::vector<uint8_t> near_nodes(const std::vector<uint64_t>& surface, const std:
 
 DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt,
                              uint64_t* conservative) {
-  if (opt.bits != 4 && opt.bits != 8 && opt.bits != 16)
-    throw MeshError(mesh.name + ": distance bits must be 4, 8 or 16, got " + std::to_string(opt.bits));
+  if (!valid_distance_bits(opt.bits))
+    throw MeshError(mesh.name + ": distance bits must be " + distance_bits_text() + ", got " +
+                    std::to_string(opt.bits));
   if (!(std::isfinite(opt.band) && opt.band > 0)) {
     std::ostringstream s;
     s << mesh.name << ": the distance band must be a positive finite number of voxels, got " << opt.band;

@@ -5,7 +5,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "voxcd/host/object/mesh.h"
@@ -13,6 +16,19 @@
 #include "voxcd/ref/config.h"
 
 namespace voxcd {
+
+// The bits a distance field's node values may have: the SB of a distance device.
+inline constexpr std::array<int, 3> kDistanceBits = {4, 8, 16};
+inline bool valid_distance_bits(int bits) {
+  return std::find(kDistanceBits.begin(), kDistanceBits.end(), bits) != kDistanceBits.end();
+}
+// "4, 8 or 16": kDistanceBits for messages.
+inline std::string distance_bits_text() {
+  std::string s;
+  for (size_t i = 0; i < kDistanceBits.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == kDistanceBits.size() ? " or " : ", ") + std::to_string(kDistanceBits[i]);
+  return s;
+}
 
 struct DistanceField {
   int bits = 0;       // SB: 4, 8 or 16; 0 for an object without a field

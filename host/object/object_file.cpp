@@ -136,8 +136,8 @@ GridPlacement get_grid(Reader& r, const char* what) {
 // The distance section of version 3 (write_object describes it).
 void read_distance(Reader& r, const GridPlacement& g, DistanceField& f) {
   const uint32_t bits = r.get<uint32_t>("the distance bits");
-  if (bits != 0 && bits != 4 && bits != 8 && bits != 16)
-    r.bad("distance bits " + std::to_string(bits) + " are not 0, 4, 8 or 16");
+  if (bits != 0 && !valid_distance_bits(int(bits)))
+    r.bad("distance bits " + std::to_string(bits) + " are not 0, " + distance_bits_text());
   const double step = r.get<double>("the distance step");
   if (bits == 0 ? step != 0 : !(std::isfinite(step) && step > 0))
     r.bad(bits == 0 ? "the distance step of an object without a field is not 0"
@@ -218,8 +218,8 @@ Mesh load_source(const std::string& mesh_or_shape, std::string* source, uint64_t
 ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt,
                        const MeshReport* report) {
   ObjectFile obj;
-  if (opt.distance_bits != 0 && opt.distance_bits != 4 && opt.distance_bits != 8 && opt.distance_bits != 16)
-    throw MeshError(mesh.name + ": distance bits must be 4, 8 or 16 (or 0 for none), got " +
+  if (opt.distance_bits != 0 && !valid_distance_bits(opt.distance_bits))
+    throw MeshError(mesh.name + ": distance bits must be " + distance_bits_text() + " (or 0 for none), got " +
                     std::to_string(opt.distance_bits));
   const double voxel = opt.resolution ? voxel_for_resolution(mesh, opt.resolution) : opt.voxel;
   obj.source = source;

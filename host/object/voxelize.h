@@ -76,6 +76,9 @@ class Voxmap {
 
 // Fewest voxels voxelize accepts along the model's longest side.
 constexpr uint32_t kMinVoxelsAcross = 4;
+// Most voxels a scene's object may have along its longest side: the device's 2^DW (DW = 10) voxels per axis, less
+// room for the grid's padding.
+constexpr uint32_t kMaxVoxelsAcross = 1020;
 
 // The voxel edge that puts `resolution` voxels along the longest side of the mesh's bounding box (of its points
 // for a point cloud). MeshError when resolution < kMinVoxelsAcross or the mesh is empty or flat in every axis.

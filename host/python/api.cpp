@@ -117,14 +117,12 @@ py::dict stats_dict(const FrameStats& f) {
 
 World world_def(double side, const std::string& broadphase, const std::string& backend, int lanes,
                 const std::string& mode, bool both, int distance_bits, double margin, bool ccd, unsigned threads) {
-  const auto m = parse_mode(mode);
-  if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
   WorldDef d;
   d.side = side;
   d.broadphase = broadphase;
   d.backend = backend;
   d.lanes = lanes;
-  d.mode = *m;
+  d.mode = mode_option(mode);
   d.both_directions = both;
   d.distance_bits = distance_bits;
   d.margin = margin;
@@ -142,13 +140,14 @@ World world_scene(const py::object& scene, const py::object& frames, const py::o
                   std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin,
                   std::optional<bool> ccd) {
   if (!frames.is_none()) value_error("frames: a World is stepped by its caller (World.step())");
-  const SimulateRequest req = simulate_request(scene, frames, objects, std::move(shape), voxel, resolution, density,
-                                               speed, seed, std::move(pruning), std::move(backend), lanes,
-                                               std::move(mode), both, clock, std::move(config), threads, midphase,
-                                               cull, distance_bits, band, margin, ccd, py::none());
-  return with_file(req.text ? "" : req.file, [&] {
+  std::optional<std::string> text;
+  const RunConfig options = run_options(scene, frames, objects, std::move(shape), voxel, resolution, density, speed,
+                                        seed, std::move(pruning), std::move(backend), lanes, std::move(mode), both,
+                                        clock, std::move(config), threads, midphase, cull, distance_bits, band,
+                                        margin, ccd, py::none(), text);
+  return with_file(text ? "" : options.where, [&] {
     py::gil_scoped_release unlocked;
-    return World::scene(req);
+    return World::scene(run_config(options, text));
   });
 }
 

@@ -15,7 +15,7 @@
 
 namespace voxcd {
 struct PairResult;
-struct SimulateRequest;
+struct RunConfig;
 }  // namespace voxcd
 
 namespace voxcd::python {
@@ -34,17 +34,17 @@ inline auto run_args() {
       py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
       py::arg("ccd") = py::none());
 }
-// The request of those arguments (and `record`), checked as simulate() checks them.
-SimulateRequest simulate_request(const py::object& scene, const py::object& frames, const py::object& objects,
-                                 std::optional<std::string> shape, std::optional<double> voxel,
-                                 const py::object& resolution, std::optional<double> density,
-                                 std::optional<double> speed, const py::object& seed,
-                                 std::optional<std::string> pruning, std::optional<std::string> backend,
-                                 std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
-                                 std::optional<double> clock, std::optional<std::string> config, unsigned threads,
-                                 bool midphase, bool cull, std::optional<int> distance_bits,
-                                 std::optional<double> band, std::optional<double> margin, std::optional<bool> ccd,
-                                 const py::object& record);
+// Those arguments (and `record`) as the settings they give over the scene file (RunConfig::given; run_config applies
+// them); `text` is set to a dict scene's JSON. ValueError or TypeError naming the keyword for a value it cannot take.
+RunConfig run_options(const py::object& scene, const py::object& frames, const py::object& objects,
+                      std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
+                      std::optional<double> density, std::optional<double> speed, const py::object& seed,
+                      std::optional<std::string> pruning, std::optional<std::string> backend,
+                      std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
+                      std::optional<double> clock, std::optional<std::string> config, unsigned threads,
+                      bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
+                      std::optional<double> margin, std::optional<bool> ccd, const py::object& record,
+                      std::optional<std::string>& text);
 
 // A pair's result as the module gives it: hits, lookups, device_cycles (None without cycles) and the contacts as
 // numpy arrays (pairs.cpp).

@@ -34,8 +34,9 @@ std::string path_arg(const py::handle& h, const char* what) {
 void value_error(const std::string& message) { throw py::value_error(message); }
 
 void check_distance_args(int distance_bits, double band) {
-  if (distance_bits != 0 && distance_bits != 4 && distance_bits != 8 && distance_bits != 16)
-    value_error("distance_bits: " + std::to_string(distance_bits) + " is not 4, 8 or 16 (or 0 for no distance field)");
+  if (distance_bits != 0 && !valid_distance_bits(distance_bits))
+    value_error("distance_bits: " + std::to_string(distance_bits) + " is not " + distance_bits_text() +
+                " (or 0 for no distance field)");
   if (!(std::isfinite(band) && band > 0))
     value_error("band: " + py::repr(py::float_(band)).cast<std::string>() + " is not a positive finite number of voxels");
 }

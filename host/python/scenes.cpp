@@ -49,13 +49,13 @@ DeviceClock clock_arg(double mhz) {
   return given_clock(mhz, "the clock argument");
 }
 
-py::dict summary_dict(const SimulationSummary& s) {
-  const SimulationTotals& t = s.totals;
+// The summary's configuration: the scene and how it ran, in the order of `voxcd simulate --json`.
+void put_config(py::dict& r, const SimulationSummary& s) {
+  const RunConfig& c = s.config;
   const ObjectType& type = *s.types[0];
   const auto& d = type.voxmap().dims();
-  py::dict r;
-  if (!s.file.empty()) {
-    r["scene"] = s.file;
+  if (!c.builtin()) {
+    r["scene"] = c.where;
     py::list types;
     for (const auto& ty : s.types) {
       py::dict e;
@@ -67,23 +67,30 @@ py::dict summary_dict(const SimulationSummary& s) {
     r["types"] = types;
   }
   r["device"] = s.device.to_string();
-  r["shape"] = s.shape;
-  r["objects"] = s.objects;
-  r["voxel"] = s.voxel;
+  r["shape"] = s.shape();
+  r["objects"] = c.objects();
+  r["voxel"] = s.voxel();
   r["shell_points"] = type.shell().size();
   r["voxmap"] = py::make_tuple(d[0], d[1], d[2]);
-  r["pruning"] = s.pruning;
-  r["backend"] = s.backend;
-  r["mode"] = s.mode;
-  r["both_directions"] = s.both_directions;
-  if (s.distance_bits) {
-    r["distance_bits"] = s.distance_bits;
-    r["band"] = s.band;
-    r["margin"] = s.margin;
-    r["ccd"] = s.ccd;
+  r["pruning"] = c.broadphase;
+  r["backend"] = c.backend;
+  r["mode"] = mode_name(c.mode);
+  r["both_directions"] = c.both_directions;
+  if (s.distance_bits()) {
+    r["distance_bits"] = s.distance_bits();
+    r["band"] = c.band;
+    r["margin"] = c.margin;
+    r["ccd"] = c.ccd;
   }
-  r["frames"] = s.frames;
-  r["seed"] = s.seed;
+  r["frames"] = c.frames;
+  r["seed"] = c.seed;
+}
+
+py::dict summary_dict(const SimulationSummary& s) {
+  const RunConfig& c = s.config;
+  const SimulationTotals& t = s.totals;
+  py::dict r;
+  put_config(r, s);
   r["seconds"] = t.seconds();
   r["frame_rate_hz"] = s.frame_rate();
   r["broadphase_pairs"] = t.pairs;
@@ -101,24 +108,24 @@ py::dict summary_dict(const SimulationSummary& s) {
   stages["narrow"] = t.t_narrow;
   stages["response"] = t.t_response;
   r["stage_seconds"] = stages;
-  if (s.ccd) {
-    py::dict c;
-    c["iterations"] = t.ccd_iterations;
-    c["queries"] = t.ccd_queries;
-    c["pairs_limited"] = t.ccd_limited;
-    c["time_of_impact_events"] = t.ccd_toi;
-    c["bodies_dropped"] = t.ccd_dropped;
-    c["lookups"] = t.ccd_lookups;
-    r["no_tunnelling"] = c;
+  if (c.ccd) {
+    py::dict cc;
+    cc["iterations"] = t.ccd_iterations;
+    cc["queries"] = t.ccd_queries;
+    cc["pairs_limited"] = t.ccd_limited;
+    cc["time_of_impact_events"] = t.ccd_toi;
+    cc["bodies_dropped"] = t.ccd_dropped;
+    cc["lookups"] = t.ccd_lookups;
+    r["no_tunnelling"] = cc;
   }
-  r["lanes"] = s.lanes;
+  r["lanes"] = c.lanes;
   r["device_cycles"] = t.cycles;
   r["device_cycles_per_frame"] = s.cycles_per_frame();
   r["device_cycles_max_frame"] = t.max_cycles;
   r["device_idle_frames"] = t.idle_frames;
-  r["clock_mhz"] = s.clock.mhz;
-  r["clock_source"] = s.clock.source;
-  r["clock_estimate"] = s.clock.estimate;
+  r["clock_mhz"] = c.clock.mhz;
+  r["clock_source"] = c.clock.source;
+  r["clock_estimate"] = c.clock.estimate;
   // No device cycles: no device rate (None), as `voxcd simulate --json` gives null.
   r["device_frame_rate_hz"] = t.cycles ? py::object(py::float_(s.device_rate())) : py::object(py::none());
   char hash[24];
@@ -129,45 +136,47 @@ py::dict summary_dict(const SimulationSummary& s) {
 
 }  // namespace
 
-SimulateRequest simulate_request(const py::object& scene, const py::object& frames, const py::object& objects,
-                                 std::optional<std::string> shape, std::optional<double> voxel,
-                                 const py::object& resolution, std::optional<double> density,
-                                 std::optional<double> speed, const py::object& seed,
-                                 std::optional<std::string> pruning, std::optional<std::string> backend,
-                                 std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
-                                 std::optional<double> clock, std::optional<std::string> config, unsigned threads,
-                                 bool midphase, bool cull, std::optional<int> distance_bits,
-                                 std::optional<double> band, std::optional<double> margin, std::optional<bool> ccd,
-                                 const py::object& record) {
-  SimulateRequest req;
-  if (!scene.is_none()) scene_arg(scene, req.file, req.text);
-  req.frames = count_arg(frames, "frames");
-  req.objects = count_arg(objects, "objects");
-  req.shape = std::move(shape);
-  req.voxel = voxel;
+RunConfig run_options(const py::object& scene, const py::object& frames, const py::object& objects,
+                      std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
+                      std::optional<double> density, std::optional<double> speed, const py::object& seed,
+                      std::optional<std::string> pruning, std::optional<std::string> backend,
+                      std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
+                      std::optional<double> clock, std::optional<std::string> config, unsigned threads,
+                      bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
+                      std::optional<double> margin, std::optional<bool> ccd, const py::object& record,
+                      std::optional<std::string>& text) {
+  RunConfig o;
+  SceneTypeSpec& t = o.types[0];
+  // Notes a keyword given: the setting's field and the keyword that names it in messages.
+  auto give = [&](const char* field, const char* keyword) { o.given[field] = SettingSource{"", keyword}; };
+  if (!scene.is_none()) scene_arg(scene, o.where, text);
+  if (const auto f = count_arg(frames, "frames")) o.frames = *f, give("frames", "frames");
+  if (const auto n = count_arg(objects, "objects")) t.count = *n, give("types[0].count", "objects");
+  if (shape) t.shape = *shape, give("types[0].shape", "shape");
+  if (voxel) t.voxel = *voxel, give("types[0].voxel", "voxel");
   if (const auto r = count_arg(resolution, "resolution")) {
-    if (*r > UINT32_MAX) value_error("resolution: " + std::to_string(*r) + " is outside [4, 1020]");
-    req.resolution = uint32_t(*r);
+    if (*r > UINT32_MAX) value_error("resolution: " + outside(*r, kMinVoxelsAcross, kMaxVoxelsAcross));
+    t.resolution = uint32_t(*r), give("types[0].resolution", "resolution");
   }
-  req.density = density;
-  req.speed = speed;
-  req.seed = count_arg(seed, "seed");
-  req.pruning = std::move(pruning);
-  req.backend = std::move(backend);
-  req.lanes = lanes;
-  req.mode = std::move(mode);
-  req.both_directions = both;
-  if (clock) req.clock = clock_arg(*clock);
-  req.distance_bits = distance_bits;
-  req.band = band;
-  req.margin = margin;
-  req.ccd = ccd;
-  if (config) req.device = parse_config_pairs(*config, "config");
-  req.threads = threads;
-  req.midphase = midphase;
-  req.cull = cull;
-  if (!record.is_none()) req.record = path_arg(record, "record");
-  return req;
+  if (density) o.density = *density, give("density", "density");
+  if (speed) o.speed = *speed, give("speed", "speed");
+  if (const auto sd = count_arg(seed, "seed")) o.seed = *sd, give("seed", "seed");
+  if (pruning) o.broadphase = *pruning, give("broadphase", "pruning");
+  if (backend) o.backend = *backend, give("backend", "backend");
+  if (lanes) o.lanes = *lanes, give("lanes", "lanes");
+  if (mode) o.mode = mode_option(*mode), give("mode", "mode");
+  if (both) o.both_directions = *both, give("both_directions", "both");
+  if (clock) o.clock = clock_arg(*clock), give("clock", "clock");
+  if (distance_bits) o.distance_bits = *distance_bits, give("distance_bits", "distance_bits");
+  if (band) o.band = *band, give("band", "band");
+  if (margin) o.margin = *margin, give("margin", "margin");
+  if (ccd) o.ccd = *ccd, give("ccd", "ccd");
+  if (config) o.device = parse_config_pairs(*config, "config"), give("device", "config");
+  o.threads = threads;
+  o.midphase = midphase;
+  o.cull = cull;
+  if (!record.is_none()) o.record = path_arg(record, "record");
+  return o;
 }
 
 namespace {
@@ -180,15 +189,16 @@ py::dict simulate_scene(const py::object& scene, const py::object& frames, const
                         std::optional<double> clock, std::optional<std::string> config, unsigned threads,
                         bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
                         std::optional<double> margin, std::optional<bool> ccd, const py::object& record) {
-  const SimulateRequest req = simulate_request(scene, frames, objects, std::move(shape), voxel, resolution, density,
-                                               speed, seed, std::move(pruning), std::move(backend), lanes,
-                                               std::move(mode), both, clock, std::move(config), threads, midphase,
-                                               cull, distance_bits, band, margin, ccd, record);
-  return with_file(req.text ? "" : req.file, [&] {
+  std::optional<std::string> text;
+  const RunConfig options = run_options(scene, frames, objects, std::move(shape), voxel, resolution, density, speed,
+                                        seed, std::move(pruning), std::move(backend), lanes, std::move(mode), both,
+                                        clock, std::move(config), threads, midphase, cull, distance_bits, band,
+                                        margin, ccd, record, text);
+  return with_file(text ? "" : options.where, [&] {
     SimulationSummary s;
     {
       py::gil_scoped_release unlocked;
-      s = simulate(req);
+      s = simulate(run_config(options, text));
     }
     return summary_dict(s);
   });
@@ -210,7 +220,7 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
   req.rate = rate.value_or(0);
   if (clock) req.clock = clock_arg(*clock);
   if (const auto f = count_arg(frames, "frames")) {
-    if (*f < 1 || *f > 1000000) value_error("frames: " + std::to_string(*f) + " is outside [1, 1000000]");
+    if (*f < 1 || *f > kMaxFrames) value_error("frames: " + outside(*f, 1, kMaxFrames));
     req.frames = *f;
   }
   req.cost = cost;
@@ -227,7 +237,7 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
   std::string json;
   with_file(text ? "" : file, [&] {
     py::gil_scoped_release unlocked;
-    const SceneFile f = text ? parse_scene_file(*text, file) : read_scene_file(file);
+    const RunConfig f = text ? parse_scene_file(*text, file) : read_scene_file(file);
     const Scene sc = make_scene(f);
     try {
       json = size_json(derive_size(f, sc, req));

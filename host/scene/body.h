@@ -1,10 +1,12 @@
-// A body of a world and what one frame of a world did (public: <voxcd/voxcd.h>).
+// A body of a world, how a world runs and what one frame of a world did (public: <voxcd/voxcd.h>).
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 
 #include "voxcd/host/object/frame.h"
+#include "voxcd/ref/types.h"
 
 namespace voxcd {
 
@@ -13,6 +15,20 @@ struct Body {
   RigidPose pose;                                    // world = rotation * local + translation
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // world units per frame
   Eigen::Vector3d spin = Eigen::Vector3d::Zero();      // angular velocity, radians per frame, world axes
+};
+
+// How a world runs (World, and every run: RunConfig extends it with the scene and what is asked of the device).
+struct WorldDef {
+  double side = 100;                // bodies move in the cube [0, side]^3 and bounce off its walls
+  std::string broadphase = "grid";  // broadphase_names(): grid, the fastest at every N measured
+  std::string backend = "cpu";      // device_backends()
+  int lanes = 4;                    // lanes of the modelled device
+  Mode mode = Mode::All;            // All: every contact; First: whether pairs touch; Count: hits only
+  bool both_directions = false;     // also test B's shell in A's voxmap
+  int distance_bits = 0;            // 4, 8, 16: a distance device (every object must carry such a field); 0: 2-bit
+  double margin = 0;                // distance device: contacts within this distance outside, world units
+  bool ccd = false;                 // continuous collision: no body passes through another (distance device)
+  unsigned threads = 0;             // threads of every stage of a frame (0: every CPU); never changes the results
 };
 
 struct FrameStats {
@@ -27,7 +43,7 @@ struct FrameStats {
   uint64_t contacts = 0;
   uint64_t device_cycles = 0;  // of the frame's job streams (measured on rtl, the timing model on ref and cpu);
                                // distributed: of the busiest rank's
-  // Continuous collision (SimOptions::ccd; all 0 without it): advancement steps, pair queries, distinct pairs whose
+  // Continuous collision (WorldDef::ccd; all 0 without it): advancement steps, pair queries, distinct pairs whose
   // bound cut a step short, time-of-impact events (pair responses and wall reflections, also counted in responses
   // and wall_hits), bodies whose remaining motion the iteration cap dropped, shell points the queries submitted.
   uint64_t ccd_iterations = 0, ccd_queries = 0, ccd_limited = 0, ccd_toi = 0, ccd_dropped = 0, ccd_lookups = 0;

@@ -111,24 +111,25 @@ RecordedType recorded_type(const ObjectType& t) {
 std::string record_settings(const SimulationSummary& s) {
   nlohmann::json j;
   j["tool"] = std::string("voxcd ") + VOXCD_VERSION;
-  j["scene"] = s.file;
-  j["shape"] = s.shape;
-  j["objects"] = s.objects;
-  j["side"] = s.side;
-  j["density"] = s.density;
-  j["seed"] = s.seed;
-  j["frames"] = s.frames;
-  j["pruning"] = s.pruning;
-  j["backend"] = s.backend;
-  j["mode"] = s.mode;
-  j["both_directions"] = s.both_directions;
-  j["distance_bits"] = s.distance_bits;
-  j["margin"] = s.margin;
-  j["ccd"] = s.ccd;
-  j["lanes"] = s.lanes;
+  const RunConfig& c = s.config;
+  j["scene"] = c.where;
+  j["shape"] = s.shape();
+  j["objects"] = c.objects();
+  j["side"] = c.side;
+  j["density"] = c.density;
+  j["seed"] = c.seed;
+  j["frames"] = c.frames;
+  j["pruning"] = c.broadphase;
+  j["backend"] = c.backend;
+  j["mode"] = mode_name(c.mode);
+  j["both_directions"] = c.both_directions;
+  j["distance_bits"] = s.distance_bits();
+  j["margin"] = c.margin;
+  j["ccd"] = c.ccd;
+  j["lanes"] = c.lanes;
   j["device"] = s.device.to_string();
-  j["clock_mhz"] = s.clock.mhz;
-  j["clock_source"] = s.clock.source;
+  j["clock_mhz"] = c.clock.mhz;
+  j["clock_source"] = c.clock.source;
   return j.dump();
 }
 

@@ -12,6 +12,7 @@
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
+#include "voxcd/host/scene/scene_file.h"
 
 namespace voxcd {
 
@@ -121,43 +122,9 @@ double largest_radius_for(double side, uint64_t count) {
   return lo;
 }
 
-}  // namespace
-
-Scene make_scene(const SceneSpec& spec) {
-  if (spec.objects == 0) throw std::invalid_argument("scene: objects must be at least 1");
-  if (!(spec.side > 0) || !std::isfinite(spec.side)) throw std::invalid_argument("scene: side must be positive");
-  if (!(spec.density > 0 && spec.density <= 0.3))
-    throw std::invalid_argument("scene: density " + std::to_string(spec.density) + " is outside (0, 0.3]");
-  if (!(spec.speed >= 0) || !std::isfinite(spec.speed)) throw std::invalid_argument("scene: speed must be >= 0");
-  if (!(spec.spin >= 0) || !std::isfinite(spec.spin)) throw std::invalid_argument("scene: spin must be >= 0");
-  if (spec.voxel_given() && spec.resolution > 0)
-    throw std::invalid_argument("scene: give a voxel size or a resolution, not both");
-  if (spec.voxel_given() && (!(spec.voxel > 0) || !std::isfinite(spec.voxel)))
-    throw std::invalid_argument("scene: voxel must be > 0");
-  if (spec.resolution > 0 && (spec.resolution < kMinVoxelsAcross || spec.resolution > 1020))
-    throw std::invalid_argument("scene: resolution " + std::to_string(spec.resolution) + " is outside [" +
-                                std::to_string(kMinVoxelsAcross) +
-                                ", 1020] (voxels along the object's longest side)");
-  std::string source;
-  uint64_t hash = 0;
-  Mesh mesh = load_source(spec.shape, &source, &hash);
-  // Scale so that the objects fill `density` of the cube, and centre the mesh on its box's centre.
-  const double each = spec.density * spec.side * spec.side * spec.side / double(spec.objects);  // one's volume
-  const double volume = mesh.volume();
-  const double s = std::cbrt(each / volume);
-  Eigen::Vector3d lo, hi;
-  mesh.bounds(lo, hi);
-  const Eigen::Vector3d mid = 0.5 * (lo + hi);
-  for (auto& v : mesh.vertices) v = (v - mid) * s;
-  const double extent = (hi - lo).maxCoeff() * s;
-  // The voxel: given, from the resolution, or the paper's scaled with the object (1 for the paper's scene).
-  const double voxel = spec.voxel_given()  ? spec.voxel
-                       : spec.resolution ? voxel_for_resolution(mesh, spec.resolution)
-                                         : default_voxel(each, extent);
-  const std::string what = spec.voxel_given() ? "voxel " + std::to_string(voxel)
-                                              : spec.resolution ? "resolution " + std::to_string(spec.resolution)
-                                                                : "the default voxel " + num(voxel);
-  if (extent / voxel > 1020) {
+// The built-in scene's voxel (`what` says where it comes from) against an object `extent` across.
+void check_voxels_across(const std::string& what, double extent, double voxel) {
+  if (extent / voxel > kMaxVoxelsAcross) {
     char across[32];  // as a double: a tiny voxel makes the count too large for an int, or infinite
     std::snprintf(across, sizeof across, "%.6g", extent / voxel);
     throw std::invalid_argument("scene: " + what + " makes each object " + across + " voxels across, above 2^10");
@@ -170,32 +137,65 @@ Scene make_scene(const SceneSpec& spec) {
                                 " voxels along the object's longest side (" + num(extent) + "); at least " +
                                 std::to_string(kMinVoxelsAcross) + " are needed: a voxel of at most " +
                                 num(extent / kMinVoxelsAcross) + ", or a resolution");
+}
+
+// The built-in scene (make_scene): one type, scaled to fill the density, with the paper's voxel by default.
+Scene make_builtin_scene(const RunConfig& c) {
+  const SceneTypeSpec& t = c.types.at(0);
+  const uint64_t objects = t.count;
+  std::string source;
+  uint64_t hash = 0;
+  Mesh mesh = load_source(t.shape, &source, &hash);
+  // Scale so that the objects fill `density` of the cube, and centre the mesh on its box's centre.
+  const double each = c.density * c.side * c.side * c.side / double(objects);  // one's volume
+  const double volume = mesh.volume();
+  const double s = std::cbrt(each / volume);
+  Eigen::Vector3d lo, hi;
+  mesh.bounds(lo, hi);
+  const Eigen::Vector3d mid = 0.5 * (lo + hi);
+  for (auto& v : mesh.vertices) v = (v - mid) * s;
+  const double extent = (hi - lo).maxCoeff() * s;
+  // The voxel: given, from the resolution, or the paper's scaled with the object (1 for the paper's scene).
+  const double voxel = t.voxel > 0    ? t.voxel
+                       : t.resolution ? voxel_for_resolution(mesh, t.resolution)
+                                      : default_voxel(each, extent);
+  const std::string what = t.voxel > 0    ? "voxel " + std::to_string(voxel)
+                           : t.resolution ? "resolution " + std::to_string(t.resolution)
+                                          : "the default voxel " + num(voxel);
+  check_voxels_across(what, extent, voxel);
   ObjectOptions oo;
   oo.voxel = voxel;
-  oo.distance_bits = spec.distance_bits;
-  oo.band = spec.band;
+  oo.distance_bits = c.distance_bits;
+  oo.band = c.band;
   Scene scene;
-  scene.side = spec.side;
+  scene.side = c.side;
   auto type = std::make_shared<ObjectType>(
-      make_object_type(make_object(mesh, source, hash, oo), spec.shape + " x" + std::to_string(s)));
+      make_object_type(make_object(mesh, source, hash, oo), t.shape + " x" + std::to_string(s)));
   type->mesh = std::make_shared<const Mesh>(std::move(mesh));
   scene.types.push_back(type);
   const double r = type->radius;
-  if (2 * r >= spec.side) throw std::invalid_argument("scene: the objects do not fit the cube");
+  if (2 * r >= c.side) throw std::invalid_argument("scene: the objects do not fit the cube");
   try {
-    place_bodies(scene, {spec.objects}, spec.speed, spec.spin, spec.seed);
+    place_bodies(scene, {objects}, c.speed, c.spin, c.seed);
   } catch (const PlacementError& e) {
     // Object size (and with the default voxel, bounding radius) goes with the cube root of the density.
-    const double r_fit = largest_radius_for(spec.side, spec.objects);
-    const double most = spec.density * std::pow(r_fit / e.radius, 3);
+    const double r_fit = largest_radius_for(c.side, objects);
+    const double most = c.density * std::pow(r_fit / e.radius, 3);
     throw std::invalid_argument("scene: could not place object " + std::to_string(e.instance) + " of " +
-                                std::to_string(spec.objects) + " without overlapping bounding spheres: at density " +
-                                num(spec.density) + " each object's bounding sphere has radius " + num(e.radius) +
+                                std::to_string(objects) + " without overlapping bounding spheres: at density " +
+                                num(c.density) + " each object's bounding sphere has radius " + num(e.radius) +
                                 ", and even packed on a lattice only " + std::to_string(e.capacity) +
-                                " such spheres fit the cube; " + std::to_string(spec.objects) +
+                                " such spheres fit the cube; " + std::to_string(objects) +
                                 " objects of this shape fit up to a density of about " + num(most));
   }
   return scene;
+}
+
+}  // namespace
+
+Scene make_scene(const RunConfig& c) {
+  check(c);
+  return c.builtin() ? make_builtin_scene(c) : make_file_scene(c);
 }
 
 namespace {
@@ -387,19 +387,19 @@ void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double spee
   scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
 }
 
-std::unique_ptr<Broadphase> Simulation::make_pruning() const {
-  std::unique_ptr<Broadphase> b = make_broadphase(opt_.pruning);
+std::unique_ptr<Broadphase> Simulation::new_broadphase() const {
+  std::unique_ptr<Broadphase> b = make_broadphase(opt_.broadphase);
   b->set_pool(pool_.get());
   return b;
 }
 
-Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(scene)), opt_(opt) {
+Simulation::Simulation(Scene scene, const RunConfig& opt) : scene_(std::move(scene)), opt_(opt) {
   // One pool for every stage and the device (a loop inside a loop of it runs on the thread that asked).
   const unsigned threads = opt.threads ? opt.threads : ThreadPool::available_cpus();
   if (threads > 1) pool_ = std::make_shared<ThreadPool>(threads);
-  broadphase_ = make_pruning();
+  broadphase_ = new_broadphase();
   if (opt.exchange && broadphase_->predicate() == "all")
-    throw std::invalid_argument("broadphase " + opt.pruning + ": it pairs every body with every other, so it cannot "
+    throw std::invalid_argument("broadphase " + opt.broadphase + ": it pairs every body with every other, so it cannot "
                                 "be split over ranks by space; a distributed run needs grid, sap, tree, ...");
   std::vector<const ObjectType*> types;
   for (const auto& t : scene_.types) types.push_back(t.get());
@@ -413,7 +413,7 @@ Simulation::Simulation(Scene scene, const SimOptions& opt) : scene_(std::move(sc
   if (opt.ccd) {
     if (!cfg.distance())
       throw std::invalid_argument("ccd: continuous collision bounds each step by the distance fields: it needs a "
-                                  "distance device (distance_bits 4, 8 or 16)");
+                                  "distance device (distance_bits " + distance_bits_text() + ")");
     ccd_ = std::make_unique<ContinuousCollision>(scene_.types, cfg, opt.ccd_max_iterations, opt.cull, pool_.get());
   }
 }
@@ -563,7 +563,7 @@ const std::vector<BodyPair>& Simulation::find_pairs() {
   const int me = opt_.exchange->rank();
   std::vector<uint32_t> local = slab_bodies(slabs_, me, bounds_);
   // A broadphase that keeps state between frames keys it by index: another set of bodies starts a fresh one.
-  if (broadphase_->keeps_state() && local != local_) broadphase_ = make_pruning();
+  if (broadphase_->keeps_state() && local != local_) broadphase_ = new_broadphase();
   local_ = std::move(local);
   local_bounds_.clear();
   for (uint32_t i : local_) local_bounds_.push_back(bounds_[i]);

@@ -19,6 +19,7 @@
 #include "voxcd/host/scene/ccd.h"
 #include "voxcd/host/scene/exchange.h"
 #include "voxcd/host/scene/partition.h"
+#include "voxcd/host/scene/run_config.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/ref/fast/thread_pool.h"
 
@@ -28,28 +29,6 @@ struct Scene {
   double side = 100;  // the environment: the cube [0, side]^3, walls on its faces
   std::vector<std::shared_ptr<const ObjectType>> types;
   std::vector<Body> bodies;
-};
-
-// The paper's environment (Section 7): `objects` copies of one shape (a built-in name or a mesh file) scaled so
-// that they fill `density` of the cube, voxelised at `voxel` world units or at `resolution` voxels along the
-// object's longest side (by default at default_voxel: the paper's accuracy of one unit at the paper's object size,
-// scaled with the object), placed without overlapping bounding spheres (place_bodies), with random orientations,
-// random velocities of up to `speed` times the object's bounding radius per frame and random spins of up to
-// `spin` radians per frame.
-struct SceneSpec {
-  std::string shape = "polytope36";
-  size_t objects = 64;
-  double side = 100;
-  double density = 0.025;
-  double speed = 0.1;
-  double spin = 0.02;
-  // World units; NaN (the default): not given. At most one of voxel and resolution; neither: default_voxel.
-  double voxel = std::numeric_limits<double>::quiet_NaN();
-  uint32_t resolution = 0;  // voxels along the object's longest side (voxel_for_resolution); 0: not given
-  uint64_t seed = 1;
-  int distance_bits = 0;    // 4, 8, 16: objects carry a distance field of that many bits (ObjectOptions); 0: none
-  double band = 4.0;        // the field's band, voxels
-  bool voxel_given() const { return !std::isnan(voxel); }
 };
 
 // The paper's scene: 64 objects filling 2.5% of a cube of side 100, so 390.625 cubic units each, at voxel 1.
@@ -63,51 +42,23 @@ constexpr double kPaperObjectVolume = 0.025 * 100 * 100 * 100 / 64;
 constexpr double kDefaultFewestAcross = 4, kDefaultMostAcross = 64;
 double default_voxel(double volume, double extent);
 
-// Throws std::invalid_argument naming the field for a value out of range (no objects, density outside (0, 0.3],
-// both voxel and resolution, a voxel size that makes the object larger than 2^10 voxels or fewer than 4 across, a
-// resolution outside [4, 1020]), for objects whose bounding spheres do not fit the cube at that density (naming
-// the density and the largest that fits), MeshError for the shape.
-Scene make_scene(const SceneSpec& spec);
-
-struct SimOptions {
-  std::string pruning = "grid";  // a broadphase name (host/broadphase/broadphase.h): the fastest at every N measured
-  std::string backend = "cpu";   // a device backend
-  int lanes = 4;                 // lanes of the modelled device
-  // The device's whole configuration (e.g. one `voxcd size` derived); it replaces `lanes` and the memories grown
-  // to fit. Unset: the default widths with `lanes`.
-  std::optional<DeviceConfig> device;
-  // A distance device of SB = distance_bits (every type must carry a field of at most that many bits); 0: the 2-bit
-  // device. Ignored when `device` is given (its SB decides).
-  int distance_bits = 0;
-  // Distance device: contacts where the other object's distance is at most `margin` world units (PairOptions).
-  double margin = 0;
-  // Continuous collision: no body passes through another or through a wall between frames (docs/simulate.md,
-  // "No tunnelling"); needs a distance device.
-  bool ccd = false;
-  // Continuous collision: advancement steps per frame; at the cap the bodies still limited keep their place for
-  // the rest of the frame (counted in FrameStats::ccd_dropped).
-  uint32_t ccd_max_iterations = 64;
-  Mode mode = Mode::All;         // ALL reports every contact; FIRST only tells whether a pair touches
-  bool both_directions = false;  // also test B's shell in A's voxmap
-  // Threads of the whole frame (0: one per CPU the process may run on): every stage but the response runs on them,
-  // and so does the cpu backend. Results never depend on it (docs/scale.md, "Every core in a process").
-  unsigned threads = 0;
-  // Before the device, drop broadphase pairs whose oriented boxes (each type's contact bounds in its own frame,
-  // grown by one voxel) are disjoint: such a pair can have no hit, so results never depend on it.
-  bool midphase = true;
-  // Submit only the shell points whose clusters can land in the other object's voxmap (PairOptions::cull):
-  // results never depend on it, lookups and device cycles do.
-  bool cull = true;
-  // A distributed run (host/scene/exchange.h, docs/scale.md): this process is one rank; its broadphase and device
-  // take only the pairs of its slab (partition.h), and the exchange gives it every rank's outcomes. Contacts and
-  // states are those of one process whatever the number of ranks; device_cycles is the busiest rank's.
-  std::shared_ptr<FrameExchange> exchange;
-};
+// The scene of a run (check()ed first): a scene file's (make_file_scene, scene_file.h), or the built-in scene of the
+// paper's environment (Section 7): types[0].count copies of one shape (a built-in name or a mesh file) scaled so
+// that they fill `density` of the cube, voxelised at its voxel or its resolution (by default at default_voxel: the
+// paper's accuracy of one unit at the paper's object size, scaled with the object), placed without overlapping
+// bounding spheres (place_bodies), with random orientations, random velocities of up to `speed` times the object's
+// bounding radius per frame and random spins of up to `spin` radians per frame. check()'s errors; for the built-in
+// scene std::invalid_argument "scene: ..." for a voxel that makes the object larger than kMaxVoxelsAcross voxels or
+// fewer than kMinVoxelsAcross across and for objects whose bounding spheres do not fit the cube at that density
+// (naming the density and the largest that fits), MeshError for the shape.
+Scene make_scene(const RunConfig& c);
 
 class Simulation {
  public:
-  // The device is configured from the scene: only its object types are loaded, with memories grown to fit them.
-  Simulation(Scene scene, const SimOptions& opt);
+  // The device is configured from the scene: only its object types are loaded, with memories grown to fit them (or
+  // as the configuration's `device` says). Of the configuration, only how it runs matters (WorldDef, device, ccd,
+  // midphase, cull, exchange); the scene is `scene`.
+  Simulation(Scene scene, const RunConfig& config);
   // One frame: integrate, bounce off the walls (with ccd: advance without tunnelling, ContinuousCollision), bounds,
   // broadphase, pair tests, response. std::invalid_argument from the constructor when ccd is asked of a device
   // without distance voxmaps.
@@ -120,7 +71,7 @@ class Simulation {
   // included (this rank's, in a distributed run).
   const std::vector<BodyPair>& tested_pairs() const { return requests_pairs_; }
   const std::vector<PairResult>& results() const { return results_; }
-  // The threads of the frame (SimOptions::threads; null on one thread).
+  // The threads of the frame (WorldDef::threads; null on one thread).
   const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
   // A hash of every body's state (bit patterns of positions, orientations and velocities): equal runs, equal hash.
   uint64_t state_hash() const;
@@ -131,14 +82,14 @@ class Simulation {
   // The mid-phase, the pair tests and the tested pairs' outcomes (requests_, requests_pairs_, results_, outcomes_).
   void narrow(const std::vector<BodyPair>& pairs, const PairOptions& po);
   void outcome(size_t q);
-  std::unique_ptr<Broadphase> make_pruning() const;
+  std::unique_ptr<Broadphase> new_broadphase() const;
   // The broadphase's pairs, or in a distributed run those of this rank's slab (global body indices, sorted).
   const std::vector<BodyPair>& find_pairs();
   // The outcomes of the tested pairs, in pair order (every rank's in a distributed run).
   void gather_outcomes(FrameStats& st);
 
   Scene scene_;
-  SimOptions opt_;
+  RunConfig opt_;
   std::unique_ptr<Broadphase> broadphase_;
   std::unique_ptr<PairCollider> collider_;
   std::unique_ptr<ContinuousCollision> ccd_;  // when opt.ccd

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -13,6 +14,8 @@
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
+#include "voxcd/host/broadphase/broadphase.h"
+#include "voxcd/host/device/device.h"
 
 namespace voxcd {
 
@@ -20,17 +23,12 @@ namespace {
 
 using json = nlohmann::json;
 
-std::string num_text(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
-
-// Reads one JSON object's keys with their checks, naming the file and the JSON path in every error.
+// Reads one JSON object's keys with their types, naming the file and the JSON path in every error, and notes each
+// key read in the configuration's `given` (by its field) so that check() names it.
 class Reader {
  public:
-  Reader(const json& j, std::string path, const std::string& where) : j_(j), path_(std::move(path)), where_(where) {
+  Reader(const json& j, std::string path, const std::string& where, RunConfig& c)
+      : j_(j), path_(std::move(path)), where_(where), c_(c) {
     if (!j_.is_object()) fail(path_, std::string("must be an object, not ") + j_.type_name());
   }
 
@@ -52,44 +50,46 @@ class Reader {
     }
   }
 
-  // A number in [lo, hi] (or (lo, hi] when lo_open); false when the key is absent.
-  bool number(const std::string& key, double& out, double lo, double hi, bool lo_open) const {
+  // A number; false when the key is absent. `field` is its RunConfig::given key (by default the key).
+  bool number(const std::string& key, double& out, const std::string& field = "") const {
     if (!has(key)) return false;
     const json& v = at(key);
     if (!v.is_number()) fail(key_path(key), std::string("must be a number, not ") + v.type_name());
-    const double d = v.get<double>();
-    if (!std::isfinite(d) || (lo_open ? !(d > lo) : !(d >= lo)) || !(d <= hi))
-      fail(key_path(key), num_text(d) + " is outside " + (lo_open ? "(" : "[") + num_text(lo) + ", " +
-                              num_text(hi) + "]");
-    out = d;
+    out = v.get<double>();
+    note(key, field);
     return true;
   }
-  bool integer(const std::string& key, uint64_t& out, uint64_t lo, uint64_t hi) const {
+  // A whole number. [lo, hi] is the setting's range (check()'s), named here only for a value the field cannot hold
+  // (negative, or too large): check() refuses the others.
+  template <class T>
+  bool integer(const std::string& key, T& out, uint64_t lo, uint64_t hi, const std::string& field = "") const {
     if (!has(key)) return false;
     const json& v = at(key);
     if (!v.is_number_integer() && !(v.is_number_float() && std::floor(v.get<double>()) == v.get<double>()))
       fail(key_path(key), std::string("must be an integer, not ") + (v.is_number() ? v.dump() : v.type_name()));
-    if (v.is_number_integer() && !v.is_number_unsigned() && v.get<int64_t>() < 0)
-      fail(key_path(key), v.dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     const double d = v.get<double>();
-    if (d < double(lo) || d > double(hi))
+    if ((v.is_number_integer() && !v.is_number_unsigned() && v.get<int64_t>() < 0) || d < 0 ||
+        d >= double(std::numeric_limits<T>::max()) + 1.0)
       fail(key_path(key), v.dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    out = v.is_number_unsigned() ? v.get<uint64_t>() : uint64_t(d);
+    out = v.is_number_unsigned() ? T(v.get<uint64_t>()) : T(d);
+    note(key, field);
     return true;
   }
-  bool string(const std::string& key, std::string& out) const {
+  bool string(const std::string& key, std::string& out, const std::string& field = "") const {
     if (!has(key)) return false;
     const json& v = at(key);
     if (!v.is_string()) fail(key_path(key), std::string("must be a string, not ") + v.type_name());
     out = v.get<std::string>();
     if (out.empty()) fail(key_path(key), "must not be empty");
+    note(key, field);
     return true;
   }
-  bool boolean(const std::string& key, bool& out) const {
+  bool boolean(const std::string& key, bool& out, const std::string& field = "") const {
     if (!has(key)) return false;
     const json& v = at(key);
     if (!v.is_boolean()) fail(key_path(key), std::string("must be true or false, not ") + v.type_name());
     out = v.get<bool>();
+    note(key, field);
     return true;
   }
   void one_of(const std::string& key, const std::string& value, const std::vector<std::string>& names) const {
@@ -100,9 +100,13 @@ class Reader {
   }
 
  private:
+  void note(const std::string& key, const std::string& field) const {
+    c_.given[field.empty() ? key_path(key) : field] = SettingSource{where_, key_path(key)};
+  }
   const json& j_;
   std::string path_;
   const std::string& where_;
+  RunConfig& c_;
 };
 
 // A key given twice in one object (JSON leaves it to the reader; nlohmann keeps the last one, which would silently
@@ -153,55 +157,29 @@ class DuplicateKeys {
 
 }  // namespace
 
-double SceneFile::smallest_voxel() const {
-  double v = 0;
-  for (const auto& t : types) {
-    const double tv = t.voxel > 0 ? t.voxel : 1.0;
-    v = v == 0 ? tv : std::min(v, tv);
-  }
-  return v;
-}
-
-double SceneFile::accuracy_or_default() const { return accuracy > 0 ? accuracy : smallest_voxel() / 50; }
-
-double SceneFile::accuracy_or_default(const Scene& scene) const {
-  if (accuracy > 0) return accuracy;
+double accuracy_or_default(const RunConfig& c, const Scene& scene) {
+  if (c.accuracy > 0) return c.accuracy;
   double v = 0;
   for (const auto& t : scene.types) v = v == 0 ? t->voxmap().voxel() : std::min(v, t->voxmap().voxel());
-  return v > 0 ? v / 50 : accuracy_or_default();
+  return v > 0 ? v / 50 : c.accuracy_or_default();
 }
 
-uint64_t SceneFile::objects() const {
-  uint64_t n = 0;
-  for (const auto& t : types) n += t.count;
-  return n;
-}
+namespace {
 
-SceneFile parse_scene_file(std::string_view text, const std::string& where) {
-  json j;
-  try {
-    j = json::parse(text.begin(), text.end(), DuplicateKeys(where));
-  } catch (const json::exception& e) {
-    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."; a number too
-    // large for a double is an out_of_range.406 ("number overflow parsing '1e999'"), not a parse_error.
-    std::string what = e.what();
-    const auto p = what.find("] ");
-    throw SceneFileError(where + ": not valid JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
-  }
-  SceneFile f;
-  f.where = where;
-  const Reader top(j, "", where);
-  top.only({"types", "environment", "accuracy", "contact_accuracy", "rate", "clock", "frames", "broadphase",
-            "backend", "mode", "both_directions", "distance_bits", "band", "ccd"});
+void parse_types(const Reader& top, const std::string& where, RunConfig& f) {
   if (!top.has("types")) top.fail("types", "missing: a scene needs at least one object type");
   const json& types = top.at("types");
   if (!types.is_array()) top.fail("types", std::string("must be an array of object types, not ") + types.type_name());
   if (types.empty()) top.fail("types", "is empty: a scene needs at least one object type");
   const std::filesystem::path dir = std::filesystem::path(where).parent_path();
+  f.types.clear();
   for (size_t i = 0; i < types.size(); ++i) {
     SceneTypeSpec t;
     t.key = "types[" + std::to_string(i) + "]";
-    const Reader r(types[i], t.key, where);
+    t.name = t.shape = "";
+    t.count = 1;
+    f.given[t.key] = SettingSource{where, t.key};
+    const Reader r(types[i], t.key, where, f);
     r.only({"name", "shape", "mesh", "size", "scale", "voxel", "resolution", "count"});
     const bool has_shape = r.string("shape", t.shape), has_mesh = r.string("mesh", t.mesh);
     if (has_shape == has_mesh) r.fail(t.key, "needs exactly one of \"shape\" (a built-in name) and \"mesh\" (a file)");
@@ -213,52 +191,69 @@ SceneFile parse_scene_file(std::string_view text, const std::string& where) {
       t.name = t.shape;
     }
     r.string("name", t.name);
-    r.number("size", t.size, 0, 1e12, true);
-    r.number("scale", t.scale, 0, 1e12, true);
-    if (t.size > 0 && t.scale > 0) r.fail(t.key, "give \"size\" or \"scale\", not both");
-    const bool has_voxel = r.number("voxel", t.voxel, 0, 1e12, true);
-    uint64_t resolution = 0;
-    if (r.integer("resolution", resolution, kMinVoxelsAcross, 1020)) t.resolution = uint32_t(resolution);
-    if (has_voxel && t.resolution > 0)
-      r.fail(t.key, "give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), not both");
-    r.integer("count", t.count, 1, uint64_t{1} << 20);
+    r.number("size", t.size);
+    r.number("scale", t.scale);
+    r.number("voxel", t.voxel);
+    r.integer("resolution", t.resolution, kMinVoxelsAcross, kMaxVoxelsAcross);
+    r.integer("count", t.count, 1, kMaxObjects);
     f.types.push_back(t);
   }
-  if (top.has("environment")) {
-    const Reader e(top.at("environment"), "environment", where);
-    e.only({"side", "density", "speed", "spin", "seed"});
-    e.number("side", f.side, 0, 1e12, true);
-    f.density_given = e.number("density", f.density, 0, 0.3, true);
-    e.number("speed", f.speed, 0, 1e6, false);
-    e.number("spin", f.spin, 0, 1e6, false);
-    e.integer("seed", f.seed, 0, ~uint64_t{0});
-    if (f.density_given && std::none_of(f.types.begin(), f.types.end(), [](auto& t) { return t.auto_scaled(); }))
-      e.fail("environment.density", "sizes only the types with no \"size\" or \"scale\", and every type has one");
-  }
-  top.number("accuracy", f.accuracy, 0, 1e12, true);
-  top.number("contact_accuracy", f.contact_accuracy, 0, 1e12, true);
-  top.number("rate", f.rate, 0, 1e12, true);
-  double clock = 0;
-  if (top.number("clock", clock, 0, 1e6, true)) f.clock = given_clock(clock, where + "'s \"clock\"");
-  top.integer("frames", f.frames, 1, 1000000);
+}
+
+void parse_run(const Reader& top, const std::string& where, RunConfig& f) {
+  top.number("accuracy", f.accuracy);
+  top.number("contact_accuracy", f.contact_accuracy);
+  top.number("rate", f.rate);
+  if (top.number("clock", f.clock.mhz)) f.clock = DeviceClock{f.clock.mhz, "given by " + where + "'s \"clock\"", false};
+  top.integer("frames", f.frames, 1, kMaxFrames);
   if (top.string("broadphase", f.broadphase)) top.one_of("broadphase", f.broadphase, broadphase_names());
   if (top.string("backend", f.backend)) top.one_of("backend", f.backend, backend_names());
-  if (top.string("mode", f.mode)) top.one_of("mode", f.mode, {"ALL", "FIRST", "COUNT"});
-  top.boolean("both_directions", f.both_directions);
-  uint64_t bits = 0;
-  if (top.integer("distance_bits", bits, 4, 16)) {
-    if (bits != 4 && bits != 8 && bits != 16) top.fail("distance_bits", std::to_string(bits) + " is not 4, 8 or 16");
-    f.distance_bits = int(bits);
+  std::string mode;
+  if (top.string("mode", mode)) {
+    top.one_of("mode", mode, mode_names());
+    f.mode = *parse_mode(mode);
   }
-  if (top.number("band", f.band, 0, 1e6, true) && f.distance_bits == 0)
-    top.fail("band", "is the band of distance fields: it needs \"distance_bits\"");
+  top.boolean("both_directions", f.both_directions);
+  top.integer("distance_bits", f.distance_bits, uint64_t(kDistanceBits.front()), uint64_t(kDistanceBits.back()));
+  top.number("band", f.band);
   top.boolean("ccd", f.ccd);
-  if (f.ccd && f.distance_bits == 0)
-    top.fail("ccd", "continuous collision bounds each step by the distance fields: it needs \"distance_bits\"");
+}
+
+}  // namespace
+
+RunConfig parse_scene_file(std::string_view text, const std::string& where) {
+  json j;
+  try {
+    j = json::parse(text.begin(), text.end(), DuplicateKeys(where));
+  } catch (const json::exception& e) {
+    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."; a number too
+    // large for a double is an out_of_range.406 ("number overflow parsing '1e999'"), not a parse_error.
+    std::string what = e.what();
+    const auto p = what.find("] ");
+    throw SceneFileError(where + ": not valid JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
+  }
+  RunConfig f;
+  f.where = where;
+  f.frames = 100;
+  const Reader top(j, "", where, f);
+  top.only({"types", "environment", "accuracy", "contact_accuracy", "rate", "clock", "frames", "broadphase",
+            "backend", "mode", "both_directions", "distance_bits", "band", "ccd"});
+  parse_types(top, where, f);
+  if (top.has("environment")) {
+    const Reader e(top.at("environment"), "environment", where, f);
+    e.only({"side", "density", "speed", "spin", "seed"});
+    e.number("side", f.side, "side");
+    e.number("density", f.density, "density");
+    e.number("speed", f.speed, "speed");
+    e.number("spin", f.spin, "spin");
+    e.integer("seed", f.seed, 0, ~uint64_t{0}, "seed");
+  }
+  parse_run(top, where, f);
+  check(f);
   return f;
 }
 
-SceneFile read_scene_file(const std::string& path) {
+RunConfig read_scene_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneFileError(path + ": cannot open the scene file");
   std::ostringstream s;
@@ -284,7 +279,7 @@ struct LoadedTypes {
 
 // The scene file's meshes, centred and scaled as make_scene places them in their types' frames; SceneFileError
 // naming the key for a missing or unreadable mesh or a fill that does not fit the cube.
-LoadedTypes load_types(const SceneFile& f) {
+LoadedTypes load_types(const RunConfig& f) {
   auto fail = [&](const std::string& path, const std::string& what) -> SceneFileError {
     return SceneFileError(f.where + ": " + path + ": " + what);
   };
@@ -329,13 +324,14 @@ LoadedTypes load_types(const SceneFile& f) {
     // Evaluated as make_scene does, so that one auto-scaled type gets exactly its scale.
     const double left = f.density * f.side * f.side * f.side - fixed_volume;
     if (!(left > 0))
-      throw fail("environment.density", num_text(f.density) + " of the cube is " + num_text(f.density * cube) +
+      throw fail("environment.density", number_text(f.density) + " of the cube is " + number_text(f.density * cube) +
                                             ", and the types with a size or scale already fill " +
-                                            num_text(fixed_volume));
+                                            number_text(fixed_volume));
     for (size_t i = 0; i < f.types.size(); ++i)
       if (f.types[i].auto_scaled()) loaded[i].s = std::cbrt(left / double(auto_count) / loaded[i].volume);
-  } else if (fixed_volume > 0.3 * cube) {
-    throw fail("types", "the objects fill " + num_text(fixed_volume / cube) + " of the cube, above 0.3");
+  } else if (fixed_volume > kMaxDensity * cube) {
+    throw fail("types", "the objects fill " + number_text(fixed_volume / cube) + " of the cube, above " +
+                            number_text(kMaxDensity));
   }
   for (LoadedType& l : loaded)
     for (auto& v : l.mesh.vertices) v *= l.s;
@@ -344,29 +340,30 @@ LoadedTypes load_types(const SceneFile& f) {
 
 }  // namespace
 
-std::vector<Mesh> scene_meshes(const SceneFile& f) {
+std::vector<Mesh> scene_meshes(const RunConfig& f) {
   std::vector<Mesh> meshes;
   for (LoadedType& l : load_types(f).types) meshes.push_back(std::move(l.mesh));
   return meshes;
 }
 
-Scene make_scene(const SceneFile& f) {
+namespace {
+
+// Each type's voxel: given, from its resolution, or the default (the built-in scene's rule, evaluated alike so that
+// one auto-scaled type gets exactly the built-in scene's voxel); SceneFileError naming the key at fault for a voxel
+// that makes an object too large or too small for a voxmap.
+std::vector<double> type_voxels(const RunConfig& f, const LoadedTypes& lt) {
   auto fail = [&](const std::string& path, const std::string& what) -> SceneFileError {
     return SceneFileError(f.where + ": " + path + ": " + what);
   };
-  LoadedTypes lt = load_types(f);
-  std::vector<LoadedType>& loaded = lt.types;
-  const double fixed_volume = lt.fixed_volume;
-  const uint64_t auto_count = lt.auto_count;
-  // Each type's voxel: given, from its resolution, or the default (make_scene(SceneSpec)'s rule, evaluated alike so
-  // that one auto-scaled type gets exactly the built-in scene's voxel).
+  const std::vector<LoadedType>& loaded = lt.types;
   std::vector<double> voxel(f.types.size());
   for (size_t i = 0; i < f.types.size(); ++i) {
     const SceneTypeSpec& t = f.types[i];
     const LoadedType& l = loaded[i];
     const double extent = l.extent * l.s;
-    const double one = t.auto_scaled() ? (f.density * f.side * f.side * f.side - fixed_volume) / double(auto_count)
-                                       : l.volume * l.s * l.s * l.s;
+    const double one = t.auto_scaled()
+                           ? (f.density * f.side * f.side * f.side - lt.fixed_volume) / double(lt.auto_count)
+                           : l.volume * l.s * l.s * l.s;
     try {
       voxel[i] = t.voxel > 0 ? t.voxel : t.resolution > 0 ? voxel_for_resolution(l.mesh, t.resolution)
                                                           : default_voxel(one, extent);
@@ -375,22 +372,35 @@ Scene make_scene(const SceneFile& f) {
     }
     // The key at fault, and what it asked.
     const std::string key = t.key + (t.voxel > 0 ? ".voxel" : t.resolution > 0 ? ".resolution" : "");
-    const std::string what = t.voxel > 0        ? num_text(t.voxel)
+    const std::string what = t.voxel > 0        ? number_text(t.voxel)
                               : t.resolution > 0 ? "resolution " + std::to_string(t.resolution) + " (voxel " +
-                                                       num_text(voxel[i]) + ")"
-                                                 : "the default voxel " + num_text(voxel[i]);
-    if (extent / voxel[i] > 1020)
-      throw fail(key, what + " makes the object " + num_text(std::ceil(extent / voxel[i])) + " voxels across (" +
-                          num_text(extent) + " world units), above 2^10");
+                                                       number_text(voxel[i]) + ")"
+                                                 : "the default voxel " + number_text(voxel[i]);
+    if (extent / voxel[i] > kMaxVoxelsAcross)
+      throw fail(key, what + " makes the object " + number_text(std::ceil(extent / voxel[i])) + " voxels across (" +
+                          number_text(extent) + " world units), above 2^10");
     if (extent / voxel[i] < 2)
-      throw fail(key, what + " is larger than half the object (" + num_text(extent) +
+      throw fail(key, what + " is larger than half the object (" + number_text(extent) +
                           " across); it would be a voxel or two");
     if (extent / voxel[i] < kMinVoxelsAcross)
-      throw fail(key, what + " leaves " + num_text(extent / voxel[i]) + " voxels along the object's longest side (" +
-                          num_text(extent) + " world units); at least " + std::to_string(kMinVoxelsAcross) +
-                          " are needed: a voxel of at most " + num_text(extent / kMinVoxelsAcross) +
+      throw fail(key, what + " leaves " + number_text(extent / voxel[i]) + " voxels along the object's longest side (" +
+                          number_text(extent) + " world units); at least " + std::to_string(kMinVoxelsAcross) +
+                          " are needed: a voxel of at most " + number_text(extent / kMinVoxelsAcross) +
                           ", or a \"resolution\"");
   }
+  return voxel;
+}
+
+}  // namespace
+
+Scene make_file_scene(const RunConfig& f) {
+  auto fail = [&](const std::string& path, const std::string& what) -> SceneFileError {
+    return SceneFileError(f.where + ": " + path + ": " + what);
+  };
+  LoadedTypes lt = load_types(f);
+  const std::vector<LoadedType>& loaded = lt.types;
+  const uint64_t auto_count = lt.auto_count;
+  const std::vector<double> voxel = type_voxels(f, lt);
   // Every shell is fine enough for the smallest voxmap of the scene (the paper's sqrt(2) rule against it).
   const double vmin = *std::min_element(voxel.begin(), voxel.end());
   Scene scene;
@@ -411,10 +421,10 @@ Scene make_scene(const SceneFile& f) {
       throw fail(t.key, e.what());
     }
     if (2 * scene.types.back()->radius >= f.side)
-      throw fail(t.key, "the object (radius " + num_text(scene.types.back()->radius) +
-                            ") does not fit the cube of side " + num_text(f.side));
+      throw fail(t.key, "the object (radius " + number_text(scene.types.back()->radius) +
+                            ") does not fit the cube of side " + number_text(f.side));
   }
-  // With one type, the same draws as make_scene(SceneSpec), so the same bodies.
+  // With one type, the same draws as the built-in scene, so the same bodies.
   std::vector<uint64_t> counts;
   for (const auto& t : f.types) counts.push_back(t.count);
   try {
@@ -423,10 +433,10 @@ Scene make_scene(const SceneFile& f) {
     const auto& t = f.types[e.type];
     throw fail(t.key + ".count", "could not place instance " + std::to_string(e.instance) + " of " +
                                      std::to_string(t.count) + " without overlapping another (the cube is too full): " +
-                                     "even packed on a lattice, bounding spheres of radius " + num_text(e.radius) +
+                                     "even packed on a lattice, bounding spheres of radius " + number_text(e.radius) +
                                      " (the scene's largest) fit at most " + std::to_string(e.capacity) + " of the " +
                                      std::to_string(f.objects()) + " objects" +
-                                     (auto_count > 0 ? "; lower environment.density (" + num_text(f.density) +
+                                     (auto_count > 0 ? "; lower environment.density (" + number_text(f.density) +
                                                            ") or the counts"
                                                      : "; lower the counts or sizes"));
   }

@@ -40,13 +40,13 @@ ContactTerms contact_terms(const VoxmapKind& k, bool convex_b) {
   return t;
 }
 
-std::vector<bool> types_convex(const SceneFile& f) {
+std::vector<bool> types_convex(const RunConfig& f) {
   std::vector<bool> convex;
   for (const SceneTypeSpec& t : f.types) convex.push_back(is_convex(load_source(t.mesh.empty() ? t.shape : t.mesh)));
   return convex;
 }
 
-double band_for_motion(const Scene& scene, const SceneFile& f) {
+double band_for_motion(const Scene& scene, const RunConfig& f) {
   double fastest = 0, vmin = 0;
   for (const auto& t : scene.types) {
     fastest = std::max(fastest, (f.speed + f.spin) * t->radius);

@@ -36,13 +36,13 @@ ContactTerms contact_terms(const VoxmapKind& k, bool convex_b);
 
 // Per type of a scene (in the scene file's order): whether its mesh bounds a convex solid (is_convex on the mesh
 // the scene file names). MeshError as load_source throws it.
-std::vector<bool> types_convex(const SceneFile& f);
+std::vector<bool> types_convex(const RunConfig& f);
 
 // The band that covers one frame's relative motion of any two bodies in B's voxels ((speed + spin) * radius per
 // body and frame, docs/simulate.md), so that a penetration reached in one frame still has its depth and the ccd
 // bound vouches for a whole frame; at least 3 voxels (a point within a voxel of the surface then interpolates
 // between unclamped nodes).
-double band_for_motion(const Scene& scene, const SceneFile& f);
+double band_for_motion(const Scene& scene, const RunConfig& f);
 
 // The cheapest kind whose bound voxel_B * terms + fixed meets `accuracy` (world units) for every type B: 2-bit
 // states when they do (and the scene does not ask for ccd), else the smallest SB of 4, 8, 16 and then the smallest

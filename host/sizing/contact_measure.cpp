@@ -52,7 +52,7 @@ void check_contacts(const Scene& scene, const std::vector<PairRequest>& reqs, co
 
 }  // namespace
 
-ContactMeasure measure_contacts(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg,
+ContactMeasure measure_contacts(const Scene& scene, const RunConfig& f, const DeviceConfig& cfg,
                                 const std::vector<Mesh>& meshes, uint64_t frames, uint64_t samples,
                                 uint64_t per_pair) {
   if (meshes.size() != scene.types.size())

@@ -30,7 +30,7 @@ struct ContactMeasure {
 // broadphase pair of the frame on the same device and checks up to
 // `per_pair` contacts of each (evenly spaced) against the other type's mesh (meshes[type], in the type's frame:
 // scene_meshes): point-triangle distance, and inside by ray parity.
-ContactMeasure measure_contacts(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg,
+ContactMeasure measure_contacts(const Scene& scene, const RunConfig& f, const DeviceConfig& cfg,
                                 const std::vector<Mesh>& meshes, uint64_t frames, uint64_t samples,
                                 uint64_t per_pair = 64);
 

@@ -181,20 +181,20 @@ DeviceConfig derive_memory(DeviceConfig cfg, const Scene& scene) {
   return cfg;
 }
 
-SimOptions sizing_sim_options(const SceneFile& f, const DeviceConfig& cfg) {
-  SimOptions opt;
-  opt.pruning = f.broadphase;
+RunConfig sizing_sim_options(const RunConfig& f, const DeviceConfig& cfg) {
+  RunConfig opt = f;
   opt.backend = "cpu";
   opt.device = cfg;
   opt.lanes = cfg.LANES;
-  opt.mode = *parse_mode(f.mode);
-  opt.both_directions = f.both_directions;
-  opt.distance_bits = f.distance_bits;
-  opt.ccd = f.ccd;
+  opt.margin = 0;
+  opt.threads = 0;
+  opt.midphase = opt.cull = true;
+  opt.exchange = nullptr;
+  opt.record.clear();
   return opt;
 }
 
-LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg, uint64_t frames) {
+LaneMeasure measure_frames(const Scene& scene, const RunConfig& f, const DeviceConfig& cfg, uint64_t frames) {
   Simulation sim(scene, sizing_sim_options(f, cfg));
   LaneMeasure m;
   m.lanes = cfg.LANES;
@@ -268,9 +268,9 @@ namespace {
 
 // The voxmap kind: chosen for the contact accuracy (the scene made again with it when it differs from the file's),
 // or the scene file's own. Fills r.kind, r.convex and r.scene, and returns the scene file as sized.
-SceneFile choose_kind(SizeReport& r, const SceneFile& f, const Scene& scene) {
+RunConfig choose_kind(SizeReport& r, const RunConfig& f, const Scene& scene) {
   r.convex = types_convex(f);
-  SceneFile sized = f;
+  RunConfig sized = f;
   r.scene = scene;
   if (r.contact_accuracy <= 0) {
     r.kind = f.distance_bits ? VoxmapKind{f.distance_bits, DeviceConfig{}.WB, f.band} : VoxmapKind{};
@@ -279,6 +279,7 @@ SceneFile choose_kind(SizeReport& r, const SceneFile& f, const Scene& scene) {
   r.kind = choose_voxmap(scene, r.convex, r.contact_accuracy, r.accuracy, band_for_motion(scene, f), f.ccd);
   sized.distance_bits = r.kind.distance() ? r.kind.SB : 0;
   if (r.kind.distance()) sized.band = r.kind.band;
+  else sized.given.erase("band");  // the file's band is of the distance fields this scene no longer has
   if (sized.distance_bits != f.distance_bits || sized.band != f.band) r.scene = make_scene(sized);
   return sized;
 }
@@ -301,15 +302,15 @@ DeviceConfig choose_target_depth(SizeReport& r, const SizeRequest& req, const De
 
 }  // namespace
 
-SizeReport derive_size(const SceneFile& f, const Scene& input_scene, const SizeRequest& req) {
+SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
   SizeReport r;
   r.file = f.where;
-  r.accuracy = req.accuracy > 0 ? req.accuracy : f.accuracy_or_default(input_scene);
+  r.accuracy = req.accuracy > 0 ? req.accuracy : accuracy_or_default(f, input_scene);
   r.contact_accuracy = req.contact_accuracy > 0 ? req.contact_accuracy : f.contact_accuracy;
   r.rate = req.rate > 0 ? req.rate : f.rate;
   r.clock = req.clock.value_or(f.clock);
   r.frames = req.frames > 0 ? req.frames : f.frames;
-  const SceneFile sized = choose_kind(r, f, input_scene);
+  const RunConfig sized = choose_kind(r, f, input_scene);
   const Scene& scene = r.scene;
   r.objects = scene.bodies.size();
   r.extents = scene_extents(scene);

@@ -86,8 +86,8 @@ struct LaneMeasure {
 };
 // The simulation options the sizing steps run a scene file's scene with: its broadphase, mode, directions, voxmaps
 // and ccd on the cpu backend with the whole configuration cfg.
-SimOptions sizing_sim_options(const SceneFile& f, const DeviceConfig& cfg);
-LaneMeasure measure_frames(const Scene& scene, const SceneFile& f, const DeviceConfig& cfg, uint64_t frames);
+RunConfig sizing_sim_options(const RunConfig& f, const DeviceConfig& cfg);
+LaneMeasure measure_frames(const Scene& scene, const RunConfig& f, const DeviceConfig& cfg, uint64_t frames);
 
 // yosys synth_xilinx (7-series) of voxcd_device with every parameter of cfg set by chparam, from the files of
 // rtl_dir's voxcd.f ("" = the package's RTL, host/package/paths.h).
@@ -177,7 +177,7 @@ struct SizeReport {
 // The whole derivation (with the costs when req.cost) for the scene made from f (make_scene(f)); with a contact
 // accuracy the scene is made again with the chosen voxmap kind. SizeError when a constraint cannot be met;
 // SceneFileError from the scene; MeshError from a type's mesh (its convexity).
-SizeReport derive_size(const SceneFile& f, const Scene& scene, const SizeRequest& req);
+SizeReport derive_size(const RunConfig& f, const Scene& scene, const SizeRequest& req);
 
 // The text and JSON reports of `voxcd size`.
 std::string size_text(const SizeReport& r);

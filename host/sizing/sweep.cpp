@@ -97,16 +97,16 @@ void check_sweep(const SweepSpec& s, const std::string& where) {
       throw fail("voxel_scale[" + std::to_string(i) + "]", num(s.voxel_scales[i]) + " is not a positive number");
   for (size_t i = 0; i < s.distance_bits.size(); ++i) {
     const int b = s.distance_bits[i];
-    if (b != 0 && b != 4 && b != 8 && b != 16)
+    if (b != 0 && !valid_distance_bits(b))
       throw fail("distance_bits[" + std::to_string(i) + "]",
-                 std::to_string(b) + " is not 0 (2-bit states), 4, 8 or 16");
+                 std::to_string(b) + " is not 0 (2-bit states), " + distance_bits_text());
   }
   for (size_t i = 0; i < s.accuracies.size(); ++i)
     if (!(s.accuracies[i] > 0) || !std::isfinite(s.accuracies[i]))
       throw fail("accuracy[" + std::to_string(i) + "]", num(s.accuracies[i]) + " is not a positive number of world "
                                                                                "units");
   if (!(s.clock >= 0) || !std::isfinite(s.clock)) throw fail("clock", num(s.clock) + " is not a positive number of MHz");
-  if (s.frames > 1000000) throw fail("frames", std::to_string(s.frames) + " is above 1000000");
+  if (s.frames > kMaxFrames) throw fail("frames", std::to_string(s.frames) + " is above " + std::to_string(kMaxFrames));
   if (s.frames > 0 && s.sample_frames > s.frames)
     throw fail("sample_frames", std::to_string(s.sample_frames) + " is more than the " + std::to_string(s.frames) +
                                     " frames measured");
@@ -313,7 +313,7 @@ SweepRunner::SweepRunner(const SweepSpec& s) : spec_(s) {
   frames_ = s.frames > 0 ? s.frames : file_.frames;
 }
 
-const Scene& SweepRunner::scene_for(const SceneFile& f, double scale, int bits) {
+const Scene& SweepRunner::scene_for(const RunConfig& f, double scale, int bits) {
   auto& slot = scenes_[{scale, bits}];
   if (!slot) slot = std::make_shared<const Scene>(make_scene(f));
   return *slot;
@@ -335,10 +335,11 @@ SweepRow SweepRunner::run(uint64_t index) {
   r.point = point_at(spec_, index);
   const SweepPoint p = r.point;
   // The scene file of the point: every type's voxel scaled, the voxmap kind set.
-  SceneFile f = file_;
+  RunConfig f = file_;
   for (size_t i = 0; i < f.types.size(); ++i) {
     f.types[i].voxel = voxels_[i] * p.voxel_scale;
     f.types[i].resolution = 0;
+    f.given.erase(f.types[i].key + ".resolution");
   }
   f.distance_bits = p.distance_bits;
   try {

@@ -118,9 +118,9 @@ class SweepRunner {
   uint64_t frames() const { return frames_; }
 
  private:
-  const Scene& scene_for(const SceneFile& f, double scale, int bits);
+  const Scene& scene_for(const RunConfig& f, double scale, int bits);
   SweepSpec spec_;
-  SceneFile file_;
+  RunConfig file_;
   std::vector<double> voxels_;  // each type's voxel in the scene file's own scene
   std::vector<bool> convex_;
   std::vector<Mesh> meshes_;

@@ -67,8 +67,8 @@ TEST(Bounds, ObjectTypeSphereEnclosesMeshAndShell) {
 }
 
 TEST(Scene, ThePapersEnvironment) {
-  SceneSpec spec;
-  spec.objects = 128;
+  RunConfig spec;
+  spec.types[0].count = 128;
   spec.seed = 5;
   const Scene sc = make_scene(spec);
   ASSERT_EQ(sc.bodies.size(), 128u);
@@ -88,15 +88,15 @@ TEST(Scene, ThePapersEnvironment) {
     for (size_t j = i + 1; j < sc.bodies.size(); ++j)
       EXPECT_FALSE(spheres_overlap(bi, body_bounds(t, sc.bodies[j]))) << i << " " << j;
   }
-  SceneSpec bad = spec;
+  RunConfig bad = spec;
   bad.density = 0;
   EXPECT_THROW(make_scene(bad), std::invalid_argument);
   bad = spec;
-  bad.voxel = 1e-4;
+  bad.types[0].voxel = 1e-4;
   EXPECT_THROW(make_scene(bad), std::invalid_argument);
 }
 
-uint64_t run(const SceneSpec& spec, SimOptions opt, int frames, uint64_t* touching = nullptr) {
+uint64_t run(const RunConfig& spec, RunConfig opt, int frames, uint64_t* touching = nullptr) {
   Simulation sim(make_scene(spec), opt);
   uint64_t t = 0;
   for (int f = 0; f < frames; ++f) t += sim.step().touching;
@@ -105,38 +105,38 @@ uint64_t run(const SceneSpec& spec, SimOptions opt, int frames, uint64_t* touchi
 }
 
 TEST(Simulate, EveryBroadphaseAndThreadCountGivesTheSameRun) {
-  SceneSpec spec;
-  spec.objects = 40;
+  RunConfig spec;
+  spec.types[0].count = 40;
   spec.density = 0.05;  // twice the paper's, so that objects meet often
   spec.speed = 0.3;
-  spec.voxel = 1.5;
+  spec.types[0].voxel = 1.5;
   spec.seed = 3;
-  SimOptions opt;
+  RunConfig opt;
   uint64_t touching = 0;
   const uint64_t want = run(spec, opt, 150, &touching);
   EXPECT_GT(touching, 20u) << "the run must have collisions for the comparison to mean something";
   for (const std::string& b : broadphase_names()) {
     for (unsigned threads : {1u, 2u}) {
-      opt.pruning = b;
+      opt.broadphase = b;
       opt.threads = threads;
       EXPECT_EQ(run(spec, opt, 150), want) << "pruning " << b << " threads " << threads;
     }
   }
   spec.seed = 4;
-  opt = SimOptions{};
+  opt = RunConfig{};
   EXPECT_NE(run(spec, opt, 150), want) << "another seed, another run";
 }
 
 TEST(Simulate, MidphaseDropsPairsButNoContact) {
   // The oriented-box mid-phase drops broadphase pairs before the device; a dropped pair can have no hit, so every
   // frame's hits and the whole run are the same with it off.
-  SceneSpec spec;
-  spec.objects = 60;
+  RunConfig spec;
+  spec.types[0].count = 60;
   spec.density = 0.05;
   spec.speed = 0.3;
-  spec.voxel = 1.5;
+  spec.types[0].voxel = 1.5;
   spec.seed = 5;
-  SimOptions on, off;
+  RunConfig on, off;
   off.midphase = false;
   Simulation a(make_scene(spec), on), b(make_scene(spec), off);
   uint64_t pairs = 0, tested = 0, touching = 0;
@@ -156,12 +156,12 @@ TEST(Simulate, MidphaseDropsPairsButNoContact) {
 }
 
 TEST(Simulate, BackendsAgreeAndBodiesStayInTheCube) {
-  SceneSpec spec;
-  spec.objects = 16;
+  RunConfig spec;
+  spec.types[0].count = 16;
   spec.density = 0.05;
   spec.speed = 0.5;
-  spec.voxel = 1.5;
-  SimOptions opt;
+  spec.types[0].voxel = 1.5;
+  RunConfig opt;
   std::vector<std::string> backends = {"cpu", "ref"};
   if (!rtl_lanes().empty()) backends.push_back("rtl");
   std::vector<uint64_t> cycles;

@@ -78,9 +78,9 @@ TEST(SizeRtl, SceneSimulatesOnItsDerivedModelAsOnCpu) {
   for (const DeviceConfig& cfg : rtl_configs()) {
     const std::string scene = scene_of(cfg);
     SCOPED_TRACE(scene + ": " + cfg.to_string());
-    const SceneFile f = read_scene_file(kScenes + "/" + scene);
-    SimOptions opt;
-    opt.pruning = f.broadphase;
+    const RunConfig f = read_scene_file(kScenes + "/" + scene);
+    RunConfig opt;
+    opt.broadphase = f.broadphase;
     opt.device = cfg;
     opt.lanes = cfg.LANES;
     opt.backend = "cpu";

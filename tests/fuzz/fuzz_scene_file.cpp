@@ -13,7 +13,7 @@ using namespace voxcd;
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string name = "fuzz.json";
   try {
-    const SceneFile f = parse_scene_file(std::string_view(reinterpret_cast<const char*>(data), size), name);
+    const RunConfig f = parse_scene_file(std::string_view(reinterpret_cast<const char*>(data), size), name);
     const double acc = f.accuracy_or_default();
     if (!(acc > 0) || !std::isfinite(acc)) fuzz::finding(name + ": parsed, but its accuracy is " + std::to_string(acc));
     if (f.objects() == 0) fuzz::finding(name + ": parsed, but it has no objects");

@@ -121,9 +121,9 @@ TEST(Api, ObjectsOfVeryDifferentVoxelsShareADevice) {
 
 TEST(Api, AWorldSteppedByItsCallerIsTheToolsRun) {
   // The built-in scene stepped 100 frames: the state hash of `voxcd simulate --frames 100`.
-  SimulateRequest req;
-  req.frames = 100;
-  const SimulationSummary s = simulate(req);
+  RunConfig c;
+  c.frames = 100;
+  const SimulationSummary s = simulate(c);
   World w = World::scene();
   for (int f = 0; f < 100; ++f) w.step();
   EXPECT_EQ(w.state_hash(), s.state_hash);

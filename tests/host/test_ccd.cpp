@@ -1,4 +1,4 @@
-// Continuous collision (SimOptions::ccd, host/scene/ccd.h): small bodies moving ten of their lengths a frame pass
+// Continuous collision (RunConfig::ccd, host/scene/ccd.h): small bodies moving ten of their lengths a frame pass
 // through a thin plate, each other and the walls without it, and never with it; runs without it keep their hashes;
 // runs with it are the same on one and two threads; `voxcd simulate` takes "ccd" from a scene file and refuses --ccd
 // without distance voxmaps.
@@ -63,8 +63,8 @@ Eigen::Vector3d centre(const Scene& s, size_t i) {
   return b.pose.rotation * s.types[b.type]->centre + b.pose.translation;
 }
 
-SimOptions options(bool ccd, unsigned threads = 1) {
-  SimOptions o;
+RunConfig options(bool ccd, unsigned threads = 1) {
+  RunConfig o;
   o.distance_bits = 8;
   o.ccd = ccd;
   o.threads = threads;
@@ -342,8 +342,8 @@ TEST(Ccd, DeterministicOnOneAndTwoThreadsAndEveryBroadphase) {
   EXPECT_EQ(h[0], h[1]);
   // And whatever the frame's broadphase (the queue's wake-ups hold under the advancement's motion bounds).
   for (const char* pruning : {"sap", "queue"}) {
-    SimOptions o = options(true, 2);
-    o.pruning = pruning;
+    RunConfig o = options(true, 2);
+    o.broadphase = pruning;
     Simulation sim(plate_scene(test_seed(), 10), o);
     for (int f = 0; f < 15; ++f) sim.step();
     EXPECT_EQ(sim.state_hash(), h[0]) << pruning;
@@ -356,8 +356,8 @@ TEST(Ccd, WithoutItTheRunIsUnchanged) {
   // The plates' fields have had conservative cells since (docs/objects.md; 0x519c3f6f68caa220 before them, the same
   // stepper on the measured fields alone).
   {
-    SceneSpec spec;
-    Simulation sim(make_scene(spec), SimOptions{});
+    RunConfig spec;
+    Simulation sim(make_scene(spec), RunConfig{});
     for (int f = 0; f < 300; ++f) sim.step();
     EXPECT_EQ(sim.state_hash(), 0xe535ccc7878ddda4ull) << std::hex << sim.state_hash();
   }
@@ -369,7 +369,7 @@ TEST(Ccd, WithoutItTheRunIsUnchanged) {
 }
 
 TEST(Ccd, TheCapDropsTheRestOfTheFrameAndCountsIt) {
-  SimOptions o = options(true);
+  RunConfig o = options(true);
   o.ccd_max_iterations = 1;
   Simulation sim(plate_scene(test_seed(), 10), o);
   uint64_t dropped = 0;
@@ -384,7 +384,7 @@ TEST(Ccd, TheCapDropsTheRestOfTheFrameAndCountsIt) {
 }
 
 TEST(Ccd, NeedsADistanceDevice) {
-  SimOptions o;
+  RunConfig o;
   o.ccd = true;
   Scene s;
   s.side = kSide;

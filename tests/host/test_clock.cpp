@@ -109,10 +109,10 @@ TEST(DeviceClock, AClockThatIsNoFrequencyIsRefusedNamingTheOption) {
 }
 
 TEST(DeviceClock, ASceneFileWithoutClockUsesTheDefault) {
-  const SceneFile none = parse_scene_file(R"({"types": [{"shape": "cube"}]})", "a.json");
+  const RunConfig none = parse_scene_file(R"({"types": [{"shape": "cube"}]})", "a.json");
   EXPECT_EQ(none.clock.mhz, kDefaultClockMhz);
   EXPECT_EQ(none.clock.source, default_device_clock().source);
-  const SceneFile given = parse_scene_file(R"({"types": [{"shape": "cube"}], "clock": 90})", "a.json");
+  const RunConfig given = parse_scene_file(R"({"types": [{"shape": "cube"}], "clock": 90})", "a.json");
   EXPECT_EQ(given.clock.text(), "90 MHz (given by a.json's \"clock\")");
   for (const char* bad : {R"({"types": [{"shape": "cube"}], "clock": 0})", R"({"types": [{"shape": "cube"}], "clock": -2})"}) {
     try {
@@ -126,16 +126,16 @@ TEST(DeviceClock, ASceneFileWithoutClockUsesTheDefault) {
 
 TEST(DeviceClock, FramesWithoutDeviceCyclesHaveNoDeviceRate) {
   SimulationSummary s;
-  s.frames = 10;
-  s.clock = default_device_clock();
+  s.config.frames = 10;
+  s.config.clock = default_device_clock();
   s.totals.idle_frames = 10;
   EXPECT_EQ(s.device_rate(), 0);
   EXPECT_EQ(s.device_rate_text(), "none: the frames needed no device cycles");
-  s.clock = given_clock(122, "--clock");
+  s.config.clock = given_clock(122, "--clock");
   s.totals.cycles = 1220;  // one frame of 1220 cycles, nine of none: 122 cycles a frame on average
   s.totals.max_cycles = 1220;
   s.totals.idle_frames = 9;
-  EXPECT_EQ(s.device_rate_text(), "1000000 Hz at " + s.clock.text() + "; 9 of 10 frames needed no device cycles");
+  EXPECT_EQ(s.device_rate_text(), "1000000 Hz at " + s.config.clock.text() + "; 9 of 10 frames needed no device cycles");
 }
 
 }  // namespace

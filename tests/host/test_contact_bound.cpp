@@ -66,7 +66,7 @@ TEST(ContactBound, TermsAreTheContractsFormula) {
 }
 
 SizeReport sized(const std::string& scene, double contact, uint64_t frames = 5) {
-  const SceneFile f = read_scene_file(kScenes + "/" + scene);
+  const RunConfig f = read_scene_file(kScenes + "/" + scene);
   SizeRequest req;
   req.contact_accuracy = contact;
   req.frames = frames;
@@ -152,7 +152,7 @@ TEST(ContactBound, ImpossibleRequestsSayWhatWouldDo) {
   }
   EXPECT_THROW(parse_scene_file(R"({"types": [{"shape": "cube"}], "contact_accuracy": -1})", "s.json"),
                SceneFileError);
-  const SceneFile f = parse_scene_file(R"({"types": [{"shape": "cube"}], "contact_accuracy": 0.25})", "s.json");
+  const RunConfig f = parse_scene_file(R"({"types": [{"shape": "cube"}], "contact_accuracy": 0.25})", "s.json");
   EXPECT_DOUBLE_EQ(f.contact_accuracy, 0.25);
 }
 

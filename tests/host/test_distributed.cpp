@@ -1,4 +1,4 @@
-// A distributed simulation (SimOptions::exchange) against one process: 2 and 3 ranks, here threads of one process
+// A distributed simulation (RunConfig::exchange) against one process: 2 and 3 ranks, here threads of one process
 // exchanging through memory (the MPI exchange is tested under mpirun in tests/mpi), give the same per-frame counts
 // and the same state hash as one Simulation, on a plain scene, on fast bodies that cross the slabs every frame, on
 // bodies crowded into one corner, and with distance voxmaps and continuous collision; the slabs split the work;
@@ -88,7 +88,7 @@ struct Run {
   uint64_t hash = 0;
 };
 
-Run run_one(const Scene& scene, SimOptions opt, uint64_t frames) {
+Run run_one(const Scene& scene, RunConfig opt, uint64_t frames) {
   Simulation sim(scene, opt);
   Run r;
   for (uint64_t f = 0; f < frames; ++f) r.frames.push_back(sim.step());
@@ -97,7 +97,7 @@ Run run_one(const Scene& scene, SimOptions opt, uint64_t frames) {
 }
 
 // Every rank's run (they must agree with each other), and the per-rank tested counts.
-std::vector<Run> run_ranks(const Scene& scene, SimOptions opt, uint64_t frames, int ranks,
+std::vector<Run> run_ranks(const Scene& scene, RunConfig opt, uint64_t frames, int ranks,
                            std::vector<uint64_t>* tested) {
   MemoryExchange mem(ranks);
   std::vector<Run> runs(static_cast<size_t>(ranks));
@@ -106,7 +106,7 @@ std::vector<Run> run_ranks(const Scene& scene, SimOptions opt, uint64_t frames, 
   for (int r = 0; r < ranks; ++r)
     threads.emplace_back([&, r] {
       try {
-        SimOptions o = opt;
+        RunConfig o = opt;
         o.exchange = std::make_shared<RankView>(mem, r, ranks);
         runs[size_t(r)] = run_one(scene, o, frames);
       } catch (...) {
@@ -138,7 +138,7 @@ void expect_same(const Run& want, const Run& got, const std::string& what) {
   EXPECT_EQ(want.hash, got.hash) << what;
 }
 
-void check_scene(const Scene& scene, const SimOptions& opt, uint64_t frames, const std::string& what) {
+void check_scene(const Scene& scene, const RunConfig& opt, uint64_t frames, const std::string& what) {
   const Run one = run_one(scene, opt, frames);
   uint64_t responses = 0;
   for (const FrameStats& f : one.frames) responses += f.responses;
@@ -159,28 +159,28 @@ void check_scene(const Scene& scene, const SimOptions& opt, uint64_t frames, con
   }
 }
 
-SimOptions options() {
-  SimOptions o;
+RunConfig options() {
+  RunConfig o;
   o.threads = 1;
   return o;
 }
 
 TEST(Distributed, SameAsOneProcess) {
-  SceneSpec spec;
-  spec.objects = 256;
+  RunConfig spec;
+  spec.types[0].count = 256;
   check_scene(make_scene(spec), options(), 60, "256 polytopes");
 }
 
 TEST(Distributed, BodiesCrossingSlabsEveryFrame) {
-  SceneSpec spec;
-  spec.objects = 128;
+  RunConfig spec;
+  spec.types[0].count = 128;
   spec.speed = 1.5;  // 1.5 radii a frame: bodies cross the slabs' cuts all the time
   check_scene(make_scene(spec), options(), 60, "fast bodies");
 }
 
 TEST(Distributed, BodiesCrowdedIntoOneCorner) {
-  SceneSpec spec;
-  spec.objects = 200;
+  RunConfig spec;
+  spec.types[0].count = 200;
   spec.density = 0.02;
   Scene scene = make_scene(spec);
   // Squeeze every body into the corner octant's corner: overlapping, touching, and all in what would be one rank's
@@ -190,27 +190,27 @@ TEST(Distributed, BodiesCrowdedIntoOneCorner) {
 }
 
 TEST(Distributed, DistanceVoxmapsWithContinuousCollision) {
-  SceneSpec spec;
-  spec.objects = 64;
+  RunConfig spec;
+  spec.types[0].count = 64;
   spec.distance_bits = 8;
   spec.speed = 0.8;
-  SimOptions o = options();
+  RunConfig o = options();
   o.distance_bits = 8;
   o.ccd = true;
   check_scene(make_scene(spec), o, 30, "distance + ccd");
 }
 
 TEST(Distributed, EveryBroadphaseGivesTheSameRun) {
-  SceneSpec spec;
-  spec.objects = 96;
+  RunConfig spec;
+  spec.types[0].count = 96;
   const Scene scene = make_scene(spec);
   for (const char* b : {"sap", "tree", "queue", "coherent", "sphere"}) {
-    SimOptions o = options();
-    o.pruning = b;
+    RunConfig o = options();
+    o.broadphase = b;
     check_scene(scene, o, 25, std::string("broadphase ") + b);
   }
-  SimOptions all = options();
-  all.pruning = "all";
+  RunConfig all = options();
+  all.broadphase = "all";
   MemoryExchange two(2);
   all.exchange = std::make_shared<RankView>(two, 0, 2);
   EXPECT_THROW(Simulation(scene, all), std::invalid_argument);

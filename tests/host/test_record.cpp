@@ -23,8 +23,8 @@ std::string slurp(const std::string& path) {
 
 // A dense scene, so that pairs touch within a few frames.
 Scene dense_scene() {
-  SceneSpec spec;
-  spec.objects = 48;
+  RunConfig spec;
+  spec.types[0].count = 48;
   spec.density = 0.09;
   spec.side = 40;
   spec.speed = 0.3;
@@ -86,7 +86,7 @@ void check_frame(const Expected& e, const RecordedFrame& f) {
 
 // Records `frames` frames of the dense scene to `path`; returns what each frame should read back as.
 std::vector<Expected> record_run(const std::string& path, int frames) {
-  Simulation sim(dense_scene(), SimOptions{});
+  Simulation sim(dense_scene(), RunConfig{});
   RecordWriter w(path, sim, "{\"test\": true}");
   std::vector<Expected> out;
   for (int f = 0; f < frames; ++f) {
@@ -121,12 +121,12 @@ TEST(Record, RoundTripEqualsTheRun) {
 
 TEST(Record, SimulateRecordsWhatItSums) {
   const std::string path = test::tmp_path("simulate.vxr");
-  SimulateRequest req;
-  req.objects = 64;
-  req.frames = 12;
-  req.density = 0.09;
-  req.record = path;
-  const SimulationSummary s = simulate(req);
+  RunConfig c;
+  c.types[0].count = 64;
+  c.frames = 12;
+  c.density = 0.09;
+  c.record = path;
+  const SimulationSummary s = simulate(c);
   const Recording r = read_recording(path);
   ASSERT_EQ(r.frames.size(), 12u);
   SimulationTotals t;
@@ -140,7 +140,7 @@ TEST(Record, SimulateRecordsWhatItSums) {
 
 TEST(Record, ReadableWhileWritten) {
   const std::string path = test::tmp_path("live.vxr");
-  Simulation sim(dense_scene(), SimOptions{});
+  Simulation sim(dense_scene(), RunConfig{});
   RecordWriter w(path, sim);
   EXPECT_EQ(read_recording(path).frames.size(), 0u);
   for (int f = 0; f < 3; ++f) w.frame(sim, sim.step());
@@ -260,9 +260,9 @@ namespace {
 // A frame whose broadphase finds no pair tests none (the recorder found a frame that tested a pair of body 0 with
 // itself: the mid-phase's count of an unvisited range was never set).
 TEST(Simulation, FrameWithoutPairsTestsNone) {
-  SceneSpec spec;
-  spec.objects = 2;
-  Simulation sim(make_scene(spec), SimOptions{});
+  RunConfig spec;
+  spec.types[0].count = 2;
+  Simulation sim(make_scene(spec), RunConfig{});
   for (int f = 0; f < 3; ++f) {
     const FrameStats st = sim.step();
     ASSERT_EQ(sim.broadphase().pairs().size(), st.pairs);

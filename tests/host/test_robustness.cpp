@@ -187,27 +187,28 @@ TEST(Robustness, WriteObjectRefusesAnInconsistentObjectAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
 }
 
-TEST(Robustness, SceneSpecsOutOfRangeNameTheField) {
-  auto scene_error = [](void (*change)(SceneSpec&)) {
-    SceneSpec s;
-    s.objects = 8;
-    s.voxel = 2;
+TEST(Robustness, SceneSettingsOutOfRangeNameTheField) {
+  auto scene_error = [](void (*change)(RunConfig&)) {
+    RunConfig s;
+    s.types[0].count = 8;
+    s.types[0].voxel = 2;
     change(s);
     return error_text<std::invalid_argument>([&] { make_scene(s); });
   };
-  EXPECT_EQ(scene_error([](SceneSpec& s) { s.objects = 0; }), "scene: objects must be at least 1");
-  EXPECT_EQ(scene_error([](SceneSpec& s) { s.side = -1; }), "scene: side must be positive");
-  EXPECT_EQ(scene_error([](SceneSpec& s) { s.side = INFINITY; }), "scene: side must be positive");
-  EXPECT_EQ(scene_error([](SceneSpec& s) { s.speed = -0.1; }), "scene: speed must be >= 0");
-  EXPECT_EQ(scene_error([](SceneSpec& s) { s.spin = NAN; }), "scene: spin must be >= 0");
-  EXPECT_EQ(scene_error([](SceneSpec& s) { s.voxel = 0; }), "scene: voxel must be > 0");
-  EXPECT_HAS(scene_error([](SceneSpec& s) { s.voxel = 50; }), "scene: voxel 50.000000 is larger than half the object");
+  // Values set in code: check() names the field.
+  EXPECT_EQ(scene_error([](RunConfig& s) { s.types[0].count = 0; }), "types[0].count: 0 is outside [1, 1048576]");
+  EXPECT_EQ(scene_error([](RunConfig& s) { s.side = -1; }), "side: -1 is outside (0, 1e+12]");
+  EXPECT_EQ(scene_error([](RunConfig& s) { s.side = INFINITY; }), "side: inf is outside (0, 1e+12]");
+  EXPECT_EQ(scene_error([](RunConfig& s) { s.speed = -0.1; }), "speed: -0.1 is outside [0, 1000000]");
+  EXPECT_EQ(scene_error([](RunConfig& s) { s.spin = NAN; }), "spin: nan is outside [0, 1000000]");
+  EXPECT_EQ(scene_error([](RunConfig& s) { s.types[0].voxel = -1; }), "types[0].voxel: -1 is outside (0, 1e+12]");
+  EXPECT_HAS(scene_error([](RunConfig& s) { s.types[0].voxel = 50; }), "scene: voxel 50.000000 is larger than half the object");
   // Long thin plates at the highest density: their enclosing spheres do not all fit the cube.
-  const std::string crowded = scene_error([](SceneSpec& s) {
-    s.shape = "plate";
-    s.objects = 64;
+  const std::string crowded = scene_error([](RunConfig& s) {
+    s.types[0].shape = "plate";
+    s.types[0].count = 64;
     s.density = 0.3;
-    s.voxel = 0.5;
+    s.types[0].voxel = 0.5;
   });
   EXPECT_TRUE(crowded == "scene: the objects do not fit the cube" ||
               crowded.rfind("scene: could not place object ", 0) == 0)
@@ -216,8 +217,8 @@ TEST(Robustness, SceneSpecsOutOfRangeNameTheField) {
 
 // One object of the paper's polytope at 30% of the cube: its enclosing sphere is wider than the cube.
 TEST(Robustness, SceneWhoseObjectIsWiderThanTheCubeSaysSo) {
-  SceneSpec s;
-  s.objects = 1;
+  RunConfig s;
+  s.types[0].count = 1;
   s.density = 0.3;
   EXPECT_EQ(error_text<std::invalid_argument>([&] { make_scene(s); }), "scene: the objects do not fit the cube");
 }

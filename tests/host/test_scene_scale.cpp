@@ -45,8 +45,8 @@ bool same_bodies(const Scene& a, const Scene& b) {
   return true;
 }
 
-uint64_t run(const SceneSpec& spec, int frames) {
-  Simulation sim(make_scene(spec), SimOptions{});
+uint64_t run(const RunConfig& spec, int frames) {
+  Simulation sim(make_scene(spec), RunConfig{});
   for (int f = 0; f < frames; ++f) sim.step();
   return sim.state_hash();
 }
@@ -54,27 +54,27 @@ uint64_t run(const SceneSpec& spec, int frames) {
 // The paper's scene runs exactly as before the default voxel followed the objects' size (voxel 1 at 64 objects
 // and 2.5%), and so does any scene given voxel 1: the hashes of the build before this change.
 TEST(SceneScale, ThePapersSceneKeepsItsRun) {
-  EXPECT_EQ(make_scene(SceneSpec{}).types[0]->voxmap().voxel(), 1.0);
-  EXPECT_EQ(run(SceneSpec{}, 300), 0xe535ccc7878ddda4ull);
-  SceneSpec s;
-  s.objects = 256;
-  s.voxel = 1;
+  EXPECT_EQ(make_scene(RunConfig{}).types[0]->voxmap().voxel(), 1.0);
+  EXPECT_EQ(run(RunConfig{}, 300), 0xe535ccc7878ddda4ull);
+  RunConfig s;
+  s.types[0].count = 256;
+  s.types[0].voxel = 1;
   EXPECT_EQ(run(s, 300), 0xc3bd11b3a4e9d449ull);
 }
 
 // The default voxel scales with the object: (64/N)^(1/3) for the polytope at 2.5%, the same voxmap at every N.
 TEST(SceneScale, DefaultVoxelFollowsTheObjectsSize) {
-  const Scene paper = make_scene(SceneSpec{});
+  const Scene paper = make_scene(RunConfig{});
   for (size_t n : {2u, 512u, 3000u, 65536u}) {
-    SceneSpec s;
-    s.objects = n;
+    RunConfig s;
+    s.types[0].count = n;
     const Scene sc = make_scene(s);
     EXPECT_NEAR(sc.types[0]->voxmap().voxel(), std::cbrt(64.0 / double(n)), 1e-12) << n;
     EXPECT_EQ(sc.types[0]->voxmap().dims(), paper.types[0]->voxmap().dims()) << n;
     EXPECT_EQ(sc.bodies.size(), n);
   }
   // And with the density and the cube: the object's volume sets it.
-  SceneSpec s;
+  RunConfig s;
   s.density = 0.05;
   s.side = 200;
   EXPECT_NEAR(make_scene(s).types[0]->voxmap().voxel(), std::cbrt(0.05 * 200 * 200 * 200 / 64 / kPaperObjectVolume),
@@ -85,17 +85,17 @@ TEST(SceneScale, DefaultVoxelFollowsTheObjectsSize) {
   EXPECT_EQ(default_voxel(1e-9, 32), 0.5);
   EXPECT_EQ(default_voxel(1e9, 8), 2.0);
   // A scene file's type without voxel or resolution: the same rule, so one type is the built-in scene.
-  const SceneFile f = parse_scene_file(R"({"types": [{"shape": "polytope36", "count": 300}]})", "one.json");
-  SceneSpec b;
-  b.objects = 300;
+  const RunConfig f = parse_scene_file(R"({"types": [{"shape": "polytope36", "count": 300}]})", "one.json");
+  RunConfig b;
+  b.types[0].count = 300;
   EXPECT_TRUE(same_bodies(make_scene(f), make_scene(b)));
   EXPECT_EQ(make_scene(f).types[0]->voxmap().voxel(), make_scene(b).types[0]->voxmap().voxel());
 }
 
 TEST(SceneScale, ResolutionIsVoxelsAlongTheLongestSide) {
-  SceneSpec s;
-  s.objects = 100;
-  s.resolution = 20;
+  RunConfig s;
+  s.types[0].count = 100;
+  s.types[0].resolution = 20;
   const Scene sc = make_scene(s);
   Mesh m = make_shape("polytope36");
   Eigen::Vector3d lo, hi;
@@ -114,21 +114,21 @@ TEST(SceneScale, ResolutionIsVoxelsAlongTheLongestSide) {
 }
 
 TEST(SceneScale, VoxelAndResolutionAreExclusiveAndResolutionIsAtLeastFour) {
-  SceneSpec s;
-  s.voxel = 1;
-  s.resolution = 10;
+  RunConfig s;
+  s.types[0].voxel = 1;
+  s.types[0].resolution = 10;
   EXPECT_EQ(error_text<std::invalid_argument>([&] { make_scene(s); }),
-            "scene: give a voxel size or a resolution, not both");
-  s = SceneSpec{};
-  s.resolution = 3;
+            "types[0]: give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), not both");
+  s = RunConfig{};
+  s.types[0].resolution = 3;
   EXPECT_EQ(error_text<std::invalid_argument>([&] { make_scene(s); }),
-            "scene: resolution 3 is outside [4, 1020] (voxels along the object's longest side)");
-  s.resolution = 1021;
+            "types[0].resolution: 3 is outside [4, 1020]");
+  s.types[0].resolution = 1021;
   EXPECT_EQ(error_text<std::invalid_argument>([&] { make_scene(s); }),
-            "scene: resolution 1021 is outside [4, 1020] (voxels along the object's longest side)");
+            "types[0].resolution: 1021 is outside [4, 1020]");
   // A voxel of fewer than 4 across (but more than 2) names the size that gives 4.
-  s = SceneSpec{};
-  s.voxel = 4;
+  s = RunConfig{};
+  s.types[0].voxel = 4;
   EXPECT_NE(error_text<std::invalid_argument>([&] { make_scene(s); })
                 .find("scene: voxel 4.000000 leaves 3.06419 voxels along the object's longest side (12.2568); at "
                       "least 4 are needed: a voxel of at most 3.06419, or a resolution"),
@@ -219,8 +219,8 @@ TEST(ScenePlacement, LatticeCapacity) {
 // Beyond what random placement reaches (bounding spheres filling 57% of the cube): the lattice places every body,
 // apart and inside, the same for a seed and different for another.
 TEST(ScenePlacement, HighDensityPlacesOnALatticeWithoutOverlap) {
-  SceneSpec s;
-  s.objects = 4096;
+  RunConfig s;
+  s.types[0].count = 4096;
   s.density = 0.14;
   const Scene a = make_scene(s);
   ASSERT_EQ(a.bodies.size(), 4096u);
@@ -231,8 +231,8 @@ TEST(ScenePlacement, HighDensityPlacesOnALatticeWithoutOverlap) {
   expect_apart_and_inside(b);
   EXPECT_FALSE(same_bodies(a, b));
   // A few objects, crowded: 30 at 10% (spheres of radius 14.8, 32 sites).
-  s = SceneSpec{};
-  s.objects = 30;
+  s = RunConfig{};
+  s.types[0].count = 30;
   s.density = 0.1;
   const Scene c = make_scene(s);
   expect_apart_and_inside(c);
@@ -243,7 +243,7 @@ TEST(ScenePlacement, HighDensityPlacesOnALatticeWithoutOverlap) {
 TEST(ScenePlacement, MixedSizesOnTheLattice) {
   // Three sizes at a fill random placement does not reach (spheres fill half the cube): each body keeps its own
   // radius from the others.
-  const SceneFile f = parse_scene_file(
+  const RunConfig f = parse_scene_file(
       R"({"types": [{"shape": "polytope36", "count": 500, "size": 6}, {"shape": "polytope36", "count": 400, "size": 5.6},
                     {"shape": "icosahedron", "count": 100, "size": 4.5}], "environment": {"side": 70}})",
       "mixed.json");
@@ -256,7 +256,7 @@ TEST(ScenePlacement, MixedSizesOnTheLattice) {
 }
 
 TEST(ScenePlacement, ImpossibleDensitySaysTheMostThatFits) {
-  SceneSpec s;
+  RunConfig s;
   s.density = 0.3;
   const std::string e = error_text<std::invalid_argument>([&] { make_scene(s); });
   EXPECT_EQ(e.rfind("scene: could not place object 27 of 64 without overlapping bounding spheres: at density 0.3 "

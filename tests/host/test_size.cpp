@@ -30,7 +30,7 @@ std::string error_of(const std::string& text) {
   return "(no error)";
 }
 
-TEST(SceneFile, ErrorsNameTheFileAndTheKey) {
+TEST(RunConfig, ErrorsNameTheFileAndTheKey) {
   const std::pair<const char*, const char*> cases[] = {
       {R"({"types": [{"shape": "cube"}], "colour": 1})", "s.json: colour: unknown key"},
       {R"({"types": [{"shape": "cube", "voxel": "big"}]})", "s.json: types[0].voxel: must be a number, not string"},
@@ -71,8 +71,8 @@ TEST(SceneFile, ErrorsNameTheFileAndTheKey) {
   }
 }
 
-TEST(SceneFile, MissingMeshNamesTheKeyAndTheFile) {
-  const SceneFile f = parse_scene_file(R"({"types": [{"shape": "cube"}, {"mesh": "meshes/gone.obj", "size": 4}]})",
+TEST(RunConfig, MissingMeshNamesTheKeyAndTheFile) {
+  const RunConfig f = parse_scene_file(R"({"types": [{"shape": "cube"}, {"mesh": "meshes/gone.obj", "size": 4}]})",
                                        "/tmp/voxcd-scenes/s.json");
   EXPECT_EQ(f.types[1].mesh, "/tmp/voxcd-scenes/meshes/gone.obj");  // relative to the scene file
   try {
@@ -85,15 +85,15 @@ TEST(SceneFile, MissingMeshNamesTheKeyAndTheFile) {
   }
 }
 
-TEST(SceneFile, OneTypeIsTheBuiltInScene) {
+TEST(RunConfig, OneTypeIsTheBuiltInScene) {
   // The built-in scene's parameters as a scene file: the same bodies, so the same simulation.
-  const SceneFile f = parse_scene_file(
+  const RunConfig f = parse_scene_file(
       R"({"types": [{"shape": "polytope36", "count": 40}], "environment": {"seed": 5, "density": 0.03}})", "one.json");
-  SceneSpec spec;
-  spec.objects = 40;
+  RunConfig spec;
+  spec.types[0].count = 40;
   spec.seed = 5;
   spec.density = 0.03;
-  Simulation a(make_scene(f), SimOptions{}), b(make_scene(spec), SimOptions{});
+  Simulation a(make_scene(f), RunConfig{}), b(make_scene(spec), RunConfig{});
   EXPECT_EQ(a.state_hash(), b.state_hash());
   for (int k = 0; k < 30; ++k) {
     const FrameStats sa = a.step(), sb = b.step();
@@ -102,8 +102,8 @@ TEST(SceneFile, OneTypeIsTheBuiltInScene) {
   EXPECT_EQ(a.state_hash(), b.state_hash());
 }
 
-TEST(SceneFile, MixedSceneHasEveryTypeSizedAsAsked) {
-  const SceneFile f = read_scene_file(kScenes + "/mixed.json");
+TEST(RunConfig, MixedSceneHasEveryTypeSizedAsAsked) {
+  const RunConfig f = read_scene_file(kScenes + "/mixed.json");
   const Scene s = make_scene(f);
   ASSERT_EQ(s.types.size(), 3u);
   std::vector<uint64_t> count(3, 0);
@@ -148,7 +148,7 @@ TEST(Size, ListedConfigurationsAreWhatSizeDerives) {
   const auto listed = listed_configs();
   ASSERT_GE(listed.size(), 3u);
   for (const auto& l : listed) {
-    const SceneFile f = read_scene_file(kScenes + "/" + l.scene);
+    const RunConfig f = read_scene_file(kScenes + "/" + l.scene);
     const SizeReport r = derive_size(f, make_scene(f), {});
     EXPECT_EQ(r.config.to_string(), l.config) << l.scene << ": tests/scenes/configs.txt is stale";
   }
@@ -159,7 +159,7 @@ TEST(Size, ListedConfigurationsAreWhatSizeDerives) {
 TEST(Size, CopiesAreWeighedAgainstBanks) {
   for (const auto& l : listed_configs()) {
     SCOPED_TRACE(l.scene);
-    const SceneFile f = read_scene_file(kScenes + "/" + l.scene);
+    const RunConfig f = read_scene_file(kScenes + "/" + l.scene);
     const Scene scene = make_scene(f);
     const SizeReport r = derive_size(f, scene, {});
     const std::string json = size_json(r);
@@ -189,7 +189,7 @@ TEST(Size, CopiesAreWeighedAgainstBanks) {
 TEST(Size, DerivedConfigurationsFitAndAreMinimal) {
   for (const auto& l : listed_configs()) {
     SCOPED_TRACE(l.scene);
-    const SceneFile f = read_scene_file(kScenes + "/" + l.scene);
+    const RunConfig f = read_scene_file(kScenes + "/" + l.scene);
     const Scene scene = make_scene(f);
     const SizeReport r = derive_size(f, scene, {});
     const DeviceConfig cfg = r.config;
@@ -347,7 +347,7 @@ TEST(Size, DerivedConfigurationsMeetTheirAccuracyOnRandomPoses) {
   std::cout << "seed " << seed << " (VOXCD_SEED replays)\n";
   for (const auto& l : listed_configs()) {
     SCOPED_TRACE(l.scene + ", seed " + std::to_string(seed));
-    const SceneFile f = read_scene_file(kScenes + "/" + l.scene);
+    const RunConfig f = read_scene_file(kScenes + "/" + l.scene);
     const Scene scene = make_scene(f);
     const SizeReport r = derive_size(f, scene, {});
     const Agreement g = check_against_exact(r.config, scene, seed, 300);
@@ -366,7 +366,7 @@ TEST(Size, DerivedConfigurationsMeetTheirAccuracyOnRandomPoses) {
 }
 
 SizeError size_error(const std::string& scene, SizeRequest req) {
-  const SceneFile f = read_scene_file(kScenes + "/" + scene);
+  const RunConfig f = read_scene_file(kScenes + "/" + scene);
   try {
     derive_size(f, make_scene(f), req);
   } catch (const SizeError& e) {
@@ -400,7 +400,7 @@ TEST(Size, ImpossibleRequestsNameTheConstraintAndTheAmount) {
   EXPECT_EQ(r.config.LANES, 64);
 
   // Memory: types that need more shell words than the largest shell memory holds.
-  const SceneFile f = read_scene_file(kScenes + "/small.json");
+  const RunConfig f = read_scene_file(kScenes + "/small.json");
   Scene huge = make_scene(f);
   const uint64_t points = huge.types[0]->shell().size();
   DeviceConfig narrow;

@@ -108,8 +108,8 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 
 struct SimCase {
   const char* name;
-  SceneSpec spec;
-  SimOptions opt;
+  RunConfig spec;
+  RunConfig opt;
   int frames;
   // What the run must exercise: the largest frame's lookups and contacts at least this many.
   uint64_t min_lookups = 0, min_contacts = 0;
@@ -119,38 +119,38 @@ std::vector<SimCase> sim_cases() {
   std::vector<SimCase> v;
   {
     SimCase c{"40 objects", {}, {}, 120};
-    c.spec.objects = 40, c.spec.density = 0.05, c.spec.speed = 0.3, c.spec.voxel = 1.5, c.spec.seed = 3;
+    c.spec.types[0].count = 40, c.spec.density = 0.05, c.spec.speed = 0.3, c.spec.types[0].voxel = 1.5, c.spec.seed = 3;
     v.push_back(c);
   }
   {
     // The default scene as `voxcd simulate --objects 256` runs it.
     SimCase c{"256 objects", {}, {}, 60, 4096};
-    c.spec.objects = 256;
+    c.spec.types[0].count = 256;
     v.push_back(c);
   }
   {
     // Crowded: near the densest packing the random placement reaches, fast: many contacts every frame.
     SimCase c{"crowded 1500 objects", {}, {}, 25, 4096, 256};
-    c.spec.objects = 1500, c.spec.density = 0.12, c.spec.speed = 0.3, c.spec.seed = 7;
+    c.spec.types[0].count = 1500, c.spec.density = 0.12, c.spec.speed = 0.3, c.spec.seed = 7;
     v.push_back(c);
   }
   {
     SimCase c{"crowded, FIRST, both directions", {}, {}, 25, 4096};
-    c.spec.objects = 1500, c.spec.density = 0.12, c.spec.speed = 0.3, c.spec.seed = 8;
+    c.spec.types[0].count = 1500, c.spec.density = 0.12, c.spec.speed = 0.3, c.spec.seed = 8;
     c.opt.mode = Mode::First;
     c.opt.both_directions = true;
     v.push_back(c);
   }
   {
     SimCase c{"crowded, distance voxmaps", {}, {}, 20, 4096, 256};
-    c.spec.objects = 800, c.spec.density = 0.12, c.spec.speed = 0.3, c.spec.seed = 9, c.spec.distance_bits = 8;
+    c.spec.types[0].count = 800, c.spec.density = 0.12, c.spec.speed = 0.3, c.spec.seed = 9, c.spec.distance_bits = 8;
     c.opt.distance_bits = 8;
     c.opt.margin = 0.05;
     v.push_back(c);
   }
   {
     SimCase c{"crowded, distance voxmaps, ccd", {}, {}, 8, 4096};
-    c.spec.objects = 1600, c.spec.density = 0.12, c.spec.speed = 0.5, c.spec.seed = 10, c.spec.distance_bits = 8;
+    c.spec.types[0].count = 1600, c.spec.density = 0.12, c.spec.speed = 0.5, c.spec.seed = 10, c.spec.distance_bits = 8;
     c.opt.distance_bits = 8;
     c.opt.ccd = true;
     v.push_back(c);
@@ -158,7 +158,7 @@ std::vector<SimCase> sim_cases() {
   {
     // Many objects, so that every stage has work for several parts.
     SimCase c{"4096 objects", {}, {}, 6, 4096};
-    c.spec.objects = 4096;
+    c.spec.types[0].count = 4096;
     v.push_back(c);
   }
   return v;
@@ -170,7 +170,7 @@ TEST(ThreadsSimulate, FramesAreIdenticalOnOneTwoAndThreeThreads) {
     const Scene scene = make_scene(c.spec);
     std::vector<std::unique_ptr<Simulation>> sims;
     for (unsigned threads : {1u, 2u, 3u}) {
-      SimOptions o = c.opt;
+      RunConfig o = c.opt;
       o.threads = threads;
       sims.push_back(std::make_unique<Simulation>(scene, o));
       if (threads > 1) {
@@ -222,9 +222,9 @@ TEST(ThreadsSimulate, FramesAreIdenticalOnOneTwoAndThreeThreads) {
 TEST(ThreadsSimulate, TheDefaultRunKeepsItsHash) {
   // `voxcd simulate --frames 20` (tests/python/test_scenes.py pins the same hash), on 1, 2 and 3 threads.
   for (unsigned threads : {1u, 2u, 3u}) {
-    SimOptions o;
+    RunConfig o;
     o.threads = threads;
-    Simulation sim(make_scene(SceneSpec{}), o);
+    Simulation sim(make_scene(RunConfig{}), o);
     for (int f = 0; f < 20; ++f) sim.step();
     EXPECT_EQ(sim.state_hash(), 0xde188b9acc918936ull) << threads << " threads";
   }
