@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "voxcd/host/regress/detail/shard_json.h"
+
 namespace voxcd {
 
 namespace {
@@ -12,18 +14,13 @@ namespace {
 constexpr const char* kFormatKey = "voxcd_regress_results";
 
 std::string header_line(const Campaign& c) {
-  return std::string("{\"") + kFormatKey + "\":1,\"campaign\":" + campaign_json(c) + "}";
+  return nlohmann::ordered_json{{kFormatKey, 1}, {"campaign", nlohmann::ordered_json::parse(campaign_json(c))}}.dump();
 }
 
 }  // namespace
 
 std::string shard_result_line(const ShardResult& r, const Shard& s) {
-  nlohmann::ordered_json j;
-  j["shard"] = r.shard;
-  j["seed"] = s.seed;
-  j["config"] = s.config.empty() ? "default" : s.config;
-  j["lanes"] = s.lanes;
-  j["backend"] = s.backend;
+  nlohmann::ordered_json j = detail::shard_json(s);
   j["jobs"] = r.jobs;
   j["lookups"] = r.lookups;
   j["records"] = r.records;

@@ -9,7 +9,7 @@ namespace {
 constexpr const char* kFormatKey = "voxcd_sweep_results";
 
 std::string header_line(const SweepSpec& s) {
-  return std::string("{\"") + kFormatKey + "\":1,\"sweep\":" + sweep_json(s) + "}";
+  return nlohmann::ordered_json{{kFormatKey, 1}, {"sweep", nlohmann::ordered_json::parse(sweep_json(s))}}.dump();
 }
 
 // The row's point must be the point of s with its index.
