@@ -8,6 +8,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "voxcd/host/object/detail/edge_uses.h"
 #include "voxcd/host/object/detail/point_hash.h"
 #include "voxcd/host/object/formats/formats.h"
 
@@ -103,32 +104,10 @@ void check_triangles(const Mesh& m) {
   }
 }
 
-struct EdgeUse {
-  uint64_t key;  // lo << 32 | hi
-  uint32_t tri;
-  bool forward;  // lo -> hi in the triangle's winding
-};
-
-// Every edge use, sorted by edge and then triangle.
-std::vector<EdgeUse> edge_uses(const Mesh& m) {
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * m.size());
-  for (size_t t = 0; t < m.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
-      const uint32_t lo = std::min(a, b), hi = std::max(a, b);
-      uses.push_back({uint64_t(lo) << 32 | hi, uint32_t(t), a < b});
-    }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return x.key != y.key ? x.key < y.key : x.tri < y.tri;
-  });
-  return uses;
-}
-
 // Every undirected edge must be used exactly twice, once in each direction.
 void check_edges(const Mesh& m) {
   const std::string& n = m.name;
-  const std::vector<EdgeUse> uses = edge_uses(m);
+  const std::vector<detail::EdgeUse> uses = detail::edge_uses(m);
   for (size_t i = 0; i < uses.size();) {
     size_t j = i;
     while (j < uses.size() && uses[j].key == uses[i].key) ++j;

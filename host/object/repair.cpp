@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "voxcd/host/object/detail/cells.h"
+#include "voxcd/host/object/detail/edge_uses.h"
 #include "voxcd/host/object/detail/point_hash.h"
 #include "voxcd/host/object/detail/union_find.h"
 
@@ -20,7 +21,9 @@ namespace voxcd {
 
 namespace {
 
+using detail::EdgeUse;
 using detail::UnionFind;
+using detail::edge_uses;
 
 // A hole whose fill has more than this fraction of its part's area makes the part a sheet (docs/objects.md).
 constexpr double kSheetRatio = 0.4;
@@ -196,26 +199,6 @@ void drop_degenerate_and_duplicates(Mesh& m, MeshReport& r) {
       out.push_back(kept[i]);
   }
   m.triangles = std::move(out);
-}
-
-// One use of an undirected edge by a triangle.
-struct EdgeUse {
-  uint64_t key;  // lo << 32 | hi
-  uint32_t tri;
-  bool forward;  // lo -> hi in the triangle's winding
-};
-
-std::vector<EdgeUse> edge_uses(const Mesh& m) {
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * m.size());
-  for (size_t t = 0; t < m.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
-      uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(t), a < b});
-    }
-  std::sort(uses.begin(), uses.end(),
-            [](const EdgeUse& x, const EdgeUse& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
-  return uses;
 }
 
 // Closes cracks: a vertex on an open edge moves onto the nearest vertex on an open edge of another edge-connected
