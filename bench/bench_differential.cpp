@@ -1,5 +1,5 @@
 // The differential check against exact geometry on the whole corpus (tests/differential.h; the test
-// tests/host/test_differential.cpp runs a sample of it): every pair of the corpus's neighbours and the robot in the
+// tests/host/pairs/test_differential.cpp runs a sample of it): every pair of the corpus's neighbours and the robot in the
 // room, at random poses half of them near contact, FCL's exact collide against voxcd's 2-bit and distance (SB 8)
 // voxmaps, both directions, margin 0. Prints, as Markdown (also to --out FILE), the confusion matrix of each mode,
 // the collisions missed deeper than the documented depth and the contacts farther apart than the documented

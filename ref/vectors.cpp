@@ -26,13 +26,7 @@ class Parser {
     while (next_line()) {
       const std::string_view kw = tok_[0];
       if (!have_header) {
-        if (kw != "voxcd-vectors")
-          fail("the file must start with 'voxcd-vectors 1' or 'voxcd-vectors 2', found '" + std::string(kw) + "'");
-        want(2);
-        if (tok_[1] != "1" && tok_[1] != "2")
-          fail("unsupported vector format version '" + std::string(tok_[1]) + "' (this reads 1 and 2)");
-        version_ = tok_[1] == "1" ? 1 : 2;
-        f.version = version_;
+        parse_header(f);
         have_header = true;
       } else if (kw == "config") {
         if (have_config) fail("a second config line");
@@ -50,21 +44,8 @@ class Parser {
         parse_map(f);
       } else if (kw == "job") {
         parse_job(f);
-      } else if (kw == "hit") {
-        want(version_ == 1 ? 7 : 8);
-        const uint32_t tag = u32(1, "TAG", f.config.TAGW);
-        const uint32_t point = u32(2, "POINT", 32);
-        const uint32_t x = u32(3, "X", f.config.DW), y = u32(4, "Y", f.config.DW), z = u32(5, "Z", f.config.DW);
-        const uint32_t st = u32(6, "STATE", 2);
-        const int64_t dist = version_ == 1 ? 0 : signed_field(7, "DIST", f.config.IW(), "IW");
-        f.expected.push_back(Record::hit(tag, point, x, y, z, uint8_t(st), dist));
-        f.expected_lines.push_back(line_);
-      } else if (kw == "done") {
-        if (tok_.size() != 3 && tok_.size() != 4)
-          fail("'done' takes TAG HITS [CYCLES]: " + std::to_string(tok_.size() - 1) + " fields");
-        Record r = Record::done(u32(1, "TAG", f.config.TAGW), u32(2, "HITS", 32));
-        if (tok_.size() == 4) r.cycles = u64(3, "CYCLES");
-        f.expected.push_back(r);
+      } else if (kw == "hit" || kw == "done") {
+        f.expected.push_back(kw == "hit" ? parse_hit(f.config) : parse_done(f.config));
         f.expected_lines.push_back(line_);
       } else if (kw == "voxcd-vectors") {
         fail("a second 'voxcd-vectors' header");
@@ -76,7 +57,44 @@ class Parser {
       line_ = 0;
       fail("empty file: no 'voxcd-vectors 1' header");
     }
-    // Jobs are checked against the memories the whole file loads.
+    check_jobs(f);
+    return f;
+  }
+
+ private:
+  // "voxcd-vectors 1" or "voxcd-vectors 2".
+  void parse_header(VectorFile& f) {
+    if (tok_[0] != "voxcd-vectors")
+      fail("the file must start with 'voxcd-vectors 1' or 'voxcd-vectors 2', found '" + std::string(tok_[0]) + "'");
+    want(2);
+    if (tok_[1] != "1" && tok_[1] != "2")
+      fail("unsupported vector format version '" + std::string(tok_[1]) + "' (this reads 1 and 2)");
+    version_ = tok_[1] == "1" ? 1 : 2;
+    f.version = version_;
+  }
+
+  // "hit TAG POINT X Y Z STATE [DIST]" (DIST from version 2).
+  Record parse_hit(const DeviceConfig& cfg) {
+    want(version_ == 1 ? 7 : 8);
+    const uint32_t tag = u32(1, "TAG", cfg.TAGW);
+    const uint32_t point = u32(2, "POINT", 32);
+    const uint32_t x = u32(3, "X", cfg.DW), y = u32(4, "Y", cfg.DW), z = u32(5, "Z", cfg.DW);
+    const uint32_t st = u32(6, "STATE", 2);
+    const int64_t dist = version_ == 1 ? 0 : signed_field(7, "DIST", cfg.IW(), "IW");
+    return Record::hit(tag, point, x, y, z, uint8_t(st), dist);
+  }
+
+  // "done TAG HITS [CYCLES]".
+  Record parse_done(const DeviceConfig& cfg) {
+    if (tok_.size() != 3 && tok_.size() != 4)
+      fail("'done' takes TAG HITS [CYCLES]: " + std::to_string(tok_.size() - 1) + " fields");
+    Record r = Record::done(u32(1, "TAG", cfg.TAGW), u32(2, "HITS", 32));
+    if (tok_.size() == 4) r.cycles = u64(3, "CYCLES");
+    return r;
+  }
+
+  // Jobs are checked against the memories the whole file loads.
+  void check_jobs(const VectorFile& f) {
     for (size_t k = 0; k < f.jobs.size(); ++k) {
       try {
         validate_job(f.config, f.jobs[k], f.memory.shell.size(), f.memory.map.size());
@@ -85,10 +103,8 @@ class Parser {
         fail(e.what());
       }
     }
-    return f;
   }
 
- private:
   [[noreturn]] void fail(const std::string& what) const {
     throw VectorError(name_ + ":" + std::to_string(line_) + ": " + what);
   }

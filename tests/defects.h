@@ -1,4 +1,4 @@
-// Defective meshes with known intended solids, for tests and benchmarks (tests/host/test_defects.cpp,
+// Defective meshes with known intended solids, for tests and benchmarks (tests/host/object/test_defects.cpp,
 // bench/bench_voxelize.cpp): the defects real exports have (holes, flipped and duplicated triangles, degenerate
 // triangles, overlapping closed parts, a non-manifold edge, cracks, cavities given the wrong orientation, sheets,
 // point clouds), each built from closed meshes whose solid is known, with what repair() must report for it.

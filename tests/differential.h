@@ -1,4 +1,4 @@
-// The differential check against exact geometry (tests/host/test_differential.cpp runs a sample in CI,
+// The differential check against exact geometry (tests/host/pairs/test_differential.cpp runs a sample in CI,
 // bench/bench_differential.cpp the whole corpus for docs/results.md): for pairs of real and generated models at
 // random poses, half of them near contact (bisected to the contact with FCL, then moved by up to +-2 voxels along
 // the approach), FCL's exact collide (surfaces crossing) or one model inside the other's solid is the truth, and

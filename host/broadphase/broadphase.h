@@ -1,6 +1,6 @@
 // Broadphases: from every body's bounding volumes to the pairs that may touch. Every broadphase sits behind one
 // interface and reports exactly the pairs its predicate admits (sphere overlap or box overlap), sorted, each
-// once, every frame; tests/host/test_broadphase.cpp checks each against brute force of the same predicate.
+// once, every frame; tests/host/broadphase/test_broadphase.cpp checks each against brute force of the same predicate.
 #pragma once
 
 #include <Eigen/Core>

@@ -159,22 +159,47 @@ class UniformGrid final : public BroadphaseBase {
   // front of ids_ (their count is returned). The passes over the boxes run on the pool in ranges, each range's
   // results joined in range order (the same level whatever the ranges).
   uint32_t build(Level& lv, uint32_t m) {
-    // The size of a box: its largest side (size_, by body). The median only when the sizes differ by more than a
-    // factor of two. The first level's smallest and largest come from update().
+    const SmallBoxes sb = split_by_size(m, size_limit(m));
+    const uint64_t cells = size_cells(lv, sb);
+    // Counting sort of the small boxes by cell, stable (in small_ order within a cell).
+    const uint32_t s = uint32_t(small_.size());
+    lv.cell.resize(s);
+    lv.xyz.resize(s);
+    lv.entries.resize(s);
+    cell_tmp_.resize(s);
+    xyz_tmp_.resize(s);
+    if (!pool_ || s < kParallelCells)
+      sort_by_cell(lv, cells);
+    else
+      sort_by_cell_on_pool(lv, cells);
+    return sb.large;
+  }
+
+  // The size of a box: its largest side (size_, by body). The level takes boxes up to twice the median of
+  // ids_[0, m) when the sizes differ by more than a factor of two, else all. The first level's smallest and largest
+  // come from update().
+  double size_limit(uint32_t m) {
     double smallest = sizes_[0], largest = sizes_[1];
     if (m != box_.size()) {
       smallest = HUGE_VAL, largest = 0;
       for (uint32_t k = 0; k < m; ++k) smallest = std::min(smallest, size_[ids_[k]]), largest = std::max(largest, size_[ids_[k]]);
     }
-    double limit = largest;
-    if (largest > 2 * smallest) {
-      sorted_.resize(m);
-      for (uint32_t k = 0; k < m; ++k) sorted_[k] = size_[ids_[k]];
-      std::nth_element(sorted_.begin(), sorted_.begin() + m / 2, sorted_.end());
-      limit = 2 * sorted_[m / 2];
-    }
-    // Split: the small ones (size <= limit, which includes the median and everything below) stay in order; per
-    // range its small and large ones, the largest small box and the range of the small ones' lower corners.
+    if (!(largest > 2 * smallest)) return largest;
+    sorted_.resize(m);
+    for (uint32_t k = 0; k < m; ++k) sorted_[k] = size_[ids_[k]];
+    std::nth_element(sorted_.begin(), sorted_.begin() + m / 2, sorted_.end());
+    return 2 * sorted_[m / 2];
+  }
+
+  // What the split leaves for the level: the largest small box, the range of the small ones' lower corners.
+  struct SmallBoxes {
+    uint32_t large = 0;
+    double width = 0, lo[3], hi[3];
+  };
+
+  // Split: the small ones (size <= limit, which includes the median and everything below) into small_, in order;
+  // the large ones to the front of ids_. Per range its small and large ones, joined in range order.
+  SmallBoxes split_by_size(uint32_t m, double limit) {
     const Ranges r = pool_ranges(pool_, m, kGrainSplit);
     if (split_.size() < r.parts) split_.resize(r.parts);
     for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
@@ -195,29 +220,32 @@ class UniformGrid final : public BroadphaseBase {
         for (int a = 0; a < 3; ++a) sp.lo[a] = std::min(sp.lo[a], box.lo[a]), sp.hi[a] = std::max(sp.hi[a], box.lo[a]);
       }
     });
-    double width = 0, lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) lo[a] = HUGE_VAL, hi[a] = -HUGE_VAL;
-    uint32_t large = 0;
+    SmallBoxes out;
+    for (int a = 0; a < 3; ++a) out.lo[a] = HUGE_VAL, out.hi[a] = -HUGE_VAL;
     small_.clear();
     for (size_t p = 0; p < r.parts; ++p) {
       const Split& sp = split_[p].value;
       small_.insert(small_.end(), sp.small.begin(), sp.small.end());
-      for (uint32_t id : sp.large) ids_[large++] = id;
-      width = std::max(width, sp.width);
-      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], sp.lo[a]), hi[a] = std::max(hi[a], sp.hi[a]);
+      for (uint32_t id : sp.large) ids_[out.large++] = id;
+      out.width = std::max(out.width, sp.width);
+      for (int a = 0; a < 3; ++a) out.lo[a] = std::min(out.lo[a], sp.lo[a]), out.hi[a] = std::max(out.hi[a], sp.hi[a]);
     }
-    // The cell: the largest box and a millionth, and no finer than about kCellsPerBox cells a box over the range
-    // of the lower corners.
+    return out;
+  }
+
+  // The cell: the largest box and a millionth, and no finer than about kCellsPerBox cells a box over the range of
+  // the lower corners. Sets the level's origin, inverse width and dimensions; returns its cell count.
+  uint64_t size_cells(Level& lv, const SmallBoxes& sb) {
     const uint32_t s = uint32_t(small_.size());
-    double range[3], span = width, volume = 1;
+    double range[3], span = sb.width, volume = 1;
     for (int a = 0; a < 3; ++a) {
-      lv.origin[a] = lo[a];
-      range[a] = hi[a] - lo[a];
+      lv.origin[a] = sb.lo[a];
+      range[a] = sb.hi[a] - sb.lo[a];
       span = std::max(span, range[a]);
     }
     // (An axis along which every corner and box is flat counts as a thousandth of the widest one.)
-    for (int a = 0; a < 3; ++a) volume *= std::max({range[a], width, 1e-3 * span});
-    double cw = width * (1 + 1e-6);
+    for (int a = 0; a < 3; ++a) volume *= std::max({range[a], sb.width, 1e-3 * span});
+    double cw = sb.width * (1 + 1e-6);
     const double coarse = std::cbrt(volume / (kCellsPerBox * double(s)));
     if (!(cw >= coarse)) cw = coarse;
     lv.inv = cw > 0 && std::isfinite(cw) ? 1 / cw : 0;
@@ -227,31 +255,35 @@ class UniformGrid final : public BroadphaseBase {
       if (!(d >= 1 && d < 1 << 20)) lv.inv = 0;
     }
     if (lv.inv == 0) lv.dims[0] = lv.dims[1] = lv.dims[2] = 1;
-    const uint64_t cells = uint64_t(lv.dims[0]) * lv.dims[1] * lv.dims[2];
-    // Counting sort of the small boxes by cell, stable (in small_ order within a cell).
-    lv.cell.resize(s);
-    lv.xyz.resize(s);
-    lv.entries.resize(s);
-    cell_tmp_.resize(s);
-    xyz_tmp_.resize(s);
-    if (!pool_ || s < kParallelCells) {
-      lv.start.assign(cells + 1, 0);
-      for (uint32_t k = 0; k < s; ++k) {
-        const FlatBox& box = box_[small_[k]];
-        auto& q = xyz_tmp_[k];
-        for (int a = 0; a < 3; ++a) q[a] = coord(lv, box.lo[a], a);
-        cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
-        ++lv.start[cell_tmp_[k] + 1];
-      }
-      for (uint64_t c = 0; c < cells; ++c) lv.start[c + 1] += lv.start[c];
-      fill_.assign(lv.start.begin(), lv.start.end() - 1);
-      for (uint32_t k = 0; k < s; ++k) place(lv, k, fill_[cell_tmp_[k]]++);
-      return large;
+    return uint64_t(lv.dims[0]) * lv.dims[1] * lv.dims[2];
+  }
+
+  // Small box k's cell coordinates and cell into xyz_tmp_ and cell_tmp_.
+  void find_cell(const Level& lv, uint32_t k) {
+    const FlatBox& box = box_[small_[k]];
+    auto& q = xyz_tmp_[k];
+    for (int a = 0; a < 3; ++a) q[a] = coord(lv, box.lo[a], a);
+    cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
+  }
+
+  void sort_by_cell(Level& lv, uint64_t cells) {
+    const uint32_t s = uint32_t(small_.size());
+    lv.start.assign(cells + 1, 0);
+    for (uint32_t k = 0; k < s; ++k) {
+      find_cell(lv, k);
+      ++lv.start[cell_tmp_[k] + 1];
     }
-    // On the pool, in buckets of consecutive cells (bucket c * B / cells of cell c): each range of boxes finds their
-    // cells and counts them per bucket; the buckets' places follow (range by range within a bucket); each range puts
-    // its boxes in their buckets, in order; each bucket counts its cells' boxes, writes its cells' starts and places
-    // its boxes. The same order as the loop above.
+    for (uint64_t c = 0; c < cells; ++c) lv.start[c + 1] += lv.start[c];
+    fill_.assign(lv.start.begin(), lv.start.end() - 1);
+    for (uint32_t k = 0; k < s; ++k) place(lv, k, fill_[cell_tmp_[k]]++);
+  }
+
+  // On the pool, in buckets of consecutive cells (bucket c * B / cells of cell c): each range of boxes finds their
+  // cells and counts them per bucket; the buckets' places follow (range by range within a bucket); each range puts
+  // its boxes in their buckets, in order; each bucket counts its cells' boxes, writes its cells' starts and places
+  // its boxes. The same order as sort_by_cell.
+  void sort_by_cell_on_pool(Level& lv, uint64_t cells) {
+    const uint32_t s = uint32_t(small_.size());
     const size_t buckets = 4 * size_t(pool_->size());
     auto bucket_of = [&](uint64_t c) { return size_t(c * buckets / cells); };
     auto first_cell = [&](size_t b) { return (uint64_t(b) * cells + buckets - 1) / buckets; };
@@ -261,10 +293,7 @@ class UniformGrid final : public BroadphaseBase {
       std::vector<uint32_t>& cnt = count_[part].value;
       cnt.assign(buckets, 0);
       for (size_t k = r2.begin(part); k < r2.end(part); ++k) {
-        const FlatBox& box = box_[small_[k]];
-        auto& q = xyz_tmp_[k];
-        for (int a = 0; a < 3; ++a) q[a] = coord(lv, box.lo[a], a);
-        cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
+        find_cell(lv, uint32_t(k));
         ++cnt[bucket_of(cell_tmp_[k])];
       }
     });
@@ -302,7 +331,6 @@ class UniformGrid final : public BroadphaseBase {
       }
     });
     lv.start[cells] = s;
-    return large;
   }
 
   // Small box k (small_[k], its cell and coordinates in cell_tmp_ and xyz_tmp_) to entry p of the level.

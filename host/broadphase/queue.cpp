@@ -34,37 +34,61 @@ class PriorityQueue final : public BroadphaseBase {
     radius_.resize(n);
     for (uint32_t i = 0; i < n; ++i) radius_[i] = bodies[i].radius;
     found_.clear();
-    uint64_t tests = 0;
-    if (restart) {
-      n_ = n;
-      started_ = true;
-      wake_.assign(size_t(n) * (n ? n - 1 : 0) / 2, kNever);
-      heap_.clear();
-      for (uint32_t i = 0; i < n; ++i)
-        for (uint32_t j = i + 1; j < n; ++j) {
-          const uint64_t w = wake_at(bodies[i], bodies[j], frame);
-          wake_[index(i, j)] = w;
-          if (w != kNever) heap_.push_back({w, i, j});
-        }
-      std::make_heap(heap_.begin(), heap_.end(), later);
-    } else {
-      flagged_.assign(n, 0);
-      for (uint32_t i : resched_) flagged_[i] = 1;
-      for (uint32_t i : resched_)
-        for (uint32_t j = 0; j < n; ++j) {
-          if (j == i || (flagged_[j] && j < i)) continue;
-          const uint32_t a = std::min(i, j), b = std::max(i, j);
-          const uint64_t w = wake_at(bodies[a], bodies[b], frame);
-          uint64_t& cur = wake_[index(a, b)];
-          if (w != cur) {
-            cur = w;
-            if (w != kNever) push({w, a, b});
-          }
-        }
-    }
+    if (restart)
+      schedule_all(bodies, frame);
+    else
+      reschedule(bodies, frame);
     frame_ = frame;
-    // Every pair whose time has come: test it, report it if its spheres overlap (and test it again next frame),
-    // otherwise schedule it by its new separation. Entries whose pair was rescheduled since are stale.
+    const uint64_t tests = test_due(bodies, frame);
+    if (heap_.size() > 2 * wake_.size() + 1024) compact();
+    sort_pairs(found_, scratch_, n, pairs_);
+    stats_ = {tests, pairs_.size()};
+  }
+
+ private:
+  struct Entry {
+    uint64_t wake;
+    uint32_t i, j;
+  };
+
+  // Every pair scheduled afresh.
+  void schedule_all(const std::vector<BodyBounds>& bodies, uint64_t frame) {
+    const uint32_t n = uint32_t(bodies.size());
+    n_ = n;
+    started_ = true;
+    wake_.assign(size_t(n) * (n ? n - 1 : 0) / 2, kNever);
+    heap_.clear();
+    for (uint32_t i = 0; i < n; ++i)
+      for (uint32_t j = i + 1; j < n; ++j) {
+        const uint64_t w = wake_at(bodies[i], bodies[j], frame);
+        wake_[index(i, j)] = w;
+        if (w != kNever) heap_.push_back({w, i, j});
+      }
+    std::make_heap(heap_.begin(), heap_.end(), later);
+  }
+
+  // The pairs of the bodies in resched_ scheduled again (each pair once).
+  void reschedule(const std::vector<BodyBounds>& bodies, uint64_t frame) {
+    const uint32_t n = uint32_t(bodies.size());
+    flagged_.assign(n, 0);
+    for (uint32_t i : resched_) flagged_[i] = 1;
+    for (uint32_t i : resched_)
+      for (uint32_t j = 0; j < n; ++j) {
+        if (j == i || (flagged_[j] && j < i)) continue;
+        const uint32_t a = std::min(i, j), b = std::max(i, j);
+        const uint64_t w = wake_at(bodies[a], bodies[b], frame);
+        uint64_t& cur = wake_[index(a, b)];
+        if (w != cur) {
+          cur = w;
+          if (w != kNever) push({w, a, b});
+        }
+      }
+  }
+
+  // Every pair whose time has come: test it, report it if its spheres overlap (and test it again next frame),
+  // otherwise schedule it by its new separation. Entries whose pair was rescheduled since are stale. Returns the tests.
+  uint64_t test_due(const std::vector<BodyBounds>& bodies, uint64_t frame) {
+    uint64_t tests = 0;
     while (!heap_.empty() && heap_.front().wake <= frame) {
       std::pop_heap(heap_.begin(), heap_.end(), later);
       const Entry e = heap_.back();
@@ -80,16 +104,9 @@ class PriorityQueue final : public BroadphaseBase {
       }
       if (cur != kNever) push({cur, e.i, e.j});
     }
-    if (heap_.size() > 2 * wake_.size() + 1024) compact();
-    sort_pairs(found_, scratch_, n, pairs_);
-    stats_ = {tests, pairs_.size()};
+    return tests;
   }
 
- private:
-  struct Entry {
-    uint64_t wake;
-    uint32_t i, j;
-  };
   // Min-heap on the wake-up frame, ties by pair so that the order is fixed.
   static bool later(const Entry& x, const Entry& y) {
     return x.wake > y.wake || (x.wake == y.wake && (x.i > y.i || (x.i == y.i && x.j > y.j)));

@@ -43,76 +43,100 @@ class SortAndSweep final : public BroadphaseBase {
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
     const uint32_t n = uint32_t(bodies.size());
     box_.resize(n);
-    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, ext[3] = {0, 0, 0};
-    double lo_min[3] = {0, 0, 0}, hi_max[3] = {0, 0, 0};
-    if (n) {
-      for (int a = 0; a < 3; ++a) lo_min[a] = bodies[0].box.lo[a], hi_max[a] = bodies[0].box.hi[a];
-    }
     for (uint32_t i = 0; i < n; ++i) {
       check_body(bodies[i], "sap", i, frame);
-      const FlatBox& b = box_[i] = flat(bodies[i].box);
+      box_[i] = flat(bodies[i].box);
+    }
+    const Columns cols = columns();
+    scatter(cols);
+    found_.clear();
+    const uint64_t tests = sweep(cols);
+    sort_pairs(found_, tmp_, n, pairs_);
+    stats_ = {tests, pairs_.size()};
+  }
+
+ private:
+  // The sweep axis (the one the box centres vary most along) and the grid of columns across the other two.
+  struct Columns {
+    int axis = 0, u = 1, v = 2;
+    int cells[2] = {1, 1};
+    double inv[2] = {0, 0}, lo_min[3] = {0, 0, 0};
+    uint16_t cell(double x, int k) const {
+      const int a = k ? v : u;
+      return uint16_t(std::min(int((x - lo_min[a]) * inv[k]), cells[k] - 1));
+    }
+  };
+
+  Columns columns() const {
+    const uint32_t n = uint32_t(box_.size());
+    Columns c;
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, ext[3] = {0, 0, 0}, hi_max[3] = {0, 0, 0};
+    if (n)
+      for (int a = 0; a < 3; ++a) c.lo_min[a] = box_[0].lo[a], hi_max[a] = box_[0].hi[a];
+    for (const FlatBox& b : box_)
       for (int a = 0; a < 3; ++a) {
-        const double c = 0.5 * (b.lo[a] + b.hi[a]);
-        sum[a] += c;
-        sum2[a] += c * c;
+        const double m = 0.5 * (b.lo[a] + b.hi[a]);
+        sum[a] += m;
+        sum2[a] += m * m;
         ext[a] += b.hi[a] - b.lo[a];
-        lo_min[a] = std::min(lo_min[a], b.lo[a]);
+        c.lo_min[a] = std::min(c.lo_min[a], b.lo[a]);
         hi_max[a] = std::max(hi_max[a], b.hi[a]);
       }
-    }
-    int axis = 0;
     double best = -1;
     for (int a = 0; a < 3; ++a) {
       const double var = sum2[a] - (n ? sum[a] * sum[a] / n : 0);
-      if (var > best) best = var, axis = a;
+      if (var > best) best = var, c.axis = a;
     }
-    // The grid of columns across axes u and v.
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    c.u = (c.axis + 1) % 3;
+    c.v = (c.axis + 2) % 3;
     const int limit = std::max(1, int(std::sqrt(n / 16.0)));
-    int cells[2];
-    double inv[2];
     for (int k = 0; k < 2; ++k) {
-      const int a = k ? v : u;
-      const double range = hi_max[a] - lo_min[a], mean = n ? ext[a] / n : 0;
+      const int a = k ? c.v : c.u;
+      const double range = hi_max[a] - c.lo_min[a], mean = n ? ext[a] / n : 0;
       const double want = mean > 0 ? range / (4 * mean) : 64;
-      cells[k] = range > 0 ? int(std::min<double>({want, 64.0, double(limit)})) : 1;
-      cells[k] = std::max(cells[k], 1);
-      inv[k] = range > 0 ? cells[k] / range : 0;
+      c.cells[k] = range > 0 ? int(std::min<double>({want, 64.0, double(limit)})) : 1;
+      c.cells[k] = std::max(c.cells[k], 1);
+      c.inv[k] = range > 0 ? c.cells[k] / range : 0;
     }
-    auto cell = [&](double x, int k) {
-      const int a = k ? v : u;
-      return uint16_t(std::min(int((x - lo_min[a]) * inv[k]), cells[k] - 1));
-    };
-    // Each box into every column it touches (a counting scatter in body order, which reads the input in
-    // order), then each column sorted on its own: small sorts in cache instead of a gather over all boxes.
-    const int ncell = cells[0] * cells[1];
+    return c;
+  }
+
+  // Each box into every column it touches (a counting scatter in body order, which reads the input in order), then
+  // each column sorted on its own: small sorts in cache instead of a gather over all boxes.
+  void scatter(const Columns& c) {
+    const uint32_t n = uint32_t(box_.size());
+    const int ncell = c.cells[0] * c.cells[1], axis = c.axis, u = c.u, v = c.v;
     start_.assign(ncell + 1, 0);
     span_.resize(n);
     entry_.resize(n);
     for (uint32_t i = 0; i < n; ++i) {
       const FlatBox& b = box_[i];
       Span& sp = span_[i];
-      sp = {cell(b.lo[u], 0), cell(b.hi[u], 0), cell(b.lo[v], 1), cell(b.hi[v], 1)};
+      sp = {c.cell(b.lo[u], 0), c.cell(b.hi[u], 0), c.cell(b.lo[v], 1), c.cell(b.hi[v], 1)};
       entry_[i] = {float_down(b.lo[axis]), float_up(b.hi[axis]), float_down(b.lo[u]), float_up(b.hi[u]),
                    float_down(b.lo[v]),    float_up(b.hi[v]),    i,                   sp.u0, sp.v0};
       for (int cu = sp.u0; cu <= sp.u1; ++cu)
-        for (int cv = sp.v0; cv <= sp.v1; ++cv) ++start_[cu * cells[1] + cv + 1];
+        for (int cv = sp.v0; cv <= sp.v1; ++cv) ++start_[cu * c.cells[1] + cv + 1];
     }
-    for (int c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
+    for (int k = 0; k < ncell; ++k) start_[k + 1] += start_[k];
     fill_.assign(start_.begin(), start_.end() - 1);
     entries_.resize(start_[ncell]);
     for (uint32_t i = 0; i < n; ++i) {
       const Span& sp = span_[i];
       for (int cu = sp.u0; cu <= sp.u1; ++cu)
-        for (int cv = sp.v0; cv <= sp.v1; ++cv) entries_[fill_[cu * cells[1] + cv]++] = entry_[i];
+        for (int cv = sp.v0; cv <= sp.v1; ++cv) entries_[fill_[cu * c.cells[1] + cv]++] = entry_[i];
     }
-    for (int c = 0; c < ncell; ++c)
-      std::sort(entries_.begin() + start_[c], entries_.begin() + start_[c + 1],
+    for (int k = 0; k < ncell; ++k)
+      std::sort(entries_.begin() + start_[k], entries_.begin() + start_[k + 1],
                 [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); });
-    found_.clear();
+  }
+
+  // Sweeps every column; a pair is found only in the column of the lower corner of its overlap. Returns the tests.
+  uint64_t sweep(const Columns& cols) {
     uint64_t tests = 0;
+    const int ncell = cols.cells[0] * cols.cells[1];
     for (int c = 0; c < ncell; ++c) {
-      const uint16_t cu = uint16_t(c / cells[1]), cv = uint16_t(c % cells[1]);
+      const uint16_t cu = uint16_t(c / cols.cells[1]), cv = uint16_t(c % cols.cells[1]);
       const Entry* e = entries_.data() + start_[c];
       const uint32_t m = start_[c + 1] - start_[c];
       for (uint32_t s = 0; s < m; ++s) {
@@ -128,11 +152,9 @@ class SortAndSweep final : public BroadphaseBase {
         tests += t - s - 1;
       }
     }
-    sort_pairs(found_, tmp_, n, pairs_);
-    stats_ = {tests, pairs_.size()};
+    return tests;
   }
 
- private:
   struct Span {
     uint16_t u0, u1, v0, v1;  // the columns a box touches
   };

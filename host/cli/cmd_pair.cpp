@@ -4,12 +4,14 @@
 #include <cstdio>
 #include <iostream>
 #include <random>
+#include <stdexcept>
 #include <sstream>
 
 #include "voxcd/host/cli/commands.h"
-#include "voxcd/host/cli/object_report.h"
+#include "voxcd/host/cli/json_text.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/object/mesh.h"
+#include "voxcd/host/pairs/pose.h"
 
 namespace voxcd::cli {
 
@@ -37,32 +39,123 @@ struct PairArgs {
 // "tx,ty,tz[,rx,ry,rz]": B's translation in A's frame and its rotation in degrees about x, then y, then z.
 RigidPose parse_pose(const std::string& s) {
   std::vector<double> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double d = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0')
-      throw CLI::ValidationError("--pose", "'" + item + "' in '" + s + "' is not a number");
-    v.push_back(d);
+  try {
+    v = parse_pose_numbers(s, false);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--pose", e.what());
   }
-  if (v.size() != 3 && v.size() != 6)
-    throw CLI::ValidationError("--pose", "'" + s + "' has " + std::to_string(v.size()) +
-                                             " numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz");
   const Eigen::Vector3d t(v[0], v[1], v[2]);
   return v.size() == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t);
 }
 
-std::string vec_json(const Eigen::Vector3d& v) {
-  char b[128];
-  std::snprintf(b, sizeof b, "[%.9g, %.9g, %.9g]", v.x(), v.y(), v.z());
-  return b;
+// v with `digits` significant digits (the precision a quantity is printed with).
+double rounded(double v, int digits) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*g", digits, v);
+  return std::strtod(b, nullptr);
 }
 
-std::string quat_json(const Eigen::Quaterniond& q) {
-  char b[160];
-  std::snprintf(b, sizeof b, "[%.17g, %.17g, %.17g, %.17g]", q.w(), q.x(), q.y(), q.z());
-  return b;
+Json vec_json(const Eigen::Vector3d& v) { return {rounded(v.x(), 9), rounded(v.y(), 9), rounded(v.z(), 9)}; }
+
+Json pose_json(const RigidPose& p) {
+  const Eigen::Quaterniond& q = p.rotation;
+  return {{"translation", {p.translation.x(), p.translation.y(), p.translation.z()}},
+          {"rotation_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+// The requests: --random N poses where the enclosing spheres overlap (B's centre uniform in that ball, both
+// orientations uniform), else the one --pose (the identity without it).
+std::vector<PairRequest> pair_requests(const PairArgs& a, const ObjectType& ta, const ObjectType& tb) {
+  std::vector<PairRequest> reqs;
+  PairRequest r;
+  r.a = 0;
+  r.b = 1;
+  if (a.random == 0) {
+    if (!a.pose.empty()) r.pose_b = parse_pose(a.pose);
+    return {r};
+  }
+  std::mt19937_64 rng(a.seed);
+  std::normal_distribution<double> n(0, 1);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double reach = ta.radius + tb.radius;
+  for (size_t k = 0; k < a.random; ++k) {
+    r.pose_a.rotation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+    r.pose_b.rotation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+    Eigen::Vector3d d(n(rng), n(rng), n(rng));
+    d = d.normalized() * reach * std::cbrt(u(rng));
+    r.pose_a.translation = -(r.pose_a.rotation * ta.centre);
+    r.pose_b.translation = d - r.pose_b.rotation * tb.centre;
+    reqs.push_back(r);
+  }
+  return reqs;
+}
+
+// What a run of the requests gave, summed over them.
+struct PairRun {
+  std::vector<PairRequest> reqs;
+  std::vector<PairResult> res;
+  double secs = 0;
+  uint64_t hits = 0, lookups = 0, cycles = 0, touching = 0, contacts = 0;
+  bool has_cycles = false;
+};
+
+Json result_json(const PairRequest& q, const PairResult& r, bool has_cycles) {
+  Json j = {{"pose_b_translation", vec_json(q.pose_b.translation)}, {"pose_a", pose_json(q.pose_a)},
+            {"pose_b", pose_json(q.pose_b)}, {"hits", r.hits}, {"lookups", r.lookups}};
+  if (has_cycles) j["device_cycles"] = r.cycles;
+  Json contacts = Json::array();
+  for (const Contact& c : r.contacts)
+    contacts.push_back({{"shell", c.a_in_b ? "A" : "B"}, {"point", c.point}, {"position", vec_json(c.position)},
+                        {"normal", vec_json(c.normal)}, {"voxel", {c.voxel[0], c.voxel[1], c.voxel[2]}},
+                        {"state", int(c.state)}, {"depth", rounded(c.depth, 6)}});
+  j["contacts"] = std::move(contacts);
+  return j;
+}
+
+std::string pair_json(const PairArgs& a, const ObjectType& ta, const ObjectType& tb, const DeviceConfig& cfg,
+                      const PairRun& run) {
+  // The voxel the objects were built at (an object file brings its own): one number when they share it.
+  const double va = ta.voxmap().voxel(), vb = tb.voxmap().voxel();
+  Json j = {{"a", a.a}, {"b", a.b}, {"voxel", va == vb ? Json(va) : Json{va, vb}}, {"backend", a.backend},
+            {"mode", a.mode}, {"both_directions", a.both}, {"pairs", run.res.size()}, {"touching", run.touching},
+            {"hits", run.hits}, {"lookups", run.lookups}, {"seconds", rounded(run.secs, 6)}};
+  if (run.has_cycles) j["device_cycles"] = run.cycles;
+  if (cfg.distance()) {
+    j["distance_bits"] = cfg.SB;
+    j["band"] = {rounded(ta.object.distance.band() * va, 6), rounded(tb.object.distance.band() * vb, 6)};
+    j["margin"] = rounded(a.margin, 6);
+  }
+  Json results = Json::array();
+  for (size_t i = 0; i < run.res.size(); ++i) results.push_back(result_json(run.reqs[i], run.res[i], run.has_cycles));
+  j["results"] = std::move(results);
+  return json_text(j) + "\n";
+}
+
+void print_pair_text(const PairArgs& a, const ObjectType& ta, const ObjectType& tb, const DeviceConfig& cfg,
+                     const PairRun& run) {
+  std::printf("A %s: %zu shell points, voxmap %ux%ux%u, voxel %g; B %s: %zu shell points, voxmap %ux%ux%u, voxel %g\n",
+              a.a.c_str(), ta.shell().size(), ta.voxmap().dims()[0], ta.voxmap().dims()[1], ta.voxmap().dims()[2],
+              ta.voxmap().voxel(), a.b.c_str(), tb.shell().size(), tb.voxmap().dims()[0], tb.voxmap().dims()[1],
+              tb.voxmap().dims()[2], tb.voxmap().voxel());
+  std::printf("backend %s, mode %s%s: %zu pair%s, %llu touching, %llu hits, %llu contacts, %llu lookups in %.3f ms "
+              "(%.2f ns per lookup)\n",
+              a.backend.c_str(), a.mode.c_str(), a.both ? ", both directions" : "", run.res.size(),
+              run.res.size() == 1 ? "" : "s", (unsigned long long)run.touching, (unsigned long long)run.hits,
+              (unsigned long long)run.contacts, (unsigned long long)run.lookups, run.secs * 1e3,
+              run.lookups ? run.secs * 1e9 / double(run.lookups) : 0.0);
+  if (run.has_cycles)
+    std::printf("device cycles: %llu at %d lanes (%s)\n", (unsigned long long)run.cycles, cfg.LANES,
+                a.backend == "rtl" ? "measured on the RTL" : "the exact timing model of ref/");
+  size_t shown = 0;
+  for (const PairResult& r : run.res)
+    for (const Contact& c : r.contacts) {
+      if (shown++ >= a.show) break;
+      std::printf("  contact: %s point %u at (%.4g, %.4g, %.4g) normal (%.3f, %.3f, %.3f) state %d depth %.4g\n",
+                  c.a_in_b ? "A" : "B", c.point, c.position.x(), c.position.y(), c.position.z(), c.normal.x(),
+                  c.normal.y(), c.normal.z(), int(c.state), c.depth);
+    }
+  if (run.contacts > a.show)
+    std::printf("  ... %llu more (--show N, or --json for all)\n", (unsigned long long)(run.contacts - a.show));
 }
 
 int pair_cmd(const PairArgs& a) {
@@ -79,114 +172,23 @@ int pair_cmd(const PairArgs& a) {
   opt.both_directions = a.both;
   opt.cull = a.cull;
   opt.margin = a.margin;
-
-  std::vector<PairRequest> reqs;
-  if (a.random > 0) {
-    // B's centre uniform in the ball where the two enclosing spheres overlap, both orientations uniform.
-    std::mt19937_64 rng(a.seed);
-    std::normal_distribution<double> n(0, 1);
-    std::uniform_real_distribution<double> u(0, 1);
-    const double reach = ta->radius + tb->radius;
-    for (size_t k = 0; k < a.random; ++k) {
-      PairRequest r;
-      r.a = 0;
-      r.b = 1;
-      r.pose_a.rotation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-      r.pose_b.rotation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-      Eigen::Vector3d d(n(rng), n(rng), n(rng));
-      d = d.normalized() * reach * std::cbrt(u(rng));
-      r.pose_a.translation = -(r.pose_a.rotation * ta->centre);
-      r.pose_b.translation = d - r.pose_b.rotation * tb->centre;
-      reqs.push_back(r);
-    }
-  } else {
-    PairRequest r;
-    r.a = 0;
-    r.b = 1;
-    if (!a.pose.empty()) r.pose_b = parse_pose(a.pose);
-    reqs.push_back(r);
-  }
-
+  PairRun run;
+  run.reqs = pair_requests(a, *ta, *tb);
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<PairResult> res = collider.collide(reqs, opt);
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  uint64_t hits = 0, lookups = 0, cycles = 0, touching = 0, contacts = 0;
-  for (const PairResult& r : res) {
-    hits += r.hits;
-    lookups += r.lookups;
-    cycles += r.cycles;
-    contacts += r.contacts.size();
-    touching += r.hits > 0;
+  run.res = collider.collide(run.reqs, opt);
+  run.secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (const PairResult& r : run.res) {
+    run.hits += r.hits;
+    run.lookups += r.lookups;
+    run.cycles += r.cycles;
+    run.contacts += r.contacts.size();
+    run.touching += r.hits > 0;
   }
-  const bool has_cycles = collider.device().models_cycles();
-  if (a.json) {
-    std::ostringstream o;
-    // The voxel the objects were built at (an object file brings its own): one number when they share it.
-    const double va = ta->voxmap().voxel(), vb = tb->voxmap().voxel();
-    std::ostringstream vox;
-    vox.precision(17);
-    if (va == vb)
-      vox << va;
-    else
-      vox << "[" << va << ", " << vb << "]";
-    o << "{\"a\": " << json_string(a.a) << ", \"b\": " << json_string(a.b) << ", \"voxel\": " << vox.str()
-      << ", \"backend\": " << json_string(a.backend) << ", \"mode\": " << json_string(a.mode)
-      << ", \"both_directions\": " << (a.both ? "true" : "false") << ", \"pairs\": " << res.size()
-      << ", \"touching\": " << touching << ", \"hits\": " << hits << ", \"lookups\": " << lookups
-      << ", \"seconds\": " << secs;
-    if (has_cycles) o << ", \"device_cycles\": " << cycles;
-    if (cfg.distance())
-      o << ", \"distance_bits\": " << cfg.SB << ", \"band\": [" << ta->object.distance.band() * ta->voxmap().voxel()
-        << ", " << tb->object.distance.band() * tb->voxmap().voxel() << "], \"margin\": " << a.margin;
-    o << ", \"results\": [";
-    for (size_t i = 0; i < res.size(); ++i) {
-      const PairResult& r = res[i];
-      auto pose_json = [](const RigidPose& p) {
-        char t[160];
-        std::snprintf(t, sizeof t, "[%.17g, %.17g, %.17g]", p.translation.x(), p.translation.y(), p.translation.z());
-        return "{\"translation\": " + std::string(t) + ", \"rotation_wxyz\": " + quat_json(p.rotation) + "}";
-      };
-      o << (i ? ", " : "") << "{\"pose_b_translation\": " << vec_json(reqs[i].pose_b.translation)
-        << ", \"pose_a\": " << pose_json(reqs[i].pose_a) << ", \"pose_b\": " << pose_json(reqs[i].pose_b)
-        << ", \"hits\": " << r.hits << ", \"lookups\": " << r.lookups;
-      if (has_cycles) o << ", \"device_cycles\": " << r.cycles;
-      o << ", \"contacts\": [";
-      for (size_t k = 0; k < r.contacts.size(); ++k) {
-        const Contact& c = r.contacts[k];
-        o << (k ? ", " : "") << "{\"shell\": \"" << (c.a_in_b ? "A" : "B") << "\", \"point\": " << c.point
-          << ", \"position\": " << vec_json(c.position) << ", \"normal\": " << vec_json(c.normal)
-          << ", \"voxel\": [" << c.voxel[0] << ", " << c.voxel[1] << ", " << c.voxel[2] << "], \"state\": "
-          << int(c.state) << ", \"depth\": " << c.depth << "}";
-      }
-      o << "]}";
-    }
-    o << "]}\n";
-    std::cout << o.str();
-    return 0;
-  }
-  std::printf("A %s: %zu shell points, voxmap %ux%ux%u, voxel %g; B %s: %zu shell points, voxmap %ux%ux%u, voxel %g\n",
-              a.a.c_str(), ta->shell().size(), ta->voxmap().dims()[0], ta->voxmap().dims()[1],
-              ta->voxmap().dims()[2], ta->voxmap().voxel(), a.b.c_str(), tb->shell().size(), tb->voxmap().dims()[0],
-              tb->voxmap().dims()[1], tb->voxmap().dims()[2], tb->voxmap().voxel());
-  std::printf("backend %s, mode %s%s: %zu pair%s, %llu touching, %llu hits, %llu contacts, %llu lookups in %.3f ms "
-              "(%.2f ns per lookup)\n",
-              a.backend.c_str(), a.mode.c_str(), a.both ? ", both directions" : "", res.size(),
-              res.size() == 1 ? "" : "s", (unsigned long long)touching, (unsigned long long)hits,
-              (unsigned long long)contacts, (unsigned long long)lookups, secs * 1e3,
-              lookups ? secs * 1e9 / double(lookups) : 0.0);
-  if (has_cycles)
-    std::printf("device cycles: %llu at %d lanes (%s)\n", (unsigned long long)cycles, cfg.LANES,
-                a.backend == "rtl" ? "measured on the RTL" : "the exact timing model of ref/");
-  size_t shown = 0;
-  for (const PairResult& r : res)
-    for (const Contact& c : r.contacts) {
-      if (shown++ >= a.show) break;
-      std::printf("  contact: %s point %u at (%.4g, %.4g, %.4g) normal (%.3f, %.3f, %.3f) state %d depth %.4g\n",
-                  c.a_in_b ? "A" : "B", c.point, c.position.x(), c.position.y(), c.position.z(), c.normal.x(),
-                  c.normal.y(), c.normal.z(), int(c.state), c.depth);
-    }
-  if (contacts > a.show) std::printf("  ... %llu more (--show N, or --json for all)\n",
-                                     (unsigned long long)(contacts - a.show));
+  run.has_cycles = collider.device().models_cycles();
+  if (a.json)
+    std::cout << pair_json(a, *ta, *tb, cfg, run);
+  else
+    print_pair_text(a, *ta, *tb, cfg, run);
   return 0;
 }
 

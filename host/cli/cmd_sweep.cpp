@@ -9,6 +9,7 @@
 #include <memory>
 #include <thread>
 
+#include "voxcd/host/regress/testing_fault.h"
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/mpi/work_run.h"
 #include "voxcd/host/mpi/world.h"
@@ -34,29 +35,6 @@ struct SweepArgs {
   uint64_t stop_after = 0;
 };
 
-// VOXCD_TESTING_SWEEP_FAULT=KIND:POINT: the rank that runs point POINT fails (throws), hangs or exits at once.
-void testing_fault(uint64_t point) {
-  const char* text = std::getenv("VOXCD_TESTING_SWEEP_FAULT");
-  if (!text || !*text) return;
-  const std::string t = text;
-  const size_t colon = t.find(':');
-  const std::string kind = t.substr(0, colon);
-  uint64_t at = 0;
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no point");
-    size_t used = 0;
-    at = std::stoull(t.substr(colon + 1), &used);
-    if (used != t.size() - colon - 1 || (kind != "fail" && kind != "hang" && kind != "exit"))
-      throw std::invalid_argument("bad");
-  } catch (const std::exception&) {
-    throw std::runtime_error("VOXCD_TESTING_SWEEP_FAULT is '" + t + "', expected fail:POINT, hang:POINT or "
-                             "exit:POINT");
-  }
-  if (at != point) return;
-  if (kind == "fail") throw std::runtime_error("planted fault (VOXCD_TESTING_SWEEP_FAULT=" + t + ")");
-  if (kind == "exit") std::_Exit(3);
-  for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
-}
 
 std::vector<int> int_items(const std::string& text, const std::string& option) {
   std::vector<int> out;
@@ -102,7 +80,7 @@ std::string describe(const SweepSpec& s, uint64_t i) { return "point " + std::to
 mpi::RunItem runner_for(const SweepSpec& s, int rank) {
   auto runner = std::make_shared<SweepRunner>(s);
   return [runner, rank](uint64_t i) {
-    testing_fault(i);
+    testing_fault("VOXCD_TESTING_SWEEP_FAULT", "POINT", i);
     SweepRow r = runner->run(i);
     r.rank = rank;
     return sweep_row_line(r);

@@ -86,14 +86,14 @@ int view_recording(const ViewArgs& a, const std::string& file, const std::string
   if (rec.truncated) std::fprintf(stderr, "voxcd view: %s\n", rec.note.c_str());
   const std::string what = "recording " + shown_name + " (" + std::to_string(rec.body_types.size()) + " bodies, " +
                            std::to_string(rec.frames.size()) + " frames)";
-  const std::string info = "{\"kind\": \"recording\", \"name\": " + json_string(shown_name) +
-                           ", \"url\": \"data/recording.vxr\"}";
+  const std::string info = json_text({{"kind", "recording"}, {"name", shown_name}, {"url", "data/recording.vxr"}});
   return show(
       a, what,
       [&] {
         const std::string bytes = slurp(file);
-        return "{\"kind\": \"recording\", \"name\": " + json_string(shown_name) + ", \"bytes\": \"" +
-               view::detail::base64(bytes.data(), bytes.size()) + "\"}";
+        return json_text({{"kind", "recording"},
+                          {"name", shown_name},
+                          {"bytes", view::detail::base64(bytes.data(), bytes.size())}});
       },
       [&](const view::HttpRequest& r) -> std::optional<view::HttpResponse> {
         if (r.path == "/data/info") return json_response(info);

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string>
 
+#include "voxcd/host/cli/json_text.h"
+
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/png.h"
 #include "voxcd/ref/config.h"
@@ -50,59 +52,29 @@ inline DistanceMemory distance_memory(const ObjectFile& obj) {
   return m;
 }
 
-inline std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += char(c);
-    } else if (c < 0x20) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\u%04x", c);
-      out += b;
-    } else {
-      out += char(c);
-    }
-  }
-  return out + "\"";
-}
-
 inline std::string hex64(uint64_t v) {
   char b[24];
   std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
   return b;
 }
 
-// Numbers with 17 significant digits, so that a reader gets the file's doubles back exactly.
-inline std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-
 // What loading and repair did, as JSON (null for a version 1 object file, which has no report).
-inline std::string repair_json(const ObjectFile& obj) {
-  if (!obj.has_report) return "null";
+inline Json repair_json(const ObjectFile& obj) {
+  if (!obj.has_report) return nullptr;
   const MeshReport& r = obj.mesh_report;
-  std::ostringstream j;
-  j << "{\"closed\": " << (r.closed ? "true" : "false") << ", \"surface_only\": " << (r.surface_only ? "true" : "false")
-    << ", \"points_only\": " << (r.points_only ? "true" : "false") << ", \"flipped\": " << (r.flipped ? "true" : "false")
-    << ", \"input_vertices\": " << r.input_vertices << ", \"input_triangles\": " << r.input_triangles
-    << ", \"vertices\": " << r.vertices << ", \"triangles\": " << r.triangles << ", \"welded\": " << r.welded
-    << ", \"welded_near\": " << r.welded_near << ", \"weld_tolerance\": " << num(r.weld_tolerance)
-    << ", \"dropped\": {\"nonfinite\": " << r.dropped_nonfinite << ", \"repeated_vertex\": " << r.dropped_repeated
-    << ", \"collinear\": " << r.dropped_collinear << ", \"duplicate\": " << r.dropped_duplicate
-    << ", \"internal\": " << r.dropped_internal << "}"
-    << ", \"reoriented\": " << r.reoriented << ", \"open_edges\": " << r.open_edges
-    << ", \"nonmanifold_edges\": " << r.nonmanifold_edges << ", \"nonmanifold_parts\": " << r.nonmanifold_parts
-    << ", \"fin_triangles\": " << r.fin_triangles << ", \"inconsistent_edges\": " << r.inconsistent_edges
-    << ", \"components\": " << r.components << ", \"closed_components\": " << r.closed_components
-    << ", \"sheet_components\": " << r.sheet_components
-    << ", \"uncertain_voxels\": " << obj.voxelize_report.uncertain
-    << ", \"evaluated_voxels\": " << obj.voxelize_report.evaluated
-    << ", \"conservative_cells\": " << obj.voxelize_report.conservative << "}";
-  return j.str();
+  const VoxelizeReport& v = obj.voxelize_report;
+  return Json{{"closed", r.closed}, {"surface_only", r.surface_only}, {"points_only", r.points_only},
+              {"flipped", r.flipped}, {"input_vertices", r.input_vertices}, {"input_triangles", r.input_triangles},
+              {"vertices", r.vertices}, {"triangles", r.triangles}, {"welded", r.welded},
+              {"welded_near", r.welded_near}, {"weld_tolerance", r.weld_tolerance},
+              {"dropped", {{"nonfinite", r.dropped_nonfinite}, {"repeated_vertex", r.dropped_repeated},
+                           {"collinear", r.dropped_collinear}, {"duplicate", r.dropped_duplicate},
+                           {"internal", r.dropped_internal}}},
+              {"reoriented", r.reoriented}, {"open_edges", r.open_edges}, {"nonmanifold_edges", r.nonmanifold_edges},
+              {"nonmanifold_parts", r.nonmanifold_parts}, {"fin_triangles", r.fin_triangles},
+              {"inconsistent_edges", r.inconsistent_edges}, {"components", r.components},
+              {"closed_components", r.closed_components}, {"sheet_components", r.sheet_components},
+              {"uncertain_voxels", v.uncertain}, {"evaluated_voxels", v.evaluated}, {"conservative_cells", v.conservative}};
 }
 
 // The same as lines of text: what was found, what was done, how certain the result is.
@@ -138,53 +110,38 @@ inline std::string repair_text(const ObjectFile& obj) {
   return t.str();
 }
 
+// The distance field's keys of object_json (objects of file version 3): null when the object has none.
+inline Json distance_json(const ObjectFile& obj) {
+  if (obj.distance.empty()) return nullptr;
+  const DistanceField& f = obj.distance;
+  const DistanceMemory dm = distance_memory(obj);
+  return Json{{"bits", f.bits}, {"step", f.step}, {"band", f.band()}, {"nodes", dm.nodes},
+              {"node_dims", {f.dims[0] + 1, f.dims[1] + 1, f.dims[2] + 1}},
+              {"min", *std::min_element(f.q.begin(), f.q.end())}, {"max", *std::max_element(f.q.begin(), f.q.end())},
+              {"memory_words", dm.words}, {"memory_bytes", dm.bytes}, {"memory_config", dm.cfg.to_string()}};
+}
+
+// The object's description as JSON, one key a line (docs/objects.md lists the keys).
 inline std::string object_json(const std::string& path, const ObjectFile& obj) {
   const Voxmap& vm = obj.voxmap;
-  const auto c = vm.counts();
-  const auto& d = vm.dims();
-  const auto& sd = obj.shell.grid.dims;
+  const auto counts = vm.counts();
   const ObjectMemory mem = object_memory(obj);
-  const DeviceConfig cfg;
-  std::ostringstream j;
-  j << "{\n"
-    << "  \"file\": " << json_string(path) << ",\n"
-    << "  \"source\": " << json_string(obj.source) << ",\n"
-    << "  \"source_hash\": \"" << hex64(obj.source_hash) << "\",\n"
-    << "  \"dims\": [" << d[0] << ", " << d[1] << ", " << d[2] << "],\n"
-    << "  \"voxel_size\": " << num(vm.voxel()) << ",\n"
-    << "  \"origin\": [" << num(vm.origin().x()) << ", " << num(vm.origin().y()) << ", " << num(vm.origin().z())
-    << "],\n"
-    << "  \"voxels\": " << vm.size() << ",\n"
-    << "  \"empty\": " << c[kEmpty] << ",\n"
-    << "  \"surface\": " << c[kSurface] << ",\n"
-    << "  \"interior\": " << c[kInterior] << ",\n"
-    << "  \"shell_points\": " << obj.shell.size() << ",\n"
-    << "  \"shell_spacing\": " << num(obj.shell.grid.voxel) << ",\n"
-    << "  \"shell_ratio\": " << num(obj.shell_ratio) << ",\n"
-    << "  \"shell_dims\": [" << sd[0] << ", " << sd[1] << ", " << sd[2] << "],\n"
-    << "  \"voxmap_bytes\": " << mem.voxmap_bytes << ",\n"
-    << "  \"shell_bytes\": " << mem.shell_bytes << ",\n"
-    << "  \"memory_bytes\": " << mem.voxmap_bytes + mem.shell_bytes << ",\n"
-    << "  \"memory_config\": " << json_string(cfg.to_string()) << ",\n"
-    << "  \"repair\": " << repair_json(obj);
+  const auto& sd = obj.shell.grid.dims;
+  Json j = {{"file", path}, {"source", obj.source}, {"source_hash", hex64(obj.source_hash)},
+            {"dims", {vm.dims()[0], vm.dims()[1], vm.dims()[2]}}, {"voxel_size", vm.voxel()},
+            {"origin", {vm.origin().x(), vm.origin().y(), vm.origin().z()}}, {"voxels", vm.size()},
+            {"empty", counts[kEmpty]}, {"surface", counts[kSurface]}, {"interior", counts[kInterior]},
+            {"shell_points", obj.shell.size()}, {"shell_spacing", obj.shell.grid.voxel},
+            {"shell_ratio", obj.shell_ratio}, {"shell_dims", {sd[0], sd[1], sd[2]}},
+            {"voxmap_bytes", mem.voxmap_bytes}, {"shell_bytes", mem.shell_bytes},
+            {"memory_bytes", mem.voxmap_bytes + mem.shell_bytes}, {"memory_config", DeviceConfig{}.to_string()},
+            {"repair", repair_json(obj)}};
   // Objects with a distance field (file version 3) have two more keys; the others print exactly as before.
   if (!obj.distance.empty() || obj.shell.on_surface) {
-    j << ",\n  \"shell_on_surface\": " << (obj.shell.on_surface ? "true" : "false") << ",\n  \"distance\": ";
-    if (obj.distance.empty()) {
-      j << "null";
-    } else {
-      const DistanceField& f = obj.distance;
-      const DistanceMemory dm = distance_memory(obj);
-      j << "{\"bits\": " << f.bits << ", \"step\": " << num(f.step) << ", \"band\": " << num(f.band())
-        << ", \"nodes\": " << dm.nodes << ", \"node_dims\": [" << f.dims[0] + 1 << ", " << f.dims[1] + 1 << ", "
-        << f.dims[2] + 1 << "], \"min\": " << *std::min_element(f.q.begin(), f.q.end())
-        << ", \"max\": " << *std::max_element(f.q.begin(), f.q.end()) << ", \"memory_words\": " << dm.words
-        << ", \"memory_bytes\": " << dm.bytes << ", \"memory_config\": " << json_string(dm.cfg.to_string())
-        << "}";
-    }
+    j["shell_on_surface"] = obj.shell.on_surface;
+    j["distance"] = distance_json(obj);
   }
-  j << "\n}\n";
-  return j.str();
+  return json_text(j, true) + "\n";
 }
 
 inline std::string object_text(const std::string& path, const ObjectFile& obj) {

@@ -6,15 +6,13 @@
 
 namespace voxcd {
 
-namespace {
-std::string num(double v) {
+std::string mhz_text(double mhz) {
   std::ostringstream s;
-  s << v;
+  s << mhz;
   return s.str();
 }
-}  // namespace
 
-std::string DeviceClock::text() const { return num(mhz) + " MHz (" + source + ")"; }
+std::string DeviceClock::text() const { return mhz_text(mhz) + " MHz (" + source + ")"; }
 
 double DeviceClock::rate(double cycles) const { return cycles > 0 ? mhz * 1e6 / cycles : 0; }
 
@@ -28,7 +26,7 @@ DeviceClock default_device_clock() {
 
 std::string clock_problem(double mhz) {
   if (mhz > 0 && std::isfinite(mhz)) return "";
-  return num(mhz) + " is not a positive number of MHz";
+  return mhz_text(mhz) + " is not a positive number of MHz";
 }
 
 DeviceClock given_clock(double mhz, const std::string& origin) {

@@ -9,7 +9,7 @@ namespace voxcd {
 // The default clock is a measurement: the largest clock at which OpenSTA finds no negative slack for the default
 // configuration (LANES 4, default widths) at its default depth, mapped onto the OSU 0.18 um standard cells: the
 // asic-osu018 row of docs/hardware.md's bench:timing block and of host/sizing/timing.tsv, both made by
-// bench/timing.sh. tests/host/test_clock.cpp fails when this and those disagree.
+// bench/timing.sh. tests/host/device/test_clock.cpp fails when this and those disagree.
 inline constexpr double kDefaultClockMhz = 93.6;
 inline constexpr const char* kDefaultClockSource = "OpenSTA, OSU 0.18 um, docs/hardware.md";
 
@@ -27,6 +27,8 @@ struct DeviceClock {
 
 // The clock every rate uses unless one is given: kDefaultClockMhz, its source kDefaultClockSource.
 DeviceClock default_device_clock();
+// A frequency in MHz as every message prints it ("93.6", "1e+03": the stream's default six significant digits).
+std::string mhz_text(double mhz);
 // "" when mhz is a usable clock (finite and > 0), or why not: "-3 is not a positive number of MHz".
 std::string clock_problem(double mhz);
 // A clock the user gave; `origin` names where ("--clock", "clock=", "scene.json's \"clock\""), and the source is

@@ -20,13 +20,6 @@ namespace {
 
 constexpr int kTagOutcomes = 0x7c02;  // a rank's outcomes for the others (plus the frame's parity)
 
-void check(int rc, const char* what) {
-  if (rc == MPI_SUCCESS) return;
-  char text[MPI_MAX_ERROR_STRING];
-  int len = 0;
-  MPI_Error_string(rc, text, &len);
-  throw std::runtime_error(std::string(what) + " failed: " + std::string(text, size_t(len)));
-}
 
 }  // namespace
 
@@ -108,11 +101,11 @@ class Armed {
 std::string receive(int source, int tag, int& from) {
   MPI_Message msg;
   MPI_Status st;
-  check(MPI_Mprobe(source, tag, MPI_COMM_WORLD, &msg, &st), "MPI_Mprobe");
+  check_mpi(MPI_Mprobe(source, tag, MPI_COMM_WORLD, &msg, &st), "MPI_Mprobe");
   int count = 0;
   MPI_Get_count(&st, MPI_CHAR, &count);
   std::string bytes(size_t(count), '\0');
-  check(MPI_Mrecv(bytes.data(), count, MPI_CHAR, &msg, MPI_STATUS_IGNORE), "MPI_Mrecv");
+  check_mpi(MPI_Mrecv(bytes.data(), count, MPI_CHAR, &msg, MPI_STATUS_IGNORE), "MPI_Mrecv");
   from = st.MPI_SOURCE;
   return bytes;
 }
@@ -168,7 +161,7 @@ std::vector<PairOutcome> MpiFrameExchange::exchange(uint64_t frame, const Slabs&
   for (int r = 0; r < n; ++r) {
     if (r == me) continue;
     sends.emplace_back();
-    check(MPI_Isend(out.data(), int(out.size()), MPI_CHAR, r, tag, MPI_COMM_WORLD, &sends.back()), "MPI_Isend");
+    check_mpi(MPI_Isend(out.data(), int(out.size()), MPI_CHAR, r, tag, MPI_COMM_WORLD, &sends.back()), "MPI_Isend");
     sent_ += out.size();
   }
   std::vector<std::vector<PairOutcome>> per_rank(static_cast<size_t>(n));
@@ -209,7 +202,7 @@ std::vector<PairOutcome> MpiFrameExchange::exchange(uint64_t frame, const Slabs&
       total.cycles = std::max(total.cycles, c.cycles);
     }
     // Every rank has sent this frame's outcomes too, so this completes at once.
-    check(MPI_Waitall(int(sends.size()), sends.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
+    check_mpi(MPI_Waitall(int(sends.size()), sends.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
   }
   return merge_outcomes(per_rank);
 }

@@ -13,7 +13,6 @@ namespace voxcd::mpi {
 
 namespace {
 
-// Distinct from campaign_run's tags: a message of one protocol is never taken for the other's.
 enum Tag : int { kSetup = 21, kAssign = 22, kStop = 23, kResult = 24, kFailure = 25 };
 
 using Clock = World::Clock;
@@ -107,66 +106,99 @@ void release_work(World& w) {
   for (int r = 1; r < w.size(); ++r) w.send(r, kStop, "");
 }
 
-uint64_t coordinate_work(World& w, const WorkPlan& plan, const RunItem& run,
-                         const std::function<void(uint64_t, const std::string&, int)>& finished) {
-  ItemQueue queue(plan.todo, plan.stop_after ? plan.stop_after : UINT64_MAX);
-  for (int r = 1; r < w.size(); ++r) w.send(r, kSetup, plan.setup);
-  const auto timeout = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(plan.timeout));
-  std::vector<std::optional<uint64_t>> busy(size_t(w.size()));
-  std::vector<Clock::time_point> deadline(size_t(w.size()));
-  auto assign = [&](int r) {
-    if (auto s = queue.next()) {
-      w.send(r, kAssign, std::to_string(*s));
-      busy[size_t(r)] = *s;
-      deadline[size_t(r)] = Clock::now() + timeout;
+namespace {
+
+// Rank 0's side of a run: which item each other rank holds and until when, its own runner's results, the faults.
+class Coordinator {
+ public:
+  Coordinator(World& w, const WorkPlan& plan, const std::function<void(uint64_t, const std::string&, int)>& finished)
+      : w_(w), plan_(plan), finished_(finished), queue_(plan.todo, plan.stop_after ? plan.stop_after : UINT64_MAX),
+        timeout_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(plan.timeout))),
+        busy_(size_t(w.size())), deadline_(size_t(w.size())) {}
+
+  uint64_t run(const RunItem& run) {
+    for (int r = 1; r < w_.size(); ++r) w_.send(r, kSetup, plan_.setup);
+    for (int r = 1; r < w_.size(); ++r) assign(r);
+    LocalRunner local(run, queue_);
+    for (;;) {
+      const bool mine_finished = take_local(local.take());
+      if (!check_deadlines() && mine_finished) break;
+      if (auto m = w_.receive_until(Clock::now() + std::chrono::milliseconds(20))) take_message(*m);
+    }
+    return queue_.left();
+  }
+
+ private:
+  // Hands rank r its next item, or tells it to stop.
+  void assign(int r) {
+    if (auto s = queue_.next()) {
+      w_.send(r, kAssign, std::to_string(*s));
+      busy_[size_t(r)] = *s;
+      deadline_[size_t(r)] = Clock::now() + timeout_;
     } else {
-      w.send(r, kStop, "");
-      busy[size_t(r)].reset();
+      w_.send(r, kStop, "");
+      busy_[size_t(r)].reset();
     }
-  };
-  for (int r = 1; r < w.size(); ++r) assign(r);
-  LocalRunner local(run, queue);
-  for (;;) {
-    const LocalRunner::State mine = local.take();
-    for (const auto& [item, line] : mine.results) {
-      try {
-        finished(item, line, 0);
-      } catch (const std::exception& e) {
-        fault(w, plan, "the result of rank 0 for " + plan.describe(item) + ": " + e.what());
-      }
-    }
-    if (!mine.failure.empty())
-      fault(w, plan, "rank 0 failed on " + (mine.running ? plan.describe(*mine.running) : std::string("an item")) + ": " +
-            mine.failure);
-    if (mine.running && Clock::now() - mine.since > timeout)
-      fault(w, plan, "rank 0 did not finish " + plan.describe(*mine.running) + " within " + seconds_text(plan.timeout) +
-            " (--timeout)");
-    bool waiting = false;
-    for (int r = 1; r < w.size(); ++r) {
-      if (!busy[size_t(r)]) continue;
-      waiting = true;
-      if (Clock::now() > deadline[size_t(r)])
-        fault(w, plan, "rank " + std::to_string(r) + " sent no result for " + plan.describe(*busy[size_t(r)]) + " within " +
-              seconds_text(plan.timeout) + " (--timeout)");
-    }
-    if (!waiting && mine.finished) break;
-    auto m = w.receive_until(Clock::now() + std::chrono::milliseconds(20));
-    if (!m) continue;
-    const size_t r = size_t(m->source);
-    if (m->tag == kFailure)
-      fault(w, plan, "rank " + std::to_string(r) + " failed on " + (busy[r] ? plan.describe(*busy[r]) : std::string("an item")) +
-            ": " + m->bytes);
-    if (m->tag != kResult || !busy[r])
-      fault(w, plan, "rank " + std::to_string(r) + " sent an unexpected message (tag " + std::to_string(m->tag) + ")");
-    const uint64_t item = *busy[r];
+  }
+
+  void deliver(uint64_t item, const std::string& line, int rank) {
     try {
-      finished(item, m->bytes, int(r));
+      finished_(item, line, rank);
     } catch (const std::exception& e) {
-      fault(w, plan, "the result of rank " + std::to_string(r) + " for " + plan.describe(item) + ": " + e.what());
+      fault(w_, plan_, "the result of rank " + std::to_string(rank) + " for " + plan_.describe(item) + ": " + e.what());
     }
+  }
+
+  // Rank 0's own results and faults; true when its runner has finished.
+  bool take_local(const LocalRunner::State& mine) {
+    for (const auto& [item, line] : mine.results) deliver(item, line, 0);
+    if (!mine.failure.empty())
+      fault(w_, plan_, "rank 0 failed on " + (mine.running ? plan_.describe(*mine.running) : plan_.unknown) + ": " +
+            mine.failure);
+    if (mine.running && Clock::now() - mine.since > timeout_)
+      fault(w_, plan_, "rank 0 did not finish " + plan_.describe(*mine.running) + " within " +
+            seconds_text(plan_.timeout) + " (--timeout)");
+    return mine.finished;
+  }
+
+  // True while another rank holds an item; a fault when one has held it past its deadline.
+  bool check_deadlines() {
+    bool waiting = false;
+    for (int r = 1; r < w_.size(); ++r) {
+      if (!busy_[size_t(r)]) continue;
+      waiting = true;
+      if (Clock::now() > deadline_[size_t(r)])
+        fault(w_, plan_, "rank " + std::to_string(r) + " sent no result for " + plan_.describe(*busy_[size_t(r)]) +
+              " within " + seconds_text(plan_.timeout) + " (--timeout)");
+    }
+    return waiting;
+  }
+
+  void take_message(const Message& m) {
+    const size_t r = size_t(m.source);
+    if (m.tag == kFailure)
+      fault(w_, plan_, "rank " + std::to_string(r) + " failed on " +
+            (busy_[r] ? plan_.describe(*busy_[r]) : plan_.unknown) + ": " + m.bytes);
+    if (m.tag != kResult || !busy_[r])
+      fault(w_, plan_, "rank " + std::to_string(r) + " sent an unexpected message (tag " + std::to_string(m.tag) + ")");
+    deliver(*busy_[r], m.bytes, int(r));
     assign(int(r));
   }
-  return queue.left();
+
+  World& w_;
+  const WorkPlan& plan_;
+  const std::function<void(uint64_t, const std::string&, int)>& finished_;
+  ItemQueue queue_;
+  Clock::duration timeout_;
+  std::vector<std::optional<uint64_t>> busy_;  // each other rank's item
+  std::vector<Clock::time_point> deadline_;    // and its deadline
+};
+
+}  // namespace
+
+uint64_t coordinate_work(World& w, const WorkPlan& plan, const RunItem& run,
+                         const std::function<void(uint64_t, const std::string&, int)>& finished) {
+  return Coordinator(w, plan, finished).run(run);
 }
 
 void serve_work(World& w, const std::function<RunItem(const std::string& setup)>& make_runner) {

@@ -1,8 +1,8 @@
-// Numbered work items over the ranks of a World, as campaign_run.h runs a campaign's shards: rank 0 hands out items
+// Numbered work items over the ranks of a World (campaign_run.h runs a campaign's shards with it): rank 0 hands out items
 // one at a time, runs items itself on a second thread, and takes every result (one line of text) on its own
 // thread, in the order they finish; the other ranks run what they are given and send each result back. A rank that
 // fails or says nothing within the timeout ends every rank with an error naming it and its item. `voxcd sweep` runs
-// its points with it.
+// its points with it, `voxcd regress` its shards.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +22,7 @@ struct WorkPlan {
   std::deque<uint64_t> todo;     // the items, in the order they are handed out
   std::function<std::string(uint64_t)> describe;  // "point 7 (lanes 2, ...)", for errors
   std::string resume_hint;       // appended to a fault's message ("every point finished before is in ...")
+  std::string unknown = "an item";  // names the item in a fault when none is known
   double timeout = 600;          // seconds a rank may take over one item
   uint64_t stop_after = 0;       // hand out at most this many items now (0 = all)
 };

@@ -18,14 +18,6 @@ bool launched_by_mpi() {
   return false;
 }
 
-void check(int rc, const char* what) {
-  if (rc == MPI_SUCCESS) return;
-  char text[MPI_MAX_ERROR_STRING];
-  int len = 0;
-  MPI_Error_string(rc, text, &len);
-  throw std::runtime_error(std::string(what) + " failed: " + std::string(text, size_t(len)));
-}
-
 // Receives the message `msg` that MPI_Improbe/MPI_Mprobe matched.
 Message receive_matched(MPI_Message& msg, const MPI_Status& st) {
   int count = 0;
@@ -34,16 +26,24 @@ Message receive_matched(MPI_Message& msg, const MPI_Status& st) {
   m.source = st.MPI_SOURCE;
   m.tag = st.MPI_TAG;
   m.bytes.resize(size_t(count));
-  check(MPI_Mrecv(m.bytes.data(), count, MPI_CHAR, &msg, MPI_STATUS_IGNORE), "MPI_Mrecv");
+  check_mpi(MPI_Mrecv(m.bytes.data(), count, MPI_CHAR, &msg, MPI_STATUS_IGNORE), "MPI_Mrecv");
   return m;
 }
 
 }  // namespace
 
+void check_mpi(int rc, const char* what) {
+  if (rc == MPI_SUCCESS) return;
+  char text[MPI_MAX_ERROR_STRING];
+  int len = 0;
+  MPI_Error_string(rc, text, &len);
+  throw std::runtime_error(std::string(what) + " failed: " + std::string(text, size_t(len)));
+}
+
 World::World() {
   if (!launched_by_mpi()) return;
   int provided = 0;
-  check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  check_mpi(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
   mpi_ = true;
   // Errors come back as codes (and become exceptions here) instead of ending the job unexplained.
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
@@ -57,7 +57,7 @@ World::~World() {
 
 void World::send(int to, int tag, const std::string& bytes) {
   if (!mpi_) throw std::logic_error("World::send without MPI");
-  check(MPI_Send(bytes.data(), int(bytes.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD), "MPI_Send");
+  check_mpi(MPI_Send(bytes.data(), int(bytes.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD), "MPI_Send");
   sent_ += bytes.size();
 }
 
@@ -67,7 +67,7 @@ std::optional<Message> World::receive_until(Clock::time_point deadline) {
       int found = 0;
       MPI_Message msg;
       MPI_Status st;
-      check(MPI_Improbe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &found, &msg, &st), "MPI_Improbe");
+      check_mpi(MPI_Improbe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &found, &msg, &st), "MPI_Improbe");
       if (found) {
         Message m = receive_matched(msg, st);
         received_ += m.bytes.size();
@@ -83,7 +83,7 @@ Message World::receive_from(int from) {
   if (!mpi_) throw std::logic_error("World::receive_from without MPI");
   MPI_Message msg;
   MPI_Status st;
-  check(MPI_Mprobe(from, MPI_ANY_TAG, MPI_COMM_WORLD, &msg, &st), "MPI_Mprobe");
+  check_mpi(MPI_Mprobe(from, MPI_ANY_TAG, MPI_COMM_WORLD, &msg, &st), "MPI_Mprobe");
   Message m = receive_matched(msg, st);
   received_ += m.bytes.size();
   return m;

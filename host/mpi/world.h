@@ -9,6 +9,9 @@
 
 namespace voxcd::mpi {
 
+// Throws std::runtime_error "<what> failed: <MPI's error text>" unless rc is MPI_SUCCESS (rc: an MPI call's result).
+void check_mpi(int rc, const char* what);
+
 struct Message {
   int source = 0;
   int tag = 0;

@@ -82,8 +82,8 @@ struct LoadOptions {
   bool repair = true;   // false (and not strict): the triangles as read, nothing dropped or welded (to show repairs)
 };
 
-// Loads a mesh by file extension: .raw through parse_raw, .ply through its own reader (assimp 5.2's hangs on
-// damaged files), everything else through assimp. Then repairs it (repair()), or with opt.strict welds and
+// Loads a mesh by file extension through the reader of its format (host/object/formats/): .raw through parse_raw,
+// .ply through voxcd's own reader (assimp 5.2's hangs on damaged files), everything else through assimp. Then repairs it (repair()), or with opt.strict welds and
 // validates it (prepare()). Throws MeshError naming the file (and line or triangle) when the file cannot be read
 // or holds neither triangles nor points, and in strict mode for any defect.
 Mesh load_mesh(const std::string& path, MeshReport* report = nullptr, const LoadOptions& opt = {});

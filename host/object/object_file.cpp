@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "voxcd/host/object/shapes.h"
+#include "voxcd/ref/fnv1a.h"
 
 namespace voxcd {
 
@@ -173,11 +174,7 @@ void read_distance(Reader& r, const GridPlacement& g, DistanceField& f) {
 
 }  // namespace
 
-uint64_t hash_bytes(const std::string& bytes) {
-  uint64_t h = 14695981039346656037ull;  // FNV-1a 64 offset basis
-  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
+uint64_t hash_bytes(const std::string& bytes) { return fnv1a(bytes); }
 
 uint64_t hash_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -253,7 +250,11 @@ ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t sou
   return obj;
 }
 
-void write_object(const std::string& path, const ObjectFile& obj) {
+namespace {
+
+// ObjectFileError for an object no object file can hold: shell arrays of different lengths, a distance field on
+// another grid, a grid dimension of 0 or above kObjectMaxDim.
+void check_writable(const std::string& path, const ObjectFile& obj) {
   const PointShell& sh = obj.shell;
   if (sh.points.size() != sh.size() || sh.normals.size() != sh.size())
     throw ObjectFileError(path + ": the shell's cells, points and normals differ in number");
@@ -262,25 +263,13 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   const DistanceField& df = obj.distance;
   if (!df.empty() && (df.dims != obj.voxmap.dims() || df.q.size() != df.node_index(0, 0, df.dims[2] + 1)))
     throw ObjectFileError(path + ": the distance field's grid is not the voxmap's");
-  MeshReport mr = obj.has_report ? obj.mesh_report : MeshReport{};
-  VoxelizeReport vr = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
-  bool v4 = false;
-  for (uint64_t* f : report2_fields(mr, vr)) v4 |= *f != 0;
-  const bool v3 = !df.empty() || sh.on_surface || v4;
   for (const GridPlacement* g : {&obj.voxmap.grid(), &sh.grid})
     for (uint32_t d : g->dims)
       if (d == 0 || d > kObjectMaxDim)
         throw ObjectFileError(path + ": grid dimension " + std::to_string(d) + " does not fit an object file");
-  Writer w;
-  w.buf.append(kMagic, 8);
-  w.put(v4 ? kVersionReport2 : v3 ? kVersionDistance : kVersion);
-  w.put(sh.on_surface ? kFlagSurfaceShell : uint32_t{0});
-  w.put(obj.source_hash);
-  w.str(obj.source);
-  w.put(obj.shell_ratio);
-  put_vec(w, obj.shift);
-  // Voxmap.
-  const Voxmap& vm = obj.voxmap;
+}
+
+void put_voxmap(Writer& w, const Voxmap& vm) {
   put_grid(w, vm.grid());
   const auto c = vm.counts();
   w.put(c[kEmpty]);
@@ -289,8 +278,9 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   w.put(uint32_t{64});  // MEMW of the image below
   w.put(uint64_t(vm.words().size()));
   for (uint64_t word : vm.words()) w.put(word);
-  // Shell.
-  const PointShell& s = obj.shell;
+}
+
+void put_shell(Writer& w, const PointShell& s) {
   put_grid(w, s.grid);
   w.put(uint32_t(kObjectShellFrac));
   w.put(uint64_t(s.size()));
@@ -299,47 +289,44 @@ void write_object(const std::string& path, const ObjectFile& obj) {
       w.put(s.on_surface ? s.coords[k][a] : int32_t((2 * int64_t(s.cells[k][a]) + 1) << (kObjectShellFrac - 1)));
   for (size_t k = 0; k < s.size(); ++k) put_vec(w, s.points[k]);
   for (size_t k = 0; k < s.size(); ++k) put_vec(w, s.normals[k]);
-  // Report (version 2): flags, weld tolerance, counts; all zero when the object has none.
-  {
-    MeshReport m = obj.has_report ? obj.mesh_report : MeshReport{};
-    VoxelizeReport v = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
-    uint32_t flags = 0;
-    if (obj.has_report)
-      flags = 16 | (m.closed ? kClosed : 0) | (m.flipped ? kFlipped : 0) | (m.points_only ? kPointsOnly : 0) |
-              (m.surface_only ? kSurfaceOnly : 0);
-    w.put(flags);
-    w.put(m.weld_tolerance);
-    for (uint64_t* f : report_fields(m, v)) w.put(*f);
-  }
-  // Distance section (version 3): SB, step, node count, then the node values packed SB bits each.
-  if (v3) {
-    w.put(uint32_t(df.bits));
-    w.put(df.empty() ? 0.0 : df.step);
-    w.put(uint64_t(df.empty() ? 0 : df.q.size()));
-    if (!df.empty()) {
-      const uint64_t mask = (uint64_t{1} << df.bits) - 1;
-      uint64_t acc = 0;
-      int have = 0;
-      for (int16_t v : df.q) {
-        acc |= (uint64_t(int64_t(v)) & mask) << have;
-        for (have += df.bits; have >= 8; have -= 8, acc >>= 8) w.buf += char(acc & 0xff);
-      }
-      if (have > 0) w.buf += char(acc & 0xff);
-    }
-  }
-  // The report's second section (version 4): u32 count, then the counts as u64.
-  if (v4) {
-    w.put(kReport2Counts);
-    for (uint64_t* f : report2_fields(mr, vr)) w.put(*f);
-  }
-  const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
-  w.put(crc);
+}
 
+// Report (version 2): flags, weld tolerance, counts; all zero when the object has none.
+void put_report(Writer& w, const ObjectFile& obj) {
+  MeshReport m = obj.has_report ? obj.mesh_report : MeshReport{};
+  VoxelizeReport v = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
+  uint32_t flags = 0;
+  if (obj.has_report)
+    flags = 16 | (m.closed ? kClosed : 0) | (m.flipped ? kFlipped : 0) | (m.points_only ? kPointsOnly : 0) |
+            (m.surface_only ? kSurfaceOnly : 0);
+  w.put(flags);
+  w.put(m.weld_tolerance);
+  for (uint64_t* f : report_fields(m, v)) w.put(*f);
+}
+
+// Distance section (version 3): SB, step, node count, then the node values packed SB bits each.
+void put_distance(Writer& w, const DistanceField& df) {
+  w.put(uint32_t(df.bits));
+  w.put(df.empty() ? 0.0 : df.step);
+  w.put(uint64_t(df.empty() ? 0 : df.q.size()));
+  if (df.empty()) return;
+  const uint64_t mask = (uint64_t{1} << df.bits) - 1;
+  uint64_t acc = 0;
+  int have = 0;
+  for (int16_t v : df.q) {
+    acc |= (uint64_t(int64_t(v)) & mask) << have;
+    for (have += df.bits; have >= 8; have -= 8, acc >>= 8) w.buf += char(acc & 0xff);
+  }
+  if (have > 0) w.buf += char(acc & 0xff);
+}
+
+// Writes bytes to path through path.tmp, renamed into place only once written whole.
+void write_whole(const std::string& path, const std::string& bytes) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw ObjectFileError(path + ": cannot write " + tmp);
-    out.write(w.buf.data(), std::streamsize(w.buf.size()));
+    out.write(bytes.data(), std::streamsize(bytes.size()));
     if (!out.flush()) {
       out.close();
       std::remove(tmp.c_str());
@@ -352,40 +339,67 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   }
 }
 
-ObjectFile read_object(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ObjectFileError(path + ": cannot open");
-  const std::string buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Reader r{buf, path};
+}  // namespace
+
+void write_object(const std::string& path, const ObjectFile& obj) {
+  check_writable(path, obj);
+  const PointShell& sh = obj.shell;
+  const DistanceField& df = obj.distance;
+  MeshReport mr = obj.has_report ? obj.mesh_report : MeshReport{};
+  VoxelizeReport vr = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
+  bool v4 = false;
+  for (uint64_t* f : report2_fields(mr, vr)) v4 |= *f != 0;
+  const bool v3 = !df.empty() || sh.on_surface || v4;
+  Writer w;
+  w.buf.append(kMagic, 8);
+  w.put(v4 ? kVersionReport2 : v3 ? kVersionDistance : kVersion);
+  w.put(sh.on_surface ? kFlagSurfaceShell : uint32_t{0});
+  w.put(obj.source_hash);
+  w.str(obj.source);
+  w.put(obj.shell_ratio);
+  put_vec(w, obj.shift);
+  put_voxmap(w, obj.voxmap);
+  put_shell(w, sh);
+  put_report(w, obj);
+  if (v3) put_distance(w, df);
+  // The report's second section (version 4): u32 count, then the counts as u64.
+  if (v4) {
+    w.put(kReport2Counts);
+    for (uint64_t* f : report2_fields(mr, vr)) w.put(*f);
+  }
+  const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
+  w.put(crc);
+  write_whole(path, w.buf);
+}
+
+namespace {
+
+// The header after the magic number: the version and the flags, each checked.
+void read_header(Reader& r, uint32_t& version, uint32_t& flags) {
   r.need(8, "the magic number");
-  if (std::memcmp(buf.data(), kMagic, 8) != 0) r.bad("not a voxcd object file (bad magic)");
+  if (std::memcmp(r.buf.data(), kMagic, 8) != 0) r.bad("not a voxcd object file (bad magic)");
   r.pos = 8;
-  const uint32_t version = r.get<uint32_t>("the version");
+  version = r.get<uint32_t>("the version");
   if (version < 1 || version > kVersionReport2)
     r.bad("object file version " + std::to_string(version) + " is not supported (this reader knows versions 1 to " +
           std::to_string(kVersionReport2) + ")");
-  const uint32_t stored_crc = [&] {
-    uint32_t v;
-    std::memcpy(&v, buf.data() + buf.size() - 4, 4);
-    return v;
-  }();
-  const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(buf.data()), buf.size() - 4));
-  const uint32_t header_flags = r.get<uint32_t>("the flags");
+  flags = r.get<uint32_t>("the flags");
   const uint32_t known_flags = version >= kVersionDistance ? kFlagSurfaceShell : 0;
-  if (header_flags & ~known_flags)
-    r.bad("unknown flags " + std::to_string(header_flags) + " (version " + std::to_string(version) + " knows " +
+  if (flags & ~known_flags)
+    r.bad("unknown flags " + std::to_string(flags) + " (version " + std::to_string(version) + " knows " +
           std::to_string(known_flags) + ")");
-  ObjectFile obj;
-  obj.source_hash = r.get<uint64_t>("the source hash");
-  obj.source = r.str("the source name");
-  obj.shell_ratio = r.get<double>("the shell ratio");
-  if (!(std::isfinite(obj.shell_ratio) && obj.shell_ratio > 0)) r.bad("the shell ratio is not a positive number");
-  obj.shift = get_vec(r, "the grid shift");
-  if (!obj.shift.allFinite()) r.bad("the grid shift is not finite");
-  const GridPlacement g = get_grid(r, "the voxmap grid");
+}
+
+// Where the voxmap section's checks point once the whole file is read.
+struct VoxmapAt {
   uint64_t counts[3];
-  const size_t counts_at = r.pos;
-  for (auto& c : counts) c = r.get<uint64_t>("the state counts");
+  size_t counts_at = 0, words_at = 0;
+};
+
+VoxmapAt read_voxmap(Reader& r, const GridPlacement& g, Voxmap& vm) {
+  VoxmapAt at;
+  at.counts_at = r.pos;
+  for (auto& c : at.counts) c = r.get<uint64_t>("the state counts");
   if (const uint32_t memw = r.get<uint32_t>("the voxmap word width"); memw != 64)
     r.bad("voxmap word width " + std::to_string(memw) + " is not 64");
   const uint64_t nwords = r.get<uint64_t>("the voxmap word count");
@@ -393,27 +407,21 @@ ObjectFile read_object(const std::string& path) {
     r.bad("voxmap word count " + std::to_string(nwords) + " does not match its dimensions (" +
           std::to_string((g.size() + 31) / 32) + ")");
   r.need(nwords, "the voxmap words", 8);
-  obj.voxmap = Voxmap(g);
-  const size_t voxmap_at = r.pos;
-  std::memcpy(obj.voxmap.words().data(), buf.data() + r.pos, nwords * 8);
+  vm = Voxmap(g);
+  at.words_at = r.pos;
+  std::memcpy(vm.words().data(), r.buf.data() + r.pos, nwords * 8);
   r.field = r.pos;
   r.pos += nwords * 8;
-  if (const uint64_t used = g.size() % 32; used && (obj.voxmap.words().back() >> (2 * used)) != 0) {
+  if (const uint64_t used = g.size() % 32; used && (vm.words().back() >> (2 * used)) != 0) {
     r.field = r.pos - 8;
     r.bad("the voxmap's last word has bits set beyond its last voxel");
   }
-  const GridPlacement sg = get_grid(r, "the shell grid");
-  if (r.get<uint32_t>("the shell word format") != uint32_t(kObjectShellFrac)) r.bad("unexpected shell word format");
-  const uint64_t n = r.get<uint64_t>("the shell point count");
-  r.need(n, "the shell points", 12 + 24 + 24);
-  PointShell& s = obj.shell;
-  s.grid = sg;
-  s.on_surface = header_flags & kFlagSurfaceShell;
-  s.cells.resize(n);
-  s.points.resize(n);
-  s.normals.resize(n);
-  if (s.on_surface) s.coords.resize(n);
-  const size_t shell_words_at = r.pos;
+  return at;
+}
+
+// The shell's words into cells (and coords for a surface shell), each checked against the grid.
+void read_shell_words(Reader& r, uint64_t n, PointShell& s) {
+  const GridPlacement& sg = s.grid;
   for (uint64_t k = 0; k < n; ++k)
     for (int a = 0; a < 3; ++a) {
       const int32_t w = r.get<int32_t>("a shell word");
@@ -430,21 +438,41 @@ ObjectFile read_object(const std::string& path) {
         r.bad("shell word " + std::to_string(k) + " is not a voxel centre of the shell grid");
       s.cells[k][a] = uint32_t(w / unit / 2);
     }
-  for (uint64_t k = 1; k < n; ++k) {
-    auto lin = [&](uint64_t i) {
-      return s.cells[i][0] + uint64_t(sg.dims[0]) * (s.cells[i][1] + uint64_t(sg.dims[1]) * s.cells[i][2]);
-    };
+}
+
+// The shell's points in order: by their voxels' linear index (then z, y, x for a surface shell).
+void check_shell_order(Reader& r, const PointShell& s, size_t words_at) {
+  const GridPlacement& sg = s.grid;
+  auto lin = [&](uint64_t i) {
+    return s.cells[i][0] + uint64_t(sg.dims[0]) * (s.cells[i][1] + uint64_t(sg.dims[1]) * s.cells[i][2]);
+  };
+  for (uint64_t k = 1; k < s.cells.size(); ++k) {
     bool after = lin(k) > lin(k - 1);
     if (s.on_surface && lin(k) == lin(k - 1)) {
       const auto &c = s.coords[k], &p = s.coords[k - 1];
       after = std::make_tuple(c[2], c[1], c[0]) > std::make_tuple(p[2], p[1], p[0]);
     }
     if (!after) {
-      r.field = shell_words_at + 12 * k;
+      r.field = words_at + 12 * k;
       r.bad("shell word " + std::to_string(k) + " is not after shell word " + std::to_string(k - 1) +
             (s.on_surface ? " in the order of their voxels' linear index, then z, y, x" : " in linear-index order"));
     }
   }
+}
+
+void read_shell(Reader& r, bool on_surface, PointShell& s) {
+  s.grid = get_grid(r, "the shell grid");
+  if (r.get<uint32_t>("the shell word format") != uint32_t(kObjectShellFrac)) r.bad("unexpected shell word format");
+  const uint64_t n = r.get<uint64_t>("the shell point count");
+  r.need(n, "the shell points", 12 + 24 + 24);
+  s.on_surface = on_surface;
+  s.cells.resize(n);
+  s.points.resize(n);
+  s.normals.resize(n);
+  if (s.on_surface) s.coords.resize(n);
+  const size_t words_at = r.pos;
+  read_shell_words(r, n, s);
+  check_shell_order(r, s, words_at);
   for (uint64_t k = 0; k < n; ++k) {
     s.points[k] = get_vec(r, "a shell point");
     if (!s.points[k].allFinite()) r.bad("shell point " + std::to_string(k) + " is not finite");
@@ -453,43 +481,74 @@ ObjectFile read_object(const std::string& path) {
     s.normals[k] = get_vec(r, "a shell normal");
     if (!s.normals[k].allFinite()) r.bad("shell normal " + std::to_string(k) + " is not finite");
   }
-  if (version >= 2) {
-    const uint32_t flags = r.get<uint32_t>("the report flags");
-    if (flags & ~uint32_t(16 | kReportFlags)) r.bad("unknown report flags " + std::to_string(flags));
-    obj.has_report = flags & 16;
-    MeshReport& m = obj.mesh_report;
-    m.closed = flags & kClosed;
-    m.flipped = flags & kFlipped;
-    m.points_only = flags & kPointsOnly;
-    m.surface_only = flags & kSurfaceOnly;
-    m.weld_tolerance = r.get<double>("the weld tolerance");
-    if (!(std::isfinite(m.weld_tolerance) && m.weld_tolerance >= 0)) r.bad("the weld tolerance is not a finite number >= 0");
-    for (uint64_t* f : report_fields(m, obj.voxelize_report)) *f = r.get<uint64_t>("the report counts");
-  }
-  if (version >= kVersionDistance) read_distance(r, g, obj.distance);
-  if (version >= kVersionReport2) {
-    const uint32_t k = r.get<uint32_t>("the count of the report's second section");
-    if (k != kReport2Counts)
-      r.bad("the report's second section holds " + std::to_string(k) + " counts; version 4 has " +
-            std::to_string(kReport2Counts));
-    for (uint64_t* f : report2_fields(obj.mesh_report, obj.voxelize_report))
-      *f = r.get<uint64_t>("the report's second section");
-  }
+}
+
+// The report (version 2) and its second section (version 4).
+void read_report(Reader& r, uint32_t version, ObjectFile& obj) {
+  const uint32_t flags = r.get<uint32_t>("the report flags");
+  if (flags & ~uint32_t(16 | kReportFlags)) r.bad("unknown report flags " + std::to_string(flags));
+  obj.has_report = flags & 16;
+  MeshReport& m = obj.mesh_report;
+  m.closed = flags & kClosed;
+  m.flipped = flags & kFlipped;
+  m.points_only = flags & kPointsOnly;
+  m.surface_only = flags & kSurfaceOnly;
+  m.weld_tolerance = r.get<double>("the weld tolerance");
+  if (!(std::isfinite(m.weld_tolerance) && m.weld_tolerance >= 0)) r.bad("the weld tolerance is not a finite number >= 0");
+  for (uint64_t* f : report_fields(m, obj.voxelize_report)) *f = r.get<uint64_t>("the report counts");
+  if (version >= kVersionDistance) read_distance(r, obj.voxmap.grid(), obj.distance);
+  if (version < kVersionReport2) return;
+  const uint32_t k = r.get<uint32_t>("the count of the report's second section");
+  if (k != kReport2Counts)
+    r.bad("the report's second section holds " + std::to_string(k) + " counts; version 4 has " +
+          std::to_string(kReport2Counts));
+  for (uint64_t* f : report2_fields(obj.mesh_report, obj.voxelize_report)) *f = r.get<uint64_t>("the report's second section");
+}
+
+// The checks that need the whole file: nothing after the checksum, the checksum, the voxmap's states and counts.
+void check_whole(Reader& r, const VoxmapAt& at, const Voxmap& vm) {
+  const std::string& buf = r.buf;
+  uint32_t stored_crc;
+  std::memcpy(&stored_crc, buf.data() + buf.size() - 4, 4);
+  const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(buf.data()), buf.size() - 4));
   r.get<uint32_t>("the checksum");
   if (r.pos != buf.size()) {
     r.field = r.pos;
     r.bad(std::to_string(buf.size() - r.pos) + " unexpected bytes after the checksum");
   }
   if (crc != stored_crc) r.bad("checksum mismatch: the file is corrupt");
-  const auto c = obj.voxmap.counts();
+  const auto c = vm.counts();
   if (c[kReserved] != 0) {
-    r.field = voxmap_at;
+    r.field = at.words_at;
     r.bad("the voxmap holds " + std::to_string(c[kReserved]) + " voxels in the reserved state 3");
   }
-  if (c[kEmpty] != counts[0] || c[kSurface] != counts[1] || c[kInterior] != counts[2]) {
-    r.field = counts_at;
+  if (c[kEmpty] != at.counts[0] || c[kSurface] != at.counts[1] || c[kInterior] != at.counts[2]) {
+    r.field = at.counts_at;
     r.bad("state counts do not match the voxmap");
   }
+}
+
+}  // namespace
+
+ObjectFile read_object(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ObjectFileError(path + ": cannot open");
+  const std::string buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Reader r{buf, path};
+  uint32_t version = 0, header_flags = 0;
+  read_header(r, version, header_flags);
+  ObjectFile obj;
+  obj.source_hash = r.get<uint64_t>("the source hash");
+  obj.source = r.str("the source name");
+  obj.shell_ratio = r.get<double>("the shell ratio");
+  if (!(std::isfinite(obj.shell_ratio) && obj.shell_ratio > 0)) r.bad("the shell ratio is not a positive number");
+  obj.shift = get_vec(r, "the grid shift");
+  if (!obj.shift.allFinite()) r.bad("the grid shift is not finite");
+  const GridPlacement g = get_grid(r, "the voxmap grid");
+  const VoxmapAt at = read_voxmap(r, g, obj.voxmap);
+  read_shell(r, header_flags & kFlagSurfaceShell, obj.shell);
+  if (version >= 2) read_report(r, version, obj);
+  check_whole(r, at, obj.voxmap);
   return obj;
 }
 

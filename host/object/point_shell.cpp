@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "voxcd/host/object/detail/shell_grid.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/float_model.h"
 
@@ -108,23 +109,11 @@ double PointShell::max_grid_coordinate() const {
   return m;
 }
 
-PointShell point_shell(const Mesh& mesh, const ShellOptions& opt) {
-  if (opt.on_surface) return surface_shell(mesh, opt);
-  if (!(std::isfinite(opt.target_voxel) && opt.target_voxel > 0))
-    throw MeshError(mesh.name + ": the target voxel size must be a positive finite number, got " +
-                    std::to_string(opt.target_voxel));
-  if (!(std::isfinite(opt.ratio) && opt.ratio > 0))
-    throw MeshError(mesh.name + ": the shell ratio must be a positive finite number, got " + std::to_string(opt.ratio));
-  VoxelizeOptions vo;
-  vo.voxel = opt.spacing();
-  vo.shift = opt.shift;
-  vo.max_dim = opt.max_dim;
-  vo.threads = opt.threads;
-  PointShell s;
-  s.grid = place_grid(mesh, vo);
-  const std::vector<uint64_t> bits = surface_bits(mesh, s.grid, opt.threads);
+namespace {
 
-  // Rank of every word, so that a voxel's point index is found in O(1).
+// The points at the centres of the voxels set in bits (cells and points of s, in voxel order); returns the rank of
+// every word (set bits before it), so that a voxel's point index is found in O(1).
+std::vector<uint64_t> centre_points(const std::vector<uint64_t>& bits, PointShell& s) {
   std::vector<uint64_t> rank(bits.size() + 1, 0);
   for (size_t i = 0; i < bits.size(); ++i) rank[i + 1] = rank[i] + uint64_t(__builtin_popcountll(bits[i]));
   const size_t n = rank.back();
@@ -138,41 +127,60 @@ PointShell point_shell(const Mesh& mesh, const ShellOptions& opt) {
       s.cells.push_back(c);
       s.points.push_back(s.grid.origin + s.grid.voxel * Eigen::Vector3d(c[0] + 0.5, c[1] + 0.5, c[2] + 0.5));
     }
+  return rank;
+}
+
+struct Nearest {
+  double d2 = std::numeric_limits<double>::infinity();
+  uint32_t tri = UINT32_MAX;
+  // Ties go to the lower triangle index, so that the result does not depend on the split over workers.
+  bool better_than(const Nearest& o) const { return d2 < o.d2 || (d2 == o.d2 && tri < o.tri); }
+};
+
+// Each point's normal: that of the nearest triangle overlapping its voxel. Each worker keeps its own nearest for a
+// share of the triangles, merged by (distance, triangle).
+std::vector<Eigen::Vector3d> nearest_normals(const Mesh& mesh, const PointShell& s, const std::vector<uint64_t>& bits,
+                                             const std::vector<uint64_t>& rank, unsigned threads) {
+  const size_t n = s.size();
+  const uint64_t nx = s.grid.dims[0], nxy = nx * s.grid.dims[1];
   auto index_of = [&](uint64_t v) {
     return size_t(rank[v >> 6] + uint64_t(__builtin_popcountll(bits[v >> 6] & ((uint64_t{1} << (v & 63)) - 1))));
   };
-
-  if (mesh.points_only()) {
-    s.normals = cloud_normals(mesh, s);
-    return s;
-  }
-  // Nearest passing triangle per point: each worker keeps its own best, merged by (distance, triangle).
-  ThreadPool pool(opt.threads);
+  ThreadPool pool(threads);
   const size_t parts = std::max<size_t>(1, std::min<size_t>(mesh.size(), pool.size()));
-  struct Best {
-    double d2 = std::numeric_limits<double>::infinity();
-    uint32_t tri = UINT32_MAX;
-  };
-  std::vector<std::vector<Best>> best(parts, std::vector<Best>(n));
+  std::vector<std::vector<Nearest>> best(parts, std::vector<Nearest>(n));
   pool.parallel_for(parts, [&](size_t p) {
     auto& b = best[p];
     for_each_overlap(mesh, s.grid, mesh.size() * p / parts, mesh.size() * (p + 1) / parts,
                      [&](size_t t, uint32_t x, uint32_t y, uint32_t z) {
                        const size_t k = index_of(x + nx * y + nxy * z);
-                       const double d2 =
-                           dist2_point_triangle(s.points[k], mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2));
-                       if (d2 < b[k].d2 || (d2 == b[k].d2 && t < b[k].tri)) b[k] = {d2, uint32_t(t)};
+                       const Nearest here{
+                           dist2_point_triangle(s.points[k], mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)),
+                           uint32_t(t)};
+                       if (here.better_than(b[k])) b[k] = here;
                      });
   });
-  s.normals.resize(n);
+  std::vector<Eigen::Vector3d> normals(n);
   for (size_t k = 0; k < n; ++k) {
-    Best b = best[0][k];
+    Nearest b = best[0][k];
     for (size_t p = 1; p < parts; ++p)
-      if (best[p][k].d2 < b.d2 || (best[p][k].d2 == b.d2 && best[p][k].tri < b.tri)) b = best[p][k];
+      if (best[p][k].better_than(b)) b = best[p][k];
     if (b.tri == UINT32_MAX) throw std::logic_error("point_shell: shell point without a triangle");
     const size_t t = b.tri;
-    s.normals[k] = (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).normalized();
+    normals[k] = (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).normalized();
   }
+  return normals;
+}
+
+}  // namespace
+
+PointShell point_shell(const Mesh& mesh, const ShellOptions& opt) {
+  if (opt.on_surface) return surface_shell(mesh, opt);
+  PointShell s;
+  s.grid = detail::shell_grid(mesh, opt);
+  const std::vector<uint64_t> bits = surface_bits(mesh, s.grid, opt.threads);
+  const std::vector<uint64_t> rank = centre_points(bits, s);
+  s.normals = mesh.points_only() ? cloud_normals(mesh, s) : nearest_normals(mesh, s, bits, rank, opt.threads);
   return s;
 }
 

@@ -11,12 +11,19 @@
 #include <unordered_map>
 
 #include "voxcd/host/object/detail/cells.h"
+#include "voxcd/host/object/detail/edge_uses.h"
+#include "voxcd/host/object/detail/point_hash.h"
+#include "voxcd/host/object/detail/union_find.h"
 
 #include "voxcd/host/object/mesh.h"
 
 namespace voxcd {
 
 namespace {
+
+using detail::EdgeUse;
+using detail::UnionFind;
+using detail::edge_uses;
 
 // A hole whose fill has more than this fraction of its part's area makes the part a sheet (docs/objects.md).
 constexpr double kSheetRatio = 0.4;
@@ -33,19 +40,6 @@ struct CellKeyHash {
   }
 };
 
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // Drops vertices no triangle uses and triangles with a non-finite corner; the finite vertices of a triangle-less
 // mesh are kept (a point cloud).
@@ -63,103 +57,103 @@ size_t drop_nonfinite(Mesh& m) {
   return dropped;
 }
 
-// Welds vertices within `tol` (Chebyshev distance, to the first vertex of a cluster in index order, after exactly
-// equal vertices are merged); vertices no triangle uses are dropped (all finite vertices are kept for a point cloud).
-// Returns the vertices merged, and in *near those not exactly equal to their representative.
-size_t weld_near(Mesh& m, double tol, size_t* near) {
-  const bool cloud = m.triangles.empty();
-  size_t exact = 0;
-  if (cloud) {
-    // A point cloud keeps every finite point (weld() keeps what triangles use).
+// Merges exactly equal vertices, keeping index order (weld() numbers them by first use instead), and drops vertices
+// no triangle uses; a point cloud keeps every finite point instead. Returns the vertices merged.
+size_t weld_exact(Mesh& m) {
+  if (m.triangles.empty()) {
     std::vector<Eigen::Vector3d> pts;
     for (const auto& p : m.vertices)
       if (p.allFinite()) pts.push_back(p);
     m.vertices = std::move(pts);
-  } else {
-    // Exactly equal vertices first, keeping index order (weld() numbers them by first use instead).
-    std::vector<char> used(m.vertices.size(), 0);
-    for (const auto& t : m.triangles)
-      for (uint32_t v : t) used[v] = 1;
-    struct Hash {
-      size_t operator()(const Eigen::Vector3d& p) const {
-        uint64_t h = 1469598103934665603ull;
-        for (int i = 0; i < 3; ++i) {
-          const double d = p[i] == 0 ? 0.0 : p[i];  // -0 and +0 are the same point
-          uint64_t b;
-          std::memcpy(&b, &d, 8);
-          h = (h ^ b) * 1099511628211ull;
-          h ^= h >> 29;
-        }
-        return size_t(h);
-      }
-    };
-    std::unordered_map<Eigen::Vector3d, uint32_t, Hash> index;
-    index.reserve(m.vertices.size());
-    std::vector<uint32_t> to(m.vertices.size(), UINT32_MAX);
-    std::vector<Eigen::Vector3d> kept;
-    size_t n_used = 0;
-    for (size_t v = 0; v < m.vertices.size(); ++v) {
-      if (!used[v]) continue;
-      ++n_used;
-      auto [it, fresh] = index.emplace(m.vertices[v], uint32_t(kept.size()));
-      if (fresh) kept.push_back(m.vertices[v]);
-      to[v] = it->second;
-    }
-    for (auto& t : m.triangles)
-      for (uint32_t& v : t) v = to[v];
-    m.vertices = std::move(kept);
-    exact = n_used - m.vertices.size();
+    return 0;
   }
-  // Within tol: cells 4 tol wide, so a vertex looks into a neighbouring cell only on an axis where it lies within
-  // tol of the cell's side. Each cell keeps a list of representatives through `next`.
-  const double cell = 4 * tol;
-  std::unordered_map<std::array<int64_t, 3>, uint32_t, CellKeyHash> head;
-  head.reserve(m.vertices.size());
-  std::vector<uint32_t> next(m.vertices.size(), UINT32_MAX), remap(m.vertices.size());
-  std::vector<Eigen::Vector3d> out;
-  out.reserve(m.vertices.size());
+  std::vector<char> used(m.vertices.size(), 0);
+  for (const auto& t : m.triangles)
+    for (uint32_t v : t) used[v] = 1;
+  detail::ExactPoints points(m.vertices.size());
+  std::vector<uint32_t> to(m.vertices.size(), UINT32_MAX);
+  size_t n_used = 0;
+  for (size_t v = 0; v < m.vertices.size(); ++v) {
+    if (!used[v]) continue;
+    ++n_used;
+    to[v] = points.add(m.vertices[v]);
+  }
+  for (auto& t : m.triangles)
+    for (uint32_t& v : t) v = to[v];
+  m.vertices = points.take();
+  return n_used - m.vertices.size();
+}
+
+// Representatives of clusters of points within tol, in cells 4 tol wide, so that a point looks into a neighbouring
+// cell only on an axis where it lies within tol of the cell's side. Each cell keeps a list of representatives
+// through `next`.
+class NearPoints {
+ public:
+  NearPoints(double tol, size_t n) : tol_(tol), cell_(4 * tol), next_(n, UINT32_MAX) {
+    head_.reserve(n);
+    out_.reserve(n);
+  }
+  // The representative of p: the first point kept within tol of it, else p itself, kept. *near: p was merged.
+  uint32_t add(const Eigen::Vector3d& p, bool* near) {
+    *near = false;
+    if (!(tol_ > 0 && p.allFinite())) return keep(p);
+    std::array<int64_t, 3> k{};
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      const double g = p[a] / cell_;
+      k[a] = int64_t(std::floor(g));
+      const double f = (g - double(k[a])) * 4;  // position in the cell, in units of tol
+      lo[a] = f < 1 ? -1 : 0;
+      hi[a] = f > 3 ? 1 : 0;
+    }
+    uint32_t found = UINT32_MAX;
+    for (int dz = lo[2]; dz <= hi[2]; ++dz)
+      for (int dy = lo[1]; dy <= hi[1]; ++dy)
+        for (int dx = lo[0]; dx <= hi[0]; ++dx) {
+          const auto it = head_.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == head_.end()) continue;
+          for (uint32_t r = it->second; r != UINT32_MAX; r = next_[r])
+            if ((out_[r] - p).cwiseAbs().maxCoeff() <= tol_ && r < found) found = r;
+        }
+    *near = found != UINT32_MAX;
+    if (*near) return found;
+    found = keep(p);
+    auto [it, fresh] = head_.emplace(k, found);
+    if (!fresh) {
+      next_[found] = it->second;
+      it->second = found;
+    }
+    return found;
+  }
+  std::vector<Eigen::Vector3d> take() { return std::move(out_); }
+
+ private:
+  uint32_t keep(const Eigen::Vector3d& p) {
+    out_.push_back(p);
+    return uint32_t(out_.size() - 1);
+  }
+  double tol_, cell_;
+  std::unordered_map<std::array<int64_t, 3>, uint32_t, CellKeyHash> head_;
+  std::vector<uint32_t> next_;
+  std::vector<Eigen::Vector3d> out_;
+};
+
+// Welds vertices within `tol` (Chebyshev distance, to the first vertex of a cluster in index order, after exactly
+// equal vertices are merged); vertices no triangle uses are dropped (all finite vertices are kept for a point cloud).
+// Returns the vertices merged, and in *near those not exactly equal to their representative.
+size_t weld_near(Mesh& m, double tol, size_t* near) {
+  const size_t exact = weld_exact(m);
+  NearPoints points(tol, m.vertices.size());
+  std::vector<uint32_t> remap(m.vertices.size());
   size_t n_near = 0;
   for (size_t v = 0; v < m.vertices.size(); ++v) {
-    const Eigen::Vector3d& p = m.vertices[v];
-    uint32_t found = UINT32_MAX;
-    if (tol > 0 && p.allFinite()) {
-      std::array<int64_t, 3> k{};
-      int lo[3], hi[3];
-      for (int a = 0; a < 3; ++a) {
-        const double g = p[a] / cell;
-        k[a] = int64_t(std::floor(g));
-        const double f = (g - double(k[a])) * 4;  // position in the cell, in units of tol
-        lo[a] = f < 1 ? -1 : 0;
-        hi[a] = f > 3 ? 1 : 0;
-      }
-      for (int dz = lo[2]; dz <= hi[2]; ++dz)
-        for (int dy = lo[1]; dy <= hi[1]; ++dy)
-          for (int dx = lo[0]; dx <= hi[0]; ++dx) {
-            const auto it = head.find({k[0] + dx, k[1] + dy, k[2] + dz});
-            if (it == head.end()) continue;
-            for (uint32_t r = it->second; r != UINT32_MAX; r = next[r])
-              if ((out[r] - p).cwiseAbs().maxCoeff() <= tol && r < found) found = r;
-          }
-      if (found == UINT32_MAX) {
-        found = uint32_t(out.size());
-        out.push_back(p);
-        auto [it, fresh] = head.emplace(k, found);
-        if (!fresh) {
-          next[found] = it->second;
-          it->second = found;
-        }
-      } else {
-        ++n_near;
-      }
-    } else {
-      found = uint32_t(out.size());
-      out.push_back(p);
-    }
-    remap[v] = found;
+    bool merged = false;
+    remap[v] = points.add(m.vertices[v], &merged);
+    n_near += merged;
   }
   for (auto& t : m.triangles)
     for (uint32_t& v : t) v = remap[v];
-  m.vertices = std::move(out);
+  m.vertices = points.take();
   if (near) *near = n_near;
   return exact + n_near;
 }
@@ -205,26 +199,6 @@ void drop_degenerate_and_duplicates(Mesh& m, MeshReport& r) {
       out.push_back(kept[i]);
   }
   m.triangles = std::move(out);
-}
-
-// One use of an undirected edge by a triangle.
-struct EdgeUse {
-  uint64_t key;  // lo << 32 | hi
-  uint32_t tri;
-  bool forward;  // lo -> hi in the triangle's winding
-};
-
-std::vector<EdgeUse> edge_uses(const Mesh& m) {
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * m.size());
-  for (size_t t = 0; t < m.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
-      uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(t), a < b});
-    }
-  std::sort(uses.begin(), uses.end(),
-            [](const EdgeUse& x, const EdgeUse& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
-  return uses;
 }
 
 // Closes cracks: a vertex on an open edge moves onto the nearest vertex on an open edge of another edge-connected

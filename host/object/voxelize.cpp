@@ -237,20 +237,16 @@ void apply_surface(Voxmap& vm, const std::vector<uint64_t>& sb) {
   }
 }
 
-// Steps 1-4 of the voxeliser on grid gp: every voxel whose centre has a generalized winding number of the non-sheet
-// triangles of at least 1/2 becomes interior in vm (all empty before). Step 4 leaves out the voxels set in *skip
-// (the surface voxels, which voxelize overrides anyway); with skip null every voxel is decided.
-void fill_solid(const Mesh& mesh, const GridMesh& gm, const GridPlacement& gp, ThreadPool& pool,
-                const std::vector<uint64_t>* skip, Voxmap& vm, VoxelizeReport& rep) {
-  // 1. The closed chain: the triangles that bound the solid (sheets excluded) minus the caps of their boundary.
-  std::vector<std::array<uint32_t, 3>> solid_copy;
-  if (!mesh.sheet.empty())
-    for (size_t t = 0; t < mesh.size(); ++t)
-      if (!mesh.is_sheet(t)) solid_copy.push_back(mesh.triangles[t]);
-  const std::vector<std::array<uint32_t, 3>>& solid = mesh.sheet.empty() ? mesh.triangles : solid_copy;
-  const std::vector<detail::ChainTriangle> caps = detail::boundary_caps(gm.q, solid, kFrac);
+// Signed crossings of the closed chain with every column ray, bucketed by column and sorted along it: column c's
+// crossings are xs[start[c], start[c + 1]), (x, sign).
+struct ColumnCrossings {
+  std::vector<uint32_t> start;
+  std::vector<std::pair<double, int32_t>> xs;
+};
 
-  // 2. Signed crossings of the chain with every column ray, bucketed by column and sorted along it.
+ColumnCrossings column_crossings(const std::vector<std::array<uint32_t, 3>>& solid,
+                                 const std::vector<detail::ChainTriangle>& caps, const GridMesh& gm,
+                                 const GridPlacement& gp, ThreadPool& pool) {
   const size_t n_items = solid.size() + caps.size();
   const auto parts = chunks(n_items, pool.size());
   std::vector<std::vector<SignedCrossing>> found(parts.size());
@@ -270,29 +266,33 @@ void fill_solid(const Mesh& mesh, const GridMesh& gm, const GridPlacement& gp, T
     }
   });
   const size_t cols = size_t(gp.dims[1]) * gp.dims[2];
-  std::vector<uint32_t> start(cols + 1, 0);
+  ColumnCrossings cc;
+  cc.start.assign(cols + 1, 0);
   for (const auto& f : found)
-    for (const SignedCrossing& c : f) ++start[c.col + 1];
-  for (size_t c = 0; c < cols; ++c) start[c + 1] += start[c];
-  std::vector<std::pair<double, int32_t>> xs(start[cols]);
-  {
-    std::vector<uint32_t> at(start.begin(), start.end() - 1);
-    for (const auto& f : found)
-      for (const SignedCrossing& c : f) xs[at[c.col]++] = {c.x, c.sign};
-  }
+    for (const SignedCrossing& c : f) ++cc.start[c.col + 1];
+  for (size_t c = 0; c < cols; ++c) cc.start[c + 1] += cc.start[c];
+  cc.xs.resize(cc.start[cols]);
+  std::vector<uint32_t> at(cc.start.begin(), cc.start.end() - 1);
+  for (const auto& f : found)
+    for (const SignedCrossing& c : f) cc.xs[at[c.col]++] = {c.x, c.sign};
   found.clear();
   found.shrink_to_fit();
-
-  // 3. The integer part W (the chain's winding number: the signed crossings beyond the centre) fills every voxel
-  // where W >= 1; W is constant between crossings.
-  const uint64_t nx = gp.dims[0];
-  pool.parallel_for(std::min<size_t>(cols, 64), [&](size_t part) {
-    for (size_t c = cols * part / std::min<size_t>(cols, 64); c < cols * (part + 1) / std::min<size_t>(cols, 64); ++c)
-      std::sort(xs.begin() + start[c], xs.begin() + start[c + 1]);
+  const size_t sorts = std::min<size_t>(cols, 64);
+  pool.parallel_for(sorts, [&](size_t part) {
+    for (size_t c = cols * part / sorts; c < cols * (part + 1) / sorts; ++c)
+      std::sort(cc.xs.begin() + cc.start[c], cc.xs.begin() + cc.start[c + 1]);
   });
+  return cc;
+}
+
+// The integer part W (the chain's winding number: the signed crossings beyond the centre) fills every voxel where
+// W >= 1; W is constant between crossings.
+void fill_by_crossings(const Mesh& mesh, const GridPlacement& gp, const ColumnCrossings& cc, Voxmap& vm) {
+  const uint64_t nx = gp.dims[0];
+  const size_t cols = cc.start.size() - 1;
   for (size_t c = 0; c < cols; ++c) {
-    const auto* b = xs.data() + start[c];
-    const auto* e = xs.data() + start[c + 1];
+    const auto* b = cc.xs.data() + cc.start[c];
+    const auto* e = cc.xs.data() + cc.start[c + 1];
     if (b == e) continue;
     int64_t prefix = 0;  // signs of the crossings at or before the current one; W = -prefix after it
     for (const auto* p = b; p < e; ++p) {
@@ -310,50 +310,71 @@ void fill_solid(const Mesh& mesh, const GridMesh& gm, const GridPlacement& gp, T
                              std::to_string(c % gp.dims[1]) + ", z " + std::to_string(c / gp.dims[1]) +
                              ") do not sum to zero");
   }
+}
 
-  // 4. The caps' winding number moves W only near the holes: voxels where it could reach kUncertainLow are
-  // evaluated one by one (W + caps >= 1/2), every other voxel keeps W's answer.
-  if (!caps.empty()) {
-    const detail::CapField field(caps, kFrac);
-    constexpr uint32_t kBlock = 8;
-    const uint32_t bx = (gp.dims[0] + kBlock - 1) / kBlock, by = (gp.dims[1] + kBlock - 1) / kBlock,
-                   bz = (gp.dims[2] + kBlock - 1) / kBlock;
-    struct Change {
-      uint64_t index;
-      bool inside;
-    };
-    std::vector<std::vector<Change>> changes(size_t(bx) * by * bz);
-    std::vector<uint64_t> evaluated(changes.size(), 0), uncertain(changes.size(), 0);
-    pool.parallel_for(changes.size(), [&](size_t blk) {
-      const uint32_t x0 = uint32_t(blk % bx) * kBlock, y0 = uint32_t(blk / bx % by) * kBlock,
-                     z0 = uint32_t(blk / (size_t(bx) * by)) * kBlock;
-      const std::array<uint32_t, 3> lo = {x0, y0, z0};
-      const std::array<uint32_t, 3> hi = {std::min(x0 + kBlock, gp.dims[0]), std::min(y0 + kBlock, gp.dims[1]),
-                                          std::min(z0 + kBlock, gp.dims[2])};
-      field.uncertain_voxels(lo, hi, kUncertainLow, [&](uint32_t x, uint32_t y, uint32_t z, double near, double bound) {
-        const uint64_t i = vm.index(x, y, z);
-        if (skip && ((*skip)[i >> 6] >> (i & 63)) & 1) return;
-        ++evaluated[blk];
-        const size_t c = size_t(y) + size_t(gp.dims[1]) * z;
-        const double cx = x + 0.5;
-        int64_t prefix = 0;
-        for (uint32_t k = start[c]; k < start[c + 1] && xs[k].first <= cx; ++k) prefix += xs[k].second;
-        // The near caps' exact part with the bound on the rest decides, unless 1/2 lies within the bound (or the
-        // bound is too loose to say how certain the voxel is): then the whole field is evaluated.
-        double w = double(-prefix) + near;
-        if (!(bound <= kNearEnough && std::abs(w - 0.5) > bound))
-          w = double(-prefix) + field.value(Eigen::Vector3d(cx, y + 0.5, z + 0.5));
-        if (w >= kUncertainLow && w <= kUncertainHigh) ++uncertain[blk];
-        const bool inside = w >= 0.5;
-        if (inside != (vm.at(i) == kInterior)) changes[blk].push_back({i, inside});
-      });
+// The caps' winding number moves W only near the holes: voxels where it could reach kUncertainLow are evaluated one
+// by one (W + caps >= 1/2), every other voxel keeps W's answer. Voxels set in *skip are left as they are.
+void refine_near_holes(const std::vector<detail::ChainTriangle>& caps, const GridPlacement& gp,
+                       const ColumnCrossings& cc, ThreadPool& pool, const std::vector<uint64_t>* skip, Voxmap& vm,
+                       VoxelizeReport& rep) {
+  const detail::CapField field(caps, kFrac);
+  constexpr uint32_t kBlock = 8;
+  const uint32_t bx = (gp.dims[0] + kBlock - 1) / kBlock, by = (gp.dims[1] + kBlock - 1) / kBlock,
+                 bz = (gp.dims[2] + kBlock - 1) / kBlock;
+  struct Change {
+    uint64_t index;
+    bool inside;
+  };
+  std::vector<std::vector<Change>> changes(size_t(bx) * by * bz);
+  std::vector<uint64_t> evaluated(changes.size(), 0), uncertain(changes.size(), 0);
+  pool.parallel_for(changes.size(), [&](size_t blk) {
+    const uint32_t x0 = uint32_t(blk % bx) * kBlock, y0 = uint32_t(blk / bx % by) * kBlock,
+                   z0 = uint32_t(blk / (size_t(bx) * by)) * kBlock;
+    const std::array<uint32_t, 3> lo = {x0, y0, z0};
+    const std::array<uint32_t, 3> hi = {std::min(x0 + kBlock, gp.dims[0]), std::min(y0 + kBlock, gp.dims[1]),
+                                        std::min(z0 + kBlock, gp.dims[2])};
+    field.uncertain_voxels(lo, hi, kUncertainLow, [&](uint32_t x, uint32_t y, uint32_t z, double near, double bound) {
+      const uint64_t i = vm.index(x, y, z);
+      if (skip && ((*skip)[i >> 6] >> (i & 63)) & 1) return;
+      ++evaluated[blk];
+      const size_t c = size_t(y) + size_t(gp.dims[1]) * z;
+      const double cx = x + 0.5;
+      int64_t prefix = 0;
+      for (uint32_t k = cc.start[c]; k < cc.start[c + 1] && cc.xs[k].first <= cx; ++k) prefix += cc.xs[k].second;
+      // The near caps' exact part with the bound on the rest decides, unless 1/2 lies within the bound (or the
+      // bound is too loose to say how certain the voxel is): then the whole field is evaluated.
+      double w = double(-prefix) + near;
+      if (!(bound <= kNearEnough && std::abs(w - 0.5) > bound))
+        w = double(-prefix) + field.value(Eigen::Vector3d(cx, y + 0.5, z + 0.5));
+      if (w >= kUncertainLow && w <= kUncertainHigh) ++uncertain[blk];
+      const bool inside = w >= 0.5;
+      if (inside != (vm.at(i) == kInterior)) changes[blk].push_back({i, inside});
     });
-    for (size_t b = 0; b < changes.size(); ++b) {
-      for (const Change& ch : changes[b]) vm.set(ch.index, ch.inside ? kInterior : kEmpty);
-      rep.evaluated += evaluated[b];
-      rep.uncertain += uncertain[b];
-    }
+  });
+  for (size_t b = 0; b < changes.size(); ++b) {
+    for (const Change& ch : changes[b]) vm.set(ch.index, ch.inside ? kInterior : kEmpty);
+    rep.evaluated += evaluated[b];
+    rep.uncertain += uncertain[b];
   }
+}
+
+// Steps 1-4 of the voxeliser on grid gp: every voxel whose centre has a generalized winding number of the non-sheet
+// triangles of at least 1/2 becomes interior in vm (all empty before). Step 4 leaves out the voxels set in *skip
+// (the surface voxels, which voxelize overrides anyway); with skip null every voxel is decided.
+void fill_solid(const Mesh& mesh, const GridMesh& gm, const GridPlacement& gp, ThreadPool& pool,
+                const std::vector<uint64_t>* skip, Voxmap& vm, VoxelizeReport& rep) {
+  // 1. The closed chain: the triangles that bound the solid (sheets excluded) minus the caps of their boundary.
+  std::vector<std::array<uint32_t, 3>> solid_copy;
+  if (!mesh.sheet.empty())
+    for (size_t t = 0; t < mesh.size(); ++t)
+      if (!mesh.is_sheet(t)) solid_copy.push_back(mesh.triangles[t]);
+  const std::vector<std::array<uint32_t, 3>>& solid = mesh.sheet.empty() ? mesh.triangles : solid_copy;
+  const std::vector<detail::ChainTriangle> caps = detail::boundary_caps(gm.q, solid, kFrac);
+  // 2. and 3.: the chain's crossings with every column, and the fill they give.
+  const ColumnCrossings cc = column_crossings(solid, caps, gm, gp, pool);
+  fill_by_crossings(mesh, gp, cc, vm);
+  // 4. Near the holes.
+  if (!caps.empty()) refine_near_holes(caps, gp, cc, pool, skip, vm, rep);
 }
 
 }  // namespace

@@ -170,10 +170,13 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
 
 }  // namespace
 
-void bind_objects(py::module_& m) {
-  py::class_<ObjectFile, ObjectPtr>(m, "Object", R"(An object: a voxmap (2-bit states on a regular grid) and a point
-shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made by voxelize() or read_object().)")
-      .def_readonly("source", &ObjectFile::source, "The mesh file as given, or 'shape:NAME' for a built-in shape.")
+namespace {
+
+using ObjectClass = py::class_<ObjectFile, ObjectPtr>;
+
+// Object's voxmap: its source, grid and states.
+void bind_voxmap(ObjectClass& cls) {
+  cls.def_readonly("source", &ObjectFile::source, "The mesh file as given, or 'shape:NAME' for a built-in shape.")
       .def_readonly("source_hash", &ObjectFile::source_hash, "FNV-1a 64 of the source file's bytes (of the shape's name).")
       .def_property_readonly("voxel", [](const ObjectFile& o) { return o.voxmap.voxel(); }, "Voxel edge, mesh units.")
       .def_property_readonly("origin", [](const ObjectFile& o) { return vec3(o.voxmap.origin()); },
@@ -194,8 +197,12 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
             d["interior"] = c[kInterior];
             return d;
           },
-          "Voxels in each state: {'empty': ..., 'surface': ..., 'interior': ...}.")
-      .def_property_readonly("shell_points", [](const ObjectFile& o) { return rows(o.shell.points); },
+          "Voxels in each state: {'empty': ..., 'surface': ..., 'interior': ...}.");
+}
+
+// Object's point shell.
+void bind_shell(ObjectClass& cls) {
+  cls.def_property_readonly("shell_points", [](const ObjectFile& o) { return rows(o.shell.points); },
                              "The point shell in the object's frame, an (N, 3) float64 array.")
       .def_property_readonly("shell_normals", [](const ObjectFile& o) { return rows(o.shell.normals); },
                              "Each shell point's outward unit normal, an (N, 3) float64 array.")
@@ -213,16 +220,24 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
       .def_property_readonly("shell_on_surface", [](const ObjectFile& o) { return o.shell.on_surface; },
                              "True when the shell's points lie on the surface (objects with a distance field): "
                              "each is the closest point of the mesh to a surface cell's centre, rounded to 1/256 of "
-                             "the spacing.")
-      .def_property_readonly("distance_bits", [](const ObjectFile& o) { return o.distance.bits; },
+                             "the spacing.");
+}
+
+// Object's distance field.
+void bind_distance(ObjectClass& cls) {
+  cls.def_property_readonly("distance_bits", [](const ObjectFile& o) { return o.distance.bits; },
                              "Bits of the distance field's node values (4, 8 or 16); 0 for an object without one.")
       .def_property_readonly("distance_step", [](const ObjectFile& o) { return o.distance.step; },
                              "Voxels per unit of a node value (band / 2^(bits-1)); 0 without a field.")
       .def_property_readonly("distance", [](const ObjectFile& o) { return distance(o.distance); },
                              "The signed distance field's node values as a new int16 array of shape (nx+1, ny+1, "
                              "nz+1), indexed [X, Y, Z] (node X, Y, Z at origin + voxel * (X, Y, Z)), negative "
-                             "inside; times distance_step it is voxels, clamped to the band. None without a field.")
-      .def_property_readonly("shell_spacing", [](const ObjectFile& o) { return o.shell.grid.voxel; },
+                             "inside; times distance_step it is voxels, clamped to the band. None without a field.");
+}
+
+// Object's shell grid, report, save() and repr.
+void bind_rest(ObjectClass& cls) {
+  cls.def_property_readonly("shell_spacing", [](const ObjectFile& o) { return o.shell.grid.voxel; },
                              "The shell grid's spacing: voxel / shell_ratio.")
       .def_property_readonly("shell_origin", [](const ObjectFile& o) { return vec3(o.shell.grid.origin); },
                              "Corner of the shell grid's cell (0, 0, 0) in the object's frame.")
@@ -250,7 +265,18 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
         return "<voxcd.Object " + o.source + ": " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
                std::to_string(d[2]) + " voxels of " + py::repr(py::float_(o.voxmap.voxel())).cast<std::string>() +
                ", " + std::to_string(o.shell.size()) + " shell points>";
-      });
+      });;
+}
+
+}  // namespace
+
+void bind_objects(py::module_& m) {
+  ObjectClass c(m, "Object", R"(An object: a voxmap (2-bit states on a regular grid) and a point
+shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made by voxelize() or read_object().)");
+  bind_voxmap(c);
+  bind_shell(c);
+  bind_distance(c);
+  bind_rest(c);
 
   m.def("voxelize", &voxelize_source, py::arg("source"), py::kw_only(), py::arg("voxel") = py::none(),
         py::arg("resolution") = py::none(), py::arg("shell_ratio") = std::sqrt(2.0), py::arg("strict") = false,

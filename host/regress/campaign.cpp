@@ -194,48 +194,36 @@ std::string campaign_json(const Campaign& c) {
   return j.dump();
 }
 
-Campaign campaign_from_json(const std::string& text, const std::string& where) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw CampaignError(where + ": not JSON: " + e.what());
-  }
-  if (!j.is_object()) throw CampaignError(where + ": not a JSON object");
-  static const std::set<std::string> known = {"seeds", "configs", "lanes", "backends", "jobs_per_shard", "cycles"};
-  for (const auto& [key, value] : j.items())
-    if (!known.count(key))
-      throw CampaignError(where + ": unknown key \"" + key +
-                          "\" (the keys: seeds, configs, lanes, backends, jobs_per_shard, cycles)");
-  if (!j.contains("seeds")) throw CampaignError(where + ": the key \"seeds\" is missing");
-  Campaign c;
-  const auto& seeds = j["seeds"];
-  if (seeds.is_string()) {
-    c.seeds = parse_seeds(seeds.get<std::string>(), where_key(where, "seeds"));
-  } else if (seeds.is_array()) {
-    std::string list;
-    for (const auto& s : seeds) {
-      if (!s.is_number_unsigned())
-        throw CampaignError(where_key(where, "seeds") + ": " + s.dump() + " is not a seed");
-      list += (list.empty() ? "" : ",") + std::to_string(s.get<uint64_t>());
-    }
-    c.seeds = parse_seeds(list, where_key(where, "seeds"));
-  } else {
+namespace {
+
+// The key "seeds": a string such as "1-16,20" or an array of seeds.
+std::vector<uint64_t> json_seeds(const nlohmann::json& seeds, const std::string& where) {
+  if (seeds.is_string()) return parse_seeds(seeds.get<std::string>(), where_key(where, "seeds"));
+  if (!seeds.is_array())
     throw CampaignError(where_key(where, "seeds") + ": expected a string such as \"1-16\" or an array of seeds");
+  std::string list;
+  for (const auto& s : seeds) {
+    if (!s.is_number_unsigned()) throw CampaignError(where_key(where, "seeds") + ": " + s.dump() + " is not a seed");
+    list += (list.empty() ? "" : ",") + std::to_string(s.get<uint64_t>());
   }
-  auto strings = [&](const std::string& key, std::vector<std::string>& out) {
-    if (!j.contains(key)) return;
-    const auto& v = j[key];
-    if (!v.is_array()) throw CampaignError(where_key(where, key) + ": expected an array of strings");
-    out.clear();
-    for (const auto& s : v) {
-      if (!s.is_string()) throw CampaignError(where_key(where, key) + ": " + s.dump() + " is not a string");
-      out.push_back(s.get<std::string>());
-    }
-  };
-  strings("configs", c.configs);
-  for (std::string& cfg : c.configs) cfg = canonical_config(cfg, where_key(where, "configs"));
-  strings("backends", c.backends);
+  return parse_seeds(list, where_key(where, "seeds"));
+}
+
+// j[key], when present, as an array of strings into out.
+void json_strings(const nlohmann::json& j, const std::string& key, const std::string& where,
+                  std::vector<std::string>& out) {
+  if (!j.contains(key)) return;
+  const auto& v = j[key];
+  if (!v.is_array()) throw CampaignError(where_key(where, key) + ": expected an array of strings");
+  out.clear();
+  for (const auto& s : v) {
+    if (!s.is_string()) throw CampaignError(where_key(where, key) + ": " + s.dump() + " is not a string");
+    out.push_back(s.get<std::string>());
+  }
+}
+
+// The keys with a number or a flag: lanes, jobs_per_shard, cycles.
+void json_counts(const nlohmann::json& j, const std::string& where, Campaign& c) {
   if (j.contains("lanes")) {
     const auto& v = j["lanes"];
     if (!v.is_array()) throw CampaignError(where_key(where, "lanes") + ": expected an array of lane counts");
@@ -256,6 +244,30 @@ Campaign campaign_from_json(const std::string& text, const std::string& where) {
     if (!j["cycles"].is_boolean()) throw CampaignError(where_key(where, "cycles") + ": expected true or false");
     c.cycles = j["cycles"].get<bool>();
   }
+}
+
+}  // namespace
+
+Campaign campaign_from_json(const std::string& text, const std::string& where) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw CampaignError(where + ": not JSON: " + e.what());
+  }
+  if (!j.is_object()) throw CampaignError(where + ": not a JSON object");
+  static const std::set<std::string> known = {"seeds", "configs", "lanes", "backends", "jobs_per_shard", "cycles"};
+  for (const auto& [key, value] : j.items())
+    if (!known.count(key))
+      throw CampaignError(where + ": unknown key \"" + key +
+                          "\" (the keys: seeds, configs, lanes, backends, jobs_per_shard, cycles)");
+  if (!j.contains("seeds")) throw CampaignError(where + ": the key \"seeds\" is missing");
+  Campaign c;
+  c.seeds = json_seeds(j["seeds"], where);
+  json_strings(j, "configs", where, c.configs);
+  for (std::string& cfg : c.configs) cfg = canonical_config(cfg, where_key(where, "configs"));
+  json_strings(j, "backends", where, c.backends);
+  json_counts(j, where, c);
   validate_campaign(c, where);
   return c;
 }

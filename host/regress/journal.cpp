@@ -66,4 +66,17 @@ void Journal::append(const std::string& line) {
   if (!write_all(fd_, line + "\n") || ::fsync(fd_) != 0) throw system_error("cannot write the results file", path_);
 }
 
+void read_journal_rows(const Journal& journal, const std::string& path, const std::string& header,
+                       const std::function<void(const std::string&)>& wrong_header,
+                       const std::function<void(const std::string&, const std::string&)>& row) {
+  const std::vector<std::string>& lines = journal.lines();
+  for (size_t n = 1; n <= lines.size(); ++n) {
+    if (n == 1) {
+      if (lines[0] != header) wrong_header(lines[0]);
+      continue;
+    }
+    row(lines[n - 1], path + ":" + std::to_string(n));
+  }
+}
+
 }  // namespace voxcd

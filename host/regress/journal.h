@@ -3,6 +3,7 @@
 // `voxcd sweep` (sizing/sweep_results) are journals with a header line and a parser of their own.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,5 +33,12 @@ class Journal {
   size_t size_ = 0;    // bytes in the file
   int fd_ = -1;
 };
+
+// The lines of a results journal (regress's and sweep's --results files): the first must be `header`, else
+// wrong_header(first line) is called (it throws, saying whose file it is); every other line is given to
+// row(line, where), where = "path:N" (N from 1), in order.
+void read_journal_rows(const Journal& journal, const std::string& path, const std::string& header,
+                       const std::function<void(const std::string&)>& wrong_header,
+                       const std::function<void(const std::string&, const std::string&)>& row);
 
 }  // namespace voxcd

@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "voxcd/host/regress/detail/shard_json.h"
+
 namespace voxcd {
 
 Report::Report(const Campaign& c) : campaign_(c), done_(c.shards(), false) {}
@@ -64,12 +66,7 @@ std::string Report::json(const std::string& program) const {
   j["failures"] = nlohmann::json::array();
   for (const ShardResult& r : sorted_failures()) {
     const Shard sh = shard_at(campaign_, r.shard);
-    nlohmann::ordered_json f;
-    f["shard"] = r.shard;
-    f["seed"] = sh.seed;
-    f["config"] = sh.config.empty() ? "default" : sh.config;
-    f["lanes"] = sh.lanes;
-    f["backend"] = sh.backend;
+    nlohmann::ordered_json f = detail::shard_json(sh);
     if (r.differs) f["first_difference"] = {{"job", r.job}, {"tag", r.tag}};
     f["error"] = r.error;
     f["reproduce"] = reproduce_command(campaign_, sh, program, reproduce_file_name(campaign_, sh));

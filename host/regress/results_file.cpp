@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "voxcd/host/regress/detail/shard_json.h"
+
 namespace voxcd {
 
 namespace {
@@ -12,18 +14,13 @@ namespace {
 constexpr const char* kFormatKey = "voxcd_regress_results";
 
 std::string header_line(const Campaign& c) {
-  return std::string("{\"") + kFormatKey + "\":1,\"campaign\":" + campaign_json(c) + "}";
+  return nlohmann::ordered_json{{kFormatKey, 1}, {"campaign", nlohmann::ordered_json::parse(campaign_json(c))}}.dump();
 }
 
 }  // namespace
 
 std::string shard_result_line(const ShardResult& r, const Shard& s) {
-  nlohmann::ordered_json j;
-  j["shard"] = r.shard;
-  j["seed"] = s.seed;
-  j["config"] = s.config.empty() ? "default" : s.config;
-  j["lanes"] = s.lanes;
-  j["backend"] = s.backend;
+  nlohmann::ordered_json j = detail::shard_json(s);
   j["jobs"] = r.jobs;
   j["lookups"] = r.lookups;
   j["records"] = r.records;
@@ -72,30 +69,24 @@ ShardResult parse_shard_result(const std::string& line, const Campaign& c, const
 
 ResultsFile::ResultsFile(const std::string& path, const Campaign& c) : journal_(path) {
   std::vector<bool> seen(c.shards(), false);
-  const std::vector<std::string>& lines = journal_.lines();
-  for (size_t n = 1; n <= lines.size(); ++n) {
-    const std::string& line = lines[n - 1];
-    const std::string where = path + ":" + std::to_string(n);
-    if (n == 1) {
-      if (line != header_line(c)) {
-        std::string theirs = line;
-        try {
-          const nlohmann::ordered_json j = nlohmann::ordered_json::parse(line);
-          if (!j.contains(kFormatKey)) throw std::runtime_error("");
-          theirs = j.at("campaign").dump();
-        } catch (const std::exception&) {
-          throw CampaignError(path + " is not a voxcd regress results file (its first line is not the header)");
-        }
-        throw CampaignError(path + " holds the results of another campaign (" + theirs + "; this one is " +
-                            campaign_json(c) + "): give another --results file, or the campaign it was made for");
-      }
-      continue;
+  auto wrong_header = [&](const std::string& line) {
+    std::string theirs = line;
+    try {
+      const nlohmann::ordered_json j = nlohmann::ordered_json::parse(line);
+      if (!j.contains(kFormatKey)) throw std::runtime_error("");
+      theirs = j.at("campaign").dump();
+    } catch (const std::exception&) {
+      throw CampaignError(path + " is not a voxcd regress results file (its first line is not the header)");
     }
+    throw CampaignError(path + " holds the results of another campaign (" + theirs + "; this one is " +
+                        campaign_json(c) + "): give another --results file, or the campaign it was made for");
+  };
+  read_journal_rows(journal_, path, header_line(c), wrong_header, [&](const std::string& line, const std::string& where) {
     ShardResult r = parse_shard_result(line, c, where);
-    if (seen[r.shard]) continue;
+    if (seen[r.shard]) return;
     seen[r.shard] = true;
     finished_.push_back(std::move(r));
-  }
+  });
   journal_.open(header_line(c));
 }
 

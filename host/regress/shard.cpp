@@ -7,34 +7,13 @@
 #include <thread>
 
 #include "voxcd/host/device/conform.h"
+#include "voxcd/host/regress/testing_fault.h"
 #include "voxcd/ref/vectors.h"
 
 namespace voxcd {
 
 namespace {
 
-// VOXCD_TESTING_FAULT=KIND:SHARD: the rank that runs shard SHARD fails (throws), hangs or exits at once.
-void testing_fault(uint64_t shard) {
-  const char* text = std::getenv("VOXCD_TESTING_FAULT");
-  if (!text || !*text) return;
-  const std::string t = text;
-  const size_t colon = t.find(':');
-  const std::string kind = t.substr(0, colon);
-  uint64_t at = 0;
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no shard");
-    size_t used = 0;
-    at = std::stoull(t.substr(colon + 1), &used);
-    if (used != t.size() - colon - 1 || (kind != "fail" && kind != "hang" && kind != "exit"))
-      throw std::invalid_argument("bad");
-  } catch (const std::exception&) {
-    throw std::runtime_error("VOXCD_TESTING_FAULT is '" + t + "', expected fail:SHARD, hang:SHARD or exit:SHARD");
-  }
-  if (at != shard) return;
-  if (kind == "fail") throw std::runtime_error("planted fault (VOXCD_TESTING_FAULT=" + t + ")");
-  if (kind == "exit") std::_Exit(3);
-  for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
-}
 
 // Quotes a word for a POSIX shell when it needs it.
 std::string shell_word(const std::string& w) {
@@ -62,7 +41,7 @@ ShardVectors::~ShardVectors() = default;
 
 ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, unsigned threads) {
   const auto start = std::chrono::steady_clock::now();
-  testing_fault(s.index);
+  testing_fault("VOXCD_TESTING_FAULT", "SHARD", s.index);
   auto& k = cache.cached_;
   if (!k || k->seed != s.seed || k->config != s.config || k->lanes != s.lanes || k->jobs != c.jobs_per_shard) {
     k.reset();

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "voxcd/host/device/clock.h"
 #include "voxcd/host/sizing/detail/config_depth.h"
 #include "voxcd/host/sizing/size.h"
 #include "voxcd/ref/timing.h"
@@ -11,12 +12,6 @@
 namespace voxcd {
 
 namespace {
-
-std::string mhz_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 std::string ratio_text(double v) {
   std::ostringstream s;

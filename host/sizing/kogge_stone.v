@@ -2,7 +2,7 @@
 // prefix: log2(WIDTH) levels of generate and propagate instead of a ripple through WIDTH bits, as an ASIC flow's
 // datapath synthesis builds them. The ASIC flows (bench/timing.sh, host/sizing/asic_cost.cpp, which has this file
 // compiled in) read it as `techmap -map +/techmap.v -map kogge_stone.v`: its module name sorts before techmap.v's
-// _90_lcu, so techmap takes it for every $lcu. tests/host/test_timing_table.cpp proves it equal to the ripple.
+// _90_lcu, so techmap takes it for every $lcu. tests/host/sizing/test_timing_table.cpp proves it equal to the ripple.
 (* techmap_celltype = "$lcu" *)
 module _80_voxcd_lcu_kogge_stone (P, G, CI, CO);
   parameter WIDTH = 2;

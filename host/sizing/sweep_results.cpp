@@ -9,7 +9,7 @@ namespace {
 constexpr const char* kFormatKey = "voxcd_sweep_results";
 
 std::string header_line(const SweepSpec& s) {
-  return std::string("{\"") + kFormatKey + "\":1,\"sweep\":" + sweep_json(s) + "}";
+  return nlohmann::ordered_json{{kFormatKey, 1}, {"sweep", nlohmann::ordered_json::parse(sweep_json(s))}}.dump();
 }
 
 // The row's point must be the point of s with its index.
@@ -28,28 +28,24 @@ void check_point(const SweepRow& r, const SweepSpec& s, const std::string& where
 
 SweepResults::SweepResults(const std::string& path, const SweepSpec& s) : journal_(path) {
   std::vector<bool> seen(s.points(), false);
-  const std::vector<std::string>& lines = journal_.lines();
-  for (size_t n = 1; n <= lines.size(); ++n) {
-    const std::string& line = lines[n - 1];
-    const std::string where = path + ":" + std::to_string(n);
-    if (n == 1) {
-      if (line == header_line(s)) continue;
-      std::string theirs;
-      try {
-        const nlohmann::ordered_json j = nlohmann::ordered_json::parse(line);
-        theirs = j.at(kFormatKey).dump(), theirs = j.at("sweep").dump();
-      } catch (const std::exception&) {
-        throw SweepError(path + " is not a voxcd sweep results file (its first line is not the header)");
-      }
-      throw SweepError(path + " holds the results of another sweep (" + theirs + "; this one is " + sweep_json(s) +
-                       "): give another --results file, or the sweep it was made for");
+  auto wrong_header = [&](const std::string& line) {
+    std::string theirs;
+    try {
+      const nlohmann::ordered_json j = nlohmann::ordered_json::parse(line);
+      theirs = j.at(kFormatKey).dump(), theirs = j.at("sweep").dump();
+    } catch (const std::exception&) {
+      throw SweepError(path + " is not a voxcd sweep results file (its first line is not the header)");
     }
+    throw SweepError(path + " holds the results of another sweep (" + theirs + "; this one is " + sweep_json(s) +
+                     "): give another --results file, or the sweep it was made for");
+  };
+  read_journal_rows(journal_, path, header_line(s), wrong_header, [&](const std::string& line, const std::string& where) {
     SweepRow r = parse_sweep_row(line, where);
     check_point(r, s, where);
-    if (seen[r.point.index]) continue;
+    if (seen[r.point.index]) return;
     seen[r.point.index] = true;
     finished_.push_back(std::move(r));
-  }
+  });
   journal_.open(header_line(s));
 }
 

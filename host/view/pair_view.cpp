@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "voxcd/host/object/voxmap_surface.h"
+#include "voxcd/host/pairs/pose.h"
 #include "voxcd/host/view/detail/base64.h"
 
 namespace voxcd::view {
@@ -37,19 +38,7 @@ json type_json(const std::string& name, const ObjectType& t) {
 }  // namespace
 
 PairPose parse_pair_pose(const std::string& s) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double d = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(d))
-      throw std::invalid_argument("'" + item + "' in '" + s + "' is not a finite number");
-    v.push_back(d);
-  }
-  if (v.size() != 3 && v.size() != 6)
-    throw std::invalid_argument("'" + s + "' has " + std::to_string(v.size()) +
-                                " numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz");
+  const std::vector<double> v = parse_pose_numbers(s, true);
   PairPose p{};
   for (size_t i = 0; i < v.size(); ++i) p[i] = v[i];
   return p;

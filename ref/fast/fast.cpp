@@ -366,7 +366,7 @@ void FastRunner::run_piece(const Job& job, uint32_t begin, uint32_t end, bool va
   run_chunk(job, begin, end, hits, count);
 }
 
-void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate) {
+size_t FastRunner::make_pieces(const std::vector<Job>& jobs) {
   // Pieces: (job, first point, end point), at most kChunk points each.
   pieces_.clear();
   first_piece_.assign(jobs.size() + 1, 0);
@@ -383,26 +383,29 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
     }
   }
   first_piece_[jobs.size()] = pieces_.size();
-  if (pieces_.size() <= 1 || !pool_ || pool_->size() <= 1 || points < kParallelMinPoints) {
-    // One thread: every job validated first, then the pieces in order, hits straight into `out`; FIRST skips the
-    // pieces after its hit.
-    if (validate)
-      for (const Job& j : jobs) validate_job(cfg_, j, shell_.size(), map_.size());
-    out.clear();
-    out.reserve(2 * jobs.size());
-    for (size_t j = 0; j < jobs.size(); ++j) {
-      uint32_t hits = 0;
-      for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
-        run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, out, hits);
-        if (jobs[j].mode == Mode::First && hits) break;
-      }
-      push_record(out, Record::Done, jobs[j].tag).hits = hits;
-    }
-    if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_conflicts(cfg_, shell_, jobs, out));
-    else if (cycles) annotate_cycles(cfg_, jobs, out);
-    return;
-  }
+  return points;
+}
 
+void FastRunner::run_serial(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate) {
+  // Every job validated first, then the pieces in order, hits straight into `out`; FIRST skips the pieces after its
+  // hit.
+  if (validate)
+    for (const Job& j : jobs) validate_job(cfg_, j, shell_.size(), map_.size());
+  out.clear();
+  out.reserve(2 * jobs.size());
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    uint32_t hits = 0;
+    for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
+      run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, out, hits);
+      if (jobs[j].mode == Mode::First && hits) break;
+    }
+    push_record(out, Record::Done, jobs[j].tag).hits = hits;
+  }
+  if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_conflicts(cfg_, shell_, jobs, out));
+  else if (cycles) annotate_cycles(cfg_, jobs, out);
+}
+
+void FastRunner::run_tasks(const std::vector<Job>& jobs, bool cycles, bool validate) {
   // Tasks: runs of consecutive pieces of at least kTaskPoints points.
   task_first_.clear();
   for (size_t i = 0, acc = kTaskPoints; i < pieces_.size(); ++i) {
@@ -414,8 +417,8 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
   if (results_.size() < tasks) results_.resize(tasks);
   // Each task validates a job before its first piece of it (the task holding a job's first piece validates it
   // before any piece of a later job), so the lowest task that throws, whose exception the pool rethrows, names the
-  // first invalid job, as the loop above would. The lookups only read the memories, and `out` is not touched
-  // before every task has finished.
+  // first invalid job, as run_serial would. The lookups only read the memories, and `out` is not touched before
+  // every task has finished.
   pool_->parallel_for(tasks, [&](size_t t) {
     std::vector<Record>& hits = results_[t].hits;
     hits.clear();
@@ -432,8 +435,11 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
       if (cycles) p.sum = job_hits(cfg_, j, p.job, hits.data() + p.first, p.records);
     }
   });
+}
+
+size_t FastRunner::place_records(const std::vector<Job>& jobs) {
   // Where each piece's records go: ALL every one, FIRST only those of the job's first piece with a hit; then the
-  // completion record. Completion records are written here with their cycles.
+  // completion record.
   size_t total = 0;
   done_at_.resize(jobs.size());
   for (size_t j = 0; j < jobs.size(); ++j) {
@@ -449,71 +455,82 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
     }
     done_at_[j] = total++;
   }
+  return total;
+}
+
+void FastRunner::job_result(const std::vector<Job>& jobs, size_t j, bool cycles, uint32_t& hits, JobHits& sum) const {
+  hits = 0;
+  sum = JobHits();  // none yet: the group sentinels of job_hits
+  sum.first_group = sum.last_group = job_groups(cfg_, jobs[j]);
+  for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
+    const Piece& p = pieces_[i];
+    if (jobs[j].mode == Mode::First) {
+      if (p.records) hits = 1, sum = p.sum;
+    } else {
+      hits += p.count;
+      if (cycles) sum = join_job_hits(sum, p.sum);
+    }
+  }
+}
+
+// Task t copies its pieces' kept records to their places and writes the completion records of the jobs from its
+// first piece's to the next task's (the first task also those before, the last those after: jobs of no points have no
+// pieces), with their cycles. A job's cycles need only its own span and the previous job's (ref/timing.h), so every
+// task times its jobs apart; a banked device's conflict cycles of a job come from its slots' addresses (ref/banks.h).
+void FastRunner::finish_task(size_t t, const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) const {
+  const size_t tasks = task_first_.size() - 1;
+  const std::vector<Record>& hits = results_[t].hits;
+  for (size_t i = task_first_[t]; i < task_first_[t + 1]; ++i) {
+    const Piece& p = pieces_[i];
+    std::copy(hits.begin() + std::ptrdiff_t(p.first), hits.begin() + std::ptrdiff_t(p.first + p.records),
+              out.begin() + std::ptrdiff_t(p.out));
+  }
+  auto conflicts = [&](const Job& job, const JobHits& sum, uint32_t n) -> uint64_t {
+    return cfg_.banked() ? job_bank_conflicts(cfg_, shell_, job, read_groups(cfg_, job, sum, n)) : 0;
+  };
+  const size_t j0 = t == 0 ? 0 : pieces_[task_first_[t]].job;
+  const size_t j1 = t + 1 == tasks ? jobs.size() : pieces_[task_first_[t + 1]].job;
+  JobSpan prev;
+  for (size_t j = j0; j < j1; ++j) {
+    uint32_t n = 0;
+    JobHits sum;
+    job_result(jobs, j, cycles, n, sum);
+    Record& done = out[done_at_[j]];
+    done = Record();
+    done.kind = Record::Done;
+    done.tag = jobs[j].tag;
+    done.hits = n;
+    if (!cycles) continue;
+    if (j == j0 && j > 0) {
+      uint32_t pn = 0;
+      JobHits psum;
+      job_result(jobs, j - 1, cycles, pn, psum);
+      prev = job_span(cfg_, jobs[j - 1], j - 1, psum, pn, conflicts(jobs[j - 1], psum, pn));
+    }
+    const JobSpan span = job_span(cfg_, jobs[j], j, sum, n, conflicts(jobs[j], sum, n));
+    done.cycles = span_cycles(cfg_, j > 0 ? &prev : nullptr, span);
+    done.points = span.points;
+    done.stalls = 0;
+    prev = span;
+  }
+}
+
+void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate) {
+  const size_t points = make_pieces(jobs);
+  if (pieces_.size() <= 1 || !pool_ || pool_->size() <= 1 || points < kParallelMinPoints)
+    return run_serial(jobs, out, cycles, validate);
+  run_tasks(jobs, cycles, validate);
+  const size_t total = place_records(jobs);
   // Records are trivially destructible: shrinking `out` to the total costs nothing, and growing it constructs only
-  // the new ones. Every record is written below.
+  // the new ones. Every record is written by finish_task.
   out.resize(total);
-  // A job's hits and the summary of its kept records (from its pieces, all done).
-  // A banked device's conflict cycles of a job, from its slots' addresses (ref/banks.h).
-  auto conflicts = [&](const Job& job, const JobHits& sum, uint32_t hits) -> uint64_t {
-    return cfg_.banked() ? job_bank_conflicts(cfg_, shell_, job, read_groups(cfg_, job, sum, hits)) : 0;
-  };
-  auto job_result = [&](size_t j, uint32_t& hits, JobHits& sum) {
-    hits = 0;
-    sum = JobHits();  // none yet: the group sentinels of job_hits
-    sum.first_group = sum.last_group = job_groups(cfg_, jobs[j]);
-    for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
-      const Piece& p = pieces_[i];
-      if (jobs[j].mode == Mode::First) {
-        if (p.records) hits = 1, sum = p.sum;
-      } else {
-        hits += p.count;
-        if (cycles) sum = join_job_hits(sum, p.sum);
-      }
-    }
-  };
-  // Task t copies its pieces' kept records to their places and writes the completion records of the jobs from its
-  // first piece's to the next task's (the first task also those before, the last those after: jobs of no points
-  // have no pieces). A job's cycles need only its own span and the previous job's (ref/timing.h), so every task
-  // times its jobs apart.
-  auto finish = [&](size_t t) {
-    const std::vector<Record>& hits = results_[t].hits;
-    for (size_t i = task_first_[t]; i < task_first_[t + 1]; ++i) {
-      const Piece& p = pieces_[i];
-      std::copy(hits.begin() + std::ptrdiff_t(p.first), hits.begin() + std::ptrdiff_t(p.first + p.records),
-                out.begin() + std::ptrdiff_t(p.out));
-    }
-    const size_t j0 = t == 0 ? 0 : pieces_[task_first_[t]].job;
-    const size_t j1 = t + 1 == tasks ? jobs.size() : pieces_[task_first_[t + 1]].job;
-    JobSpan prev;
-    for (size_t j = j0; j < j1; ++j) {
-      uint32_t n = 0;
-      JobHits sum;
-      job_result(j, n, sum);
-      Record& done = out[done_at_[j]];
-      done = Record();
-      done.kind = Record::Done;
-      done.tag = jobs[j].tag;
-      done.hits = n;
-      if (!cycles) continue;
-      if (j == j0 && j > 0) {
-        uint32_t pn = 0;
-        JobHits psum;
-        job_result(j - 1, pn, psum);
-        prev = job_span(cfg_, jobs[j - 1], j - 1, psum, pn, conflicts(jobs[j - 1], psum, pn));
-      }
-      const JobSpan span = job_span(cfg_, jobs[j], j, sum, n, conflicts(jobs[j], sum, n));
-      done.cycles = span_cycles(cfg_, j > 0 ? &prev : nullptr, span);
-      done.points = span.points;
-      done.stalls = 0;
-      prev = span;
-    }
-  };
   // On the pool when there is enough to share (a copy of 4,096 records takes about 5 us, a job's completion about
   // 0.1 us).
+  const size_t tasks = task_first_.size() - 1;
   if (total - jobs.size() >= kParallelMinPoints || jobs.size() >= 64) {
-    pool_->parallel_for(tasks, finish);
+    pool_->parallel_for(tasks, [&](size_t t) { finish_task(t, jobs, out, cycles); });
   } else {
-    for (size_t t = 0; t < tasks; ++t) finish(t);
+    for (size_t t = 0; t < tasks; ++t) finish_task(t, jobs, out, cycles);
   }
 }
 

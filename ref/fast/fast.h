@@ -105,6 +105,16 @@ class FastRunner {
   void set_shell_word(size_t k, const ShellWord& w);
   // run_into (validate: every job first) and run_validated_into.
   void run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate);
+  // The parts of run_jobs: the jobs cut into pieces (returns their points); on one thread; on the pool, the tasks'
+  // lookups, then where each piece's kept records and each completion record go (returns the stream's length), then
+  // task t's records and completions.
+  size_t make_pieces(const std::vector<Job>& jobs);
+  void run_serial(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate);
+  void run_tasks(const std::vector<Job>& jobs, bool cycles, bool validate);
+  size_t place_records(const std::vector<Job>& jobs);
+  void finish_task(size_t t, const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) const;
+  // Job j's hits and the summary of its kept records, from its pieces (all done).
+  void job_result(const std::vector<Job>& jobs, size_t j, bool cycles, uint32_t& hits, JobHits& sum) const;
   // Looks up points [begin, end) of job j: appends their hit records (ALL: every one; FIRST: the first, then stops)
   // to `hits` and adds their number to `count`.
   void run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits, uint32_t& count) const;

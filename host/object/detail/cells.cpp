@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "voxcd/host/object/detail/closest.h"
+#include "voxcd/host/object/detail/union_find.h"
 
 namespace voxcd::detail {
 
@@ -16,19 +17,6 @@ namespace {
 constexpr double kSameAngle = 1e-9;
 constexpr double kPi = 3.14159265358979323846;
 
-struct Sets {
-  std::vector<uint32_t> parent;
-  explicit Sets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // Side s of local triangle i: 2i is the side its normal points to, 2i + 1 the other.
 inline uint32_t side(uint32_t i, bool front) { return 2 * i + (front ? 0 : 1); }
@@ -69,7 +57,7 @@ void around_edge(const Mesh& m, const std::vector<uint32_t>& tris, const std::ve
 // angular order. Triangles at the same angle (within kSameAngle: coplanar faces on one side of the edge, as two
 // touching parts give them) form a stack: the wedges on either side are bounded by its first and its last
 // triangle, and the sides facing each other inside the stack bound no space and are joined to nothing here.
-void join_around_edges(const Mesh& m, const std::vector<uint32_t>& tris, Sets& sides) {
+void join_around_edges(const Mesh& m, const std::vector<uint32_t>& tris, UnionFind& sides) {
   std::vector<Use> uses;
   uses.reserve(3 * tris.size());
   for (uint32_t i = 0; i < tris.size(); ++i)
@@ -140,7 +128,7 @@ CellRoles classify_cells(const Mesh& m, const std::vector<uint32_t>& tris) {
   r.role.assign(n, FaceRole::kBoundary);
   r.reverse.assign(n, 0);
   if (n == 0) return r;
-  Sets sides(2 * n);
+  UnionFind sides(2 * n);
   join_around_edges(m, tris, sides);
   const uint32_t outer = sides.find(outer_side(m, tris));
   // Cells and the triangles between them; breadth first from the unbounded cell.

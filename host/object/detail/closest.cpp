@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
+#include "voxcd/host/object/detail/median_split.h"
+
 namespace voxcd::detail {
 
 namespace {
@@ -98,26 +100,18 @@ uint32_t TriangleTree::build(uint32_t first, uint32_t count) {
     chi = chi.cwiseMax(mid);
   }
   for (int k = 0; k < 3; ++k) n.lo[k] = lo[k], n.hi[k] = hi[k];
-  if (count <= kLeafSize) {
-    n.first = first;
-    n.count = count;
+  if (count > kLeafSize) {
+    // Ties in the key go by triangle index, so the tree depends on the mesh alone.
+    const uint32_t half = median_split(tris_, first, count, chi - clo,
+                                       [](const Tri& x, const Tri& y) { return x.index < y.index; });
     nodes_[id] = n;
+    build(first, half);
+    nodes_[id].right = build(first + half, count - half);
     return id;
   }
-  int axis = 0;
-  const Eigen::Vector3d ext = chi - clo;
-  if (ext[1] > ext[axis]) axis = 1;
-  if (ext[2] > ext[axis]) axis = 2;
-  const uint32_t half = count / 2;
-  // Ties in the key go by triangle index, so the tree depends on the mesh alone.
-  std::nth_element(tris_.begin() + first, tris_.begin() + first + half, tris_.begin() + first + count,
-                   [axis](const Tri& x, const Tri& y) {
-                     const double kx = x.a[axis] + x.b[axis] + x.c[axis], ky = y.a[axis] + y.b[axis] + y.c[axis];
-                     return kx < ky || (kx == ky && x.index < y.index);
-                   });
+  n.first = first;
+  n.count = count;
   nodes_[id] = n;
-  build(first, half);
-  nodes_[id].right = build(first + half, count - half);
   return id;
 }
 

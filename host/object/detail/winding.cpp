@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "voxcd/host/object/detail/median_split.h"
+
 namespace voxcd::detail {
 
 namespace {
@@ -51,48 +53,61 @@ void radix_sort(std::vector<uint64_t>& keys, int bits) {
 
 }  // namespace
 
-std::vector<ChainTriangle> boundary_caps(const std::vector<GridPoint>& q,
-                                         const std::vector<std::array<uint32_t, 3>>& tris, int frac_bits) {
-  (void)frac_bits;
-  // Each use of an undirected edge as a key: lo, hi, and whether it runs lo -> hi (bit 0 clear) or back.
+namespace {
+
+// Each use of an undirected edge as a key: lo, hi, and whether it runs lo -> hi (bit 0 clear) or back.
+struct EdgeKeys {
   int vbits = 1;
-  while (vbits < 32 && (uint64_t(1) << vbits) < q.size()) ++vbits;
-  auto key_of = [vbits](uint32_t a, uint32_t b) {
+  explicit EdgeKeys(size_t vertices) {
+    while (vbits < 32 && (uint64_t(1) << vbits) < vertices) ++vbits;
+  }
+  uint64_t operator()(uint32_t a, uint32_t b) const {
     return (uint64_t(std::min(a, b)) << vbits | std::max(a, b)) << 1 | (a < b ? 0 : 1);
-  };
-  // A closed chain first, in linear time: the sum over every use of a keyed hash of its directed edge minus that
-  // of the reverse is zero when every edge's uses cancel, and nonzero otherwise but with probability 2^-64.
-  uint64_t balance = 0;
-  for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = t[k], b = t[(k + 1) % 3];
-      balance += mix(key_of(a, b)) - mix(key_of(b, a));
-    }
-  if (balance == 0) return {};
+  }
+};
+
+// The boundary of a chain of triangles: directed edges with multiplicity (uses that do not cancel), sorted.
+std::vector<std::pair<uint32_t, uint32_t>> boundary_edges(const std::vector<std::array<uint32_t, 3>>& tris,
+                                                          const EdgeKeys& key_of) {
   std::vector<uint64_t> keys;
   keys.reserve(3 * tris.size());
   for (const auto& t : tris)
     for (int k = 0; k < 3; ++k) keys.push_back(key_of(t[k], t[(k + 1) % 3]));
+  const int vbits = key_of.vbits;
   radix_sort(keys, 2 * vbits + 1);
-  // The boundary: directed edges with multiplicity (uses that do not cancel), in key order.
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   const uint64_t vmask = (uint64_t(1) << vbits) - 1;
   for (size_t i = 0; i < keys.size();) {
     size_t j = i;
     int net = 0;
     while (j < keys.size() && keys[j] >> 1 == keys[i] >> 1) net += (keys[j++] & 1) ? -1 : 1;
-    if (net == 0) {
-      i = j;
-      continue;
-    }
     const uint32_t lo = uint32_t(keys[i] >> (vbits + 1)), hi = uint32_t((keys[i] >> 1) & vmask);
     for (int k = 0; k < std::abs(net); ++k) edges.push_back(net > 0 ? std::make_pair(lo, hi) : std::make_pair(hi, lo));
     i = j;
   }
-  std::vector<ChainTriangle> caps;
-  if (edges.empty()) return caps;
-  // Outgoing boundary edges per vertex (CSR over the vertices that have any).
   std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+// A cone over one closed loop of boundary vertices: its apex the loop's mean (rounded to the grid).
+void add_cone(const std::vector<GridPoint>& q, const std::vector<uint32_t>& loop, std::vector<ChainTriangle>& caps) {
+  __int128 sum[3] = {0, 0, 0};
+  for (size_t k = 0; k + 1 < loop.size(); ++k)
+    for (int a = 0; a < 3; ++a) sum[a] += q[loop[k]][a];
+  const int64_t n = int64_t(std::max<size_t>(loop.size() - 1, 1));
+  GridPoint apex{};
+  for (int a = 0; a < 3; ++a) {
+    const __int128 h = sum[a] >= 0 ? (sum[a] + n / 2) / n : -((-sum[a] + n / 2) / n);
+    apex[a] = int64_t(h);
+  }
+  for (size_t k = 0; k + 1 < loop.size(); ++k) caps.push_back({apex, q[loop[k]], q[loop[k + 1]], 1});
+}
+
+// The boundary's closed loops, each capped by add_cone.
+std::vector<ChainTriangle> cap_loops(const std::vector<GridPoint>& q,
+                                     const std::vector<std::pair<uint32_t, uint32_t>>& edges) {
+  std::vector<ChainTriangle> caps;
+  // Outgoing boundary edges per vertex (CSR over the vertices that have any).
   std::vector<uint32_t> verts;
   for (const auto& e : edges)
     if (verts.empty() || verts.back() != e.first) verts.push_back(e.first);
@@ -115,19 +130,30 @@ std::vector<ChainTriangle> boundary_caps(const std::vector<GridPoint>& q,
         v = edges[next[k]++].second;
         loop.push_back(v);
       } while (v != start);
-      __int128 sum[3] = {0, 0, 0};
-      for (size_t k = 0; k + 1 < loop.size(); ++k)
-        for (int a = 0; a < 3; ++a) sum[a] += q[loop[k]][a];
-      const int64_t n = int64_t(std::max<size_t>(loop.size() - 1, 1));
-      GridPoint apex{};
-      for (int a = 0; a < 3; ++a) {
-        const __int128 h = sum[a] >= 0 ? (sum[a] + n / 2) / n : -((-sum[a] + n / 2) / n);
-        apex[a] = int64_t(h);
-      }
-      for (size_t k = 0; k + 1 < loop.size(); ++k) caps.push_back({apex, q[loop[k]], q[loop[k + 1]], 1});
+      add_cone(q, loop, caps);
     }
   }
   return caps;
+}
+
+}  // namespace
+
+std::vector<ChainTriangle> boundary_caps(const std::vector<GridPoint>& q,
+                                         const std::vector<std::array<uint32_t, 3>>& tris, int frac_bits) {
+  (void)frac_bits;
+  const EdgeKeys key_of(q.size());
+  // A closed chain first, in linear time: the sum over every use of a keyed hash of its directed edge minus that
+  // of the reverse is zero when every edge's uses cancel, and nonzero otherwise but with probability 2^-64.
+  uint64_t balance = 0;
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = t[k], b = t[(k + 1) % 3];
+      balance += mix(key_of(a, b)) - mix(key_of(b, a));
+    }
+  if (balance == 0) return {};
+  const std::vector<std::pair<uint32_t, uint32_t>> edges = boundary_edges(tris, key_of);
+  if (edges.empty()) return {};
+  return cap_loops(q, edges);
 }
 
 double triangle_winding(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -178,15 +204,7 @@ uint32_t CapField::build(uint32_t first, uint32_t count) {
     nodes_[id] = n;
     return id;
   }
-  int axis = 0;
-  const Eigen::Vector3d ext = chi - clo;
-  if (ext[1] > ext[axis]) axis = 1;
-  if (ext[2] > ext[axis]) axis = 2;
-  const uint32_t half = count / 2;
-  std::nth_element(tris_.begin() + first, tris_.begin() + first + half, tris_.begin() + first + count,
-                   [axis](const Tri& x, const Tri& y) {
-                     return x.a[axis] + x.b[axis] + x.c[axis] < y.a[axis] + y.b[axis] + y.c[axis];
-                   });
+  const uint32_t half = median_split(tris_, first, count, chi - clo, [](const Tri&, const Tri&) { return false; });
   n.count = 0;
   nodes_[id] = n;
   const uint32_t l = build(first, half);

@@ -5,7 +5,7 @@
 # MODELS: whether the build configured the device models (and built them, as `cmake --build` does).
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
 
 run(0 out ${VOXCD} --version)
 expect("${out}" "^voxcd [0-9]+\\.[0-9]+\nbackends:\n  ref +ready\n  cpu +ready\n  rtl +[^\n]+\n  sysc-rtl +[^\n]+\n  sysc-tlm +[^\n]+\n?$")

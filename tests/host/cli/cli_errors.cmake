@@ -2,7 +2,7 @@
 # codes for argument errors (105 a bad value, 106 no subcommand, 109 an unknown option) and 2 for an error the
 # subcommand raised. docs/robustness.md lists them.
 file(MAKE_DIRECTORY ${WORK})
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
 
 run(106 out ${VOXCD})
 expect("${out}" "A subcommand is required")

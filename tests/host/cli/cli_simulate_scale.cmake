@@ -2,7 +2,7 @@
 # ERRORS is OFF: the default voxel, --resolution (and its scene-file key, which voxcd size reads too), and the
 # errors for --voxel with --resolution, a resolution below 4 and a density at which the objects cannot be placed.
 file(MAKE_DIRECTORY ${WORK})
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
 
 string(REPLACE "," ";" counts "${COUNTS}")
 foreach(n IN LISTS counts)

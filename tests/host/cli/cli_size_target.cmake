@@ -3,7 +3,7 @@
 # that cannot be used is refused naming the file, the line and the column; voxcd sweep takes the depth as an axis.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
 set(scene ${SCENES}/small.json)
 set(fast --frames 3)
 

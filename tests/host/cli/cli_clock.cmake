@@ -5,7 +5,7 @@
 # --clock.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
 
 set(default_source "OpenSTA, OSU 0\\.18 um, docs/hardware\\.md")
 string(REPLACE "." "\\." default_mhz "${DEFAULT_MHZ}")
