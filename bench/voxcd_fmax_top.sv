@@ -19,7 +19,8 @@ module voxcd_fmax_top #(
   parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
   parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
   parameter int unsigned SB    = voxcd_arch_pkg::SB,
-  parameter int unsigned WB    = voxcd_arch_pkg::WB
+  parameter int unsigned WB    = voxcd_arch_pkg::WB,
+  parameter int unsigned Depth = voxcd_arch_pkg::Depth
 ) (
   input  logic clk_i,
   input  logic rst_ni,
@@ -102,7 +103,7 @@ module voxcd_fmax_top #(
 
   voxcd_device #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB)
+    .TAGW(TAGW), .SB(SB), .WB(WB), .Depth(Depth)
   ) u_device (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),

@@ -53,6 +53,7 @@ void DeviceConfig::validate() const {
   } else {
     require(BANKS == 0, "BANKS = " + std::to_string(BANKS) + " is negative (0: a voxmap copy per lane)");
   }
+  range("DEPTH", depth, 0, kMaxDepth);
   // An index must be able to hold every in-grid value 0 .. 2^DW - 1 plus a sign.
   require(index_width() >= DW + 1, "the accumulator's integer part (" + std::to_string(index_width()) +
                                        " bits) cannot hold DW = " + std::to_string(DW));
@@ -64,6 +65,7 @@ std::string DeviceConfig::to_string() const {
     << MEMW << " LANES " << LANES << " SAW " << SAW << " MAW " << MAW << " TAGW " << TAGW;
   if (distance()) s << " SB " << SB << " WB " << WB;
   if (banked()) s << " BANKS " << BANKS;
+  if (depth != 0) s << " DEPTH " << depth;
   return s.str();
 }
 

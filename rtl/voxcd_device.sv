@@ -15,8 +15,9 @@
 // At most one of hit_valid_o / done_valid_o is high in a cycle, and records leave in stream order.
 //
 // Structure: an issue stage takes LANES consecutive points of the head job per cycle (one lane group, a "slot")
-// and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through registers R0..R5 (R0..R8
-// on a distance device: PipeSlots + DistSlots); the hit-test stage at the last register emits the slot's records,
+// and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through N slot registers, R0..R5
+// at Depth 0 (R0..R8 on a distance device), N = PipeSlots + Depth (+ DistSlots on a distance device): each unit of
+// Depth adds one register stage to every lane (voxcd_lane, voxcd_arch_pkg); the hit-test stage at the last register emits the slot's records,
 // one per cycle, into the output slice (voxcd_skid: an output register and a skid register). The whole pipeline
 // advances together: it holds (a) while the output slice cannot take a record (its registered ready is low: both
 // of its registers are full, because the consumer has held the waiting record; a stall, and only those cycles
@@ -26,7 +27,7 @@
 //
 // Timing (the exact model is ref/timing.h): a job of c points takes max(1, ceil(c / LANES)) slots; a slot takes
 // max(1, records) cycles at the hit test; the first slot of a job accepted in cycle a is there in cycle a + 1 + N,
-// N = PipeSlots (+ DistSlots on a distance device). FIRST stops issuing at its first hit: the N - 1 slots already
+// N slot registers as above. FIRST stops issuing at its first hit: the N - 1 slots already
 // issued are squashed and the issue stage leaves the job with one empty slot.
 //
 // The output slice adds no latency to the always-ready case (a record is on the pins in the cycle after its
@@ -51,7 +52,8 @@ module voxcd_device #(
   parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
   parameter int unsigned SB    = voxcd_arch_pkg::SB,
   parameter int unsigned WB    = voxcd_arch_pkg::WB,
-  parameter int unsigned BANKS = voxcd_arch_pkg::BANKS  // 0: a voxmap copy per lane; B: one voxmap in B shared banks
+  parameter int unsigned BANKS = voxcd_arch_pkg::BANKS,  // 0: a voxmap copy per lane; B: one voxmap in B shared banks
+  parameter int unsigned Depth = voxcd_arch_pkg::Depth   // register stages added to every lane, 0 .. MaxDepth
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -112,7 +114,20 @@ module voxcd_device #(
   localparam int unsigned CW    = voxcd_arch_pkg::CW;
   localparam bit          Dist  = SB > 2;                        // a distance device
   localparam int unsigned IW    = SB + 3 * WB;                   // D, the threshold
-  localparam int unsigned NumR  = voxcd_arch_pkg::PipeSlots + (Dist ? voxcd_arch_pkg::DistSlots : 0);  // R0 .. R5 (R8)
+  // The slot registers, and the ones whose fields the lanes read (voxcd_lane; at Depth 0: R1, R2, R2, R3, R3, R4, R5).
+  localparam bit          HasIn    = Depth > voxcd_arch_pkg::RankIn;
+  localparam bit          HasSum   = Depth > voxcd_arch_pkg::RankSum;
+  localparam bit          HasFloor = Depth > voxcd_arch_pkg::RankFloor;
+  localparam bit          HasAddr  = Depth > voxcd_arch_pkg::RankAddr;
+  localparam bit          HasRead  = Depth > voxcd_arch_pkg::RankRead;
+  localparam int unsigned ProdR  = 1 + 32'(HasIn);            // the products (the lanes read t here)
+  localparam int unsigned AccR   = ProdR + 1 + 32'(HasSum);   // the accumulators (n: the bounds)
+  localparam int unsigned YzR    = AccR + 32'(HasFloor);      // what the y + ny*z product reads (ny)
+  localparam int unsigned R3R    = YzR + 1;                   // the index and yz (nx)
+  localparam int unsigned LinR   = R3R + 32'(HasAddr);        // what R4's address is computed from (map_base, hxy)
+  localparam int unsigned AddrR  = LinR + 1;                  // R4: the voxmap address (the shared banks read it)
+  localparam int unsigned WordR  = AddrR + 1;                 // R5: the voxmap word
+  localparam int unsigned NumR   = WordR + 1 + 32'(HasRead) + (Dist ? voxcd_arch_pkg::DistSlots : 0);
   localparam int unsigned ThrW  = Dist ? IW : 1;                 // job fields a 2-bit device does not keep
   localparam int unsigned HxyW  = Dist ? 2 * DW + 1 : 1;
   localparam int unsigned LgL   = $clog2(LANES);
@@ -290,7 +305,10 @@ module voxcd_device #(
     for (int i = 0; i < LANES; i++) issue.lanes[i] = (next_point_q + (SAW + 1)'(i)) < head_job.shell_count;
   end
 
-  // ---- Slot registers R0 .. R5 (R8): the slot's bookkeeping and its job, shifting when the pipeline advances ----
+  // ---- Slot registers R0 .. R(N-1): the slot's bookkeeping and its job, shifting when the pipeline advances ----
+  // R0 .. R4 (AddrR) advance with the issue stage (advance); R5 (WordR) and the registers after it with the last
+  // register (advance_out), R5 taking an empty slot while R4 waits for a shared voxmap bank. Without shared banks
+  // the two enables are the same.
   logic [MetaW-1:0] slot_meta_q [NumR];
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -298,41 +316,56 @@ module voxcd_device #(
     end else begin
       if (advance) begin
         slot_meta_q[0] <= issue;
-        for (int s = 1; s < NumR - 1; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
+        for (int s = 1; s <= AddrR; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
       end
-      if (advance_out) slot_meta_q[NumR - 1] <= advance ? slot_meta_q[NumR - 2] : '0;  // '0: an empty slot
+      if (advance_out) begin
+        slot_meta_q[WordR] <= advance ? slot_meta_q[AddrR] : '0;  // '0: an empty slot
+        for (int s = WordR + 1; s < NumR; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
+      end
     end
   end
 
   // The job travels with its slot, each register keeping what the stages from it on read: R0 the whole job (the
-  // lanes read M there), R1 the translation and the map, R2 and R3 the map (the lanes read t at R1, n at R2, nx,
-  // map_base and hxy at R3), and R1 .. R5 (R8) the fields of the hit test (slot_test_q[s - 1] is register Rs).
+  // lanes read M there), R1 .. ProdR the translation (read at ProdR), R1 .. LinR the map (n read at AccR, ny at
+  // YzR, nx at R3R, map_base and hxy at LinR), and R1 .. R(N-1) the fields of the hit test (slot_test_q[s - 1] is
+  // register Rs, and so are slot_t_q[s - 1] and slot_map_q[s - 1]).
+  localparam int unsigned MapW = 3 * (DW + 1) + MAW + HxyW;
   job_t             r0_job_q;
-  logic [3*TW-1:0]  r1_t_q;
-  map_t             r1_map_q, r2_map_q, r3_map_q;
+  logic [3*TW-1:0]  slot_t_q [ProdR];
+  logic [MapW-1:0]  slot_map_q [LinR];
   logic [TestW-1:0] slot_test_q [NumR - 1];
   test_t            r0_test, last_test;
+  map_t             acc_map, yz_map, r3_map, lin_map;  // the map fields of the registers AccR, YzR, R3R, LinR
   assign r0_test   = {r0_job_q.tag, r0_job_q.mode, r0_job_q.mask, r0_job_q.thr, r0_job_q.stamp, r0_job_q.stall_stamp};
   assign last_test = slot_test_q[NumR - 2];
+  assign acc_map   = slot_map_q[AccR - 1];
+  assign yz_map    = slot_map_q[YzR - 1];
+  assign r3_map    = slot_map_q[R3R - 1];
+  assign lin_map   = slot_map_q[LinR - 1];
   // Job fields are read only where their slot is valid: no reset.
   always_ff @(posedge clk_i) begin
     if (advance) begin
       r0_job_q       <= head_job;
-      r1_t_q         <= r0_job_q.t;
-      r1_map_q       <= {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
-      r2_map_q       <= r1_map_q;
-      r3_map_q       <= r2_map_q;
+      slot_t_q[0]    <= r0_job_q.t;
+      for (int s = 1; s < ProdR; s++) slot_t_q[s] <= slot_t_q[s - 1];
+      slot_map_q[0]  <= {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
+      for (int s = 1; s < LinR; s++) slot_map_q[s] <= slot_map_q[s - 1];
       slot_test_q[0] <= r0_test;
-      for (int s = 1; s < NumR - 2; s++) slot_test_q[s] <= slot_test_q[s - 1];
+      for (int s = 1; s < AddrR; s++) slot_test_q[s] <= slot_test_q[s - 1];
     end
-    if (advance_out) slot_test_q[NumR - 2] <= slot_test_q[NumR - 3];
+    if (advance_out) begin
+      for (int s = AddrR; s < NumR - 1; s++) slot_test_q[s] <= slot_test_q[s - 1];
+    end
   end
 
-  // What each stage reads of its slot's bookkeeping: R0's, R4's and the last register's (R5, or R8 on a distance
-  // device), where the hit test is.
-  meta_t r0_slot, r4_slot, last_slot;  // r4_slot: the slot whose lanes read the shared voxmap banks (BANKS > 0)
+  // What each stage reads of its slot's bookkeeping: R0's, R4's, R5's and the last register's, where the hit test
+  // is (R5 at Depth 0, or R8 on a distance device).
+  meta_t r0_slot, r4_slot, r5_slot, last_slot;  // r4_slot, r5_slot: the shared voxmap banks' (BANKS > 0)
+  test_t r5_test;
   assign r0_slot   = slot_meta_q[0];
-  assign r4_slot   = slot_meta_q[NumR - 2];
+  assign r4_slot   = slot_meta_q[AddrR];
+  assign r5_slot   = slot_meta_q[WordR];
+  assign r5_test   = slot_test_q[WordR - 1];
   assign last_slot = slot_meta_q[NumR - 1];
 
   // ---- Shell banks: address a is in bank a % LANES, row a / LANES ----
@@ -363,6 +396,8 @@ module voxcd_device #(
   logic [LANES*MAW-1:0]  lane_addr;     // R4: the word it reads
   logic [LANES*MEMW-1:0] lane_word;     // R5: the word from the shared banks (Banked)
   logic [LANES-1:0]      lane_inside;
+  logic [LANES-1:0]      lane_inside5;  // R5's points before READ (2-bit lanes)
+  logic [LANES*2-1:0]    lane_state5;
   logic [LANES*2-1:0]    lane_state;
   logic [LANES*3*DW-1:0] lane_voxel;
   logic [LANES*IW-1:0]   lane_dist;
@@ -372,7 +407,7 @@ module voxcd_device #(
     assign point = bank_rdata[RotW'(32'(r0_slot.rot) + l) & RotW'(LANES - 1)];
     voxcd_lane #(
       .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB),
-      .SharedMap(Banked)
+      .Depth(Depth), .SharedMap(Banked)
     ) u_lane (
       .clk_i      (clk_i),
       .en_i       (advance),
@@ -385,11 +420,14 @@ module voxcd_device #(
       .map_wdata_i(map_wdata_i),
       .point_i    (point),
       .m_i        (r0_job_q.m),
-      .t_i        (r1_t_q),
-      .n_i        (r2_map_q.n),
-      .nx_i       (r3_map_q.n[DW:0]),
-      .map_base_i (r3_map_q.map_base),
-      .hxy_i      ((2 * DW + 1)'(r3_map_q.hxy)),
+      .t_i        (slot_t_q[ProdR - 1]),
+      .n_i        (acc_map.n),
+      .ny_i       (yz_map.n[DW+1 +: DW+1]),
+      .nx_i       (r3_map.n[DW:0]),
+      .map_base_i (lin_map.map_base),
+      .hxy_i      ((2 * DW + 1)'(lin_map.hxy)),
+      .inside5_o  (lane_inside5[l]),
+      .state5_o   (lane_state5[2*l +: 2]),
       .inside_o   (lane_inside[l]),
       .state_o    (lane_state[2*l +: 2]),
       .dist_o     (lane_dist[IW*l +: IW]),
@@ -501,11 +539,14 @@ module voxcd_device #(
   // round each bank reads the word of the lowest lane still waiting for it, and every waiting lane that wants that
   // word takes it. R4 leaves in its last round; before that the last register takes empty slots (a bank conflict
   // cycle each). So a slot with at most r distinct words in any one bank reaches the hit test r - 1 cycles late;
-  // a slot of a FIRST job that has found its hit reads nothing (it is squashed). ref/banks.h counts the same.
+  // a slot of a FIRST job that has found its hit reads nothing (it is squashed; with READ the hit is seen in R5,
+// before the state's register, so a FIRST job's slots read up to the one of its hit at every Depth). ref/banks.h
+// counts the same.
   // A word read in an earlier round waits in early_q and moves to held_q when the slot enters R5; the words of the
   // last round stay on the banks' outputs while the slot is in R5 (the banks read only when R5 advances).
   if (Banked) begin : g_banks
     logic                 r4_squashed;   // R4 belongs to a FIRST job whose hit is found or at the hit test now
+    logic                 r5_first_hit;  // R5 (not the last register: HasRead) holds a FIRST job's hit
     logic [LANES-1:0]     want;          // lanes of R4 that read a word
     logic [LANES-1:0]     served_d, served_q;  // lanes of R4 that have their word (earlier rounds)
     logic [LANES-1:0]     waiting, granted;
@@ -517,8 +558,17 @@ module voxcd_device #(
     logic [LANES-1:0]     last_round_q;  // lanes of R5 whose word was read in R4's last round
     logic [LANES*BankW-1:0] r5_bank_q;   // and the bank that read it
 
+    always_comb begin
+      r5_first_hit = 1'b0;
+      if (HasRead && r5_slot.valid && r5_test.mode == voxcd_arch_pkg::ModeFirst) begin
+        for (int l = 0; l < LANES; l++) begin
+          r5_first_hit = r5_first_hit || (r5_slot.lanes[l] && lane_inside5[l] && r5_test.mask[lane_state5[2*l +: 2]]);
+        end
+      end
+    end
     assign r4_squashed = (found_q && (found_seq_q == r4_slot.seq)) ||
-                         (last_slot.valid && !squash && is_first && (|lane_hit) && (last_slot.seq == r4_slot.seq));
+                         (last_slot.valid && !squash && is_first && (|lane_hit) && (last_slot.seq == r4_slot.seq)) ||
+                         (r5_first_hit && (r5_slot.seq == r4_slot.seq));
     for (genvar l = 0; l < LANES; l++) begin : g_want
       assign want[l] = r4_slot.valid && !r4_squashed && r4_slot.lanes[l] && lane_read[l];
     end
@@ -682,8 +732,8 @@ module voxcd_device #(
 
   // Fields that only some stages read.
   logic unused;
-  assign unused = ^{r0_slot, r4_slot, last_slot.rot, r0_job_q, r3_map_q.n[3*(DW+1)-1:DW+1], last_test, job_threshold_i,
-                    hx_in, hy_in};
+  assign unused = ^{r0_slot, r4_slot, r5_slot, r5_test, last_slot.rot, r0_job_q, acc_map, yz_map, r3_map, lin_map,
+                    last_test, job_threshold_i, hx_in, hy_in, lane_inside5, lane_state5};
 
   // ---- Assertions (Verilator runs them with --assert; voxcd_assert.sv) ----
   // Parameter sanity, at elaboration.
@@ -698,6 +748,9 @@ module voxcd_device #(
   `VOXCD_ASSERT_INIT(WeightBitsFit, !Dist || (WB >= 1 && WB <= MF + PF && WB <= 16))
   `VOXCD_ASSERT_INIT(BanksPowerOfTwo, (BANKS & (BANKS - 1)) == 0 && BANKS <= 64 && LgB <= MAW)
   `VOXCD_ASSERT_INIT(BanksOnlyOnStates, !Banked || !Dist)
+  `VOXCD_ASSERT_INIT(DepthInRange, Depth <= voxcd_arch_pkg::MaxDepth)
+  `VOXCD_ASSERT_INIT(SlotsMatchTheTimingModel,
+                     NumR == voxcd_arch_pkg::PipeSlots + Depth + (Dist ? voxcd_arch_pkg::DistSlots : 0))
   `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) && TestW == $bits(test_t) &&
                                         RecordW == $bits(record_t))
 

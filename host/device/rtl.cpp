@@ -280,6 +280,14 @@ std::vector<DeviceConfig> rtl_banked_configs() {
   return out;
 }
 
+std::vector<DeviceConfig> rtl_depth_configs() {
+  std::vector<DeviceConfig> out;
+#define VOXCD_RTL_DEPTH_ENTRY(model, pairs) out.push_back(parse_config_pairs(pairs, "rtl model " #model));
+  VOXCD_RTL_DEPTH_MODELS(VOXCD_RTL_DEPTH_ENTRY)
+#undef VOXCD_RTL_DEPTH_ENTRY
+  return out;
+}
+
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
   return make_rtl_device(cfg, opt, RtlFaults{});
 }
@@ -293,14 +301,16 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
   VOXCD_RTL_CONFIG_MODELS(VOXCD_RTL_CONFIG_ENTRY)
   VOXCD_RTL_DIST_MODELS(VOXCD_RTL_CONFIG_ENTRY)
   VOXCD_RTL_BANKED_MODELS(VOXCD_RTL_CONFIG_ENTRY)
+  VOXCD_RTL_DEPTH_MODELS(VOXCD_RTL_CONFIG_ENTRY)
 #undef VOXCD_RTL_CONFIG_ENTRY
-  DeviceConfig built;  // the other models are built for the default widths, a voxmap copy per lane
+  DeviceConfig built;  // the other models are built for the default widths, a voxmap copy per lane, depth 0
   built.LANES = cfg.LANES;
-  if (!cfg.same_widths(built) || cfg.BANKS != built.BANKS) {
+  if (!cfg.same_widths(built) || cfg.BANKS != built.BANKS || cfg.depth != built.depth) {
     std::string extra;
     for (const DeviceConfig& c : rtl_configs()) extra += "; " + c.to_string();
     for (const DeviceConfig& c : rtl_distance_configs()) extra += "; " + c.to_string();
     for (const DeviceConfig& c : rtl_banked_configs()) extra += "; " + c.to_string();
+    for (const DeviceConfig& c : rtl_depth_configs()) extra += "; " + c.to_string();
     throw DeviceError("rtl: this build has models for the default widths (" + DeviceConfig{}.to_string() +
                       " with LANES 1, 2, 4, 8)" + extra + ", not for " + cfg.to_string());
   }
@@ -320,6 +330,7 @@ std::vector<int> rtl_lanes() { return {}; }
 std::vector<DeviceConfig> rtl_configs() { return {}; }
 std::vector<DeviceConfig> rtl_distance_configs() { return {}; }
 std::vector<DeviceConfig> rtl_banked_configs() { return {}; }
+std::vector<DeviceConfig> rtl_depth_configs() { return {}; }
 
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig&, const DeviceOptions&, const RtlFaults&) {
   throw DeviceError("rtl: this build has no RTL models (Verilator was not found at configure time)");

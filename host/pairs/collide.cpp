@@ -453,9 +453,8 @@ void PairCollider::collide_pieces(const std::vector<PairRequest>& pairs, const P
     }
     res.lookups += js[j].shell_count;
     if (cycles) {
-      const uint64_t conflicts =
-          cfg.banked() ? device_->bank_conflicts(js[j], read_groups(cfg, js[j], sum, hits)) : 0;
-      const JobSpan span = job_span(cfg, js[j], j, sum, hits, conflicts);
+      const BankCycles bank = cfg.banked() ? device_->bank_cycles(js[j], sum, hits) : BankCycles{};
+      const JobSpan span = job_span(cfg, js[j], j, sum, hits, bank);
       res.cycles += span_cycles(cfg, j ? &prev : nullptr, span);
       prev = span;
     }
@@ -550,9 +549,8 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
       const size_t end = j + 1 < js.size() ? part.job_records[j + 1].first - 1 : nrec - 1;
       Record& done = part.records[end];
       const JobHits h = job_hits(cfg, js[j], j, part.records.data() + jr.first, end - jr.first, jr.first);
-      const uint64_t conflicts =
-          cfg.banked() ? device_->bank_conflicts(js[j], read_groups(cfg, js[j], h, done.hits)) : 0;
-      const JobSpan span = job_span(cfg, js[j], j, h, done.hits, conflicts);
+      const BankCycles bank = cfg.banked() ? device_->bank_cycles(js[j], h, done.hits) : BankCycles{};
+      const JobSpan span = job_span(cfg, js[j], j, h, done.hits, bank);
       done.cycles = span_cycles(cfg, j ? &prev : nullptr, span);
       done.points = span.points;
       done.stalls = 0;
