@@ -3,7 +3,9 @@
 // backends (ref, cpu) on the same stream. Every cycle count here is read from the RTL's own completion records
 // or pins, not from the timing model. Writes Markdown to stdout (and to --out FILE); bench/hardware.sh puts it
 // into docs/hardware.md. --distance measures the distance devices (SB > 2) instead: the same throughput table on a
-// 64^3 distance map at SB 8, the SB 4 and SB 16 models, and their latency.
+// 64^3 distance map at SB 8, the SB 4 and SB 16 models, and their latency. --depth measures every pipeline depth
+// the build has models of (docs/hardware.md, "Pipeline depth"): sustained points per cycle, latency, the cycles a
+// FIRST job's early stop costs, and how fast each depth co-simulates beside depth 0 in the same run.
 #include <verilated.h>
 
 #include <algorithm>
@@ -279,24 +281,149 @@ void distance_section(std::ostream& md) {
      << ", models built with -O3.\n";
 }
 
+// A configuration's model at depth d: rtl_depth_configs() has every depth of LANES 1 and 4 (and depth 0 is the
+// default-width model of the lane count).
+DeviceConfig at_depth(DeviceConfig cfg, int d) {
+  cfg.depth = d;
+  return cfg;
+}
+
+// Cycles from one job's completion to the next's, the first a FIRST job of `groups` slots that hits in its first
+// slot, the second a one-point COUNT job: the squashed slots, the empty slot, the second job's slot.
+uint64_t first_stop_cycles(const DeviceConfig& cfg) {
+  DeviceMemory mem;
+  const uint32_t groups = 64;
+  for (uint32_t k = 0; k < groups * uint32_t(cfg.LANES); ++k) mem.shell.push_back({128, 128, 128});  // voxel 0
+  mem.map = {uint64_t{kSurface}};
+  Job first;
+  first.mode = Mode::First;
+  first.shell_count = groups * uint32_t(cfg.LANES);
+  Job count;
+  count.tag = 1;
+  count.mode = Mode::Count;
+  count.shell_count = 1;
+  auto dev = make_device("rtl", cfg);
+  dev->load(mem);
+  const std::vector<Record> r = dev->run({first, count});
+  if (r.size() != 3 || r[0].kind != Record::Hit) throw std::runtime_error("bench_hardware: the FIRST job did not hit");
+  return *r.back().cycles;
+}
+
+// Every depth of the 2-bit device at LANES 1 and 4, and the deepest banked and distance models beside their depth-0
+// counterparts (ref/timing.h: pipeline_slots = 6 + depth, 9 + depth on a distance device).
+void depth_section(std::ostream& md, int repeats) {
+  const DeviceMemory mem = scene(11);
+  const uint32_t sizes[] = {256, 4096, 65536};
+  md << "### Pipeline depth: throughput, latency and co-simulation speed\n\n"
+     << "Every depth the build has models of, on the scene of the throughput table above (a 64^3 voxmap with 1% "
+        "surface voxels, 65536 random points, about 1% of lookups hit): points per cycle of 8 back-to-back jobs of "
+        "one size (the first left out) in ALL and COUNT, read from the RTL's completion records; the latency of a "
+        "one-point job that hits (its completion record's cycles, from its acceptance to the record's emission); "
+        "the cycles from a FIRST job's completion to the next job's when the FIRST job hits in its first slot (its "
+        "squashed slots, the empty slot it leaves, the next job's one slot); and the rtl backend's co-simulation "
+        "speed at LANES 4 on 64 COUNT jobs of 4096 points (median wall time of "
+     << repeats << " runs, all depths in one run, with the ratio to depth 0). Goal: at least 0.95 x LANES from 256 "
+                   "points at every depth, and no depth more than 10% slower to co-simulate than depth 0.\n\n"
+     << "| depth | slot registers | latency (cycles) | FIRST stop (cycles) | L=1 ALL 4096 | L=1 COUNT 4096 |";
+  for (uint32_t n : sizes) md << " L=4 ALL " << n << " |";
+  md << " L=4 COUNT 4096 | worst x LANES | co-sim Mcycles/s (L=4) | ratio |\n|--:|--:|--:|--:|--:|--:|";
+  for (size_t i = 0; i < std::size(sizes); ++i) md << "--:|";
+  md << "--:|--:|--:|--:|\n";
+  DeviceConfig l1, l4;
+  l1.LANES = 1;
+  l4.LANES = 4;
+  const std::vector<Job> cosim_jobs = stream(Mode::Count, 4096, 64);
+  double rate0 = 0, worst = 1e9, worst_speed = 1e9;
+  for (int d = 0; d <= kMaxDepth; ++d) {
+    auto one = make_device("rtl", at_depth(l1, d));
+    auto four = make_device("rtl", at_depth(l4, d));
+    one->load(mem);
+    four->load(mem);
+    const DeviceConfig c4 = at_depth(l4, d);
+    md << "| " << d << " | " << pipeline_slots(c4) << " | " << one_point_cycles(c4, mem) << " | "
+       << first_stop_cycles(c4) << " |";
+    const Sustained a1 = sustained(*one, Mode::All, 4096, 1), n1 = sustained(*one, Mode::Count, 4096, 1);
+    double row_worst = std::min(a1.points_per_cycle, n1.points_per_cycle);
+    md << " " << bench::fmt("%.3f", a1.points_per_cycle) << " | " << bench::fmt("%.3f", n1.points_per_cycle) << " |";
+    for (uint32_t n : sizes) {
+      const Sustained a4 = sustained(*four, Mode::All, n, 4);
+      row_worst = std::min(row_worst, a4.points_per_cycle / 4);
+      md << " " << bench::fmt("%.2f", a4.points_per_cycle) << " |";
+    }
+    const Sustained n4 = sustained(*four, Mode::Count, 4096, 4);
+    row_worst = std::min(row_worst, n4.points_per_cycle / 4);
+    worst = std::min(worst, row_worst);
+    std::vector<Record> recs;
+    const double t = bench::median_time(repeats, [&] { recs = four->run(cosim_jobs); });
+    uint64_t cycles = 0;
+    for (const Record& r : recs)
+      if (r.kind == Record::Done) cycles += *r.cycles;
+    const double rate = double(cycles) / t / 1e6;
+    if (d == 0) rate0 = rate;
+    else worst_speed = std::min(worst_speed, rate / rate0);
+    md << " " << bench::fmt("%.2f", n4.points_per_cycle) << " | " << bench::fmt("%.3f", row_worst) << " | "
+       << bench::fmt("%.2f", rate) << " | " << bench::fmt("%.2f", rate / rate0) << " |\n";
+    std::fprintf(stderr, "depth %d done\n", d);
+  }
+  md << "\nEvery depth sustains at least " << bench::fmt("%.3f", worst)
+     << " x LANES (the goal is 0.95); the slowest depth co-simulates at " << bench::fmt("%.2f", worst_speed)
+     << " of depth 0's rate in this run (the goal: at least 0.90).\n\n";
+
+  // The deepest banked and distance models beside the same configuration at depth 0.
+  md << "The deepest pipeline with shared banks and on a distance device, 4096-point jobs (the distance device on "
+        "the sphere map of its own section, thresholds at the 1st percentile), beside the same configuration at "
+        "depth 0:\n\n| model | ALL | COUNT | latency (cycles) | at depth 0: ALL | COUNT | latency |\n"
+        "|---|--:|--:|--:|--:|--:|--:|\n";
+  for (const DeviceConfig& c : rtl_depth_configs()) {
+    if (c.depth != kMaxDepth || !(c.banked() || c.distance())) continue;
+    DeviceConfig base = c;
+    base.depth = 0;
+    const DeviceMemory m = c.distance() ? distance_scene(c, 11) : mem;
+    g_threshold = c.distance() ? quantile_threshold(c, m, 0.01) : 0;
+    md << "| " << c.to_string().substr(c.to_string().find("LANES")) << " |";
+    for (const DeviceConfig& x : {c, base}) {
+      std::unique_ptr<Device> dev;
+      try {
+        dev = make_device("rtl", x);
+      } catch (const DeviceError&) {
+        md << " - | - | - |";  // no depth-0 model of this configuration in the build
+        continue;
+      }
+      dev->load(m);
+      const Sustained a = sustained(*dev, Mode::All, 4096, x.LANES), n = sustained(*dev, Mode::Count, 4096, x.LANES);
+      const int64_t thr = g_threshold;
+      const uint64_t lat = one_point_cycles(x, m);
+      g_threshold = thr;
+      md << " " << bench::fmt("%.2f", a.points_per_cycle) << " | " << bench::fmt("%.2f", n.points_per_cycle) << " | "
+         << lat << " |";
+    }
+    md << "\n";
+  }
+  g_threshold = 0;
+  md << "\nMachine: " << bench::machine_description() << ". Verilator " << Verilated::productVersion()
+     << ", models built with -O3 (the rtl backend's: --assert, FST tracing compiled in).\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string out_path;
   int repeats = 5;
-  bool distance = false;
+  bool distance = false, depth = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out_path = argv[++i];
     else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--distance")) distance = true;
+    else if (!std::strcmp(argv[i], "--depth")) depth = true;
     else {
-      std::fprintf(stderr, "usage: bench_hardware [--out FILE] [--repeats N] [--distance]\n");
+      std::fprintf(stderr, "usage: bench_hardware [--out FILE] [--repeats N] [--distance | --depth]\n");
       return 2;
     }
   }
-  if (distance) {
+  if (distance || depth) {
     std::ostringstream md;
-    distance_section(md);
+    if (distance) distance_section(md);
+    else depth_section(md, repeats);
     std::cout << md.str();
     if (!out_path.empty()) std::ofstream(out_path) << md.str();
     return 0;

@@ -39,7 +39,8 @@ struct DeviceConfig {
   int SB = 2;     // voxmap value width: 2 = voxel states; 4, 8, 16 = a signed distance per grid node
   int WB = 8;     // interpolation weight bits (distance voxmaps): the top WB fraction bits per coordinate
   int BANKS = 0;  // 0: every lane its own copy of the voxmap; B: the lanes share one voxmap in B banks (word w in
-                  // bank w % B), with bank conflicts resolved by the device (timing only, never results)
+                  // bank w % B; on a distance device each of the 8 parity banks in B, word w in bank w % 8B), with
+                  // bank conflicts resolved by the device (timing only, never results)
   int depth = 0;  // register stages added to every lane, 0 .. kMaxDepth (the RTL's Depth; timing only, never
                   // results): each adds one slot register, so one cycle of latency and of a FIRST job's squash
 

@@ -136,10 +136,12 @@ module voxcd_device #(
   localparam int unsigned LaneW = LgL > 0 ? LgL : 1;
   localparam int unsigned SeqW  = $clog2(NumR + 2) + 1;           // tells apart every job in flight
   localparam bit          Banked = BANKS > 0;                      // the lanes share one voxmap in BANKS banks
-  localparam int unsigned LgB   = Banked ? $clog2(BANKS) : 0;
-  localparam int unsigned NumB  = Banked ? BANKS : 1;
+  localparam int unsigned NPar  = Dist ? 8 : 1;                    // words a lane reads per point (its requests)
+  localparam int unsigned NReq  = LANES * NPar;                    // request r: lane r / NPar, parity bank r % NPar
+  localparam int unsigned NumB  = Banked ? BANKS * NPar : 1;       // shared banks: word w in bank w % NumB
+  localparam int unsigned LgB   = Banked ? $clog2(NumB) : 0;
   localparam int unsigned BankW = LgB > 0 ? LgB : 1;
-  localparam int unsigned BRowW = MAW - LgB;                       // rows of one shared bank
+  localparam int unsigned BRowW = MAW > LgB ? MAW - LgB : 1;       // rows of one shared bank (one at NumB = 2^MAW)
 
   // ---- Jobs, slots and output records ----
   typedef struct packed {
@@ -392,9 +394,10 @@ module voxcd_device #(
   end
 
   // ---- Lanes ----
-  logic [LANES-1:0]      lane_read;     // R4: the lane's point is inside its map and reads a voxmap word
-  logic [LANES*MAW-1:0]  lane_addr;     // R4: the word it reads
-  logic [LANES*MEMW-1:0] lane_word;     // R5: the word from the shared banks (Banked)
+  logic [NReq-1:0]       lane_read;     // R4: request r's point is inside its map and reads a voxmap word
+  logic [NReq*MAW-1:0]   lane_addr;     // R4: the word it reads (lane r / NPar; parity bank r % NPar on a distance
+                                        // device)
+  logic [NReq*MEMW-1:0]  lane_word;     // R5: the word from the shared banks (Banked)
   logic [LANES-1:0]      lane_inside;
   logic [LANES-1:0]      lane_inside5;  // R5's points before READ (2-bit lanes)
   logic [LANES*2-1:0]    lane_state5;
@@ -412,9 +415,9 @@ module voxcd_device #(
       .clk_i      (clk_i),
       .en_i       (advance),
       .en_out_i   (advance_out),
-      .addr_o     (lane_addr[MAW*l +: MAW]),
-      .read_o     (lane_read[l]),
-      .word_i     (lane_word[MEMW*l +: MEMW]),
+      .addr_o     (lane_addr[NPar*MAW*l +: NPar*MAW]),
+      .read_o     (lane_read[NPar*l +: NPar]),
+      .word_i     (lane_word[NPar*MEMW*l +: NPar*MEMW]),
       .map_we_i   (map_we_i),
       .map_waddr_i(map_waddr_i),
       .map_wdata_i(map_wdata_i),
@@ -534,33 +537,37 @@ module voxcd_device #(
     end
   end
 
-  // ---- Shared voxmap banks (BANKS > 0, 2-bit devices): word w is in bank w % BANKS, row w / BANKS ----
-  // The slot in R4 reads in rounds, one in each cycle in which the last register lets the pipeline advance: in a
-  // round each bank reads the word of the lowest lane still waiting for it, and every waiting lane that wants that
-  // word takes it. R4 leaves in its last round; before that the last register takes empty slots (a bank conflict
-  // cycle each). So a slot with at most r distinct words in any one bank reaches the hit test r - 1 cycles late;
-  // a slot of a FIRST job that has found its hit reads nothing (it is squashed; with READ the hit is seen in R5,
-// before the state's register, so a FIRST job's slots read up to the one of its hit at every Depth). ref/banks.h
-// counts the same.
+  // ---- Shared voxmap banks (BANKS > 0): word w is in bank w % NumB, row w / NumB ----
+  // NumB = BANKS on a 2-bit device; on a distance device each of the 8 parity banks is split BANKS ways (8 * BANKS
+  // banks), and each lane makes 8 requests, one word of each parity bank. The slot in R4 reads in rounds, one in each
+  // cycle in which the last register lets the pipeline advance: in a round each bank reads the word of the lowest
+  // request still waiting for it, and every waiting request that wants that word takes it. R4 leaves in its last
+  // round; before that R5 takes empty slots (a bank conflict cycle each). So a slot with at most r distinct words in
+  // any one bank reaches the hit test r - 1 cycles late; a slot of a FIRST job that has found its hit reads nothing
+  // (it is squashed: on a 2-bit device the hit is seen at the hit test, or with READ in R5, before the slot behind it
+  // reads; on a distance device at the hit test, after the slots behind it read in the slot registers between).
+  // ref/banks.h counts the same.
   // A word read in an earlier round waits in early_q and moves to held_q when the slot enters R5; the words of the
   // last round stay on the banks' outputs while the slot is in R5 (the banks read only when R5 advances).
   if (Banked) begin : g_banks
     logic                 r4_squashed;   // R4 belongs to a FIRST job whose hit is found or at the hit test now
-    logic                 r5_first_hit;  // R5 (not the last register: HasRead) holds a FIRST job's hit
-    logic [LANES-1:0]     want;          // lanes of R4 that read a word
-    logic [LANES-1:0]     served_d, served_q;  // lanes of R4 that have their word (earlier rounds)
-    logic [LANES-1:0]     waiting, granted;
+    logic                 r5_first_hit;  // R5 (not the last register: HasRead, 2-bit) holds a FIRST job's hit
+    logic [NReq-1:0]      want;          // requests of R4 that read a word
+    logic [NReq-1:0]      served_d, served_q;  // requests of R4 that have their word (earlier rounds)
+    logic [NReq-1:0]      waiting, granted;
     logic [NumB-1:0]      map_re;
     logic [NumB*MAW-1:0]  map_word;     // the word each bank reads this round
     logic [NumB*MEMW-1:0] map_rdata;
-    logic [LANES-1:0]     early_read_q;  // lanes whose word the banks read last cycle, in an earlier round
-    logic [LANES*MEMW-1:0] early_q, early_now, held_q;
-    logic [LANES-1:0]     last_round_q;  // lanes of R5 whose word was read in R4's last round
-    logic [LANES*BankW-1:0] r5_bank_q;   // and the bank that read it
+    logic [NReq-1:0]      early_read_q;  // requests whose word the banks read last cycle, in an earlier round
+    logic [NReq*MEMW-1:0] early_q, early_now, held_q;
+    logic [NReq-1:0]      last_round_q;  // requests of R5 whose word was read in R4's last round
+    logic [NReq*BankW-1:0] r5_bank_q;    // and the bank that read it
 
+    // A 2-bit device with READ sees a FIRST job's hit in R5, before the slot behind it reads; a distance device
+    // only at the hit test, after the interpolation (ref/banks.h: first_read_window).
     always_comb begin
       r5_first_hit = 1'b0;
-      if (HasRead && r5_slot.valid && r5_test.mode == voxcd_arch_pkg::ModeFirst) begin
+      if (HasRead && !Dist && r5_slot.valid && r5_test.mode == voxcd_arch_pkg::ModeFirst) begin
         for (int l = 0; l < LANES; l++) begin
           r5_first_hit = r5_first_hit || (r5_slot.lanes[l] && lane_inside5[l] && r5_test.mask[lane_state5[2*l +: 2]]);
         end
@@ -569,24 +576,24 @@ module voxcd_device #(
     assign r4_squashed = (found_q && (found_seq_q == r4_slot.seq)) ||
                          (last_slot.valid && !squash && is_first && (|lane_hit) && (last_slot.seq == r4_slot.seq)) ||
                          (r5_first_hit && (r5_slot.seq == r4_slot.seq));
-    for (genvar l = 0; l < LANES; l++) begin : g_want
-      assign want[l] = r4_slot.valid && !r4_squashed && r4_slot.lanes[l] && lane_read[l];
+    for (genvar r = 0; r < NReq; r++) begin : g_want
+      assign want[r] = r4_slot.valid && !r4_squashed && r4_slot.lanes[r / NPar] && lane_read[r];
     end
     assign waiting = want & ~served_q;
 
-    // Each bank's word this round: the lowest waiting lane's that falls in it.
+    // Each bank's word this round: the lowest waiting request's that falls in it.
     always_comb begin
       map_re   = '0;
       map_word = '0;
-      for (int l = LANES - 1; l >= 0; l--) begin
-        if (waiting[l]) begin
-          map_re[32'(lane_addr[MAW*l +: BankW]) % NumB] = 1'b1;
-          map_word[MAW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MAW] = lane_addr[MAW*l +: MAW];
+      for (int r = NReq - 1; r >= 0; r--) begin
+        if (waiting[r]) begin
+          map_re[32'(lane_addr[MAW*r +: BankW]) % NumB] = 1'b1;
+          map_word[MAW*(32'(lane_addr[MAW*r +: BankW]) % NumB) +: MAW] = lane_addr[MAW*r +: MAW];
         end
       end
-      for (int l = 0; l < LANES; l++) begin
-        granted[l] = waiting[l] &&
-                     (map_word[MAW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MAW] == lane_addr[MAW*l +: MAW]);
+      for (int r = 0; r < NReq; r++) begin
+        granted[r] = waiting[r] &&
+                     (map_word[MAW*(32'(lane_addr[MAW*r +: BankW]) % NumB) +: MAW] == lane_addr[MAW*r +: MAW]);
       end
     end
     assign bank_wait = |(waiting & ~granted);
@@ -610,11 +617,11 @@ module voxcd_device #(
       served_d = served_q;
       if (advance)          served_d = '0;
       else if (advance_out) served_d = served_q | granted;
-      for (int l = 0; l < LANES; l++) begin
-        early_now[MEMW*l +: MEMW] = early_read_q[l]
-            ? map_rdata[MEMW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MEMW] : early_q[MEMW*l +: MEMW];
-        lane_word[MEMW*l +: MEMW] = last_round_q[l]
-            ? map_rdata[MEMW*r5_bank_q[BankW*l +: BankW] +: MEMW] : held_q[MEMW*l +: MEMW];
+      for (int r = 0; r < NReq; r++) begin
+        early_now[MEMW*r +: MEMW] = early_read_q[r]
+            ? map_rdata[MEMW*(32'(lane_addr[MAW*r +: BankW]) % NumB) +: MEMW] : early_q[MEMW*r +: MEMW];
+        lane_word[MEMW*r +: MEMW] = last_round_q[r]
+            ? map_rdata[MEMW*r5_bank_q[BankW*r +: BankW] +: MEMW] : held_q[MEMW*r +: MEMW];
       end
     end
 
@@ -631,12 +638,12 @@ module voxcd_device #(
         conflicts_q  <= conflicts_q + CW'(advance_out && !advance);
       end
     end
-    // Words: no reset (read only for lanes that read).
+    // Words: no reset (read only for requests that read).
     always_ff @(posedge clk_i) begin
       early_q <= early_now;
       if (advance) begin
         held_q <= early_now;
-        for (int l = 0; l < LANES; l++) r5_bank_q[BankW*l +: BankW] <= BankW'(32'(lane_addr[MAW*l +: BankW]) % NumB);
+        for (int r = 0; r < NReq; r++) r5_bank_q[BankW*r +: BankW] <= BankW'(32'(lane_addr[MAW*r +: BankW]) % NumB);
       end
     end
   end else begin : g_copies
@@ -747,7 +754,6 @@ module voxcd_device #(
   `VOXCD_ASSERT_INIT(DistanceBanksFit, !Dist || (SB <= MEMW && MAW >= 3))
   `VOXCD_ASSERT_INIT(WeightBitsFit, !Dist || (WB >= 1 && WB <= MF + PF && WB <= 16))
   `VOXCD_ASSERT_INIT(BanksPowerOfTwo, (BANKS & (BANKS - 1)) == 0 && BANKS <= 64 && LgB <= MAW)
-  `VOXCD_ASSERT_INIT(BanksOnlyOnStates, !Banked || !Dist)
   `VOXCD_ASSERT_INIT(DepthInRange, Depth <= voxcd_arch_pkg::MaxDepth)
   `VOXCD_ASSERT_INIT(SlotsMatchTheTimingModel,
                      NumR == voxcd_arch_pkg::PipeSlots + Depth + (Dist ? voxcd_arch_pkg::DistSlots : 0))

@@ -36,9 +36,10 @@
 // (i, j) at [(3i + j) * MW +: MW]). Written in the subset of SystemVerilog that Verilator and yosys both read.
 // Each lane owns a copy of the voxmap memory, written through the shared write port, so that every lane can
 // read one word (eight bank words on a distance device) in every cycle. With SharedMap (2-bit lanes only) the lane
-// has no copy: it shows its R4 address and whether it reads (read_o: the point is inside), and the device's shared
-// banks give it the word for R5 (word_i, in the R5 slot's cycles). Its R5 (and READ) registers then advance on
-// en_out_i, which the device may raise without en_i: R5 takes a bubble while R4 waits for a bank (voxcd_device).
+// has no copy: it shows its R4 address (a distance lane its 8 addresses, one in each parity bank) and whether it
+// reads (read_o: the point is inside), and the device's shared banks give it the words for R5 (word_i, in the R5
+// slot's cycles). Its registers from R5 on then advance on en_out_i, which the device may raise without en_i: R5
+// takes a bubble while R4 waits for a bank (voxcd_device).
 // inside5_o and state5_o show R5's point before READ (the device's banks stop reading for a FIRST job at a hit in R5).
 module voxcd_lane #(
   parameter int unsigned PW    = voxcd_arch_pkg::PW,
@@ -56,7 +57,8 @@ module voxcd_lane #(
 ) (
   input  logic                  clk_i,
   input  logic                  en_i,        // every register up to R4 (all of a lane with its own copy) advances
-  input  logic                  en_out_i,    // R5 and READ advance (en_i implies it; the same as en_i without SharedMap)
+  input  logic                  en_out_i,    // R5 and the registers after it advance (en_i implies it; the same as en_i
+                                             // without SharedMap)
   // voxmap write port (shared by all lanes)
   input  logic                  map_we_i,
   input  logic [MAW-1:0]        map_waddr_i,
@@ -75,10 +77,11 @@ module voxcd_lane #(
   // the register R4 is computed from (ADDR, or R3 without it): the job's map base and Hx*Hy (distance lanes only)
   input  logic [MAW-1:0]        map_base_i,
   input  logic [2*DW:0]         hxy_i,
-  // Shared voxmap banks (SharedMap): the R4 word address, whether the point reads it, and the R5 word
-  output logic [MAW-1:0]        addr_o,
-  output logic                  read_o,
-  input  logic [MEMW-1:0]       word_i,
+  // Shared voxmap banks (SharedMap): the R4 word addresses (one; a distance lane's eight, one per parity bank p at
+  // [p*MAW +: MAW]), whether the point reads them, and the R5 words
+  output logic [(SB > 2 ? 8 : 1)*MAW-1:0]  addr_o,
+  output logic [(SB > 2 ? 8 : 1)-1:0]      read_o,
+  input  logic [(SB > 2 ? 8 : 1)*MEMW-1:0] word_i,
   // R5's point before READ (2-bit lanes): inside and its state
   output logic                  inside5_o,
   output logic [1:0]            state5_o,
@@ -437,22 +440,35 @@ module voxcd_lane #(
     logic [3*DW-1:0]   vox5_q;
     logic [3*WB-1:0]   frac5_q;
     logic [8*NslW-1:0] slot5_q;
-    for (genvar p = 0; p < 8; p++) begin : g_bank
-      voxcd_ram #(
-        .Width(MEMW),
-        .AddrW(RowW)
-      ) u_bank (
-        .clk_i  (clk_i),
-        .we_i   (map_we_i && (map_waddr_i[2:0] == 3'(p))),
-        .waddr_i(RowW'(map_waddr_i >> 3)),
-        .wdata_i(map_wdata_i),
-        .re_i   (en_i),
-        .raddr_i(row4_q[p*RowW +: RowW]),
-        .rdata_o(word5[p*MEMW +: MEMW])
-      );
+    for (genvar p = 0; p < 8; p++) begin : g_addr_out
+      // Word (map_base/8 + h_p/NPW)*8 + p: the shared banks' address of bank p's node.
+      assign addr_o[p*MAW +: MAW] = MAW'({row4_q[p*RowW +: RowW], 3'(p)});
+    end
+    assign read_o = {8{inside4_q}};
+    if (SharedMap) begin : g_shared
+      assign word5 = word_i;
+      logic unused_write;  // the device writes its shared banks
+      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i};
+    end else begin : g_copy
+      for (genvar p = 0; p < 8; p++) begin : g_bank
+        voxcd_ram #(
+          .Width(MEMW),
+          .AddrW(RowW)
+        ) u_bank (
+          .clk_i  (clk_i),
+          .we_i   (map_we_i && (map_waddr_i[2:0] == 3'(p))),
+          .waddr_i(RowW'(map_waddr_i >> 3)),
+          .wdata_i(map_wdata_i),
+          .re_i   (en_out_i),
+          .raddr_i(row4_q[p*RowW +: RowW]),
+          .rdata_o(word5[p*MEMW +: MEMW])
+        );
+      end
+      logic unused_word;  // a lane with its own copy reads no shared bank
+      assign unused_word = ^word_i;
     end
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
+      if (en_out_i) begin
         inside5_q <= inside4_q;
         vox5_q    <= vox4_q;
         frac5_q   <= frac4_q;
@@ -485,7 +501,7 @@ module voxcd_lane #(
       logic [3*DW-1:0] vox_q;
       logic [3*WB-1:0] frac_q;
       always_ff @(posedge clk_i) begin
-        if (en_i) begin
+        if (en_out_i) begin
           q_q      <= q5;
           inside_q <= inside5_q;
           vox_q    <= vox5_q;
@@ -521,7 +537,7 @@ module voxcd_lane #(
     logic [2*WB-1:0] frac6_q;  // {fz, fy}
     logic [4*XW-1:0] lx6_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
+      if (en_out_i) begin
         inside6_q <= inside_r;
         vox6_q    <= vox_r;
         frac6_q   <= frac_r[WB +: 2*WB];
@@ -547,7 +563,7 @@ module voxcd_lane #(
     logic [WB-1:0]   fz7_q;
     logic [2*YW-1:0] ly7_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
+      if (en_out_i) begin
         inside7_q <= inside6_q;
         vox7_q    <= vox6_q;
         fz7_q     <= frac6_q[WB +: WB];
@@ -566,7 +582,7 @@ module voxcd_lane #(
     logic [3*DW-1:0] vox8_q;
     logic [IW-1:0]   dist8_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
+      if (en_out_i) begin
         inside8_q <= inside7_q;
         vox8_q    <= vox7_q;
         dist8_q   <= zv[IW-1:0];
@@ -581,9 +597,7 @@ module voxcd_lane #(
     assign state5_o  = 2'd0;
 
     logic unused_dist;  // the bank bits of map_base (a distance map starts on a bank boundary) and D's sign copy
-    assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW], en_out_i, word_i};  // and the shared banks' ports
-    assign addr_o = '0;
-    assign read_o = 1'b0;
+    assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW]};
 
   end
 
@@ -591,7 +605,6 @@ module voxcd_lane #(
   // lane has a data path for, and Depth a pipeline it has.
   `VOXCD_ASSERT_INIT(IndexHoldsDims, IdxW >= DW + 1)
   `VOXCD_ASSERT_INIT(ValueWidthKnown, SB == 2 || SB == 4 || SB == 8 || SB == 16)
-  `VOXCD_ASSERT_INIT(SharedMapOnStates, !SharedMap || SB == 2)
   `VOXCD_ASSERT_INIT(DepthInRange, Depth <= voxcd_arch_pkg::MaxDepth)
 
 endmodule

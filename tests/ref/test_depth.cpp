@@ -188,6 +188,13 @@ TEST(Depth, JobFaultsNameTheRuleBroken) {
   EXPECT_EQ(job_faults(dist, d, shell_words, 16), uint32_t(kFaultThreshold));
 }
 
+// The voxmap words of a job's map when its dimensions are valid (0 otherwise).
+uint64_t map_words_of(const DeviceConfig& cfg, const Job& j) {
+  const bool ok = j.nx >= 1 && j.ny >= 1 && j.nz >= 1 && j.nx <= cfg.max_dim() && j.ny <= cfg.max_dim() &&
+                  j.nz <= cfg.max_dim();
+  return ok ? map_words(cfg, j) : 0;
+}
+
 // On random jobs near every boundary, job_faults is 0 exactly when validate_job accepts the job.
 TEST(Depth, JobFaultsAgreeWithValidateJob) {
   std::mt19937_64 rng(20261126);
@@ -200,29 +207,34 @@ TEST(Depth, JobFaultsAgreeWithValidateJob) {
     cfg.SAW = 6;
     cfg.MAW = 7;
     for (int k = 0; k < 20000; ++k) {
+      // Each field past its edge one time in about ten, else on it or inside.
+      auto edge = [&](int64_t inside_hi, int64_t past) { return pick(0, 9) ? pick(0, inside_hi) : past; };
       Job j;
-      j.tag = uint32_t(pick(0, 1 << 17));
-      j.mode = Mode(pick(0, 3) == 3 && pick(0, 3) == 0 ? 3 : pick(0, 2));
-      j.hit_mask = uint8_t(pick(0, 17));
-      j.shell_base = uint32_t(pick(0, 70));
-      j.shell_count = uint32_t(pick(0, 70));
-      j.map_base = uint32_t(pick(0, 140));
-      j.nx = uint32_t(pick(0, 18));
-      j.ny = uint32_t(pick(0, 18));
-      j.nz = uint32_t(pick(0, 18));
-      j.M[pick(0, 2)][pick(0, 2)] = pick(0, 9) ? 0 : (int64_t{1} << 17);
-      j.t[pick(0, 2)] = pick(0, 9) ? 0 : -(int64_t{1} << 47) - 1;
+      j.tag = uint32_t(edge(0xffff, 0x10000 + pick(0, 5)));
+      j.mode = Mode(pick(0, 9) ? pick(0, 2) : 3);
+      j.hit_mask = uint8_t(edge(15, 16 + pick(0, 200)));
+      const uint64_t loaded_shell = uint64_t(pick(0, 64)), loaded_map = uint64_t(pick(0, 128));
+      j.shell_base = uint32_t(edge(int64_t(loaded_shell), 64 + pick(0, 10)));
+      j.shell_count = uint32_t(pick(0, 9) && j.shell_base <= loaded_shell
+                                   ? pick(0, int64_t(loaded_shell) - j.shell_base + (pick(0, 3) == 0))
+                                   : pick(0, 70));
+      j.nx = uint32_t(edge(15, pick(0, 1) ? 0 : 17)) + (pick(0, 9) ? 1 : 0);
+      j.ny = uint32_t(pick(1, 16));
+      j.nz = uint32_t(pick(1, 16));
+      const uint64_t words = map_words_of(cfg, j);
+      j.map_base = uint32_t(pick(0, 9) && words <= loaded_map ? int64_t(loaded_map - words) - pick(-1, 2) : pick(0, 140));
+      if (pick(0, 9) == 0) j.M[pick(0, 2)][pick(0, 2)] = pick(0, 1) ? (int64_t{1} << 17) : -(int64_t{1} << 17) - 1;
+      if (pick(0, 9) == 0) j.t[pick(0, 2)] = pick(0, 1) ? (int64_t{1} << 47) : -(int64_t{1} << 47) - 1;
       j.threshold = pick(0, 3) ? 0 : pick(-(int64_t{1} << 40), int64_t{1} << 40);
-      const uint64_t shell_words = uint64_t(pick(0, 64)), map_words = uint64_t(pick(0, 128));
       bool throws = false;
       try {
-        validate_job(cfg, j, shell_words, map_words);
+        validate_job(cfg, j, loaded_shell, loaded_map);
       } catch (const JobError&) {
         throws = true;
       }
-      const uint32_t f = job_faults(cfg, j, shell_words, map_words);
-      ASSERT_EQ(f != 0, throws) << "SB " << sb << " job " << job_line(j, 2) << " shell words " << shell_words
-                                << " map words " << map_words << ": faults " << f;
+      const uint32_t f = job_faults(cfg, j, loaded_shell, loaded_map);
+      ASSERT_EQ(f != 0, throws) << "SB " << sb << " job " << job_line(j, 2) << " shell words " << loaded_shell
+                                << " map words " << loaded_map << ": faults " << f;
       (throws ? invalid : valid)++;
     }
   }
