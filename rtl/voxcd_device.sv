@@ -15,10 +15,10 @@
 // At most one of hit_valid_o / done_valid_o is high in a cycle, and records leave in stream order.
 //
 // Structure: an issue stage takes LANES consecutive points of the head job per cycle (one lane group, a "slot")
-// and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through N slot registers, R0..R5
-// at Depth 0 (R0..R8 on a distance device), N = PipeSlots + Depth (+ DistSlots on a distance device): each unit of
-// Depth adds one register stage to every lane (voxcd_lane, voxcd_arch_pkg); the hit-test stage at the last register emits the slot's records,
-// one per cycle, into the output slice (voxcd_skid: an output register and a skid register). The whole pipeline
+// and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through N = PipeSlots + Depth
+// (+ DistSlots) slot registers, R0..R5 at Depth 0 (R0..R8 on a distance device; each unit of Depth adds a register
+// stage to every lane); the hit-test stage at the last register emits the slot's records, one per cycle, into the
+// output slice (voxcd_skid: an output register and a skid register). The whole pipeline
 // advances together: it holds (a) while the output slice cannot take a record (its registered ready is low: both
 // of its registers are full, because the consumer has held the waiting record; a stall, and only those cycles
 // count as stalls) and (b) while the last slot register still has more than one record to emit. The consumer's
@@ -27,8 +27,8 @@
 //
 // Timing (the exact model is ref/timing.h): a job of c points takes max(1, ceil(c / LANES)) slots; a slot takes
 // max(1, records) cycles at the hit test; the first slot of a job accepted in cycle a is there in cycle a + 1 + N,
-// N slot registers as above. FIRST stops issuing at its first hit: the N - 1 slots already
-// issued are squashed and the issue stage leaves the job with one empty slot.
+// N slot registers as above. FIRST stops issuing at its first hit: the N - 1 slots already issued are squashed and
+// the issue stage leaves the job with one empty slot.
 //
 // The output slice adds no latency to the always-ready case (a record is on the pins in the cycle after its
 // emission, as from a plain output register), and with an always-ready consumer it never holds the pipeline.
@@ -310,65 +310,104 @@ module voxcd_device #(
   // ---- Slot registers R0 .. R(N-1): the slot's bookkeeping and its job, shifting when the pipeline advances ----
   // R0 .. R4 (AddrR) advance with the issue stage (advance); R5 (WordR) and the registers after it with the last
   // register (advance_out), R5 taking an empty slot while R4 waits for a shared voxmap bank. Without shared banks
-  // the two enables are the same.
-  logic [MetaW-1:0] slot_meta_q [NumR];
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      for (int s = 0; s < NumR; s++) slot_meta_q[s] <= '0;
-    end else begin
-      if (advance) begin
-        slot_meta_q[0] <= issue;
-        for (int s = 1; s <= AddrR; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
-      end
-      if (advance_out) begin
-        slot_meta_q[WordR] <= advance ? slot_meta_q[AddrR] : '0;  // '0: an empty slot
-        for (int s = WordR + 1; s < NumR; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
-      end
+  // the two enables are the same. Each register is a register of its own (g_slot[s]: a simulator keeps it in its own
+  // words and orders the chain with no copy; an array of them would be copied through temporaries every cycle).
+  logic [NumR-1:0] slot_valid;  // the valid bit of each slot register
+  for (genvar s = 0; s < NumR; s++) begin : g_slot
+    logic [MetaW-1:0] meta_q, meta_in;
+    logic             shift;
+    if (s == 0) begin : g_issue
+      assign meta_in = issue;
+    end else if (s == WordR) begin : g_word
+      assign meta_in = advance ? g_slot[s - 1].meta_q : '0;  // '0: an empty slot
+    end else begin : g_next
+      assign meta_in = g_slot[s - 1].meta_q;
     end
+    assign shift = (s <= AddrR) ? advance : advance_out;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni)    meta_q <= '0;
+      else if (shift) meta_q <= meta_in;
+    end
+    assign slot_valid[s] = meta_q[MetaW - 1];
   end
 
   // The job travels with its slot, each register keeping what the stages from it on read: R0 the whole job (the
-  // lanes read M there), R1 .. ProdR the translation (read at ProdR), R1 .. LinR the map (n read at AccR, ny at
-  // YzR, nx at R3R, map_base and hxy at LinR), and R1 .. R(N-1) the fields of the hit test (slot_test_q[s - 1] is
-  // register Rs, and so are slot_t_q[s - 1] and slot_map_q[s - 1]).
+  // lanes read M there, or from IN's M register), R1 .. ProdR the translation (read at ProdR), R1 .. LinR the map (n read at AccR, ny at
+  // YzR, nx at R3R, map_base and hxy at LinR), and R1 .. R(N-1) the fields of the hit test (g_test[s], g_t[s] and
+  // g_map[s] are register Rs's). Job fields are read only where their slot is valid: no reset.
   localparam int unsigned MapW = 3 * (DW + 1) + MAW + HxyW;
-  job_t             r0_job_q;
-  logic [3*TW-1:0]  slot_t_q [ProdR];
-  logic [MapW-1:0]  slot_map_q [LinR];
-  logic [TestW-1:0] slot_test_q [NumR - 1];
-  test_t            r0_test, last_test;
-  map_t             acc_map, yz_map, r3_map, lin_map;  // the map fields of the registers AccR, YzR, R3R, LinR
-  assign r0_test   = {r0_job_q.tag, r0_job_q.mode, r0_job_q.mask, r0_job_q.thr, r0_job_q.stamp, r0_job_q.stall_stamp};
-  assign last_test = slot_test_q[NumR - 2];
-  assign acc_map   = slot_map_q[AccR - 1];
-  assign yz_map    = slot_map_q[YzR - 1];
-  assign r3_map    = slot_map_q[R3R - 1];
-  assign lin_map   = slot_map_q[LinR - 1];
-  // Job fields are read only where their slot is valid: no reset.
+  job_t  r0_job_q;
+  test_t r0_test, r5_test, last_test;
+  map_t  acc_map, yz_map, r3_map, lin_map;  // the map fields of the registers AccR, YzR, R3R, LinR
+  assign r0_test = {r0_job_q.tag, r0_job_q.mode, r0_job_q.mask, r0_job_q.thr, r0_job_q.stamp, r0_job_q.stall_stamp};
   always_ff @(posedge clk_i) begin
-    if (advance) begin
-      r0_job_q       <= head_job;
-      slot_t_q[0]    <= r0_job_q.t;
-      for (int s = 1; s < ProdR; s++) slot_t_q[s] <= slot_t_q[s - 1];
-      slot_map_q[0]  <= {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
-      for (int s = 1; s < LinR; s++) slot_map_q[s] <= slot_map_q[s - 1];
-      slot_test_q[0] <= r0_test;
-      for (int s = 1; s < AddrR; s++) slot_test_q[s] <= slot_test_q[s - 1];
+    if (advance) r0_job_q <= head_job;
+  end
+  // The matrix the lanes' multipliers read: R0's, or with IN one register later, beside the lanes' registered points
+  // (one register for every lane: the same M for the whole slot).
+  logic [9*MW-1:0] prod_m;
+  if (HasIn) begin : g_in_m
+    logic [9*MW-1:0] m_q;
+    always_ff @(posedge clk_i) begin
+      if (advance) m_q <= r0_job_q.m;
     end
-    if (advance_out) begin
-      for (int s = AddrR; s < NumR - 1; s++) slot_test_q[s] <= slot_test_q[s - 1];
+    assign prod_m = m_q;
+  end else begin : g_r0_m
+    assign prod_m = r0_job_q.m;
+  end
+  // The hit test's fields in two registers: the job's labels, and its 64 bits of stamps (each fits a simulator's word).
+  for (genvar s = 1; s < NumR; s++) begin : g_test
+    logic [TestW-2*CW-1:0] info_q, info_in;
+    logic [2*CW-1:0]       stamps_q, stamps_in;
+    if (s == 1) begin : g_first
+      assign {info_in, stamps_in} = r0_test;
+    end else begin : g_next
+      assign info_in   = g_test[s - 1].info_q;
+      assign stamps_in = g_test[s - 1].stamps_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if ((s <= AddrR) ? advance : advance_out) begin
+        info_q   <= info_in;
+        stamps_q <= stamps_in;
+      end
     end
   end
+  for (genvar s = 1; s <= ProdR; s++) begin : g_t
+    logic [3*TW-1:0] t_q, t_in;
+    if (s == 1) begin : g_first
+      assign t_in = r0_job_q.t;
+    end else begin : g_next
+      assign t_in = g_t[s - 1].t_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if (advance) t_q <= t_in;
+    end
+  end
+  for (genvar s = 1; s <= LinR; s++) begin : g_map
+    logic [MapW-1:0] map_q, map_in;
+    if (s == 1) begin : g_first
+      assign map_in = {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
+    end else begin : g_next
+      assign map_in = g_map[s - 1].map_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if (advance) map_q <= map_in;
+    end
+  end
+  assign r5_test   = {g_test[WordR].info_q, g_test[WordR].stamps_q};
+  assign last_test = {g_test[NumR - 1].info_q, g_test[NumR - 1].stamps_q};
+  assign acc_map   = g_map[AccR].map_q;
+  assign yz_map    = g_map[YzR].map_q;
+  assign r3_map    = g_map[R3R].map_q;
+  assign lin_map   = g_map[LinR].map_q;
 
   // What each stage reads of its slot's bookkeeping: R0's, R4's, R5's and the last register's, where the hit test
   // is (R5 at Depth 0, or R8 on a distance device).
   meta_t r0_slot, r4_slot, r5_slot, last_slot;  // r4_slot, r5_slot: the shared voxmap banks' (BANKS > 0)
-  test_t r5_test;
-  assign r0_slot   = slot_meta_q[0];
-  assign r4_slot   = slot_meta_q[AddrR];
-  assign r5_slot   = slot_meta_q[WordR];
-  assign r5_test   = slot_test_q[WordR - 1];
-  assign last_slot = slot_meta_q[NumR - 1];
+  assign r0_slot   = g_slot[0].meta_q;
+  assign r4_slot   = g_slot[AddrR].meta_q;
+  assign r5_slot   = g_slot[WordR].meta_q;
+  assign last_slot = g_slot[NumR - 1].meta_q;
 
   // ---- Shell banks: address a is in bank a % LANES, row a / LANES ----
   logic [3*PW-1:0] bank_rdata [LANES];
@@ -422,8 +461,8 @@ module voxcd_device #(
       .map_waddr_i(map_waddr_i),
       .map_wdata_i(map_wdata_i),
       .point_i    (point),
-      .m_i        (r0_job_q.m),
-      .t_i        (slot_t_q[ProdR - 1]),
+      .m_i        (prod_m),
+      .t_i        (g_t[ProdR].t_q),
       .n_i        (acc_map.n),
       .ny_i       (yz_map.n[DW+1 +: DW+1]),
       .nx_i       (r3_map.n[DW:0]),
@@ -732,10 +771,7 @@ module voxcd_device #(
   assign done_stalls_o = out_record.stalls;
 
   // The output slice holds records only behind its output register: out_valid covers both.
-  always_comb begin
-    busy_o = head_valid || out_valid;
-    for (int s = 0; s < NumR; s++) busy_o = busy_o || slot_meta_q[s][MetaW-1];  // the valid bit
-  end
+  assign busy_o = head_valid || out_valid || (|slot_valid);
 
   // Fields that only some stages read.
   logic unused;

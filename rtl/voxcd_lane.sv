@@ -2,9 +2,10 @@
 //
 // Stages (each a register, all advancing together when en_i is high, holding otherwise); those in [brackets] are
 // there only at a Depth that adds them (voxcd_arch_pkg: the stage of rank r is there when Depth > r):
-//   [IN]   point, M                                        (RankIn: the multipliers' input registers; p: the point
-//                                                           shown in R0, M of the R0 slot)
-//   PROD   products     M[i][j] * p[j]                     (the multipliers' product registers)
+//   [IN]   point                                           (RankIn: the multipliers' input registers; p: the point
+//                                                           shown in R0; M, one per slot, is the device's register)
+//   PROD   products     M[i][j] * p[j]                     (the multipliers' product registers; M of the slot before:
+//                                                           R0, or IN)
 //   [SUM]  sums         M[i][0]*p[0] + t[i], M[i][1]*p[1] + M[i][2]*p[2]     (RankSum; t of the PROD slot)
 //   ACC    accumulator  acc_i = sum_j M[i][j]*p[j] + t[i]  (t of the PROD slot without SUM), exact: AccW bits
 //   [FLOOR] idx_i = acc_i >>> TF (floor); 0 <= idx_i < n_i at full width     (RankFloor; n of the ACC slot)
@@ -63,7 +64,7 @@ module voxcd_lane #(
   input  logic                  map_we_i,
   input  logic [MAW-1:0]        map_waddr_i,
   input  logic [MEMW-1:0]       map_wdata_i,
-  // R0: the point and the matrix of its job
+  // R0: the point; the register before PROD (R0, or IN): the matrix of its job
   input  logic [3*PW-1:0]       point_i,
   input  logic [9*MW-1:0]       m_i,
   // PROD: the translation of the job in the products' register
@@ -105,23 +106,18 @@ module voxcd_lane #(
   localparam bit HasAddr  = Depth > voxcd_arch_pkg::RankAddr;
   localparam bit HasRead  = Depth > voxcd_arch_pkg::RankRead;
 
-  // ---- IN: the multipliers' inputs ----
+  // ---- IN: the multipliers' inputs (the point after the shell banks' rotation; M comes registered) ----
   logic [3*PW-1:0] p_in;
   logic [9*MW-1:0] m_in;
+  assign m_in = m_i;
   if (HasIn) begin : g_in
     logic [3*PW-1:0] point_q;
-    logic [9*MW-1:0] m_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
-        point_q <= point_i;
-        m_q     <= m_i;
-      end
+      if (en_i) point_q <= point_i;
     end
     assign p_in = point_q;
-    assign m_in = m_q;
   end else begin : g_no_in
     assign p_in = point_i;
-    assign m_in = m_i;
   end
 
   // ---- PROD: products, [SUM], ACC: accumulator ----

@@ -634,6 +634,7 @@ TEST_P(AxiTest, VectorFiles) {
     const VectorFile v = read_vectors(std::string(VOXCD_VECTORS_DIR) + "/" + f);
     DeviceConfig c = v.config;
     c.LANES = axi_->cfg.LANES;
+    c.depth = axi_->cfg.depth;  // the files have no cycles to compare: any depth gives their records
     if (!(c == axi_->cfg) || (v.has_lanes && v.config.LANES != axi_->cfg.LANES)) continue;
     Axi a(models()[GetParam()], seed_);
     a.p_lite = a.p_rec_ready = a.p_job_valid = 0.6;
@@ -801,9 +802,10 @@ TEST_P(AxiTest, RandomDescriptorsAreRefusedAsTheReferenceRefusesThem) {
       ASSERT_TRUE(a.records[at].same_as(want[i], false))
           << "record " << at << ": got " << a.records[at].to_string(true) << ", want " << want[i].to_string(true)
           << "; seed " << seed_;
-      if (a.job_beats == 1 && want[i].kind == Record::Done)
+      if (a.job_beats == 1 && want[i].kind == Record::Done) {
         ASSERT_EQ(*a.records[at].cycles, *want[i].cycles + *a.records[at].stalls)
             << "record " << at << ": cycles = timing model + stalls; seed " << seed_;
+      }
     }
   }
   EXPECT_EQ(at, a.records.size());
