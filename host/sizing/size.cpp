@@ -253,7 +253,8 @@ YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& dir) {
   chparam << "chparam -set PW " << cfg.PW << " -set PF " << cfg.PF << " -set MW " << cfg.MW << " -set MF " << cfg.MF
           << " -set TW " << cfg.TW << " -set DW " << cfg.DW << " -set MEMW " << cfg.MEMW << " -set LANES "
           << cfg.LANES << " -set SAW " << cfg.SAW << " -set MAW " << cfg.MAW << " -set TAGW " << cfg.TAGW
-          << " -set SB " << cfg.SB << " -set WB " << cfg.WB << " -set BANKS " << cfg.BANKS << " voxcd_device";
+          << " -set SB " << cfg.SB << " -set WB " << cfg.WB << " -set BANKS " << cfg.BANKS << " -set Depth "
+          << cfg.depth << " voxcd_device";
   YosysCost c;
   // The same method as bench/rtl_cost.sh's xilinx rows.
   c.command = read + "; " + chparam.str() + "; synth_xilinx -noiopad -top voxcd_device; flatten; tee -q -o stat.json stat -json";
