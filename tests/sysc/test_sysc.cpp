@@ -150,6 +150,11 @@ void banked_and_deeper(TargetKind k) {
       cfg.depth = d;
       cases.push_back(generated(seed + 100 + uint64_t(d), cfg, 200));
     }
+    DeviceConfig dist;  // a distance device with shared banks, its FIRST jobs reading behind their hits
+    dist.SB = 8;
+    dist.LANES = 4;
+    dist.BANKS = 1;
+    cases.push_back(generated(seed + 200, dist, 200));
   }
   std::vector<std::unique_ptr<Platform>> ps;
   for (size_t i = 0; i < cases.size(); ++i) ps.push_back(make_platform("p" + std::to_string(i), k, cases[i].config));
