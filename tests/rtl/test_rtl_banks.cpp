@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstdlib>
 
 #include "tests/rtl/scoreboard.h"
 #include "voxcd/host/device/detail/rtl.h"
@@ -17,12 +16,7 @@
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 20261125;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
-  return seed;
-}
+uint64_t test_seed() { return test::seed_from_env(20261125); }
 
 TEST(RtlBanks, BuildHasBankedModelsAtEveryLaneCount) {
   std::vector<int> lanes;
@@ -97,19 +91,8 @@ TEST(RtlBanks, RandomJobsBitExactAndCycleExact) {
     dev->load(v.memory);
     const std::vector<Record> got = dev->run(v.jobs);
     const std::string what = cfg.to_string() + " generator seed " + std::to_string(g.seed);
-    size_t job = 0;
-    for (size_t i = 0; i < want.size() && i < got.size(); ++i) {
-      ASSERT_TRUE(got[i].same_as(want[i], true))
-          << what << ": job " << job << " (tag " << want[i].tag << ", " << conflicts[job]
-          << " conflict cycles) record " << i << ": expected '" << want[i].to_string() << "', got '"
-          << got[i].to_string() << "'";
-      if (want[i].kind == Record::Done) {
-        ASSERT_EQ(*got[i].points, *want[i].points) << what << ": job " << job << " points";
-        ASSERT_EQ(*got[i].stalls, 0u) << what << ": job " << job << " stalls with an always-ready consumer";
-        ++job;
-      }
-    }
-    ASSERT_EQ(got.size(), want.size()) << what << ": record count";
+    test::expect_exact(want, got, what);
+    if (HasFatalFailure()) return;
     uint64_t total = 0;
     for (uint64_t c : conflicts) total += c;
     std::printf("%s: %zu jobs, %llu bank conflict cycles\n", cfg.to_string().c_str(), v.jobs.size(),

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <set>
 
 #include "tests/ref/directed_cases.h"
@@ -20,12 +19,7 @@
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 20261126;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
-  return seed;
-}
+uint64_t test_seed() { return test::seed_from_env(20261126); }
 
 // ref/'s stream for the jobs with the timing model's cycles (bank conflicts counted from the memory when banked).
 std::vector<Record> expected_stream(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs) {
@@ -34,20 +28,7 @@ std::vector<Record> expected_stream(const DeviceConfig& cfg, const DeviceMemory&
   return r;
 }
 
-// Fails on the first record that differs: the configuration, the job, the record and both values.
-void expect_exact(const std::vector<Record>& want, const std::vector<Record>& got, const std::string& what) {
-  size_t job = 0;
-  for (size_t i = 0; i < want.size() && i < got.size(); ++i) {
-    ASSERT_TRUE(got[i].same_as(want[i], true))
-        << what << ": job " << job << " (tag " << want[i].tag << ") record " << i << ": expected '"
-        << want[i].to_string() << "', got '" << got[i].to_string() << "'";
-    if (want[i].kind != Record::Done) continue;
-    ASSERT_EQ(*got[i].points, *want[i].points) << what << ": job " << job << " points";
-    ASSERT_EQ(*got[i].stalls, 0u) << what << ": job " << job << " stalls with an always-ready consumer";
-    ++job;
-  }
-  ASSERT_EQ(got.size(), want.size()) << what << ": record count";
-}
+using test::expect_exact;
 
 TEST(RtlDepth, BuildHasEveryDepthAtOneAndFourLanesAndTheDeepestElsewhere) {
   std::set<std::pair<int, int>> plain;  // (LANES, depth) of 2-bit devices with a copy per lane
