@@ -135,6 +135,7 @@ module voxcd_device #(
   localparam int unsigned RowW  = SAW - LgL;                      // rows of one shell bank
   localparam int unsigned LaneW = LgL > 0 ? LgL : 1;
   localparam int unsigned SeqW  = $clog2(NumR + 2) + 1;           // tells apart every job in flight
+  localparam int unsigned InFlW = $clog2(NumR + 3);               // counts the jobs in flight: at most NumR + 2
   localparam bit          Banked = BANKS > 0;                      // the lanes share one voxmap in BANKS banks
   localparam int unsigned NPar  = Dist ? 8 : 1;                    // words a lane reads per point (its requests)
   localparam int unsigned NReq  = LANES * NPar;                    // request r: lane r / NPar, parity bank r % NPar
@@ -156,11 +157,12 @@ module voxcd_device #(
     logic [3*TW-1:0]        t;      // {t2, t1, t0}
     logic [ThrW-1:0]        thr;    // the threshold (distance devices; else 0)
     logic [HxyW-1:0]        hxy;    // Hx*Hy = ((nx>>1)+1) * ((ny>>1)+1), the z step of a bank's half-index (else 0)
+    logic                   fresh;        // accepted with every earlier job's completion record emitted
     logic [CW-1:0]          stamp;        // cycle in which the job was accepted
     logic [CW-1:0]          stall_stamp;  // stall cycles up to and including that cycle
   } job_t;
   localparam int unsigned JobW = TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW + ThrW +
-                                 HxyW + 2 * CW;
+                                 HxyW + 1 + 2 * CW;
 
   // What the slot registers after R0 keep of a slot's job (below): the map, and the fields of the hit test.
   typedef struct packed {
@@ -173,10 +175,11 @@ module voxcd_device #(
     logic [1:0]      mode;
     logic [3:0]      mask;
     logic [ThrW-1:0] thr;
+    logic            fresh;
     logic [CW-1:0]   stamp;
     logic [CW-1:0]   stall_stamp;
   } test_t;
-  localparam int unsigned TestW = TAGW + 2 + 4 + ThrW + 2 * CW;
+  localparam int unsigned TestW = TAGW + 2 + 4 + ThrW + 1 + 2 * CW;
 
   typedef struct packed {
     logic              valid;   // a slot of a job (else an empty slot)
@@ -207,15 +210,19 @@ module voxcd_device #(
   // ---- Cycle and stall counters (free-running) ----
   logic          stall;                       // this cycle the pipeline is held by the output slice
   logic [CW-1:0] now_q;                       // this cycle's number
+  logic [InFlW-1:0] in_flight_q;              // jobs accepted whose completion record has not been emitted
+  logic             emit_done;                // a completion record enters the output slice (below)
   logic [CW-1:0] stall_total_d, stall_total_q;  // stall cycles before this one (_d: up to and including it)
   assign stall_total_d = stall_total_q + CW'(stall);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       now_q         <= '0;
       stall_total_q <= '0;
+      in_flight_q   <= '0;
     end else begin
       now_q         <= now_q + 1'b1;
       stall_total_q <= stall_total_d;
+      in_flight_q   <= in_flight_q + InFlW'(job_valid_i && job_ready_o) - InFlW'(emit_done);
     end
   end
 
@@ -234,7 +241,7 @@ module voxcd_device #(
                    job_t2_i, job_t1_i, job_t0_i,
                    Dist ? ThrW'(job_threshold_i) : ThrW'(0),
                    Dist ? HxyW'(HxyW'(hx_in) * HxyW'(hy_in)) : HxyW'(0),
-                   now_q, stall_total_d};
+                   in_flight_q == '0, now_q, stall_total_d};
 
   voxcd_fifo #(
     .Depth(2),
@@ -339,7 +346,8 @@ module voxcd_device #(
   job_t  r0_job_q;
   test_t r0_test, r5_test, last_test;
   map_t  acc_map, yz_map, r3_map, lin_map;  // the map fields of the registers AccR, YzR, R3R, LinR
-  assign r0_test = {r0_job_q.tag, r0_job_q.mode, r0_job_q.mask, r0_job_q.thr, r0_job_q.stamp, r0_job_q.stall_stamp};
+  assign r0_test = {r0_job_q.tag, r0_job_q.mode, r0_job_q.mask, r0_job_q.thr, r0_job_q.fresh, r0_job_q.stamp,
+                    r0_job_q.stall_stamp};
   always_ff @(posedge clk_i) begin
     if (advance) r0_job_q <= head_job;
   end
@@ -495,7 +503,6 @@ module voxcd_device #(
   logic [SAW:0]     hits_d, hits_q, points_d, points_q;  // of the current job, over its slots before this one
   logic             out_ready;             // the output slice takes a record (a register: no path from *_ready_i)
   logic             emit;                  // a record enters the output slice
-  logic             emit_done;             // ... and it is the completion record
 
   always_comb begin
     for (int i = 0; i < LANES; i++) begin
@@ -701,12 +708,17 @@ module voxcd_device #(
   // record waits for its consumer) cannot delay it and are not counted.
   logic [CW-1:0] since_done_d, since_done_q;            // cycles since the previous completion's emission
   logic [CW-1:0] stalls_at_done_d, stalls_at_done_q;    // stall_total at the previous completion's emission
-  logic [CW-1:0] job_age, cycles, stalls;
+  logic [CW-1:0] job_age, cycles, stalls, stalls_since_job, stalls_since_done;
   logic          window_from_job;                       // the job was accepted after the previous completion
-  assign job_age         = now_q - last_test.stamp;
-  assign window_from_job = job_age < since_done_q;
-  assign cycles          = window_from_job ? job_age : since_done_q;
-  assign stalls          = stall_total_q - (window_from_job ? last_test.stall_stamp : stalls_at_done_q);
+  // A job accepted with no earlier job in flight (fresh) was accepted after the previous completion's emission; one
+  // accepted in the cycle of that emission may take either window (both give the same counts). Each candidate is
+  // computed from registers, side by side, and then selected: no comparison of the two windows on the path.
+  assign job_age           = now_q - last_test.stamp;
+  assign window_from_job   = last_test.fresh;
+  assign cycles            = window_from_job ? job_age : since_done_q;
+  assign stalls_since_job  = stall_total_q - last_test.stall_stamp;
+  assign stalls_since_done = stall_total_q - stalls_at_done_q;
+  assign stalls            = window_from_job ? stalls_since_job : stalls_since_done;
 
   always_comb begin
     since_done_d     = emit_done ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
@@ -807,6 +819,8 @@ module voxcd_device #(
   // The pipeline holds whenever the output slice cannot take a record; a record is never dropped.
   `VOXCD_ASSERT(EmitOnlyWhenReady, !(advance || emit) || out_ready)
   `VOXCD_ASSERT(PopOnlyAHeadJob, !head_pop || head_valid)
+  // A job is in the queue or has a slot in R0 .. R(N-1) until its completion record: at most NumR + 2 are in flight.
+  `VOXCD_ASSERT(InFlightBounded, 32'(in_flight_q) <= NumR + 2 && (in_flight_q != '0 || !emit_done))
   // R0 .. R4 advance only with the last register, and only when every lane of R4 has its word.
   `VOXCD_ASSERT(AdvanceWithTheLastRegister, !advance || (advance_out && !bank_wait))
   // The memories are loaded while the device is idle.
