@@ -328,8 +328,8 @@ void FastRunner::write_map(uint64_t first, const uint64_t* words, size_t n) {
   std::copy(words, words + n, map_.begin() + std::ptrdiff_t(first));
 }
 
-uint64_t FastRunner::bank_conflicts(const Job& job, uint64_t groups) const {
-  return job_bank_conflicts(cfg_, shell_, job, groups);
+BankCycles FastRunner::bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const {
+  return job_bank_cycles(cfg_, shell_, job, hits, done_hits);
 }
 
 std::vector<Record> FastRunner::run(const std::vector<Job>& jobs, bool cycles) {
@@ -398,7 +398,7 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
       }
       push_record(out, Record::Done, jobs[j].tag).hits = hits;
     }
-    if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_conflicts(cfg_, shell_, jobs, out));
+    if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_cycles(cfg_, shell_, jobs, out));
     else if (cycles) annotate_cycles(cfg_, jobs, out);
     return;
   }
@@ -454,8 +454,8 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
   out.resize(total);
   // A job's hits and the summary of its kept records (from its pieces, all done).
   // A banked device's conflict cycles of a job, from its slots' addresses (ref/banks.h).
-  auto conflicts = [&](const Job& job, const JobHits& sum, uint32_t hits) -> uint64_t {
-    return cfg_.banked() ? job_bank_conflicts(cfg_, shell_, job, read_groups(cfg_, job, sum, hits)) : 0;
+  auto conflicts = [&](const Job& job, const JobHits& sum, uint32_t hits) -> BankCycles {
+    return cfg_.banked() ? job_bank_cycles(cfg_, shell_, job, sum, hits) : BankCycles{};
   };
   auto job_result = [&](size_t j, uint32_t& hits, JobHits& sum) {
     hits = 0;
