@@ -32,14 +32,18 @@ for name in "${names[@]}"; do
       # another derived scene, and one more model in every other list. Then every test of the models, slow ones
       # included.
       dist="SB 8 WB 8 LANES 1;SB 8 WB 8 LANES 2;SB 8 WB 8 LANES 4;SB 8 WB 8 LANES 8;SB 4 WB 8 LANES 2"
-      banked="LANES 1 BANKS 1;LANES 2 BANKS 2;LANES 4 BANKS 4;LANES 8 BANKS 8;LANES 8 BANKS 2"
-      axi="LANES 4 AxilDw 32 JobDw 64 RecDw 64;LANES 2 AxilDw 64 JobDw 1024 RecDw 256"
+      banked="LANES 1 BANKS 1;LANES 2 BANKS 2;LANES 4 BANKS 4;LANES 8 BANKS 8;LANES 8 BANKS 2;SB 8 WB 8 LANES 4 BANKS 1"
+      depth="LANES 4 DEPTH 1;LANES 4 DEPTH 2;LANES 4 DEPTH 3;LANES 4 DEPTH 4;LANES 4 DEPTH 5;LANES 1 DEPTH 5"
+      depth+=";LANES 8 DEPTH 5;LANES 8 BANKS 2 DEPTH 5;SB 8 WB 8 LANES 2 BANKS 2 DEPTH 5;SB 8 WB 8 LANES 1 DEPTH 2"
+      axi="LANES 4 AxilDw 32 JobDw 64 RecDw 64;LANES 2 AxilDw 64 JobDw 1024 RecDw 256 DEPTH 5"
       sysc_dist="SB 8 WB 8 LANES 4;SB 4 WB 8 LANES 2;SB 16 WB 8 LANES 1"
       (configure models -DVOXCD_RTL_LANES=4 -DVOXCD_SYSC_LANES=1 -DVOXCD_RTL_CONFIGS=paper.json \
          "-DVOXCD_RTL_DIST_MODELS=$dist;SB 16 WB 8 LANES 1;SB 4 WB 4 LANES 1" \
-         "-DVOXCD_RTL_BANKED_MODELS=$banked;LANES 2 BANKS 1" \
+         "-DVOXCD_RTL_BANKED_MODELS=$banked;LANES 2 BANKS 1" "-DVOXCD_RTL_DEPTH_MODELS=$depth;LANES 2 DEPTH 3" \
          "-DVOXCD_AXI_MODELS=$axi;LANES 1 AxilDw 32 JobDw 8 RecDw 8" \
-         "-DVOXCD_SYSC_DIST_MODELS=$sysc_dist;SB 8 WB 8 LANES 1" "-DVOXCD_SYSC_AXI_PAIRS=LANES 2" &&
+         "-DVOXCD_SYSC_DIST_MODELS=$sysc_dist;SB 8 WB 8 LANES 1" "-DVOXCD_SYSC_AXI_PAIRS=LANES 2" \
+         "-DVOXCD_SYSC_BANKED_MODELS=LANES 4 BANKS 4;LANES 2 BANKS 1" \
+         "-DVOXCD_SYSC_DEPTH_MODELS=LANES 4 DEPTH 5;LANES 1 DEPTH 2" &&
        cmake --build "$dir" -j2 &&
        (cd "$dir" && ctest -j2 --output-on-failure -L "rtl|sysc|axi|dpi|backends|python|install"))
       ;;

@@ -3,13 +3,16 @@
 // backends (ref, cpu) on the same stream. Every cycle count here is read from the RTL's own completion records
 // or pins, not from the timing model. Writes Markdown to stdout (and to --out FILE); bench/hardware.sh puts it
 // into docs/hardware.md. --distance measures the distance devices (SB > 2) instead: the same throughput table on a
-// 64^3 distance map at SB 8, the SB 4 and SB 16 models, and their latency.
+// 64^3 distance map at SB 8, the SB 4 and SB 16 models, and their latency. --depth measures every pipeline depth
+// the build has models of (docs/hardware.md, "Pipeline depth"): sustained points per cycle, latency, the cycles a
+// FIRST job's early stop costs, and how fast each depth co-simulates beside depth 0 in the same run.
 #include <verilated.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <random>
@@ -183,12 +186,12 @@ Latency latency() {
 // record's emission into the output register), on the model of cfg.
 // The point is the first of the shell that hits (ref/): on a distance device every point does (the threshold is
 // IW's largest value), on the 2-bit device one in a surface voxel.
-uint64_t one_point_cycles(const DeviceConfig& cfg, const DeviceMemory& mem) {
+uint64_t one_point_cycles(const DeviceConfig& cfg, const DeviceMemory& mem, const std::string& backend = "rtl") {
   Job j = job(0, Mode::All, 0, 1);
   if (cfg.distance()) j.threshold = (cfg.IW() >= 64) ? INT64_MAX : (int64_t{1} << (cfg.IW() - 1)) - 1;
   while (j.shell_base < mem.shell.size() && run_stream(cfg, mem, {j}).front().kind != Record::Hit) ++j.shell_base;
   if (j.shell_base == mem.shell.size()) throw std::runtime_error("bench_hardware: no shell point hits");
-  auto dev = make_device("rtl", cfg);
+  auto dev = make_device(backend, cfg);
   dev->load(mem);
   const std::vector<Record> r = dev->run({j});
   if (r.size() != 2 || r.front().kind != Record::Hit) throw std::runtime_error("bench_hardware: the job did not hit");
@@ -279,24 +282,195 @@ void distance_section(std::ostream& md) {
      << ", models built with -O3.\n";
 }
 
+// Cycles from one job's completion to the next's, the first a FIRST job of `groups` slots that hits in its first
+// slot, the second a one-point COUNT job: the squashed slots, the empty slot, the second job's slot.
+uint64_t first_stop_cycles(const DeviceConfig& cfg) {
+  DeviceMemory mem;
+  const uint32_t groups = 64;
+  for (uint32_t k = 0; k < groups * uint32_t(cfg.LANES); ++k) mem.shell.push_back({128, 128, 128});  // voxel 0
+  mem.map = {uint64_t{kSurface}};
+  Job first;
+  first.mode = Mode::First;
+  first.shell_count = groups * uint32_t(cfg.LANES);
+  Job count;
+  count.tag = 1;
+  count.mode = Mode::Count;
+  count.shell_count = 1;
+  auto dev = make_device("rtl", cfg);
+  dev->load(mem);
+  const std::vector<Record> r = dev->run({first, count});
+  if (r.size() != 3 || r[0].kind != Record::Hit) throw std::runtime_error("bench_hardware: the FIRST job did not hit");
+  return *r.back().cycles;
+}
+
+// The thread's CPU time in seconds: on a shared machine less disturbed by other jobs than wall time.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// Co-simulation speed of the rtl backend at LANES 4 at every depth: 64 COUNT jobs of 4096 points, the depths taken in
+// turn within each of `repeats` rounds (so that a change of load falls on all of them), median thread CPU time.
+std::vector<double> depth_cosim_rates(const DeviceMemory& mem, int repeats) {
+  std::vector<std::unique_ptr<Device>> devs;
+  for (int d = 0; d <= kMaxDepth; ++d) {
+    DeviceConfig c;
+    c.depth = d;
+    devs.push_back(make_device("rtl", c));
+    devs.back()->load(mem);
+  }
+  const std::vector<Job> jobs = stream(Mode::Count, 4096, 64);
+  std::vector<std::vector<double>> secs(devs.size());
+  std::vector<uint64_t> cycles(devs.size(), 0);
+  for (int r = 0; r < repeats; ++r) {
+    for (size_t d = 0; d < devs.size(); ++d) {
+      const double t0 = thread_cpu_seconds();
+      const std::vector<Record> recs = devs[d]->run(jobs);
+      secs[d].push_back(thread_cpu_seconds() - t0);
+      cycles[d] = 0;
+      for (const Record& rec : recs)
+        if (rec.kind == Record::Done) cycles[d] += *rec.cycles;
+    }
+  }
+  std::vector<double> rates;
+  for (size_t d = 0; d < devs.size(); ++d) rates.push_back(double(cycles[d]) / bench::median(secs[d]) / 1e6);
+  return rates;
+}
+
+// The backend that runs cfg: rtl when the build has its model, else cpu, whose cycles are the timing model's (which
+// the RTL matches at every depth, tests/rtl/test_rtl_depth.cpp); `mark` is "*" for cpu.
+std::string backend_for(const DeviceConfig& cfg, std::string& mark) {
+  try {
+    make_device("rtl", cfg);
+    mark = "";
+    return "rtl";
+  } catch (const DeviceError&) {
+    mark = "*";
+    return "cpu";
+  }
+}
+
+// One row of the depth table: slot registers, latency, FIRST's stop, points per cycle at LANES 1 (its RTL model, or
+// the cpu backend's cycles where the build has none: marked *) and 4; the worst ratio to LANES of the row.
+double depth_row(std::ostream& md, const DeviceMemory& mem, int d) {
+  DeviceConfig l1, l4;
+  l1.LANES = 1;
+  l4.LANES = 4;
+  l1.depth = l4.depth = d;
+  std::string m1;
+  auto one = make_device(backend_for(l1, m1), l1);
+  auto four = make_device("rtl", l4);
+  one->load(mem);
+  four->load(mem);
+  md << "| " << d << " | " << pipeline_slots(l4) << " | " << one_point_cycles(l4, mem) << " | " << first_stop_cycles(l4)
+     << " |";
+  const Sustained a1 = sustained(*one, Mode::All, 4096, 1), n1 = sustained(*one, Mode::Count, 4096, 1);
+  double worst = std::min(a1.points_per_cycle, n1.points_per_cycle);
+  md << " " << bench::fmt("%.3f", a1.points_per_cycle) << m1 << " | " << bench::fmt("%.3f", n1.points_per_cycle) << m1
+     << " |";
+  for (uint32_t n : {256u, 4096u, 65536u}) {
+    const Sustained a4 = sustained(*four, Mode::All, n, 4);
+    worst = std::min(worst, a4.points_per_cycle / 4);
+    md << " " << bench::fmt("%.2f", a4.points_per_cycle) << " |";
+  }
+  const Sustained n4 = sustained(*four, Mode::Count, 4096, 4);
+  worst = std::min(worst, n4.points_per_cycle / 4);
+  md << " " << bench::fmt("%.2f", n4.points_per_cycle) << " | " << bench::fmt("%.3f", worst) << " |";
+  return worst;
+}
+
+// The deepest banked and distance models beside the same configuration at depth 0 (its RTL model, else the cpu
+// backend, whose cycles are the timing model's).
+void depth_deepest(std::ostream& md, const DeviceMemory& mem) {
+  md << "The deepest pipeline with shared banks and on a distance device, 4096-point jobs (the distance device on "
+        "the sphere map of its own section, thresholds at the 1st percentile), beside the same configuration at "
+        "depth 0 (its RTL model, or where the build has none the cpu backend's cycles, which are the timing model's: "
+        "marked *). The random points of these jobs read random words, so bank conflicts bound the throughput of a "
+        "banked device, at every depth alike:\n\n| model | ALL | COUNT | latency (cycles) | at depth 0: ALL | COUNT | "
+        "latency |\n|---|--:|--:|--:|--:|--:|--:|\n";
+  for (const DeviceConfig& c : rtl_depth_configs()) {
+    if (c.depth != kMaxDepth || !(c.banked() || c.distance())) continue;
+    DeviceConfig base = c;
+    base.depth = 0;
+    const DeviceMemory m = c.distance() ? distance_scene(c, 11) : mem;
+    g_threshold = c.distance() ? quantile_threshold(c, m, 0.01) : 0;
+    md << "| " << (c.distance() ? "SB " + std::to_string(c.SB) + " WB " + std::to_string(c.WB) + " " : "")
+       << "LANES " << c.LANES << " BANKS " << c.BANKS << " DEPTH " << c.depth << " |";
+    for (const DeviceConfig& x : {c, base}) {
+      std::string mark;
+      const std::string backend = backend_for(x, mark);
+      auto dev = make_device(backend, x);
+      dev->load(m);
+      const Sustained a = sustained(*dev, Mode::All, 4096, x.LANES), n = sustained(*dev, Mode::Count, 4096, x.LANES);
+      const int64_t thr = g_threshold;
+      const uint64_t lat = one_point_cycles(x, m, backend);
+      g_threshold = thr;
+      md << " " << bench::fmt("%.2f", a.points_per_cycle) << mark << " | " << bench::fmt("%.2f", n.points_per_cycle)
+         << mark << " | " << lat << mark << " |";
+    }
+    md << "\n";
+  }
+  g_threshold = 0;
+}
+
+// Every depth of the 2-bit device at LANES 4 (and 1), and the deepest banked and distance models beside their depth-0
+// counterparts (ref/timing.h: pipeline_slots = 6 + depth, 9 + depth on a distance device).
+void depth_section(std::ostream& md, int repeats) {
+  const DeviceMemory mem = scene(11);
+  md << "### Pipeline depth: throughput, latency and co-simulation speed\n\n"
+     << "Every depth the build has models of, on the scene of the throughput table above (a 64^3 voxmap with 1% "
+        "surface voxels, 65536 random points, about 1% of lookups hit): points per cycle of 8 back-to-back jobs of "
+        "one size (the first left out) in ALL and COUNT, read from the RTL's completion records; the latency of a "
+        "one-point job that hits (its completion record's cycles, from its acceptance to the record's emission); "
+        "the cycles from a FIRST job's completion to the next job's when the FIRST job hits in its first slot (its "
+        "squashed slots, the empty slot it leaves, the next job's one slot); LANES 1 on its RTL model where the build "
+        "has one, else the cpu backend's cycles, which are the timing model's (marked *); and the rtl backend's "
+        "co-simulation "
+        "speed at LANES 4 on 64 COUNT jobs of 4096 points (the median of "
+     << repeats << " runs by thread CPU time, the depths in turn within each round, with the ratio to depth 0). "
+                   "Goal: at least 0.95 x LANES from 256 points at every depth, and no depth more than 10% slower to "
+                   "co-simulate than depth 0.\n\n"
+     << "| depth | slot registers | latency (cycles) | FIRST stop (cycles) | L=1 ALL 4096 | L=1 COUNT 4096 | L=4 ALL "
+        "256 | L=4 ALL 4096 | L=4 ALL 65536 | L=4 COUNT 4096 | worst x LANES | co-sim Mcycles/s (L=4) | ratio |\n"
+        "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  const std::vector<double> rates = depth_cosim_rates(mem, repeats);
+  double worst = 1e9, slowest = 1e9;
+  for (int d = 0; d <= kMaxDepth; ++d) {
+    worst = std::min(worst, depth_row(md, mem, d));
+    slowest = std::min(slowest, rates[size_t(d)] / rates[0]);
+    md << " " << bench::fmt("%.2f", rates[size_t(d)]) << " | " << bench::fmt("%.2f", rates[size_t(d)] / rates[0])
+       << " |\n";
+    std::fprintf(stderr, "depth %d done\n", d);
+  }
+  md << "\nEvery depth sustains at least " << bench::fmt("%.3f", worst)
+     << " x LANES (the goal is 0.95); the slowest depth co-simulates at " << bench::fmt("%.2f", slowest)
+     << " of depth 0's rate in this run (the goal: at least 0.90).\n\n";
+  depth_deepest(md, mem);
+  md << "\nMachine: " << bench::machine_description() << ". Verilator " << Verilated::productVersion()
+     << ", models built with -O3 (the rtl backend's: --assert, FST tracing compiled in).\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string out_path;
   int repeats = 5;
-  bool distance = false;
+  bool distance = false, depth = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out_path = argv[++i];
     else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--distance")) distance = true;
+    else if (!std::strcmp(argv[i], "--depth")) depth = true;
     else {
-      std::fprintf(stderr, "usage: bench_hardware [--out FILE] [--repeats N] [--distance]\n");
+      std::fprintf(stderr, "usage: bench_hardware [--out FILE] [--repeats N] [--distance | --depth]\n");
       return 2;
     }
   }
-  if (distance) {
+  if (distance || depth) {
     std::ostringstream md;
-    distance_section(md);
+    if (distance) distance_section(md);
+    else depth_section(md, repeats);
     std::cout << md.str();
     if (!out_path.empty()) std::ofstream(out_path) << md.str();
     return 0;

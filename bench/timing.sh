@@ -99,9 +99,7 @@ work_dir
 for f in "${rtl_files[@]}"; do cp "$root/rtl/$f" "$tmp/$f"; done
 cp "$root/bench/voxcd_fmax_top.sv" "$root/bench/timing/"*.py "$root/host/sizing/kogge_stone.v" "$tmp/"
 cd "$tmp"
-define=""
-((has_depth)) && define="-DVOXCD_DEVICE_DEPTH"
-read_rtl="read_verilog -sv $define ${rtl_files[*]}"
+read_rtl="read_verilog -sv ${rtl_files[*]}"
 default_cfg="-set LANES 4 -set SAW 12 -set MAW 12"
 small_cfg="-set LANES 1 -set PW 10 -set PF 2 -set MW 8 -set MF 6 -set TW 20 -set DW 5 -set MEMW 16 -set SAW 8"
 small_cfg+=" -set MAW 9 -set TAGW 4"

@@ -7,8 +7,7 @@
 // the device is optimised away (every input is live, every output observed), and every path into and out of the
 // device starts or ends at a flip-flop next to it, so IO timing does not limit the internal paths.
 //
-// Depth (the register stages voxcd_device adds to its lanes) reaches the device when the script that reads this file
-// defines VOXCD_DEVICE_DEPTH, which it does when rtl/voxcd_device.sv has the parameter (bench/timing.sh).
+// Depth is the register stages voxcd_device adds to its lanes (docs/hardware.md, "Pipeline depth").
 module voxcd_fmax_top #(
   parameter int unsigned PW    = voxcd_arch_pkg::PW,
   parameter int unsigned PF    = voxcd_arch_pkg::PF,
@@ -23,7 +22,7 @@ module voxcd_fmax_top #(
   parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
   parameter int unsigned SB    = voxcd_arch_pkg::SB,
   parameter int unsigned WB    = voxcd_arch_pkg::WB,
-  parameter int unsigned Depth = 0
+  parameter int unsigned Depth = voxcd_arch_pkg::Depth
 ) (
   input  logic clk_i,
   input  logic rst_ni,
@@ -106,10 +105,7 @@ module voxcd_fmax_top #(
 
   voxcd_device #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB)
-`ifdef VOXCD_DEVICE_DEPTH
-    , .Depth(Depth)
-`endif
+    .TAGW(TAGW), .SB(SB), .WB(WB), .Depth(Depth)
   ) u_device (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),

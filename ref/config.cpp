@@ -46,13 +46,17 @@ void DeviceConfig::validate() const {
   if (banked()) {
     range("BANKS", BANKS, 1, 64);
     require((BANKS & (BANKS - 1)) == 0, "BANKS = " + std::to_string(BANKS) + " is not a power of two");
-    require(BANKS <= (1 << std::min(MAW, 28)), "BANKS = " + std::to_string(BANKS) + " is more than the 2^MAW = " +
-                                                   std::to_string(1 << std::min(MAW, 28)) + " voxmap words");
-    require(!distance(), "BANKS = " + std::to_string(BANKS) + ": shared voxmap banks are for 2-bit devices (SB = 2); "
-                         "a distance device (SB = " + std::to_string(SB) + ") keeps a copy per lane");
+    // A distance device splits each of its 8 parity banks BANKS ways.
+    const int64_t banks = int64_t(BANKS) * (distance() ? 8 : 1);
+    require(banks <= (int64_t{1} << std::min(MAW, 28)),
+            (distance() ? "8 * BANKS = " + std::to_string(banks) + " banks (each parity bank split BANKS = " +
+                              std::to_string(BANKS) + " ways) are"
+                        : "BANKS = " + std::to_string(BANKS) + " is") +
+                " more than the 2^MAW = " + std::to_string(1 << std::min(MAW, 28)) + " voxmap words");
   } else {
     require(BANKS == 0, "BANKS = " + std::to_string(BANKS) + " is negative (0: a voxmap copy per lane)");
   }
+  range("DEPTH", depth, 0, kMaxDepth);
   // An index must be able to hold every in-grid value 0 .. 2^DW - 1 plus a sign.
   require(index_width() >= DW + 1, "the accumulator's integer part (" + std::to_string(index_width()) +
                                        " bits) cannot hold DW = " + std::to_string(DW));
@@ -64,6 +68,7 @@ std::string DeviceConfig::to_string() const {
     << MEMW << " LANES " << LANES << " SAW " << SAW << " MAW " << MAW << " TAGW " << TAGW;
   if (distance()) s << " SB " << SB << " WB " << WB;
   if (banked()) s << " BANKS " << BANKS;
+  if (depth != 0) s << " DEPTH " << depth;
   return s.str();
 }
 

@@ -12,6 +12,18 @@ struct ConfigError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The deepest pipeline (voxcd_arch_pkg::MaxDepth): DeviceConfig::depth runs from 0 (the datapath of the paper's
+// device: transform, floor, bounds and address between five slot registers) to kMaxDepth, where every lane also has
+// registered multiplier inputs, a sum tree level, the floor and bounds before the index product, the linear index
+// before the word address, and the selected state (node values) before the hit test (docs/hardware.md).
+constexpr int kMaxDepth = 5;
+// The stages in the order depth adds them (voxcd_arch_pkg's Rank*): the stage of rank r is there when depth > r.
+constexpr int kRankIn = 0;     // the multipliers' input registers (the point after the shell banks, and M)
+constexpr int kRankAddr = 1;   // the linear index (a distance map's half-index) before the word address
+constexpr int kRankRead = 2;   // the selected state (a distance map's 8 node values) before the hit test
+constexpr int kRankSum = 3;    // a level of the transform's sum tree
+constexpr int kRankFloor = 4;  // the floor and bounds before the index product
+
 struct DeviceConfig {
   int PW = 24;    // shell point coordinate width (signed)
   int PF = 8;     // shell point fraction bits (units: the shell object's own voxel size)
@@ -27,7 +39,10 @@ struct DeviceConfig {
   int SB = 2;     // voxmap value width: 2 = voxel states; 4, 8, 16 = a signed distance per grid node
   int WB = 8;     // interpolation weight bits (distance voxmaps): the top WB fraction bits per coordinate
   int BANKS = 0;  // 0: every lane its own copy of the voxmap; B: the lanes share one voxmap in B banks (word w in
-                  // bank w % B), with bank conflicts resolved by the device (timing only, never results)
+                  // bank w % B; on a distance device each of the 8 parity banks in B, word w in bank w % 8B), with
+                  // bank conflicts resolved by the device (timing only, never results)
+  int depth = 0;  // register stages added to every lane, 0 .. kMaxDepth (the RTL's Depth; timing only, never
+                  // results): each adds one slot register, so one cycle of latency and of a FIRST job's squash
 
   int TF() const { return MF + PF; }
   int states_per_word() const { return MEMW / 2; }
@@ -52,11 +67,14 @@ struct DeviceConfig {
   // Throws ConfigError naming the parameter and the rule it breaks.
   void validate() const;
   // "PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 LANES 4 SAW 16 MAW 18 TAGW 16", then "SB 8 WB 8" on a
-  // distance device and "BANKS B" on a banked one (a 2-bit device's text is the paper device's, unchanged).
+  // distance device, "BANKS B" on a banked one and "DEPTH D" on a deeper pipeline (a 2-bit device's text is the
+  // paper device's, unchanged).
   std::string to_string() const;
-  // Same widths; LANES and BANKS may differ (they change timing, never results).
+  // Same widths; LANES, BANKS and depth may differ (they change timing, never results).
   bool same_widths(const DeviceConfig& o) const;
-  bool operator==(const DeviceConfig& o) const { return same_widths(o) && LANES == o.LANES && BANKS == o.BANKS; }
+  bool operator==(const DeviceConfig& o) const {
+    return same_widths(o) && LANES == o.LANES && BANKS == o.BANKS && depth == o.depth;
+  }
   bool operator!=(const DeviceConfig& o) const { return !(*this == o); }
 };
 

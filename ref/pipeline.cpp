@@ -167,6 +167,30 @@ void validate_job(const DeviceConfig& cfg, const Job& job, uint64_t shell_words,
   }
 }
 
+uint32_t job_faults(const DeviceConfig& cfg, const Job& job, uint64_t shell_words, uint64_t loaded_map_words) {
+  uint32_t f = 0;
+  if ((job.mode != Mode::All && job.mode != Mode::First && job.mode != Mode::Count) || job.hit_mask > 15)
+    f |= kFaultMode;
+  if (!fits_unsigned(job.tag, cfg.TAGW)) f |= kFaultTag;
+  if (!fits_unsigned(job.shell_base, cfg.SAW) || uint64_t(job.shell_count) > cfg.shell_depth() ||
+      uint64_t(job.shell_base) + job.shell_count > shell_words)
+    f |= kFaultShell;
+  const uint64_t n[3] = {job.nx, job.ny, job.nz};
+  bool dims_ok = true;
+  for (uint64_t v : n) dims_ok = dims_ok && v >= 1 && v <= cfg.max_dim();
+  if (!dims_ok) f |= kFaultDims;
+  if (!fits_unsigned(job.map_base, cfg.MAW) || (cfg.distance() && job.map_base % 8 != 0) ||
+      (dims_ok && uint64_t(job.map_base) + map_words(cfg, job) > loaded_map_words))
+    f |= kFaultMap;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      if (!fits_signed(job.M[i][j], cfg.MW)) f |= kFaultPose;
+    if (!fits_signed(job.t[i], cfg.TW)) f |= kFaultPose;
+  }
+  if (cfg.distance() ? !fits_signed(job.threshold, cfg.IW()) : job.threshold != 0) f |= kFaultThreshold;
+  return f;
+}
+
 void validate_memory(const DeviceConfig& cfg, const DeviceMemory& mem) {
   if (mem.shell.size() > cfg.shell_depth())
     throw JobError(std::to_string(mem.shell.size()) + " shell words do not fit the shell memory of 2^SAW = " +

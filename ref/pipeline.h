@@ -78,6 +78,21 @@ int64_t interpolate(const DeviceConfig& cfg, const Nodes& n, const Fractions& f)
 // Stage 4b (distance), hit test: inside and D <= threshold.
 bool distance_hit(int64_t threshold, bool inside, int64_t dist);
 
+// The rules of validate_job a job breaks, one bit each (0: a valid job). The AXI top (rtl/voxcd_axi.sv) checks the
+// same rules in hardware and reports them in its error records (docs/contract.md, "Refused jobs"); bit 0 is the
+// descriptor's own format (its reserved bytes), which a Job does not have.
+enum JobFault : uint32_t {
+  kFaultMode = 1u << 1,       // mode not ALL, FIRST or COUNT, or a hit mask above 15
+  kFaultTag = 1u << 2,        // the tag does not fit TAGW bits
+  kFaultShell = 1u << 3,      // shell_base does not fit SAW, or [shell_base, + shell_count) leaves the loaded words
+  kFaultDims = 1u << 4,       // nx, ny or nz outside 1..2^DW
+  kFaultMap = 1u << 5,        // map_base does not fit MAW, a distance map is off a bank boundary, or (with valid
+                              // dimensions) the map's words leave the loaded words
+  kFaultPose = 1u << 6,       // an entry of M does not fit MW bits, or of t TW bits
+  kFaultThreshold = 1u << 7,  // a distance job's threshold does not fit IW bits; a 2-bit job's is not 0
+};
+uint32_t job_faults(const DeviceConfig& cfg, const Job& job, uint64_t shell_words, uint64_t loaded_map_words);
+
 // Throws JobError unless every field fits its format under cfg and the job reads only loaded words:
 // shell words [shell_base, shell_base + shell_count) < shell_words, map words
 // [map_base, map_base + map_words(cfg, job)) < loaded_map_words; a distance map starts on a bank boundary

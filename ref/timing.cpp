@@ -53,7 +53,7 @@ JobHits join_job_hits(const JobHits& a, const JobHits& b) {
 }
 
 JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& h, uint32_t done_hits,
-                 uint64_t conflicts) {
+                 const BankCycles& bank) {
   const uint64_t L = uint64_t(cfg.LANES), P = uint64_t(pipeline_slots(cfg));
   const uint64_t count = job.shell_count;
   const uint64_t groups = count == 0 ? 1 : ceil_div(count, L);
@@ -62,14 +62,18 @@ JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHit
     if (h.first_group == groups)
       throw std::invalid_argument("timing: FIRST job " + std::to_string(j) + " reports a hit but has no record");
     const uint64_t f = h.first_group;
-    // The groups before the hit, one cycle each; the hit record, then the completion record. Groups issued behind
-    // the hit are squashed; the issue stage leaves the job with one empty slot.
-    const uint64_t squashed = std::min(groups - 1, f + P - 1) - f;
-    const uint64_t bubble = (groups - 1 >= f + P) ? 1 : 0;
-    s.done = f + 1;
-    s.advance = f + 2 + squashed + bubble;
-    s.slots = f + 1 + squashed + bubble;
+    // The groups before the hit, one cycle each (and their conflict cycles); the hit record, then the completion
+    // record. Behind the hit the P - 1 slot registers before the hit test hold the job's later groups, squashed
+    // (one cycle each), and the empty slots their reads left (the window); when the job has groups left beyond
+    // them, the issue stage leaves it with one more empty slot. A job with fewer groups left is followed by the
+    // next one's first slot right after them.
+    const uint64_t rest = groups - 1 - f, window = bank.window;
+    const uint64_t drain = rest + window >= P ? P : rest + window;
+    s.done = f + 1 + (bank.conflicts - window);
+    s.advance = s.done + 1 + drain;
+    s.slots = f + 1 + drain - window;
     s.points = std::min(count, (f + 1) * L);
+    return s;
   } else {
     // A slot takes max(1, its records) cycles: its hit records (ALL only), and the completion record on the
     // job's last slot. Summed over the slots without a loop over them.
@@ -82,8 +86,8 @@ JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHit
     s.slots = groups;
     s.points = count;
   }
-  s.done += conflicts;
-  s.advance += conflicts;
+  s.done += bank.conflicts;
+  s.advance += bank.conflicts;
   return s;
 }
 
@@ -97,9 +101,9 @@ uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan
 namespace {
 
 std::vector<JobTiming> timing_of(const DeviceConfig& cfg, const std::vector<Job>& jobs,
-                                 const std::vector<Record>& records, const std::vector<uint64_t>* conflicts) {
-  if (conflicts && conflicts->size() != jobs.size())
-    throw std::invalid_argument("timing: " + std::to_string(conflicts->size()) + " bank conflict counts for " +
+                                 const std::vector<Record>& records, const std::vector<BankCycles>* bank) {
+  if (bank && bank->size() != jobs.size())
+    throw std::invalid_argument("timing: " + std::to_string(bank->size()) + " bank conflict counts for " +
                                 std::to_string(jobs.size()) + " jobs");
   std::vector<JobTiming> out(jobs.size());
   JobSpan prev;
@@ -112,7 +116,7 @@ std::vector<JobTiming> timing_of(const DeviceConfig& cfg, const std::vector<Job>
     if (r == records.size() || records[r].tag != job.tag)
       throw std::invalid_argument("timing: no completion record for job " + std::to_string(j));
     const Record& done = records[r++];
-    const JobSpan s = job_span(cfg, job, j, h, done.hits, conflicts ? (*conflicts)[j] : 0);
+    const JobSpan s = job_span(cfg, job, j, h, done.hits, bank ? (*bank)[j] : BankCycles{});
     out[j].cycles = span_cycles(cfg, j ? &prev : nullptr, s);
     out[j].slots = s.slots;
     out[j].points = s.points;
@@ -148,15 +152,15 @@ std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job
 }
 
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
-                                  const std::vector<Record>& records, const std::vector<uint64_t>& conflicts) {
-  return timing_of(cfg, jobs, records, &conflicts);
+                                  const std::vector<Record>& records, const std::vector<BankCycles>& bank) {
+  return timing_of(cfg, jobs, records, &bank);
 }
 
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records) {
   if (!cfg.banked()) return timing_of(cfg, jobs, records, nullptr);
-  const std::vector<uint64_t> conflicts = bank_conflicts(cfg, mem.shell, jobs, records);
-  return timing_of(cfg, jobs, records, &conflicts);
+  const std::vector<BankCycles> bank = bank_cycles(cfg, mem.shell, jobs, records);
+  return timing_of(cfg, jobs, records, &bank);
 }
 
 void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records) {
@@ -169,8 +173,8 @@ void annotate_cycles(const DeviceConfig& cfg, const DeviceMemory& mem, const std
 }
 
 void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records,
-                     const std::vector<uint64_t>& conflicts) {
-  annotate(job_timing(cfg, jobs, records, conflicts), records);
+                     const std::vector<BankCycles>& bank) {
+  annotate(job_timing(cfg, jobs, records, bank), records);
 }
 
 uint64_t stream_cycles(const std::vector<JobTiming>& t) {

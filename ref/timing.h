@@ -14,13 +14,17 @@ namespace voxcd {
 
 // Slot registers between the issue stage and the hit-test stage on a 2-bit device (voxcd_arch_pkg::PipeSlots).
 constexpr int kPipelineSlots = 6;
-// Cycles from a job's acceptance to its first slot at the hit-test stage: the queue register, then the slots.
+// Cycles from a job's acceptance to its first slot at the hit-test stage at depth 0: the queue register, then the
+// slots (1 + pipeline_slots(cfg) for any configuration).
 constexpr int kFirstSlotLatency = 1 + kPipelineSlots;
 // A distance device (SB > 2) adds three registers after the voxmap read (voxcd_arch_pkg::DistSlots): node select and
 // the x interpolation, the y interpolation, the z interpolation.
 constexpr int kDistanceSlots = 3;
-// The slot registers of cfg's device: kPipelineSlots, plus kDistanceSlots on a distance device.
-inline int pipeline_slots(const DeviceConfig& cfg) { return kPipelineSlots + (cfg.distance() ? kDistanceSlots : 0); }
+// Each unit of DeviceConfig::depth adds one more register stage to every lane, so one more slot register.
+// The slot registers of cfg's device: kPipelineSlots + cfg.depth, plus kDistanceSlots on a distance device.
+inline int pipeline_slots(const DeviceConfig& cfg) {
+  return kPipelineSlots + cfg.depth + (cfg.distance() ? kDistanceSlots : 0);
+}
 
 struct JobTiming {
   uint64_t slots = 0;   // lane groups issued for the job (FIRST: up to the early stop), plus its empty slot
@@ -51,10 +55,16 @@ uint64_t job_groups(const DeviceConfig& cfg, const Job& job);
 struct JobSpan {
   uint64_t done = 0, advance = 0, slots = 0, points = 0;
 };
-// On a banked device `conflicts` is the job's bank conflict cycles (ref/banks.h): each delays the job's next slot
-// by one cycle at the hit test, so both `done` and `advance` grow by them.
+// A job's bank conflict cycles on a banked device (ref/banks.h): every one, as the device counts them, and of those
+// the `window`: on a distance device, the empty slots its slots behind a FIRST hit left while they still read.
+struct BankCycles {
+  uint64_t conflicts = 0, window = 0;
+};
+// Each conflict cycle before the completion delays the job's next slot by one cycle at the hit test, so both `done`
+// and `advance` grow by it; a window cycle takes the place of a squashed slot behind a FIRST hit, and delays the
+// next job only when the job runs out of slots to squash first.
 JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& hits, uint32_t done_hits,
-                 uint64_t conflicts = 0);
+                 const BankCycles& bank = {});
 // The completion record's cycles of a job of span `cur` after a job of span `prev` (null: the stream's first job,
 // whose slots may start kFirstSlotLatency cycles, plus the distance slots, after its acceptance).
 uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan& cur);
@@ -64,9 +74,9 @@ uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan
 // device (whose cycles depend on the reads: use the overloads with the conflicts or the memory).
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records);
-// The same with each job's bank conflict cycles (bank_conflicts; all 0 on a device with a copy per lane).
+// The same with each job's bank cycles (bank_cycles; all 0 on a device with a copy per lane).
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
-                                  const std::vector<Record>& records, const std::vector<uint64_t>& conflicts);
+                                  const std::vector<Record>& records, const std::vector<BankCycles>& bank);
 // The same for any device, counting a banked device's conflicts from the memory the jobs ran on.
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records);
@@ -77,7 +87,7 @@ void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std:
 void annotate_cycles(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs,
                      std::vector<Record>& records);
 void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records,
-                     const std::vector<uint64_t>& conflicts);
+                     const std::vector<BankCycles>& bank);
 
 // Cycles of the whole stream: from the first job's acceptance to the cycle the last completion record is taken.
 uint64_t stream_cycles(const std::vector<JobTiming>& t);

@@ -192,7 +192,8 @@ class Parser {
     DeviceConfig c;
     std::map<std::string, int*> keys = {{"PW", &c.PW},     {"PF", &c.PF},   {"MW", &c.MW},   {"MF", &c.MF},
                                         {"TW", &c.TW},     {"DW", &c.DW},   {"MEMW", &c.MEMW}, {"LANES", &c.LANES},
-                                        {"SAW", &c.SAW},   {"MAW", &c.MAW}, {"TAGW", &c.TAGW}, {"BANKS", &c.BANKS}};
+                                        {"SAW", &c.SAW},   {"MAW", &c.MAW}, {"TAGW", &c.TAGW}, {"BANKS", &c.BANKS},
+                                        {"DEPTH", &c.depth}};
     if (version_ >= 2) keys.insert({{"SB", &c.SB}, {"WB", &c.WB}});
     std::map<std::string, bool> seen;
     for (size_t i = 1; i + 1 < tok_.size(); i += 2) {
@@ -215,6 +216,7 @@ class Parser {
     f.config = c;
     f.has_lanes = seen["LANES"];
     f.has_banks = seen["BANKS"];
+    f.has_depth = seen["DEPTH"];
   }
 
   void parse_shell(VectorFile& f) {
@@ -340,6 +342,7 @@ void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, 
   if (cfg.TAGW != d.TAGW) os << " TAGW " << cfg.TAGW;
   if (cfg.distance()) os << " SB " << cfg.SB << " WB " << cfg.WB;
   if (cfg.banked()) os << " BANKS " << cfg.BANKS;
+  if (cfg.depth != 0) os << " DEPTH " << cfg.depth;
   os << '\n';
   std::string buf;
   os << "shell " << mem.shell.size() << '\n';

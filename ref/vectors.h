@@ -1,6 +1,7 @@
 // Conformance vector files (docs/conformance.md is the normative description):
 //   voxcd-vectors 1 | 2
-//   config PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 [LANES 4] [SAW 16] [MAW 18] [TAGW 16] [SB 8 WB 8 (v2)]
+//   config PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 [LANES 4] [SAW 16] [MAW 18] [TAGW 16] [BANKS 4] [DEPTH 2]
+//          [SB 8 WB 8 (v2)]
 //   shell N      then N lines "x y z"
 //   map N        then N lines of one hex word
 //   job TAG MODE MASK SHELL_BASE SHELL_COUNT MAP_BASE NX NY NZ M00 .. M22 T0 T1 T2 [THRESHOLD (v2)]
@@ -31,6 +32,7 @@ struct VectorFile {
   DeviceConfig config;
   bool has_lanes = false;  // the config line named LANES
   bool has_banks = false;  // the config line named BANKS
+  bool has_depth = false;  // the config line named DEPTH (absent: 0, the depth of every file before it existed)
   DeviceMemory memory;
   std::vector<Job> jobs;
   std::vector<int> job_lines;

@@ -8,8 +8,8 @@
 # every register it reads; the assertions check it).
 set(VOXCD_VERILATOR_OPTIONS -O3 --x-assign fast --x-initial fast)
 
-# voxcd_model_params(PAIRS OUT): the pairs as Verilator -G arguments (a list). A malformed entry is an error that
-# names it.
+# voxcd_model_params(PAIRS OUT): the pairs as Verilator -G arguments (a list), where the configuration's DEPTH is the
+# RTL's parameter Depth. A malformed entry is an error that names it.
 function(voxcd_model_params pairs out)
   string(STRIP "${pairs}" pairs)
   if(NOT pairs MATCHES "^([A-Za-z][A-Za-z0-9]* -?[0-9]+( +|$))+$")
@@ -18,6 +18,7 @@ function(voxcd_model_params pairs out)
   string(REGEX MATCHALL "[A-Za-z][A-Za-z0-9]* -?[0-9]+" kv "${pairs}")
   set(gargs "")
   foreach(p ${kv})
+    string(REGEX REPLACE "^DEPTH " "Depth " p "${p}")
     string(REGEX REPLACE " +" "=" p "${p}")
     list(APPEND gargs "-G${p}")
   endforeach()

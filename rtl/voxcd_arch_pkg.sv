@@ -22,6 +22,7 @@ package voxcd_arch_pkg;
   localparam int unsigned SB    = 2;   // voxmap value width: 2 = voxel states; 4, 8, 16 = signed node distances
   localparam int unsigned WB    = 8;   // interpolation weight bits (distance voxmaps)
   localparam int unsigned BANKS = 0;   // 0: a voxmap copy per lane; B: one voxmap in B shared banks (2-bit devices)
+  localparam int unsigned Depth = 0;   // register stages added to every lane, 0 .. MaxDepth (DeviceConfig::depth)
 
   // ---- Counters in completion records ----
   localparam int unsigned CW = 32;  // cycles and stall counters
@@ -33,6 +34,20 @@ package voxcd_arch_pkg;
   // A distance device (SB > 2) has three more (R6 node select and x interpolation, R7 y, R8 z): ref/timing.h's
   // kDistanceSlots.
   localparam int unsigned DistSlots = 3;
+  // Depth adds one slot register per unit, each a register stage in every lane (voxcd_lane), so a device has
+  // PipeSlots + Depth (+ DistSlots) slot registers. The stages in the order Depth adds them (a stage of rank r is
+  // there when Depth > r); MaxDepth, the deepest pipeline, has all of them (ref/config.h: kMaxDepth):
+  //   RankIn    registered multiplier inputs (the point after the shell banks' rotation, and M): DSP input registers
+  //   RankAddr  the linear index x + nx*(y + ny*z) (or a distance map's half-index) before the word address
+  //   RankRead  the voxmap word's state (a distance map's 8 node values) selected into a register before the hit test
+  //   RankSum   a level of the transform's sum tree: (M0*p0 + t) and (M1*p1 + M2*p2) before their sum
+  //   RankFloor the floor and bounds test before the (y + ny*z) product
+  localparam int unsigned MaxDepth  = 5;
+  localparam int unsigned RankIn    = 0;
+  localparam int unsigned RankAddr  = 1;
+  localparam int unsigned RankRead  = 2;
+  localparam int unsigned RankSum   = 3;
+  localparam int unsigned RankFloor = 4;
 
   typedef enum logic [1:0] {
     ModeAll   = 2'd0,

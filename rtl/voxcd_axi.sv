@@ -19,14 +19,19 @@
 //     (PW bits signed, MEMW bits), a reserved byte that is not zero, a commit without its earlier parts, a partial
 //     WSTRB, an address not aligned to AxilDw / 8, or a read of a memory window. DECERR for any other address
 //     (the job and result windows of the address map are the two streams here).
-// Job stream: a descriptor whose TLAST is not on its last beat, with a reserved byte set, a mode of 3, or a field
-//   that does not fit the device (tag, shell range beyond the words loaded, map base, dimensions 1..2^DW, M, t,
-//   threshold) is dropped and counted in DROPPED; the device never sees it.
+// Job stream: a descriptor whose TLAST is not on its last beat is dropped and counted in DROPPED. A whole
+//   descriptor is checked as the reference checks a job (ref/pipeline.h, job_faults): a reserved byte set, a mode
+//   of 3 or a mask above 15, a tag wider than TAGW, a shell range past the words loaded, map dimensions outside
+//   1..2^DW, a voxmap range past the words loaded (or, on a distance device, a map base off a bank boundary), an M,
+//   t or threshold that does not fit. A descriptor that breaks any rule is refused: the device never sees it; once
+//   the records of every job before it have left, an error record {kind 3, tag, faults} takes its place in the
+//   record stream (the rules it breaks, one bit each: sysc/address_map.h), and DROPPED counts it.
 //
 // Latency: with the job stream always valid and the record stream always ready, a job whose first descriptor beat
 // is taken in cycle f and whose completion record carries `cycles` has its completion's last beat taken in cycle
-// f + cycles + 1 + 1024 / JobDw + 256 / RecDw (the device alone: its job taken in cycle a, its completion in cycle
-// a + cycles + 1). One register holds a descriptor, one a record: 2 cycles more than the beats.
+// f + cycles + 2 + 1024 / JobDw + 256 / RecDw (the device alone: its job taken in cycle a, its completion in cycle
+// a + cycles + 1). One register receives a descriptor, one holds it checked, one holds a record: 3 cycles more
+// than the beats.
 
 module voxcd_axi #(
   parameter int unsigned PW      = voxcd_arch_pkg::PW,
@@ -43,6 +48,7 @@ module voxcd_axi #(
   parameter int unsigned SB      = voxcd_arch_pkg::SB,
   parameter int unsigned WB      = voxcd_arch_pkg::WB,
   parameter int unsigned BANKS   = voxcd_arch_pkg::BANKS,
+  parameter int unsigned Depth   = voxcd_arch_pkg::Depth,
   parameter int unsigned AxilDw  = 32,     // AXI4-Lite data bits: 32 or 64
   parameter int unsigned JobDw   = 64,     // job stream TDATA bits: a power of two, 8 .. 1024
   parameter int unsigned RecDw   = 64,     // record stream TDATA bits: a power of two, 8 .. 256
@@ -112,7 +118,11 @@ module voxcd_axi #(
                           RegStalls = 12'h060, RegShellWords = 12'h068, RegMapWords = 12'h070,
                           RegDropped = 12'h078, RegConflicts = 12'h080;
   localparam logic [63:0] Config0 = {8'(LANES), 8'(MEMW), 8'(DW), 8'(TW), 8'(MF), 8'(MW), 8'(PF), 8'(PW)};
-  localparam logic [63:0] Config1 = {16'd0, 8'(BANKS), 8'(WB), 8'(SB), 8'(TAGW), 8'(MAW), 8'(SAW)};
+  localparam logic [63:0] Config1 = {8'd0, 8'(Depth), 8'(BANKS), 8'(WB), 8'(SB), 8'(TAGW), 8'(MAW), 8'(SAW)};
+  // The rules a refused descriptor breaks (the error record's faults; ref/pipeline.h and sysc/address_map.h).
+  localparam int unsigned FaultW = 8;
+  localparam int unsigned FaultReserved = 0, FaultMode = 1, FaultTag = 2, FaultShell = 3, FaultDims = 4,
+                          FaultMap = 5, FaultPose = 6, FaultThreshold = 7;
 
   // ---- Device ----
   logic                 shell_we, map_we;
@@ -139,7 +149,7 @@ module voxcd_axi #(
   logic [31:0]           d_m [9];
   logic [63:0]           d_t [3];
   logic [63:0]           d_thr;
-  logic                  d_ok;
+  logic [FaultW-1:0]     d_faults;  // the rules the descriptor in desc_q breaks
 
   always_comb begin
     d_tag         = desc_q[8*32'h00 +: 32];
@@ -165,24 +175,92 @@ module voxcd_axi #(
 
   logic [63:0] shell_words_q, map_words_q;
 
+  // The voxmap words a map of the descriptor's dimensions takes (ref/pipeline.h, map_words), for dimensions in
+  // 1..2^DW: ceil(nx*ny*nz / (MEMW/2)) voxel states, or 8 * ceil(Hx*Hy*Hz / (MEMW/SB)) node values in 8 banks.
+  localparam int unsigned VoxW  = 3 * (DW + 1);
+  localparam int unsigned PerLg = SB > 2 ? $clog2(MEMW / SB) : $clog2(MEMW / 2);  // values per word, log2
+  logic [DW:0]     d_ex, d_ey, d_ez;  // the extents the map's words count: n_i, or H_i = (n_i >> 1) + 1
+  logic [VoxW-1:0] d_values;
+  logic [63:0]     d_map_words;
+  assign d_ex        = SB > 2 ? (DW + 1)'(d_nx >> 1) + (DW + 1)'(1) : (DW + 1)'(d_nx);
+  assign d_ey        = SB > 2 ? (DW + 1)'(d_ny >> 1) + (DW + 1)'(1) : (DW + 1)'(d_ny);
+  assign d_ez        = SB > 2 ? (DW + 1)'(d_nz >> 1) + (DW + 1)'(1) : (DW + 1)'(d_nz);
+  assign d_values    = VoxW'(d_ex) * VoxW'(d_ey) * VoxW'(d_ez);
+  assign d_map_words = (64'(d_values) + 64'((1 << PerLg) - 1)) >> PerLg << (SB > 2 ? 3 : 0);
+
   always_comb begin
-    d_ok = desc_q[8*32'h06 +: 16] == '0 && desc_q[8*32'h44 +: 32] == '0 && desc_q[8*JobBytes-1 : 8*32'h68] == '0;
-    d_ok = d_ok && d_mode <= 8'd2 && d_mask <= 8'd15;
-    d_ok = d_ok && (TAGW >= 32 || (d_tag >> TAGW) == '0);
-    d_ok = d_ok && 64'(d_shell_base) + 64'(d_shell_count) <= shell_words_q;
-    d_ok = d_ok && (d_map_base >> MAW) == '0;
-    d_ok = d_ok && d_nx != '0 && d_ny != '0 && d_nz != '0;
-    d_ok = d_ok && d_nx <= (32'd1 << DW) && d_ny <= (32'd1 << DW) && d_nz <= (32'd1 << DW);
-    for (int i = 0; i < 9; i++) d_ok = d_ok && fits_signed64(64'($signed(d_m[i])), MW);
-    for (int i = 0; i < 3; i++) d_ok = d_ok && fits_signed64(d_t[i], TW);
-    d_ok = d_ok && (SB > 2 ? fits_signed64(d_thr, IW) : d_thr == '0);
+    logic dims_ok;
+    dims_ok  = d_nx != '0 && d_ny != '0 && d_nz != '0 &&
+               d_nx <= (32'd1 << DW) && d_ny <= (32'd1 << DW) && d_nz <= (32'd1 << DW);
+    d_faults = '0;
+    d_faults[FaultReserved] = desc_q[8*32'h06 +: 16] != '0 || desc_q[8*32'h44 +: 32] != '0 ||
+                              desc_q[8*JobBytes-1 : 8*32'h68] != '0;
+    d_faults[FaultMode]  = d_mode > 8'd2 || d_mask > 8'd15;
+    d_faults[FaultTag]   = TAGW < 32 && (d_tag >> TAGW) != '0;
+    d_faults[FaultShell] = (d_shell_base >> SAW) != '0 || 64'(d_shell_base) + 64'(d_shell_count) > shell_words_q;
+    d_faults[FaultDims]  = !dims_ok;
+    d_faults[FaultMap]   = (d_map_base >> MAW) != '0 || (SB > 2 && d_map_base[2:0] != 3'd0) ||
+                           (dims_ok && 64'(d_map_base) + d_map_words > map_words_q);
+    for (int i = 0; i < 9; i++) d_faults[FaultPose] = d_faults[FaultPose] || !fits_signed64(64'($signed(d_m[i])), MW);
+    for (int i = 0; i < 3; i++) d_faults[FaultPose] = d_faults[FaultPose] || !fits_signed64(d_t[i], TW);
+    d_faults[FaultThreshold] = SB > 2 ? !fits_signed64(d_thr, IW) : d_thr != '0;
   end
 
-  assign job_valid = desc_full_q && d_ok;
+  // ---- The checked descriptor: its job in the device's widths, its tag as sent and its faults ----
+  // A descriptor moves here from desc_q when this register is free or leaving; it leaves into the device (no
+  // fault), or as an error record once the device is idle (every earlier job's records have left it) and the
+  // record register takes a record.
+  logic              chk_full_q;
+  logic [FaultW-1:0] chk_faults_q;
+  logic [31:0]       chk_tag_q;
+  logic [1:0]        chk_mode_q;
+  logic [3:0]        chk_mask_q;
+  logic [SAW-1:0]    chk_shell_base_q;
+  logic [SAW:0]      chk_shell_count_q;
+  logic [MAW-1:0]    chk_map_base_q;
+  logic [DW:0]       chk_nx_q, chk_ny_q, chk_nz_q;
+  logic [MW-1:0]     chk_m_q [9];
+  logic [TW-1:0]     chk_t_q [3];
+  logic [IW-1:0]     chk_thr_q;
+  logic              err_emit;   // the checked descriptor's error record enters the record register
+  logic              chk_leave;  // the checked descriptor leaves (into the device, or as its error record)
+  logic              desc_leave; // the descriptor register empties into the checked one
+
+  assign job_valid = chk_full_q && chk_faults_q == '0;
+  assign chk_leave = chk_full_q && (job_valid ? job_ready : err_emit);
+  assign desc_leave = desc_full_q && (!chk_full_q || chk_leave);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      chk_full_q <= 1'b0;
+    end else if (desc_leave) begin
+      chk_full_q <= 1'b1;
+    end else if (chk_leave) begin
+      chk_full_q <= 1'b0;
+    end
+  end
+  // Fields: read only while full, no reset.
+  always_ff @(posedge clk_i) begin
+    if (desc_leave) begin
+      chk_faults_q      <= d_faults;
+      chk_tag_q         <= d_tag;
+      chk_mode_q        <= d_mode[1:0];
+      chk_mask_q        <= d_mask[3:0];
+      chk_shell_base_q  <= SAW'(d_shell_base);
+      chk_shell_count_q <= (SAW + 1)'(d_shell_count);
+      chk_map_base_q    <= MAW'(d_map_base);
+      chk_nx_q          <= (DW + 1)'(d_nx);
+      chk_ny_q          <= (DW + 1)'(d_ny);
+      chk_nz_q          <= (DW + 1)'(d_nz);
+      for (int i = 0; i < 9; i++) chk_m_q[i] <= MW'(d_m[i]);
+      for (int i = 0; i < 3; i++) chk_t_q[i] <= TW'(d_t[i]);
+      chk_thr_q         <= IW'(d_thr);
+    end
+  end
 
   voxcd_device #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB), .BANKS(BANKS)
+    .TAGW(TAGW), .SB(SB), .WB(WB), .BANKS(BANKS), .Depth(Depth)
   ) u_device (
     .clk_i            (clk_i),
     .rst_ni           (rst_ni),
@@ -194,20 +272,20 @@ module voxcd_axi #(
     .map_wdata_i      (map_wdata),
     .job_valid_i      (job_valid),
     .job_ready_o      (job_ready),
-    .job_tag_i        (TAGW'(d_tag)),
-    .job_mode_i       (d_mode[1:0]),
-    .job_mask_i       (d_mask[3:0]),
-    .job_shell_base_i (SAW'(d_shell_base)),
-    .job_shell_count_i((SAW + 1)'(d_shell_count)),
-    .job_map_base_i   (MAW'(d_map_base)),
-    .job_nx_i         ((DW + 1)'(d_nx)),
-    .job_ny_i         ((DW + 1)'(d_ny)),
-    .job_nz_i         ((DW + 1)'(d_nz)),
-    .job_m00_i        (MW'(d_m[0])), .job_m01_i(MW'(d_m[1])), .job_m02_i(MW'(d_m[2])),
-    .job_m10_i        (MW'(d_m[3])), .job_m11_i(MW'(d_m[4])), .job_m12_i(MW'(d_m[5])),
-    .job_m20_i        (MW'(d_m[6])), .job_m21_i(MW'(d_m[7])), .job_m22_i(MW'(d_m[8])),
-    .job_t0_i         (TW'(d_t[0])), .job_t1_i(TW'(d_t[1])), .job_t2_i(TW'(d_t[2])),
-    .job_threshold_i  (IW'(d_thr)),
+    .job_tag_i        (TAGW'(chk_tag_q)),
+    .job_mode_i       (chk_mode_q),
+    .job_mask_i       (chk_mask_q),
+    .job_shell_base_i (chk_shell_base_q),
+    .job_shell_count_i(chk_shell_count_q),
+    .job_map_base_i   (chk_map_base_q),
+    .job_nx_i         (chk_nx_q),
+    .job_ny_i         (chk_ny_q),
+    .job_nz_i         (chk_nz_q),
+    .job_m00_i        (chk_m_q[0]), .job_m01_i(chk_m_q[1]), .job_m02_i(chk_m_q[2]),
+    .job_m10_i        (chk_m_q[3]), .job_m11_i(chk_m_q[4]), .job_m12_i(chk_m_q[5]),
+    .job_m20_i        (chk_m_q[6]), .job_m21_i(chk_m_q[7]), .job_m22_i(chk_m_q[8]),
+    .job_t0_i         (chk_t_q[0]), .job_t1_i(chk_t_q[1]), .job_t2_i(chk_t_q[2]),
+    .job_threshold_i  (chk_thr_q),
     .hit_valid_o      (hit_valid),
     .hit_ready_i      (rec_take),
     .hit_tag_o        (hit_tag),
@@ -231,12 +309,10 @@ module voxcd_axi #(
   // ---- Job stream: beats into the descriptor register ----
   logic [JobBW-1:0] jbeat_q;     // beat of the descriptor being received
   logic             jlong_q;     // it has had more than JobBeats beats
-  logic             desc_leave;  // the descriptor register empties in this cycle (taken by the device, or dropped)
   logic             jtake;
   logic             run_q;
   logic [63:0]      dropped_q;
 
-  assign desc_leave          = desc_full_q && (!d_ok || job_ready);
   assign s_axis_job_tready_o = run_q && (!desc_full_q || desc_leave);
   assign jtake               = s_axis_job_tvalid_i && s_axis_job_tready_o;
   // A TLAST that does not end exactly JobBeats beats: the descriptor is dropped.
@@ -251,7 +327,7 @@ module voxcd_axi #(
       dropped_q   <= '0;
     end else begin
       if (desc_leave) desc_full_q <= 1'b0;
-      dropped_q <= dropped_q + 64'(desc_full_q && !d_ok) + 64'(jframe_bad);
+      dropped_q <= dropped_q + 64'(err_emit) + 64'(jframe_bad);
       if (jtake) begin
         if (s_axis_job_tlast_i) begin
           jbeat_q <= '0;
@@ -279,10 +355,17 @@ module voxcd_axi #(
 
   assign rlast    = 32'(rbeat_q) == RecBeats - 1;
   assign rec_take = !rec_valid_q || (m_axis_rec_tready_i && rlast);
+  // The device is idle (busy_o low) only when it holds no job and no record: the error record follows the
+  // records of every job before it.
+  assign err_emit = chk_full_q && chk_faults_q != '0 && !dev_busy && rec_take;
 
   always_comb begin
     rec_d = '0;
-    if (done_valid) begin
+    if (err_emit) begin
+      rec_d[8*32'h00 +: 8]  = 8'd3;
+      rec_d[8*32'h04 +: 32] = chk_tag_q;
+      rec_d[8*32'h08 +: 32] = 32'(chk_faults_q);
+    end else if (done_valid) begin
       rec_d[8*32'h00 +: 8]  = 8'd2;
       rec_d[8*32'h04 +: 32] = 32'(done_tag);
       rec_d[8*32'h08 +: 32] = 32'(done_hits);
@@ -312,7 +395,7 @@ module voxcd_axi #(
       stalls_q    <= '0;
     end else begin
       if (m_axis_rec_tvalid_o && m_axis_rec_tready_i) rbeat_q <= rlast ? '0 : rbeat_q + 1'b1;
-      if (rec_take) rec_valid_q <= hit_valid || done_valid;
+      if (rec_take) rec_valid_q <= hit_valid || done_valid || err_emit;
       if (rec_take && done_valid) begin
         jobs_done_q <= jobs_done_q + 64'd1;
         hits_q      <= hits_q + 64'(done_hits);
@@ -324,7 +407,7 @@ module voxcd_axi #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (rec_take && (hit_valid || done_valid)) rec_q <= rec_d;
+    if (rec_take && (hit_valid || done_valid || err_emit)) rec_q <= rec_d;
   end
 
   assign m_axis_rec_tvalid_o = rec_valid_q;
@@ -334,8 +417,8 @@ module voxcd_axi #(
   // ---- AXI4-Lite: registers ----
   logic        busy;
   logic [63:0] status;
-  assign busy   = dev_busy || desc_full_q || jbeat_q != '0 || jlong_q || rec_valid_q;
-  assign status = {60'd0, 1'b0, desc_full_q, rec_valid_q, busy};  // fault, staged, results, busy
+  assign busy   = dev_busy || desc_full_q || chk_full_q || jbeat_q != '0 || jlong_q || rec_valid_q;
+  assign status = {60'd0, 1'b0, desc_full_q || chk_full_q, rec_valid_q, busy};  // fault, staged, results, busy
 
   // Whether byte address a is in the window [base, base + size).
   function automatic logic in_window(input logic [31:0] a, input logic [31:0] base, input logic [63:0] size);
@@ -360,7 +443,7 @@ module voxcd_axi #(
       RegConfig1:     v = Config1;
       RegClockPs:     v = 64'(ClockPs);
       RegStatus:      v = status;
-      RegStaged:      v = 64'(desc_full_q);
+      RegStaged:      v = 64'(desc_full_q) + 64'(chk_full_q);
       RegResultCount: v = 64'(rec_valid_q);
       RegJobsDone:    v = jobs_done_q;
       RegHits:        v = hits_q;
@@ -633,8 +716,11 @@ module voxcd_axi #(
   // Inside: the record register is only loaded when it is free, the device sees a write only while idle and a
   // job only when it is valid, and the job stream stays closed until RUN.
   `VOXCD_ASSERT(RecNoOverwrite, !(rec_valid_q && !(m_axis_rec_tready_i && rlast) && rec_take))
-  `VOXCD_ASSERT(MemWriteIdle, !((shell_we || map_we) && (dev_busy || desc_full_q)))
-  `VOXCD_ASSERT(JobValidDescriptor, !job_valid || (d_mode <= 8'd2 && d_nx != '0 && d_ny != '0 && d_nz != '0))
+  `VOXCD_ASSERT(MemWriteIdle, !((shell_we || map_we) && (dev_busy || desc_full_q || chk_full_q)))
+  `VOXCD_ASSERT(JobValidDescriptor, !job_valid || (chk_mode_q <= 2'd2 && chk_nx_q != '0 && chk_ny_q != '0 &&
+                                                   chk_nz_q != '0))
+  // An error record waits for the device to be idle, and leaves only into a free record register.
+  `VOXCD_ASSERT(ErrorAfterEarlierRecords, !err_emit || (!dev_busy && !hit_valid && !done_valid))
   `VOXCD_ASSERT(JobClosedBeforeRun, run_q || !s_axis_job_tready_o)
 `endif
 

@@ -15,9 +15,10 @@
 // At most one of hit_valid_o / done_valid_o is high in a cycle, and records leave in stream order.
 //
 // Structure: an issue stage takes LANES consecutive points of the head job per cycle (one lane group, a "slot")
-// and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through registers R0..R5 (R0..R8
-// on a distance device: PipeSlots + DistSlots); the hit-test stage at the last register emits the slot's records,
-// one per cycle, into the output slice (voxcd_skid: an output register and a skid register). The whole pipeline
+// and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through N = PipeSlots + Depth
+// (+ DistSlots) slot registers, R0..R5 at Depth 0 (R0..R8 on a distance device; each unit of Depth adds a register
+// stage to every lane); the hit-test stage at the last register emits the slot's records, one per cycle, into the
+// output slice (voxcd_skid: an output register and a skid register). The whole pipeline
 // advances together: it holds (a) while the output slice cannot take a record (its registered ready is low: both
 // of its registers are full, because the consumer has held the waiting record; a stall, and only those cycles
 // count as stalls) and (b) while the last slot register still has more than one record to emit. The consumer's
@@ -26,8 +27,8 @@
 //
 // Timing (the exact model is ref/timing.h): a job of c points takes max(1, ceil(c / LANES)) slots; a slot takes
 // max(1, records) cycles at the hit test; the first slot of a job accepted in cycle a is there in cycle a + 1 + N,
-// N = PipeSlots (+ DistSlots on a distance device). FIRST stops issuing at its first hit: the N - 1 slots already
-// issued are squashed and the issue stage leaves the job with one empty slot.
+// N slot registers as above. FIRST stops issuing at its first hit: the N - 1 slots already issued are squashed and
+// the issue stage leaves the job with one empty slot.
 //
 // The output slice adds no latency to the always-ready case (a record is on the pins in the cycle after its
 // emission, as from a plain output register), and with an always-ready consumer it never holds the pipeline.
@@ -51,7 +52,8 @@ module voxcd_device #(
   parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
   parameter int unsigned SB    = voxcd_arch_pkg::SB,
   parameter int unsigned WB    = voxcd_arch_pkg::WB,
-  parameter int unsigned BANKS = voxcd_arch_pkg::BANKS  // 0: a voxmap copy per lane; B: one voxmap in B shared banks
+  parameter int unsigned BANKS = voxcd_arch_pkg::BANKS,  // 0: a voxmap copy per lane; B: one voxmap in B shared banks
+  parameter int unsigned Depth = voxcd_arch_pkg::Depth   // register stages added to every lane, 0 .. MaxDepth
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -112,7 +114,20 @@ module voxcd_device #(
   localparam int unsigned CW    = voxcd_arch_pkg::CW;
   localparam bit          Dist  = SB > 2;                        // a distance device
   localparam int unsigned IW    = SB + 3 * WB;                   // D, the threshold
-  localparam int unsigned NumR  = voxcd_arch_pkg::PipeSlots + (Dist ? voxcd_arch_pkg::DistSlots : 0);  // R0 .. R5 (R8)
+  // The slot registers, and the ones whose fields the lanes read (voxcd_lane; at Depth 0: R1, R2, R2, R3, R3, R4, R5).
+  localparam bit          HasIn    = Depth > voxcd_arch_pkg::RankIn;
+  localparam bit          HasSum   = Depth > voxcd_arch_pkg::RankSum;
+  localparam bit          HasFloor = Depth > voxcd_arch_pkg::RankFloor;
+  localparam bit          HasAddr  = Depth > voxcd_arch_pkg::RankAddr;
+  localparam bit          HasRead  = Depth > voxcd_arch_pkg::RankRead;
+  localparam int unsigned ProdR  = 1 + 32'(HasIn);            // the products (the lanes read t here)
+  localparam int unsigned AccR   = ProdR + 1 + 32'(HasSum);   // the accumulators (n: the bounds)
+  localparam int unsigned YzR    = AccR + 32'(HasFloor);      // what the y + ny*z product reads (ny)
+  localparam int unsigned R3R    = YzR + 1;                   // the index and yz (nx)
+  localparam int unsigned LinR   = R3R + 32'(HasAddr);        // what R4's address is computed from (map_base, hxy)
+  localparam int unsigned AddrR  = LinR + 1;                  // R4: the voxmap address (the shared banks read it)
+  localparam int unsigned WordR  = AddrR + 1;                 // R5: the voxmap word
+  localparam int unsigned NumR   = WordR + 1 + 32'(HasRead) + (Dist ? voxcd_arch_pkg::DistSlots : 0);
   localparam int unsigned ThrW  = Dist ? IW : 1;                 // job fields a 2-bit device does not keep
   localparam int unsigned HxyW  = Dist ? 2 * DW + 1 : 1;
   localparam int unsigned LgL   = $clog2(LANES);
@@ -120,11 +135,14 @@ module voxcd_device #(
   localparam int unsigned RowW  = SAW - LgL;                      // rows of one shell bank
   localparam int unsigned LaneW = LgL > 0 ? LgL : 1;
   localparam int unsigned SeqW  = $clog2(NumR + 2) + 1;           // tells apart every job in flight
+  localparam int unsigned InFlW = $clog2(NumR + 3);               // counts the jobs in flight: at most NumR + 2
   localparam bit          Banked = BANKS > 0;                      // the lanes share one voxmap in BANKS banks
-  localparam int unsigned LgB   = Banked ? $clog2(BANKS) : 0;
-  localparam int unsigned NumB  = Banked ? BANKS : 1;
+  localparam int unsigned NPar  = Dist ? 8 : 1;                    // words a lane reads per point (its requests)
+  localparam int unsigned NReq  = LANES * NPar;                    // request r: lane r / NPar, parity bank r % NPar
+  localparam int unsigned NumB  = Banked ? BANKS * NPar : 1;       // shared banks: word w in bank w % NumB
+  localparam int unsigned LgB   = Banked ? $clog2(NumB) : 0;
   localparam int unsigned BankW = LgB > 0 ? LgB : 1;
-  localparam int unsigned BRowW = MAW - LgB;                       // rows of one shared bank
+  localparam int unsigned BRowW = MAW > LgB ? MAW - LgB : 1;       // rows of one shared bank (one at NumB = 2^MAW)
 
   // ---- Jobs, slots and output records ----
   typedef struct packed {
@@ -139,11 +157,12 @@ module voxcd_device #(
     logic [3*TW-1:0]        t;      // {t2, t1, t0}
     logic [ThrW-1:0]        thr;    // the threshold (distance devices; else 0)
     logic [HxyW-1:0]        hxy;    // Hx*Hy = ((nx>>1)+1) * ((ny>>1)+1), the z step of a bank's half-index (else 0)
+    logic                   fresh;        // accepted with every earlier job's completion record emitted
     logic [CW-1:0]          stamp;        // cycle in which the job was accepted
     logic [CW-1:0]          stall_stamp;  // stall cycles up to and including that cycle
   } job_t;
   localparam int unsigned JobW = TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW + ThrW +
-                                 HxyW + 2 * CW;
+                                 HxyW + 1 + 2 * CW;
 
   // What the slot registers after R0 keep of a slot's job (below): the map, and the fields of the hit test.
   typedef struct packed {
@@ -156,10 +175,11 @@ module voxcd_device #(
     logic [1:0]      mode;
     logic [3:0]      mask;
     logic [ThrW-1:0] thr;
+    logic            fresh;
     logic [CW-1:0]   stamp;
     logic [CW-1:0]   stall_stamp;
   } test_t;
-  localparam int unsigned TestW = TAGW + 2 + 4 + ThrW + 2 * CW;
+  localparam int unsigned TestW = TAGW + 2 + 4 + ThrW + 1 + 2 * CW;
 
   typedef struct packed {
     logic              valid;   // a slot of a job (else an empty slot)
@@ -190,15 +210,19 @@ module voxcd_device #(
   // ---- Cycle and stall counters (free-running) ----
   logic          stall;                       // this cycle the pipeline is held by the output slice
   logic [CW-1:0] now_q;                       // this cycle's number
+  logic [InFlW-1:0] in_flight_q;              // jobs accepted whose completion record has not been emitted
+  logic             emit_done;                // a completion record enters the output slice (below)
   logic [CW-1:0] stall_total_d, stall_total_q;  // stall cycles before this one (_d: up to and including it)
   assign stall_total_d = stall_total_q + CW'(stall);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       now_q         <= '0;
       stall_total_q <= '0;
+      in_flight_q   <= '0;
     end else begin
       now_q         <= now_q + 1'b1;
       stall_total_q <= stall_total_d;
+      in_flight_q   <= in_flight_q + InFlW'(job_valid_i && job_ready_o) - InFlW'(emit_done);
     end
   end
 
@@ -217,7 +241,7 @@ module voxcd_device #(
                    job_t2_i, job_t1_i, job_t0_i,
                    Dist ? ThrW'(job_threshold_i) : ThrW'(0),
                    Dist ? HxyW'(HxyW'(hx_in) * HxyW'(hy_in)) : HxyW'(0),
-                   now_q, stall_total_d};
+                   in_flight_q == '0, now_q, stall_total_d};
 
   voxcd_fifo #(
     .Depth(2),
@@ -290,50 +314,108 @@ module voxcd_device #(
     for (int i = 0; i < LANES; i++) issue.lanes[i] = (next_point_q + (SAW + 1)'(i)) < head_job.shell_count;
   end
 
-  // ---- Slot registers R0 .. R5 (R8): the slot's bookkeeping and its job, shifting when the pipeline advances ----
-  logic [MetaW-1:0] slot_meta_q [NumR];
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      for (int s = 0; s < NumR; s++) slot_meta_q[s] <= '0;
-    end else begin
-      if (advance) begin
-        slot_meta_q[0] <= issue;
-        for (int s = 1; s < NumR - 1; s++) slot_meta_q[s] <= slot_meta_q[s - 1];
-      end
-      if (advance_out) slot_meta_q[NumR - 1] <= advance ? slot_meta_q[NumR - 2] : '0;  // '0: an empty slot
+  // ---- Slot registers R0 .. R(N-1): the slot's bookkeeping and its job, shifting when the pipeline advances ----
+  // R0 .. R4 (AddrR) advance with the issue stage (advance); R5 (WordR) and the registers after it with the last
+  // register (advance_out), R5 taking an empty slot while R4 waits for a shared voxmap bank. Without shared banks
+  // the two enables are the same. Each register is a register of its own (g_slot[s]: a simulator keeps it in its own
+  // words and orders the chain with no copy; an array of them would be copied through temporaries every cycle).
+  logic [NumR-1:0] slot_valid;  // the valid bit of each slot register
+  for (genvar s = 0; s < NumR; s++) begin : g_slot
+    logic [MetaW-1:0] meta_q, meta_in;
+    logic             shift;
+    if (s == 0) begin : g_issue
+      assign meta_in = issue;
+    end else if (s == WordR) begin : g_word
+      assign meta_in = advance ? g_slot[s - 1].meta_q : '0;  // '0: an empty slot
+    end else begin : g_next
+      assign meta_in = g_slot[s - 1].meta_q;
     end
+    assign shift = (s <= AddrR) ? advance : advance_out;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni)    meta_q <= '0;
+      else if (shift) meta_q <= meta_in;
+    end
+    assign slot_valid[s] = meta_q[MetaW - 1];
   end
 
   // The job travels with its slot, each register keeping what the stages from it on read: R0 the whole job (the
-  // lanes read M there), R1 the translation and the map, R2 and R3 the map (the lanes read t at R1, n at R2, nx,
-  // map_base and hxy at R3), and R1 .. R5 (R8) the fields of the hit test (slot_test_q[s - 1] is register Rs).
-  job_t             r0_job_q;
-  logic [3*TW-1:0]  r1_t_q;
-  map_t             r1_map_q, r2_map_q, r3_map_q;
-  logic [TestW-1:0] slot_test_q [NumR - 1];
-  test_t            r0_test, last_test;
-  assign r0_test   = {r0_job_q.tag, r0_job_q.mode, r0_job_q.mask, r0_job_q.thr, r0_job_q.stamp, r0_job_q.stall_stamp};
-  assign last_test = slot_test_q[NumR - 2];
-  // Job fields are read only where their slot is valid: no reset.
+  // lanes read M there, or from IN's M register), R1 .. ProdR the translation (read at ProdR), R1 .. LinR the map (n read at AccR, ny at
+  // YzR, nx at R3R, map_base and hxy at LinR), and R1 .. R(N-1) the fields of the hit test (g_test[s], g_t[s] and
+  // g_map[s] are register Rs's). Job fields are read only where their slot is valid: no reset.
+  localparam int unsigned MapW = 3 * (DW + 1) + MAW + HxyW;
+  job_t  r0_job_q;
+  test_t r0_test, r5_test, last_test;
+  map_t  acc_map, yz_map, r3_map, lin_map;  // the map fields of the registers AccR, YzR, R3R, LinR
+  assign r0_test = {r0_job_q.tag, r0_job_q.mode, r0_job_q.mask, r0_job_q.thr, r0_job_q.fresh, r0_job_q.stamp,
+                    r0_job_q.stall_stamp};
   always_ff @(posedge clk_i) begin
-    if (advance) begin
-      r0_job_q       <= head_job;
-      r1_t_q         <= r0_job_q.t;
-      r1_map_q       <= {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
-      r2_map_q       <= r1_map_q;
-      r3_map_q       <= r2_map_q;
-      slot_test_q[0] <= r0_test;
-      for (int s = 1; s < NumR - 2; s++) slot_test_q[s] <= slot_test_q[s - 1];
-    end
-    if (advance_out) slot_test_q[NumR - 2] <= slot_test_q[NumR - 3];
+    if (advance) r0_job_q <= head_job;
   end
+  // The matrix the lanes' multipliers read: R0's, or with IN one register later, beside the lanes' registered points
+  // (one register for every lane: the same M for the whole slot).
+  logic [9*MW-1:0] prod_m;
+  if (HasIn) begin : g_in_m
+    logic [9*MW-1:0] m_q;
+    always_ff @(posedge clk_i) begin
+      if (advance) m_q <= r0_job_q.m;
+    end
+    assign prod_m = m_q;
+  end else begin : g_r0_m
+    assign prod_m = r0_job_q.m;
+  end
+  // The hit test's fields in two registers: the job's labels, and its 64 bits of stamps (each fits a simulator's word).
+  for (genvar s = 1; s < NumR; s++) begin : g_test
+    logic [TestW-2*CW-1:0] info_q, info_in;
+    logic [2*CW-1:0]       stamps_q, stamps_in;
+    if (s == 1) begin : g_first
+      assign {info_in, stamps_in} = r0_test;
+    end else begin : g_next
+      assign info_in   = g_test[s - 1].info_q;
+      assign stamps_in = g_test[s - 1].stamps_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if ((s <= AddrR) ? advance : advance_out) begin
+        info_q   <= info_in;
+        stamps_q <= stamps_in;
+      end
+    end
+  end
+  for (genvar s = 1; s <= ProdR; s++) begin : g_t
+    logic [3*TW-1:0] t_q, t_in;
+    if (s == 1) begin : g_first
+      assign t_in = r0_job_q.t;
+    end else begin : g_next
+      assign t_in = g_t[s - 1].t_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if (advance) t_q <= t_in;
+    end
+  end
+  for (genvar s = 1; s <= LinR; s++) begin : g_map
+    logic [MapW-1:0] map_q, map_in;
+    if (s == 1) begin : g_first
+      assign map_in = {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
+    end else begin : g_next
+      assign map_in = g_map[s - 1].map_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if (advance) map_q <= map_in;
+    end
+  end
+  assign r5_test   = {g_test[WordR].info_q, g_test[WordR].stamps_q};
+  assign last_test = {g_test[NumR - 1].info_q, g_test[NumR - 1].stamps_q};
+  assign acc_map   = g_map[AccR].map_q;
+  assign yz_map    = g_map[YzR].map_q;
+  assign r3_map    = g_map[R3R].map_q;
+  assign lin_map   = g_map[LinR].map_q;
 
-  // What each stage reads of its slot's bookkeeping: R0's, R4's and the last register's (R5, or R8 on a distance
-  // device), where the hit test is.
-  meta_t r0_slot, r4_slot, last_slot;  // r4_slot: the slot whose lanes read the shared voxmap banks (BANKS > 0)
-  assign r0_slot   = slot_meta_q[0];
-  assign r4_slot   = slot_meta_q[NumR - 2];
-  assign last_slot = slot_meta_q[NumR - 1];
+  // What each stage reads of its slot's bookkeeping: R0's, R4's, R5's and the last register's, where the hit test
+  // is (R5 at Depth 0, or R8 on a distance device).
+  meta_t r0_slot, r4_slot, r5_slot, last_slot;  // r4_slot, r5_slot: the shared voxmap banks' (BANKS > 0)
+  assign r0_slot   = g_slot[0].meta_q;
+  assign r4_slot   = g_slot[AddrR].meta_q;
+  assign r5_slot   = g_slot[WordR].meta_q;
+  assign last_slot = g_slot[NumR - 1].meta_q;
 
   // ---- Shell banks: address a is in bank a % LANES, row a / LANES ----
   logic [3*PW-1:0] bank_rdata [LANES];
@@ -359,10 +441,13 @@ module voxcd_device #(
   end
 
   // ---- Lanes ----
-  logic [LANES-1:0]      lane_read;     // R4: the lane's point is inside its map and reads a voxmap word
-  logic [LANES*MAW-1:0]  lane_addr;     // R4: the word it reads
-  logic [LANES*MEMW-1:0] lane_word;     // R5: the word from the shared banks (Banked)
+  logic [NReq-1:0]       lane_read;     // R4: request r's point is inside its map and reads a voxmap word
+  logic [NReq*MAW-1:0]   lane_addr;     // R4: the word it reads (lane r / NPar; parity bank r % NPar on a distance
+                                        // device)
+  logic [NReq*MEMW-1:0]  lane_word;     // R5: the word from the shared banks (Banked)
   logic [LANES-1:0]      lane_inside;
+  logic [LANES-1:0]      lane_inside5;  // R5's points before READ (2-bit lanes)
+  logic [LANES*2-1:0]    lane_state5;
   logic [LANES*2-1:0]    lane_state;
   logic [LANES*3*DW-1:0] lane_voxel;
   logic [LANES*IW-1:0]   lane_dist;
@@ -372,24 +457,27 @@ module voxcd_device #(
     assign point = bank_rdata[RotW'(32'(r0_slot.rot) + l) & RotW'(LANES - 1)];
     voxcd_lane #(
       .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB),
-      .SharedMap(Banked)
+      .Depth(Depth), .SharedMap(Banked)
     ) u_lane (
       .clk_i      (clk_i),
       .en_i       (advance),
       .en_out_i   (advance_out),
-      .addr_o     (lane_addr[MAW*l +: MAW]),
-      .read_o     (lane_read[l]),
-      .word_i     (lane_word[MEMW*l +: MEMW]),
+      .addr_o     (lane_addr[NPar*MAW*l +: NPar*MAW]),
+      .read_o     (lane_read[NPar*l +: NPar]),
+      .word_i     (lane_word[NPar*MEMW*l +: NPar*MEMW]),
       .map_we_i   (map_we_i),
       .map_waddr_i(map_waddr_i),
       .map_wdata_i(map_wdata_i),
       .point_i    (point),
-      .m_i        (r0_job_q.m),
-      .t_i        (r1_t_q),
-      .n_i        (r2_map_q.n),
-      .nx_i       (r3_map_q.n[DW:0]),
-      .map_base_i (r3_map_q.map_base),
-      .hxy_i      ((2 * DW + 1)'(r3_map_q.hxy)),
+      .m_i        (prod_m),
+      .t_i        (g_t[ProdR].t_q),
+      .n_i        (acc_map.n),
+      .ny_i       (yz_map.n[DW+1 +: DW+1]),
+      .nx_i       (r3_map.n[DW:0]),
+      .map_base_i (lin_map.map_base),
+      .hxy_i      ((2 * DW + 1)'(lin_map.hxy)),
+      .inside5_o  (lane_inside5[l]),
+      .state5_o   (lane_state5[2*l +: 2]),
       .inside_o   (lane_inside[l]),
       .state_o    (lane_state[2*l +: 2]),
       .dist_o     (lane_dist[IW*l +: IW]),
@@ -415,7 +503,6 @@ module voxcd_device #(
   logic [SAW:0]     hits_d, hits_q, points_d, points_q;  // of the current job, over its slots before this one
   logic             out_ready;             // the output slice takes a record (a register: no path from *_ready_i)
   logic             emit;                  // a record enters the output slice
-  logic             emit_done;             // ... and it is the completion record
 
   always_comb begin
     for (int i = 0; i < LANES; i++) begin
@@ -496,47 +583,63 @@ module voxcd_device #(
     end
   end
 
-  // ---- Shared voxmap banks (BANKS > 0, 2-bit devices): word w is in bank w % BANKS, row w / BANKS ----
-  // The slot in R4 reads in rounds, one in each cycle in which the last register lets the pipeline advance: in a
-  // round each bank reads the word of the lowest lane still waiting for it, and every waiting lane that wants that
-  // word takes it. R4 leaves in its last round; before that the last register takes empty slots (a bank conflict
-  // cycle each). So a slot with at most r distinct words in any one bank reaches the hit test r - 1 cycles late;
-  // a slot of a FIRST job that has found its hit reads nothing (it is squashed). ref/banks.h counts the same.
+  // ---- Shared voxmap banks (BANKS > 0): word w is in bank w % NumB, row w / NumB ----
+  // NumB = BANKS on a 2-bit device; on a distance device each of the 8 parity banks is split BANKS ways (8 * BANKS
+  // banks), and each lane makes 8 requests, one word of each parity bank. The slot in R4 reads in rounds, one in each
+  // cycle in which the last register lets the pipeline advance: in a round each bank reads the word of the lowest
+  // request still waiting for it, and every waiting request that wants that word takes it. R4 leaves in its last
+  // round; before that R5 takes empty slots (a bank conflict cycle each). So a slot with at most r distinct words in
+  // any one bank reaches the hit test r - 1 cycles late; a slot of a FIRST job that has found its hit reads nothing
+  // (it is squashed: on a 2-bit device the hit is seen at the hit test, or with READ in R5, before the slot behind it
+  // reads; on a distance device at the hit test, after the slots behind it read in the slot registers between).
+  // ref/banks.h counts the same.
   // A word read in an earlier round waits in early_q and moves to held_q when the slot enters R5; the words of the
   // last round stay on the banks' outputs while the slot is in R5 (the banks read only when R5 advances).
   if (Banked) begin : g_banks
     logic                 r4_squashed;   // R4 belongs to a FIRST job whose hit is found or at the hit test now
-    logic [LANES-1:0]     want;          // lanes of R4 that read a word
-    logic [LANES-1:0]     served_d, served_q;  // lanes of R4 that have their word (earlier rounds)
-    logic [LANES-1:0]     waiting, granted;
+    logic                 r5_first_hit;  // R5 (not the last register: HasRead, 2-bit) holds a FIRST job's hit
+    logic [NReq-1:0]      want;          // requests of R4 that read a word
+    logic [NReq-1:0]      served_d, served_q;  // requests of R4 that have their word (earlier rounds)
+    logic [NReq-1:0]      waiting, granted;
     logic [NumB-1:0]      map_re;
     logic [NumB*MAW-1:0]  map_word;     // the word each bank reads this round
     logic [NumB*MEMW-1:0] map_rdata;
-    logic [LANES-1:0]     early_read_q;  // lanes whose word the banks read last cycle, in an earlier round
-    logic [LANES*MEMW-1:0] early_q, early_now, held_q;
-    logic [LANES-1:0]     last_round_q;  // lanes of R5 whose word was read in R4's last round
-    logic [LANES*BankW-1:0] r5_bank_q;   // and the bank that read it
+    logic [NReq-1:0]      early_read_q;  // requests whose word the banks read last cycle, in an earlier round
+    logic [NReq*MEMW-1:0] early_q, early_now, held_q;
+    logic [NReq-1:0]      last_round_q;  // requests of R5 whose word was read in R4's last round
+    logic [NReq*BankW-1:0] r5_bank_q;    // and the bank that read it
 
+    // A 2-bit device with READ sees a FIRST job's hit in R5, before the slot behind it reads; a distance device
+    // only at the hit test, after the interpolation (ref/banks.h: first_read_window).
+    always_comb begin
+      r5_first_hit = 1'b0;
+      if (HasRead && !Dist && r5_slot.valid && r5_test.mode == voxcd_arch_pkg::ModeFirst) begin
+        for (int l = 0; l < LANES; l++) begin
+          r5_first_hit = r5_first_hit || (r5_slot.lanes[l] && lane_inside5[l] && r5_test.mask[lane_state5[2*l +: 2]]);
+        end
+      end
+    end
     assign r4_squashed = (found_q && (found_seq_q == r4_slot.seq)) ||
-                         (last_slot.valid && !squash && is_first && (|lane_hit) && (last_slot.seq == r4_slot.seq));
-    for (genvar l = 0; l < LANES; l++) begin : g_want
-      assign want[l] = r4_slot.valid && !r4_squashed && r4_slot.lanes[l] && lane_read[l];
+                         (last_slot.valid && !squash && is_first && (|lane_hit) && (last_slot.seq == r4_slot.seq)) ||
+                         (r5_first_hit && (r5_slot.seq == r4_slot.seq));
+    for (genvar r = 0; r < NReq; r++) begin : g_want
+      assign want[r] = r4_slot.valid && !r4_squashed && r4_slot.lanes[r / NPar] && lane_read[r];
     end
     assign waiting = want & ~served_q;
 
-    // Each bank's word this round: the lowest waiting lane's that falls in it.
+    // Each bank's word this round: the lowest waiting request's that falls in it.
     always_comb begin
       map_re   = '0;
       map_word = '0;
-      for (int l = LANES - 1; l >= 0; l--) begin
-        if (waiting[l]) begin
-          map_re[32'(lane_addr[MAW*l +: BankW]) % NumB] = 1'b1;
-          map_word[MAW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MAW] = lane_addr[MAW*l +: MAW];
+      for (int r = NReq - 1; r >= 0; r--) begin
+        if (waiting[r]) begin
+          map_re[32'(lane_addr[MAW*r +: BankW]) % NumB] = 1'b1;
+          map_word[MAW*(32'(lane_addr[MAW*r +: BankW]) % NumB) +: MAW] = lane_addr[MAW*r +: MAW];
         end
       end
-      for (int l = 0; l < LANES; l++) begin
-        granted[l] = waiting[l] &&
-                     (map_word[MAW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MAW] == lane_addr[MAW*l +: MAW]);
+      for (int r = 0; r < NReq; r++) begin
+        granted[r] = waiting[r] &&
+                     (map_word[MAW*(32'(lane_addr[MAW*r +: BankW]) % NumB) +: MAW] == lane_addr[MAW*r +: MAW]);
       end
     end
     assign bank_wait = |(waiting & ~granted);
@@ -560,11 +663,11 @@ module voxcd_device #(
       served_d = served_q;
       if (advance)          served_d = '0;
       else if (advance_out) served_d = served_q | granted;
-      for (int l = 0; l < LANES; l++) begin
-        early_now[MEMW*l +: MEMW] = early_read_q[l]
-            ? map_rdata[MEMW*(32'(lane_addr[MAW*l +: BankW]) % NumB) +: MEMW] : early_q[MEMW*l +: MEMW];
-        lane_word[MEMW*l +: MEMW] = last_round_q[l]
-            ? map_rdata[MEMW*r5_bank_q[BankW*l +: BankW] +: MEMW] : held_q[MEMW*l +: MEMW];
+      for (int r = 0; r < NReq; r++) begin
+        early_now[MEMW*r +: MEMW] = early_read_q[r]
+            ? map_rdata[MEMW*(32'(lane_addr[MAW*r +: BankW]) % NumB) +: MEMW] : early_q[MEMW*r +: MEMW];
+        lane_word[MEMW*r +: MEMW] = last_round_q[r]
+            ? map_rdata[MEMW*r5_bank_q[BankW*r +: BankW] +: MEMW] : held_q[MEMW*r +: MEMW];
       end
     end
 
@@ -581,12 +684,12 @@ module voxcd_device #(
         conflicts_q  <= conflicts_q + CW'(advance_out && !advance);
       end
     end
-    // Words: no reset (read only for lanes that read).
+    // Words: no reset (read only for requests that read).
     always_ff @(posedge clk_i) begin
       early_q <= early_now;
       if (advance) begin
         held_q <= early_now;
-        for (int l = 0; l < LANES; l++) r5_bank_q[BankW*l +: BankW] <= BankW'(32'(lane_addr[MAW*l +: BankW]) % NumB);
+        for (int r = 0; r < NReq; r++) r5_bank_q[BankW*r +: BankW] <= BankW'(32'(lane_addr[MAW*r +: BankW]) % NumB);
       end
     end
   end else begin : g_copies
@@ -605,12 +708,17 @@ module voxcd_device #(
   // record waits for its consumer) cannot delay it and are not counted.
   logic [CW-1:0] since_done_d, since_done_q;            // cycles since the previous completion's emission
   logic [CW-1:0] stalls_at_done_d, stalls_at_done_q;    // stall_total at the previous completion's emission
-  logic [CW-1:0] job_age, cycles, stalls;
+  logic [CW-1:0] job_age, cycles, stalls, stalls_since_job, stalls_since_done;
   logic          window_from_job;                       // the job was accepted after the previous completion
-  assign job_age         = now_q - last_test.stamp;
-  assign window_from_job = job_age < since_done_q;
-  assign cycles          = window_from_job ? job_age : since_done_q;
-  assign stalls          = stall_total_q - (window_from_job ? last_test.stall_stamp : stalls_at_done_q);
+  // A job accepted with no earlier job in flight (fresh) was accepted after the previous completion's emission; one
+  // accepted in the cycle of that emission may take either window (both give the same counts). Each candidate is
+  // computed from registers, side by side, and then selected: no comparison of the two windows on the path.
+  assign job_age           = now_q - last_test.stamp;
+  assign window_from_job   = last_test.fresh;
+  assign cycles            = window_from_job ? job_age : since_done_q;
+  assign stalls_since_job  = stall_total_q - last_test.stall_stamp;
+  assign stalls_since_done = stall_total_q - stalls_at_done_q;
+  assign stalls            = window_from_job ? stalls_since_job : stalls_since_done;
 
   always_comb begin
     since_done_d     = emit_done ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
@@ -675,15 +783,12 @@ module voxcd_device #(
   assign done_stalls_o = out_record.stalls;
 
   // The output slice holds records only behind its output register: out_valid covers both.
-  always_comb begin
-    busy_o = head_valid || out_valid;
-    for (int s = 0; s < NumR; s++) busy_o = busy_o || slot_meta_q[s][MetaW-1];  // the valid bit
-  end
+  assign busy_o = head_valid || out_valid || (|slot_valid);
 
   // Fields that only some stages read.
   logic unused;
-  assign unused = ^{r0_slot, r4_slot, last_slot.rot, r0_job_q, r3_map_q.n[3*(DW+1)-1:DW+1], last_test, job_threshold_i,
-                    hx_in, hy_in};
+  assign unused = ^{r0_slot, r4_slot, r5_slot, r5_test, last_slot.rot, r0_job_q, acc_map, yz_map, r3_map, lin_map,
+                    last_test, job_threshold_i, hx_in, hy_in, lane_inside5, lane_state5};
 
   // ---- Assertions (Verilator runs them with --assert; voxcd_assert.sv) ----
   // Parameter sanity, at elaboration.
@@ -697,7 +802,9 @@ module voxcd_device #(
   `VOXCD_ASSERT_INIT(DistanceBanksFit, !Dist || (SB <= MEMW && MAW >= 3))
   `VOXCD_ASSERT_INIT(WeightBitsFit, !Dist || (WB >= 1 && WB <= MF + PF && WB <= 16))
   `VOXCD_ASSERT_INIT(BanksPowerOfTwo, (BANKS & (BANKS - 1)) == 0 && BANKS <= 64 && LgB <= MAW)
-  `VOXCD_ASSERT_INIT(BanksOnlyOnStates, !Banked || !Dist)
+  `VOXCD_ASSERT_INIT(DepthInRange, Depth <= voxcd_arch_pkg::MaxDepth)
+  `VOXCD_ASSERT_INIT(SlotsMatchTheTimingModel,
+                     NumR == voxcd_arch_pkg::PipeSlots + Depth + (Dist ? voxcd_arch_pkg::DistSlots : 0))
   `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) && TestW == $bits(test_t) &&
                                         RecordW == $bits(record_t))
 
@@ -712,6 +819,8 @@ module voxcd_device #(
   // The pipeline holds whenever the output slice cannot take a record; a record is never dropped.
   `VOXCD_ASSERT(EmitOnlyWhenReady, !(advance || emit) || out_ready)
   `VOXCD_ASSERT(PopOnlyAHeadJob, !head_pop || head_valid)
+  // A job is in the queue or has a slot in R0 .. R(N-1) until its completion record: at most NumR + 2 are in flight.
+  `VOXCD_ASSERT(InFlightBounded, 32'(in_flight_q) <= NumR + 2 && (in_flight_q != '0 || !emit_done))
   // R0 .. R4 advance only with the last register, and only when every lane of R4 has its word.
   `VOXCD_ASSERT(AdvanceWithTheLastRegister, !advance || (advance_out && !bank_wait))
   // The memories are loaded while the device is idle.

@@ -1,70 +1,92 @@
 // voxcd_lane: one lookup lane, from a shell point to the voxel it lands in and what the voxmap holds there.
 //
-// Stages (each a register, all advancing together when en_i is high, holding otherwise):
-//   R1  products    M[i][j] * p[j]                          (p: the point shown in R0, M of the R0 slot)
-//   R2  accumulator acc_i = sum_j M[i][j]*p[j] + t[i]        (t of the R1 slot), exact: AccW bits
-//   R3  index       idx_i = acc_i >>> TF (floor); inside = 0 <= idx_i < n_i at full width;
-//                   yz = y + ny*z                           (n of the R2 slot)
-//   R4  address     word = map_base + (x + nx*yz) / (MEMW/2), slot = (x + nx*yz) % (MEMW/2)  (R3 slot's job)
-//   R5  voxmap word (this lane's copy of the voxmap memory, read with the R4 address), slot, inside, x, y, z
-// Outputs show the R5 slot: inside_o, state_o (bits [2*slot+1 : 2*slot] of the word) and the voxel index.
-// Latency: 5 cycles from the point in R0 to its state at R5 (plus the shell RAM read before R0).
+// Stages (each a register, all advancing together when en_i is high, holding otherwise); those in [brackets] are
+// there only at a Depth that adds them (voxcd_arch_pkg: the stage of rank r is there when Depth > r):
+//   [IN]   point                                           (RankIn: the multipliers' input registers; p: the point
+//                                                           shown in R0; M, one per slot, is the device's register)
+//   PROD   products     M[i][j] * p[j]                     (the multipliers' product registers; M of the slot before:
+//                                                           R0, or IN)
+//   [SUM]  sums         M[i][0]*p[0] + t[i], M[i][1]*p[1] + M[i][2]*p[2]     (RankSum; t of the PROD slot)
+//   ACC    accumulator  acc_i = sum_j M[i][j]*p[j] + t[i]  (t of the PROD slot without SUM), exact: AccW bits
+//   [FLOOR] idx_i = acc_i >>> TF (floor); 0 <= idx_i < n_i at full width     (RankFloor; n of the ACC slot)
+//   R3     index        inside, the voxel index; yz = y + ny*z    (without FLOOR: the floor and bounds too, n of the
+//                                                                  ACC slot; ny of the FLOOR slot with it)
+//   [ADDR] linear       x + nx*yz                          (RankAddr; nx of the R3 slot)
+//   R4     address      word = map_base + linear / (MEMW/2), slot = linear % (MEMW/2)   (map_base of the slot
+//                                                          before: R3, or ADDR; without ADDR also the linear index)
+//   R5     voxmap word  (this lane's copy of the voxmap memory, read with the R4 address), slot, inside, x, y, z
+//   [READ] state        bits [2*slot+1 : 2*slot] of the word, inside, x, y, z       (RankRead)
+// Outputs show the last register (R5, or READ): inside_o, state_o and the voxel index. Latency: 5 + Depth cycles
+// from the point in R0 to its state (plus the shell RAM read before R0).
 //
 // A distance lane (SB > 2, docs/contract.md "Distance voxmaps") reads the eight nodes around the cell from eight
-// parity banks and interpolates them; R1 and R2 are the same, then:
-//   R3  index       as above; the weights f_i = acc_i[TF-1 -: WB]; yzh = (y>>1) + Hy*(z>>1), H_i = (n_i>>1) + 1
-//   R4  rows        per bank p: h_p = (x>>1) + Hx*yzh + dx_p + Hx*dy_p + HxHy*dz_p (d_p = 1 where the cell's
-//                   coordinate is odd and p's parity bit even), row_p = map_base/8 + h_p / NPW, slot h_p % NPW
-//   R5  bank words  (this lane's copy of the voxmap memory as 8 bank RAMs, each read at its row)
-//   R6  node select (bank p holds the node at offset (cell parity) ^ p) and the four x interpolations
-//   R7  the two y interpolations
-//   R8  the z interpolation: D, exact, SB + 3*WB bits signed
+// parity banks and interpolates them; IN, PROD, SUM, ACC and FLOOR are the same, then:
+//   R3     index        as above; the weights f_i = acc_i[TF-1 -: WB]; yzh = (y>>1) + Hy*(z>>1), H_i = (n_i>>1) + 1
+//   [ADDR] half-index   hbase = (x>>1) + Hx*yzh            (RankAddr; nx of the R3 slot, Hx kept for R4)
+//   R4     rows         per bank p: h_p = hbase + dx_p + Hx*dy_p + HxHy*dz_p (d_p = 1 where the cell's coordinate
+//                       is odd and p's parity bit even), row_p = map_base/8 + h_p / NPW, slot h_p % NPW
+//   R5     bank words   (this lane's copy of the voxmap memory as 8 bank RAMs, each read at its row)
+//   [READ] nodes        the eight node values, selected (bank p holds the node at offset (cell parity) ^ p)
+//   R6     node select (without READ) and the four x interpolations
+//   R7     the two y interpolations
+//   R8     the z interpolation: D, exact, SB + 3*WB bits signed
 // Each interpolation is a*2^WB + (b - a)*f, exact at its width; outputs show the R8 slot: inside_o, dist_o (D),
-// the voxel index, and state_o = 0. Latency: 8 cycles from the point in R0 to D at R8.
+// the voxel index, and state_o = 0. Latency: 8 + Depth cycles from the point in R0 to D at R8.
 //
 // Vectors of three coordinates hold x in the low bits: {z, y, x}; the matrix is {m22, m21, ..., m00} (entry
 // (i, j) at [(3i + j) * MW +: MW]). Written in the subset of SystemVerilog that Verilator and yosys both read.
 // Each lane owns a copy of the voxmap memory, written through the shared write port, so that every lane can
 // read one word (eight bank words on a distance device) in every cycle. With SharedMap (2-bit lanes only) the lane
-// has no copy: it shows its R4 address and whether it reads (read_o: the point is inside), and the device's shared
-// banks give it the word for R5 (word_i, in the R5 slot's cycles). Its R5 registers then advance on en_out_i, which
-// the device may raise without en_i: R5 takes a bubble while R4 waits for a bank (voxcd_device).
+// has no copy: it shows its R4 address (a distance lane its 8 addresses, one in each parity bank) and whether it
+// reads (read_o: the point is inside), and the device's shared banks give it the words for R5 (word_i, in the R5
+// slot's cycles). Its registers from R5 on then advance on en_out_i, which the device may raise without en_i: R5
+// takes a bubble while R4 waits for a bank (voxcd_device).
+// inside5_o and state5_o show R5's point before READ (the device's banks stop reading for a FIRST job at a hit in R5).
 module voxcd_lane #(
-  parameter int unsigned PW   = voxcd_arch_pkg::PW,
-  parameter int unsigned PF   = voxcd_arch_pkg::PF,
-  parameter int unsigned MW   = voxcd_arch_pkg::MW,
-  parameter int unsigned MF   = voxcd_arch_pkg::MF,
-  parameter int unsigned TW   = voxcd_arch_pkg::TW,
-  parameter int unsigned DW   = voxcd_arch_pkg::DW,
-  parameter int unsigned MEMW = voxcd_arch_pkg::MEMW,
-  parameter int unsigned MAW  = voxcd_arch_pkg::MAW,
-  parameter int unsigned SB   = voxcd_arch_pkg::SB,
-  parameter int unsigned WB   = voxcd_arch_pkg::WB,
+  parameter int unsigned PW    = voxcd_arch_pkg::PW,
+  parameter int unsigned PF    = voxcd_arch_pkg::PF,
+  parameter int unsigned MW    = voxcd_arch_pkg::MW,
+  parameter int unsigned MF    = voxcd_arch_pkg::MF,
+  parameter int unsigned TW    = voxcd_arch_pkg::TW,
+  parameter int unsigned DW    = voxcd_arch_pkg::DW,
+  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW,
+  parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
+  parameter int unsigned SB    = voxcd_arch_pkg::SB,
+  parameter int unsigned WB    = voxcd_arch_pkg::WB,
+  parameter int unsigned Depth = voxcd_arch_pkg::Depth,
   parameter bit          SharedMap = 1'b0
 ) (
   input  logic                  clk_i,
-  input  logic                  en_i,        // R1 .. R4 (and every register of a lane with its own copy) advance
-  input  logic                  en_out_i,    // R5 advances (en_i implies it; the same as en_i without SharedMap)
+  input  logic                  en_i,        // every register up to R4 (all of a lane with its own copy) advances
+  input  logic                  en_out_i,    // R5 and the registers after it advance (en_i implies it; the same as en_i
+                                             // without SharedMap)
   // voxmap write port (shared by all lanes)
   input  logic                  map_we_i,
   input  logic [MAW-1:0]        map_waddr_i,
   input  logic [MEMW-1:0]       map_wdata_i,
-  // R0: the point and the matrix of its job
+  // R0: the point; the register before PROD (R0, or IN): the matrix of its job
   input  logic [3*PW-1:0]       point_i,
   input  logic [9*MW-1:0]       m_i,
-  // R1: the translation of the job in R1
+  // PROD: the translation of the job in the products' register
   input  logic [3*TW-1:0]       t_i,
-  // R2: the map dimensions of the job in R2
+  // ACC: the map dimensions of the job in the accumulator's register (the bounds)
   input  logic [3*(DW+1)-1:0]   n_i,
-  // R3: the job in R3 (hxy_i = Hx*Hy: distance lanes only)
+  // the register the y + ny*z product reads (FLOOR, or ACC without it): that job's ny
+  input  logic [DW:0]           ny_i,
+  // R3: the job in R3 (the linear index's nx)
   input  logic [DW:0]           nx_i,
+  // the register R4 is computed from (ADDR, or R3 without it): the job's map base and Hx*Hy (distance lanes only)
   input  logic [MAW-1:0]        map_base_i,
   input  logic [2*DW:0]         hxy_i,
-  // Shared voxmap banks (SharedMap): the R4 word address, whether the point reads it, and the R5 word
-  output logic [MAW-1:0]        addr_o,
-  output logic                  read_o,
-  input  logic [MEMW-1:0]       word_i,
-  // The result: R5 (SB = 2) or R8 (SB > 2)
+  // Shared voxmap banks (SharedMap): the R4 word addresses (one; a distance lane's eight, one per parity bank p at
+  // [p*MAW +: MAW]), whether the point reads them, and the R5 words
+  output logic [(SB > 2 ? 8 : 1)*MAW-1:0]  addr_o,
+  output logic [(SB > 2 ? 8 : 1)-1:0]      read_o,
+  input  logic [(SB > 2 ? 8 : 1)*MEMW-1:0] word_i,
+  // R5's point before READ (2-bit lanes): inside and its state
+  output logic                  inside5_o,
+  output logic [1:0]            state5_o,
+  // The result: R5 or READ (SB = 2), R8 (SB > 2)
   output logic                  inside_o,
   output logic [1:0]            state_o,
   output logic [SB+3*WB-1:0]    dist_o,
@@ -77,10 +99,30 @@ module voxcd_lane #(
   localparam int unsigned IdxW  = AccW - TF;                                // signed voxel index
   localparam int unsigned CmpW  = (IdxW - 1 > DW + 1) ? IdxW - 1 : DW + 1;  // unsigned compare width
   localparam int unsigned IW    = SB + 3 * WB;                              // interpolated distance D
+  localparam int unsigned FW    = SB > 2 ? 3 * WB : 1;                      // the weights a stage carries
+  localparam bit HasIn    = Depth > voxcd_arch_pkg::RankIn;
+  localparam bit HasSum   = Depth > voxcd_arch_pkg::RankSum;
+  localparam bit HasFloor = Depth > voxcd_arch_pkg::RankFloor;
+  localparam bit HasAddr  = Depth > voxcd_arch_pkg::RankAddr;
+  localparam bit HasRead  = Depth > voxcd_arch_pkg::RankRead;
 
-  // ---- R1: products, R2: accumulator ----
-  // One block per output coordinate i: its three products (R1) and their sum with t_i (R2), each in a register of
-  // its own width (no wider vector to slice: simulators keep each in a native word).
+  // ---- IN: the multipliers' inputs (the point after the shell banks' rotation; M comes registered) ----
+  logic [3*PW-1:0] p_in;
+  logic [9*MW-1:0] m_in;
+  assign m_in = m_i;
+  if (HasIn) begin : g_in
+    logic [3*PW-1:0] point_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) point_q <= point_i;
+    end
+    assign p_in = point_q;
+  end else begin : g_no_in
+    assign p_in = point_i;
+  end
+
+  // ---- PROD: products, [SUM], ACC: accumulator ----
+  // One block per output coordinate i: its three products and their sum with t_i, each in a register of its own
+  // width (no wider vector to slice: simulators keep each in a native word).
   logic [AccW-1:0] acc_q [3];
   for (genvar i = 0; i < 3; i++) begin : g_row
     logic [ProdW-1:0] px_q, py_q, pz_q;  // M[i][0]*x, M[i][1]*y, M[i][2]*z
@@ -88,10 +130,25 @@ module voxcd_lane #(
     always_ff @(posedge clk_i) begin
       if (en_i) begin
         // Signed MW x PW multipliers: the ProdW-bit products are exact.
-        px_q  <= ProdW'($signed(m_i[(3*i+0)*MW +: MW])) * ProdW'($signed(point_i[0*PW +: PW]));
-        py_q  <= ProdW'($signed(m_i[(3*i+1)*MW +: MW])) * ProdW'($signed(point_i[1*PW +: PW]));
-        pz_q  <= ProdW'($signed(m_i[(3*i+2)*MW +: MW])) * ProdW'($signed(point_i[2*PW +: PW]));
-        sum_q <= AccW'($signed(t_i[i*TW +: TW])) + AccW'($signed(px_q)) + AccW'($signed(py_q)) + AccW'($signed(pz_q));
+        px_q <= ProdW'($signed(m_in[(3*i+0)*MW +: MW])) * ProdW'($signed(p_in[0*PW +: PW]));
+        py_q <= ProdW'($signed(m_in[(3*i+1)*MW +: MW])) * ProdW'($signed(p_in[1*PW +: PW]));
+        pz_q <= ProdW'($signed(m_in[(3*i+2)*MW +: MW])) * ProdW'($signed(p_in[2*PW +: PW]));
+      end
+    end
+    if (HasSum) begin : g_sum
+      // The sum tree's first level: each partial sum fits AccW bits (|t| < 2^(TW-1), |product| < 2^(ProdW-1)).
+      logic [AccW-1:0] a_q, b_q;
+      always_ff @(posedge clk_i) begin
+        if (en_i) begin
+          a_q   <= AccW'($signed(t_i[i*TW +: TW])) + AccW'($signed(px_q));
+          b_q   <= AccW'($signed(py_q)) + AccW'($signed(pz_q));
+          sum_q <= a_q + b_q;
+        end
+      end
+    end else begin : g_no_sum
+      always_ff @(posedge clk_i) begin
+        if (en_i) sum_q <= AccW'($signed(t_i[i*TW +: TW])) + AccW'($signed(px_q)) + AccW'($signed(py_q)) +
+                           AccW'($signed(pz_q));
       end
     end
     assign acc_q[i] = sum_q;
@@ -101,25 +158,61 @@ module voxcd_lane #(
   logic unused_fraction;
   assign unused_fraction = ^{acc_q[2][TF-1:0], acc_q[1][TF-1:0], acc_q[0][TF-1:0]};
 
-  // ---- R3: floor and bounds (both kinds of voxmap) ----
+  // ---- Floor and bounds (both kinds of voxmap): at R3, or in FLOOR before it ----
   // The upper bits of a two's complement value are floor(acc / 2^TF).
   logic [IdxW-1:0] idx_x, idx_y, idx_z;
   logic [2:0]      in_axis;
+  logic [FW-1:0]   frac_acc;  // {fz, fy, fx}: the top WB fraction bits of each coordinate (distance lanes)
   assign idx_x = acc_q[0][TF +: IdxW];
   assign idx_y = acc_q[1][TF +: IdxW];
   assign idx_z = acc_q[2][TF +: IdxW];
   assign in_axis[0] = !idx_x[IdxW-1] && (CmpW'(idx_x[IdxW-2:0]) < CmpW'(n_i[0*(DW+1) +: DW+1]));
   assign in_axis[1] = !idx_y[IdxW-1] && (CmpW'(idx_y[IdxW-2:0]) < CmpW'(n_i[1*(DW+1) +: DW+1]));
   assign in_axis[2] = !idx_z[IdxW-1] && (CmpW'(idx_z[IdxW-2:0]) < CmpW'(n_i[2*(DW+1) +: DW+1]));
+  if (SB > 2) begin : g_frac_acc
+    for (genvar i = 0; i < 3; i++) begin : g_f
+      assign frac_acc[i*WB +: WB] = acc_q[i][TF - WB +: WB];
+    end
+  end else begin : g_no_frac_acc
+    assign frac_acc = '0;
+  end
+
+  // What R3 (and the y + ny*z product) sees: the floor's results, registered in FLOOR or straight from ACC.
+  logic            inside_f;
+  logic [3*DW-1:0] vox_f;
+  logic [FW-1:0]   frac_f;
+  if (HasFloor) begin : g_floor
+    logic            inside_q;
+    logic [3*DW-1:0] vox_q;
+    logic [FW-1:0]   frac_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        inside_q <= &in_axis;
+        vox_q    <= {idx_z[DW-1:0], idx_y[DW-1:0], idx_x[DW-1:0]};
+        frac_q   <= frac_acc;
+      end
+    end
+    assign inside_f = inside_q;
+    assign vox_f    = vox_q;
+    assign frac_f   = frac_q;
+  end else begin : g_no_floor
+    assign inside_f = &in_axis;
+    assign vox_f    = {idx_z[DW-1:0], idx_y[DW-1:0], idx_x[DW-1:0]};
+    assign frac_f   = frac_acc;
+  end
 
   logic            inside3_q;
   logic [3*DW-1:0] vox3_q;
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      inside3_q <= &in_axis;
-      vox3_q    <= {idx_z[DW-1:0], idx_y[DW-1:0], idx_x[DW-1:0]};
+      inside3_q <= inside_f;
+      vox3_q    <= vox_f;
     end
   end
+
+  logic [DW-1:0] y_f, z_f;  // the voxel's y and z where the y + ny*z product reads them
+  assign y_f = vox_f[DW +: DW];
+  assign z_f = vox_f[2*DW +: DW];
 
   if (SB == 2) begin : g_states
     // ---- 2-bit voxel states (the paper's device) ----
@@ -131,14 +224,32 @@ module voxcd_lane #(
     // ---- R3: y + ny*z ----
     logic [YzW-1:0] yz3_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
-        yz3_q <= YzW'(idx_y[DW-1:0]) + YzW'(n_i[1*(DW+1) +: DW+1]) * YzW'(idx_z[DW-1:0]);
-      end
+      if (en_i) yz3_q <= YzW'(y_f) + YzW'(ny_i) * YzW'(z_f);
     end
 
-    // ---- R4: linear index, word address and slot ----
-    logic [LinW-1:0] linear;
-    assign linear = LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q);
+    // ---- [ADDR]: the linear index; R4: word address and slot ----
+    logic [LinW-1:0]  linear;
+    logic             inside_l;
+    logic [3*DW-1:0]  vox_l;
+    if (HasAddr) begin : g_addr
+      logic [LinW-1:0] linear_q;
+      logic            inside_q;
+      logic [3*DW-1:0] vox_q;
+      always_ff @(posedge clk_i) begin
+        if (en_i) begin
+          linear_q <= LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q);
+          inside_q <= inside3_q;
+          vox_q    <= vox3_q;
+        end
+      end
+      assign linear   = linear_q;
+      assign inside_l = inside_q;
+      assign vox_l    = vox_q;
+    end else begin : g_no_addr
+      assign linear   = LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q);
+      assign inside_l = inside3_q;
+      assign vox_l    = vox3_q;
+    end
 
     logic             inside4_q;
     logic [3*DW-1:0]  vox4_q;
@@ -146,8 +257,8 @@ module voxcd_lane #(
     logic [SlotW-1:0] slot4_q;
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        inside4_q <= inside3_q;
-        vox4_q    <= vox3_q;
+        inside4_q <= inside_l;
+        vox4_q    <= vox_l;
         // Inside points of a valid job address loaded words only, so the MAW-bit sum is exact for them.
         addr4_q   <= map_base_i + MAW'(linear >> SpwLg);
         slot4_q   <= SlotW'(linear & LinW'((MEMW / 2) - 1));  // 0 when MEMW = 2
@@ -191,13 +302,35 @@ module voxcd_lane #(
       end
     end
 
-    assign inside_o = inside5_q;
-    assign voxel_o  = vox5_q;
-    assign state_o  = word5[2 * slot5_q +: 2];
-    assign dist_o   = '0;  // a 2-bit voxmap has no distance
+    logic [1:0] state5;
+    assign state5    = word5[2 * slot5_q +: 2];
+    assign inside5_o = inside5_q;
+    assign state5_o  = state5;
 
-    logic unused_dist;  // the distance inputs of a 2-bit lane
-    assign unused_dist = ^hxy_i;
+    // ---- [READ]: the state in a register of its own ----
+    if (HasRead) begin : g_read
+      logic            inside_q;
+      logic [3*DW-1:0] vox_q;
+      logic [1:0]      state_q;
+      always_ff @(posedge clk_i) begin
+        if (en_out_i) begin
+          inside_q <= inside5_q;
+          vox_q    <= vox5_q;
+          state_q  <= state5;
+        end
+      end
+      assign inside_o = inside_q;
+      assign voxel_o  = vox_q;
+      assign state_o  = state_q;
+    end else begin : g_no_read
+      assign inside_o = inside5_q;
+      assign voxel_o  = vox5_q;
+      assign state_o  = state5;
+    end
+    assign dist_o = '0;  // a 2-bit voxmap has no distance
+
+    logic unused_dist;  // the distance inputs of a 2-bit lane, and the weights it does not keep
+    assign unused_dist = ^{hxy_i, frac_f};
 
   end else begin : g_dist
     // ---- Signed node distances in 8 parity banks ----
@@ -214,38 +347,68 @@ module voxcd_lane #(
     localparam int unsigned ZIW   = IW + 1;
 
     // ---- R3: the weights, and (y>>1) + Hy*(z>>1) ----
-    logic [DW:0]     ny, hy;
+    logic [DW:0]     hy;
     logic [DW-1:0]   y_half, z_half;
-    logic [3*WB-1:0] frac3_q;  // {fz, fy, fx}: the top WB fraction bits of each coordinate
+    logic [3*WB-1:0] frac3_q;  // {fz, fy, fx}
     logic [YzhW-1:0] yzh3_q;
-    assign ny     = n_i[1*(DW+1) +: DW+1];
-    assign hy     = (ny >> 1) + (DW + 1)'(1);
-    assign y_half = idx_y[DW-1:0] >> 1;
-    assign z_half = idx_z[DW-1:0] >> 1;
+    assign hy     = (ny_i >> 1) + (DW + 1)'(1);
+    assign y_half = y_f >> 1;
+    assign z_half = z_f >> 1;
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        for (int i = 0; i < 3; i++) frac3_q[i*WB +: WB] <= acc_q[i][TF - WB +: WB];
-        yzh3_q <= YzhW'(y_half) + YzhW'(hy) * YzhW'(z_half);
+        frac3_q <= frac_f;
+        yzh3_q  <= YzhW'(y_half) + YzhW'(hy) * YzhW'(z_half);
       end
     end
 
-    // ---- R4: one row and slot per bank ----
+    // ---- [ADDR]: the half-index of the cell's corner; R4: one row and slot per bank ----
     // Bank p holds the cell's corner node whose coordinate parities are p: on an axis where the cell's index is odd
     // and p's bit is even, that node is one further on, so its half-index is one more.
-    logic [DW:0]       hx;
-    logic [DW-1:0]     x_half;
-    logic [HW-1:0]     hbase;
-    logic [2:0]        par3;    // parities of the cell's x, y, z
+    logic [DW:0]       hx3, hx;   // Hx of the R3 slot's job, and of the job R4 is computed for
+    logic [HW-1:0]     hbase3, hbase;
+    logic              inside_l;
+    logic [3*DW-1:0]   vox_l;
+    logic [3*WB-1:0]   frac_l;
+    assign hx3    = (nx_i >> 1) + (DW + 1)'(1);
+    logic [DW-1:0] x_half;
+    assign x_half = vox3_q[DW-1:0] >> 1;
+    assign hbase3 = HW'(x_half) + HW'(hx3) * HW'(yzh3_q);
+    if (HasAddr) begin : g_addr
+      logic [DW:0]     hx_q;
+      logic [HW-1:0]   hbase_q;
+      logic            inside_q;
+      logic [3*DW-1:0] vox_q;
+      logic [3*WB-1:0] frac_q;
+      always_ff @(posedge clk_i) begin
+        if (en_i) begin
+          hx_q     <= hx3;
+          hbase_q  <= hbase3;
+          inside_q <= inside3_q;
+          vox_q    <= vox3_q;
+          frac_q   <= frac3_q;
+        end
+      end
+      assign hx       = hx_q;
+      assign hbase    = hbase_q;
+      assign inside_l = inside_q;
+      assign vox_l    = vox_q;
+      assign frac_l   = frac_q;
+    end else begin : g_no_addr
+      assign hx       = hx3;
+      assign hbase    = hbase3;
+      assign inside_l = inside3_q;
+      assign vox_l    = vox3_q;
+      assign frac_l   = frac3_q;
+    end
+
+    logic [2:0]        par_l;   // parities of the cell's x, y, z
     logic [8*RowW-1:0] row;
     logic [8*NslW-1:0] slot;
-    assign hx    = (nx_i >> 1) + (DW + 1)'(1);
-    assign x_half = vox3_q[DW-1:0] >> 1;
-    assign hbase  = HW'(x_half) + HW'(hx) * HW'(yzh3_q);
-    assign par3  = {vox3_q[2*DW], vox3_q[DW], vox3_q[0]};
+    assign par_l = {vox_l[2*DW], vox_l[DW], vox_l[0]};
     for (genvar p = 0; p < 8; p++) begin : g_row
       logic [2:0]    step;  // the half-index steps of bank p's node: x, y, z
       logic [HW-1:0] h;
-      assign step = par3 & ~3'(p);
+      assign step = par_l & ~3'(p);
       assign h    = hbase + HW'(step[0]) + (step[1] ? HW'(hx) : HW'(0)) + (step[2] ? HW'(hxy_i) : HW'(0));
       // Inside points of a valid job read loaded words only, so the RowW-bit sum is exact for them.
       assign row[p*RowW +: RowW]  = RowW'(map_base_i >> 3) + RowW'(h >> NpwLg);
@@ -259,9 +422,9 @@ module voxcd_lane #(
     logic [8*NslW-1:0] slot4_q;
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        inside4_q <= inside3_q;
-        vox4_q    <= vox3_q;
-        frac4_q   <= frac3_q;
+        inside4_q <= inside_l;
+        vox4_q    <= vox_l;
+        frac4_q   <= frac_l;
         row4_q    <= row;
         slot4_q   <= slot;
       end
@@ -273,22 +436,35 @@ module voxcd_lane #(
     logic [3*DW-1:0]   vox5_q;
     logic [3*WB-1:0]   frac5_q;
     logic [8*NslW-1:0] slot5_q;
-    for (genvar p = 0; p < 8; p++) begin : g_bank
-      voxcd_ram #(
-        .Width(MEMW),
-        .AddrW(RowW)
-      ) u_bank (
-        .clk_i  (clk_i),
-        .we_i   (map_we_i && (map_waddr_i[2:0] == 3'(p))),
-        .waddr_i(RowW'(map_waddr_i >> 3)),
-        .wdata_i(map_wdata_i),
-        .re_i   (en_i),
-        .raddr_i(row4_q[p*RowW +: RowW]),
-        .rdata_o(word5[p*MEMW +: MEMW])
-      );
+    for (genvar p = 0; p < 8; p++) begin : g_addr_out
+      // Word (map_base/8 + h_p/NPW)*8 + p: the shared banks' address of bank p's node.
+      assign addr_o[p*MAW +: MAW] = MAW'({row4_q[p*RowW +: RowW], 3'(p)});
+    end
+    assign read_o = {8{inside4_q}};
+    if (SharedMap) begin : g_shared
+      assign word5 = word_i;
+      logic unused_write;  // the device writes its shared banks
+      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i};
+    end else begin : g_copy
+      for (genvar p = 0; p < 8; p++) begin : g_bank
+        voxcd_ram #(
+          .Width(MEMW),
+          .AddrW(RowW)
+        ) u_bank (
+          .clk_i  (clk_i),
+          .we_i   (map_we_i && (map_waddr_i[2:0] == 3'(p))),
+          .waddr_i(RowW'(map_waddr_i >> 3)),
+          .wdata_i(map_wdata_i),
+          .re_i   (en_out_i),
+          .raddr_i(row4_q[p*RowW +: RowW]),
+          .rdata_o(word5[p*MEMW +: MEMW])
+        );
+      end
+      logic unused_word;  // a lane with its own copy reads no shared bank
+      assign unused_word = ^word_i;
     end
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
+      if (en_out_i) begin
         inside5_q <= inside4_q;
         vox5_q    <= vox4_q;
         frac5_q   <= frac4_q;
@@ -296,9 +472,9 @@ module voxcd_lane #(
       end
     end
 
-    // ---- R6: node select, x interpolation ----
+    // ---- Node select (into READ, or into R6 with the x interpolations) ----
     logic [8*SB-1:0] bank_val;  // the value bank p read
-    logic [8*SB-1:0] q;         // q(dx, dy, dz) at [(dx | dy<<1 | dz<<2)*SB +: SB]
+    logic [8*SB-1:0] q5;        // q(dx, dy, dz) at [(dx | dy<<1 | dz<<2)*SB +: SB]
     logic [2:0]      par5;
     assign par5 = {vox5_q[2*DW], vox5_q[DW], vox5_q[0]};
     for (genvar p = 0; p < 8; p++) begin : g_val
@@ -307,16 +483,45 @@ module voxcd_lane #(
     for (genvar c = 0; c < 8; c++) begin : g_node
       // The node at offset c from the cell's corner has parities par5 ^ c.
       logic [2:0] bank;
-      assign bank          = 3'(c) ^ par5;
-      assign q[c*SB +: SB] = bank_val[bank*SB +: SB];
+      assign bank           = 3'(c) ^ par5;
+      assign q5[c*SB +: SB] = bank_val[bank*SB +: SB];
     end
 
+    logic [8*SB-1:0] q;
+    logic            inside_r;
+    logic [3*DW-1:0] vox_r;
+    logic [3*WB-1:0] frac_r;
+    if (HasRead) begin : g_read
+      logic [8*SB-1:0] q_q;
+      logic            inside_q;
+      logic [3*DW-1:0] vox_q;
+      logic [3*WB-1:0] frac_q;
+      always_ff @(posedge clk_i) begin
+        if (en_out_i) begin
+          q_q      <= q5;
+          inside_q <= inside5_q;
+          vox_q    <= vox5_q;
+          frac_q   <= frac5_q;
+        end
+      end
+      assign q        = q_q;
+      assign inside_r = inside_q;
+      assign vox_r    = vox_q;
+      assign frac_r   = frac_q;
+    end else begin : g_no_read
+      assign q        = q5;
+      assign inside_r = inside5_q;
+      assign vox_r    = vox5_q;
+      assign frac_r   = frac5_q;
+    end
+
+    // ---- R6: x interpolation ----
     logic [4*XW-1:0] lx;  // at (dy | dz<<1): between q(0, dy, dz) and q(1, dy, dz)
     for (genvar k = 0; k < 4; k++) begin : g_x
       logic signed [XIW-1:0] a, b, f, v;
       assign a = XIW'($signed(q[(2*k)*SB +: SB]));
       assign b = XIW'($signed(q[(2*k+1)*SB +: SB]));
-      assign f = $signed(XIW'(frac5_q[0*WB +: WB]));
+      assign f = $signed(XIW'(frac_r[0*WB +: WB]));
       assign v = (a <<< WB) + (b - a) * f;  // exact: |b - a| < 2^SB, f < 2^WB
       assign lx[k*XW +: XW] = v[XW-1:0];    // exact: between a and b times 2^WB
       logic unused_sign;
@@ -328,10 +533,10 @@ module voxcd_lane #(
     logic [2*WB-1:0] frac6_q;  // {fz, fy}
     logic [4*XW-1:0] lx6_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
-        inside6_q <= inside5_q;
-        vox6_q    <= vox5_q;
-        frac6_q   <= frac5_q[WB +: 2*WB];
+      if (en_out_i) begin
+        inside6_q <= inside_r;
+        vox6_q    <= vox_r;
+        frac6_q   <= frac_r[WB +: 2*WB];
         lx6_q     <= lx;
       end
     end
@@ -354,7 +559,7 @@ module voxcd_lane #(
     logic [WB-1:0]   fz7_q;
     logic [2*YW-1:0] ly7_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
+      if (en_out_i) begin
         inside7_q <= inside6_q;
         vox7_q    <= vox6_q;
         fz7_q     <= frac6_q[WB +: WB];
@@ -373,29 +578,29 @@ module voxcd_lane #(
     logic [3*DW-1:0] vox8_q;
     logic [IW-1:0]   dist8_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) begin
+      if (en_out_i) begin
         inside8_q <= inside7_q;
         vox8_q    <= vox7_q;
         dist8_q   <= zv[IW-1:0];
       end
     end
 
-    assign inside_o = inside8_q;
-    assign voxel_o  = vox8_q;
-    assign dist_o   = dist8_q;
-    assign state_o  = 2'd0;  // a distance voxmap has no states
+    assign inside_o  = inside8_q;
+    assign voxel_o   = vox8_q;
+    assign dist_o    = dist8_q;
+    assign state_o   = 2'd0;  // a distance voxmap has no states
+    assign inside5_o = 1'b0;
+    assign state5_o  = 2'd0;
 
     logic unused_dist;  // the bank bits of map_base (a distance map starts on a bank boundary) and D's sign copy
-    assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW], en_out_i, word_i};  // and the shared banks' ports
-    assign addr_o = '0;
-    assign read_o = 1'b0;
+    assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW]};
 
   end
 
-  // Parameter sanity, at elaboration: the index keeps its sign bit above DW + 1 magnitude bits, and SB is a width
-  // the lane has a data path for.
+  // Parameter sanity, at elaboration: the index keeps its sign bit above DW + 1 magnitude bits, SB is a width the
+  // lane has a data path for, and Depth a pipeline it has.
   `VOXCD_ASSERT_INIT(IndexHoldsDims, IdxW >= DW + 1)
   `VOXCD_ASSERT_INIT(ValueWidthKnown, SB == 2 || SB == 4 || SB == 8 || SB == 16)
-  `VOXCD_ASSERT_INIT(SharedMapOnStates, !SharedMap || SB == 2)
+  `VOXCD_ASSERT_INIT(DepthInRange, Depth <= voxcd_arch_pkg::MaxDepth)
 
 endmodule

@@ -107,6 +107,13 @@ bool decode_record(const uint8_t* in, Record& rec) {
   return true;
 }
 
+bool decode_error_record(const uint8_t* in, uint32_t& tag, uint32_t& faults) {
+  if (in[0] != kKindError) return false;
+  tag = uint32_t(get_le(in + 0x04, 4));
+  faults = uint32_t(get_le(in + 0x08, 4));
+  return true;
+}
+
 uint64_t config_word0(const DeviceConfig& c) {
   return uint64_t(c.PW) | uint64_t(c.PF) << 8 | uint64_t(c.MW) << 16 | uint64_t(c.MF) << 24 | uint64_t(c.TW) << 32 |
          uint64_t(c.DW) << 40 | uint64_t(c.MEMW) << 48 | uint64_t(c.LANES) << 56;
@@ -114,7 +121,7 @@ uint64_t config_word0(const DeviceConfig& c) {
 
 uint64_t config_word1(const DeviceConfig& c) {
   return uint64_t(c.SAW) | uint64_t(c.MAW) << 8 | uint64_t(c.TAGW) << 16 | uint64_t(c.SB) << 24 | uint64_t(c.WB) << 32 |
-         uint64_t(c.BANKS) << 40;
+         uint64_t(c.BANKS) << 40 | uint64_t(c.depth) << 48;
 }
 
 }  // namespace voxcd::sysc

@@ -29,7 +29,7 @@ constexpr uint64_t kMapStride = 8;
 enum Reg : uint64_t {
   kRegId = 0x00,           // RO: kDeviceId
   kRegConfig0 = 0x08,      // RO: PW | PF<<8 | MW<<16 | MF<<24 | TW<<32 | DW<<40 | MEMW<<48 | LANES<<56
-  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16 | SB<<24 | WB<<32 | BANKS<<40
+  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16 | SB<<24 | WB<<32 | BANKS<<40 | DEPTH<<48
   kRegClockPs = 0x18,      // RO: clock period in picoseconds
   kRegStatus = 0x20,       // RO: kStatus* bits
   kRegStaged = 0x28,       // RO: jobs staged and not yet launched
@@ -42,8 +42,9 @@ enum Reg : uint64_t {
   kRegStalls = 0x60,
   kRegShellWords = 0x68,   // RO: shell words loaded (one past the highest written)
   kRegMapWords = 0x70,     // RO: voxmap words loaded
-  kRegDropped = 0x78,      // RO: malformed job descriptors dropped (the AXI top, rtl/voxcd_axi.sv; the SystemC
-                           // targets refuse them with an error response instead, and read 0 here)
+  kRegDropped = 0x78,      // RO: job descriptors refused (the AXI top, rtl/voxcd_axi.sv: malformed frames, and
+                           // descriptors it answers with an error record; the SystemC targets refuse them with an
+                           // error response instead, and read 0 here)
   kRegConflicts = 0x80,    // RO: bank conflict cycles since reset (shared voxmap banks, BANKS > 0; else 0)
 };
 constexpr uint64_t kDeviceId = 0x766f'7863'6400'0001;  // "voxcd", version 1
@@ -60,17 +61,23 @@ constexpr uint64_t kStatusFault = 8;    // the RTL failed an assertion (RTL targ
 //   0x68 .. 0x7f zero
 constexpr size_t kJobBytes = 128;
 // Result record: kRecordBytes bytes.
-//   0x00 u8 kind (0 none, 1 hit, 2 done)   0x01 u8 state (hit)   0x02 u16 zero   0x04 u32 tag
-//   hit:  0x08 u32 point   0x0c u32 x   0x10 u32 y   0x14 u32 z   0x18 i64 dist (0 on a 2-bit device)
-//   done: 0x08 u32 hits    0x0c u32 points   0x10 u64 cycles   0x18 u64 stalls
+//   0x00 u8 kind (0 none, 1 hit, 2 done, 3 error)   0x01 u8 state (hit)   0x02 u16 zero   0x04 u32 tag
+//   hit:   0x08 u32 point   0x0c u32 x   0x10 u32 y   0x14 u32 z   0x18 i64 dist (0 on a 2-bit device)
+//   done:  0x08 u32 hits    0x0c u32 points   0x10 u64 cycles   0x18 u64 stalls
+//   error: 0x08 u32 faults (a refused descriptor, the AXI top only: the tag as the descriptor has it and the rules
+//          it breaks, kFaultDescriptor and ref/pipeline.h's JobFault bits)   0x0c .. 0x1f zero
 constexpr size_t kRecordBytes = 32;
-enum RecordKind : uint8_t { kKindNone = 0, kKindHit = 1, kKindDone = 2 };
+enum RecordKind : uint8_t { kKindNone = 0, kKindHit = 1, kKindDone = 2, kKindError = 3 };
+// An error record's fault bit for a descriptor with a reserved byte set (the other bits: ref/pipeline.h, JobFault).
+constexpr uint32_t kFaultDescriptor = 1;
+// The fault bits of an error record (kind 3); false (and faults untouched) for any other record.
+bool decode_error_record(const uint8_t* in, uint32_t& tag, uint32_t& faults);
 
 void encode_job(const Job& job, uint8_t* out);
 // Decodes a descriptor; false (and `why`) when a reserved byte is not zero or the mode is not 0..2.
 bool decode_job(const uint8_t* in, Job& job, std::string& why);
 void encode_record(const Record& rec, uint8_t* out);
-// Decodes one record slot; false for an empty slot (kind 0).
+// Decodes one record slot; false for an empty slot (kind 0) or an error record (kind 3: decode_error_record).
 bool decode_record(const uint8_t* in, Record& rec);
 
 uint64_t config_word0(const DeviceConfig& cfg);

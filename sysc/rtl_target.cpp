@@ -48,7 +48,7 @@ struct RtlPins {
   sc_signal<uint32_t> done_tag_o{"done_tag_o"}, done_hits_o{"done_hits_o"}, done_cycles_o{"done_cycles_o"},
       done_points_o{"done_points_o"}, done_stalls_o{"done_stalls_o"};
   sc_signal<bool> busy_o{"busy_o"};
-  sc_signal<uint32_t> conflicts_o{"conflicts_o"};  // bank conflict cycles (0: the models keep a copy per lane)
+  sc_signal<uint32_t> conflicts_o{"conflicts_o"};  // bank conflict cycles since reset (0 with a copy per lane)
 };
 
 struct RtlModel {
@@ -161,8 +161,8 @@ RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock
     std::string built;
     for (const DeviceConfig& c : rtl_target_configs()) built += (built.empty() ? "" : "; ") + c.to_string();
     throw std::invalid_argument(std::string(this->name()) +
-                                ": the RTL models are built for the default widths with the lane counts and the "
-                                "distance devices listed here (" +
+                                ": the RTL models are built for the default widths with the lane counts, and for "
+                                "the distance, shared-bank and deeper-pipeline devices listed here (" +
                                 built + "), not for " + cfg.to_string());
   }
   SC_METHOD(on_edge);
@@ -287,7 +287,10 @@ void RtlTarget::on_edge() {
       d.points = p.done_points_o.read();
       d.stalls = p.done_stalls_o.read();
       partial_.push_back(d);
-      publish(partial_);
+      // The conflict cycles since the previous completion (the counter wraps at 2^32 as the register does).
+      const uint64_t conflicts = p.conflicts_o.read();
+      publish(partial_, uint32_t(conflicts - conflicts_seen_));
+      conflicts_seen_ = conflicts;
       partial_.clear();
       results_event_.notify(SC_ZERO_TIME);
       if (++completed_ == batches_.front().jobs.size()) {

@@ -25,7 +25,8 @@ struct RtlModel;  // the Verilated model of one lane count
 // Lane counts this build has SystemC RTL models of the 2-bit device (default widths) for.
 std::vector<int> rtl_target_lanes();
 // Every configuration this build has a SystemC RTL model for: the 2-bit device's lane counts, then the distance
-// devices (sysc/CMakeLists.txt, VOXCD_SYSC_DIST_MODELS).
+// devices, the devices with shared voxmap banks and those with a deeper pipeline (sysc/CMakeLists.txt,
+// VOXCD_SYSC_DIST_MODELS, VOXCD_SYSC_BANKED_MODELS, VOXCD_SYSC_DEPTH_MODELS).
 std::vector<DeviceConfig> rtl_target_configs();
 
 class RtlTarget final : public DeviceTarget {
@@ -92,6 +93,7 @@ class RtlTarget final : public DeviceTarget {
   bool job_valid_ = false;
   size_t fed_ = 0, completed_ = 0;
   std::vector<Record> partial_;  // records of the job being completed
+  uint64_t conflicts_seen_ = 0;  // the device's conflicts_o at the previous completion record
 };
 
 }  // namespace voxcd::sysc

@@ -21,9 +21,10 @@ DeviceTarget::DeviceTarget(sc_module_name name, const DeviceConfig& cfg, sc_time
 uint64_t DeviceTarget::edge_after(sc_time t) const { return t.value() / period_.value() + 1; }
 uint64_t DeviceTarget::edge_at_or_before(sc_time t) const { return t.value() / period_.value(); }
 
-void DeviceTarget::publish(const Record* job_records, size_t n) {
+void DeviceTarget::publish(const Record* job_records, size_t n, uint64_t conflicts) {
   uint8_t* out = queue_records(n);
   JobCounts c;
+  c.conflicts = conflicts;
   for (size_t i = 0; i < n; ++i) {
     const Record& r = job_records[i];
     encode_record(r, out + i * kRecordBytes);

@@ -54,9 +54,12 @@ class DeviceTarget : public sc_core::sc_module {
   // The RTL reported an assertion failure: every later access fails.
   virtual bool faulted() const { return false; }
 
-  // Makes one job's records (hits, then its completion record) readable and counts them.
-  void publish(const Record* job_records, size_t n);
-  void publish(const std::vector<Record>& job_records) { publish(job_records.data(), job_records.size()); }
+  // Makes one job's records (hits, then its completion record) readable and counts them, with the bank conflict
+  // cycles the device counted up to its completion (shared voxmap banks; 0 otherwise).
+  void publish(const Record* job_records, size_t n, uint64_t conflicts = 0);
+  void publish(const std::vector<Record>& job_records, uint64_t conflicts = 0) {
+    publish(job_records.data(), job_records.size(), conflicts);
+  }
   // The result queue holds encoded records (kRecordBytes each, sysc/address_map.h): the readable ones, then those a
   // target queued ahead of time and has not made readable yet. queue_records appends n slots after everything
   // queued and returns them for the caller to fill (valid until the next call); publish_queued makes the next n

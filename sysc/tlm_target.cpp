@@ -37,9 +37,9 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   runner_.run_validated_into(jobs, batch_, /*cycles=*/false);
   // The completion records get ref/timing.h's cycles as annotate_cycles gives them (cycles, points, no stalls),
   // in the same pass that encodes the batch's records into the result queue, where they wait for their edge.
-  const std::vector<uint64_t> conflicts = cfg_.banked() ? bank_conflicts(cfg_, runner_.shell(), jobs, batch_)
-                                                         : std::vector<uint64_t>(jobs.size(), 0);
-  const std::vector<JobTiming> timing = job_timing(cfg_, jobs, batch_, conflicts);
+  const std::vector<BankCycles> bank = cfg_.banked() ? bank_cycles(cfg_, runner_.shell(), jobs, batch_)
+                                                      : std::vector<BankCycles>(jobs.size());
+  const std::vector<JobTiming> timing = job_timing(cfg_, jobs, batch_, bank);
   future_.erase(future_.begin(), future_.begin() + std::ptrdiff_t(future_head_));  // the jobs already readable
   future_head_ = 0;
   uint8_t* out = queue_records(batch_.size());
@@ -58,20 +58,21 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
     encode_record(done, out + r * kRecordBytes);
     ++r;
     edge += timing[j].cycles;
-    future_.push_back({edge, r - last_first, {done.hits, timing[j].points, timing[j].cycles, 0, conflicts[j]}});
+    future_.push_back({edge, r - last_first, {done.hits, timing[j].points, timing[j].cycles, 0, bank[j].conflicts}});
   }
   batch_free_ = edge;
   // The device is idle one edge after the last completion record is taken, or later when slots issued behind a
   // FIRST job's hit still hold the pipeline: they leave the hit-test stage one per edge, from the edge at which the
-  // record is taken (ref/timing.h rule 3; the empty slot that follows them holds no point and keeps nothing busy).
+  // record is taken (ref/timing.h rule 3; the empty slot that follows them holds no point and keeps nothing busy,
+  // and the empty slots their bank reads left come before the last of them).
   const Job& last = jobs.back();
   uint64_t drain = 0;
   if (last.mode == Mode::First && future_.back().records == 2) {
     const uint64_t lanes = uint64_t(cfg_.LANES);
     const uint64_t groups = last.shell_count == 0 ? 1 : (last.shell_count + lanes - 1) / lanes;
     const uint64_t f = batch_[last_first].point / lanes;
-    const uint64_t squashed = std::min(groups - 1, f + uint64_t(pipeline_slots(cfg_)) - 1) - f;
-    drain = squashed > 0 ? squashed - 1 : 0;
+    const uint64_t behind = std::min(groups - 1 - f + bank.back().window, uint64_t(pipeline_slots(cfg_)) - 1);
+    drain = behind > 0 ? behind - 1 : 0;
   }
   idle_ = edge + 1 + drain;
 }

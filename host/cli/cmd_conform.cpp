@@ -18,6 +18,7 @@ struct ConformArgs {
   std::string backend = "ref";
   std::optional<int> lanes;
   std::optional<int> banks;
+  std::optional<int> depth;
   bool cycles = false;
   bool print = false;
   std::string trace;
@@ -38,6 +39,7 @@ int generate(const ConformArgs& a) {
   if (!a.config.empty()) g.config = parse_config_pairs(a.config, "--config");
   if (a.lanes) g.config.LANES = *a.lanes;
   if (a.banks) g.config.BANKS = *a.banks;
+  if (a.depth) g.config.depth = *a.depth;
   const GeneratedFile w = write_generated_vectors(a.output, g, a.config);
   std::cout << "wrote " << a.output << ": " << w.jobs << " jobs, " << w.shell_words << " shell words, " << w.map_words
             << " map words, " << w.lookups << " lookups, seed " << a.seed << '\n';
@@ -50,6 +52,7 @@ std::string run_file(const ConformArgs& a, const std::string& path, std::ostream
   opt.backend = a.backend;
   opt.lanes = a.lanes;
   opt.banks = a.banks;
+  opt.depth = a.depth;
   opt.cycles = a.cycles;
   opt.trace = a.trace;
   const ConformResult r = run_conformance(path, opt, !a.print);
@@ -99,6 +102,10 @@ void add_conform(CLI::App& app) {
   c->add_option("--banks", a->banks,
                 "Shared voxmap banks of the device model (0: a copy per lane; default: the file's BANKS)")
       ->check(CLI::Range(0, 64));
+  c->add_option("--depth", a->depth,
+                "Pipeline depth of the device model: register stages added to every lane, 0.." +
+                    std::to_string(kMaxDepth) + " (default: the file's DEPTH, or 0)")
+      ->check(CLI::Range(0, kMaxDepth));
   c->add_flag("--cycles", a->cycles, "Also compare the cycles of every completion record");
   c->add_flag("--print", a->print, "Print the backend's own output stream instead of comparing");
   c->add_option("--trace", a->trace, "rtl: write an FST waveform to this file");

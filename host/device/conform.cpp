@@ -51,6 +51,20 @@ ConformResult run_vector_file(const VectorFile& f, const ConformOptions& opt, bo
     }
     cfg.BANKS = *opt.banks;
   }
+  if (opt.depth) {
+    if (*opt.depth != f.config.depth && opt.cycles) {
+      res.error = path + ": the file's cycles are for DEPTH " + std::to_string(f.config.depth) + ", not --depth " +
+                  std::to_string(*opt.depth);
+      return res;
+    }
+    cfg.depth = *opt.depth;
+    try {
+      cfg.validate();
+    } catch (const ConfigError& e) {
+      res.error = path + ": --depth " + std::to_string(*opt.depth) + ": " + e.what();
+      return res;
+    }
+  }
   DeviceOptions dopt;
   dopt.trace_path = opt.trace;
   dopt.threads = opt.threads;

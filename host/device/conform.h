@@ -18,6 +18,7 @@ struct ConformOptions {
   std::string backend = "ref";
   std::optional<int> lanes;  // the device's LANES instead of the file's
   std::optional<int> banks;  // the device's BANKS instead of the file's (0: a voxmap copy per lane)
+  std::optional<int> depth;  // the device's pipeline depth instead of the file's DEPTH (0 when it names none)
   bool cycles = false;       // also compare the cycles of every completion record
   std::string trace;         // rtl: write an FST waveform here ("" = none)
   unsigned threads = 0;      // cpu: worker threads (0 = one per hardware thread)
@@ -36,8 +37,9 @@ struct ConformResult {
   bool ok() const { return error.empty(); }
 };
 
-// Runs a vector file on a fresh device of the file's configuration (opt.lanes overriding LANES; with opt.cycles a
-// file naming other LANES is refused, as is a backend that does not model cycles). With compare false the stream is
+// Runs a vector file on a fresh device of the file's configuration (opt.lanes, banks and depth overriding LANES,
+// BANKS and DEPTH; with opt.cycles a file naming other LANES, or of other BANKS or DEPTH, is refused, as is a
+// backend that does not model cycles). With compare false the stream is
 // only produced (`voxcd conform --print`). Never throws for the file or the backend: the reason is in `error`.
 ConformResult run_conformance(const std::string& path, const ConformOptions& opt, bool compare = true);
 // The same for a file already parsed (`file.path` names it in messages).

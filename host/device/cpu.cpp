@@ -25,8 +25,8 @@ class CpuDevice final : public Device {
   std::shared_ptr<ThreadPool> pool() const override { return runner_.pool(); }
   bool runs_parts() const override { return true; }
   void run_part(const Job* jobs, size_t n, std::vector<Record>& out) const override { runner_.run_part(jobs, n, out); }
-  uint64_t bank_conflicts(const Job& job, uint64_t groups) const override {
-    return runner_.bank_conflicts(job, groups);
+  BankCycles bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const override {
+    return runner_.bank_cycles(job, hits, done_hits);
   }
   void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
                  uint32_t& count) const override {

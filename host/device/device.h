@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "voxcd/ref/config.h"
+#include "voxcd/ref/timing.h"
 #include "voxcd/ref/types.h"
 
 namespace voxcd {
@@ -56,9 +57,9 @@ class Device {
   // number added to `count`, the job validated first when `validate`.
   virtual void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
                          uint32_t& count) const;
-  // On a banked device (DeviceConfig::BANKS), the bank conflict cycles of a job's first `groups` slots, for a host
-  // that times parts itself (ref/banks.h: job_bank_conflicts); a backend that runs parts implements it.
-  virtual uint64_t bank_conflicts(const Job& job, uint64_t groups) const;
+  // On a banked device (DeviceConfig::BANKS), a job's bank cycles given its hits' summary and its completion's hits,
+  // for a host that times parts itself (ref/banks.h: job_bank_cycles); a backend that runs parts implements it.
+  virtual BankCycles bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const;
 };
 
 // Every backend by name (ref, cpu, rtl, sysc-rtl, sysc-tlm), whether or not it can run here.

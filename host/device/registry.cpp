@@ -46,8 +46,8 @@ void Device::run_piece(const Job&, uint32_t, uint32_t, bool, std::vector<Record>
   throw DeviceError("the " + name() + " backend runs whole batches only (no run_piece)");
 }
 
-uint64_t Device::bank_conflicts(const Job&, uint64_t) const {
-  throw DeviceError("the " + name() + " backend runs whole batches only (no bank_conflicts)");
+BankCycles Device::bank_cycles(const Job&, const JobHits&, uint32_t) const {
+  throw DeviceError("the " + name() + " backend runs whole batches only (no bank_cycles)");
 }
 
 std::vector<std::string> backend_names() { return {"ref", "cpu", "rtl", "sysc-rtl", "sysc-tlm"}; }

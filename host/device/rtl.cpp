@@ -103,6 +103,7 @@ std::vector<int> rtl_lanes() {
 std::vector<DeviceConfig> rtl_configs() { return family("derived"); }
 std::vector<DeviceConfig> rtl_distance_configs() { return family("distance"); }
 std::vector<DeviceConfig> rtl_banked_configs() { return family("banked"); }
+std::vector<DeviceConfig> rtl_depth_configs() { return family("depth"); }
 
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
   return make_rtl_device(cfg, opt, RtlFaults{});
@@ -123,7 +124,7 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
   }
   DeviceConfig built;
   built.LANES = cfg.LANES;
-  if (cfg.same_widths(built) && cfg.BANKS == built.BANKS)
+  if (cfg.same_widths(built) && cfg.BANKS == built.BANKS && cfg.depth == built.depth)
     throw DeviceError("rtl: this build has models for LANES " + lanes + " at the default widths, not LANES " +
                       std::to_string(cfg.LANES) + " (the list VOXCD_RTL_LANES, docs/build.md)");
   throw DeviceError("rtl: this build has models for the default widths (" + DeviceConfig{}.to_string() +

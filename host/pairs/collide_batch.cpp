@@ -210,8 +210,8 @@ JobSpan PairCollider::stream_span(size_t j) const {
   const size_t end = j + 1 < jobs_.size() ? job_records_[j + 1].first - 1 : records_.size() - 1;
   const uint32_t hits = records_[end].hits;
   const JobHits h = job_hits(cfg, job, j, records_.data() + first, end - first, first);
-  const uint64_t conflicts = cfg.banked() ? device_->bank_conflicts(job, read_groups(cfg, job, h, hits)) : 0;
-  return job_span(cfg, job, j, h, hits, conflicts);
+  const BankCycles bank = cfg.banked() ? device_->bank_cycles(job, h, hits) : BankCycles{};
+  return job_span(cfg, job, j, h, hits, bank);
 }
 
 void PairCollider::plan_pieces() {
@@ -283,8 +283,8 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
     res.hits += hits;  // FIRST: made 0 or 1 per direction below
     res.lookups += js[j].shell_count;
     if (cycles) {
-      const uint64_t conflicts = cfg.banked() ? device_->bank_conflicts(js[j], read_groups(cfg, js[j], sum, hits)) : 0;
-      const JobSpan span = job_span(cfg, js[j], j, sum, hits, conflicts);
+      const BankCycles bank = cfg.banked() ? device_->bank_cycles(js[j], sum, hits) : BankCycles{};
+      const JobSpan span = job_span(cfg, js[j], j, sum, hits, bank);
       res.cycles += span_cycles(cfg, j ? &prev : nullptr, span);
       if (j == 0) first_span_ = span;
       prev = span;
@@ -386,8 +386,8 @@ void PairCollider::time_part(Part& part) const {
     const size_t end = j + 1 < js.size() ? part.job_records[j + 1].first - 1 : nrec - 1;
     Record& done = part.records[end];
     const JobHits h = job_hits(cfg, js[j], j, part.records.data() + jr.first, end - jr.first, jr.first);
-    const uint64_t conflicts = cfg.banked() ? device_->bank_conflicts(js[j], read_groups(cfg, js[j], h, done.hits)) : 0;
-    const JobSpan span = job_span(cfg, js[j], j, h, done.hits, conflicts);
+    const BankCycles bank = cfg.banked() ? device_->bank_cycles(js[j], h, done.hits) : BankCycles{};
+    const JobSpan span = job_span(cfg, js[j], j, h, done.hits, bank);
     done.cycles = span_cycles(cfg, j ? &prev : nullptr, span);
     done.points = span.points;
     done.stalls = 0;

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "voxcd/host/device/clock.h"
-#include "voxcd/host/sizing/detail/config_depth.h"
 #include "voxcd/host/sizing/size.h"
 #include "voxcd/ref/timing.h"
 
@@ -22,7 +21,7 @@ std::string ratio_text(double v) {
 
 bool offered(const DeviceConfig& base, int depth) {
   try {
-    detail::with_depth(base, depth);
+    at_depth(base, depth);
     return true;
   } catch (const ConfigError&) {
     return false;
@@ -78,9 +77,14 @@ DepthChoice choose_depth(const TimingTable& table, const std::string& target, do
                       ratio_text(clock_mhz / fastest.mhz) + " times faster");
 }
 
-int depth_of(const DeviceConfig& cfg) { return detail::config_depth(cfg); }
+int depth_of(const DeviceConfig& cfg) { return cfg.depth; }
 
-DeviceConfig at_depth(const DeviceConfig& cfg, int depth) { return detail::with_depth(cfg, depth); }
+DeviceConfig at_depth(const DeviceConfig& cfg, int depth) {
+  DeviceConfig c = cfg;
+  c.depth = depth;
+  c.validate();  // ConfigError for a depth outside 0 .. kMaxDepth
+  return c;
+}
 
 int latency_cycles(const DeviceConfig& cfg) { return 1 + pipeline_slots(cfg) + 1; }
 

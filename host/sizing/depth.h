@@ -33,8 +33,8 @@ DepthChoice choose_depth(const TimingTable& table, const std::string& target, do
 DepthChoice choose_depth(const TimingTable& table, const std::string& target, double clock_mhz,
                          const std::function<bool(int)>& offered);
 
-// The depth of a configuration (0 when its device has only one datapath) and the configuration at another depth
-// (ConfigError when the device has no such depth).
+// The depth of a configuration (DeviceConfig::depth) and the configuration at another depth (ConfigError outside
+// 0 .. kMaxDepth).
 int depth_of(const DeviceConfig& cfg);
 DeviceConfig at_depth(const DeviceConfig& cfg, int depth);
 

@@ -8,6 +8,7 @@
 
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/sizing/detail/yosys_run.h"
+#include "voxcd/ref/banks.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/types.h"
 
@@ -345,11 +346,13 @@ SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeR
     r.map_words += type_map_words(cfg, *t);
   }
   bound_contacts(r);
-  // Copies against banks: the same frames with one voxmap in LANES banks.
-  if (!cfg.distance() && cfg.LANES > 1) {
+  // Copies against banks: the same frames with one voxmap in LANES banks (8 x LANES on a distance device: each
+  // parity bank split LANES ways), where the memory has that many words.
+  DeviceConfig shared = cfg;
+  shared.BANKS = cfg.LANES;
+  if (cfg.LANES > 1 && int64_t(memory_banks(shared)) <= (int64_t{1} << std::min(cfg.MAW, 28))) {
     SizeReport::Banked b;
-    b.config = cfg;
-    b.config.BANKS = cfg.LANES;
+    b.config = shared;
     b.measure = measure_frames(scene, sized, b.config, r.frames);
     r.banked = b;
   }
@@ -481,7 +484,7 @@ std::string size_text(const SizeReport& r) {
     const SizeReport::Banked& b = *r.banked;
     const uint64_t copies = r.map_bits(), shared = b.map_bits();
     const double more = m.max_cycles ? double(b.measure.max_cycles) / double(m.max_cycles) - 1 : 0;
-    o << "banks           BANKS " << b.config.BANKS << " (one voxmap shared in " << b.config.BANKS
+    o << "banks           BANKS " << b.config.BANKS << " (one voxmap shared in " << memory_banks(b.config)
       << " banks instead of " << c.LANES << " copies): voxmap " << bits_text(shared) << " instead of "
       << bits_text(copies) << " (saves " << bits_text(copies - shared) << "); largest frame "
       << b.measure.max_cycles << " cycles instead of " << m.max_cycles << " (" << (more >= 0 ? "+" : "")

@@ -148,8 +148,9 @@ struct SizeReport {
   uint64_t shell_bits() const;    // 2^SAW x 3 PW
   uint64_t map_bits() const;      // 2^MAW x MEMW, one copy per lane (a distance device's 8 banks share the 2^MAW)
   std::optional<YosysCost> cost;
-  // The chosen configuration with shared voxmap banks instead of a copy per lane (BANKS = LANES; 2-bit devices with
-  // more than one lane): the same frames measured again, its memory, and its cost when synthesised.
+  // The chosen configuration with shared voxmap banks instead of a copy per lane (BANKS = LANES: LANES banks, or 8 x
+  // LANES on a distance device; devices with more than one lane): the same frames measured again, its memory, and
+  // its cost when synthesised.
   struct Banked {
     DeviceConfig config;
     LaneMeasure measure;

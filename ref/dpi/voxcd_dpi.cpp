@@ -189,11 +189,12 @@ int voxcd_dpi_param(void* h, const char* name) {
                                                   {"MF", c.MF},     {"TW", c.TW},       {"DW", c.DW},
                                                   {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW},
                                                   {"MAW", c.MAW},   {"TAGW", c.TAGW},   {"SB", c.SB},
-                                                  {"WB", c.WB},     {"IW", c.IW()}};
+                                                  {"WB", c.WB},     {"BANKS", c.BANKS}, {"DEPTH", c.depth},
+                                                  {"IW", c.IW()}};
     for (const auto& p : params)
       if (n == p.first) return p.second;
     throw DpiError("voxcd_dpi_param: no parameter named '" + n +
-                   "' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, IW)");
+                   "' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, BANKS, DEPTH, IW)");
   });
 }
 

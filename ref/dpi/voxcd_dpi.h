@@ -40,8 +40,8 @@ void voxcd_dpi_free(void* h);
 /* The message of the last call on h that failed ("" if none has); h = 0: of the last voxcd_dpi_new that failed,
  * or of the last call that was given a handle of 0. Valid until the next failing call on the same handle. */
 const char* voxcd_dpi_error(void* h);
-/* The value of one parameter of the device's configuration by name ("PW" .. "TAGW", "SB", "WB", and the derived
- * "IW" = SB + 3*WB), or -1 for another name. */
+/* The value of one parameter of the device's configuration by name ("PW" .. "TAGW", "SB", "WB", "BANKS", "DEPTH",
+ * and the derived "IW" = SB + 3*WB), or -1 for another name. */
 int voxcd_dpi_param(void* h, const char* name);
 /* The whole configuration, every parameter named: "PW 24 PF 8 ... TAGW 16", then "SB 8 WB 8" on a distance
  * device ("" for h = 0). */

@@ -328,8 +328,8 @@ void FastRunner::write_map(uint64_t first, const uint64_t* words, size_t n) {
   std::copy(words, words + n, map_.begin() + std::ptrdiff_t(first));
 }
 
-uint64_t FastRunner::bank_conflicts(const Job& job, uint64_t groups) const {
-  return job_bank_conflicts(cfg_, shell_, job, groups);
+BankCycles FastRunner::bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const {
+  return job_bank_cycles(cfg_, shell_, job, hits, done_hits);
 }
 
 std::vector<Record> FastRunner::run(const std::vector<Job>& jobs, bool cycles) {
@@ -401,7 +401,7 @@ void FastRunner::run_serial(const std::vector<Job>& jobs, std::vector<Record>& o
     }
     push_record(out, Record::Done, jobs[j].tag).hits = hits;
   }
-  if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_conflicts(cfg_, shell_, jobs, out));
+  if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_cycles(cfg_, shell_, jobs, out));
   else if (cycles) annotate_cycles(cfg_, jobs, out);
 }
 
@@ -485,8 +485,8 @@ void FastRunner::finish_task(size_t t, const std::vector<Job>& jobs, std::vector
     std::copy(hits.begin() + std::ptrdiff_t(p.first), hits.begin() + std::ptrdiff_t(p.first + p.records),
               out.begin() + std::ptrdiff_t(p.out));
   }
-  auto conflicts = [&](const Job& job, const JobHits& sum, uint32_t n) -> uint64_t {
-    return cfg_.banked() ? job_bank_conflicts(cfg_, shell_, job, read_groups(cfg_, job, sum, n)) : 0;
+  auto conflicts = [&](const Job& job, const JobHits& sum, uint32_t n) -> BankCycles {
+    return cfg_.banked() ? job_bank_cycles(cfg_, shell_, job, sum, n) : BankCycles{};
   };
   const size_t j0 = t == 0 ? 0 : pieces_[task_first_[t]].job;
   const size_t j1 = t + 1 == tasks ? jobs.size() : pieces_[task_first_[t + 1]].job;

@@ -65,8 +65,8 @@ class FastRunner {
   uint64_t shell_words() const { return shell_.size(); }
   uint64_t map_words() const { return map_.size(); }
   const std::vector<ShellWord>& shell() const { return shell_; }
-  // On a banked device, the bank conflict cycles of the job's first `groups` slots (ref/banks.h).
-  uint64_t bank_conflicts(const Job& job, uint64_t groups) const;
+  // On a banked device, the job's bank cycles given its hits' summary and its completion's hits (ref/banks.h).
+  BankCycles bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const;
 
   // Validates every job against the loaded memories (throws JobError before running any), runs them in order
   // and replaces `out` (reusing its capacity) with the stream run_stream gives. With `cycles`, every completion

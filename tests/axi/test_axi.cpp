@@ -1,8 +1,9 @@
 // The AXI top (rtl/voxcd_axi.sv), Verilated, driven through its AXI4-Lite slave and its two AXI4-Stream ports
 // with random TVALID / TREADY and AXI4-Lite handshakes. Descriptors are packed and records unpacked with the
 // SystemC address map's own encode_job / decode_record (sysc/address_map.h). Checks: the records equal ref/'s
-// (vector files and generated vectors), the cycles equal ref/timing.h's (plus the counted stalls), the latency the
-// top adds is exactly the documented one, the responses are OKAY / SLVERR / DECERR as documented, and every
+// (vector files and generated vectors), the cycles equal ref/timing.h's (plus the counted stalls) at the model's
+// pipeline depth, the latency the top adds is exactly the documented one, the responses are OKAY / SLVERR / DECERR
+// as documented, refused descriptors come back as error records with the faults ref/'s job_faults names, and every
 // output payload is stable while valid and not taken, with no dropped or repeated beat. Every test prints its
 // seed; VOXCD_SEED replays.
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include <functional>
 #include <memory>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -188,9 +190,15 @@ class Axi {
   std::vector<std::string> errors;  // protocol violations seen, with their cycle
   uint64_t cycle = 0;               // rising edges so far; events are numbered by the cycle they happen in
 
-  // Received records, with the cycle of their last beat.
+  // Received hit and completion records, with the cycle of their last beat.
   std::vector<Record> records;
   std::vector<uint64_t> record_cycle;
+  // Received error records: where in `records` they came (the number of records before them), tag and faults.
+  struct Refusal {
+    size_t at = 0;
+    uint32_t tag = 0, faults = 0;
+  };
+  std::vector<Refusal> refusals;
   // The cycle of each queued descriptor's first beat (in queue order).
   std::vector<uint64_t> job_first_cycle;
 
@@ -409,6 +417,15 @@ class Axi {
                        " record beat " + std::to_string(rec_beat_ - 1));
     if (rec_beat_ < rec_beats) return;
     rec_beat_ = 0;
+    Refusal refusal;
+    if (decode_error_record(rec_buf_, refusal.tag, refusal.faults)) {
+      refusal.at = records.size();
+      refusals.push_back(refusal);
+      for (size_t b = 12; b < kRecordBytes; ++b)
+        if (rec_buf_[b] != 0) errors.push_back("cycle " + std::to_string(cycle) + ": an error record's byte " +
+                                               std::to_string(b) + " is not zero");
+      return;
+    }
     Record r;
     if (!decode_record(rec_buf_, r)) errors.push_back("cycle " + std::to_string(cycle) + ": a record of kind 0");
     records.push_back(r);
@@ -545,8 +562,8 @@ TEST_P(AxiTest, RunOpensTheStreamAndBusyRefusesWrites) {
 }
 
 // 4. Added latency: a job alone whose one record is its completion (COUNT), streams always valid and ready: the
-// completion's last beat comes exactly cycles + 1 + 1024/JobDw + 256/RecDw cycles after the job's first
-// descriptor beat (docs/hardware.md), and cycles is the timing model's.
+// completion's last beat comes exactly cycles + 2 + 1024/JobDw + 256/RecDw cycles after the job's first
+// descriptor beat (docs/hardware.md), and cycles is the timing model's at the model's depth.
 TEST_P(AxiTest, AddedLatencyIsExact) {
   Axi& a = *axi_;
   const GeneratedVectors g = generate_vectors({seed_, 40, 500, a.cfg});
@@ -564,7 +581,7 @@ TEST_P(AxiTest, AddedLatencyIsExact) {
     ASSERT_EQ(done.kind, Record::Done);
     EXPECT_EQ(*done.cycles, t[0].cycles) << "job " << i;
     EXPECT_EQ(a.record_cycle.back() - a.job_first_cycle[i],
-              *done.cycles + 1 + uint64_t(a.job_beats) + uint64_t(a.rec_beats))
+              *done.cycles + 2 + uint64_t(a.job_beats) + uint64_t(a.rec_beats))
         << "job " << i << " (" << job_line(j) << ")";
     a.ticks(3);
   }
@@ -617,6 +634,7 @@ TEST_P(AxiTest, VectorFiles) {
     const VectorFile v = read_vectors(std::string(VOXCD_VECTORS_DIR) + "/" + f);
     DeviceConfig c = v.config;
     c.LANES = axi_->cfg.LANES;
+    c.depth = axi_->cfg.depth;  // the files have no cycles to compare: any depth gives their records
     if (!(c == axi_->cfg) || (v.has_lanes && v.config.LANES != axi_->cfg.LANES)) continue;
     Axi a(models()[GetParam()], seed_);
     a.p_lite = a.p_rec_ready = a.p_job_valid = 0.6;
@@ -631,8 +649,10 @@ TEST_P(AxiTest, VectorFiles) {
   EXPECT_GT(ran, 0) << "no vector file has this model's widths";
 }
 
-// 7. Malformed descriptors are dropped and counted; the jobs around them run as if they were not there.
-TEST_P(AxiTest, MalformedDescriptorsAreDropped) {
+// 7. A descriptor whose frame is wrong is dropped and counted; one that breaks a rule of the contract is answered
+// with an error record (its tag, the rule) in its place in the stream, and counted; the jobs around them run as if
+// they were not there.
+TEST_P(AxiTest, MalformedDescriptorsAreRefused) {
   Axi& a = *axi_;
   a.p_job_valid = a.p_rec_ready = 0.7;
   const GeneratedVectors g = generate_vectors({seed_ + 5, 12, 300, a.cfg});
@@ -640,10 +660,18 @@ TEST_P(AxiTest, MalformedDescriptorsAreDropped) {
   ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
   std::vector<uint8_t> good(kJobBytes);
   int dropped = 0;
+  std::vector<Axi::Refusal> want_refused;  // the error records, where they come in the stream
+  std::vector<Job> ran;
+  size_t before = 0;                  // records of the jobs that ran so far
+  const uint32_t faults[] = {kFaultMode, kFaultDescriptor, kFaultDims, kFaultTag, kFaultShell, 0};
   for (size_t i = 0; i < g.jobs.size(); ++i) {
     a.queue_job(g.jobs[i]);
+    ran.push_back(g.jobs[i]);
+    before = run_stream(a.cfg, g.memory, ran).size();
     std::vector<uint8_t> bad(kJobBytes);
     encode_job(g.jobs[i], bad.data());
+    const uint32_t tag = 1000 + uint32_t(i);
+    put_le(&bad[0x00], tag, 4);
     switch (i % 6) {
       case 0: bad[0x04] = 3; break;                       // mode 3
       case 1: bad[0x70] = 1; break;                       // a reserved byte
@@ -652,6 +680,7 @@ TEST_P(AxiTest, MalformedDescriptorsAreDropped) {
       case 4: put_le(&bad[0x0c], g.memory.shell.size() + 1, 4); break;  // past the loaded shell words
       case 5: break;                                      // framing, below
     }
+    if (i % 6 != 5) want_refused.push_back({before, i % 6 == 3 ? 1u << a.cfg.TAGW : tag, faults[i % 6]});
     if (i % 6 != 5) {
       a.queue_bytes(bad, a.job_beats);
     } else if (a.job_beats > 1) {
@@ -670,8 +699,119 @@ TEST_P(AxiTest, MalformedDescriptorsAreDropped) {
   const std::vector<Record> want = run_stream(a.cfg, g.memory, jobs);
   a.run_until_records(want.size());
   expect_stream(a, g.memory, jobs, a.records, false, seed_);
+  ASSERT_EQ(a.refusals.size(), want_refused.size());
+  for (size_t k = 0; k < want_refused.size(); ++k) {
+    EXPECT_EQ(a.refusals[k].at, want_refused[k].at) << "error record " << k << " out of its place";
+    EXPECT_EQ(a.refusals[k].tag, want_refused[k].tag) << "error record " << k;
+    EXPECT_EQ(a.refusals[k].faults, want_refused[k].faults) << "error record " << k;
+  }
   EXPECT_EQ(a.reg(kRegDropped), uint64_t(dropped));
   EXPECT_EQ(a.reg(kRegJobsDone), jobs.size());
+}
+
+// A random descriptor near the rules' boundaries: a generated job with none, one or several fields pushed over (or
+// onto) the edge of what the device and the loaded memory allow. Returns its bytes and the faults ref/ gives it.
+std::vector<uint8_t> random_descriptor(const DeviceConfig& cfg, const DeviceMemory& mem, Job j, std::mt19937_64& rng,
+                                       uint32_t& faults) {
+  auto pick = [&](uint64_t n) { return std::uniform_int_distribution<uint64_t>(0, n - 1)(rng); };
+  const uint64_t loaded_shell = mem.shell.size(), loaded_map = mem.map.size();
+  bool reserved = false;
+  const int changes = int(pick(3));  // 0, 1 or 2 fields changed
+  for (int c = 0; c < changes; ++c) {
+    switch (pick(12)) {
+      case 0: j.mode = Mode(3); break;
+      case 1: j.hit_mask = uint8_t(16 + pick(240)); break;
+      case 2: j.tag = uint32_t((uint64_t{1} << cfg.TAGW) + pick(1000)); break;
+      case 3: j.shell_count = uint32_t(loaded_shell - j.shell_base + pick(3)); break;  // up to the end, or past it
+      case 4: j.shell_base = uint32_t((uint64_t{1} << cfg.SAW) + pick(4)), j.shell_count = 0; break;
+      case 5: (pick(2) ? j.nx : j.nz) = pick(2) ? 0 : uint32_t(cfg.max_dim() + 1 + pick(5)); break;
+      case 6: {  // the map's last word at, or one or two past, the last loaded word
+        const uint64_t words = map_words(cfg, j);
+        if (words <= loaded_map) j.map_base = uint32_t(loaded_map - words + pick(3));
+        break;
+      }
+      case 7: j.map_base = uint32_t((uint64_t{1} << cfg.MAW) + pick(8)); break;
+      case 8: j.M[pick(3)][pick(3)] = pick(2) ? (int64_t{1} << (cfg.MW - 1)) : -(int64_t{1} << (cfg.MW - 1)) - 1; break;
+      case 9: j.t[pick(3)] = pick(2) ? (int64_t{1} << (cfg.TW - 1)) : -(int64_t{1} << (cfg.TW - 1)) - 1; break;
+      case 10: j.threshold = int64_t(pick(5)) - 2; break;  // 0 is the only threshold of a 2-bit device
+      case 11: reserved = true; break;
+    }
+  }
+  faults = job_faults(cfg, j, loaded_shell, loaded_map) | (reserved ? kFaultDescriptor : 0u);
+  std::vector<uint8_t> bytes(kJobBytes);
+  encode_job(j, bytes.data());
+  if (reserved) bytes[pick(2) ? 0x06 : 0x68 + pick(kJobBytes - 0x68)] = uint8_t(1 + pick(255));
+  return bytes;
+}
+
+// 8. Random descriptors, about half of them refused: the records of the jobs that run are ref/'s, each refused
+// descriptor is one error record, in its place, with its tag and exactly the faults ref/'s job_faults gives. With
+// one-beat descriptors the jobs between two refusals reach the device back to back (and the first job after a
+// refusal an idle device), so their cycles are the timing model's, stream by stream, plus the stalls.
+TEST_P(AxiTest, RandomDescriptorsAreRefusedAsTheReferenceRefusesThem) {
+  Axi& a = *axi_;
+  a.p_lite = 0.8;
+  a.p_rec_ready = 0.7;
+  const GeneratedVectors g = generate_vectors({seed_ + 23, 300, 600, a.cfg});
+  a.load(g.memory);
+  ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
+  std::mt19937_64 rng(seed_ * 7 + 1);
+  std::vector<Axi::Refusal> want_refused;
+  std::vector<std::vector<Job>> runs(1);  // the jobs that run, split at the refusals
+  std::vector<Job> all;
+  size_t records = 0;
+  for (const Job& j : g.jobs) {
+    uint32_t faults = 0;
+    const std::vector<uint8_t> bytes = random_descriptor(a.cfg, g.memory, j, rng, faults);
+    a.queue_bytes(bytes, a.job_beats);
+    Job sent;
+    std::string why;
+    if (faults) {
+      want_refused.push_back({records, uint32_t(get_le(bytes.data(), 4)), faults});
+      if (!runs.back().empty()) runs.emplace_back();
+      continue;
+    }
+    ASSERT_TRUE(decode_job(bytes.data(), sent, why)) << why;
+    records += run_stream(a.cfg, g.memory, {sent}).size();
+    runs.back().push_back(sent);
+    all.push_back(sent);
+  }
+  ASSERT_GT(want_refused.size(), g.jobs.size() / 4) << "the descriptors must exercise the refusals";
+  ASSERT_GT(all.size(), g.jobs.size() / 4) << "and run jobs between them";
+  std::set<uint32_t> kinds;
+  for (const Axi::Refusal& r : want_refused)
+    for (uint32_t b = 1; b; b <<= 1)
+      if (r.faults & b) kinds.insert(b);
+  EXPECT_GE(kinds.size(), 7u) << "most rules must be broken somewhere";
+  a.run_until_records(records);
+  for (int i = 0; i < 100000 && a.refusals.size() < want_refused.size(); ++i) a.tick();  // refusals after the last job
+  ASSERT_EQ(a.refusals.size(), want_refused.size()) << "seed " << seed_;
+  for (size_t k = 0; k < want_refused.size(); ++k) {
+    ASSERT_EQ(a.refusals[k].at, want_refused[k].at) << "error record " << k << " out of its place; seed " << seed_;
+    ASSERT_EQ(a.refusals[k].tag, want_refused[k].tag) << "error record " << k << "; seed " << seed_;
+    ASSERT_EQ(a.refusals[k].faults, want_refused[k].faults) << "error record " << k << " (tag "
+                                                            << want_refused[k].tag << "); seed " << seed_;
+  }
+  // Records and cycles, run by run.
+  size_t at = 0;
+  for (const std::vector<Job>& run : runs) {
+    std::vector<Record> want = run_stream(a.cfg, g.memory, run);
+    annotate_cycles(a.cfg, run, want);
+    for (size_t i = 0; i < want.size(); ++i, ++at) {
+      ASSERT_LT(at, a.records.size());
+      ASSERT_TRUE(a.records[at].same_as(want[i], false))
+          << "record " << at << ": got " << a.records[at].to_string(true) << ", want " << want[i].to_string(true)
+          << "; seed " << seed_;
+      if (a.job_beats == 1 && want[i].kind == Record::Done) {
+        ASSERT_EQ(*a.records[at].cycles, *want[i].cycles + *a.records[at].stalls)
+            << "record " << at << ": cycles = timing model + stalls; seed " << seed_;
+      }
+    }
+  }
+  EXPECT_EQ(at, a.records.size());
+  EXPECT_EQ(a.reg(kRegDropped), want_refused.size());
+  EXPECT_EQ(a.reg(kRegJobsDone), all.size());
+  EXPECT_EQ(a.reg(kRegStatus), 0u);
 }
 
 std::string model_name(const ::testing::TestParamInfo<size_t>& i) { return models()[i.param].name; }

@@ -8,6 +8,7 @@
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/timing.h"
 #include "tests/ref/directed_cases.h"
 
 namespace voxcd {
@@ -86,6 +87,41 @@ TEST(Backends, RandomVectorsOnEveryConfigAndThreadCount) {
         dev->load(v.memory);
         expect_same(want, dev->run(v.jobs),
                     b + " " + nc.name + " threads " + std::to_string(threads) + " seed " + std::to_string(seed));
+      }
+    }
+  }
+}
+
+// Every pipeline depth (DeviceConfig::depth), with a copy per lane and with shared banks: the backends that model
+// cycles give ref/'s timing model's exactly, for any thread count.
+TEST(Backends, CyclesAtEveryDepth) {
+  const uint64_t seed = test_seed();
+  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
+  for (int banks : {0, 2}) {
+    for (int d = 0; d <= kMaxDepth; ++d) {
+      GenerateOptions g;
+      g.seed = seed + uint64_t(d + 10 * banks);
+      g.jobs = 200;
+      g.config.LANES = 4;
+      g.config.BANKS = banks;
+      g.config.depth = d;
+      const GeneratedVectors v = generate_vectors(g);
+      std::vector<Record> want = run_stream(v.config, v.memory, v.jobs);
+      annotate_cycles(v.config, v.memory, v.jobs, want);
+      for (const auto& b : software_backends()) {
+        for (unsigned threads : {1u, 3u}) {
+          DeviceOptions opt;
+          opt.threads = threads;
+          auto dev = make_device(b, v.config, opt);
+          if (!dev->models_cycles()) continue;
+          dev->load(v.memory);
+          const std::vector<Record> got = dev->run(v.jobs);
+          const std::string what = b + " " + v.config.to_string() + " threads " + std::to_string(threads);
+          ASSERT_EQ(got.size(), want.size()) << what;
+          for (size_t i = 0; i < want.size(); ++i)
+            ASSERT_TRUE(got[i].same_as(want[i], true)) << what << " record " << i << ": expected '"
+                                                       << want[i].to_string() << "', got '" << got[i].to_string() << "'";
+        }
       }
     }
   }

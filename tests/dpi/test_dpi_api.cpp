@@ -232,8 +232,14 @@ TEST(DpiApi, ConfigurationAndParameters) {
   EXPECT_EQ(voxcd_dpi_param(d.h, "pw"), -1);
   EXPECT_STREQ(voxcd_dpi_error(d.h),
                "voxcd_dpi_param: no parameter named 'pw' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, "
-               "IW)");
+               "BANKS, DEPTH, IW)");
   EXPECT_EQ(voxcd_dpi_param(d.h, "SB"), 2);
+  EXPECT_EQ(voxcd_dpi_param(d.h, "DEPTH"), 0);
+  Handle deep("LANES 4 DEPTH 3 BANKS 2");
+  EXPECT_EQ(voxcd_dpi_param(deep.h, "DEPTH"), 3);
+  EXPECT_EQ(voxcd_dpi_param(deep.h, "BANKS"), 2);
+  EXPECT_STREQ(voxcd_dpi_config(deep.h),
+               "PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 LANES 4 SAW 16 MAW 18 TAGW 16 BANKS 2 DEPTH 3");
   EXPECT_EQ(voxcd_dpi_param(d.h, "WB"), 8);
   Handle dist("SB 8 WB 6 LANES 1");
   EXPECT_STREQ(voxcd_dpi_config(dist.h),

@@ -15,7 +15,8 @@ module voxcd_device_regslice #(
   parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
   parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
   parameter int unsigned SB    = voxcd_arch_pkg::SB,
-  parameter int unsigned WB    = voxcd_arch_pkg::WB
+  parameter int unsigned WB    = voxcd_arch_pkg::WB,
+  parameter int unsigned Depth = voxcd_arch_pkg::Depth
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -80,7 +81,7 @@ module voxcd_device_regslice #(
 
   voxcd_device #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB)
+    .TAGW(TAGW), .SB(SB), .WB(WB), .Depth(Depth)
   ) u_core (
     .clk_i, .rst_ni, .shell_we_i, .shell_waddr_i, .shell_wdata_i, .map_we_i, .map_waddr_i, .map_wdata_i,
     .job_valid_i, .job_ready_o, .job_tag_i, .job_mode_i, .job_mask_i, .job_shell_base_i, .job_shell_count_i,

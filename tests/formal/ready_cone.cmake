@@ -51,7 +51,7 @@ else()
   list(LENGTH inputs m)
   # The slot registers and the lanes' registers must be among the checked ones (their D inputs hold the enables).
   file(READ ${WORK}/inputs.txt text)
-  string(FIND "${text}" "slot_meta_q[0]" has_slots)
+  string(FIND "${text}" "g_slot[0].meta_q" has_slots)
   string(FIND "${text}" "u_lane." has_lanes)
   if(NOT rc EQUAL 0 OR n LESS 3 OR has_slots EQUAL -1 OR has_lanes EQUAL -1)
     message(FATAL_ERROR "the consumer's ready reaches a register outside the output slice, or the netlist is not "

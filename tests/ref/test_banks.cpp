@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fast/fast.h"
@@ -61,7 +62,11 @@ TEST(Banks, ConfigurationRules) {
   DeviceConfig dist;
   dist.SB = 8;
   dist.BANKS = 2;
-  refused(dist, "shared voxmap banks are for 2-bit devices");
+  EXPECT_NO_THROW(dist.validate()) << "a distance device shares its 8 parity banks too";
+  EXPECT_EQ(memory_banks(dist), 16);
+  dist.MAW = 6;
+  dist.BANKS = 16;
+  refused(dist, "8 * BANKS = 128 banks (each parity bank split BANKS = 16 ways) are more than the 2^MAW = 64");
 }
 
 GeneratedVectors banked_vectors(int lanes, int banks, uint64_t seed, size_t jobs) {
@@ -78,7 +83,7 @@ TEST(Banks, TimingABankedDeviceNeedsItsReads) {
   std::vector<Record> recs = run_stream(v.config, v.memory, v.jobs);
   EXPECT_THROW(annotate_cycles(v.config, v.jobs, recs), std::invalid_argument);
   EXPECT_THROW(job_timing(v.config, v.jobs, recs), std::invalid_argument);
-  EXPECT_THROW(job_timing(v.config, v.jobs, recs, std::vector<uint64_t>(3, 0)), std::invalid_argument);
+  EXPECT_THROW(job_timing(v.config, v.jobs, recs, std::vector<BankCycles>(3)), std::invalid_argument);
   EXPECT_NO_THROW(annotate_cycles(v.config, v.memory, v.jobs, recs));
 }
 
@@ -130,18 +135,60 @@ TEST(Banks, FirstStopsCountingAtTheSlotOfItsHit) {
   EXPECT_EQ(bank_conflicts(cfg, mem.shell, {job}, recs), (std::vector<uint64_t>{4})) << "four slots of two rounds";
 }
 
+// A distance device's lane reads the 8 node words of its cell, one from each parity bank; with BANKS = 1 two lanes
+// whose cells are 4 apart in z read different words of every parity bank: two rounds a slot. A FIRST job that hits in
+// slot 0 still reads behind its hit for the kDistanceSlots rounds its hit takes to reach the hit test: slot 1 (two
+// rounds, one empty slot) and the first round of slot 2 (another), worked out by hand against the timing model.
+TEST(Banks, DistanceDevicesReadEightWordsAndKeepReadingBehindAFirstHit) {
+  DeviceConfig cfg;
+  cfg.SB = 8;
+  cfg.LANES = 2;
+  cfg.BANKS = 1;
+  ASSERT_EQ(memory_banks(cfg), 8);
+  ASSERT_EQ(first_read_window(cfg), uint64_t(kDistanceSlots));
+  DeviceMemory mem;
+  Job job;
+  job.mode = Mode::First;
+  job.nx = job.ny = job.nz = 8;  // H = 5: half-indices 0 and 50 (z = 4), in words 0 and 6 of every bank
+  job.M[0][0] = job.M[1][1] = job.M[2][2] = int64_t(1) << cfg.MF;
+  for (int k = 0; k < 40; ++k) mem.shell.push_back({0, 0, int64_t(k % 2) * (4 << cfg.PF)});
+  mem.map.assign(map_words(cfg, job), 0);  // every node 0: D = 0 <= the threshold 0, every point hits
+  for (uint32_t groups : {20u, 5u}) {
+    job.shell_count = 2 * groups;
+    const std::vector<Record> recs = run_stream(cfg, mem, {job, Job{}});
+    ASSERT_EQ(recs.size(), 3u);
+    EXPECT_EQ(recs[0].point, 0u);
+    EXPECT_EQ(slot_rounds(cfg, mem.shell, job, 0), 2u);
+    const std::vector<BankCycles> b = bank_cycles(cfg, mem.shell, {job, Job{}}, recs);
+    EXPECT_EQ(b[0].conflicts, 3u) << "slot 0's conflict and the window's two empty slots";
+    EXPECT_EQ(b[0].window, 2u);
+    const std::vector<JobTiming> t = job_timing(cfg, {job, Job{}}, recs, b);
+    const uint64_t P = uint64_t(pipeline_slots(cfg));  // 9
+    EXPECT_EQ(t[0].cycles, 1 + P + 1 + 1) << "the hit slot's conflict, then its hit record and its completion";
+    // Behind the hit: P slot registers' worth when the job has groups enough (the empty slots take squashed slots'
+    // places), else its groups left and the empty slots.
+    EXPECT_EQ(t[1].cycles, groups == 20 ? 1 + P : 1 + (groups - 1) + 2) << groups << " groups";
+  }
+}
+
 TEST(Banks, CpuBackendTimesBankedDevicesAsTheSpecification) {
   for (int threads : {1, 2}) {
-    for (auto [lanes, banks] : {std::pair{1, 1}, {2, 2}, {4, 4}, {8, 8}, {8, 2}, {3, 4}}) {
-      const GeneratedVectors v = banked_vectors(lanes, banks, 100 + uint64_t(lanes * 10 + banks), 600);
+    for (auto [lanes, banks, sb] : {std::tuple{1, 1, 2}, {2, 2, 2}, {4, 4, 2}, {8, 8, 2}, {8, 2, 2}, {3, 4, 2},
+                                    {4, 1, 8}, {2, 2, 4}}) {
+      GenerateOptions g;
+      g.seed = 100 + uint64_t(lanes * 10 + banks);
+      g.jobs = 600;
+      g.config.LANES = lanes;
+      g.config.BANKS = banks;
+      g.config.SB = sb;
+      const GeneratedVectors v = generate_vectors(g);
       std::vector<Record> want = run_stream(v.config, v.memory, v.jobs);
       annotate_cycles(v.config, v.memory, v.jobs, want);
       FastRunner fr(v.config, threads == 1 ? nullptr : std::make_shared<ThreadPool>(2));
       fr.load(v.memory);
       std::vector<Record> got;
       fr.run_into(v.jobs, got, true);
-      const std::string what = "lanes " + std::to_string(lanes) + " banks " + std::to_string(banks) + " threads " +
-                               std::to_string(threads);
+      const std::string what = v.config.to_string() + " threads " + std::to_string(threads);
       ASSERT_EQ(got.size(), want.size()) << what;
       for (size_t i = 0; i < want.size(); ++i)
         ASSERT_TRUE(got[i].same_as(want[i], true))
@@ -162,7 +209,8 @@ TEST(Banks, VectorFilesCarryBanks) {
   EXPECT_TRUE(f.has_banks);
   EXPECT_EQ(f.config, v.config);
   EXPECT_THROW(parse_vectors("voxcd-vectors 1\nconfig BANKS 3\n", "bad.vec"), VectorError);
-  EXPECT_THROW(parse_config_pairs("SB 8 BANKS 2", "--config"), VectorError);
+  EXPECT_EQ(parse_config_pairs("SB 8 BANKS 2", "--config").BANKS, 2) << "distance devices share banks too";
+  EXPECT_THROW(parse_config_pairs("SB 8 BANKS 64 MAW 8", "--config"), VectorError);
 }
 
 }  // namespace

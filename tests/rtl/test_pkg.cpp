@@ -6,6 +6,7 @@
 #include <map>
 #include <regex>
 #include <sstream>
+#include <vector>
 
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/timing.h"
@@ -51,6 +52,31 @@ TEST(RtlPackage, PipelineMatchesTheModels) {
   dist.SB = 8;
   EXPECT_EQ(pipeline_slots(dist), p.at("PipeSlots") + p.at("DistSlots"));
   EXPECT_EQ(pipeline_slots(DeviceConfig{}), p.at("PipeSlots"));
+}
+
+// The depth: the package's default and deepest are DeviceConfig's, its stages come in the order ref/config.h names
+// (each rank once, below the deepest), and each unit is one slot register of the timing model.
+TEST(RtlPackage, DepthMatchesDeviceConfig) {
+  const auto p = package_params();
+  ASSERT_TRUE(p.count("Depth"));
+  EXPECT_EQ(p.at("Depth"), DeviceConfig{}.depth);
+  ASSERT_TRUE(p.count("MaxDepth"));
+  EXPECT_EQ(p.at("MaxDepth"), kMaxDepth);
+  const std::pair<const char*, int> ranks[] = {
+      {"RankIn", kRankIn}, {"RankAddr", kRankAddr}, {"RankRead", kRankRead}, {"RankSum", kRankSum},
+      {"RankFloor", kRankFloor}};
+  std::vector<bool> seen(size_t(kMaxDepth), false);
+  for (const auto& [name, value] : ranks) {
+    ASSERT_TRUE(p.count(name)) << "voxcd_arch_pkg.sv has no " << name;
+    EXPECT_EQ(p.at(name), value) << name;
+    ASSERT_GE(value, 0);
+    ASSERT_LT(value, kMaxDepth) << name;
+    EXPECT_FALSE(seen[size_t(value)]) << name << " shares its rank";
+    seen[size_t(value)] = true;
+  }
+  DeviceConfig deep;
+  deep.depth = kMaxDepth;
+  EXPECT_EQ(pipeline_slots(deep), p.at("PipeSlots") + p.at("MaxDepth"));
 }
 
 }  // namespace

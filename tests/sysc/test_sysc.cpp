@@ -9,6 +9,7 @@
 #include <memory>
 #include <random>
 
+#include "voxcd/ref/banks.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
@@ -49,7 +50,7 @@ Case generated(uint64_t seed, const DeviceConfig& cfg, size_t jobs) {
   g.config = cfg;
   const GeneratedVectors v = generate_vectors(g);
   Case c{"generated " + cfg.to_string(), v.config, v.memory, v.jobs, run_stream(v.config, v.memory, v.jobs)};
-  annotate_cycles(c.config, c.jobs, c.expected);
+  annotate_cycles(c.config, c.memory, c.jobs, c.expected);  // a banked device's cycles count its bank conflicts
   return c;
 }
 
@@ -135,7 +136,60 @@ void distance_conformance(TargetKind k) {
   run_cases(k, cases);
 }
 
+// The devices with shared voxmap banks and with deeper pipelines the build has SystemC RTL models of
+// (VOXCD_SYSC_BANKED_MODELS, VOXCD_SYSC_DEPTH_MODELS): generated jobs, exact streams with cycles (bank conflicts and
+// the depth's latency and squash included), and the CONFLICTS register equal to ref/'s count; on the TLM target the
+// same, and every depth at two lanes.
+void banked_and_deeper(TargetKind k) {
+  const uint64_t seed = test_seed();
+  std::vector<Case> cases;
+  bool banked = false, deeper = false;
+  for (const DeviceConfig& cfg : rtl_target_configs()) {
+    if (!cfg.banked() && cfg.depth == 0) continue;
+    banked = banked || cfg.banked();
+    deeper = deeper || cfg.depth > 0;
+    cases.push_back(generated(seed + uint64_t(cfg.BANKS * 10 + cfg.depth), cfg, 200));
+  }
+  ASSERT_TRUE(banked && deeper) << "the build's banked and deeper SystemC models";
+  if (k == TargetKind::Tlm) {
+    for (int d = 1; d <= kMaxDepth; ++d) {
+      DeviceConfig cfg;
+      cfg.LANES = 2;
+      cfg.depth = d;
+      cases.push_back(generated(seed + 100 + uint64_t(d), cfg, 200));
+    }
+    DeviceConfig dist;  // a distance device with shared banks, its FIRST jobs reading behind their hits
+    dist.SB = 8;
+    dist.LANES = 4;
+    dist.BANKS = 1;
+    cases.push_back(generated(seed + 200, dist, 200));
+  }
+  std::vector<std::unique_ptr<Platform>> ps;
+  for (size_t i = 0; i < cases.size(); ++i) ps.push_back(make_platform("p" + std::to_string(i), k, cases[i].config));
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    std::vector<Record> got;
+    uint64_t conflicts = 0;
+    ps[i]->execute([&](HostCpu& cpu) {
+      cpu.load(c.memory);
+      got = cpu.run(c.jobs);
+      conflicts = cpu.read_reg(kRegConflicts);
+    });
+    const std::string what = std::string(target_name(k)) + " " + c.name;
+    expect_stream(c.expected, got, what);
+    uint64_t want = 0;
+    if (c.config.banked())
+      for (uint64_t n : bank_conflicts(c.config, c.memory.shell, c.jobs, c.expected)) want += n;
+    EXPECT_EQ(conflicts, want) << what << ": the CONFLICTS register";
+    if (c.config.banked()) {
+      EXPECT_GT(want, 0u) << what << ": the jobs must make the banks conflict";
+    }
+  }
+}
+
 TEST(SyscTlm, ConformanceVectorsWithCycles) { conformance(TargetKind::Tlm, 400); }
+TEST(SyscRtl, BankedAndDeeperDevicesWithCycles) { banked_and_deeper(TargetKind::Rtl); }
+TEST(SyscTlm, BankedAndDeeperDevicesWithCycles) { banked_and_deeper(TargetKind::Tlm); }
 TEST(SyscRtl, ConformanceVectorsWithCycles) { conformance(TargetKind::Rtl, 150); }
 TEST(SyscRtl, DistanceDevicesWithCycles) { distance_conformance(TargetKind::Rtl); }
 TEST(SyscTlm, DistanceDevicesWithCycles) { distance_conformance(TargetKind::Tlm); }

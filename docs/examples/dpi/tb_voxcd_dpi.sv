@@ -45,7 +45,8 @@ module tb_voxcd_dpi #(
   parameter int unsigned MAW   = 18,
   parameter int unsigned TAGW  = 16,
   parameter int unsigned SB    = 2,
-  parameter int unsigned WB    = 8
+  parameter int unsigned WB    = 8,
+  parameter int unsigned Depth = 0   // the device's pipeline depth (DEPTH in the reference's configuration)
 ) (
   input logic clk_i
 );
@@ -87,7 +88,7 @@ module tb_voxcd_dpi #(
 
   `VOXCD_DUT #(
     .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB)
+    .TAGW(TAGW), .SB(SB), .WB(WB), .Depth(Depth)
   ) u_dut (
     .clk_i            (clk_i),
     .rst_ni           (rst_n),
@@ -210,16 +211,16 @@ module tb_voxcd_dpi #(
 
   // Makes the reference device of the configuration and the stimulus; 0 when the run cannot start.
   function automatic bit setup();
-    string names [13];
-    int    values [13];
-    names  = '{"PW", "PF", "MW", "MF", "TW", "DW", "MEMW", "LANES", "SAW", "MAW", "TAGW", "SB", "WB"};
-    values = '{PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB};
+    string names [14];
+    int    values [14];
+    names  = '{"PW", "PF", "MW", "MF", "TW", "DW", "MEMW", "LANES", "SAW", "MAW", "TAGW", "SB", "WB", "DEPTH"};
+    values = '{PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, Depth};
     h = voxcd_dpi_new(cfg_text);
     if (h == null) begin
       fail(voxcd_dpi_error(null));
       return 1'b0;
     end
-    for (int i = 0; i < 13; i++) begin
+    for (int i = 0; i < 14; i++) begin
       if (voxcd_dpi_param(h, names[i]) != values[i]) begin
         fail($sformatf("the reference's configuration (%s) has %s %0d, the device %0d", cfg_text, names[i],
                        voxcd_dpi_param(h, names[i]), values[i]));
@@ -299,7 +300,8 @@ module tb_voxcd_dpi #(
     void'($value$plusargs("max_errors=%d", max_errors));
     if ($test$plusargs("norestart")) restart = 0;
     cfg_text = $sformatf("PW %0d PF %0d MW %0d MF %0d TW %0d DW %0d MEMW %0d LANES %0d SAW %0d MAW %0d TAGW %0d %s",
-                         PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, $sformatf("SB %0d WB %0d", SB, WB));
+                         PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW,
+                         $sformatf("SB %0d WB %0d DEPTH %0d", SB, WB, Depth));
     void'($value$plusargs("config=%s", cfg_text));
     rng        = ($unsigned(seed) ^ 64'h9e37_79b9_7f4a_7c15) | 64'd1;
     rst_n      = 1'b0;

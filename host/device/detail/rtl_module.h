@@ -13,7 +13,7 @@
 namespace voxcd {
 
 // One model of the module: its configuration and the list of rtl/CMakeLists.txt that named it ("lanes",
-// "derived", "distance" or "banked").
+// "derived", "distance", "banked" or "depth").
 struct RtlModelInfo {
   std::string family;
   DeviceConfig config;

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "voxcd/host/package/paths.h"
-#include "voxcd/host/sizing/detail/config_depth.h"
 
 namespace voxcd::detail {
 
@@ -96,7 +95,7 @@ std::string chparam_device(const DeviceConfig& cfg) {
     << " -set TW " << cfg.TW << " -set DW " << cfg.DW << " -set MEMW " << cfg.MEMW << " -set LANES " << cfg.LANES
     << " -set SAW " << cfg.SAW << " -set MAW " << cfg.MAW << " -set TAGW " << cfg.TAGW << " -set SB " << cfg.SB
     << " -set WB " << cfg.WB << " -set BANKS " << cfg.BANKS;
-  if (config_depth(cfg) > 0) c << " -set Depth " << config_depth(cfg);
+  if (cfg.depth > 0) c << " -set Depth " << cfg.depth;
   c << " voxcd_device";
   return c.str();
 }
