@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# bench/thread_share.sh: how much of a `voxcd simulate` frame runs inside the thread pool's loops, counted in
+# instructions (callgrind), so the largest speed-up a second thread can give whatever the machine's load
+# (docs/simulate.md, "Against the goals"). For each N of --objects:
+#   - callgrind of `voxcd simulate --objects N --threads 2` at F and 2F frames (VOXCD_SPIN_US=0: idle workers sleep
+#     at once, so no spinning is counted); the difference over F is one frame's work, the set-up cancelling;
+#   - instructions a frame in all; of them inside the pool's loops (ThreadPool::drain, on either thread: the loop
+#     bodies and the taking of tasks); the pool's loops a frame (calls of ThreadPool::run_loop);
+#   - Amdahl's bound for 2 threads: I / (I - P + P / 2), with P the instructions inside the loops.
+# The bound counts instructions, not cycles: the cache lines that move between cores, the wake-ups and the loops'
+# imbalance (a loop is as slow as its slowest thread) are what separate a measured speed-up from it.
+# Usage: bash bench/thread_share.sh [VOXCD] [N:F ...]     (default build/voxcd 256:200 4096:20)
+# Needs valgrind (Debian package).
+set -euo pipefail
+voxcd="${1:-build/voxcd}"
+shift || true
+cases=("$@")
+((${#cases[@]})) || cases=(256:200 4096:20)
+command -v valgrind >/dev/null || { echo "thread_share.sh: valgrind not found: apt-get install valgrind" >&2; exit 1; }
+[ -x "$voxcd" ] || { echo "thread_share.sh: $voxcd is not a built voxcd (cmake --build build --target voxcd)" >&2; exit 1; }
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+
+# counts FILE: "<total> <inside drain> <run_loop calls>" of a callgrind output file.
+counts() {
+  /usr/bin/python3 - "$1" <<'EOF'
+import re, sys
+names, fn, total, drain, loops = {}, None, 0, 0, 0
+cfn, pending = None, False
+def name(tok):
+    m = re.match(r'\((\d+)\)(?: (.*))?', tok)
+    if not m: return tok
+    if m.group(2) is not None: names[m.group(1)] = m.group(2)
+    return names.get(m.group(1), '')
+for line in open(sys.argv[1], errors='replace'):
+    line = line.rstrip('\n')
+    if line.startswith('fn='): fn = name(line[3:])
+    elif line.startswith('cfn='): cfn = name(line[4:])
+    elif line.startswith('calls='):
+        pending = True
+        if 'ThreadPool::run_loop' in cfn and 'ThreadPool::parallel_for' in (fn or ''):
+            loops += int(line[6:].split()[0])
+    elif line and (line[0].isdigit() or line[0] in '+-*'):
+        parts = line.split()
+        cost = int(parts[1]) if len(parts) > 1 else 0
+        if pending:  # the inclusive cost of a call
+            pending = False
+            if 'ThreadPool::drain' in cfn and 'ThreadPool::drain' not in (fn or ''): drain += cost
+        else:
+            total += cost
+print(total, drain, loops)
+EOF
+}
+
+echo "| objects | frames (F, 2F) | instructions a frame | inside the pool's loops | pool loops a frame | 2-thread bound (Amdahl) | state hash |"
+echo "|--:|--:|--:|--:|--:|--:|---|"
+for c in "${cases[@]}"; do
+  n="${c%%:*}" f="${c##*:}"
+  for k in 1 2; do
+    VOXCD_SPIN_US=0 valgrind --tool=callgrind --callgrind-out-file="$tmp/cg$k.out" "$voxcd" simulate --objects "$n" \
+      --threads 2 --frames $((k * f)) --no-progress >"$tmp/out$k.txt" 2>"$tmp/err$k.txt" ||
+      { cat "$tmp/err$k.txt" >&2; exit 1; }
+  done
+  read -r t1 d1 l1 <<<"$(counts "$tmp/cg1.out")"
+  read -r t2 d2 l2 <<<"$(counts "$tmp/cg2.out")"
+  hash="$(awk '/^state hash/ {print $3}' "$tmp/out2.txt")"
+  /usr/bin/python3 - "$n" "$f" "$t1" "$d1" "$l1" "$t2" "$d2" "$l2" "$hash" <<'EOF'
+import sys
+n, f, t1, d1, l1, t2, d2, l2 = map(int, sys.argv[1:9])
+i, p, loops = (t2 - t1) / f, (d2 - d1) / f, (l2 - l1) / f
+print(f"| {n} | {f}, {2 * f} | {i:,.0f} | {p:,.0f} ({100 * p / i:.1f}%) | {loops:.1f} | {i / (i - p / 2):.2f}x | {sys.argv[9]} |")
+EOF
+done
+echo
+echo "_Made by \`bash bench/thread_share.sh $voxcd ${cases[*]}\` on $(date +%F); $(valgrind --version)._"
