@@ -150,7 +150,6 @@ std::string hex(uint64_t v) {
   return b;
 }
 
-
 using WorldClass = py::class_<World>;
 
 // voxcd.collide: one pair query in one call.

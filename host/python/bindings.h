@@ -1,5 +1,5 @@
 // The Python module (import voxcd): what its files share. Each file binds one part of the library (objects, pairs,
-// scenes, conformance); docs/python.md documents the module.
+// scenes, conformance, recordings, the public API); docs/python.md documents the module.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -35,12 +35,6 @@ std::string path_arg(const py::handle& h, const char* what);
 // The distance fields asked for (voxelize, Pair): ValueError naming the keyword for distance_bits other than 0 (no
 // field), 4, 8 or 16, or a band that is not a positive finite number of voxels.
 void check_distance_args(int distance_bits, double band);
-
-// Adds the keyword arguments' names and values (py::arg("key") = value, ...) to d, in their order.
-template <class... Items>
-void put(py::dict& d, Items&&... items) {
-  for (const auto& [key, value] : py::dict(std::forward<Items>(items)...)) d[key] = value;
-}
 
 // objects.cpp: voxcd.voxelize, voxcd.read_object and voxcd.Object.
 void bind_objects(py::module_& m);

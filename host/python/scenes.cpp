@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <optional>
+#include <utility>
 
 #include "voxcd/host/python/bindings.h"
 #include "voxcd/host/scene/scene_file.h"
@@ -14,6 +15,12 @@
 namespace voxcd::python {
 
 namespace {
+
+// Adds the keyword arguments' names and values (py::arg("key") = value, ...) to d, in their order.
+template <class... Items>
+void put(py::dict& d, Items&&... items) {
+  for (const auto& [key, value] : py::dict(std::forward<Items>(items)...)) d[key] = value;
+}
 
 // An optional non-negative integer argument (a Python int or anything with __index__).
 std::optional<uint64_t> count_arg(const py::object& o, const char* name) {
