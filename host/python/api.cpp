@@ -99,22 +99,6 @@ py::array body_view(const std::vector<Body>& bodies, const double* first, py::ss
                    n ? first : nullptr, owner);
 }
 
-py::dict stats_dict(const FrameStats& f) {
-  py::dict d;
-  d["frame"] = f.frame;
-  d["pairs"] = f.pairs;
-  d["tested"] = f.tested;
-  d["touching"] = f.touching;
-  d["responses"] = f.responses;
-  d["wall_hits"] = f.wall_hits;
-  d["lookups"] = f.lookups;
-  d["hits"] = f.hits;
-  d["contacts"] = f.contacts;
-  d["device_cycles"] = f.device_cycles;
-  d["seconds"] = f.seconds();
-  return d;
-}
-
 World world_def(double side, const std::string& broadphase, const std::string& backend, int lanes,
                 const std::string& mode, bool both, int distance_bits, double margin, bool ccd, unsigned threads) {
   WorldDef d;
@@ -131,24 +115,33 @@ World world_def(double side, const std::string& broadphase, const std::string& b
   return World(d);
 }
 
-World world_scene(const py::object& scene, const py::object& frames, const py::object& objects,
-                  std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
-                  std::optional<double> density, std::optional<double> speed, const py::object& seed,
-                  std::optional<std::string> pruning, std::optional<std::string> backend, std::optional<int> lanes,
-                  std::optional<std::string> mode, std::optional<bool> both, std::optional<double> clock,
-                  std::optional<std::string> config, unsigned threads, bool midphase, bool cull,
-                  std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin,
-                  std::optional<bool> ccd) {
-  if (!frames.is_none()) value_error("frames: a World is stepped by its caller (World.step())");
+// World.scene(): the scene `voxcd simulate` runs for the arguments, not yet stepped.
+World world_scene(const RunArgs& a) {
+  if (!a.frames.is_none()) value_error("frames: a World is stepped by its caller (World.step())");
   std::optional<std::string> text;
-  const RunConfig options = run_options(scene, frames, objects, std::move(shape), voxel, resolution, density, speed,
-                                        seed, std::move(pruning), std::move(backend), lanes, std::move(mode), both,
-                                        clock, std::move(config), threads, midphase, cull, distance_bits, band,
-                                        margin, ccd, py::none(), text);
+  const RunConfig options = run_options(a, py::none(), text);
   return with_file(text ? "" : options.where, [&] {
     py::gil_scoped_release unlocked;
     return World::scene(run_config(options, text));
   });
+}
+
+// Three numbers (None: zeros); ValueError naming `what` for anything else.
+Eigen::Vector3d vec3_arg(const py::object& v, const char* what) {
+  if (v.is_none()) return Eigen::Vector3d::Zero();
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
+  if (!a || a.ndim() != 1 || a.shape(0) != 3) value_error(std::string(what) + ": give three numbers");
+  return Eigen::Vector3d(a.data()[0], a.data()[1], a.data()[2]);
+}
+
+// The getter of a property that views one vector field of every body, no copy: field(body) points at its first of
+// `width` doubles.
+template <class Field>
+auto bodies_view(Field field, py::ssize_t width) {
+  return [field, width](py::object self) {
+    const auto& b = self.cast<const World&>().bodies();
+    return body_view(b, b.empty() ? nullptr : field(b[0]), width, self);
+  };
 }
 
 std::string hex(uint64_t v) {
@@ -157,9 +150,10 @@ std::string hex(uint64_t v) {
   return b;
 }
 
-}  // namespace
+using WorldClass = py::class_<World>;
 
-void bind_api(py::module_& m) {
+// voxcd.collide: one pair query in one call.
+void bind_collide(py::module_& m) {
   m.def("collide", &collide_py, py::arg("a"), py::arg("pose_a") = py::none(), py::arg("b"),
         py::arg("pose_b") = py::none(), py::kw_only(), py::arg("mode") = "ALL", py::arg("both") = true,
         py::arg("margin") = 0.0, py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("threads") = 0u,
@@ -169,68 +163,64 @@ a and b: Objects, or anything voxelize() takes (a mesh file, a shape, (vertices,
 numbers (tx, ty, tz[, rx, ry, rz] in degrees), or a 4 x 4 matrix. mode ALL, FIRST or COUNT; both (default True)
 also tests b's shell in a; margin: contacts within this distance outside (distance voxmaps, both objects with
 fields). Returns the dict Pair.query returns: hits, lookups, device_cycles, and the contacts as arrays.)");
+}
 
-  auto world = py::class_<World>(m, "World", R"(A world the caller steps (the library's World, docs/api.md): bodies of Objects
-in the cube [0, side]^3 with walls, a broadphase and pair tests on a device each frame, a response. World(...) is
-empty; World.scene(...) is the scene `voxcd simulate` runs for the same options.)")
+// World's construction, World.scene() and its bodies: adding them and viewing their state.
+void bind_world_bodies(WorldClass& world) {
+  world
       .def(py::init(&world_def), py::kw_only(), py::arg("side") = 100.0, py::arg("broadphase") = "grid",
            py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL", py::arg("both") = false,
            py::arg("distance_bits") = 0, py::arg("margin") = 0.0, py::arg("ccd") = false, py::arg("threads") = 0u)
-      .def("add_body",
-           [](World& w, const py::object& obj, const py::object& pose, const py::object& velocity,
-              const py::object& spin) {
-             auto vec = [](const py::object& v, const char* what) {
-               if (v.is_none()) return Eigen::Vector3d(Eigen::Vector3d::Zero());
-               const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
-               if (!a || a.ndim() != 1 || a.shape(0) != 3) value_error(std::string(what) + ": give three numbers");
-               return Eigen::Vector3d(a.data()[0], a.data()[1], a.data()[2]);
-             };
-             return w.add_body(object_arg(obj), pose_arg(pose, "pose"), vec(velocity, "velocity"), vec(spin, "spin"));
-           },
-           py::arg("object"), py::arg("pose") = py::none(), py::kw_only(), py::arg("velocity") = py::none(),
-           py::arg("spin") = py::none(),
-           "Adds a body of `object` at `pose` (None, 3 or 6 numbers, or a 4 x 4 matrix) moving by velocity (world "
-           "units) and turning by spin (radians about the world axes) per frame; returns its index.")
-      .def("step",
-           [](World& w) {
-             FrameStats st;
-             {
-               py::gil_scoped_release unlocked;
-               st = w.step();
-             }
-             return stats_dict(st);
-           },
-           "One frame; returns its statistics as a dict (pairs, tested, touching, contacts, device_cycles, ...).")
+      .def(
+          "add_body",
+          [](World& w, const py::object& obj, const py::object& pose, const py::object& velocity,
+             const py::object& spin) {
+            return w.add_body(object_arg(obj), pose_arg(pose, "pose"), vec3_arg(velocity, "velocity"),
+                              vec3_arg(spin, "spin"));
+          },
+          py::arg("object"), py::arg("pose") = py::none(), py::kw_only(), py::arg("velocity") = py::none(),
+          py::arg("spin") = py::none(),
+          "Adds a body of `object` at `pose` (None, 3 or 6 numbers, or a 4 x 4 matrix) moving by velocity (world "
+          "units) and turning by spin (radians about the world axes) per frame; returns its index.")
       .def("__len__", &World::size)
+      .def_property_readonly("positions", bodies_view([](const Body& b) { return b.pose.translation.data(); }, 3),
+                             "Every body's position, an (N, 3) float64 view of the world's own state (no copy; valid "
+                             "until a body is added).")
+      .def_property_readonly("orientations",
+                             bodies_view([](const Body& b) { return b.pose.rotation.coeffs().data(); }, 4),
+                             "Every body's orientation as a unit quaternion (x, y, z, w: scalar last, as scipy's "
+                             "Rotation.from_quat), an (N, 4) float64 view (no copy; valid until a body is added).")
+      .def_property_readonly("velocities", bodies_view([](const Body& b) { return b.velocity.data(); }, 3),
+                             "Every body's velocity (world units per frame), an (N, 3) float64 view.");
+  std::apply(
+      [&](auto... args) {
+        world.def_static("scene", run_function(&world_scene), args...,
+                         "The scene `voxcd simulate` runs for the same options (simulate()'s; frames are the caller's "
+                         "World.step()s).");
+      },
+      run_args());
+}
+
+// World's frames: stepping, what the last frame found, the state hash and recording.
+void bind_world_frames(WorldClass& world) {
+  world
+      .def(
+          "step",
+          [](World& w) {
+            FrameStats st;
+            {
+              py::gil_scoped_release unlocked;
+              st = w.step();
+            }
+            py::dict d = frame_counts(st);
+            d["seconds"] = st.seconds();
+            return d;
+          },
+          "One frame; returns its statistics as a dict (pairs, tested, touching, contacts, device_cycles, ...).")
       .def_property_readonly("frame", &World::frame, "Frames stepped.")
       .def_property_readonly("state_hash", [](const World& w) { return hex(w.state_hash()); },
                              "The hash of every body's state as a hex string: `voxcd simulate --json`'s state_hash "
                              "after as many frames of the same scene.")
-      .def_property_readonly(
-          "positions",
-          [](py::object self) {
-            const World& w = self.cast<const World&>();
-            const auto& b = w.bodies();
-            return body_view(b, b.empty() ? nullptr : b[0].pose.translation.data(), 3, self);
-          },
-          "Every body's position, an (N, 3) float64 view of the world's own state (no copy; valid until a body is "
-          "added).")
-      .def_property_readonly(
-          "orientations",
-          [](py::object self) {
-            const World& w = self.cast<const World&>();
-            const auto& b = w.bodies();
-            return body_view(b, b.empty() ? nullptr : b[0].pose.rotation.coeffs().data(), 4, self);
-          },
-          "Every body's orientation as a unit quaternion (x, y, z, w: scalar last, as scipy's Rotation.from_quat), an "
-          "(N, 4) float64 view (no copy; valid until a body is added).")
-      .def_property_readonly(
-          "velocities",
-          [](py::object self) {
-            const auto& b = self.cast<const World&>().bodies();
-            return body_view(b, b.empty() ? nullptr : b[0].velocity.data(), 3, self);
-          },
-          "Every body's velocity (world units per frame), an (N, 3) float64 view.")
       .def_property_readonly(
           "pairs",
           [](const World& w) {
@@ -252,13 +242,17 @@ empty; World.scene(...) is the scene `voxcd simulate` runs for the same options.
            "Records every frame from now on into `path` (docs/view.md; read_recording reads it, `voxcd view` replays "
            "it).")
       .def("stop_recording", &World::stop_recording, "Closes the recording.");
-  std::apply(
-      [&](auto... args) {
-        world.def_static("scene", &world_scene, args...,
-                         "The scene `voxcd simulate` runs for the same options (simulate()'s; frames are the caller's "
-                         "World.step()s).");
-      },
-      run_args());
+}
+
+}  // namespace
+
+void bind_api(py::module_& m) {
+  bind_collide(m);
+  WorldClass world(m, "World", R"(A world the caller steps (the library's World, docs/api.md): bodies of Objects
+in the cube [0, side]^3 with walls, a broadphase and pair tests on a device each frame, a response. World(...) is
+empty; World.scene(...) is the scene `voxcd simulate` runs for the same options.)");
+  bind_world_bodies(world);
+  bind_world_frames(world);
 }
 
 }  // namespace voxcd::python

@@ -1,5 +1,5 @@
 // The Python module (import voxcd): what its files share. Each file binds one part of the library (objects, pairs,
-// scenes, conformance); docs/python.md documents the module.
+// scenes, conformance, recordings, the public API); docs/python.md documents the module.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -12,8 +12,10 @@
 #include <filesystem>
 #include <string>
 #include <system_error>
+#include <utility>
 
 namespace voxcd {
+struct FrameStats;
 struct PairResult;
 struct RunConfig;
 }  // namespace voxcd
@@ -22,7 +24,32 @@ namespace voxcd::python {
 
 namespace py = pybind11;
 
-// The arguments of a run after `scene` (keyword-only), as simulate() and World.scene() take them (scenes.cpp).
+// module.cpp: the module, and what every part uses. Each bind_* below binds one part of the library into it.
+
+// A path argument: a str or an os.PathLike giving one. TypeError naming `what` for anything else.
+std::string path_arg(const py::handle& h, const char* what);
+
+// Raises ValueError with the message: an argument the module refuses before calling the library.
+[[noreturn]] void value_error(const std::string& message);
+
+// The distance fields asked for (voxelize, Pair): ValueError naming the keyword for distance_bits other than 0 (no
+// field), 4, 8 or 16, or a band that is not a positive finite number of voxels.
+void check_distance_args(int distance_bits, double band);
+
+// objects.cpp: voxcd.voxelize, voxcd.read_object and voxcd.Object.
+void bind_objects(py::module_& m);
+
+// pairs.cpp: voxcd.Pair and voxcd.pair.
+void bind_pairs(py::module_& m);
+
+// A pair's result as the module gives it: hits, lookups, device_cycles (None without cycles) and the contacts as
+// numpy arrays.
+py::dict contacts_dict(const PairResult& r, bool cycles);
+
+// scenes.cpp: voxcd.simulate and voxcd.size.
+void bind_scenes(py::module_& m);
+
+// The arguments of a run after `scene` (keyword-only), as simulate() and World.scene() take them.
 inline auto run_args() {
   return std::make_tuple(
       py::arg("scene") = py::none(), py::kw_only(), py::arg("frames") = py::none(), py::arg("objects") = py::none(),
@@ -34,38 +61,63 @@ inline auto run_args() {
       py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
       py::arg("ccd") = py::none());
 }
+
+// The values of run_args(), None where not given.
+struct RunArgs {
+  py::object scene, frames, objects;
+  std::optional<std::string> shape;
+  std::optional<double> voxel;
+  py::object resolution;
+  std::optional<double> density, speed;
+  py::object seed;
+  std::optional<std::string> pruning, backend;
+  std::optional<int> lanes;
+  std::optional<std::string> mode;
+  std::optional<bool> both;
+  std::optional<double> clock;
+  std::optional<std::string> config;
+  unsigned threads = 0;
+  bool midphase = true, cull = true;
+  std::optional<int> distance_bits;
+  std::optional<double> band, margin;
+  std::optional<bool> ccd;
+};
+
+// A function of run_args()'s arguments, then `Extra` ones, that returns finish(RunArgs, extra...): the one parameter
+// list of simulate() and World.scene().
+template <class... Extra, class F>
+auto run_function(F finish) {
+  return [finish](const py::object& scene, const py::object& frames, const py::object& objects,
+                  std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
+                  std::optional<double> density, std::optional<double> speed, const py::object& seed,
+                  std::optional<std::string> pruning, std::optional<std::string> backend, std::optional<int> lanes,
+                  std::optional<std::string> mode, std::optional<bool> both, std::optional<double> clock,
+                  std::optional<std::string> config, unsigned threads, bool midphase, bool cull,
+                  std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin,
+                  std::optional<bool> ccd, Extra... extra) {
+    return finish(RunArgs{scene, frames, objects, std::move(shape), voxel, resolution, density, speed, seed,
+                          std::move(pruning), std::move(backend), lanes, std::move(mode), both, clock,
+                          std::move(config), threads, midphase, cull, distance_bits, band, margin, ccd},
+                  extra...);
+  };
+}
+
 // Those arguments (and `record`) as the settings they give over the scene file (RunConfig::given; run_config applies
 // them); `text` is set to a dict scene's JSON. ValueError or TypeError naming the keyword for a value it cannot take.
-RunConfig run_options(const py::object& scene, const py::object& frames, const py::object& objects,
-                      std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
-                      std::optional<double> density, std::optional<double> speed, const py::object& seed,
-                      std::optional<std::string> pruning, std::optional<std::string> backend,
-                      std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
-                      std::optional<double> clock, std::optional<std::string> config, unsigned threads,
-                      bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
-                      std::optional<double> margin, std::optional<bool> ccd, const py::object& record,
-                      std::optional<std::string>& text);
+RunConfig run_options(const RunArgs& a, const py::object& record, std::optional<std::string>& text);
 
-// A pair's result as the module gives it: hits, lookups, device_cycles (None without cycles) and the contacts as
-// numpy arrays (pairs.cpp).
-py::dict contacts_dict(const PairResult& r, bool cycles);
-
-void bind_objects(py::module_& m);
-void bind_pairs(py::module_& m);
-void bind_scenes(py::module_& m);
+// conformance.cpp: voxcd.generate_vectors and voxcd.conform.
 void bind_conformance(py::module_& m);
+
+// record.cpp: voxcd.read_recording.
 void bind_record(py::module_& m);
+
+// A frame's counters as a dict: frame, pairs, tested, touching, responses, wall_hits, lookups, hits, contacts,
+// device_cycles (World.step() and a recording's frames add more).
+py::dict frame_counts(const FrameStats& s);
+
+// api.cpp: voxcd.collide and voxcd.World.
 void bind_api(py::module_& m);
-
-// A path argument: a str or an os.PathLike giving one. TypeError naming `what` for anything else.
-std::string path_arg(const py::handle& h, const char* what);
-
-// Raises ValueError with the message: an argument the module refuses before calling the library.
-[[noreturn]] void value_error(const std::string& message);
-
-// The distance fields asked for (voxelize, Pair): ValueError naming the keyword for distance_bits other than 0 (no
-// field), 4, 8 or 16, or a band that is not a positive finite number of voxels.
-void check_distance_args(int distance_bits, double band);
 
 // Runs f(); when it throws and the file `path` (not "") does not exist, raises FileNotFoundError carrying the
 // library's message instead of the error it would map to (docs/python.md, "Errors").

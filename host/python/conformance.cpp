@@ -32,15 +32,9 @@ py::dict generate(const py::object& path, uint64_t seed, int64_t jobs, int64_t c
     PyErr_SetString(PyExc_OSError, e.what());  // the file could not be written whole
     throw py::error_already_set();
   }
-  py::dict d;
-  d["file"] = out;
-  d["jobs"] = w.jobs;
-  d["shell_words"] = w.shell_words;
-  d["map_words"] = w.map_words;
-  d["lookups"] = w.lookups;
-  d["seed"] = seed;
-  d["config"] = w.config.to_string();
-  return d;
+  return py::dict(py::arg("file") = out, py::arg("jobs") = w.jobs, py::arg("shell_words") = w.shell_words,
+                  py::arg("map_words") = w.map_words, py::arg("lookups") = w.lookups, py::arg("seed") = seed,
+                  py::arg("config") = w.config.to_string());
 }
 
 py::dict conform(const py::object& files, const std::string& backend, std::optional<int> lanes, bool cycles) {
@@ -63,21 +57,12 @@ py::dict conform(const py::object& files, const std::string& backend, std::optio
       r = run_conformance(p, opt);
     }
     (r.ok() ? passed : failed) += 1;
-    py::dict d;
-    d["file"] = r.file;
-    d["ok"] = r.ok();
-    d["error"] = r.error;
-    d["jobs"] = r.jobs;
-    d["expected_records"] = r.expected;
-    d["records"] = r.stream.size();
-    results.append(d);
+    results.append(py::dict(py::arg("file") = r.file, py::arg("ok") = r.ok(), py::arg("error") = r.error,
+                            py::arg("jobs") = r.jobs, py::arg("expected_records") = r.expected,
+                            py::arg("records") = r.stream.size()));
   }
-  py::dict d;
-  d["ok"] = failed == 0;
-  d["passed"] = passed;
-  d["failed"] = failed;
-  d["results"] = results;
-  return d;
+  return py::dict(py::arg("ok") = failed == 0, py::arg("passed") = passed, py::arg("failed") = failed,
+                  py::arg("results") = results);
 }
 
 }  // namespace

@@ -41,6 +41,31 @@ void check_distance_args(int distance_bits, double band) {
     value_error("band: " + py::repr(py::float_(band)).cast<std::string>() + " is not a positive finite number of voxels");
 }
 
+namespace {
+
+// True when e is one of the exception types Bad.
+template <class... Bad>
+bool is_one_of(const std::exception& e) {
+  return (... || (dynamic_cast<const Bad*>(&e) != nullptr));
+}
+
+// A backend that cannot run is a RuntimeError; bad input (the values given, or the files they name) a ValueError;
+// anything else goes on to pybind11's own translation (a RuntimeError). The message is the library's.
+void translate_error(std::exception_ptr p) {
+  try {
+    if (p) std::rethrow_exception(p);
+  } catch (const DeviceError& e) {
+    PyErr_SetString(PyExc_RuntimeError, e.what());
+  } catch (const std::exception& e) {
+    if (!is_one_of<MeshError, ObjectFileError, SceneFileError, VectorError, RangeError, CapacityError,
+                   PlacementError, RecordError>(e))
+      throw;
+    PyErr_SetString(PyExc_ValueError, e.what());
+  }
+}
+
+}  // namespace
+
 }  // namespace voxcd::python
 
 PYBIND11_MODULE(voxcd, m) {
@@ -49,31 +74,7 @@ PYBIND11_MODULE(voxcd, m) {
   m.doc() = "voxcd: voxel collision detection on a modelled point-lookup accelerator (docs/python.md)";
   m.attr("__version__") = VOXCD_VERSION;
 
-  // Bad input (the values given, or the files they name) is a ValueError; a backend that cannot run, or anything
-  // else the library raises, a RuntimeError. The message is the library's.
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const DeviceError& e) {
-      PyErr_SetString(PyExc_RuntimeError, e.what());
-    } catch (const MeshError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const ObjectFileError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const SceneFileError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const VectorError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const RangeError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const CapacityError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const PlacementError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const RecordError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    }
-  });
+  py::register_exception_translator(&voxcd::python::translate_error);
 
   m.def("backends", &device_backends, "The device backends that can run here, by name (for backend=...).");
   m.def(
@@ -92,10 +93,6 @@ PYBIND11_MODULE(voxcd, m) {
   m.attr("SURFACE") = int(kSurface);
   m.attr("INTERIOR") = int(kInterior);
 
-  voxcd::python::bind_objects(m);
-  voxcd::python::bind_pairs(m);
-  voxcd::python::bind_scenes(m);
-  voxcd::python::bind_conformance(m);
-  voxcd::python::bind_record(m);
-  voxcd::python::bind_api(m);
+  using namespace voxcd::python;
+  for (const auto bind : {bind_objects, bind_pairs, bind_scenes, bind_conformance, bind_record, bind_api}) bind(m);
 }

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 
+#include "voxcd/host/cli/object_report.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/python/bindings.h"
 
@@ -54,41 +55,10 @@ py::object distance(const DistanceField& f) {
   return std::move(a);
 }
 
+// What loading, repair and voxelising found: `voxcd info --json`'s "repair", made by the same function (None for an
+// object file of version 1).
 py::object repair_dict(const ObjectFile& obj) {
-  if (!obj.has_report) return py::none();
-  const MeshReport& r = obj.mesh_report;
-  py::dict d;
-  d["closed"] = r.closed;
-  d["surface_only"] = r.surface_only;
-  d["points_only"] = r.points_only;
-  d["flipped"] = r.flipped;
-  d["input_vertices"] = r.input_vertices;
-  d["input_triangles"] = r.input_triangles;
-  d["vertices"] = r.vertices;
-  d["triangles"] = r.triangles;
-  d["welded"] = r.welded;
-  d["welded_near"] = r.welded_near;
-  d["weld_tolerance"] = r.weld_tolerance;
-  py::dict dropped;
-  dropped["nonfinite"] = r.dropped_nonfinite;
-  dropped["repeated_vertex"] = r.dropped_repeated;
-  dropped["collinear"] = r.dropped_collinear;
-  dropped["duplicate"] = r.dropped_duplicate;
-  dropped["internal"] = r.dropped_internal;
-  d["dropped"] = dropped;
-  d["reoriented"] = r.reoriented;
-  d["open_edges"] = r.open_edges;
-  d["nonmanifold_edges"] = r.nonmanifold_edges;
-  d["nonmanifold_parts"] = r.nonmanifold_parts;
-  d["fin_triangles"] = r.fin_triangles;
-  d["inconsistent_edges"] = r.inconsistent_edges;
-  d["components"] = r.components;
-  d["closed_components"] = r.closed_components;
-  d["sheet_components"] = r.sheet_components;
-  d["uncertain_voxels"] = obj.voxelize_report.uncertain;
-  d["evaluated_voxels"] = obj.voxelize_report.evaluated;
-  d["conservative_cells"] = obj.voxelize_report.conservative;
-  return std::move(d);
+  return py::module_::import("json").attr("loads")(cli::repair_json(obj).dump());
 }
 
 // A mesh given as arrays: a (vertices, faces) pair, or an object with .vertices and .faces (trimesh) or
@@ -191,11 +161,8 @@ void bind_voxmap(ObjectClass& cls) {
           "counts",
           [](const ObjectFile& o) {
             const auto c = o.voxmap.counts();
-            py::dict d;
-            d["empty"] = c[kEmpty];
-            d["surface"] = c[kSurface];
-            d["interior"] = c[kInterior];
-            return d;
+            return py::dict(py::arg("empty") = c[kEmpty], py::arg("surface") = c[kSurface],
+                            py::arg("interior") = c[kInterior]);
           },
           "Voxels in each state: {'empty': ..., 'surface': ..., 'interior': ...}.");
 }
@@ -265,7 +232,7 @@ void bind_rest(ObjectClass& cls) {
         return "<voxcd.Object " + o.source + ": " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
                std::to_string(d[2]) + " voxels of " + py::repr(py::float_(o.voxmap.voxel())).cast<std::string>() +
                ", " + std::to_string(o.shell.size()) + " shell points>";
-      });;
+      });
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <optional>
+#include <utility>
 
 #include "voxcd/host/python/bindings.h"
 #include "voxcd/host/scene/scene_file.h"
@@ -14,6 +15,12 @@
 namespace voxcd::python {
 
 namespace {
+
+// Adds the keyword arguments' names and values (py::arg("key") = value, ...) to d, in their order.
+template <class... Items>
+void put(py::dict& d, Items&&... items) {
+  for (const auto& [key, value] : py::dict(std::forward<Items>(items)...)) d[key] = value;
+}
 
 // An optional non-negative integer argument (a Python int or anything with __index__).
 std::optional<uint64_t> count_arg(const py::object& o, const char* name) {
@@ -49,151 +56,109 @@ DeviceClock clock_arg(double mhz) {
   return given_clock(mhz, "the clock argument");
 }
 
+// The scene file's object types, as `voxcd simulate --json` lists them.
+py::list types_list(const SimulationSummary& s) {
+  py::list types;
+  for (const auto& ty : s.types)
+    types.append(py::dict(py::arg("name") = ty->name, py::arg("voxel") = ty->voxmap().voxel(),
+                          py::arg("shell_points") = ty->shell().size()));
+  return types;
+}
+
 // The summary's configuration: the scene and how it ran, in the order of `voxcd simulate --json`.
 void put_config(py::dict& r, const SimulationSummary& s) {
   const RunConfig& c = s.config;
   const ObjectType& type = *s.types[0];
   const auto& d = type.voxmap().dims();
-  if (!c.builtin()) {
-    r["scene"] = c.where;
-    py::list types;
-    for (const auto& ty : s.types) {
-      py::dict e;
-      e["name"] = ty->name;
-      e["voxel"] = ty->voxmap().voxel();
-      e["shell_points"] = ty->shell().size();
-      types.append(e);
-    }
-    r["types"] = types;
-  }
-  r["device"] = s.device.to_string();
-  r["shape"] = s.shape();
-  r["objects"] = c.objects();
-  r["voxel"] = s.voxel();
-  r["shell_points"] = type.shell().size();
-  r["voxmap"] = py::make_tuple(d[0], d[1], d[2]);
-  r["pruning"] = c.broadphase;
-  r["backend"] = c.backend;
-  r["mode"] = mode_name(c.mode);
-  r["both_directions"] = c.both_directions;
-  if (s.distance_bits()) {
-    r["distance_bits"] = s.distance_bits();
-    r["band"] = c.band;
-    r["margin"] = c.margin;
-    r["ccd"] = c.ccd;
-  }
-  r["frames"] = c.frames;
-  r["seed"] = c.seed;
+  if (!c.builtin()) put(r, py::arg("scene") = c.where, py::arg("types") = types_list(s));
+  put(r, py::arg("device") = s.device.to_string(), py::arg("shape") = s.shape(), py::arg("objects") = c.objects(),
+      py::arg("voxel") = s.voxel(), py::arg("shell_points") = type.shell().size(),
+      py::arg("voxmap") = py::make_tuple(d[0], d[1], d[2]), py::arg("pruning") = c.broadphase,
+      py::arg("backend") = c.backend, py::arg("mode") = mode_name(c.mode), py::arg("both_directions") = c.both_directions);
+  if (s.distance_bits())
+    put(r, py::arg("distance_bits") = s.distance_bits(), py::arg("band") = c.band, py::arg("margin") = c.margin,
+        py::arg("ccd") = c.ccd);
+  put(r, py::arg("frames") = c.frames, py::arg("seed") = c.seed);
 }
 
+// The run's totals: counters, then the seconds of each stage and, with ccd, the counters of no_tunnelling.
+void put_totals(py::dict& r, const SimulationSummary& s) {
+  const SimulationTotals& t = s.totals;
+  put(r, py::arg("seconds") = t.seconds(), py::arg("frame_rate_hz") = s.frame_rate(),
+      py::arg("broadphase_pairs") = t.pairs, py::arg("pairs_tested") = t.tested, py::arg("touching_pairs") = t.touching,
+      py::arg("responses") = t.responses, py::arg("wall_bounces") = t.wall_hits, py::arg("lookups") = t.lookups,
+      py::arg("hits") = t.hits, py::arg("contacts") = t.contacts);
+  r["stage_seconds"] = py::dict(py::arg("integrate") = t.t_integrate, py::arg("bounds") = t.t_bounds,
+                                py::arg("broadphase") = t.t_broadphase, py::arg("narrow") = t.t_narrow,
+                                py::arg("response") = t.t_response);
+  if (s.config.ccd)
+    r["no_tunnelling"] = py::dict(py::arg("iterations") = t.ccd_iterations, py::arg("queries") = t.ccd_queries,
+                                  py::arg("pairs_limited") = t.ccd_limited, py::arg("time_of_impact_events") = t.ccd_toi,
+                                  py::arg("bodies_dropped") = t.ccd_dropped, py::arg("lookups") = t.ccd_lookups);
+}
+
+// The summary as a dict with the keys and numbers of `voxcd simulate --json` (the state hash as a hex string).
 py::dict summary_dict(const SimulationSummary& s) {
   const RunConfig& c = s.config;
   const SimulationTotals& t = s.totals;
   py::dict r;
   put_config(r, s);
-  r["seconds"] = t.seconds();
-  r["frame_rate_hz"] = s.frame_rate();
-  r["broadphase_pairs"] = t.pairs;
-  r["pairs_tested"] = t.tested;
-  r["touching_pairs"] = t.touching;
-  r["responses"] = t.responses;
-  r["wall_bounces"] = t.wall_hits;
-  r["lookups"] = t.lookups;
-  r["hits"] = t.hits;
-  r["contacts"] = t.contacts;
-  py::dict stages;
-  stages["integrate"] = t.t_integrate;
-  stages["bounds"] = t.t_bounds;
-  stages["broadphase"] = t.t_broadphase;
-  stages["narrow"] = t.t_narrow;
-  stages["response"] = t.t_response;
-  r["stage_seconds"] = stages;
-  if (c.ccd) {
-    py::dict cc;
-    cc["iterations"] = t.ccd_iterations;
-    cc["queries"] = t.ccd_queries;
-    cc["pairs_limited"] = t.ccd_limited;
-    cc["time_of_impact_events"] = t.ccd_toi;
-    cc["bodies_dropped"] = t.ccd_dropped;
-    cc["lookups"] = t.ccd_lookups;
-    r["no_tunnelling"] = cc;
-  }
-  r["lanes"] = c.lanes;
-  r["device_cycles"] = t.cycles;
-  r["device_cycles_per_frame"] = s.cycles_per_frame();
-  r["device_cycles_max_frame"] = t.max_cycles;
-  r["device_idle_frames"] = t.idle_frames;
-  r["clock_mhz"] = c.clock.mhz;
-  r["clock_source"] = c.clock.source;
-  r["clock_estimate"] = c.clock.estimate;
-  // No device cycles: no device rate (None), as `voxcd simulate --json` gives null.
-  r["device_frame_rate_hz"] = t.cycles ? py::object(py::float_(s.device_rate())) : py::object(py::none());
+  put_totals(r, s);
   char hash[24];
   std::snprintf(hash, sizeof hash, "%llx", static_cast<unsigned long long>(s.state_hash));
-  r["state_hash"] = std::string(hash);
+  // No device cycles: no device rate (None), as `voxcd simulate --json` gives null.
+  put(r, py::arg("lanes") = c.lanes, py::arg("device_cycles") = t.cycles,
+      py::arg("device_cycles_per_frame") = s.cycles_per_frame(), py::arg("device_cycles_max_frame") = t.max_cycles,
+      py::arg("device_idle_frames") = t.idle_frames, py::arg("clock_mhz") = c.clock.mhz,
+      py::arg("clock_source") = c.clock.source, py::arg("clock_estimate") = c.clock.estimate,
+      py::arg("device_frame_rate_hz") = t.cycles ? py::object(py::float_(s.device_rate())) : py::object(py::none()),
+      py::arg("state_hash") = std::string(hash));
   return r;
 }
 
 }  // namespace
 
-RunConfig run_options(const py::object& scene, const py::object& frames, const py::object& objects,
-                      std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
-                      std::optional<double> density, std::optional<double> speed, const py::object& seed,
-                      std::optional<std::string> pruning, std::optional<std::string> backend,
-                      std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
-                      std::optional<double> clock, std::optional<std::string> config, unsigned threads,
-                      bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
-                      std::optional<double> margin, std::optional<bool> ccd, const py::object& record,
-                      std::optional<std::string>& text) {
+RunConfig run_options(const RunArgs& a, const py::object& record, std::optional<std::string>& text) {
   RunConfig o;
   SceneTypeSpec& t = o.types[0];
   // Notes a keyword given: the setting's field and the keyword that names it in messages.
   auto give = [&](const char* field, const char* keyword) { o.given[field] = SettingSource{"", keyword}; };
-  if (!scene.is_none()) scene_arg(scene, o.where, text);
-  if (const auto f = count_arg(frames, "frames")) o.frames = *f, give("frames", "frames");
-  if (const auto n = count_arg(objects, "objects")) t.count = *n, give("types[0].count", "objects");
-  if (shape) t.shape = *shape, give("types[0].shape", "shape");
-  if (voxel) t.voxel = *voxel, give("types[0].voxel", "voxel");
-  if (const auto r = count_arg(resolution, "resolution")) {
+  if (!a.scene.is_none()) scene_arg(a.scene, o.where, text);
+  if (const auto f = count_arg(a.frames, "frames")) o.frames = *f, give("frames", "frames");
+  if (const auto n = count_arg(a.objects, "objects")) t.count = *n, give("types[0].count", "objects");
+  if (a.shape) t.shape = *a.shape, give("types[0].shape", "shape");
+  if (a.voxel) t.voxel = *a.voxel, give("types[0].voxel", "voxel");
+  if (const auto r = count_arg(a.resolution, "resolution")) {
     if (*r > UINT32_MAX) value_error("resolution: " + outside(*r, kMinVoxelsAcross, kMaxVoxelsAcross));
     t.resolution = uint32_t(*r), give("types[0].resolution", "resolution");
   }
-  if (density) o.density = *density, give("density", "density");
-  if (speed) o.speed = *speed, give("speed", "speed");
-  if (const auto sd = count_arg(seed, "seed")) o.seed = *sd, give("seed", "seed");
-  if (pruning) o.broadphase = *pruning, give("broadphase", "pruning");
-  if (backend) o.backend = *backend, give("backend", "backend");
-  if (lanes) o.lanes = *lanes, give("lanes", "lanes");
-  if (mode) o.mode = mode_option(*mode), give("mode", "mode");
-  if (both) o.both_directions = *both, give("both_directions", "both");
-  if (clock) o.clock = clock_arg(*clock), give("clock", "clock");
-  if (distance_bits) o.distance_bits = *distance_bits, give("distance_bits", "distance_bits");
-  if (band) o.band = *band, give("band", "band");
-  if (margin) o.margin = *margin, give("margin", "margin");
-  if (ccd) o.ccd = *ccd, give("ccd", "ccd");
-  if (config) o.device = parse_config_pairs(*config, "config"), give("device", "config");
-  o.threads = threads;
-  o.midphase = midphase;
-  o.cull = cull;
+  if (a.density) o.density = *a.density, give("density", "density");
+  if (a.speed) o.speed = *a.speed, give("speed", "speed");
+  if (const auto sd = count_arg(a.seed, "seed")) o.seed = *sd, give("seed", "seed");
+  if (a.pruning) o.broadphase = *a.pruning, give("broadphase", "pruning");
+  if (a.backend) o.backend = *a.backend, give("backend", "backend");
+  if (a.lanes) o.lanes = *a.lanes, give("lanes", "lanes");
+  if (a.mode) o.mode = mode_option(*a.mode), give("mode", "mode");
+  if (a.both) o.both_directions = *a.both, give("both_directions", "both");
+  if (a.clock) o.clock = clock_arg(*a.clock), give("clock", "clock");
+  if (a.distance_bits) o.distance_bits = *a.distance_bits, give("distance_bits", "distance_bits");
+  if (a.band) o.band = *a.band, give("band", "band");
+  if (a.margin) o.margin = *a.margin, give("margin", "margin");
+  if (a.ccd) o.ccd = *a.ccd, give("ccd", "ccd");
+  if (a.config) o.device = parse_config_pairs(*a.config, "config"), give("device", "config");
+  o.threads = a.threads;
+  o.midphase = a.midphase;
+  o.cull = a.cull;
   if (!record.is_none()) o.record = path_arg(record, "record");
   return o;
 }
 
 namespace {
 
-py::dict simulate_scene(const py::object& scene, const py::object& frames, const py::object& objects,
-                        std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
-                        std::optional<double> density, std::optional<double> speed, const py::object& seed,
-                        std::optional<std::string> pruning, std::optional<std::string> backend,
-                        std::optional<int> lanes, std::optional<std::string> mode, std::optional<bool> both,
-                        std::optional<double> clock, std::optional<std::string> config, unsigned threads,
-                        bool midphase, bool cull, std::optional<int> distance_bits, std::optional<double> band,
-                        std::optional<double> margin, std::optional<bool> ccd, const py::object& record) {
+// simulate(): the run the arguments ask for, its summary as a dict.
+py::dict simulate_scene(const RunArgs& a, const py::object& record) {
   std::optional<std::string> text;
-  const RunConfig options = run_options(scene, frames, objects, std::move(shape), voxel, resolution, density, speed,
-                                        seed, std::move(pruning), std::move(backend), lanes, std::move(mode), both,
-                                        clock, std::move(config), threads, midphase, cull, distance_bits, band,
-                                        margin, ccd, record, text);
+  const RunConfig options = run_options(a, record, text);
   return with_file(text ? "" : options.where, [&] {
     SimulationSummary s;
     {
@@ -263,8 +228,9 @@ device_frame_rate_hz is None when no frame needed device cycles. record (a path)
 (docs/view.md; read_recording reads it, `voxcd view` replays it).)";
 
 void bind_scenes(py::module_& m) {
-  std::apply([&](auto... args) { m.def("simulate", &simulate_scene, args..., kSimulateDoc); },
-             std::tuple_cat(run_args(), std::make_tuple(py::arg("record") = py::none())));
+  std::apply(
+      [&](auto... args) { m.def("simulate", run_function<const py::object&>(&simulate_scene), args..., kSimulateDoc); },
+      std::tuple_cat(run_args(), std::make_tuple(py::arg("record") = py::none())));
   m.def("size", &size_scene, py::arg("scene"), py::kw_only(), py::arg("accuracy") = py::none(),
         py::arg("contact_accuracy") = py::none(),
         py::arg("rate") = py::none(), py::arg("clock") = py::none(), py::arg("frames") = py::none(),
