@@ -90,18 +90,12 @@ struct ModelOf final : RtlModel {
     m.job_nx_i(p.job_nx_i);
     m.job_ny_i(p.job_ny_i);
     m.job_nz_i(p.job_nz_i);
-    m.job_m00_i(p.job_m_i[0]);
-    m.job_m01_i(p.job_m_i[1]);
-    m.job_m02_i(p.job_m_i[2]);
-    m.job_m10_i(p.job_m_i[3]);
-    m.job_m11_i(p.job_m_i[4]);
-    m.job_m12_i(p.job_m_i[5]);
-    m.job_m20_i(p.job_m_i[6]);
-    m.job_m21_i(p.job_m_i[7]);
-    m.job_m22_i(p.job_m_i[8]);
-    m.job_t0_i(p.job_t_i[0]);
-    m.job_t1_i(p.job_t_i[1]);
-    m.job_t2_i(p.job_t_i[2]);
+    // The matrix's entries (row by row) and the translation's, one port each, bound to the pin arrays in order.
+    sc_in<uint32_t>* const m_ports[9] = {&m.job_m00_i, &m.job_m01_i, &m.job_m02_i, &m.job_m10_i, &m.job_m11_i,
+                              &m.job_m12_i, &m.job_m20_i, &m.job_m21_i, &m.job_m22_i};
+    sc_in<uint64_t>* const t_ports[3] = {&m.job_t0_i, &m.job_t1_i, &m.job_t2_i};
+    for (int i = 0; i < 9; ++i) (*m_ports[i])(p.job_m_i[i]);
+    for (int i = 0; i < 3; ++i) (*t_ports[i])(p.job_t_i[i]);
     bind_iw(m.job_threshold_i, p.job_threshold32_i, p.job_threshold64_i);
     m.hit_valid_o(p.hit_valid_o);
     m.hit_ready_i(p.hit_ready_i);
@@ -141,16 +135,10 @@ int64_t sign_extend(uint64_t v, int width) {
 
 RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock_period, sc_time access_latency,
                      const std::string& trace_path)
-    : DeviceTarget(name, cfg, clock_period, access_latency),
+    : ClockedTarget(name, cfg, clock_period, access_latency),
       trace_path_(trace_path),
-      ctx_(std::make_unique<VerilatedContext>()),
-      // Rising edges at T, 2T, ...: the first one resets the device.
-      clk_("clk", clock_period, 0.5, clock_period, true),
       pins_(std::make_unique<RtlPins>()) {
-  ctx_->fatalOnError(false);  // a failed assertion faults the target instead of ending the process
   if (!trace_path_.empty()) ctx_->traceEverOn(true);
-  // A SystemC model takes the calling thread's context: make it this target's own.
-  Verilated::threadContextp(ctx_.get());
   const std::string mname = std::string(basename()) + "_rtl";
 #define VOXCD_SYSC_MODEL_ENTRY(model, pairs)                                    \
   if (!model_ && cfg == parse_config_pairs(pairs, "SystemC model " #model))      \
@@ -165,9 +153,7 @@ RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock
                                 "the distance, shared-bank and deeper-pipeline devices listed here (" +
                                 built + "), not for " + cfg.to_string());
   }
-  SC_METHOD(on_edge);
-  sensitive << clk_.posedge_event();
-  dont_initialize();
+  start_clocked_method();
 }
 
 RtlTarget::~RtlTarget() {
@@ -182,51 +168,6 @@ void RtlTarget::start_of_simulation() {
   trace_ = std::make_unique<VerilatedFstSc>();
   model_->trace(trace_.get());
   trace_->open(trace_path_.c_str());
-}
-
-sc_time RtlTarget::start(sc_time& delay) {
-  // The pins live in the kernel's time: catch up with the initiator's local time first.
-  wait(delay);
-  delay = SC_ZERO_TIME;
-  return sc_time_stamp();
-}
-
-sc_time RtlTarget::write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_time t) {
-  MemRequest req;
-  req.time = t;
-  req.shell = true;
-  req.first = first;
-  req.shell_words = words;
-  return write_memory(req);
-}
-
-sc_time RtlTarget::write_map(uint64_t first, const std::vector<uint64_t>& words, sc_time t) {
-  MemRequest req;
-  req.time = t;
-  req.shell = false;
-  req.first = first;
-  req.map_words = words;
-  return write_memory(req);
-}
-
-sc_time RtlTarget::write_memory(MemRequest& req) {
-  mem_ = &req;
-  while (!req.done && !fault_) wait(mem_event_);
-  mem_ = nullptr;
-  return sc_time_stamp();
-}
-
-void RtlTarget::launch(std::vector<Job>& jobs, sc_time t) { batches_.push_back({t, std::move(jobs)}); }
-
-void RtlTarget::advance_to(sc_time t) {
-  // Records taken at an edge at or before t are readable at t, whether or not the clocked method has run yet.
-  while (edge_ < edge_at_or_before(t) && !fault_) wait(edge_event_);
-}
-
-sc_time RtlTarget::await_results(size_t n, sc_time t) {
-  advance_to(t);
-  while (readable() < n && busy() && !fault_) wait(results_event_);
-  return sc_time_stamp();
 }
 
 void RtlTarget::drive_job(const Job& j) {
@@ -267,68 +208,53 @@ void RtlTarget::drive_word(const MemRequest& req) {
   }
 }
 
-// At every rising edge: first what happened at this edge (the outputs read now are the values the edge sampled),
-// then the inputs for the next edge.
-void RtlTarget::on_edge() {
+// The records the device emitted at this edge: a hit, or a completion that ends its job.
+void RtlTarget::take_records() {
   RtlPins& p = *pins_;
-  ++edge_;
-  if (edge_ == 1) {
-    p.rst_ni.write(true);  // this edge reset the device; its outputs before it mean nothing
-  } else {
-    if (job_valid_ && p.job_ready_o.read()) ++fed_;
-    if (p.hit_valid_o.read()) {
-      const int iw = cfg_.IW();
-      const uint64_t dist = iw > 32 ? p.hit_dist64_o.read() : p.hit_dist32_o.read();
-      partial_.push_back(Record::hit(p.hit_tag_o.read(), p.hit_point_o.read(), p.hit_x_o.read(), p.hit_y_o.read(),
-                                     p.hit_z_o.read(), uint8_t(p.hit_state_o.read()), sign_extend(dist, iw)));
-    }
-    if (p.done_valid_o.read()) {
-      Record d = Record::done(p.done_tag_o.read(), p.done_hits_o.read(), p.done_cycles_o.read());
-      d.points = p.done_points_o.read();
-      d.stalls = p.done_stalls_o.read();
-      partial_.push_back(d);
-      // The conflict cycles since the previous completion (the counter wraps at 2^32 as the register does).
-      const uint64_t conflicts = p.conflicts_o.read();
-      publish(partial_, uint32_t(conflicts - conflicts_seen_));
-      conflicts_seen_ = conflicts;
-      partial_.clear();
-      results_event_.notify(SC_ZERO_TIME);
-      if (++completed_ == batches_.front().jobs.size()) {
-        batches_.pop_front();
-        running_ = false;
-      }
-    }
-    if (mem_ && mem_->started && ++mem_->written == mem_->size()) {
-      mem_->done = true;
-      mem_event_.notify(SC_ZERO_TIME);
-      mem_ = nullptr;
-    }
+  if (p.hit_valid_o.read()) {
+    const int iw = cfg_.IW();
+    const uint64_t dist = iw > 32 ? p.hit_dist64_o.read() : p.hit_dist32_o.read();
+    partial_.push_back(Record::hit(p.hit_tag_o.read(), p.hit_point_o.read(), p.hit_x_o.read(), p.hit_y_o.read(),
+                                   p.hit_z_o.read(), uint8_t(p.hit_state_o.read()), sign_extend(dist, iw)));
   }
+  if (p.done_valid_o.read()) {
+    Record d = Record::done(p.done_tag_o.read(), p.done_hits_o.read(), p.done_cycles_o.read());
+    d.points = p.done_points_o.read();
+    d.stalls = p.done_stalls_o.read();
+    partial_.push_back(d);
+    // The conflict cycles since the previous completion (the counter wraps at 2^32 as the register does).
+    const uint64_t conflicts = p.conflicts_o.read();
+    job_done(uint32_t(conflicts - conflicts_seen_));
+    conflicts_seen_ = conflicts;
+  }
+}
 
-  // Memory writes wait until every launched batch is done and the device is idle (unless start_writes_while_busy).
-  if (mem_ && !mem_->started && mem_->time < sc_time_stamp() &&
-      ((!busy() && !p.busy_o.read()) || !writes_wait_for_idle_))
-    mem_->started = true;
+// The inputs for the next edge: a memory word (once every launched batch is done and the device is idle, unless
+// start_writes_while_busy), else the running batch's next job.
+void RtlTarget::drive_inputs() {
+  RtlPins& p = *pins_;
+  start_memory_write((!busy() && !p.busy_o.read()) || !writes_wait_for_idle_);
   const bool writing = mem_ && mem_->started;
   if (writing) drive_word(*mem_);
   p.shell_we_i.write(writing && mem_->shell);
   p.map_we_i.write(writing && !mem_->shell);
-
-  if (!running_ && !writing && !batches_.empty() && batches_.front().time < sc_time_stamp()) {
-    running_ = true;
-    fed_ = 0;
-    completed_ = 0;
-  }
+  start_batch(writing);
   job_valid_ = running_ && fed_ < batches_.front().jobs.size();
   if (job_valid_) drive_job(batches_.front().jobs[fed_]);
   p.job_valid_i.write(job_valid_);
+}
 
-  if (ctx_->gotError()) {
-    fault_ = true;
-    results_event_.notify(SC_ZERO_TIME);
-    mem_event_.notify(SC_ZERO_TIME);
+void RtlTarget::on_edge() {
+  RtlPins& p = *pins_;
+  if (first_edge()) {
+    p.rst_ni.write(true);  // this edge reset the device; its outputs before it mean nothing
+  } else {
+    if (job_valid_ && p.job_ready_o.read()) ++fed_;
+    take_records();
+    if (mem_ && mem_->started) word_written();
   }
-  edge_event_.notify(SC_ZERO_TIME);
+  drive_inputs();
+  end_edge();
 }
 
 }  // namespace voxcd::sysc
