@@ -536,7 +536,9 @@ module voxcd_axi #(
     mhas_d      = mhas_q;
     mk_d        = mk_q;
     mlo_d       = mlo_q;
-    if (a < RegSize) begin
+    if (AlignW'(a) != '0 || wstrb_q != '1) begin
+      bresp_d = RespSlverr;  // an unaligned address or a partial WSTRB: the write changes nothing
+    end else if (a < RegSize) begin
       if ({a[11:3], 3'b000} == RegRun) run_d = 1'b1;
       else bresp_d = {a[11:3], 3'b000} <= RegConflicts ? RespSlverr : RespDecerr;  // read-only, or no register
     end else if (in_window(a, ShellBase, ShellBytes)) begin
@@ -592,19 +594,6 @@ module voxcd_axi #(
       end
     end else begin
       bresp_d = RespDecerr;
-    end
-    if (AlignW'(a) != '0 || wstrb_q != '1) begin
-      bresp_d  = RespSlverr;
-      shell_we = 1'b0;
-      map_we   = 1'b0;
-      run_d    = 1'b0;
-      shas_d   = shas_q;
-      sk_d     = sk_q;
-      sx_d     = sx_q;
-      sy_d     = sy_q;
-      mhas_d   = mhas_q;
-      mk_d     = mk_q;
-      mlo_d    = mlo_q;
     end
     if (!do_write) begin
       shell_we = 1'b0;
