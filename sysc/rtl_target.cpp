@@ -22,33 +22,34 @@ std::vector<DeviceConfig> rtl_target_configs() {
   return out;
 }
 
-// One signal per pin, typed as Verilator types the ports of the default-width device. The threshold and distance
-// are IW = SB + 3*WB bits: a uint32_t pin up to 32 bits, a uint64_t one above; a model binds the one of its type.
+// The pins with a signal of their own, named as the model's ports and typed as Verilator types the ports of the
+// default-width device: X(type, name), stream by stream (write ports, job, hit, completion, status).
+#define VOXCD_RTL_PINS(X)                                                                                          \
+  X(bool, shell_we_i) X(uint32_t, shell_waddr_i) X(sc_dt::sc_bv<72>, shell_wdata_i)                               \
+  X(bool, map_we_i) X(uint32_t, map_waddr_i) X(uint64_t, map_wdata_i)                                             \
+  X(bool, job_valid_i) X(bool, job_ready_o) X(uint32_t, job_tag_i) X(uint32_t, job_mode_i) X(uint32_t, job_mask_i) \
+  X(uint32_t, job_shell_base_i) X(uint32_t, job_shell_count_i) X(uint32_t, job_map_base_i)                        \
+  X(uint32_t, job_nx_i) X(uint32_t, job_ny_i) X(uint32_t, job_nz_i)                                               \
+  X(bool, hit_valid_o) X(uint32_t, hit_tag_o) X(uint32_t, hit_point_o) X(uint32_t, hit_x_o) X(uint32_t, hit_y_o)  \
+  X(uint32_t, hit_z_o) X(uint32_t, hit_state_o)                                                                    \
+  X(bool, done_valid_o) X(uint32_t, done_tag_o) X(uint32_t, done_hits_o) X(uint32_t, done_cycles_o)              \
+  X(uint32_t, done_points_o) X(uint32_t, done_stalls_o)                                                           \
+  X(bool, busy_o) X(uint32_t, conflicts_o)
+
+// One signal per pin: those of VOXCD_RTL_PINS, then the ones bound apart: the reset, the consumer's two ready inputs
+// (always high), the matrix and translation entries, and the threshold and distance, which are IW = SB + 3*WB bits:
+// a uint32_t pin up to 32 bits, a uint64_t one above; a model binds the one of its type. conflicts_o counts the bank
+// conflict cycles since reset (0 with a copy per lane).
 struct RtlPins {
+#define VOXCD_RTL_PIN_SIGNAL(type, name) sc_signal<type> name{#name};
+  VOXCD_RTL_PINS(VOXCD_RTL_PIN_SIGNAL)
+#undef VOXCD_RTL_PIN_SIGNAL
   sc_signal<bool> rst_ni{"rst_ni", false};
-  sc_signal<bool> shell_we_i{"shell_we_i"}, map_we_i{"map_we_i"};
-  sc_signal<uint32_t> shell_waddr_i{"shell_waddr_i"}, map_waddr_i{"map_waddr_i"};
-  sc_signal<sc_dt::sc_bv<72>> shell_wdata_i{"shell_wdata_i"};
-  sc_signal<uint64_t> map_wdata_i{"map_wdata_i"};
-  sc_signal<bool> job_valid_i{"job_valid_i"}, job_ready_o{"job_ready_o"};
-  sc_signal<uint32_t> job_tag_i{"job_tag_i"}, job_mode_i{"job_mode_i"}, job_mask_i{"job_mask_i"};
-  sc_signal<uint32_t> job_shell_base_i{"job_shell_base_i"}, job_shell_count_i{"job_shell_count_i"};
-  sc_signal<uint32_t> job_map_base_i{"job_map_base_i"};
-  sc_signal<uint32_t> job_nx_i{"job_nx_i"}, job_ny_i{"job_ny_i"}, job_nz_i{"job_nz_i"};
+  sc_signal<bool> hit_ready_i{"hit_ready_i", true}, done_ready_i{"done_ready_i", true};
   sc_signal<uint32_t> job_m_i[9];
   sc_signal<uint64_t> job_t_i[3];
-  sc_signal<uint32_t> job_threshold32_i{"job_threshold32_i"};
-  sc_signal<uint64_t> job_threshold64_i{"job_threshold64_i"};
-  sc_signal<bool> hit_valid_o{"hit_valid_o"}, hit_ready_i{"hit_ready_i", true};
-  sc_signal<uint32_t> hit_tag_o{"hit_tag_o"}, hit_point_o{"hit_point_o"}, hit_x_o{"hit_x_o"}, hit_y_o{"hit_y_o"},
-      hit_z_o{"hit_z_o"}, hit_state_o{"hit_state_o"};
-  sc_signal<uint32_t> hit_dist32_o{"hit_dist32_o"};
-  sc_signal<uint64_t> hit_dist64_o{"hit_dist64_o"};
-  sc_signal<bool> done_valid_o{"done_valid_o"}, done_ready_i{"done_ready_i", true};
-  sc_signal<uint32_t> done_tag_o{"done_tag_o"}, done_hits_o{"done_hits_o"}, done_cycles_o{"done_cycles_o"},
-      done_points_o{"done_points_o"}, done_stalls_o{"done_stalls_o"};
-  sc_signal<bool> busy_o{"busy_o"};
-  sc_signal<uint32_t> conflicts_o{"conflicts_o"};  // bank conflict cycles since reset (0 with a copy per lane)
+  sc_signal<uint32_t> job_threshold32_i{"job_threshold32_i"}, hit_dist32_o{"hit_dist32_o"};
+  sc_signal<uint64_t> job_threshold64_i{"job_threshold64_i"}, hit_dist64_o{"hit_dist64_o"};
 };
 
 struct RtlModel {
@@ -73,48 +74,19 @@ struct ModelOf final : RtlModel {
   ModelOf(const char* name, sc_clock& clk, RtlPins& p) : m(name) {
     m.clk_i(clk);
     m.rst_ni(p.rst_ni);
-    m.shell_we_i(p.shell_we_i);
-    m.shell_waddr_i(p.shell_waddr_i);
-    m.shell_wdata_i(p.shell_wdata_i);
-    m.map_we_i(p.map_we_i);
-    m.map_waddr_i(p.map_waddr_i);
-    m.map_wdata_i(p.map_wdata_i);
-    m.job_valid_i(p.job_valid_i);
-    m.job_ready_o(p.job_ready_o);
-    m.job_tag_i(p.job_tag_i);
-    m.job_mode_i(p.job_mode_i);
-    m.job_mask_i(p.job_mask_i);
-    m.job_shell_base_i(p.job_shell_base_i);
-    m.job_shell_count_i(p.job_shell_count_i);
-    m.job_map_base_i(p.job_map_base_i);
-    m.job_nx_i(p.job_nx_i);
-    m.job_ny_i(p.job_ny_i);
-    m.job_nz_i(p.job_nz_i);
+    m.hit_ready_i(p.hit_ready_i);
+    m.done_ready_i(p.done_ready_i);
+#define VOXCD_RTL_PIN_BIND(type, name) m.name(p.name);
+    VOXCD_RTL_PINS(VOXCD_RTL_PIN_BIND)
+#undef VOXCD_RTL_PIN_BIND
     // The matrix's entries (row by row) and the translation's, one port each, bound to the pin arrays in order.
     sc_in<uint32_t>* const m_ports[9] = {&m.job_m00_i, &m.job_m01_i, &m.job_m02_i, &m.job_m10_i, &m.job_m11_i,
-                              &m.job_m12_i, &m.job_m20_i, &m.job_m21_i, &m.job_m22_i};
+                                         &m.job_m12_i, &m.job_m20_i, &m.job_m21_i, &m.job_m22_i};
     sc_in<uint64_t>* const t_ports[3] = {&m.job_t0_i, &m.job_t1_i, &m.job_t2_i};
     for (int i = 0; i < 9; ++i) (*m_ports[i])(p.job_m_i[i]);
     for (int i = 0; i < 3; ++i) (*t_ports[i])(p.job_t_i[i]);
     bind_iw(m.job_threshold_i, p.job_threshold32_i, p.job_threshold64_i);
-    m.hit_valid_o(p.hit_valid_o);
-    m.hit_ready_i(p.hit_ready_i);
-    m.hit_tag_o(p.hit_tag_o);
-    m.hit_point_o(p.hit_point_o);
-    m.hit_x_o(p.hit_x_o);
-    m.hit_y_o(p.hit_y_o);
-    m.hit_z_o(p.hit_z_o);
-    m.hit_state_o(p.hit_state_o);
     bind_iw(m.hit_dist_o, p.hit_dist32_o, p.hit_dist64_o);
-    m.done_valid_o(p.done_valid_o);
-    m.done_ready_i(p.done_ready_i);
-    m.done_tag_o(p.done_tag_o);
-    m.done_hits_o(p.done_hits_o);
-    m.done_cycles_o(p.done_cycles_o);
-    m.done_points_o(p.done_points_o);
-    m.done_stalls_o(p.done_stalls_o);
-    m.busy_o(p.busy_o);
-    m.conflicts_o(p.conflicts_o);
   }
   void final() override { m.final(); }
   void trace(VerilatedFstC* tfp) override { m.trace(tfp, 99); }
