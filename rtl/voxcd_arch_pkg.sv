@@ -2,9 +2,10 @@
 //
 // Every width is also a module parameter of the same name (voxcd_device, voxcd_axi), defaulting to the value
 // here, so one RTL source builds any configuration; the parameter lists are written once, as the macros after the
-// package, which every top, wrapper and lane declares and passes on. The file's name sorts before every module's, so a tool that
-// reads rtl/*.sv in name order declares the package before its first use (rtl.lint_glob). The names and defaults are those of the C++ DeviceConfig
-// (ref/config.h); tests/rtl/test_pkg.cpp parses this file and fails when the two disagree.
+// package, which every top, wrapper and lane declares and passes on. The file's name sorts before every module's,
+// so a tool that reads rtl/*.sv in name order declares the package before its first use (rtl.lint_glob). The names
+// and defaults are those of the C++ DeviceConfig (ref/config.h); tests/rtl/test_pkg.cpp parses this file and fails
+// when the two disagree.
 package voxcd_arch_pkg;
 
   // ---- Widths (DeviceConfig) ----
