@@ -71,7 +71,10 @@ if ((missing)); then exit 1; fi
 
 # ---- The depths the RTL offers ----
 has_depth=0
-if grep -Eq '^\s*parameter\s+int\s+unsigned\s+Depth\b' "$root/rtl/voxcd_device.sv"; then has_depth=1; fi
+# voxcd_device's parameter list: in its file, or (since it is written once) in voxcd_arch_pkg.sv's macros.
+if grep -Eq '^\s*parameter\s+int\s+unsigned\s+Depth\b' "$root/rtl/voxcd_device.sv" "$root/rtl/voxcd_arch_pkg.sv"; then
+  has_depth=1
+fi
 if [ -z "$depth_list" ]; then
   if ((has_depth)); then
     # The deepest: the package's localparam whose name says Max and Depth (voxcd_arch_pkg.sv).

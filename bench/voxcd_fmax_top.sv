@@ -9,20 +9,7 @@
 //
 // Depth is the register stages voxcd_device adds to its lanes (docs/hardware.md, "Pipeline depth").
 module voxcd_fmax_top #(
-  parameter int unsigned PW    = voxcd_arch_pkg::PW,
-  parameter int unsigned PF    = voxcd_arch_pkg::PF,
-  parameter int unsigned MW    = voxcd_arch_pkg::MW,
-  parameter int unsigned MF    = voxcd_arch_pkg::MF,
-  parameter int unsigned TW    = voxcd_arch_pkg::TW,
-  parameter int unsigned DW    = voxcd_arch_pkg::DW,
-  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW,
-  parameter int unsigned LANES = voxcd_arch_pkg::LANES,
-  parameter int unsigned SAW   = voxcd_arch_pkg::SAW,
-  parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
-  parameter int unsigned SB    = voxcd_arch_pkg::SB,
-  parameter int unsigned WB    = voxcd_arch_pkg::WB,
-  parameter int unsigned Depth = voxcd_arch_pkg::Depth
+  `VOXCD_DEVICE_PARAMS  // voxcd_device's (voxcd_arch_pkg.sv)
 ) (
   input  logic clk_i,
   input  logic rst_ni,
@@ -104,8 +91,7 @@ module voxcd_fmax_top #(
   logic [CW-1:0]   conflicts;
 
   voxcd_device #(
-    .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB), .Depth(Depth)
+    `VOXCD_DEVICE_PARAM_MAP
   ) u_device (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),

@@ -219,44 +219,50 @@ class Parser {
     f.has_depth = seen["DEPTH"];
   }
 
-  void parse_shell(VectorFile& f) {
+  // Reads a memory section: its count line (at most 2^addr_bits words), then one line a word of `fields` fields
+  // (`layout` names them in the error), each made a word by read() and appended to `words`.
+  template <class Word, class Read>
+  void memory_section(const char* section, int addr_bits, const char* param, size_t fields, const char* layout,
+                      std::vector<Word>& words, Read read) {
     const int start = line_;
-    const uint64_t n = count("shell", f.config.SAW, "SAW");
-    f.memory.shell.reserve(n);
+    const uint64_t n = count(section, addr_bits, param);
+    words.reserve(n);
     for (uint64_t k = 0; k < n; ++k) {
-      section_line("shell", k, n, start);
-      if (tok_.size() != 3)
-        fail("shell word " + std::to_string(k) + " needs 3 fields 'x y z', found " + std::to_string(tok_.size()) +
-             " (the shell section at line " + std::to_string(start) + " declares " + std::to_string(n) + ")");
-      ShellWord w;
-      w.x = signed_field(0, "shell x", f.config.PW, "PW");
-      w.y = signed_field(1, "shell y", f.config.PW, "PW");
-      w.z = signed_field(2, "shell z", f.config.PW, "PW");
-      f.memory.shell.push_back(w);
+      section_line(section, k, n, start);
+      if (tok_.size() != fields)
+        fail(std::string(section) + " word " + std::to_string(k) + " needs " + layout + ", found " +
+             std::to_string(tok_.size()) + " (the " + section + " section at line " + std::to_string(start) +
+             " declares " + std::to_string(n) + ")");
+      words.push_back(read());
     }
   }
 
+  void parse_shell(VectorFile& f) {
+    const int pw = f.config.PW;
+    memory_section("shell", f.config.SAW, "SAW", 3, "3 fields 'x y z'", f.memory.shell, [&] {
+      ShellWord w;
+      w.x = signed_field(0, "shell x", pw, "PW");
+      w.y = signed_field(1, "shell y", pw, "PW");
+      w.z = signed_field(2, "shell z", pw, "PW");
+      return w;
+    });
+  }
+
   void parse_map(VectorFile& f) {
-    const int start = line_;
-    const uint64_t n = count("map", f.config.MAW, "MAW");
-    const size_t digits = size_t(f.config.MEMW + 3) / 4;
-    f.memory.map.reserve(n);
-    for (uint64_t k = 0; k < n; ++k) {
-      section_line("map", k, n, start);
-      if (tok_.size() != 1)
-        fail("map word " + std::to_string(k) + " needs one hex field, found " + std::to_string(tok_.size()) +
-             " (the map section at line " + std::to_string(start) + " declares " + std::to_string(n) + ")");
+    const int memw = f.config.MEMW;
+    const size_t digits = size_t(memw + 3) / 4;
+    memory_section("map", f.config.MAW, "MAW", 1, "one hex field", f.memory.map, [&] {
       const std::string_view s = tok_[0];
       uint64_t v = 0;
       auto r = std::from_chars(s.data(), s.data() + s.size(), v, 16);
       if (r.ec == std::errc::result_out_of_range && r.ptr == s.data() + s.size())
-        fail("map word '" + std::string(s) + "' is wider than MEMW = " + std::to_string(f.config.MEMW) + " bits");
+        fail("map word '" + std::string(s) + "' is wider than MEMW = " + std::to_string(memw) + " bits");
       if (r.ec != std::errc() || r.ptr != s.data() + s.size())
         fail("map word '" + std::string(s) + "' is not a hex number");
-      if (s.size() > digits || !fits_unsigned(v, f.config.MEMW))
-        fail("map word '" + std::string(s) + "' is wider than MEMW = " + std::to_string(f.config.MEMW) + " bits");
-      f.memory.map.push_back(v);
-    }
+      if (s.size() > digits || !fits_unsigned(v, memw))
+        fail("map word '" + std::string(s) + "' is wider than MEMW = " + std::to_string(memw) + " bits");
+      return v;
+    });
   }
 
   void parse_job(VectorFile& f) {

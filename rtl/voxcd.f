@@ -10,6 +10,7 @@ voxcd_assert.sv
 voxcd_ram.sv
 voxcd_fifo.sv
 voxcd_skid.sv
+voxcd_stage.sv
 voxcd_lane.sv
 voxcd_device.sv
 voxcd_axi.sv

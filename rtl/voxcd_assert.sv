@@ -1,5 +1,7 @@
-// voxcd_assert.sv: named assertions for every module of rtl/ (after lowRISC's prim_assert.sv).
+// voxcd_assert.sv: named assertions for every module of rtl/ (after lowRISC's prim_assert.sv), and the register
+// with asynchronous reset they all use (after common_cells' registers.svh).
 //
+//   `VOXCD_FF(q, d, reset)          q takes d at every rising edge of clk_i, and reset while rst_ni is low
 //   `VOXCD_ASSERT(Name, prop)       prop holds at every rising edge of clk_i while rst_ni is high
 //   `VOXCD_ASSERT_INIT(Name, prop)  prop holds at elaboration (parameter sanity)
 //
@@ -29,3 +31,9 @@
       $error("elaboration check %s failed", `"__name`"); \
     end
 `endif
+
+`define VOXCD_FF(__q, __d, __reset) \
+  always_ff @(posedge clk_i or negedge rst_ni) begin \
+    if (!rst_ni) __q <= (__reset); \
+    else         __q <= (__d); \
+  end

@@ -34,21 +34,7 @@
 // than the beats.
 
 module voxcd_axi #(
-  parameter int unsigned PW      = voxcd_arch_pkg::PW,
-  parameter int unsigned PF      = voxcd_arch_pkg::PF,
-  parameter int unsigned MW      = voxcd_arch_pkg::MW,
-  parameter int unsigned MF      = voxcd_arch_pkg::MF,
-  parameter int unsigned TW      = voxcd_arch_pkg::TW,
-  parameter int unsigned DW      = voxcd_arch_pkg::DW,
-  parameter int unsigned MEMW    = voxcd_arch_pkg::MEMW,
-  parameter int unsigned LANES   = voxcd_arch_pkg::LANES,
-  parameter int unsigned SAW     = voxcd_arch_pkg::SAW,
-  parameter int unsigned MAW     = voxcd_arch_pkg::MAW,
-  parameter int unsigned TAGW    = voxcd_arch_pkg::TAGW,
-  parameter int unsigned SB      = voxcd_arch_pkg::SB,
-  parameter int unsigned WB      = voxcd_arch_pkg::WB,
-  parameter int unsigned BANKS   = voxcd_arch_pkg::BANKS,
-  parameter int unsigned Depth   = voxcd_arch_pkg::Depth,
+  `VOXCD_DEVICE_PARAMS,
   parameter int unsigned AxilDw  = 32,     // AXI4-Lite data bits: 32 or 64
   parameter int unsigned JobDw   = 64,     // job stream TDATA bits: a power of two, 8 .. 1024
   parameter int unsigned RecDw   = 64,     // record stream TDATA bits: a power of two, 8 .. 256
@@ -259,8 +245,7 @@ module voxcd_axi #(
   end
 
   voxcd_device #(
-    .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB), .BANKS(BANKS), .Depth(Depth)
+    `VOXCD_DEVICE_PARAM_MAP
   ) u_device (
     .clk_i            (clk_i),
     .rst_ni           (rst_ni),
@@ -551,7 +536,9 @@ module voxcd_axi #(
     mhas_d      = mhas_q;
     mk_d        = mk_q;
     mlo_d       = mlo_q;
-    if (a < RegSize) begin
+    if (AlignW'(a) != '0 || wstrb_q != '1) begin
+      bresp_d = RespSlverr;  // an unaligned address or a partial WSTRB: the write changes nothing
+    end else if (a < RegSize) begin
       if ({a[11:3], 3'b000} == RegRun) run_d = 1'b1;
       else bresp_d = {a[11:3], 3'b000} <= RegConflicts ? RespSlverr : RespDecerr;  // read-only, or no register
     end else if (in_window(a, ShellBase, ShellBytes)) begin
@@ -607,19 +594,6 @@ module voxcd_axi #(
       end
     end else begin
       bresp_d = RespDecerr;
-    end
-    if (AlignW'(a) != '0 || wstrb_q != '1) begin
-      bresp_d  = RespSlverr;
-      shell_we = 1'b0;
-      map_we   = 1'b0;
-      run_d    = 1'b0;
-      shas_d   = shas_q;
-      sk_d     = sk_q;
-      sx_d     = sx_q;
-      sy_d     = sy_q;
-      mhas_d   = mhas_q;
-      mk_d     = mk_q;
-      mlo_d    = mlo_q;
     end
     if (!do_write) begin
       shell_we = 1'b0;

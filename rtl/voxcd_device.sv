@@ -39,21 +39,7 @@
 // and SystemC ports are plain integers. The code keeps to the subset of SystemVerilog that Verilator and yosys
 // both read (one-dimensional packed vectors, one-level structs, explicit package references).
 module voxcd_device #(
-  parameter int unsigned PW    = voxcd_arch_pkg::PW,
-  parameter int unsigned PF    = voxcd_arch_pkg::PF,
-  parameter int unsigned MW    = voxcd_arch_pkg::MW,
-  parameter int unsigned MF    = voxcd_arch_pkg::MF,
-  parameter int unsigned TW    = voxcd_arch_pkg::TW,
-  parameter int unsigned DW    = voxcd_arch_pkg::DW,
-  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW,
-  parameter int unsigned LANES = voxcd_arch_pkg::LANES,
-  parameter int unsigned SAW   = voxcd_arch_pkg::SAW,
-  parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
-  parameter int unsigned SB    = voxcd_arch_pkg::SB,
-  parameter int unsigned WB    = voxcd_arch_pkg::WB,
-  parameter int unsigned BANKS = voxcd_arch_pkg::BANKS,  // 0: a voxmap copy per lane; B: one voxmap in B shared banks
-  parameter int unsigned Depth = voxcd_arch_pkg::Depth   // register stages added to every lane, 0 .. MaxDepth
+  `VOXCD_DEVICE_PARAMS  // the widths, LANES, BANKS and Depth (voxcd_arch_pkg.sv)
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -214,17 +200,9 @@ module voxcd_device #(
   logic             emit_done;                // a completion record enters the output slice (below)
   logic [CW-1:0] stall_total_d, stall_total_q;  // stall cycles before this one (_d: up to and including it)
   assign stall_total_d = stall_total_q + CW'(stall);
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      now_q         <= '0;
-      stall_total_q <= '0;
-      in_flight_q   <= '0;
-    end else begin
-      now_q         <= now_q + 1'b1;
-      stall_total_q <= stall_total_d;
-      in_flight_q   <= in_flight_q + InFlW'(job_valid_i && job_ready_o) - InFlW'(emit_done);
-    end
-  end
+  `VOXCD_FF(now_q, now_q + 1'b1, '0)
+  `VOXCD_FF(stall_total_q, stall_total_d, '0)
+  `VOXCD_FF(in_flight_q, in_flight_q + InFlW'(job_valid_i && job_ready_o) - InFlW'(emit_done), '0)
 
   // ---- Job queue (voxcd_fifo, 2 entries) ----
   job_t        job_in, head_job;
@@ -293,15 +271,8 @@ module voxcd_device #(
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      next_point_q <= '0;
-      head_seq_q   <= '0;
-    end else begin
-      next_point_q <= next_point_d;
-      head_seq_q   <= head_seq_d;
-    end
-  end
+  `VOXCD_FF(next_point_q, next_point_d, '0)
+  `VOXCD_FF(head_seq_q, head_seq_d, '0)
 
   meta_t issue;
   always_comb begin
@@ -339,9 +310,9 @@ module voxcd_device #(
   end
 
   // The job travels with its slot, each register keeping what the stages from it on read: R0 the whole job (the
-  // lanes read M there, or from IN's M register), R1 .. ProdR the translation (read at ProdR), R1 .. LinR the map (n read at AccR, ny at
-  // YzR, nx at R3R, map_base and hxy at LinR), and R1 .. R(N-1) the fields of the hit test (g_test[s], g_t[s] and
-  // g_map[s] are register Rs's). Job fields are read only where their slot is valid: no reset.
+  // lanes read M there, or from IN's M register), R1 .. ProdR the translation (read at ProdR), R1 .. LinR the map
+  // (n read at AccR, ny at YzR, nx at R3R, map_base and hxy at LinR), and R1 .. R(N-1) the fields of the hit test.
+  // Job fields are read only where their slot is valid: no reset.
   localparam int unsigned MapW = 3 * (DW + 1) + MAW + HxyW;
   job_t  r0_job_q;
   test_t r0_test, r5_test, last_test;
@@ -354,60 +325,40 @@ module voxcd_device #(
   // The matrix the lanes' multipliers read: R0's, or with IN one register later, beside the lanes' registered points
   // (one register for every lane: the same M for the whole slot).
   logic [9*MW-1:0] prod_m;
-  if (HasIn) begin : g_in_m
-    logic [9*MW-1:0] m_q;
-    always_ff @(posedge clk_i) begin
-      if (advance) m_q <= r0_job_q.m;
-    end
-    assign prod_m = m_q;
-  end else begin : g_r0_m
-    assign prod_m = r0_job_q.m;
-  end
-  // The hit test's fields in two registers: the job's labels, and its 64 bits of stamps (each fits a simulator's word).
+  voxcd_stage #(.Width(9*MW), .Enable(HasIn)) u_in_m (.clk_i(clk_i), .en_i(advance), .d_i(r0_job_q.m), .q_o(prod_m));
+  // Four chains of registers, Rs's at [s*Width +: Width] of each (R0's at 0): the hit test's fields in two (the
+  // job's labels, and its 64 bits of stamps: each fits a simulator's word), the translation and the map. The hit
+  // test's registers after R4 advance with the output (advance_out).
+  localparam int unsigned InfoW = TestW - 2*CW;
+  logic [NumR*InfoW-1:0]     info_r;
+  logic [NumR*2*CW-1:0]      stamps_r;
+  logic [(ProdR+1)*3*TW-1:0] t_r;
+  logic [(LinR+1)*MapW-1:0]  map_r;
+  assign {info_r[0 +: InfoW], stamps_r[0 +: 2*CW]} = r0_test;
+  assign t_r[0 +: 3*TW]                            = r0_job_q.t;
+  assign map_r[0 +: MapW]                          = {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
   for (genvar s = 1; s < NumR; s++) begin : g_test
-    logic [TestW-2*CW-1:0] info_q, info_in;
-    logic [2*CW-1:0]       stamps_q, stamps_in;
-    if (s == 1) begin : g_first
-      assign {info_in, stamps_in} = r0_test;
-    end else begin : g_next
-      assign info_in   = g_test[s - 1].info_q;
-      assign stamps_in = g_test[s - 1].stamps_q;
-    end
-    always_ff @(posedge clk_i) begin
-      if ((s <= AddrR) ? advance : advance_out) begin
-        info_q   <= info_in;
-        stamps_q <= stamps_in;
-      end
-    end
+    logic en;
+    assign en = (s <= AddrR) ? advance : advance_out;
+    voxcd_stage #(.Width(InfoW)) u_info (
+      .clk_i(clk_i), .en_i(en), .d_i(info_r[(s-1)*InfoW +: InfoW]), .q_o(info_r[s*InfoW +: InfoW]));
+    voxcd_stage #(.Width(2*CW)) u_stamps (
+      .clk_i(clk_i), .en_i(en), .d_i(stamps_r[(s-1)*2*CW +: 2*CW]), .q_o(stamps_r[s*2*CW +: 2*CW]));
   end
   for (genvar s = 1; s <= ProdR; s++) begin : g_t
-    logic [3*TW-1:0] t_q, t_in;
-    if (s == 1) begin : g_first
-      assign t_in = r0_job_q.t;
-    end else begin : g_next
-      assign t_in = g_t[s - 1].t_q;
-    end
-    always_ff @(posedge clk_i) begin
-      if (advance) t_q <= t_in;
-    end
+    voxcd_stage #(.Width(3*TW)) u_t (
+      .clk_i(clk_i), .en_i(advance), .d_i(t_r[(s-1)*3*TW +: 3*TW]), .q_o(t_r[s*3*TW +: 3*TW]));
   end
   for (genvar s = 1; s <= LinR; s++) begin : g_map
-    logic [MapW-1:0] map_q, map_in;
-    if (s == 1) begin : g_first
-      assign map_in = {r0_job_q.n, r0_job_q.map_base, r0_job_q.hxy};
-    end else begin : g_next
-      assign map_in = g_map[s - 1].map_q;
-    end
-    always_ff @(posedge clk_i) begin
-      if (advance) map_q <= map_in;
-    end
+    voxcd_stage #(.Width(MapW)) u_map (
+      .clk_i(clk_i), .en_i(advance), .d_i(map_r[(s-1)*MapW +: MapW]), .q_o(map_r[s*MapW +: MapW]));
   end
-  assign r5_test   = {g_test[WordR].info_q, g_test[WordR].stamps_q};
-  assign last_test = {g_test[NumR - 1].info_q, g_test[NumR - 1].stamps_q};
-  assign acc_map   = g_map[AccR].map_q;
-  assign yz_map    = g_map[YzR].map_q;
-  assign r3_map    = g_map[R3R].map_q;
-  assign lin_map   = g_map[LinR].map_q;
+  assign r5_test   = {info_r[WordR*InfoW +: InfoW], stamps_r[WordR*2*CW +: 2*CW]};
+  assign last_test = {info_r[(NumR-1)*InfoW +: InfoW], stamps_r[(NumR-1)*2*CW +: 2*CW]};
+  assign acc_map   = map_r[AccR*MapW +: MapW];
+  assign yz_map    = map_r[YzR*MapW +: MapW];
+  assign r3_map    = map_r[R3R*MapW +: MapW];
+  assign lin_map   = map_r[LinR*MapW +: MapW];
 
   // What each stage reads of its slot's bookkeeping: R0's, R4's, R5's and the last register's, where the hit test
   // is (R5 at Depth 0, or R8 on a distance device).
@@ -456,8 +407,8 @@ module voxcd_device #(
     logic [3*PW-1:0] point;
     assign point = bank_rdata[RotW'(32'(r0_slot.rot) + l) & RotW'(LANES - 1)];
     voxcd_lane #(
-      .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB),
-      .Depth(Depth), .SharedMap(Banked)
+      `VOXCD_LANE_PARAM_MAP,
+      .SharedMap(Banked)
     ) u_lane (
       .clk_i      (clk_i),
       .en_i       (advance),
@@ -470,7 +421,7 @@ module voxcd_device #(
       .map_wdata_i(map_wdata_i),
       .point_i    (point),
       .m_i        (prod_m),
-      .t_i        (g_t[ProdR].t_q),
+      .t_i        (t_r[ProdR*3*TW +: 3*TW]),
       .n_i        (acc_map.n),
       .ny_i       (yz_map.n[DW+1 +: DW+1]),
       .nx_i       (r3_map.n[DW:0]),
@@ -567,21 +518,11 @@ module voxcd_device #(
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      emitted_q   <= '0;
-      found_q     <= 1'b0;
-      found_seq_q <= '0;
-      hits_q      <= '0;
-      points_q    <= '0;
-    end else begin
-      emitted_q   <= emitted_d;
-      found_q     <= found_d;
-      found_seq_q <= found_seq_d;
-      hits_q      <= hits_d;
-      points_q    <= points_d;
-    end
-  end
+  `VOXCD_FF(emitted_q, emitted_d, '0)
+  `VOXCD_FF(found_q, found_d, 1'b0)
+  `VOXCD_FF(found_seq_q, found_seq_d, '0)
+  `VOXCD_FF(hits_q, hits_d, '0)
+  `VOXCD_FF(points_q, points_d, '0)
 
   // ---- Shared voxmap banks (BANKS > 0): word w is in bank w % NumB, row w / NumB ----
   // NumB = BANKS on a 2-bit device; on a distance device each of the 8 parity banks is split BANKS ways (8 * BANKS
@@ -725,15 +666,8 @@ module voxcd_device #(
     stalls_at_done_d = emit_done ? stall_total_d : stalls_at_done_q;
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      since_done_q     <= '1;
-      stalls_at_done_q <= '0;
-    end else begin
-      since_done_q     <= since_done_d;
-      stalls_at_done_q <= stalls_at_done_d;
-    end
-  end
+  `VOXCD_FF(since_done_q, since_done_d, '1)
+  `VOXCD_FF(stalls_at_done_q, stalls_at_done_d, '0)
 
   // ---- Output slice: the record of this cycle, then voxcd_skid ----
   record_t emit_record, out_record;

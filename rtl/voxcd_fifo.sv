@@ -49,17 +49,9 @@ module voxcd_fifo #(
     count_d     = count_q + CountW'(push) - CountW'(pop);
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      read_ptr_q  <= '0;
-      write_ptr_q <= '0;
-      count_q     <= '0;
-    end else begin
-      read_ptr_q  <= read_ptr_d;
-      write_ptr_q <= write_ptr_d;
-      count_q     <= count_d;
-    end
-  end
+  `VOXCD_FF(read_ptr_q, read_ptr_d, '0)
+  `VOXCD_FF(write_ptr_q, write_ptr_d, '0)
+  `VOXCD_FF(count_q, count_d, '0)
 
   // Storage has no reset: an entry is read only after it was written.
   always_ff @(posedge clk_i) begin

@@ -43,17 +43,7 @@
 // takes a bubble while R4 waits for a bank (voxcd_device).
 // inside5_o and state5_o show R5's point before READ (the device's banks stop reading for a FIRST job at a hit in R5).
 module voxcd_lane #(
-  parameter int unsigned PW    = voxcd_arch_pkg::PW,
-  parameter int unsigned PF    = voxcd_arch_pkg::PF,
-  parameter int unsigned MW    = voxcd_arch_pkg::MW,
-  parameter int unsigned MF    = voxcd_arch_pkg::MF,
-  parameter int unsigned TW    = voxcd_arch_pkg::TW,
-  parameter int unsigned DW    = voxcd_arch_pkg::DW,
-  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW,
-  parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
-  parameter int unsigned SB    = voxcd_arch_pkg::SB,
-  parameter int unsigned WB    = voxcd_arch_pkg::WB,
-  parameter int unsigned Depth = voxcd_arch_pkg::Depth,
+  `VOXCD_LANE_PARAMS,
   parameter bit          SharedMap = 1'b0
 ) (
   input  logic                  clk_i,
@@ -110,15 +100,7 @@ module voxcd_lane #(
   logic [3*PW-1:0] p_in;
   logic [9*MW-1:0] m_in;
   assign m_in = m_i;
-  if (HasIn) begin : g_in
-    logic [3*PW-1:0] point_q;
-    always_ff @(posedge clk_i) begin
-      if (en_i) point_q <= point_i;
-    end
-    assign p_in = point_q;
-  end else begin : g_no_in
-    assign p_in = point_i;
-  end
+  voxcd_stage #(.Width(3*PW), .Enable(HasIn)) u_in (.clk_i(clk_i), .en_i(en_i), .d_i(point_i), .q_o(p_in));
 
   // ---- PROD: products, [SUM], ACC: accumulator ----
   // One block per output coordinate i: its three products and their sum with t_i, each in a register of its own
@@ -181,25 +163,11 @@ module voxcd_lane #(
   logic            inside_f;
   logic [3*DW-1:0] vox_f;
   logic [FW-1:0]   frac_f;
-  if (HasFloor) begin : g_floor
-    logic            inside_q;
-    logic [3*DW-1:0] vox_q;
-    logic [FW-1:0]   frac_q;
-    always_ff @(posedge clk_i) begin
-      if (en_i) begin
-        inside_q <= &in_axis;
-        vox_q    <= {idx_z[DW-1:0], idx_y[DW-1:0], idx_x[DW-1:0]};
-        frac_q   <= frac_acc;
-      end
-    end
-    assign inside_f = inside_q;
-    assign vox_f    = vox_q;
-    assign frac_f   = frac_q;
-  end else begin : g_no_floor
-    assign inside_f = &in_axis;
-    assign vox_f    = {idx_z[DW-1:0], idx_y[DW-1:0], idx_x[DW-1:0]};
-    assign frac_f   = frac_acc;
-  end
+  voxcd_stage #(.Width(1 + 3*DW + FW), .Enable(HasFloor)) u_floor (
+    .clk_i(clk_i), .en_i(en_i),
+    .d_i  ({&in_axis, idx_z[DW-1:0], idx_y[DW-1:0], idx_x[DW-1:0], frac_acc}),
+    .q_o  ({inside_f, vox_f, frac_f})
+  );
 
   logic            inside3_q;
   logic [3*DW-1:0] vox3_q;
@@ -231,25 +199,11 @@ module voxcd_lane #(
     logic [LinW-1:0]  linear;
     logic             inside_l;
     logic [3*DW-1:0]  vox_l;
-    if (HasAddr) begin : g_addr
-      logic [LinW-1:0] linear_q;
-      logic            inside_q;
-      logic [3*DW-1:0] vox_q;
-      always_ff @(posedge clk_i) begin
-        if (en_i) begin
-          linear_q <= LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q);
-          inside_q <= inside3_q;
-          vox_q    <= vox3_q;
-        end
-      end
-      assign linear   = linear_q;
-      assign inside_l = inside_q;
-      assign vox_l    = vox_q;
-    end else begin : g_no_addr
-      assign linear   = LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q);
-      assign inside_l = inside3_q;
-      assign vox_l    = vox3_q;
-    end
+    voxcd_stage #(.Width(LinW + 1 + 3*DW), .Enable(HasAddr)) u_addr (
+      .clk_i(clk_i), .en_i(en_i),
+      .d_i  ({LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q), inside3_q, vox3_q}),
+      .q_o  ({linear, inside_l, vox_l})
+    );
 
     logic             inside4_q;
     logic [3*DW-1:0]  vox4_q;
@@ -308,25 +262,11 @@ module voxcd_lane #(
     assign state5_o  = state5;
 
     // ---- [READ]: the state in a register of its own ----
-    if (HasRead) begin : g_read
-      logic            inside_q;
-      logic [3*DW-1:0] vox_q;
-      logic [1:0]      state_q;
-      always_ff @(posedge clk_i) begin
-        if (en_out_i) begin
-          inside_q <= inside5_q;
-          vox_q    <= vox5_q;
-          state_q  <= state5;
-        end
-      end
-      assign inside_o = inside_q;
-      assign voxel_o  = vox_q;
-      assign state_o  = state_q;
-    end else begin : g_no_read
-      assign inside_o = inside5_q;
-      assign voxel_o  = vox5_q;
-      assign state_o  = state5;
-    end
+    voxcd_stage #(.Width(1 + 3*DW + 2), .Enable(HasRead)) u_read (
+      .clk_i(clk_i), .en_i(en_out_i),
+      .d_i  ({inside5_q, vox5_q, state5}),
+      .q_o  ({inside_o, voxel_o, state_o})
+    );
     assign dist_o = '0;  // a 2-bit voxmap has no distance
 
     logic unused_dist;  // the distance inputs of a 2-bit lane, and the weights it does not keep
@@ -373,33 +313,11 @@ module voxcd_lane #(
     logic [DW-1:0] x_half;
     assign x_half = vox3_q[DW-1:0] >> 1;
     assign hbase3 = HW'(x_half) + HW'(hx3) * HW'(yzh3_q);
-    if (HasAddr) begin : g_addr
-      logic [DW:0]     hx_q;
-      logic [HW-1:0]   hbase_q;
-      logic            inside_q;
-      logic [3*DW-1:0] vox_q;
-      logic [3*WB-1:0] frac_q;
-      always_ff @(posedge clk_i) begin
-        if (en_i) begin
-          hx_q     <= hx3;
-          hbase_q  <= hbase3;
-          inside_q <= inside3_q;
-          vox_q    <= vox3_q;
-          frac_q   <= frac3_q;
-        end
-      end
-      assign hx       = hx_q;
-      assign hbase    = hbase_q;
-      assign inside_l = inside_q;
-      assign vox_l    = vox_q;
-      assign frac_l   = frac_q;
-    end else begin : g_no_addr
-      assign hx       = hx3;
-      assign hbase    = hbase3;
-      assign inside_l = inside3_q;
-      assign vox_l    = vox3_q;
-      assign frac_l   = frac3_q;
-    end
+    voxcd_stage #(.Width(DW + 1 + HW + 1 + 3*DW + 3*WB), .Enable(HasAddr)) u_addr (
+      .clk_i(clk_i), .en_i(en_i),
+      .d_i  ({hx3, hbase3, inside3_q, vox3_q, frac3_q}),
+      .q_o  ({hx, hbase, inside_l, vox_l, frac_l})
+    );
 
     logic [2:0]        par_l;   // parities of the cell's x, y, z
     logic [8*RowW-1:0] row;
@@ -491,29 +409,11 @@ module voxcd_lane #(
     logic            inside_r;
     logic [3*DW-1:0] vox_r;
     logic [3*WB-1:0] frac_r;
-    if (HasRead) begin : g_read
-      logic [8*SB-1:0] q_q;
-      logic            inside_q;
-      logic [3*DW-1:0] vox_q;
-      logic [3*WB-1:0] frac_q;
-      always_ff @(posedge clk_i) begin
-        if (en_out_i) begin
-          q_q      <= q5;
-          inside_q <= inside5_q;
-          vox_q    <= vox5_q;
-          frac_q   <= frac5_q;
-        end
-      end
-      assign q        = q_q;
-      assign inside_r = inside_q;
-      assign vox_r    = vox_q;
-      assign frac_r   = frac_q;
-    end else begin : g_no_read
-      assign q        = q5;
-      assign inside_r = inside5_q;
-      assign vox_r    = vox5_q;
-      assign frac_r   = frac5_q;
-    end
+    voxcd_stage #(.Width(8*SB + 1 + 3*DW + 3*WB), .Enable(HasRead)) u_read (
+      .clk_i(clk_i), .en_i(en_out_i),
+      .d_i  ({q5, inside5_q, vox5_q, frac5_q}),
+      .q_o  ({q, inside_r, vox_r, frac_r})
+    );
 
     // ---- R6: x interpolation ----
     logic [4*XW-1:0] lx;  // at (dy | dz<<1): between q(0, dy, dz) and q(1, dy, dz)

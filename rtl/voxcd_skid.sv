@@ -58,15 +58,8 @@ module voxcd_skid #(
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      out_valid_q  <= 1'b0;
-      skid_valid_q <= 1'b0;
-    end else begin
-      out_valid_q  <= out_valid_d;
-      skid_valid_q <= skid_valid_d;
-    end
-  end
+  `VOXCD_FF(out_valid_q, out_valid_d, 1'b0)
+  `VOXCD_FF(skid_valid_q, skid_valid_d, 1'b0)
 
   // Data registers have no reset: they are read only while their valid bit is set.
   always_ff @(posedge clk_i) begin

@@ -65,70 +65,20 @@ constexpr int kJobBeats = int(kJobBytes / 8), kRecBeats = int(kRecordBytes / 8);
 }
 
 AxiRtlTarget::AxiRtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock_period, sc_time access_latency)
-    : DeviceTarget(name, cfg, clock_period, access_latency),
-      ctx_(std::make_unique<VerilatedContext>()),
-      clk_("clk", clock_period, 0.5, clock_period, true),
-      pins_(std::make_unique<AxiPins>()) {
+    : ClockedTarget(name, cfg, clock_period, access_latency), pins_(std::make_unique<AxiPins>()) {
   if (!(cfg == axi_target_config()))
     throw std::invalid_argument(std::string(this->name()) + ": the AXI top's SystemC model is built for " +
                                 axi_target_config().to_string() + ", not for " + cfg.to_string());
-  ctx_->fatalOnError(false);
-  Verilated::threadContextp(ctx_.get());
   const std::string mname = std::string(basename()) + "_axi";
   model_ = std::make_unique<AxiModel>(mname.c_str(), clk_, *pins_);
   pins_->wstrb.write(0xff);
-  SC_METHOD(on_edge);
-  sensitive << clk_.posedge_event();
-  dont_initialize();
+  start_clocked_method();
 }
 
 AxiRtlTarget::~AxiRtlTarget() {
   Verilated::threadContextp(ctx_.get());
   model_->m.final();
   model_.reset();
-}
-
-sc_time AxiRtlTarget::start(sc_time& delay) {
-  wait(delay);
-  delay = SC_ZERO_TIME;
-  return sc_time_stamp();
-}
-
-sc_time AxiRtlTarget::write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_time t) {
-  MemRequest req;
-  req.time = t;
-  req.shell = true;
-  req.first = first;
-  req.shell_words = words;
-  return write_memory(req);
-}
-
-sc_time AxiRtlTarget::write_map(uint64_t first, const std::vector<uint64_t>& words, sc_time t) {
-  MemRequest req;
-  req.time = t;
-  req.shell = false;
-  req.first = first;
-  req.map_words = words;
-  return write_memory(req);
-}
-
-sc_time AxiRtlTarget::write_memory(MemRequest& req) {
-  mem_ = &req;
-  while (!req.done && !fault_) wait(mem_event_);
-  mem_ = nullptr;
-  return sc_time_stamp();
-}
-
-void AxiRtlTarget::launch(std::vector<Job>& jobs, sc_time t) { batches_.push_back({t, std::move(jobs)}); }
-
-void AxiRtlTarget::advance_to(sc_time t) {
-  while (edge_ < edge_at_or_before(t) && !fault_) wait(edge_event_);
-}
-
-sc_time AxiRtlTarget::await_results(size_t n, sc_time t) {
-  advance_to(t);
-  while (readable() < n && busy() && !fault_) wait(results_event_);
-  return sc_time_stamp();
 }
 
 bool AxiRtlTarget::next_lite_write(uint32_t& addr, uint64_t& data) {
@@ -144,8 +94,8 @@ bool AxiRtlTarget::next_lite_write(uint32_t& addr, uint64_t& data) {
   if (mem_->shell) {
     // {x, y} at byte 0, then {z, 0} at byte 8: the second write commits the word.
     const ShellWord& w = mem_->shell_words[mem_->written];
-    addr = uint32_t(kShellBase + kShellStride * k + 8 * uint64_t(mem_->part));
-    data = mem_->part == 0 ? (uint64_t(uint32_t(w[0])) | uint64_t(uint32_t(w[1])) << 32) : uint64_t(uint32_t(w[2]));
+    addr = uint32_t(kShellBase + kShellStride * k + 8 * uint64_t(part_));
+    data = part_ == 0 ? (uint64_t(uint32_t(w[0])) | uint64_t(uint32_t(w[1])) << 32) : uint64_t(uint32_t(w[2]));
   } else {
     addr = uint32_t(kMapBase + kMapStride * k);
     data = mem_->map_words[mem_->written];
@@ -153,65 +103,44 @@ bool AxiRtlTarget::next_lite_write(uint32_t& addr, uint64_t& data) {
   return true;
 }
 
-void AxiRtlTarget::on_edge() {
+void AxiRtlTarget::take_lite_response() {
   AxiPins& p = *pins_;
-  ++edge_;
-  if (edge_ == 1) {
-    p.rst_ni.write(true);
-  } else {
-    // What this edge did.
-    if (aw_valid_ && p.awready.read()) aw_valid_ = false;
-    if (w_valid_ && p.wready.read()) w_valid_ = false;
-    if (lite_busy_ && p.bvalid.read()) {  // bready is always high
-      lite_busy_ = false;
-      if (p.bresp.read() != 0) fault_ = true;
-      if (run_pending_) {
-        run_pending_ = false;
-        run_written_ = true;
-      } else if (lite_is_mem_ && mem_) {
-        if (!mem_->shell || ++mem_->part == 2) {
-          mem_->part = 0;
-          if (++mem_->written == mem_->size()) {
-            mem_->done = true;
-            mem_event_.notify(SC_ZERO_TIME);
-          }
-        }
-      }
-    }
-    if (job_valid_ && p.jready.read() && ++beat_ == kJobBeats) {
-      beat_ = 0;
-      ++fed_;
-    }
-    if (p.rec_valid.read()) {  // rec_ready is always high
-      put_le(rec_ + 8 * rec_beat_, p.rec_data.read(), 8);
-      if (p.rec_last.read() != (++rec_beat_ == kRecBeats)) fault_ = true;  // a record is exactly 4 beats
-      if (rec_beat_ == kRecBeats) {
-        rec_beat_ = 0;
-        Record r;
-        if (!decode_record(rec_, r)) fault_ = true;
-        partial_.push_back(r);
-        if (r.kind == Record::Done) {
-          publish(partial_);
-          partial_.clear();
-          results_event_.notify(SC_ZERO_TIME);
-          if (++completed_ == batches_.front().jobs.size()) {
-            batches_.pop_front();
-            running_ = false;
-          }
-        }
-      }
-    }
+  if (aw_valid_ && p.awready.read()) aw_valid_ = false;
+  if (w_valid_ && p.wready.read()) w_valid_ = false;
+  if (!lite_busy_ || !p.bvalid.read()) return;  // bready is always high
+  lite_busy_ = false;
+  if (p.bresp.read() != 0) fault_ = true;
+  if (run_pending_) {
+    run_pending_ = false;
+    run_written_ = true;
+  } else if (lite_is_mem_ && mem_ && (!mem_->shell || ++part_ == 2)) {
+    part_ = 0;
+    word_written();
   }
+}
 
-  // Memory writes start once every launched batch is done (the top refuses them while a job runs).
-  if (mem_ && !mem_->started && mem_->time < sc_time_stamp() && !busy()) mem_->started = true;
-  if (!running_ && !(mem_ && mem_->started && !mem_->done) && !batches_.empty() &&
-      batches_.front().time < sc_time_stamp()) {
-    running_ = true;
-    fed_ = 0;
-    completed_ = 0;
+void AxiRtlTarget::take_job_beat() {
+  if (job_valid_ && pins_->jready.read() && ++beat_ == kJobBeats) {
     beat_ = 0;
+    ++fed_;
   }
+}
+
+void AxiRtlTarget::take_record_beat() {
+  AxiPins& p = *pins_;
+  if (!p.rec_valid.read()) return;  // rec_ready is always high
+  put_le(rec_ + 8 * rec_beat_, p.rec_data.read(), 8);
+  if (p.rec_last.read() != (++rec_beat_ == kRecBeats)) fault_ = true;  // a record is exactly 4 beats
+  if (rec_beat_ < kRecBeats) return;
+  rec_beat_ = 0;
+  Record r;
+  if (!decode_record(rec_, r)) fault_ = true;
+  partial_.push_back(r);
+  if (r.kind == Record::Done) job_done();
+}
+
+void AxiRtlTarget::drive_lite() {
+  AxiPins& p = *pins_;
   uint32_t addr = 0;
   uint64_t data = 0;
   if (!lite_busy_ && next_lite_write(addr, data)) {
@@ -223,7 +152,10 @@ void AxiRtlTarget::on_edge() {
   }
   p.awvalid.write(aw_valid_);
   p.wvalid.write(w_valid_);
+}
 
+void AxiRtlTarget::drive_job() {
+  AxiPins& p = *pins_;
   job_valid_ = running_ && run_written_ && fed_ < batches_.front().jobs.size();
   if (job_valid_) {
     if (beat_ == 0) encode_job(batches_.front().jobs[fed_], desc_);
@@ -231,13 +163,22 @@ void AxiRtlTarget::on_edge() {
     p.jlast.write(beat_ == kJobBeats - 1);
   }
   p.jvalid.write(job_valid_);
+}
 
-  if (ctx_->gotError()) fault_ = true;
-  if (fault_) {
-    results_event_.notify(SC_ZERO_TIME);
-    mem_event_.notify(SC_ZERO_TIME);
+void AxiRtlTarget::on_edge() {
+  if (first_edge()) {
+    pins_->rst_ni.write(true);
+  } else {
+    take_lite_response();
+    take_job_beat();
+    take_record_beat();
   }
-  edge_event_.notify(SC_ZERO_TIME);
+  // Memory writes start once every launched batch is done (the top refuses them while a job runs).
+  start_memory_write(!busy());
+  if (start_batch(mem_ && mem_->started && !mem_->done)) beat_ = 0;
+  drive_lite();
+  drive_job();
+  end_edge();
 }
 
 }  // namespace voxcd::sysc

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "voxcd/ref/fnv1a.h"
 #include "voxcd/sysc/address_map.h"
 
 namespace voxcd::sysc {
@@ -75,9 +76,8 @@ tlm::tlm_response_status HostCpu::access(bool write, uint64_t address, uint8_t* 
   socket->b_transport(tr, delay);
   qk_.set(delay);
   if (logging) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (size_t i = 0; i < length; ++i) h = (h ^ data[i]) * 0x100000001b3ull;
-    log.push_back({write, address, length, h, int(tr.get_response_status()), sc_time_stamp() + delay});
+    log.push_back({write, address, length, fnv1a(data, length), int(tr.get_response_status()),
+                   sc_time_stamp() + delay});
   }
   if (qk_.need_sync()) qk_.sync();
   return tr.get_response_status();

@@ -22,33 +22,34 @@ std::vector<DeviceConfig> rtl_target_configs() {
   return out;
 }
 
-// One signal per pin, typed as Verilator types the ports of the default-width device. The threshold and distance
-// are IW = SB + 3*WB bits: a uint32_t pin up to 32 bits, a uint64_t one above; a model binds the one of its type.
+// The pins with a signal of their own, named as the model's ports and typed as Verilator types the ports of the
+// default-width device: X(type, name), stream by stream (write ports, job, hit, completion, status).
+#define VOXCD_RTL_PINS(X)                                                                                          \
+  X(bool, shell_we_i) X(uint32_t, shell_waddr_i) X(sc_dt::sc_bv<72>, shell_wdata_i)                               \
+  X(bool, map_we_i) X(uint32_t, map_waddr_i) X(uint64_t, map_wdata_i)                                             \
+  X(bool, job_valid_i) X(bool, job_ready_o) X(uint32_t, job_tag_i) X(uint32_t, job_mode_i) X(uint32_t, job_mask_i) \
+  X(uint32_t, job_shell_base_i) X(uint32_t, job_shell_count_i) X(uint32_t, job_map_base_i)                        \
+  X(uint32_t, job_nx_i) X(uint32_t, job_ny_i) X(uint32_t, job_nz_i)                                               \
+  X(bool, hit_valid_o) X(uint32_t, hit_tag_o) X(uint32_t, hit_point_o) X(uint32_t, hit_x_o) X(uint32_t, hit_y_o)  \
+  X(uint32_t, hit_z_o) X(uint32_t, hit_state_o)                                                                    \
+  X(bool, done_valid_o) X(uint32_t, done_tag_o) X(uint32_t, done_hits_o) X(uint32_t, done_cycles_o)              \
+  X(uint32_t, done_points_o) X(uint32_t, done_stalls_o)                                                           \
+  X(bool, busy_o) X(uint32_t, conflicts_o)
+
+// One signal per pin: those of VOXCD_RTL_PINS, then the ones bound apart: the reset, the consumer's two ready inputs
+// (always high), the matrix and translation entries, and the threshold and distance, which are IW = SB + 3*WB bits:
+// a uint32_t pin up to 32 bits, a uint64_t one above; a model binds the one of its type. conflicts_o counts the bank
+// conflict cycles since reset (0 with a copy per lane).
 struct RtlPins {
+#define VOXCD_RTL_PIN_SIGNAL(type, name) sc_signal<type> name{#name};
+  VOXCD_RTL_PINS(VOXCD_RTL_PIN_SIGNAL)
+#undef VOXCD_RTL_PIN_SIGNAL
   sc_signal<bool> rst_ni{"rst_ni", false};
-  sc_signal<bool> shell_we_i{"shell_we_i"}, map_we_i{"map_we_i"};
-  sc_signal<uint32_t> shell_waddr_i{"shell_waddr_i"}, map_waddr_i{"map_waddr_i"};
-  sc_signal<sc_dt::sc_bv<72>> shell_wdata_i{"shell_wdata_i"};
-  sc_signal<uint64_t> map_wdata_i{"map_wdata_i"};
-  sc_signal<bool> job_valid_i{"job_valid_i"}, job_ready_o{"job_ready_o"};
-  sc_signal<uint32_t> job_tag_i{"job_tag_i"}, job_mode_i{"job_mode_i"}, job_mask_i{"job_mask_i"};
-  sc_signal<uint32_t> job_shell_base_i{"job_shell_base_i"}, job_shell_count_i{"job_shell_count_i"};
-  sc_signal<uint32_t> job_map_base_i{"job_map_base_i"};
-  sc_signal<uint32_t> job_nx_i{"job_nx_i"}, job_ny_i{"job_ny_i"}, job_nz_i{"job_nz_i"};
+  sc_signal<bool> hit_ready_i{"hit_ready_i", true}, done_ready_i{"done_ready_i", true};
   sc_signal<uint32_t> job_m_i[9];
   sc_signal<uint64_t> job_t_i[3];
-  sc_signal<uint32_t> job_threshold32_i{"job_threshold32_i"};
-  sc_signal<uint64_t> job_threshold64_i{"job_threshold64_i"};
-  sc_signal<bool> hit_valid_o{"hit_valid_o"}, hit_ready_i{"hit_ready_i", true};
-  sc_signal<uint32_t> hit_tag_o{"hit_tag_o"}, hit_point_o{"hit_point_o"}, hit_x_o{"hit_x_o"}, hit_y_o{"hit_y_o"},
-      hit_z_o{"hit_z_o"}, hit_state_o{"hit_state_o"};
-  sc_signal<uint32_t> hit_dist32_o{"hit_dist32_o"};
-  sc_signal<uint64_t> hit_dist64_o{"hit_dist64_o"};
-  sc_signal<bool> done_valid_o{"done_valid_o"}, done_ready_i{"done_ready_i", true};
-  sc_signal<uint32_t> done_tag_o{"done_tag_o"}, done_hits_o{"done_hits_o"}, done_cycles_o{"done_cycles_o"},
-      done_points_o{"done_points_o"}, done_stalls_o{"done_stalls_o"};
-  sc_signal<bool> busy_o{"busy_o"};
-  sc_signal<uint32_t> conflicts_o{"conflicts_o"};  // bank conflict cycles since reset (0 with a copy per lane)
+  sc_signal<uint32_t> job_threshold32_i{"job_threshold32_i"}, hit_dist32_o{"hit_dist32_o"};
+  sc_signal<uint64_t> job_threshold64_i{"job_threshold64_i"}, hit_dist64_o{"hit_dist64_o"};
 };
 
 struct RtlModel {
@@ -73,54 +74,19 @@ struct ModelOf final : RtlModel {
   ModelOf(const char* name, sc_clock& clk, RtlPins& p) : m(name) {
     m.clk_i(clk);
     m.rst_ni(p.rst_ni);
-    m.shell_we_i(p.shell_we_i);
-    m.shell_waddr_i(p.shell_waddr_i);
-    m.shell_wdata_i(p.shell_wdata_i);
-    m.map_we_i(p.map_we_i);
-    m.map_waddr_i(p.map_waddr_i);
-    m.map_wdata_i(p.map_wdata_i);
-    m.job_valid_i(p.job_valid_i);
-    m.job_ready_o(p.job_ready_o);
-    m.job_tag_i(p.job_tag_i);
-    m.job_mode_i(p.job_mode_i);
-    m.job_mask_i(p.job_mask_i);
-    m.job_shell_base_i(p.job_shell_base_i);
-    m.job_shell_count_i(p.job_shell_count_i);
-    m.job_map_base_i(p.job_map_base_i);
-    m.job_nx_i(p.job_nx_i);
-    m.job_ny_i(p.job_ny_i);
-    m.job_nz_i(p.job_nz_i);
-    m.job_m00_i(p.job_m_i[0]);
-    m.job_m01_i(p.job_m_i[1]);
-    m.job_m02_i(p.job_m_i[2]);
-    m.job_m10_i(p.job_m_i[3]);
-    m.job_m11_i(p.job_m_i[4]);
-    m.job_m12_i(p.job_m_i[5]);
-    m.job_m20_i(p.job_m_i[6]);
-    m.job_m21_i(p.job_m_i[7]);
-    m.job_m22_i(p.job_m_i[8]);
-    m.job_t0_i(p.job_t_i[0]);
-    m.job_t1_i(p.job_t_i[1]);
-    m.job_t2_i(p.job_t_i[2]);
-    bind_iw(m.job_threshold_i, p.job_threshold32_i, p.job_threshold64_i);
-    m.hit_valid_o(p.hit_valid_o);
     m.hit_ready_i(p.hit_ready_i);
-    m.hit_tag_o(p.hit_tag_o);
-    m.hit_point_o(p.hit_point_o);
-    m.hit_x_o(p.hit_x_o);
-    m.hit_y_o(p.hit_y_o);
-    m.hit_z_o(p.hit_z_o);
-    m.hit_state_o(p.hit_state_o);
-    bind_iw(m.hit_dist_o, p.hit_dist32_o, p.hit_dist64_o);
-    m.done_valid_o(p.done_valid_o);
     m.done_ready_i(p.done_ready_i);
-    m.done_tag_o(p.done_tag_o);
-    m.done_hits_o(p.done_hits_o);
-    m.done_cycles_o(p.done_cycles_o);
-    m.done_points_o(p.done_points_o);
-    m.done_stalls_o(p.done_stalls_o);
-    m.busy_o(p.busy_o);
-    m.conflicts_o(p.conflicts_o);
+#define VOXCD_RTL_PIN_BIND(type, name) m.name(p.name);
+    VOXCD_RTL_PINS(VOXCD_RTL_PIN_BIND)
+#undef VOXCD_RTL_PIN_BIND
+    // The matrix's entries (row by row) and the translation's, one port each, bound to the pin arrays in order.
+    sc_in<uint32_t>* const m_ports[9] = {&m.job_m00_i, &m.job_m01_i, &m.job_m02_i, &m.job_m10_i, &m.job_m11_i,
+                                         &m.job_m12_i, &m.job_m20_i, &m.job_m21_i, &m.job_m22_i};
+    sc_in<uint64_t>* const t_ports[3] = {&m.job_t0_i, &m.job_t1_i, &m.job_t2_i};
+    for (int i = 0; i < 9; ++i) (*m_ports[i])(p.job_m_i[i]);
+    for (int i = 0; i < 3; ++i) (*t_ports[i])(p.job_t_i[i]);
+    bind_iw(m.job_threshold_i, p.job_threshold32_i, p.job_threshold64_i);
+    bind_iw(m.hit_dist_o, p.hit_dist32_o, p.hit_dist64_o);
   }
   void final() override { m.final(); }
   void trace(VerilatedFstC* tfp) override { m.trace(tfp, 99); }
@@ -141,16 +107,10 @@ int64_t sign_extend(uint64_t v, int width) {
 
 RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock_period, sc_time access_latency,
                      const std::string& trace_path)
-    : DeviceTarget(name, cfg, clock_period, access_latency),
+    : ClockedTarget(name, cfg, clock_period, access_latency),
       trace_path_(trace_path),
-      ctx_(std::make_unique<VerilatedContext>()),
-      // Rising edges at T, 2T, ...: the first one resets the device.
-      clk_("clk", clock_period, 0.5, clock_period, true),
       pins_(std::make_unique<RtlPins>()) {
-  ctx_->fatalOnError(false);  // a failed assertion faults the target instead of ending the process
   if (!trace_path_.empty()) ctx_->traceEverOn(true);
-  // A SystemC model takes the calling thread's context: make it this target's own.
-  Verilated::threadContextp(ctx_.get());
   const std::string mname = std::string(basename()) + "_rtl";
 #define VOXCD_SYSC_MODEL_ENTRY(model, pairs)                                    \
   if (!model_ && cfg == parse_config_pairs(pairs, "SystemC model " #model))      \
@@ -165,9 +125,7 @@ RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock
                                 "the distance, shared-bank and deeper-pipeline devices listed here (" +
                                 built + "), not for " + cfg.to_string());
   }
-  SC_METHOD(on_edge);
-  sensitive << clk_.posedge_event();
-  dont_initialize();
+  start_clocked_method();
 }
 
 RtlTarget::~RtlTarget() {
@@ -182,51 +140,6 @@ void RtlTarget::start_of_simulation() {
   trace_ = std::make_unique<VerilatedFstSc>();
   model_->trace(trace_.get());
   trace_->open(trace_path_.c_str());
-}
-
-sc_time RtlTarget::start(sc_time& delay) {
-  // The pins live in the kernel's time: catch up with the initiator's local time first.
-  wait(delay);
-  delay = SC_ZERO_TIME;
-  return sc_time_stamp();
-}
-
-sc_time RtlTarget::write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_time t) {
-  MemRequest req;
-  req.time = t;
-  req.shell = true;
-  req.first = first;
-  req.shell_words = words;
-  return write_memory(req);
-}
-
-sc_time RtlTarget::write_map(uint64_t first, const std::vector<uint64_t>& words, sc_time t) {
-  MemRequest req;
-  req.time = t;
-  req.shell = false;
-  req.first = first;
-  req.map_words = words;
-  return write_memory(req);
-}
-
-sc_time RtlTarget::write_memory(MemRequest& req) {
-  mem_ = &req;
-  while (!req.done && !fault_) wait(mem_event_);
-  mem_ = nullptr;
-  return sc_time_stamp();
-}
-
-void RtlTarget::launch(std::vector<Job>& jobs, sc_time t) { batches_.push_back({t, std::move(jobs)}); }
-
-void RtlTarget::advance_to(sc_time t) {
-  // Records taken at an edge at or before t are readable at t, whether or not the clocked method has run yet.
-  while (edge_ < edge_at_or_before(t) && !fault_) wait(edge_event_);
-}
-
-sc_time RtlTarget::await_results(size_t n, sc_time t) {
-  advance_to(t);
-  while (readable() < n && busy() && !fault_) wait(results_event_);
-  return sc_time_stamp();
 }
 
 void RtlTarget::drive_job(const Job& j) {
@@ -267,68 +180,53 @@ void RtlTarget::drive_word(const MemRequest& req) {
   }
 }
 
-// At every rising edge: first what happened at this edge (the outputs read now are the values the edge sampled),
-// then the inputs for the next edge.
-void RtlTarget::on_edge() {
+// The records the device emitted at this edge: a hit, or a completion that ends its job.
+void RtlTarget::take_records() {
   RtlPins& p = *pins_;
-  ++edge_;
-  if (edge_ == 1) {
-    p.rst_ni.write(true);  // this edge reset the device; its outputs before it mean nothing
-  } else {
-    if (job_valid_ && p.job_ready_o.read()) ++fed_;
-    if (p.hit_valid_o.read()) {
-      const int iw = cfg_.IW();
-      const uint64_t dist = iw > 32 ? p.hit_dist64_o.read() : p.hit_dist32_o.read();
-      partial_.push_back(Record::hit(p.hit_tag_o.read(), p.hit_point_o.read(), p.hit_x_o.read(), p.hit_y_o.read(),
-                                     p.hit_z_o.read(), uint8_t(p.hit_state_o.read()), sign_extend(dist, iw)));
-    }
-    if (p.done_valid_o.read()) {
-      Record d = Record::done(p.done_tag_o.read(), p.done_hits_o.read(), p.done_cycles_o.read());
-      d.points = p.done_points_o.read();
-      d.stalls = p.done_stalls_o.read();
-      partial_.push_back(d);
-      // The conflict cycles since the previous completion (the counter wraps at 2^32 as the register does).
-      const uint64_t conflicts = p.conflicts_o.read();
-      publish(partial_, uint32_t(conflicts - conflicts_seen_));
-      conflicts_seen_ = conflicts;
-      partial_.clear();
-      results_event_.notify(SC_ZERO_TIME);
-      if (++completed_ == batches_.front().jobs.size()) {
-        batches_.pop_front();
-        running_ = false;
-      }
-    }
-    if (mem_ && mem_->started && ++mem_->written == mem_->size()) {
-      mem_->done = true;
-      mem_event_.notify(SC_ZERO_TIME);
-      mem_ = nullptr;
-    }
+  if (p.hit_valid_o.read()) {
+    const int iw = cfg_.IW();
+    const uint64_t dist = iw > 32 ? p.hit_dist64_o.read() : p.hit_dist32_o.read();
+    partial_.push_back(Record::hit(p.hit_tag_o.read(), p.hit_point_o.read(), p.hit_x_o.read(), p.hit_y_o.read(),
+                                   p.hit_z_o.read(), uint8_t(p.hit_state_o.read()), sign_extend(dist, iw)));
   }
+  if (p.done_valid_o.read()) {
+    Record d = Record::done(p.done_tag_o.read(), p.done_hits_o.read(), p.done_cycles_o.read());
+    d.points = p.done_points_o.read();
+    d.stalls = p.done_stalls_o.read();
+    partial_.push_back(d);
+    // The conflict cycles since the previous completion (the counter wraps at 2^32 as the register does).
+    const uint64_t conflicts = p.conflicts_o.read();
+    job_done(uint32_t(conflicts - conflicts_seen_));
+    conflicts_seen_ = conflicts;
+  }
+}
 
-  // Memory writes wait until every launched batch is done and the device is idle (unless start_writes_while_busy).
-  if (mem_ && !mem_->started && mem_->time < sc_time_stamp() &&
-      ((!busy() && !p.busy_o.read()) || !writes_wait_for_idle_))
-    mem_->started = true;
+// The inputs for the next edge: a memory word (once every launched batch is done and the device is idle, unless
+// start_writes_while_busy), else the running batch's next job.
+void RtlTarget::drive_inputs() {
+  RtlPins& p = *pins_;
+  start_memory_write((!busy() && !p.busy_o.read()) || !writes_wait_for_idle_);
   const bool writing = mem_ && mem_->started;
   if (writing) drive_word(*mem_);
   p.shell_we_i.write(writing && mem_->shell);
   p.map_we_i.write(writing && !mem_->shell);
-
-  if (!running_ && !writing && !batches_.empty() && batches_.front().time < sc_time_stamp()) {
-    running_ = true;
-    fed_ = 0;
-    completed_ = 0;
-  }
+  start_batch(writing);
   job_valid_ = running_ && fed_ < batches_.front().jobs.size();
   if (job_valid_) drive_job(batches_.front().jobs[fed_]);
   p.job_valid_i.write(job_valid_);
+}
 
-  if (ctx_->gotError()) {
-    fault_ = true;
-    results_event_.notify(SC_ZERO_TIME);
-    mem_event_.notify(SC_ZERO_TIME);
+void RtlTarget::on_edge() {
+  RtlPins& p = *pins_;
+  if (first_edge()) {
+    p.rst_ni.write(true);  // this edge reset the device; its outputs before it mean nothing
+  } else {
+    if (job_valid_ && p.job_ready_o.read()) ++fed_;
+    take_records();
+    if (mem_ && mem_->started) word_written();
   }
-  edge_event_.notify(SC_ZERO_TIME);
+  drive_inputs();
+  end_edge();
 }
 
 }  // namespace voxcd::sysc

@@ -8,13 +8,11 @@
 // what lets other processes run meanwhile. The loosely-timed TlmTarget annotates the same times without waiting.
 #pragma once
 
-#include <deque>
 #include <memory>
 #include <string>
 
-#include "voxcd/sysc/target.h"
+#include "voxcd/sysc/clocked_target.h"
 
-class VerilatedContext;
 class VerilatedFstSc;
 
 namespace voxcd::sysc {
@@ -29,70 +27,31 @@ std::vector<int> rtl_target_lanes();
 // VOXCD_SYSC_DIST_MODELS, VOXCD_SYSC_BANKED_MODELS, VOXCD_SYSC_DEPTH_MODELS).
 std::vector<DeviceConfig> rtl_target_configs();
 
-class RtlTarget final : public DeviceTarget {
+class RtlTarget final : public ClockedTarget {
  public:
-  SC_HAS_PROCESS(RtlTarget);
   // cfg must be one of rtl_target_configs(); trace_path "" = no waveform.
   RtlTarget(sc_core::sc_module_name name, const DeviceConfig& cfg, sc_core::sc_time clock_period,
             sc_core::sc_time access_latency = sc_core::SC_ZERO_TIME, const std::string& trace_path = "");
   ~RtlTarget() override;
-
-  // Clock edges simulated so far.
-  uint64_t edges() const { return edge_; }
 
   // Test-only fault injection (tests/sysc): memory writes start without waiting for the device to be idle, so a
   // write while a batch runs makes the RTL's assertion fail and the target fault. The platform never calls it.
   void start_writes_while_busy() { writes_wait_for_idle_ = false; }
 
  private:
-  struct MemRequest {
-    sc_core::sc_time time;
-    bool shell = true;
-    uint64_t first = 0;
-    std::vector<ShellWord> shell_words;
-    std::vector<uint64_t> map_words;
-    size_t size() const { return shell ? shell_words.size() : map_words.size(); }
-    bool started = false;
-    size_t written = 0;
-    bool done = false;
-  };
-  struct Batch {
-    sc_core::sc_time time;
-    std::vector<Job> jobs;
-  };
-
-  sc_core::sc_time start(sc_core::sc_time& delay) override;
-  sc_core::sc_time write_shell(uint64_t first, const std::vector<ShellWord>& words, sc_core::sc_time t) override;
-  sc_core::sc_time write_map(uint64_t first, const std::vector<uint64_t>& words, sc_core::sc_time t) override;
-  sc_core::sc_time write_memory(MemRequest& req);
-  void launch(std::vector<Job>& jobs, sc_core::sc_time t) override;
-  void advance_to(sc_core::sc_time t) override;
-  sc_core::sc_time await_results(size_t n, sc_core::sc_time t) override;
-  bool busy() const override { return running_ || !batches_.empty(); }
-  bool faulted() const override { return fault_; }
   void start_of_simulation() override;
 
-  void on_edge();  // the clocked method
+  void on_edge() override;
+  void take_records();
+  void drive_inputs();
   void drive_job(const Job& j);
   void drive_word(const MemRequest& req);
 
   std::string trace_path_;
-  std::unique_ptr<VerilatedContext> ctx_;
-  sc_core::sc_clock clk_;
   std::unique_ptr<RtlPins> pins_;
   std::unique_ptr<RtlModel> model_;
   std::unique_ptr<VerilatedFstSc> trace_;
-
-  sc_core::sc_event edge_event_, results_event_, mem_event_;
-  uint64_t edge_ = 0;
-  bool fault_ = false;
   bool writes_wait_for_idle_ = true;
-  MemRequest* mem_ = nullptr;
-  std::deque<Batch> batches_;  // launched; the front one runs when running_
-  bool running_ = false;
-  bool job_valid_ = false;
-  size_t fed_ = 0, completed_ = 0;
-  std::vector<Record> partial_;  // records of the job being completed
   uint64_t conflicts_seen_ = 0;  // the device's conflicts_o at the previous completion record
 };
 

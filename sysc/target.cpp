@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/sysc/address_map.h"
@@ -88,103 +89,124 @@ void DeviceTarget::b_transport(tlm::tlm_generic_payload& tr, sc_time& delay) {
   delay = done + latency_ - sc_time_stamp();
 }
 
+// Checks the transaction's form and routes it to the window its address is in.
 tlm_response_status DeviceTarget::access(tlm::tlm_generic_payload& tr, sc_time t, sc_time& done) {
   using namespace tlm;
-  const uint64_t addr = tr.get_address();
-  const size_t len = tr.get_data_length();
-  uint8_t* data = tr.get_data_ptr();
-  const bool wr = tr.get_command() == TLM_WRITE_COMMAND;
+  const Access a{tr.get_address(), tr.get_data_length(), tr.get_data_ptr(), tr.get_command() == TLM_WRITE_COMMAND};
   if (tr.get_command() == TLM_IGNORE_COMMAND) return TLM_OK_RESPONSE;
   if (tr.get_byte_enable_ptr()) return fail(TLM_BYTE_ENABLE_ERROR_RESPONSE, "byte enables are not supported");
-  if (tr.get_streaming_width() < len) return fail(TLM_BURST_ERROR_RESPONSE, "streaming is not supported");
-  if (len == 0 || !data) return fail(TLM_BURST_ERROR_RESPONSE, "an access of zero bytes");
-  const auto in = [&](uint64_t base, uint64_t size) { return addr >= base && addr - base < size; };
-  const auto fits = [&](uint64_t base, uint64_t size) { return addr - base + len <= size; };
+  if (tr.get_streaming_width() < a.len) return fail(TLM_BURST_ERROR_RESPONSE, "streaming is not supported");
+  if (a.len == 0 || !a.data) return fail(TLM_BURST_ERROR_RESPONSE, "an access of zero bytes");
   // A faulted RTL can still say so through its registers.
-  if (faulted() && (wr || !in(kRegBase, kRegSize)))
+  if (faulted() && (a.wr || !a.in(kRegBase, kRegSize)))
     return fail(TLM_GENERIC_ERROR_RESPONSE, "the RTL has failed an assertion");
-
-  if (in(kRegBase, kRegSize)) {
-    const uint64_t off = addr - kRegBase;
-    if (len != 8 || off % 8) return fail(TLM_BURST_ERROR_RESPONSE, "registers take aligned 8-byte accesses");
-    if (!wr) return reg_read(off, data, t);
-    if (off != kRegRun) {
-      if (off <= kRegConflicts) return fail(TLM_COMMAND_ERROR_RESPONSE, "register is read-only");
-      return fail(TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
-    }
-    if (staged_count_) {
-      staged_.resize(staged_count_);
-      launch(staged_, t);
-      staged_count_ = 0;
-    }
-    return TLM_OK_RESPONSE;
-  }
-  if (in(kJobBase, kJobSize)) {
-    if (!wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the job window is write-only");
-    if (addr != kJobBase || len % kJobBytes || !fits(kJobBase, kJobSize))
-      return fail(TLM_BURST_ERROR_RESPONSE, "write whole job descriptors at the job window's base");
-    // Decoded in place after the staged jobs; they count as staged once the whole transaction is accepted.
-    const size_t n = len / kJobBytes, old = staged_count_;
-    if (staged_.size() < old + n) staged_.resize(old + n);
-    std::string why;
-    for (size_t i = 0; i < n; ++i) {
-      if (!decode_job(data + i * kJobBytes, staged_[old + i], why))
-        return fail(TLM_GENERIC_ERROR_RESPONSE, "descriptor " + std::to_string(i) + ": " + why);
-      try {
-        validate_job(cfg_, staged_[old + i], shell_words_, map_words_);
-      } catch (const std::exception& e) {
-        return fail(TLM_GENERIC_ERROR_RESPONSE, "descriptor " + std::to_string(i) + ": " + e.what());
-      }
-    }
-    staged_count_ = old + n;
-    return TLM_OK_RESPONSE;
-  }
-  if (in(kResultBase, kResultSize)) {
-    if (wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the result window is read-only");
-    if (addr != kResultBase || len % kRecordBytes || !fits(kResultBase, kResultSize))
-      return fail(TLM_BURST_ERROR_RESPONSE, "read whole result records at the result window's base");
-    const size_t n = len / kRecordBytes;
-    done = await_results(n, t);
-    take_records(data, n);
-    return TLM_OK_RESPONSE;
-  }
-  if (in(kShellBase, cfg_.shell_depth() * kShellStride)) {
-    if (!wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the shell memory is write-only");
-    if ((addr - kShellBase) % kShellStride || len % kShellStride || !fits(kShellBase, cfg_.shell_depth() * kShellStride))
-      return fail(TLM_BURST_ERROR_RESPONSE, "write whole 16-byte shell words inside the shell memory");
-    std::vector<ShellWord> words(len / kShellStride);
-    const int64_t lim = int64_t{1} << (cfg_.PW - 1);
-    for (size_t i = 0; i < words.size(); ++i) {
-      const uint8_t* p = data + i * kShellStride;
-      words[i] = {int32_t(uint32_t(get_le(p, 4))), int32_t(uint32_t(get_le(p + 4, 4))),
-                  int32_t(uint32_t(get_le(p + 8, 4)))};
-      for (int c = 0; c < 3; ++c)
-        if (words[i][c] < -lim || words[i][c] >= lim)
-          return fail(TLM_GENERIC_ERROR_RESPONSE, "shell word " + std::to_string(i) + " does not fit PW bits");
-      if (get_le(p + 12, 4) != 0)
-        return fail(TLM_GENERIC_ERROR_RESPONSE, "shell word " + std::to_string(i) + ": reserved bytes not zero");
-    }
-    const uint64_t first = (addr - kShellBase) / kShellStride;
-    done = write_shell(first, words, t);
-    shell_words_ = std::max(shell_words_, first + words.size());
-    return TLM_OK_RESPONSE;
-  }
-  if (in(kMapBase, cfg_.map_depth() * kMapStride)) {
-    if (!wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the voxmap memory is write-only");
-    if ((addr - kMapBase) % kMapStride || len % kMapStride || !fits(kMapBase, cfg_.map_depth() * kMapStride))
-      return fail(TLM_BURST_ERROR_RESPONSE, "write whole 8-byte voxmap words inside the voxmap memory");
-    std::vector<uint64_t> words(len / kMapStride);
-    for (size_t i = 0; i < words.size(); ++i) {
-      words[i] = get_le(data + i * kMapStride, 8);
-      if (cfg_.MEMW < 64 && (words[i] >> cfg_.MEMW) != 0)
-        return fail(TLM_GENERIC_ERROR_RESPONSE, "voxmap word " + std::to_string(i) + " has bits above MEMW");
-    }
-    const uint64_t first = (addr - kMapBase) / kMapStride;
-    done = write_map(first, words, t);
-    map_words_ = std::max(map_words_, first + words.size());
-    return TLM_OK_RESPONSE;
-  }
+  if (a.in(kRegBase, kRegSize)) return reg_access(a, t);
+  if (a.in(kJobBase, kJobSize)) return stage_jobs(a);
+  if (a.in(kResultBase, kResultSize)) return read_results(a, t, done);
+  if (a.in(kShellBase, cfg_.shell_depth() * kShellStride)) return shell_access(a, t, done);
+  if (a.in(kMapBase, cfg_.map_depth() * kMapStride)) return map_access(a, t, done);
   return fail(TLM_ADDRESS_ERROR_RESPONSE, "no window at this address");
+}
+
+// A register access: a read, or the write of RUN, which launches the staged jobs as one batch.
+tlm_response_status DeviceTarget::reg_access(const Access& a, sc_time t) {
+  using namespace tlm;
+  const uint64_t off = a.addr - kRegBase;
+  if (a.len != 8 || off % 8) return fail(TLM_BURST_ERROR_RESPONSE, "registers take aligned 8-byte accesses");
+  if (!a.wr) return reg_read(off, a.data, t);
+  if (off != kRegRun) {
+    if (off <= kRegConflicts) return fail(TLM_COMMAND_ERROR_RESPONSE, "register is read-only");
+    return fail(TLM_ADDRESS_ERROR_RESPONSE, "no register at this offset");
+  }
+  if (staged_count_) {
+    staged_.resize(staged_count_);
+    launch(staged_, t);
+    staged_count_ = 0;
+  }
+  return TLM_OK_RESPONSE;
+}
+
+// A write of whole job descriptors to the job window: each is decoded and checked, then staged.
+tlm_response_status DeviceTarget::stage_jobs(const Access& a) {
+  using namespace tlm;
+  if (!a.wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the job window is write-only");
+  if (a.addr != kJobBase || a.len % kJobBytes || !a.fits(kJobBase, kJobSize))
+    return fail(TLM_BURST_ERROR_RESPONSE, "write whole job descriptors at the job window's base");
+  // Decoded in place after the staged jobs; they count as staged once the whole transaction is accepted.
+  const size_t n = a.len / kJobBytes, old = staged_count_;
+  if (staged_.size() < old + n) staged_.resize(old + n);
+  std::string why;
+  for (size_t i = 0; i < n; ++i) {
+    if (!decode_job(a.data + i * kJobBytes, staged_[old + i], why))
+      return fail(TLM_GENERIC_ERROR_RESPONSE, "descriptor " + std::to_string(i) + ": " + why);
+    try {
+      validate_job(cfg_, staged_[old + i], shell_words_, map_words_);
+    } catch (const std::exception& e) {
+      return fail(TLM_GENERIC_ERROR_RESPONSE, "descriptor " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  staged_count_ = old + n;
+  return TLM_OK_RESPONSE;
+}
+
+// A read of whole records from the result window: waits until they are readable or no batch is left.
+tlm_response_status DeviceTarget::read_results(const Access& a, sc_time t, sc_time& done) {
+  using namespace tlm;
+  if (a.wr) return fail(TLM_COMMAND_ERROR_RESPONSE, "the result window is read-only");
+  if (a.addr != kResultBase || a.len % kRecordBytes || !a.fits(kResultBase, kResultSize))
+    return fail(TLM_BURST_ERROR_RESPONSE, "read whole result records at the result window's base");
+  const size_t n = a.len / kRecordBytes;
+  done = await_results(n, t);
+  take_records(a.data, n);
+  return TLM_OK_RESPONSE;
+}
+
+// The checks both memory windows make: written only, in whole words of `stride` bytes, inside the memory.
+std::optional<tlm_response_status> DeviceTarget::check_memory_write(const Access& a, uint64_t base, uint64_t stride,
+                                                                    uint64_t depth, const std::string& memory) {
+  if (!a.wr) return fail(tlm::TLM_COMMAND_ERROR_RESPONSE, "the " + memory + " memory is write-only");
+  if ((a.addr - base) % stride || a.len % stride || !a.fits(base, depth * stride))
+    return fail(tlm::TLM_BURST_ERROR_RESPONSE, "write whole " + std::to_string(stride) + "-byte " + memory +
+                                                   " words inside the " + memory + " memory");
+  return std::nullopt;
+}
+
+// A write of shell words: each {x, y, z, 0} fits PW bits signed.
+tlm_response_status DeviceTarget::shell_access(const Access& a, sc_time t, sc_time& done) {
+  using namespace tlm;
+  if (auto bad = check_memory_write(a, kShellBase, kShellStride, cfg_.shell_depth(), "shell")) return *bad;
+  std::vector<ShellWord> words(a.len / kShellStride);
+  const int64_t lim = int64_t{1} << (cfg_.PW - 1);
+  for (size_t i = 0; i < words.size(); ++i) {
+    const uint8_t* p = a.data + i * kShellStride;
+    words[i] = {int32_t(uint32_t(get_le(p, 4))), int32_t(uint32_t(get_le(p + 4, 4))),
+                int32_t(uint32_t(get_le(p + 8, 4)))};
+    for (int c = 0; c < 3; ++c)
+      if (words[i][c] < -lim || words[i][c] >= lim)
+        return fail(TLM_GENERIC_ERROR_RESPONSE, "shell word " + std::to_string(i) + " does not fit PW bits");
+    if (get_le(p + 12, 4) != 0)
+      return fail(TLM_GENERIC_ERROR_RESPONSE, "shell word " + std::to_string(i) + ": reserved bytes not zero");
+  }
+  const uint64_t first = (a.addr - kShellBase) / kShellStride;
+  done = write_shell(first, words, t);
+  shell_words_ = std::max(shell_words_, first + words.size());
+  return TLM_OK_RESPONSE;
+}
+
+// A write of voxmap words: none has bits above MEMW.
+tlm_response_status DeviceTarget::map_access(const Access& a, sc_time t, sc_time& done) {
+  using namespace tlm;
+  if (auto bad = check_memory_write(a, kMapBase, kMapStride, cfg_.map_depth(), "voxmap")) return *bad;
+  std::vector<uint64_t> words(a.len / kMapStride);
+  for (size_t i = 0; i < words.size(); ++i) {
+    words[i] = get_le(a.data + i * kMapStride, 8);
+    if (cfg_.MEMW < 64 && (words[i] >> cfg_.MEMW) != 0)
+      return fail(TLM_GENERIC_ERROR_RESPONSE, "voxmap word " + std::to_string(i) + " has bits above MEMW");
+  }
+  const uint64_t first = (a.addr - kMapBase) / kMapStride;
+  done = write_map(first, words, t);
+  map_words_ = std::max(map_words_, first + words.size());
+  return TLM_OK_RESPONSE;
 }
 
 tlm_response_status DeviceTarget::reg_read(uint64_t off, uint8_t* data, sc_time t) {

@@ -16,6 +16,7 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,8 +83,26 @@ class DeviceTarget : public sc_core::sc_module {
   const sc_core::sc_time latency_;
 
  private:
+  // One transaction's address, length, data and direction.
+  struct Access {
+    uint64_t addr = 0;
+    size_t len = 0;
+    uint8_t* data = nullptr;
+    bool wr = false;
+    bool in(uint64_t base, uint64_t size) const { return addr >= base && addr - base < size; }
+    bool fits(uint64_t base, uint64_t size) const { return addr - base + len <= size; }
+  };
+
   void b_transport(tlm::tlm_generic_payload& tr, sc_core::sc_time& delay);
   tlm::tlm_response_status access(tlm::tlm_generic_payload& tr, sc_core::sc_time t, sc_core::sc_time& done);
+  // The windows of the address map (sysc/address_map.h), each with its own checks.
+  tlm::tlm_response_status reg_access(const Access& a, sc_core::sc_time t);
+  tlm::tlm_response_status stage_jobs(const Access& a);
+  tlm::tlm_response_status read_results(const Access& a, sc_core::sc_time t, sc_core::sc_time& done);
+  tlm::tlm_response_status shell_access(const Access& a, sc_core::sc_time t, sc_core::sc_time& done);
+  tlm::tlm_response_status map_access(const Access& a, sc_core::sc_time t, sc_core::sc_time& done);
+  std::optional<tlm::tlm_response_status> check_memory_write(const Access& a, uint64_t base, uint64_t stride,
+                                                             uint64_t depth, const std::string& memory);
   tlm::tlm_response_status reg_read(uint64_t off, uint8_t* data, sc_core::sc_time t);
   tlm::tlm_response_status fail(tlm::tlm_response_status s, std::string why);
 

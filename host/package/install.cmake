@@ -23,8 +23,8 @@ set(VOXCD_PUBLIC_HEADERS
   ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
   ref/float_model.h ref/fast/fast.h)
 if(TARGET voxcd_sysc)
-  list(APPEND VOXCD_PUBLIC_HEADERS sysc/address_map.h sysc/axi_target.h sysc/host_cpu.h sysc/platform.h
-                                   sysc/rtl_target.h sysc/target.h sysc/tlm_target.h)
+  list(APPEND VOXCD_PUBLIC_HEADERS sysc/address_map.h sysc/axi_target.h sysc/clocked_target.h sysc/host_cpu.h
+                                   sysc/platform.h sysc/rtl_target.h sysc/target.h sysc/tlm_target.h)
 endif()
 foreach(h ${VOXCD_PUBLIC_HEADERS})
   get_filename_component(dir ${h} DIRECTORY)

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <optional>
@@ -127,11 +128,23 @@ uint64_t address(const char* fn, const char* what, int addr, uint64_t depth, con
   return uint64_t(addr);
 }
 
-void set_out(int* p, uint64_t v) {
-  if (p) *p = int(uint32_t(v));
-}
-void set_out(long long* p, int64_t v) {
-  if (p) *p = static_cast<long long>(v);
+// One output argument of a DPI function and the value it gets: an int output takes the value's low 32 bits.
+struct Out {
+  template <class T>
+  Out(int* p, T v) : i(p), value(int64_t(v)) {}
+  template <class T>
+  Out(long long* p, T v) : ll(p), value(int64_t(v)) {}
+  int* i = nullptr;
+  long long* ll = nullptr;
+  int64_t value;
+};
+
+// Writes each value to its output; a null output is left out.
+void set_outs(std::initializer_list<Out> outs) {
+  for (const Out& o : outs) {
+    if (o.i) *o.i = int(uint32_t(uint64_t(o.value)));
+    if (o.ll) *o.ll = static_cast<long long>(o.value);
+  }
 }
 
 std::string job_name(const Job& j) { return "job tag " + std::to_string(j.tag); }
@@ -304,16 +317,8 @@ int voxcd_dpi_pop(void* h, int* tag, int* point, int* x, int* y, int* z, int* st
     if (d->expected.empty()) return VOXCD_DPI_NONE;
     const Record r = d->expected.front();
     d->expected.pop_front();
-    set_out(tag, r.tag);
-    set_out(point, r.point);
-    set_out(x, r.x);
-    set_out(y, r.y);
-    set_out(z, r.z);
-    set_out(state, r.state);
-    set_out(hits, r.hits);
-    set_out(cycles, int64_t(r.cycles.value_or(0)));
-    set_out(points, int64_t(r.points.value_or(0)));
-    set_out(distance, r.dist);
+    set_outs({{tag, r.tag}, {point, r.point}, {x, r.x}, {y, r.y}, {z, r.z}, {state, r.state}, {hits, r.hits},
+              {cycles, r.cycles.value_or(0)}, {points, r.points.value_or(0)}, {distance, r.dist}});
     return r.kind == Record::Hit ? VOXCD_DPI_HIT : VOXCD_DPI_DONE;
   });
 }
@@ -395,9 +400,7 @@ int voxcd_dpi_gen_shell(void* h, int addr, long long* x, long long* y, long long
     const char* fn = "voxcd_dpi_gen_shell";
     const GeneratedVectors& g = generated(device(h, fn), fn);
     const ShellWord& w = g.memory.shell[index_in(fn, "shell address", addr, g.memory.shell.size())];
-    set_out(x, w.x);
-    set_out(y, w.y);
-    set_out(z, w.z);
+    set_outs({{x, w.x}, {y, w.y}, {z, w.z}});
     return 0;
   });
 }
@@ -406,7 +409,7 @@ int voxcd_dpi_gen_map(void* h, int addr, long long* word) {
   return guarded(h, -1, [&] {
     const char* fn = "voxcd_dpi_gen_map";
     const GeneratedVectors& g = generated(device(h, fn), fn);
-    set_out(word, int64_t(g.memory.map[index_in(fn, "voxmap address", addr, g.memory.map.size())]));
+    set_outs({{word, g.memory.map[index_in(fn, "voxmap address", addr, g.memory.map.size())]}});
     return 0;
   });
 }
@@ -419,22 +422,11 @@ int voxcd_dpi_gen_job(void* h, int index, int* tag, int* mode, int* mask, int* s
     const char* fn = "voxcd_dpi_gen_job";
     const GeneratedVectors& g = generated(device(h, fn), fn);
     const Job& j = g.jobs[index_in(fn, "job", index, g.jobs.size())];
-    set_out(tag, j.tag);
-    set_out(mode, uint64_t(j.mode));
-    set_out(mask, j.hit_mask);
-    set_out(shell_base, j.shell_base);
-    set_out(shell_count, j.shell_count);
-    set_out(map_base, j.map_base);
-    set_out(nx, j.nx);
-    set_out(ny, j.ny);
-    set_out(nz, j.nz);
-    long long* m[3][3] = {{m00, m01, m02}, {m10, m11, m12}, {m20, m21, m22}};
-    for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 3; ++k) set_out(m[r][k], j.M[r][k]);
-    set_out(t0, j.t[0]);
-    set_out(t1, j.t[1]);
-    set_out(t2, j.t[2]);
-    set_out(threshold, j.threshold);
+    set_outs({{tag, j.tag}, {mode, uint64_t(j.mode)}, {mask, j.hit_mask}, {shell_base, j.shell_base},
+              {shell_count, j.shell_count}, {map_base, j.map_base}, {nx, j.nx}, {ny, j.ny}, {nz, j.nz}});
+    set_outs({{m00, j.M[0][0]}, {m01, j.M[0][1]}, {m02, j.M[0][2]}, {m10, j.M[1][0]}, {m11, j.M[1][1]},
+              {m12, j.M[1][2]}, {m20, j.M[2][0]}, {m21, j.M[2][1]}, {m22, j.M[2][2]}});
+    set_outs({{t0, j.t[0]}, {t1, j.t[1]}, {t2, j.t[2]}, {threshold, j.threshold}});
     return 0;
   });
 }

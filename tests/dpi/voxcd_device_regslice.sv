@@ -3,20 +3,7 @@
 // voxcd_device behind a register slice that holds one output record: every record leaves at least a cycle later,
 // and the core sees its consumer ready whenever the slice is empty. Parameters and ports are voxcd_device's.
 module voxcd_device_regslice #(
-  parameter int unsigned PW    = voxcd_arch_pkg::PW,
-  parameter int unsigned PF    = voxcd_arch_pkg::PF,
-  parameter int unsigned MW    = voxcd_arch_pkg::MW,
-  parameter int unsigned MF    = voxcd_arch_pkg::MF,
-  parameter int unsigned TW    = voxcd_arch_pkg::TW,
-  parameter int unsigned DW    = voxcd_arch_pkg::DW,
-  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW,
-  parameter int unsigned LANES = voxcd_arch_pkg::LANES,
-  parameter int unsigned SAW   = voxcd_arch_pkg::SAW,
-  parameter int unsigned MAW   = voxcd_arch_pkg::MAW,
-  parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW,
-  parameter int unsigned SB    = voxcd_arch_pkg::SB,
-  parameter int unsigned WB    = voxcd_arch_pkg::WB,
-  parameter int unsigned Depth = voxcd_arch_pkg::Depth
+  `VOXCD_DEVICE_PARAMS  // voxcd_device's (voxcd_arch_pkg.sv)
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -80,8 +67,7 @@ module voxcd_device_regslice #(
   assign free      = !full_q || out_ready;
 
   voxcd_device #(
-    .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .LANES(LANES), .SAW(SAW), .MAW(MAW),
-    .TAGW(TAGW), .SB(SB), .WB(WB), .Depth(Depth)
+    `VOXCD_DEVICE_PARAM_MAP
   ) u_core (
     .clk_i, .rst_ni, .shell_we_i, .shell_waddr_i, .shell_wdata_i, .map_we_i, .map_waddr_i, .map_wdata_i,
     .job_valid_i, .job_ready_o, .job_tag_i, .job_mode_i, .job_mask_i, .job_shell_base_i, .job_shell_count_i,
