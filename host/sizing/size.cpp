@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/sizing/detail/digits.h"
 #include "voxcd/host/sizing/detail/yosys_run.h"
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fixed.h"
@@ -17,12 +18,7 @@ namespace voxcd {
 
 namespace {
 
-std::string fmt(double v, int precision = 4) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << v;
-  return s.str();
-}
+std::string fmt(double v, int precision = 4) { return detail::digits_text(v, precision); }
 
 bool fits(double v, int width, int frac) {
   int64_t raw;
@@ -254,12 +250,10 @@ double SizeReport::modelled_rate() const {
   return clock.rate(double(chosen().max_cycles));
 }
 DeviceConfig SizeReport::default_widths() const {
-  DeviceConfig d;
-  d.LANES = config.LANES;
-  d.SAW = config.SAW;
-  d.MAW = config.MAW;
-  d.SB = config.SB;
-  d.WB = config.WB;
+  DeviceConfig d;  // the default widths, with the configuration's lanes, memories and voxmap values
+  for (int DeviceConfig::*kept : {&DeviceConfig::LANES, &DeviceConfig::SAW, &DeviceConfig::MAW, &DeviceConfig::SB,
+                                  &DeviceConfig::WB})
+    d.*kept = config.*kept;
   return d;
 }
 uint64_t SizeReport::shell_bits() const { return shell_memory_bits(config); }
@@ -309,7 +303,9 @@ SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeR
   r.accuracy = req.accuracy > 0 ? req.accuracy : accuracy_or_default(f, input_scene);
   r.contact_accuracy = req.contact_accuracy > 0 ? req.contact_accuracy : f.contact_accuracy;
   r.rate = req.rate > 0 ? req.rate : f.rate;
-  r.clock = req.clock.value_or(f.clock);
+  r.clock = req.clock                ? *req.clock
+            : req.clock_mhz != 0 ? given_clock(req.clock_mhz, "SizeOptions::clock_mhz")
+                                 : f.clock;
   r.frames = req.frames > 0 ? req.frames : f.frames;
   const RunConfig sized = choose_kind(r, f, input_scene);
   const Scene& scene = r.scene;

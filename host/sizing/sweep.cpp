@@ -6,22 +6,20 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "voxcd/host/detail/cross_product.h"
+#include "voxcd/host/detail/text_file.h"
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/contact_measure.h"
 #include "voxcd/host/sizing/depth.h"
+#include "voxcd/host/sizing/detail/digits.h"
 
 namespace voxcd {
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return detail::digits_text(v, 6); }
 
 bool power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
@@ -40,16 +38,13 @@ SweepPoint point_at(const SweepSpec& s, uint64_t index) {
     throw std::out_of_range("point " + std::to_string(index) + " of a sweep of " + std::to_string(s.points()));
   SweepPoint p;
   p.index = index;
-  uint64_t i = index;
-  p.accuracy = s.accuracies[i % s.accuracies.size()];
-  i /= s.accuracies.size();
-  p.distance_bits = s.distance_bits[i % s.distance_bits.size()];
-  i /= s.distance_bits.size();
-  p.voxel_scale = s.voxel_scales[i % s.voxel_scales.size()];
-  i /= s.voxel_scales.size();
-  p.depth = s.depths[i % s.depths.size()];
-  i /= s.depths.size();
-  p.lanes = s.lanes[i];
+  const auto d = detail::cross_product_digits(
+      index, {s.accuracies.size(), s.distance_bits.size(), s.voxel_scales.size(), s.depths.size(), s.lanes.size()});
+  p.accuracy = s.accuracies[d[0]];
+  p.distance_bits = s.distance_bits[d[1]];
+  p.voxel_scale = s.voxel_scales[d[2]];
+  p.depth = s.depths[d[3]];
+  p.lanes = s.lanes[d[4]];
   return p;
 }
 
@@ -180,11 +175,9 @@ SweepSpec parse_sweep_file(const std::string& text, const std::string& where, Sw
 }
 
 SweepSpec read_sweep_file(const std::string& path, SweepSpec base) {
-  std::ifstream in(path);
-  if (!in) throw SweepError(path + ": cannot read the sweep file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_sweep_file(ss.str(), path, std::move(base));
+  const std::optional<std::string> text = detail::read_text_file(path);
+  if (!text) throw SweepError(path + ": cannot read the sweep file");
+  return parse_sweep_file(*text, path, std::move(base));
 }
 
 std::string sweep_json(const SweepSpec& s) {
