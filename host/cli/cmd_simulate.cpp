@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "voxcd/host/cli/commands.h"
+#include "voxcd/host/cli/json_text.h"
 #include "voxcd/host/cli/object_report.h"
 #include "voxcd/host/mpi/frame_exchange.h"
 #include "voxcd/host/mpi/world.h"
@@ -65,61 +66,67 @@ RunConfig options_given(const SimulateArgs& a) {
   return o;
 }
 
-// The summary as JSON; `exchanged`: bytes rank 0 sent and received.
-void print_json(const SimulationSummary& s, double exchanged) {
+// The summary's scene and settings: a scene file's types, the device, the (first) type's shape and voxmap, and how
+// the run went (broadphase, backend, mode, directions, distance fields, frames, seed).
+Json settings_json(const SimulationSummary& s) {
+  const RunConfig& c = s.config;
+  const ObjectType& type = *s.types[0];
+  const auto& d = type.voxmap().dims();
+  Json j = Json::object();
+  if (!c.builtin()) {
+    j["scene"] = c.where;
+    j["types"] = Json::array();
+    for (const auto& t : s.types)
+      j["types"].push_back({{"name", t->name}, {"voxel", t->voxmap().voxel()}, {"shell_points", t->shell().size()}});
+  }
+  j.update({{"device", s.device.to_string()}, {"shape", s.shape()}, {"objects", c.objects()}, {"voxel", s.voxel()},
+            {"shell_points", type.shell().size()}, {"voxmap", {d[0], d[1], d[2]}}, {"pruning", c.broadphase},
+            {"backend", c.backend}, {"mode", mode_name(c.mode)}, {"both_directions", c.both_directions}});
+  if (s.distance_bits())
+    j.update({{"distance_bits", s.distance_bits()}, {"band", c.band}, {"margin", c.margin}, {"ccd", c.ccd}});
+  j.update({{"frames", c.frames}, {"seed", c.seed}});
+  return j;
+}
+
+// The totals into j: time, frame rate, the counts, the time per stage, continuous collision's counts, and the
+// ranks of a distributed run (`exchanged`: bytes rank 0 sent and received).
+void add_totals_json(Json& j, const SimulationSummary& s, double exchanged) {
+  const SimulationTotals& tot = s.totals;
+  j.update({{"seconds", tot.seconds()}, {"frame_rate_hz", s.frame_rate()}, {"broadphase_pairs", tot.pairs},
+            {"pairs_tested", tot.tested}, {"touching_pairs", tot.touching}, {"responses", tot.responses},
+            {"wall_bounces", tot.wall_hits}, {"lookups", tot.lookups}, {"hits", tot.hits}, {"contacts", tot.contacts},
+            {"stage_seconds", {{"integrate", tot.t_integrate}, {"bounds", tot.t_bounds},
+                               {"broadphase", tot.t_broadphase}, {"narrow", tot.t_narrow},
+                               {"response", tot.t_response}}}});
+  if (s.config.ccd)
+    j["no_tunnelling"] = {{"iterations", tot.ccd_iterations}, {"queries", tot.ccd_queries},
+                          {"pairs_limited", tot.ccd_limited}, {"time_of_impact_events", tot.ccd_toi},
+                          {"bodies_dropped", tot.ccd_dropped}, {"lookups", tot.ccd_lookups}};
+  if (s.ranks > 1) j.update({{"ranks", s.ranks}, {"rank0_bytes_per_frame", exchanged / double(s.config.frames)}});
+}
+
+// The device into j: lanes, cycles, the clock and the device's frame rate (null without device cycles: not a rate
+// of frames that took no time); then the recording and the state hash.
+void add_device_json(Json& j, const SimulationSummary& s) {
   const RunConfig& c = s.config;
   const SimulationTotals& tot = s.totals;
-  const ObjectType& type = *s.types[0];
-  const double F = double(c.frames);
-  const auto& d = type.voxmap().dims();
-  const double rate = s.frame_rate();
-  std::ostringstream o;
-  o << "{";
-  if (!c.builtin()) {
-    o << "\"scene\": " << json_string(c.where) << ", \"types\": [";
-    for (size_t i = 0; i < s.types.size(); ++i)
-      o << (i ? ", " : "") << "{\"name\": " << json_string(s.types[i]->name) << ", \"voxel\": "
-        << s.types[i]->voxmap().voxel() << ", \"shell_points\": " << s.types[i]->shell().size() << "}";
-    o << "], ";
-  }
-  o << "\"device\": " << json_string(s.device.to_string()) << ", ";
-  o << "\"shape\": " << json_string(s.shape()) << ", \"objects\": " << c.objects()
-    << ", \"voxel\": " << s.voxel() << ", \"shell_points\": " << type.shell().size() << ", \"voxmap\": ["
-    << d[0] << ", " << d[1] << ", " << d[2] << "], \"pruning\": " << json_string(c.broadphase)
-    << ", \"backend\": " << json_string(c.backend) << ", \"mode\": " << json_string(mode_name(c.mode))
-    << ", \"both_directions\": " << (c.both_directions ? "true" : "false");
-  if (s.distance_bits())
-    o << ", \"distance_bits\": " << s.distance_bits() << ", \"band\": " << c.band << ", \"margin\": " << c.margin
-      << ", \"ccd\": " << (c.ccd ? "true" : "false");
-  o << ", \"frames\": " << c.frames
-    << ", \"seed\": " << c.seed << ", \"seconds\": " << tot.seconds() << ", \"frame_rate_hz\": " << rate
-    << ", \"broadphase_pairs\": " << tot.pairs << ", \"pairs_tested\": " << tot.tested
-    << ", \"touching_pairs\": " << tot.touching
-    << ", \"responses\": " << tot.responses << ", \"wall_bounces\": " << tot.wall_hits
-    << ", \"lookups\": " << tot.lookups << ", \"hits\": " << tot.hits << ", \"contacts\": " << tot.contacts
-    << ", \"stage_seconds\": {\"integrate\": " << tot.t_integrate << ", \"bounds\": " << tot.t_bounds
-    << ", \"broadphase\": " << tot.t_broadphase << ", \"narrow\": " << tot.t_narrow
-    << ", \"response\": " << tot.t_response << "}";
-  if (c.ccd)
-    o << ", \"no_tunnelling\": {\"iterations\": " << tot.ccd_iterations << ", \"queries\": " << tot.ccd_queries
-      << ", \"pairs_limited\": " << tot.ccd_limited << ", \"time_of_impact_events\": " << tot.ccd_toi
-      << ", \"bodies_dropped\": " << tot.ccd_dropped << ", \"lookups\": " << tot.ccd_lookups << "}";
-  if (s.ranks > 1)
-    o << ", \"ranks\": " << s.ranks << ", \"rank0_bytes_per_frame\": " << exchanged / F;
-  o << ", \"lanes\": " << c.lanes
-    << ", \"device_cycles\": " << tot.cycles << ", \"device_cycles_per_frame\": " << s.cycles_per_frame()
-    << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"device_idle_frames\": " << tot.idle_frames
-    << ", \"clock_mhz\": " << c.clock.mhz
-    << ", \"clock_source\": " << json_string(c.clock.source)
-    << ", \"clock_estimate\": " << (c.clock.estimate ? "true" : "false") << ", \"device_frame_rate_hz\": ";
-  // No device cycles: no device rate (null), not a rate of frames that took no time.
-  if (tot.cycles) o << s.device_rate();
-  else o << "null";
-  if (!c.record.empty())
-    o << ", \"record\": " << json_string(c.record) << ", \"record_bytes\": " << std::filesystem::file_size(c.record);
-  o << ", \"state_hash\": \"" << std::hex << s.state_hash
-    << std::dec << "\"}\n";
-  std::cout << o.str();
+  j.update({{"lanes", c.lanes}, {"device_cycles", tot.cycles}, {"device_cycles_per_frame", s.cycles_per_frame()},
+            {"device_cycles_max_frame", tot.max_cycles}, {"device_idle_frames", tot.idle_frames},
+            {"clock_mhz", c.clock.mhz}, {"clock_source", c.clock.source}, {"clock_estimate", c.clock.estimate},
+            {"device_frame_rate_hz", tot.cycles ? Json(s.device_rate()) : Json(nullptr)}});
+  if (!c.record.empty()) j.update({{"record", c.record}, {"record_bytes", std::filesystem::file_size(c.record)}});
+  std::ostringstream hash;
+  hash << std::hex << s.state_hash;
+  j["state_hash"] = hash.str();
+}
+
+// The summary as JSON, its numbers as a stream prints them (6 significant digits); `exchanged`: bytes rank 0 sent
+// and received.
+void print_json(const SimulationSummary& s, double exchanged) {
+  Json j = settings_json(s);
+  add_totals_json(j, s, exchanged);
+  add_device_json(j, s);
+  std::cout << json_text(j, false, 6) + "\n";
 }
 
 // The summary's head: the scene.
