@@ -80,11 +80,7 @@ void add_conform(CLI::App& app) {
   CLI::App* c = app.add_subcommand("conform", "Run conformance vector files on a backend and compare with their "
                                               "expectations (docs/conformance.md), or generate vectors");
   c->add_option("files", a->files, "Vector files");
-  c->add_option("--backend", a->run.backend, "Backend: " + [] {
-    std::string s;
-    for (const auto& b : backend_names()) s += (s.empty() ? "" : ", ") + b;
-    return s;
-  }())->capture_default_str();
+  c->add_option("--backend", a->run.backend, "Backend: " + comma_list(backend_names()))->capture_default_str();
   c->add_option("--lanes", a->run.lanes, "Lanes of the device model (default: the file's LANES)")
       ->check(CLI::Range(1, 64));
   c->add_option("--banks", a->run.banks,

@@ -214,11 +214,7 @@ void add_pair(CLI::App& app) {
   c->add_option("--margin", a->opt.margin,
                 "Distance device: contacts where the other object's distance is at most this, world units")
       ->capture_default_str();
-  c->add_option("--backend", a->backend, "Device backend: " + [] {
-    std::string s;
-    for (const auto& b : backend_names()) s += (s.empty() ? "" : ", ") + b;
-    return s;
-  }())->capture_default_str();
+  c->add_option("--backend", a->backend, "Device backend: " + comma_list(backend_names()))->capture_default_str();
   c->add_option("--lanes", a->lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
   c->add_option("--mode", a->mode, "ALL (every contact), FIRST (one per direction) or COUNT")->capture_default_str();
   c->add_flag("--both", a->opt.both_directions, "Test both directions (A's shell in B and B's shell in A)");

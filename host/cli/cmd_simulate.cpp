@@ -201,37 +201,47 @@ void print_text(const SimulationSummary& s, double exchanged) {
   }
 }
 
+// The progress callback: a bar on stderr, for runs of 100 frames or more, when `show`.
+std::function<void(uint64_t, uint64_t)> progress_bar(bool show) {
+  return [show](uint64_t done, uint64_t frames) {
+    if (!show || frames < 100 || ((done - 1) % 25 != 0 && done != frames)) return;
+    const int width = 40, bar = int(width * done / frames);
+    std::fprintf(stderr, "\r[%s%s] %llu/%llu frames", std::string(size_t(bar), '#').c_str(),
+                 std::string(size_t(width - bar), '.').c_str(), (unsigned long long)done, (unsigned long long)frames);
+    if (done == frames) std::fprintf(stderr, "\n");
+  };
+}
+
+// This rank's run of the options. An option that cannot be used is a CLI::ValidationError naming it; in a
+// distributed run (`exchange`), any error ends every rank now (the others would wait for its messages until the
+// timeout).
+SimulationSummary run_rank(const SimulateArgs& a, mpi::World& world,
+                           const std::shared_ptr<mpi::MpiFrameExchange>& exchange, bool progress) {
+  try {
+    RunConfig options = options_given(a);
+    options.exchange = exchange;
+    return simulate(run_config(options), progress_bar(progress));
+  } catch (const SimulateOptionError& e) {
+    std::string names;
+    for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
+    if (exchange)
+      world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + ": " + names + ": " + e.message);
+    throw CLI::ValidationError(names, e.message);
+  } catch (const std::exception& e) {
+    if (!exchange) throw;
+    world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size()) +
+                       ": " + e.what());
+  }
+  return {};
+}
+
 int simulate_cmd(const SimulateArgs& a) {
   // Under mpirun or srun, each process is one rank of a distributed run (docs/scale.md); rank 0 prints.
   mpi::World world;
   std::shared_ptr<mpi::MpiFrameExchange> exchange;
   if (world.size() > 1) exchange = std::make_shared<mpi::MpiFrameExchange>(world, a.mpi_timeout);
   const bool progress = a.progress && !a.json && isatty(STDERR_FILENO) && world.rank() == 0;
-  SimulationSummary s;
-  try {
-    RunConfig options = options_given(a);
-    options.exchange = exchange;
-    s = simulate(run_config(options), [&](uint64_t done, uint64_t frames) {
-      if (!progress || frames < 100 || ((done - 1) % 25 != 0 && done != frames)) return;
-      const int width = 40, bar = int(width * done / frames);
-      std::fprintf(stderr, "\r[%s%s] %llu/%llu frames", std::string(size_t(bar), '#').c_str(),
-                   std::string(size_t(width - bar), '.').c_str(), (unsigned long long)done,
-                   (unsigned long long)frames);
-      if (done == frames) std::fprintf(stderr, "\n");
-    });
-  } catch (const SimulateOptionError& e) {
-    std::string names;
-    for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
-    if (exchange) {
-      world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + ": " + names + ": " + e.message);
-    }
-    throw CLI::ValidationError(names, e.message);
-  } catch (const std::exception& e) {
-    if (!exchange) throw;
-    // One rank's error ends every rank now (the others would wait for its messages until the timeout).
-    world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size()) +
-                       ": " + e.what());
-  }
+  const SimulationSummary s = run_rank(a, world, exchange, progress);
   if (world.rank() != 0) return 0;
   const double exchanged = exchange ? double(exchange->bytes_sent() + exchange->bytes_received()) : 0;
   if (a.json)
@@ -259,30 +269,14 @@ void add_scene_options(CLI::App* c, SimulateArgs& args) {
       ->capture_default_str();
 }
 
-}  // namespace
-
-void add_simulate(CLI::App& app) {
-  auto a = std::make_shared<SimulateArgs>();
-  CLI::App* c = app.add_subcommand("simulate", "The paper's N-body environment, or a scene file: objects moving in a "
-                                               "cube, pruned by a broadphase, pair tests on a device backend "
-                                               "(docs/simulate.md, docs/scenes.md)");
-  a->app = c;
-  c->add_option("scene", a->options.where, "A scene file (docs/scenes.md); the options given override it")
-      ->check(CLI::ExistingFile);
-  c->add_option("--config", a->config,
-                "The device's whole configuration as NAME VALUE pairs (e.g. as voxcd size prints it); "
-                "--lanes overrides its LANES");
-  add_scene_options(c, *a);
-  c->add_option("--pruning", a->options.broadphase, "Broadphase: " + [] {
-    std::string s;
-    for (const auto& b : broadphase_names()) s += (s.empty() ? "" : ", ") + b;
-    return s;
-  }())->capture_default_str();
-  c->add_option("--backend", a->options.backend, "Device backend: " + [] {
-    std::string s;
-    for (const auto& b : backend_names()) s += (s.empty() ? "" : ", ") + b;
-    return s;
-  }())->capture_default_str();
+// The options of the device and the pair tests: broadphase, backend, lanes, mode, directions, distance fields,
+// continuous collision.
+void add_device_options(CLI::App* c, SimulateArgs& args) {
+  SimulateArgs* a = &args;
+  c->add_option("--pruning", a->options.broadphase, "Broadphase: " + comma_list(broadphase_names()))
+      ->capture_default_str();
+  c->add_option("--backend", a->options.backend, "Device backend: " + comma_list(backend_names()))
+      ->capture_default_str();
   c->add_option("--lanes", a->options.lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
   c->add_option("--mode", a->mode, "ALL (every contact) or FIRST (whether a pair touches)")->capture_default_str();
   c->add_flag("--both", a->options.both_directions, "Test both directions of every pair");
@@ -294,6 +288,11 @@ void add_simulate(CLI::App& app) {
   c->add_option("--margin", a->options.margin, "Distance voxmaps: contacts within this distance, world units")->capture_default_str();
   c->add_flag("--ccd", a->options.ccd, "Continuous collision: no body passes through another or a wall between frames "
                                "(needs --distance-bits)");
+}
+
+// The options of the run: frames, seed, clock, threads, MPI, the culling stages, and the output.
+void add_run_options(CLI::App* c, SimulateArgs& args) {
+  SimulateArgs* a = &args;
   c->add_option("--frames", a->options.frames, "Frames to simulate")->capture_default_str();
   c->add_option("--seed", a->options.seed, "Seed of the scene")->capture_default_str();
   c->add_option("--clock", a->clock_mhz,
@@ -317,6 +316,24 @@ void add_simulate(CLI::App& app) {
   c->add_option("--record", a->options.record,
                 "Record the run to FILE as it goes: poses, pairs, contacts and statistics of every frame "
                 "(replay it with voxcd view FILE; docs/view.md)");
+}
+
+}  // namespace
+
+void add_simulate(CLI::App& app) {
+  auto a = std::make_shared<SimulateArgs>();
+  CLI::App* c = app.add_subcommand("simulate", "The paper's N-body environment, or a scene file: objects moving in a "
+                                               "cube, pruned by a broadphase, pair tests on a device backend "
+                                               "(docs/simulate.md, docs/scenes.md)");
+  a->app = c;
+  c->add_option("scene", a->options.where, "A scene file (docs/scenes.md); the options given override it")
+      ->check(CLI::ExistingFile);
+  c->add_option("--config", a->config,
+                "The device's whole configuration as NAME VALUE pairs (e.g. as voxcd size prints it); "
+                "--lanes overrides its LANES");
+  add_scene_options(c, *a);
+  add_device_options(c, *a);
+  add_run_options(c, *a);
   c->callback([a] { exit_code() = simulate_cmd(*a); });
 }
 

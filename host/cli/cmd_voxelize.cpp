@@ -58,8 +58,7 @@ int voxelize_cmd(const VoxelizeArgs& a) {
 
 void add_voxelize(CLI::App& app) {
   auto a = std::make_shared<VoxelizeArgs>();
-  std::string shapes;
-  for (const auto& n : shape_names()) shapes += (shapes.empty() ? "" : ", ") + n;
+  const std::string shapes = comma_list(shape_names());
   CLI::App* c = app.add_subcommand("voxelize", "Voxelise a mesh file or a built-in shape into an object file "
                                                "(voxmap and point shell, docs/objects.md)");
   c->add_option("input", a->input,
