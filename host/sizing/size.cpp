@@ -297,8 +297,10 @@ DeviceConfig choose_target_depth(SizeReport& r, const SizeRequest& req, const De
 
 }  // namespace
 
-SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
-  SizeReport r;
+namespace {
+
+// What is asked: the request's values, or the scene file's where it gives none.
+void take_request(SizeReport& r, const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
   r.file = f.where;
   r.accuracy = req.accuracy > 0 ? req.accuracy : accuracy_or_default(f, input_scene);
   r.contact_accuracy = req.contact_accuracy > 0 ? req.contact_accuracy : f.contact_accuracy;
@@ -307,6 +309,55 @@ SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeR
             : req.clock_mhz != 0 ? given_clock(req.clock_mhz, "SizeOptions::clock_mhz")
                                  : f.clock;
   r.frames = req.frames > 0 ? req.frames : f.frames;
+}
+
+// The fewest lanes (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget, each
+// count measured into r.lanes with its memories; cfg at that count. SizeError "rate" when 64 lanes do not.
+DeviceConfig choose_lanes(SizeReport& r, const Scene& scene, const RunConfig& sized, DeviceConfig cfg) {
+  const double budget = r.clock.mhz * 1e6 / r.rate;
+  r.budget = uint64_t(std::floor(budget));
+  for (int lanes = 1; lanes <= 64; lanes *= 2) {
+    cfg.LANES = lanes;
+    cfg = derive_memory(cfg, scene);
+    r.lanes.push_back(measure_frames(scene, sized, cfg, r.frames));
+    if (double(r.lanes.back().max_cycles) <= budget) return cfg;
+  }
+  const LaneMeasure& m = r.lanes.back();
+  const double best = r.clock.rate(double(m.max_cycles));
+  throw SizeError("rate", r.rate / best,
+                  "64 lanes take " + std::to_string(m.max_cycles) + " cycles for the largest of " +
+                      std::to_string(r.frames) + " frames, " + fmt(best) + " frames per second at " +
+                      r.clock.text() + "; " + fmt(r.rate, 8) + " requested is " + fmt(r.rate / best) +
+                      " times faster");
+}
+
+// Copies against banks: the same frames with one voxmap in LANES banks (8 x LANES on a distance device: each parity
+// bank split LANES ways), where the memory has that many words.
+void measure_banked(SizeReport& r, const Scene& scene, const RunConfig& sized) {
+  DeviceConfig shared = r.config;
+  shared.BANKS = r.config.LANES;
+  if (r.config.LANES < 2 || int64_t(memory_banks(shared)) > (int64_t{1} << std::min(r.config.MAW, 28))) return;
+  SizeReport::Banked b;
+  b.config = shared;
+  b.measure = measure_frames(scene, sized, b.config, r.frames);
+  r.banked = b;
+}
+
+// The block RAMs on the target, and with req.cost the syntheses (the standard-cell area with a target).
+void add_costs(SizeReport& r, const SizeRequest& req) {
+  if (r.depth) r.rams = block_rams(r.config, r.target);
+  if (req.cost && r.depth) r.asic = asic_cost(r.config, r.clock.mhz, req.rtl_dir);
+  if (!req.cost) return;
+  r.cost = yosys_cost(r.config, req.rtl_dir);
+  r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
+  if (r.banked) r.banked->cost = yosys_cost(r.banked->config, req.rtl_dir);
+}
+
+}  // namespace
+
+SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
+  SizeReport r;
+  take_request(r, f, input_scene, req);
   const RunConfig sized = choose_kind(r, f, input_scene);
   const Scene& scene = r.scene;
   r.objects = scene.bodies.size();
@@ -315,50 +366,17 @@ SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeR
   base.SB = r.kind.SB;
   base.WB = r.kind.WB;
   if (!req.target.empty()) base = choose_target_depth(r, req, base);
-  DeviceConfig cfg = derive_widths(r.extents, r.accuracy, base, r.kind.distance() ? r.kind.WB : 0);
-  r.error = size_error_bound(cfg, r.extents, &r.worst_pair);
-  // Lanes: the fewest (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget.
-  const double budget = r.clock.mhz * 1e6 / r.rate;
-  r.budget = uint64_t(std::floor(budget));
-  for (int lanes = 1; lanes <= 64; lanes *= 2) {
-    cfg.LANES = lanes;
-    cfg = derive_memory(cfg, scene);
-    r.lanes.push_back(measure_frames(scene, sized, cfg, r.frames));
-    if (double(r.lanes.back().max_cycles) <= budget) break;
-    if (lanes == 64) {
-      const LaneMeasure& m = r.lanes.back();
-      const double best = r.clock.rate(double(m.max_cycles));
-      throw SizeError("rate", r.rate / best,
-                      "64 lanes take " + std::to_string(m.max_cycles) + " cycles for the largest of " +
-                          std::to_string(r.frames) + " frames, " + fmt(best) + " frames per second at " +
-                          r.clock.text() + "; " + fmt(r.rate, 8) + " requested is " + fmt(r.rate / best) +
-                          " times faster");
-    }
-  }
-  r.config = cfg;
+  const DeviceConfig widths = derive_widths(r.extents, r.accuracy, base, r.kind.distance() ? r.kind.WB : 0);
+  r.error = size_error_bound(widths, r.extents, &r.worst_pair);
+  r.config = choose_lanes(r, scene, sized, widths);
   r.config.validate();
   for (const auto& t : scene.types) {
     r.shell_words += t->shell().size();
-    r.map_words += type_map_words(cfg, *t);
+    r.map_words += type_map_words(r.config, *t);
   }
   bound_contacts(r);
-  // Copies against banks: the same frames with one voxmap in LANES banks (8 x LANES on a distance device: each
-  // parity bank split LANES ways), where the memory has that many words.
-  DeviceConfig shared = cfg;
-  shared.BANKS = cfg.LANES;
-  if (cfg.LANES > 1 && int64_t(memory_banks(shared)) <= (int64_t{1} << std::min(cfg.MAW, 28))) {
-    SizeReport::Banked b;
-    b.config = shared;
-    b.measure = measure_frames(scene, sized, b.config, r.frames);
-    r.banked = b;
-  }
-  if (r.depth) r.rams = block_rams(r.config, r.target);
-  if (req.cost && r.depth) r.asic = asic_cost(r.config, r.clock.mhz, req.rtl_dir);
-  if (req.cost) {
-    r.cost = yosys_cost(r.config, req.rtl_dir);
-    r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
-    if (r.banked) r.banked->cost = yosys_cost(r.banked->config, req.rtl_dir);
-  }
+  measure_banked(r, scene, sized);
+  add_costs(r, req);
   return r;
 }
 
