@@ -439,12 +439,11 @@ std::string depth_lines(const SizeReport& r) {
 }
 }  // namespace
 
-std::string size_text(const SizeReport& r) {
+namespace {
+
+// The head: the scene, what is asked, and each type.
+void scene_lines(std::ostream& o, const SizeReport& r) {
   const Scene& scene = r.scene;
-  std::ostringstream o;
-  const DeviceConfig& c = r.config;
-  const LaneMeasure& m = r.chosen();
-  const auto& wp = r.extents.pairs.at(r.worst_pair);
   o << "voxcd size: " << r.file << ": " << r.objects << " objects of " << scene.types.size() << " type"
     << (scene.types.size() > 1 ? "s" : "") << "; accuracy " << fmt(r.accuracy) << " world units, " << fmt(r.rate, 8)
     << " frames/s at " << r.clock.text() << "\n";
@@ -453,6 +452,13 @@ std::string size_text(const SizeReport& r) {
     o << "  type " << t->name << ": voxel " << fmt(t->voxmap().voxel()) << ", voxmap " << d[0] << "x" << d[1] << "x"
       << d[2] << ", " << t->shell().size() << " shell points at spacing " << fmt(t->shell().frame().voxel) << "\n";
   }
+}
+
+// The configuration, its widths and what they hold, the fixed-point error and the contacts' bound.
+void width_lines(std::ostream& o, const SizeReport& r) {
+  const Scene& scene = r.scene;
+  const DeviceConfig& c = r.config;
+  const auto& wp = r.extents.pairs.at(r.worst_pair);
   o << "configuration   " << c.to_string() << "\n";
   o << "widths          PW " << c.PW << " PF " << c.PF << ": shell coordinates up to " << fmt(r.extents.max_point)
     << " spacings, exact (half-integers); MW " << c.MW << " MF " << c.MF << ": matrix entries up to "
@@ -461,15 +467,19 @@ std::string size_text(const SizeReport& r) {
   o << "error           " << fmt(r.error) << " world units at most (" << fmt(r.accuracy) << " requested; worst pair "
     << scene.types[wp.a]->name << " in " << scene.types[wp.b]->name << ": voxel_B * (3 * 2^-" << c.MF + 1 << " * "
     << fmt(wp.max_point_a) << " + 2^-" << c.TF() + 1 << "))\n";
-  {
-    const ObjectType& b = *scene.types.at(r.contact_type);
-    o << "contacts        within " << fmt(r.contact_error) << " world units of the other surface with "
-      << r.kind.text() << " ("
-      << (r.contact_accuracy > 0 ? fmt(r.contact_accuracy) + " requested"
-                                 : std::string("the scene file's voxmaps; --contact-accuracy chooses them"))
-      << "; worst type " << b.name << (r.convex.at(r.contact_type) ? ", convex" : ", not convex") << ": "
-      << contact_terms_text(r) << ")\n";
-  }
+  const ObjectType& b = *scene.types.at(r.contact_type);
+  o << "contacts        within " << fmt(r.contact_error) << " world units of the other surface with " << r.kind.text()
+    << " ("
+    << (r.contact_accuracy > 0 ? fmt(r.contact_accuracy) + " requested"
+                               : std::string("the scene file's voxmaps; --contact-accuracy chooses them"))
+    << "; worst type " << b.name << (r.convex.at(r.contact_type) ? ", convex" : ", not convex") << ": "
+    << contact_terms_text(r) << ")\n";
+}
+
+// The measured frames: per frame, cycles per lane count, frame rate, latency and memory.
+void frame_lines(std::ostream& o, const SizeReport& r) {
+  const DeviceConfig& c = r.config;
+  const LaneMeasure& m = r.chosen();
   o << "per frame       " << fmt(m.pairs) << " broadphase pairs, " << fmt(m.tested) << " tested, " << fmt(m.lookups)
     << " lookups, " << fmt(m.hits) << " hits (mean of " << r.frames << " frames on the cpu backend)\n";
   o << "cycles          ";
@@ -487,37 +497,54 @@ std::string size_text(const SizeReport& r) {
     << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.voxmap_copies()
     << (c.banked() ? " (shared banks)" : " lane copies") << " = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
     << bits_text(r.shell_bits() + r.map_bits()) << "\n";
-  if (r.depth) o << depth_lines(r);
+}
+
+// Shared banks against copies: memory, cycles, the budget, and their cost when synthesised.
+void banked_lines(std::ostream& o, const SizeReport& r) {
+  const SizeReport::Banked& b = *r.banked;
+  const LaneMeasure& m = r.chosen();
+  const uint64_t copies = r.map_bits(), shared = b.map_bits();
+  const double more = m.max_cycles ? double(b.measure.max_cycles) / double(m.max_cycles) - 1 : 0;
+  o << "banks           BANKS " << b.config.BANKS << " (one voxmap shared in " << memory_banks(b.config)
+    << " banks instead of " << r.config.LANES << " copies): voxmap " << bits_text(shared) << " instead of "
+    << bits_text(copies) << " (saves " << bits_text(copies - shared) << "); largest frame " << b.measure.max_cycles
+    << " cycles instead of " << m.max_cycles << " (" << (more >= 0 ? "+" : "") << fmt(100 * more, 3)
+    << "%, bank conflicts), mean " << fmt(b.measure.mean_cycles, 6) << "; "
+    << (b.meets(r.budget) ? "meets" : "misses") << " the budget of " << r.budget << " cycles\n";
+  if (b.cost)
+    o << "banks cost      " << b.cost->luts << " LUTs, " << b.cost->ffs << " FFs, " << b.cost->dsps << " DSPs, "
+      << fmt(b.cost->brams) << " block RAMs (RAMB36) with BANKS " << b.config.BANKS << ", against "
+      << fmt(r.cost->brams) << " with copies\n";
+}
+
+// The yosys cost, the banks, and the default widths' cost against it.
+void cost_lines(std::ostream& o, const SizeReport& r) {
   if (r.cost)
     o << "cost            " << r.cost->luts << " LUTs, " << r.cost->ffs << " FFs, " << r.cost->dsps << " DSPs, "
       << fmt(r.cost->brams) << " block RAMs (RAMB36) for Xilinx 7-series (yosys synth_xilinx, " << r.cost->version
       << ", " << fmt(r.cost->seconds, 3) << " s)\n";
   else
     o << "cost            not synthesised (add --cost to run yosys)\n";
-  if (r.banked) {
-    const SizeReport::Banked& b = *r.banked;
-    const uint64_t copies = r.map_bits(), shared = b.map_bits();
-    const double more = m.max_cycles ? double(b.measure.max_cycles) / double(m.max_cycles) - 1 : 0;
-    o << "banks           BANKS " << b.config.BANKS << " (one voxmap shared in " << memory_banks(b.config)
-      << " banks instead of " << c.LANES << " copies): voxmap " << bits_text(shared) << " instead of "
-      << bits_text(copies) << " (saves " << bits_text(copies - shared) << "); largest frame "
-      << b.measure.max_cycles << " cycles instead of " << m.max_cycles << " (" << (more >= 0 ? "+" : "")
-      << fmt(100 * more, 3) << "%, bank conflicts), mean " << fmt(b.measure.mean_cycles, 6) << "; "
-      << (b.meets(r.budget) ? "meets" : "misses") << " the budget of " << r.budget << " cycles\n";
-    if (b.cost)
-      o << "banks cost      " << b.cost->luts << " LUTs, " << b.cost->ffs << " FFs, " << b.cost->dsps << " DSPs, "
-        << fmt(b.cost->brams) << " block RAMs (RAMB36) with BANKS " << b.config.BANKS << ", against "
-        << fmt(r.cost->brams) << " with copies\n";
-  }
-  if (r.default_cost) {
-    const DeviceConfig d = r.default_widths();
-    o << "default widths  " << r.default_cost->luts << " LUTs, " << r.default_cost->ffs << " FFs, "
-      << r.default_cost->dsps << " DSPs, " << fmt(r.default_cost->brams) << " block RAMs for " << d.to_string()
-      << " (shell 2^" << d.SAW << " x " << 3 * d.PW << " bit); derived/default LUTs "
-      << fmt(double(r.cost->luts) / double(std::max<uint64_t>(1, r.default_cost->luts)), 3) << ", DSPs "
-      << fmt(double(r.cost->dsps) / double(std::max<uint64_t>(1, r.default_cost->dsps)), 3) << ", block RAMs "
-      << fmt(r.cost->brams / std::max(0.5, r.default_cost->brams), 3) << "\n";
-  }
+  if (r.banked) banked_lines(o, r);
+  if (!r.default_cost) return;
+  const DeviceConfig d = r.default_widths();
+  o << "default widths  " << r.default_cost->luts << " LUTs, " << r.default_cost->ffs << " FFs, "
+    << r.default_cost->dsps << " DSPs, " << fmt(r.default_cost->brams) << " block RAMs for " << d.to_string()
+    << " (shell 2^" << d.SAW << " x " << 3 * d.PW << " bit); derived/default LUTs "
+    << fmt(double(r.cost->luts) / double(std::max<uint64_t>(1, r.default_cost->luts)), 3) << ", DSPs "
+    << fmt(double(r.cost->dsps) / double(std::max<uint64_t>(1, r.default_cost->dsps)), 3) << ", block RAMs "
+    << fmt(r.cost->brams / std::max(0.5, r.default_cost->brams), 3) << "\n";
+}
+
+}  // namespace
+
+std::string size_text(const SizeReport& r) {
+  std::ostringstream o;
+  scene_lines(o, r);
+  width_lines(o, r);
+  frame_lines(o, r);
+  if (r.depth) o << depth_lines(r);
+  cost_lines(o, r);
   return o.str();
 }
 
@@ -547,10 +574,12 @@ nlohmann::ordered_json depth_json(const SizeReport& r) {
 }
 }  // namespace
 
-std::string size_json(const SizeReport& r) {
-  const Scene& scene = r.scene;
-  nlohmann::ordered_json j;
-  const DeviceConfig& c = r.config;
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// The scene and what is asked: objects, accuracy, rate, clock, frames, and each type.
+void add_request_json(json& j, const SizeReport& r) {
   j["scene"] = r.file;
   j["objects"] = r.objects;
   j["accuracy"] = r.accuracy;
@@ -559,12 +588,18 @@ std::string size_json(const SizeReport& r) {
   j["clock_source"] = r.clock.source;
   j["clock_estimate"] = r.clock.estimate;
   j["frames"] = r.frames;
-  for (const auto& t : scene.types)
+  for (const auto& t : r.scene.types)
     j["types"].push_back({{"name", t->name},
                           {"voxel", t->voxmap().voxel()},
                           {"voxmap", t->voxmap().dims()},
                           {"shell_points", t->shell().size()},
                           {"shell_spacing", t->shell().frame().voxel}});
+}
+
+// The configuration, the extents it holds, the fixed-point error and the contacts' bound.
+void add_widths_json(json& j, const SizeReport& r) {
+  const Scene& scene = r.scene;
+  const DeviceConfig& c = r.config;
   j["config"] = {{"PW", c.PW}, {"PF", c.PF},     {"MW", c.MW},   {"MF", c.MF},   {"TW", c.TW},    {"DW", c.DW},
                  {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW},
                  {"SB", c.SB},     {"WB", c.WB},   {"BANKS", c.BANKS}};
@@ -576,18 +611,20 @@ std::string size_json(const SizeReport& r) {
   j["error"] = r.error;
   const auto& wp = r.extents.pairs.at(r.worst_pair);
   j["worst_pair"] = {scene.types[wp.a]->name, scene.types[wp.b]->name};
-  {
-    const ContactTerms& t = r.contact_terms;
-    nlohmann::ordered_json convex = nlohmann::ordered_json::array();
-    for (bool v : r.convex) convex.push_back(v);
-    j["contact"] = {{"requested", r.contact_accuracy > 0 ? nlohmann::ordered_json(r.contact_accuracy) : nullptr},
-                    {"bound", r.contact_error},
-                    {"voxmap", {{"SB", r.kind.SB}, {"WB", r.kind.WB}, {"band", r.kind.band}, {"step", r.kind.step()}}},
-                    {"worst_type", scene.types.at(r.contact_type)->name},
-                    {"terms_voxels", {{"cell", t.cell}, {"quantisation", t.quantisation}, {"weights", t.weights},
-                                      {"interpolation", t.interpolation}}},
-                    {"convex", convex}};
-  }
+  const ContactTerms& t = r.contact_terms;
+  json convex = json::array();
+  for (bool v : r.convex) convex.push_back(v);
+  j["contact"] = {{"requested", r.contact_accuracy > 0 ? json(r.contact_accuracy) : nullptr},
+                  {"bound", r.contact_error},
+                  {"voxmap", {{"SB", r.kind.SB}, {"WB", r.kind.WB}, {"band", r.kind.band}, {"step", r.kind.step()}}},
+                  {"worst_type", scene.types.at(r.contact_type)->name},
+                  {"terms_voxels", {{"cell", t.cell}, {"quantisation", t.quantisation}, {"weights", t.weights},
+                                    {"interpolation", t.interpolation}}},
+                  {"convex", convex}};
+}
+
+// The measured frames: budget, cycles per lane count, per frame, rate, memory, depth, latency and target.
+void add_frames_json(json& j, const SizeReport& r) {
   j["cycle_budget"] = r.budget;
   for (const auto& m : r.lanes)
     j["lanes_measured"].push_back({{"lanes", m.lanes}, {"max_cycles", m.max_cycles}, {"mean_cycles", m.mean_cycles}});
@@ -595,20 +632,25 @@ std::string size_json(const SizeReport& r) {
   j["per_frame"] = {{"pairs", m.pairs}, {"tested", m.tested}, {"lookups", m.lookups}, {"hits", m.hits}};
   j["cycles_per_frame"] = {{"max", m.max_cycles}, {"mean", m.mean_cycles}};
   // At clock_mhz (clock_source above); null when the frames needed no device cycles.
-  j["modelled_rate_hz"] = m.max_cycles ? nlohmann::ordered_json(r.modelled_rate()) : nullptr;
+  j["modelled_rate_hz"] = m.max_cycles ? json(r.modelled_rate()) : nullptr;
   j["memory_bits"] = {{"shell", r.shell_bits()}, {"voxmap", r.map_bits()}, {"total", r.shell_bits() + r.map_bits()}};
-  j["depth"] = depth_of(c);
+  j["depth"] = depth_of(r.config);
   j["latency_cycles"] = r.latency();
   j["latency_ns"] = r.latency_ns();
-  j["target"] = r.target.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.target);
-  j["depth_choice"] = r.depth ? depth_json(r) : nlohmann::ordered_json(nullptr);
+  j["target"] = r.target.empty() ? json(nullptr) : json(r.target);
+  j["depth_choice"] = r.depth ? depth_json(r) : json(nullptr);
   j["words_used"] = {{"shell", r.shell_words}, {"voxmap", r.map_words}};
+}
+
+// The yosys cost, the banks against copies, and the default widths' cost (null where not measured).
+void add_costs_json(json& j, const SizeReport& r) {
   if (r.cost)
     j["cost"] = {{"target", "xilinx 7-series (synth_xilinx)"}, {"luts", r.cost->luts}, {"ffs", r.cost->ffs},
                  {"dsps", r.cost->dsps}, {"brams", r.cost->brams}, {"yosys", r.cost->version},
                  {"seconds", r.cost->seconds}};
   else
     j["cost"] = nullptr;
+  j["banked"] = nullptr;
   if (r.banked) {
     const SizeReport::Banked& b = *r.banked;
     j["banked"] = {{"config_text", b.config.to_string()},
@@ -620,13 +662,21 @@ std::string size_json(const SizeReport& r) {
     if (b.cost)
       j["banked"]["cost"] = {{"luts", b.cost->luts}, {"ffs", b.cost->ffs}, {"dsps", b.cost->dsps},
                              {"brams", b.cost->brams}};
-  } else {
-    j["banked"] = nullptr;
   }
   if (r.default_cost)
     j["default_widths_cost"] = {{"config", r.default_widths().to_string()}, {"luts", r.default_cost->luts},
                                 {"ffs", r.default_cost->ffs}, {"dsps", r.default_cost->dsps},
                                 {"brams", r.default_cost->brams}};
+}
+
+}  // namespace
+
+std::string size_json(const SizeReport& r) {
+  json j;
+  add_request_json(j, r);
+  add_widths_json(j, r);
+  add_frames_json(j, r);
+  add_costs_json(j, r);
   return j.dump(2) + "\n";
 }
 
