@@ -1,5 +1,5 @@
-// A whole file read into memory, for the readers of the library's text formats (scene, campaign, sweep and timing
-// files, journals, yosys's output): each names its own error.
+// A whole file read into memory, for the readers of the library's text formats (campaign, sweep and timing files,
+// journals, yosys's output): each names its own error.
 #pragma once
 
 #include <fstream>
