@@ -112,9 +112,17 @@ std::string pair_json(const PairArgs& a, const ObjectType& ta, const ObjectType&
                       const PairRun& run) {
   // The voxel the objects were built at (an object file brings its own): one number when they share it.
   const double va = ta.voxmap().voxel(), vb = tb.voxmap().voxel();
-  Json j = {{"a", a.a}, {"b", a.b}, {"voxel", va == vb ? Json(va) : Json{va, vb}}, {"backend", a.backend},
-            {"mode", a.mode}, {"both_directions", a.opt.both_directions}, {"pairs", run.res.size()}, {"touching", run.touching},
-            {"hits", run.hits}, {"lookups", run.lookups}, {"seconds", rounded(run.secs, 6)}};
+  Json j = {{"a", a.a},
+            {"b", a.b},
+            {"voxel", va == vb ? Json(va) : Json{va, vb}},
+            {"backend", a.backend},
+            {"mode", a.mode},
+            {"both_directions", a.opt.both_directions},
+            {"pairs", run.res.size()},
+            {"touching", run.touching},
+            {"hits", run.hits},
+            {"lookups", run.lookups},
+            {"seconds", rounded(run.secs, 6)}};
   if (run.has_cycles) j["device_cycles"] = run.cycles;
   if (cfg.distance()) {
     j["distance_bits"] = cfg.SB;
@@ -197,8 +205,8 @@ void add_pair(CLI::App& app) {
   c->add_option("--pose", a->pose, "B's pose in A's frame: tx,ty,tz[,rx,ry,rz] (rotation in degrees about x, y, z)");
   c->add_option("--random", a->random, "Test N random poses where the bounding spheres overlap instead");
   c->add_option("--seed", a->seed, "Seed of --random")->capture_default_str();
-  CLI::Option* voxel =
-      c->add_option("--voxel", a->object.voxel, "Voxel size for meshes and shapes (default: 1/32 of the larger one's longest side)");
+  CLI::Option* voxel = c->add_option("--voxel", a->object.voxel,
+                                     "Voxel size for meshes and shapes (default: 1/32 of the larger one's longest side)");
   CLI::Option* res = c->add_option("--resolution", a->object.resolution,
                                    "Voxels along the larger mesh's longest side, shared by both (instead of --voxel)")
                          ->check(CLI::Range(4u, 1u << 20));

@@ -11,6 +11,7 @@
 
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/cli/object_report.h"
+#include "voxcd/host/detail/text_file.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/scene/record.h"
@@ -37,9 +38,9 @@ struct ViewArgs {
 };
 
 std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::optional<std::string> bytes = detail::read_text_file(path);
+  if (!bytes) throw std::runtime_error(path + ": cannot open");
+  return std::move(*bytes);
 }
 
 bool is_scene_file(const std::string& path) {
