@@ -580,14 +580,9 @@ using json = nlohmann::ordered_json;
 
 // The scene and what is asked: objects, accuracy, rate, clock, frames, and each type.
 void add_request_json(json& j, const SizeReport& r) {
-  j["scene"] = r.file;
-  j["objects"] = r.objects;
-  j["accuracy"] = r.accuracy;
-  j["rate_hz"] = r.rate;
-  j["clock_mhz"] = r.clock.mhz;
-  j["clock_source"] = r.clock.source;
-  j["clock_estimate"] = r.clock.estimate;
-  j["frames"] = r.frames;
+  j = {{"scene", r.file}, {"objects", r.objects}, {"accuracy", r.accuracy}, {"rate_hz", r.rate},
+       {"clock_mhz", r.clock.mhz}, {"clock_source", r.clock.source}, {"clock_estimate", r.clock.estimate},
+       {"frames", r.frames}};
   for (const auto& t : r.scene.types)
     j["types"].push_back({{"name", t->name},
                           {"voxel", t->voxmap().voxel()},
