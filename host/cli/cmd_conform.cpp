@@ -15,13 +15,8 @@ namespace {
 
 struct ConformArgs {
   std::vector<std::string> files;
-  std::string backend = "ref";
-  std::optional<int> lanes;
-  std::optional<int> banks;
-  std::optional<int> depth;
-  bool cycles = false;
+  ConformOptions run;  // the backend and the device model's settings, for every file
   bool print = false;
-  std::string trace;
   bool generate = false;
   uint64_t seed = 1;
   size_t jobs = 200;
@@ -37,9 +32,9 @@ int generate(const ConformArgs& a) {
   g.jobs = a.jobs;
   g.cloud_points = a.cloud;
   if (!a.config.empty()) g.config = parse_config_pairs(a.config, "--config");
-  if (a.lanes) g.config.LANES = *a.lanes;
-  if (a.banks) g.config.BANKS = *a.banks;
-  if (a.depth) g.config.depth = *a.depth;
+  if (a.run.lanes) g.config.LANES = *a.run.lanes;
+  if (a.run.banks) g.config.BANKS = *a.run.banks;
+  if (a.run.depth) g.config.depth = *a.run.depth;
   const GeneratedFile w = write_generated_vectors(a.output, g, a.config);
   std::cout << "wrote " << a.output << ": " << w.jobs << " jobs, " << w.shell_words << " shell words, " << w.map_words
             << " map words, " << w.lookups << " lookups, seed " << a.seed << '\n';
@@ -48,16 +43,9 @@ int generate(const ConformArgs& a) {
 
 // Runs one file; returns "" on success or the reason it failed.
 std::string run_file(const ConformArgs& a, const std::string& path, std::ostream& print_to) {
-  ConformOptions opt;
-  opt.backend = a.backend;
-  opt.lanes = a.lanes;
-  opt.banks = a.banks;
-  opt.depth = a.depth;
-  opt.cycles = a.cycles;
-  opt.trace = a.trace;
-  const ConformResult r = run_conformance(path, opt, !a.print);
+  const ConformResult r = run_conformance(path, a.run, !a.print);
   if (!r.ok() || !a.print) return r.error;
-  print_to << "# " << path << " on " << a.backend << '\n';
+  print_to << "# " << path << " on " << a.run.backend << '\n';
   std::string buf;
   for (const Record& rec : r.stream) {
     buf = rec.to_string(r.version >= 2);
@@ -92,23 +80,19 @@ void add_conform(CLI::App& app) {
   CLI::App* c = app.add_subcommand("conform", "Run conformance vector files on a backend and compare with their "
                                               "expectations (docs/conformance.md), or generate vectors");
   c->add_option("files", a->files, "Vector files");
-  c->add_option("--backend", a->backend, "Backend: " + [] {
-    std::string s;
-    for (const auto& b : backend_names()) s += (s.empty() ? "" : ", ") + b;
-    return s;
-  }())->capture_default_str();
-  c->add_option("--lanes", a->lanes, "Lanes of the device model (default: the file's LANES)")
+  c->add_option("--backend", a->run.backend, "Backend: " + comma_list(backend_names()))->capture_default_str();
+  c->add_option("--lanes", a->run.lanes, "Lanes of the device model (default: the file's LANES)")
       ->check(CLI::Range(1, 64));
-  c->add_option("--banks", a->banks,
+  c->add_option("--banks", a->run.banks,
                 "Shared voxmap banks of the device model (0: a copy per lane; default: the file's BANKS)")
       ->check(CLI::Range(0, 64));
-  c->add_option("--depth", a->depth,
+  c->add_option("--depth", a->run.depth,
                 "Pipeline depth of the device model: register stages added to every lane, 0.." +
                     std::to_string(kMaxDepth) + " (default: the file's DEPTH, or 0)")
       ->check(CLI::Range(0, kMaxDepth));
-  c->add_flag("--cycles", a->cycles, "Also compare the cycles of every completion record");
+  c->add_flag("--cycles", a->run.cycles, "Also compare the cycles of every completion record");
   c->add_flag("--print", a->print, "Print the backend's own output stream instead of comparing");
-  c->add_option("--trace", a->trace, "rtl: write an FST waveform to this file");
+  c->add_option("--trace", a->run.trace, "rtl: write an FST waveform to this file");
   c->add_flag("--generate", a->generate, "Generate random vectors with expectations from ref (needs -o)");
   c->add_option("--seed", a->seed, "Random seed for --generate")->capture_default_str();
   c->add_option("--jobs", a->jobs, "Number of jobs for --generate")->capture_default_str();

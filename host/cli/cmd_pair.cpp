@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <sstream>
 
+#include "voxcd/host/api/object.h"
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/cli/json_text.h"
 #include "voxcd/host/pairs/collide.h"
@@ -22,16 +23,11 @@ struct PairArgs {
   std::string pose;
   size_t random = 0;
   uint64_t seed = 1;
-  double voxel = 0;
-  uint32_t resolution = 0;
-  int distance_bits = 0;
-  double band = 4.0;
-  double margin = 0;
+  ObjectDef object;  // meshes' and shapes' voxel (or resolution, 32 by default) and distance field
+  PairOptions opt;   // both directions, cull, margin; the mode as given in `mode`
   std::string backend = "cpu";
   int lanes = 4;
   std::string mode = "ALL";
-  bool both = false;
-  bool cull = true;
   bool json = false;
   size_t show = 10;
 };
@@ -116,14 +112,22 @@ std::string pair_json(const PairArgs& a, const ObjectType& ta, const ObjectType&
                       const PairRun& run) {
   // The voxel the objects were built at (an object file brings its own): one number when they share it.
   const double va = ta.voxmap().voxel(), vb = tb.voxmap().voxel();
-  Json j = {{"a", a.a}, {"b", a.b}, {"voxel", va == vb ? Json(va) : Json{va, vb}}, {"backend", a.backend},
-            {"mode", a.mode}, {"both_directions", a.both}, {"pairs", run.res.size()}, {"touching", run.touching},
-            {"hits", run.hits}, {"lookups", run.lookups}, {"seconds", rounded(run.secs, 6)}};
+  Json j = {{"a", a.a},
+            {"b", a.b},
+            {"voxel", va == vb ? Json(va) : Json{va, vb}},
+            {"backend", a.backend},
+            {"mode", a.mode},
+            {"both_directions", a.opt.both_directions},
+            {"pairs", run.res.size()},
+            {"touching", run.touching},
+            {"hits", run.hits},
+            {"lookups", run.lookups},
+            {"seconds", rounded(run.secs, 6)}};
   if (run.has_cycles) j["device_cycles"] = run.cycles;
   if (cfg.distance()) {
     j["distance_bits"] = cfg.SB;
     j["band"] = {rounded(ta.object.distance.band() * va, 6), rounded(tb.object.distance.band() * vb, 6)};
-    j["margin"] = rounded(a.margin, 6);
+    j["margin"] = rounded(a.opt.margin, 6);
   }
   Json results = Json::array();
   for (size_t i = 0; i < run.res.size(); ++i) results.push_back(result_json(run.reqs[i], run.res[i], run.has_cycles));
@@ -139,7 +143,7 @@ void print_pair_text(const PairArgs& a, const ObjectType& ta, const ObjectType& 
               tb.voxmap().dims()[2], tb.voxmap().voxel());
   std::printf("backend %s, mode %s%s: %zu pair%s, %llu touching, %llu hits, %llu contacts, %llu lookups in %.3f ms "
               "(%.2f ns per lookup)\n",
-              a.backend.c_str(), a.mode.c_str(), a.both ? ", both directions" : "", run.res.size(),
+              a.backend.c_str(), a.mode.c_str(), a.opt.both_directions ? ", both directions" : "", run.res.size(),
               run.res.size() == 1 ? "" : "s", (unsigned long long)run.touching, (unsigned long long)run.hits,
               (unsigned long long)run.contacts, (unsigned long long)run.lookups, run.secs * 1e3,
               run.lookups ? run.secs * 1e9 / double(run.lookups) : 0.0);
@@ -160,18 +164,16 @@ void print_pair_text(const PairArgs& a, const ObjectType& ta, const ObjectType& 
 
 int pair_cmd(const PairArgs& a) {
   // Without --voxel: the longest side of the larger mesh / --resolution (32 by default), shared by both objects.
-  const double voxel = a.voxel > 0 ? a.voxel : shared_voxel({a.a, a.b}, a.resolution ? a.resolution : 32);
-  auto ta = std::make_shared<ObjectType>(load_object_type(a.a, voxel, a.distance_bits, a.band));
-  auto tb = std::make_shared<ObjectType>(load_object_type(a.b, voxel, a.distance_bits, a.band));
-  const DeviceConfig cfg = device_config_for(a.backend, a.lanes, {ta.get(), tb.get()}, a.distance_bits);
+  const ObjectDef& o = a.object;
+  const double voxel = o.voxel > 0 ? o.voxel : shared_voxel({a.a, a.b}, o.resolution);
+  auto ta = std::make_shared<ObjectType>(load_object_type(a.a, voxel, o.distance_bits, o.band));
+  auto tb = std::make_shared<ObjectType>(load_object_type(a.b, voxel, o.distance_bits, o.band));
+  const DeviceConfig cfg = device_config_for(a.backend, a.lanes, {ta.get(), tb.get()}, o.distance_bits);
   PairCollider collider(make_device(a.backend, cfg), {ta, tb});
-  PairOptions opt;
+  PairOptions opt = a.opt;
   const auto mode = parse_mode(a.mode);
   if (!mode) throw CLI::ValidationError("--mode", "'" + a.mode + "' is not ALL, FIRST or COUNT");
   opt.mode = *mode;
-  opt.both_directions = a.both;
-  opt.cull = a.cull;
-  opt.margin = a.margin;
   PairRun run;
   run.reqs = pair_requests(a, *ta, *tb);
   const auto t0 = std::chrono::steady_clock::now();
@@ -203,33 +205,29 @@ void add_pair(CLI::App& app) {
   c->add_option("--pose", a->pose, "B's pose in A's frame: tx,ty,tz[,rx,ry,rz] (rotation in degrees about x, y, z)");
   c->add_option("--random", a->random, "Test N random poses where the bounding spheres overlap instead");
   c->add_option("--seed", a->seed, "Seed of --random")->capture_default_str();
-  CLI::Option* voxel =
-      c->add_option("--voxel", a->voxel, "Voxel size for meshes and shapes (default: 1/32 of the larger one's longest side)");
-  CLI::Option* res = c->add_option("--resolution", a->resolution,
+  CLI::Option* voxel = c->add_option("--voxel", a->object.voxel,
+                                     "Voxel size for meshes and shapes (default: 1/32 of the larger one's longest side)");
+  CLI::Option* res = c->add_option("--resolution", a->object.resolution,
                                    "Voxels along the larger mesh's longest side, shared by both (instead of --voxel)")
                          ->check(CLI::Range(4u, 1u << 20));
   voxel->excludes(res);
   res->excludes(voxel);
-  c->add_option("--distance-bits", a->distance_bits,
+  c->add_option("--distance-bits", a->object.distance_bits,
                 "Distance voxmaps of B bits (4, 8 or 16) on a distance device instead of 2-bit states "
                 "(meshes and shapes get a distance field; object files must have one)")
       ->check(CLI::IsMember(kDistanceBits));
-  c->add_option("--band", a->band, "Band of the distance fields, voxels (with --distance-bits)")
+  c->add_option("--band", a->object.band, "Band of the distance fields, voxels (with --distance-bits)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  c->add_option("--margin", a->margin,
+  c->add_option("--margin", a->opt.margin,
                 "Distance device: contacts where the other object's distance is at most this, world units")
       ->capture_default_str();
-  c->add_option("--backend", a->backend, "Device backend: " + [] {
-    std::string s;
-    for (const auto& b : backend_names()) s += (s.empty() ? "" : ", ") + b;
-    return s;
-  }())->capture_default_str();
+  c->add_option("--backend", a->backend, "Device backend: " + comma_list(backend_names()))->capture_default_str();
   c->add_option("--lanes", a->lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
   c->add_option("--mode", a->mode, "ALL (every contact), FIRST (one per direction) or COUNT")->capture_default_str();
-  c->add_flag("--both", a->both, "Test both directions (A's shell in B and B's shell in A)");
+  c->add_flag("--both", a->opt.both_directions, "Test both directions (A's shell in B and B's shell in A)");
   c->add_option("--show", a->show, "Contacts to print (text output)")->capture_default_str();
-  c->add_flag("!--no-cull", a->cull,
+  c->add_flag("!--no-cull", a->opt.cull,
               "submit every shell point (by default only the clusters of points that can land in the other "
               "object's voxmap; the contacts are the same)");
   c->add_flag("--json", a->json, "Print the result as JSON, with every contact");

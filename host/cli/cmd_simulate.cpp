@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "voxcd/host/cli/commands.h"
+#include "voxcd/host/cli/json_text.h"
 #include "voxcd/host/cli/object_report.h"
 #include "voxcd/host/mpi/frame_exchange.h"
 #include "voxcd/host/mpi/world.h"
@@ -65,61 +66,67 @@ RunConfig options_given(const SimulateArgs& a) {
   return o;
 }
 
-// The summary as JSON; `exchanged`: bytes rank 0 sent and received.
-void print_json(const SimulationSummary& s, double exchanged) {
+// The summary's scene and settings: a scene file's types, the device, the (first) type's shape and voxmap, and how
+// the run went (broadphase, backend, mode, directions, distance fields, frames, seed).
+Json settings_json(const SimulationSummary& s) {
+  const RunConfig& c = s.config;
+  const ObjectType& type = *s.types[0];
+  const auto& d = type.voxmap().dims();
+  Json j = Json::object();
+  if (!c.builtin()) {
+    j["scene"] = c.where;
+    j["types"] = Json::array();
+    for (const auto& t : s.types)
+      j["types"].push_back({{"name", t->name}, {"voxel", t->voxmap().voxel()}, {"shell_points", t->shell().size()}});
+  }
+  j.update({{"device", s.device.to_string()}, {"shape", s.shape()}, {"objects", c.objects()}, {"voxel", s.voxel()},
+            {"shell_points", type.shell().size()}, {"voxmap", {d[0], d[1], d[2]}}, {"pruning", c.broadphase},
+            {"backend", c.backend}, {"mode", mode_name(c.mode)}, {"both_directions", c.both_directions}});
+  if (s.distance_bits())
+    j.update({{"distance_bits", s.distance_bits()}, {"band", c.band}, {"margin", c.margin}, {"ccd", c.ccd}});
+  j.update({{"frames", c.frames}, {"seed", c.seed}});
+  return j;
+}
+
+// The totals into j: time, frame rate, the counts, the time per stage, continuous collision's counts, and the
+// ranks of a distributed run (`exchanged`: bytes rank 0 sent and received).
+void add_totals_json(Json& j, const SimulationSummary& s, double exchanged) {
+  const SimulationTotals& tot = s.totals;
+  j.update({{"seconds", tot.seconds()}, {"frame_rate_hz", s.frame_rate()}, {"broadphase_pairs", tot.pairs},
+            {"pairs_tested", tot.tested}, {"touching_pairs", tot.touching}, {"responses", tot.responses},
+            {"wall_bounces", tot.wall_hits}, {"lookups", tot.lookups}, {"hits", tot.hits}, {"contacts", tot.contacts},
+            {"stage_seconds", {{"integrate", tot.t_integrate}, {"bounds", tot.t_bounds},
+                               {"broadphase", tot.t_broadphase}, {"narrow", tot.t_narrow},
+                               {"response", tot.t_response}}}});
+  if (s.config.ccd)
+    j["no_tunnelling"] = {{"iterations", tot.ccd_iterations}, {"queries", tot.ccd_queries},
+                          {"pairs_limited", tot.ccd_limited}, {"time_of_impact_events", tot.ccd_toi},
+                          {"bodies_dropped", tot.ccd_dropped}, {"lookups", tot.ccd_lookups}};
+  if (s.ranks > 1) j.update({{"ranks", s.ranks}, {"rank0_bytes_per_frame", exchanged / double(s.config.frames)}});
+}
+
+// The device into j: lanes, cycles, the clock and the device's frame rate (null without device cycles: not a rate
+// of frames that took no time); then the recording and the state hash.
+void add_device_json(Json& j, const SimulationSummary& s) {
   const RunConfig& c = s.config;
   const SimulationTotals& tot = s.totals;
-  const ObjectType& type = *s.types[0];
-  const double F = double(c.frames);
-  const auto& d = type.voxmap().dims();
-  const double rate = s.frame_rate();
-  std::ostringstream o;
-  o << "{";
-  if (!c.builtin()) {
-    o << "\"scene\": " << json_string(c.where) << ", \"types\": [";
-    for (size_t i = 0; i < s.types.size(); ++i)
-      o << (i ? ", " : "") << "{\"name\": " << json_string(s.types[i]->name) << ", \"voxel\": "
-        << s.types[i]->voxmap().voxel() << ", \"shell_points\": " << s.types[i]->shell().size() << "}";
-    o << "], ";
-  }
-  o << "\"device\": " << json_string(s.device.to_string()) << ", ";
-  o << "\"shape\": " << json_string(s.shape()) << ", \"objects\": " << c.objects()
-    << ", \"voxel\": " << s.voxel() << ", \"shell_points\": " << type.shell().size() << ", \"voxmap\": ["
-    << d[0] << ", " << d[1] << ", " << d[2] << "], \"pruning\": " << json_string(c.broadphase)
-    << ", \"backend\": " << json_string(c.backend) << ", \"mode\": " << json_string(mode_name(c.mode))
-    << ", \"both_directions\": " << (c.both_directions ? "true" : "false");
-  if (s.distance_bits())
-    o << ", \"distance_bits\": " << s.distance_bits() << ", \"band\": " << c.band << ", \"margin\": " << c.margin
-      << ", \"ccd\": " << (c.ccd ? "true" : "false");
-  o << ", \"frames\": " << c.frames
-    << ", \"seed\": " << c.seed << ", \"seconds\": " << tot.seconds() << ", \"frame_rate_hz\": " << rate
-    << ", \"broadphase_pairs\": " << tot.pairs << ", \"pairs_tested\": " << tot.tested
-    << ", \"touching_pairs\": " << tot.touching
-    << ", \"responses\": " << tot.responses << ", \"wall_bounces\": " << tot.wall_hits
-    << ", \"lookups\": " << tot.lookups << ", \"hits\": " << tot.hits << ", \"contacts\": " << tot.contacts
-    << ", \"stage_seconds\": {\"integrate\": " << tot.t_integrate << ", \"bounds\": " << tot.t_bounds
-    << ", \"broadphase\": " << tot.t_broadphase << ", \"narrow\": " << tot.t_narrow
-    << ", \"response\": " << tot.t_response << "}";
-  if (c.ccd)
-    o << ", \"no_tunnelling\": {\"iterations\": " << tot.ccd_iterations << ", \"queries\": " << tot.ccd_queries
-      << ", \"pairs_limited\": " << tot.ccd_limited << ", \"time_of_impact_events\": " << tot.ccd_toi
-      << ", \"bodies_dropped\": " << tot.ccd_dropped << ", \"lookups\": " << tot.ccd_lookups << "}";
-  if (s.ranks > 1)
-    o << ", \"ranks\": " << s.ranks << ", \"rank0_bytes_per_frame\": " << exchanged / F;
-  o << ", \"lanes\": " << c.lanes
-    << ", \"device_cycles\": " << tot.cycles << ", \"device_cycles_per_frame\": " << s.cycles_per_frame()
-    << ", \"device_cycles_max_frame\": " << tot.max_cycles << ", \"device_idle_frames\": " << tot.idle_frames
-    << ", \"clock_mhz\": " << c.clock.mhz
-    << ", \"clock_source\": " << json_string(c.clock.source)
-    << ", \"clock_estimate\": " << (c.clock.estimate ? "true" : "false") << ", \"device_frame_rate_hz\": ";
-  // No device cycles: no device rate (null), not a rate of frames that took no time.
-  if (tot.cycles) o << s.device_rate();
-  else o << "null";
-  if (!c.record.empty())
-    o << ", \"record\": " << json_string(c.record) << ", \"record_bytes\": " << std::filesystem::file_size(c.record);
-  o << ", \"state_hash\": \"" << std::hex << s.state_hash
-    << std::dec << "\"}\n";
-  std::cout << o.str();
+  j.update({{"lanes", c.lanes}, {"device_cycles", tot.cycles}, {"device_cycles_per_frame", s.cycles_per_frame()},
+            {"device_cycles_max_frame", tot.max_cycles}, {"device_idle_frames", tot.idle_frames},
+            {"clock_mhz", c.clock.mhz}, {"clock_source", c.clock.source}, {"clock_estimate", c.clock.estimate},
+            {"device_frame_rate_hz", tot.cycles ? Json(s.device_rate()) : Json(nullptr)}});
+  if (!c.record.empty()) j.update({{"record", c.record}, {"record_bytes", std::filesystem::file_size(c.record)}});
+  std::ostringstream hash;
+  hash << std::hex << s.state_hash;
+  j["state_hash"] = hash.str();
+}
+
+// The summary as JSON, its numbers as a stream prints them (6 significant digits); `exchanged`: bytes rank 0 sent
+// and received.
+void print_json(const SimulationSummary& s, double exchanged) {
+  Json j = settings_json(s);
+  add_totals_json(j, s, exchanged);
+  add_device_json(j, s);
+  std::cout << json_text(j, false, 6) + "\n";
 }
 
 // The summary's head: the scene.
@@ -194,37 +201,47 @@ void print_text(const SimulationSummary& s, double exchanged) {
   }
 }
 
+// The progress callback: a bar on stderr, for runs of 100 frames or more, when `show`.
+std::function<void(uint64_t, uint64_t)> progress_bar(bool show) {
+  return [show](uint64_t done, uint64_t frames) {
+    if (!show || frames < 100 || ((done - 1) % 25 != 0 && done != frames)) return;
+    const int width = 40, bar = int(width * done / frames);
+    std::fprintf(stderr, "\r[%s%s] %llu/%llu frames", std::string(size_t(bar), '#').c_str(),
+                 std::string(size_t(width - bar), '.').c_str(), (unsigned long long)done, (unsigned long long)frames);
+    if (done == frames) std::fprintf(stderr, "\n");
+  };
+}
+
+// This rank's run of the options. An option that cannot be used is a CLI::ValidationError naming it; in a
+// distributed run (`exchange`), any error ends every rank now (the others would wait for its messages until the
+// timeout).
+SimulationSummary run_rank(const SimulateArgs& a, mpi::World& world,
+                           const std::shared_ptr<mpi::MpiFrameExchange>& exchange, bool progress) {
+  try {
+    RunConfig options = options_given(a);
+    options.exchange = exchange;
+    return simulate(run_config(options), progress_bar(progress));
+  } catch (const SimulateOptionError& e) {
+    std::string names;
+    for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
+    if (exchange)
+      world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + ": " + names + ": " + e.message);
+    throw CLI::ValidationError(names, e.message);
+  } catch (const std::exception& e) {
+    if (!exchange) throw;
+    world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size()) +
+                       ": " + e.what());
+  }
+  return {};
+}
+
 int simulate_cmd(const SimulateArgs& a) {
   // Under mpirun or srun, each process is one rank of a distributed run (docs/scale.md); rank 0 prints.
   mpi::World world;
   std::shared_ptr<mpi::MpiFrameExchange> exchange;
   if (world.size() > 1) exchange = std::make_shared<mpi::MpiFrameExchange>(world, a.mpi_timeout);
   const bool progress = a.progress && !a.json && isatty(STDERR_FILENO) && world.rank() == 0;
-  SimulationSummary s;
-  try {
-    RunConfig options = options_given(a);
-    options.exchange = exchange;
-    s = simulate(run_config(options), [&](uint64_t done, uint64_t frames) {
-      if (!progress || frames < 100 || ((done - 1) % 25 != 0 && done != frames)) return;
-      const int width = 40, bar = int(width * done / frames);
-      std::fprintf(stderr, "\r[%s%s] %llu/%llu frames", std::string(size_t(bar), '#').c_str(),
-                   std::string(size_t(width - bar), '.').c_str(), (unsigned long long)done,
-                   (unsigned long long)frames);
-      if (done == frames) std::fprintf(stderr, "\n");
-    });
-  } catch (const SimulateOptionError& e) {
-    std::string names;
-    for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
-    if (exchange) {
-      world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + ": " + names + ": " + e.message);
-    }
-    throw CLI::ValidationError(names, e.message);
-  } catch (const std::exception& e) {
-    if (!exchange) throw;
-    // One rank's error ends every rank now (the others would wait for its messages until the timeout).
-    world.abort(2, "voxcd simulate: rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size()) +
-                       ": " + e.what());
-  }
+  const SimulationSummary s = run_rank(a, world, exchange, progress);
   if (world.rank() != 0) return 0;
   const double exchanged = exchange ? double(exchange->bytes_sent() + exchange->bytes_received()) : 0;
   if (a.json)
@@ -252,30 +269,14 @@ void add_scene_options(CLI::App* c, SimulateArgs& args) {
       ->capture_default_str();
 }
 
-}  // namespace
-
-void add_simulate(CLI::App& app) {
-  auto a = std::make_shared<SimulateArgs>();
-  CLI::App* c = app.add_subcommand("simulate", "The paper's N-body environment, or a scene file: objects moving in a "
-                                               "cube, pruned by a broadphase, pair tests on a device backend "
-                                               "(docs/simulate.md, docs/scenes.md)");
-  a->app = c;
-  c->add_option("scene", a->options.where, "A scene file (docs/scenes.md); the options given override it")
-      ->check(CLI::ExistingFile);
-  c->add_option("--config", a->config,
-                "The device's whole configuration as NAME VALUE pairs (e.g. as voxcd size prints it); "
-                "--lanes overrides its LANES");
-  add_scene_options(c, *a);
-  c->add_option("--pruning", a->options.broadphase, "Broadphase: " + [] {
-    std::string s;
-    for (const auto& b : broadphase_names()) s += (s.empty() ? "" : ", ") + b;
-    return s;
-  }())->capture_default_str();
-  c->add_option("--backend", a->options.backend, "Device backend: " + [] {
-    std::string s;
-    for (const auto& b : backend_names()) s += (s.empty() ? "" : ", ") + b;
-    return s;
-  }())->capture_default_str();
+// The options of the device and the pair tests: broadphase, backend, lanes, mode, directions, distance fields,
+// continuous collision.
+void add_device_options(CLI::App* c, SimulateArgs& args) {
+  SimulateArgs* a = &args;
+  c->add_option("--pruning", a->options.broadphase, "Broadphase: " + comma_list(broadphase_names()))
+      ->capture_default_str();
+  c->add_option("--backend", a->options.backend, "Device backend: " + comma_list(backend_names()))
+      ->capture_default_str();
   c->add_option("--lanes", a->options.lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
   c->add_option("--mode", a->mode, "ALL (every contact) or FIRST (whether a pair touches)")->capture_default_str();
   c->add_flag("--both", a->options.both_directions, "Test both directions of every pair");
@@ -287,6 +288,11 @@ void add_simulate(CLI::App& app) {
   c->add_option("--margin", a->options.margin, "Distance voxmaps: contacts within this distance, world units")->capture_default_str();
   c->add_flag("--ccd", a->options.ccd, "Continuous collision: no body passes through another or a wall between frames "
                                "(needs --distance-bits)");
+}
+
+// The options of the run: frames, seed, clock, threads, MPI, the culling stages, and the output.
+void add_run_options(CLI::App* c, SimulateArgs& args) {
+  SimulateArgs* a = &args;
   c->add_option("--frames", a->options.frames, "Frames to simulate")->capture_default_str();
   c->add_option("--seed", a->options.seed, "Seed of the scene")->capture_default_str();
   c->add_option("--clock", a->clock_mhz,
@@ -310,6 +316,24 @@ void add_simulate(CLI::App& app) {
   c->add_option("--record", a->options.record,
                 "Record the run to FILE as it goes: poses, pairs, contacts and statistics of every frame "
                 "(replay it with voxcd view FILE; docs/view.md)");
+}
+
+}  // namespace
+
+void add_simulate(CLI::App& app) {
+  auto a = std::make_shared<SimulateArgs>();
+  CLI::App* c = app.add_subcommand("simulate", "The paper's N-body environment, or a scene file: objects moving in a "
+                                               "cube, pruned by a broadphase, pair tests on a device backend "
+                                               "(docs/simulate.md, docs/scenes.md)");
+  a->app = c;
+  c->add_option("scene", a->options.where, "A scene file (docs/scenes.md); the options given override it")
+      ->check(CLI::ExistingFile);
+  c->add_option("--config", a->config,
+                "The device's whole configuration as NAME VALUE pairs (e.g. as voxcd size prints it); "
+                "--lanes overrides its LANES");
+  add_scene_options(c, *a);
+  add_device_options(c, *a);
+  add_run_options(c, *a);
   c->callback([a] { exit_code() = simulate_cmd(*a); });
 }
 

@@ -13,18 +13,15 @@ namespace {
 struct SizeArgs {
   std::string file;
   SizeRequest req;
-  double clock_mhz = 0;  // --clock when given
   std::string timing_table;  // --timing-table when given
   bool json = false;
-  std::string rtl_dir = default_rtl_dir();
 };
 
 int size_cmd(const SizeArgs& a, const CLI::App& cmd) {
   const RunConfig f = read_scene_file(a.file);
   const Scene scene = make_scene(f);
   SizeRequest req = a.req;
-  if (cmd.count("--clock")) req.clock = clock_option(a.clock_mhz, "--clock");
-  req.rtl_dir = a.rtl_dir;
+  if (cmd.count("--clock")) req.clock = clock_option(req.clock_mhz, "--clock");
   if (!a.timing_table.empty()) {
     if (req.target.empty()) throw CLI::ValidationError("--timing-table", "needs --target (the table chooses a depth for it)");
     req.timing = read_timing_table(a.timing_table);
@@ -44,6 +41,7 @@ int size_cmd(const SizeArgs& a, const CLI::App& cmd) {
 
 void add_size(CLI::App& app) {
   auto a = std::make_shared<SizeArgs>();
+  a->req.rtl_dir = default_rtl_dir();
   CLI::App* c = app.add_subcommand(
       "size", "The smallest device for a scene file: widths from its extents and the accuracy, memories from its "
               "object types, lanes from the frame rate through the cycle model (docs/size.md)");
@@ -56,7 +54,7 @@ void add_size(CLI::App& app) {
                 "(2-bit states, or distance voxmaps' SB, WB and band) (default: the scene file's, or its voxmaps)")
       ->check(CLI::PositiveNumber);
   c->add_option("--rate", a->req.rate, "Frames per second (default: the scene file's)")->check(CLI::PositiveNumber);
-  c->add_option("--clock", a->clock_mhz,
+  c->add_option("--clock", a->req.clock_mhz,
                 "Device clock, MHz (default: the scene file's \"clock\", or " + default_device_clock().text() + ")");
   c->add_option("--target", a->req.target,
                 "Choose the pipeline depth for the clock on this target: the shallowest whose measured clock meets it "
@@ -70,7 +68,7 @@ void add_size(CLI::App& app) {
   c->add_flag("--cost", a->req.cost,
               "Also synthesise the configuration, and the default widths at its LANES, SAW and MAW, with yosys "
               "(synth_xilinx) for LUTs, FFs, DSPs and block RAMs; about 10 s each");
-  c->add_option("--rtl", a->rtl_dir, "The directory of the RTL file list voxcd.f for --cost (default: the installed package's)")->capture_default_str();
+  c->add_option("--rtl", a->req.rtl_dir, "The directory of the RTL file list voxcd.f for --cost (default: the installed package's)")->capture_default_str();
   c->add_flag("--json", a->json, "Print the report as JSON");
   c->callback([a, c] { exit_code() = size_cmd(*a, *c); });
 }

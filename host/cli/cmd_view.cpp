@@ -11,6 +11,7 @@
 
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/cli/object_report.h"
+#include "voxcd/host/detail/text_file.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/scene/record.h"
@@ -32,19 +33,14 @@ struct ViewArgs {
   std::string html;
   double timeout = 0;
   uint64_t frames = 0;
-  double voxel = 0;
-  uint32_t resolution = 0;
-  int distance_bits = 0;
-  double band = 4.0;
-  std::string pose, backend = "cpu";
-  bool both = false;
-  double margin = 0;
+  view::PairViewOptions pair;  // a pair's, and an object's voxel, resolution (when given) and distance field
+  std::string pose;
 };
 
 std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::optional<std::string> bytes = detail::read_text_file(path);
+  if (!bytes) throw std::runtime_error(path + ": cannot open");
+  return std::move(*bytes);
 }
 
 bool is_scene_file(const std::string& path) {
@@ -122,8 +118,8 @@ int view_scene(const ViewArgs& a, const std::string& file) {
 }
 
 int view_object(const ViewArgs& a, const std::string& file) {
-  const uint32_t res = a.resolution ? a.resolution : 64;
-  const view::ObjectView v = view::make_object_view(file, a.voxel, res, a.distance_bits, a.band);
+  const uint32_t res = a.app->count("--resolution") ? a.pair.resolution : 64;
+  const view::ObjectView v = view::make_object_view(file, a.pair.voxel, res, a.pair.distance_bits, a.pair.band);
   const std::string data = view::object_view_json(v);
   const auto& d = v.object.voxmap.dims();
   const std::string what = "object " + file + " (voxmap " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
@@ -137,15 +133,7 @@ int view_object(const ViewArgs& a, const std::string& file) {
 }
 
 int view_pair(const ViewArgs& a) {
-  view::PairViewOptions o;
-  o.voxel = a.voxel;
-  if (a.resolution) o.resolution = a.resolution;
-  o.distance_bits = a.distance_bits;
-  o.band = a.band;
-  o.margin = a.margin;
-  o.backend = a.backend;
-  o.both_directions = a.both;
-  view::PairView pv(a.files[0], a.files[1], o);
+  view::PairView pv(a.files[0], a.files[1], a.pair);
   view::PairPose pose = pv.default_pose();
   if (!a.pose.empty()) {
     try {
@@ -214,20 +202,20 @@ void add_view(CLI::App& app) {
   c->add_option("--timeout", a->timeout, "Stop serving after this many seconds (0: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
   c->add_option("--frames", a->frames, "Scene file: frames to simulate (default: the file's)")->check(CLI::PositiveNumber);
-  CLI::Option* voxel = c->add_option("--voxel", a->voxel, "Meshes and shapes: voxel size, world units")
+  CLI::Option* voxel = c->add_option("--voxel", a->pair.voxel, "Meshes and shapes: voxel size, world units")
                            ->check(CLI::PositiveNumber);
-  CLI::Option* res = c->add_option("--resolution", a->resolution,
+  CLI::Option* res = c->add_option("--resolution", a->pair.resolution,
                                    "Meshes and shapes: voxels along the longest side (default 64; 32 for a pair)")
                          ->check(CLI::Range(kMinVoxelsAcross, kMaxVoxelsAcross));
   voxel->excludes(res);
   res->excludes(voxel);
-  c->add_option("--distance-bits", a->distance_bits, "Meshes and shapes: also a distance field of B bits (4, 8, 16)")
+  c->add_option("--distance-bits", a->pair.distance_bits, "Meshes and shapes: also a distance field of B bits (4, 8, 16)")
       ->check(CLI::IsMember(kDistanceBits));
-  c->add_option("--band", a->band, "Band of the distance field, voxels")->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--band", a->pair.band, "Band of the distance field, voxels")->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--pose", a->pose, "Pair: B's first pose in A's frame, tx,ty,tz[,rx,ry,rz] (degrees)");
-  c->add_option("--backend", a->backend, "Pair: device backend")->capture_default_str();
-  c->add_flag("--both", a->both, "Pair: test both directions");
-  c->add_option("--margin", a->margin, "Pair on a distance device: contacts within this distance")->capture_default_str();
+  c->add_option("--backend", a->pair.backend, "Pair: device backend")->capture_default_str();
+  c->add_flag("--both", a->pair.both_directions, "Pair: test both directions");
+  c->add_option("--margin", a->pair.margin, "Pair on a distance device: contacts within this distance")->capture_default_str();
   c->callback([a] { exit_code() = view_cmd(*a); });
 }
 

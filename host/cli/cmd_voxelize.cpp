@@ -35,16 +35,11 @@ const CLI::Validator kDistanceBitsCheck(
 
 struct VoxelizeArgs {
   std::string input;
-  double voxel = 0;
-  uint32_t resolution = 0;
+  ObjectOptions object;  // the voxel, shell, threads and distance field
   bool strict = false;
   std::string output;
   std::string png;
-  double shell_ratio = std::sqrt(2.0);
-  unsigned threads = 0;
   bool json = false;
-  int distance_bits = 0;
-  double band = 4.0;
 };
 
 int voxelize_cmd(const VoxelizeArgs& a) {
@@ -52,14 +47,7 @@ int voxelize_cmd(const VoxelizeArgs& a) {
   uint64_t hash = 0;
   MeshReport report;
   const Mesh mesh = load_source(a.input, &source, &hash, &report, LoadOptions{a.strict});
-  ObjectOptions opt;
-  opt.voxel = a.voxel;
-  opt.resolution = a.resolution;
-  opt.shell_ratio = a.shell_ratio;
-  opt.threads = a.threads;
-  opt.distance_bits = a.distance_bits;
-  opt.band = a.band;
-  const ObjectFile obj = make_object(mesh, source, hash, opt, &report);
+  const ObjectFile obj = make_object(mesh, source, hash, a.object, &report);
   write_object(a.output, obj);
   if (!a.png.empty()) write_object_picture(a.png, obj, &mesh);
   std::cout << (a.json ? object_json(a.output, obj) : object_text(a.output, obj));
@@ -70,16 +58,15 @@ int voxelize_cmd(const VoxelizeArgs& a) {
 
 void add_voxelize(CLI::App& app) {
   auto a = std::make_shared<VoxelizeArgs>();
-  std::string shapes;
-  for (const auto& n : shape_names()) shapes += (shapes.empty() ? "" : ", ") + n;
+  const std::string shapes = comma_list(shape_names());
   CLI::App* c = app.add_subcommand("voxelize", "Voxelise a mesh file or a built-in shape into an object file "
                                                "(voxmap and point shell, docs/objects.md)");
   c->add_option("input", a->input,
                 "MESH|SHAPE: a mesh file (.raw, or any format assimp reads: OBJ, STL, PLY, OFF, glTF, ...) or a "
                 "built-in shape (" + shapes + ")")
       ->required();
-  CLI::Option* voxel = c->add_option("--voxel", a->voxel, "Voxel edge length in mesh units")->check(kPositive);
-  CLI::Option* res = c->add_option("--resolution", a->resolution,
+  CLI::Option* voxel = c->add_option("--voxel", a->object.voxel, "Voxel edge length in mesh units")->check(kPositive);
+  CLI::Option* res = c->add_option("--resolution", a->object.resolution,
                                    "Voxels along the model's longest side (instead of --voxel; at least 4)")
                          ->check(CLI::Range(1u, 1u << 20));
   voxel->excludes(res);
@@ -88,17 +75,17 @@ void add_voxelize(CLI::App& app) {
               "Refuse any mesh that is not a closed, edge-manifold, consistently oriented surface (no repair)");
   c->add_option("-o,--output", a->output, "Object file to write")->required();
   c->add_option("--png", a->png, "Also write a picture: voxmap slices and the shell over the mesh");
-  c->add_option("--shell-ratio", a->shell_ratio, "Voxel size / shell spacing (the paper's rule: sqrt(2))")
+  c->add_option("--shell-ratio", a->object.shell_ratio, "Voxel size / shell spacing (the paper's rule: sqrt(2))")
       ->check(kPositive)
       ->capture_default_str();
-  c->add_option("--threads", a->threads, "Worker threads (0: one per hardware thread)")->capture_default_str();
+  c->add_option("--threads", a->object.threads, "Worker threads (0: one per hardware thread)")->capture_default_str();
   c->add_flag("--json", a->json, "Describe the written object as JSON (as `voxcd info --json`)");
   CLI::Option* bits =
-      c->add_option("--distance-bits", a->distance_bits,
+      c->add_option("--distance-bits", a->object.distance_bits,
                     "Also store the signed distance field at the voxmap's nodes, quantised to 4, 8 or 16 bits over "
                     "the band (object file version 3; the shell then lies on the surface)")
           ->check(kDistanceBitsCheck);
-  c->add_option("--band", a->band, "Half-width of the distance field's band in voxels (with --distance-bits): "
+  c->add_option("--band", a->object.band, "Half-width of the distance field's band in voxels (with --distance-bits): "
                                    "the step is band / 2^(bits-1)")
       ->check(kPositive)
       ->needs(bits)

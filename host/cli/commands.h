@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "voxcd/host/device/clock.h"
 
@@ -14,6 +15,13 @@ inline DeviceClock clock_option(double mhz, const std::string& option) {
   const std::string problem = clock_problem(mhz);
   if (!problem.empty()) throw CLI::ValidationError(option, problem);
   return given_clock(mhz, option);
+}
+
+// Names as a help text lists them: "cpu, ref, rtl".
+inline std::string comma_list(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
 }
 
 // The process exit code a subcommand's callback sets (0 by default).

@@ -28,16 +28,11 @@ int main(int argc, char** argv) {
     }
     return s;
   });
-  voxcd::cli::add_conform(app);
-  voxcd::cli::add_selftest(app);
-  voxcd::cli::add_voxelize(app);
-  voxcd::cli::add_info(app);
-  voxcd::cli::add_pair(app);
-  voxcd::cli::add_simulate(app);
-  voxcd::cli::add_size(app);
-  voxcd::cli::add_regress(app);
-  voxcd::cli::add_sweep(app);
-  voxcd::cli::add_view(app);
+  // The subcommands, in the order the help lists them.
+  using namespace voxcd::cli;
+  for (void (*add)(CLI::App&) : {add_conform, add_selftest, add_voxelize, add_info, add_pair, add_simulate, add_size,
+                                 add_regress, add_sweep, add_view})
+    add(app);
   // CLI11 reports a first word that is no subcommand only as a missing subcommand: name it, and the known ones.
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "voxcd/host/detail/cross_product.h"
+#include "voxcd/host/detail/text_file.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/ref/vectors.h"
 
@@ -61,13 +63,11 @@ uint64_t Campaign::shards() const {
 Shard shard_at(const Campaign& c, uint64_t index) {
   Shard s;
   s.index = index;
-  s.backend = c.backends[index % c.backends.size()];
-  index /= c.backends.size();
-  s.lanes = c.lanes[index % c.lanes.size()];
-  index /= c.lanes.size();
-  s.config = c.configs[index % c.configs.size()];
-  index /= c.configs.size();
-  s.seed = c.seeds[index];
+  const auto d = detail::cross_product_digits(index, {c.backends.size(), c.lanes.size(), c.configs.size(), c.seeds.size()});
+  s.backend = c.backends[d[0]];
+  s.lanes = c.lanes[d[1]];
+  s.config = c.configs[d[2]];
+  s.seed = c.seeds[d[3]];
   return s;
 }
 
@@ -273,11 +273,9 @@ Campaign campaign_from_json(const std::string& text, const std::string& where) {
 }
 
 Campaign read_campaign_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CampaignError(path + ": cannot open the campaign file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return campaign_from_json(text.str(), path);
+  const std::optional<std::string> text = detail::read_text_file(path);
+  if (!text) throw CampaignError(path + ": cannot open the campaign file");
+  return campaign_from_json(*text, path);
 }
 
 }  // namespace voxcd

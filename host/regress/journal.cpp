@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "voxcd/host/detail/text_file.h"
+
 namespace voxcd {
 
 namespace {
@@ -32,15 +34,7 @@ bool write_all(int fd, const std::string& bytes) {
 }  // namespace
 
 Journal::Journal(std::string path) : path_(std::move(path)) {
-  std::string text;
-  {
-    std::ifstream in(path_, std::ios::binary);
-    if (in) {
-      std::ostringstream s;
-      s << in.rdbuf();
-      text = s.str();
-    }
-  }
+  std::string text = detail::read_text_file(path_).value_or("");
   size_ = text.size();
   const size_t nl = text.rfind('\n');
   keep_ = nl == std::string::npos ? 0 : nl + 1;

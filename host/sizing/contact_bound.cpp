@@ -6,17 +6,13 @@
 
 #include "voxcd/host/object/convex.h"
 #include "voxcd/host/object/object_file.h"
+#include "voxcd/host/sizing/detail/digits.h"
 #include "voxcd/host/sizing/size.h"
 
 namespace voxcd {
 
 namespace {
-std::string num(double v, int precision = 4) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return detail::digits_text(v, 4); }
 }  // namespace
 
 double VoxmapKind::step() const { return distance() ? band * std::ldexp(1.0, 1 - SB) : 0; }

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "voxcd/host/device/clock.h"
+#include "voxcd/host/sizing/detail/digits.h"
 #include "voxcd/host/sizing/size.h"
 #include "voxcd/ref/timing.h"
 
@@ -12,12 +13,7 @@ namespace voxcd {
 
 namespace {
 
-std::string ratio_text(double v) {
-  std::ostringstream s;
-  s.precision(3);
-  s << v;
-  return s.str();
-}
+std::string ratio_text(double v) { return detail::digits_text(v, 3); }
 
 bool offered(const DeviceConfig& base, int depth) {
   try {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/sizing/detail/digits.h"
 #include "voxcd/host/sizing/detail/yosys_run.h"
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fixed.h"
@@ -17,12 +18,7 @@ namespace voxcd {
 
 namespace {
 
-std::string fmt(double v, int precision = 4) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << v;
-  return s.str();
-}
+std::string fmt(double v, int precision = 4) { return detail::digits_text(v, precision); }
 
 bool fits(double v, int width, int frac) {
   int64_t raw;
@@ -254,12 +250,10 @@ double SizeReport::modelled_rate() const {
   return clock.rate(double(chosen().max_cycles));
 }
 DeviceConfig SizeReport::default_widths() const {
-  DeviceConfig d;
-  d.LANES = config.LANES;
-  d.SAW = config.SAW;
-  d.MAW = config.MAW;
-  d.SB = config.SB;
-  d.WB = config.WB;
+  DeviceConfig d;  // the default widths, with the configuration's lanes, memories and voxmap values
+  for (int DeviceConfig::*kept : {&DeviceConfig::LANES, &DeviceConfig::SAW, &DeviceConfig::MAW, &DeviceConfig::SB,
+                                  &DeviceConfig::WB})
+    d.*kept = config.*kept;
   return d;
 }
 uint64_t SizeReport::shell_bits() const { return shell_memory_bits(config); }
@@ -303,14 +297,67 @@ DeviceConfig choose_target_depth(SizeReport& r, const SizeRequest& req, const De
 
 }  // namespace
 
-SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
-  SizeReport r;
+namespace {
+
+// What is asked: the request's values, or the scene file's where it gives none.
+void take_request(SizeReport& r, const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
   r.file = f.where;
   r.accuracy = req.accuracy > 0 ? req.accuracy : accuracy_or_default(f, input_scene);
   r.contact_accuracy = req.contact_accuracy > 0 ? req.contact_accuracy : f.contact_accuracy;
   r.rate = req.rate > 0 ? req.rate : f.rate;
-  r.clock = req.clock.value_or(f.clock);
+  r.clock = req.clock                ? *req.clock
+            : req.clock_mhz != 0 ? given_clock(req.clock_mhz, "SizeOptions::clock_mhz")
+                                 : f.clock;
   r.frames = req.frames > 0 ? req.frames : f.frames;
+}
+
+// The fewest lanes (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget, each
+// count measured into r.lanes with its memories; cfg at that count. SizeError "rate" when 64 lanes do not.
+DeviceConfig choose_lanes(SizeReport& r, const Scene& scene, const RunConfig& sized, DeviceConfig cfg) {
+  const double budget = r.clock.mhz * 1e6 / r.rate;
+  r.budget = uint64_t(std::floor(budget));
+  for (int lanes = 1; lanes <= 64; lanes *= 2) {
+    cfg.LANES = lanes;
+    cfg = derive_memory(cfg, scene);
+    r.lanes.push_back(measure_frames(scene, sized, cfg, r.frames));
+    if (double(r.lanes.back().max_cycles) <= budget) return cfg;
+  }
+  const LaneMeasure& m = r.lanes.back();
+  const double best = r.clock.rate(double(m.max_cycles));
+  throw SizeError("rate", r.rate / best,
+                  "64 lanes take " + std::to_string(m.max_cycles) + " cycles for the largest of " +
+                      std::to_string(r.frames) + " frames, " + fmt(best) + " frames per second at " +
+                      r.clock.text() + "; " + fmt(r.rate, 8) + " requested is " + fmt(r.rate / best) +
+                      " times faster");
+}
+
+// Copies against banks: the same frames with one voxmap in LANES banks (8 x LANES on a distance device: each parity
+// bank split LANES ways), where the memory has that many words.
+void measure_banked(SizeReport& r, const Scene& scene, const RunConfig& sized) {
+  DeviceConfig shared = r.config;
+  shared.BANKS = r.config.LANES;
+  if (r.config.LANES < 2 || int64_t(memory_banks(shared)) > (int64_t{1} << std::min(r.config.MAW, 28))) return;
+  SizeReport::Banked b;
+  b.config = shared;
+  b.measure = measure_frames(scene, sized, b.config, r.frames);
+  r.banked = b;
+}
+
+// The block RAMs on the target, and with req.cost the syntheses (the standard-cell area with a target).
+void add_costs(SizeReport& r, const SizeRequest& req) {
+  if (r.depth) r.rams = block_rams(r.config, r.target);
+  if (req.cost && r.depth) r.asic = asic_cost(r.config, r.clock.mhz, req.rtl_dir);
+  if (!req.cost) return;
+  r.cost = yosys_cost(r.config, req.rtl_dir);
+  r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
+  if (r.banked) r.banked->cost = yosys_cost(r.banked->config, req.rtl_dir);
+}
+
+}  // namespace
+
+SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
+  SizeReport r;
+  take_request(r, f, input_scene, req);
   const RunConfig sized = choose_kind(r, f, input_scene);
   const Scene& scene = r.scene;
   r.objects = scene.bodies.size();
@@ -319,50 +366,17 @@ SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeR
   base.SB = r.kind.SB;
   base.WB = r.kind.WB;
   if (!req.target.empty()) base = choose_target_depth(r, req, base);
-  DeviceConfig cfg = derive_widths(r.extents, r.accuracy, base, r.kind.distance() ? r.kind.WB : 0);
-  r.error = size_error_bound(cfg, r.extents, &r.worst_pair);
-  // Lanes: the fewest (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget.
-  const double budget = r.clock.mhz * 1e6 / r.rate;
-  r.budget = uint64_t(std::floor(budget));
-  for (int lanes = 1; lanes <= 64; lanes *= 2) {
-    cfg.LANES = lanes;
-    cfg = derive_memory(cfg, scene);
-    r.lanes.push_back(measure_frames(scene, sized, cfg, r.frames));
-    if (double(r.lanes.back().max_cycles) <= budget) break;
-    if (lanes == 64) {
-      const LaneMeasure& m = r.lanes.back();
-      const double best = r.clock.rate(double(m.max_cycles));
-      throw SizeError("rate", r.rate / best,
-                      "64 lanes take " + std::to_string(m.max_cycles) + " cycles for the largest of " +
-                          std::to_string(r.frames) + " frames, " + fmt(best) + " frames per second at " +
-                          r.clock.text() + "; " + fmt(r.rate, 8) + " requested is " + fmt(r.rate / best) +
-                          " times faster");
-    }
-  }
-  r.config = cfg;
+  const DeviceConfig widths = derive_widths(r.extents, r.accuracy, base, r.kind.distance() ? r.kind.WB : 0);
+  r.error = size_error_bound(widths, r.extents, &r.worst_pair);
+  r.config = choose_lanes(r, scene, sized, widths);
   r.config.validate();
   for (const auto& t : scene.types) {
     r.shell_words += t->shell().size();
-    r.map_words += type_map_words(cfg, *t);
+    r.map_words += type_map_words(r.config, *t);
   }
   bound_contacts(r);
-  // Copies against banks: the same frames with one voxmap in LANES banks (8 x LANES on a distance device: each
-  // parity bank split LANES ways), where the memory has that many words.
-  DeviceConfig shared = cfg;
-  shared.BANKS = cfg.LANES;
-  if (cfg.LANES > 1 && int64_t(memory_banks(shared)) <= (int64_t{1} << std::min(cfg.MAW, 28))) {
-    SizeReport::Banked b;
-    b.config = shared;
-    b.measure = measure_frames(scene, sized, b.config, r.frames);
-    r.banked = b;
-  }
-  if (r.depth) r.rams = block_rams(r.config, r.target);
-  if (req.cost && r.depth) r.asic = asic_cost(r.config, r.clock.mhz, req.rtl_dir);
-  if (req.cost) {
-    r.cost = yosys_cost(r.config, req.rtl_dir);
-    r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
-    if (r.banked) r.banked->cost = yosys_cost(r.banked->config, req.rtl_dir);
-  }
+  measure_banked(r, scene, sized);
+  add_costs(r, req);
   return r;
 }
 
@@ -425,12 +439,11 @@ std::string depth_lines(const SizeReport& r) {
 }
 }  // namespace
 
-std::string size_text(const SizeReport& r) {
+namespace {
+
+// The head: the scene, what is asked, and each type.
+void scene_lines(std::ostream& o, const SizeReport& r) {
   const Scene& scene = r.scene;
-  std::ostringstream o;
-  const DeviceConfig& c = r.config;
-  const LaneMeasure& m = r.chosen();
-  const auto& wp = r.extents.pairs.at(r.worst_pair);
   o << "voxcd size: " << r.file << ": " << r.objects << " objects of " << scene.types.size() << " type"
     << (scene.types.size() > 1 ? "s" : "") << "; accuracy " << fmt(r.accuracy) << " world units, " << fmt(r.rate, 8)
     << " frames/s at " << r.clock.text() << "\n";
@@ -439,6 +452,13 @@ std::string size_text(const SizeReport& r) {
     o << "  type " << t->name << ": voxel " << fmt(t->voxmap().voxel()) << ", voxmap " << d[0] << "x" << d[1] << "x"
       << d[2] << ", " << t->shell().size() << " shell points at spacing " << fmt(t->shell().frame().voxel) << "\n";
   }
+}
+
+// The configuration, its widths and what they hold, the fixed-point error and the contacts' bound.
+void width_lines(std::ostream& o, const SizeReport& r) {
+  const Scene& scene = r.scene;
+  const DeviceConfig& c = r.config;
+  const auto& wp = r.extents.pairs.at(r.worst_pair);
   o << "configuration   " << c.to_string() << "\n";
   o << "widths          PW " << c.PW << " PF " << c.PF << ": shell coordinates up to " << fmt(r.extents.max_point)
     << " spacings, exact (half-integers); MW " << c.MW << " MF " << c.MF << ": matrix entries up to "
@@ -447,15 +467,19 @@ std::string size_text(const SizeReport& r) {
   o << "error           " << fmt(r.error) << " world units at most (" << fmt(r.accuracy) << " requested; worst pair "
     << scene.types[wp.a]->name << " in " << scene.types[wp.b]->name << ": voxel_B * (3 * 2^-" << c.MF + 1 << " * "
     << fmt(wp.max_point_a) << " + 2^-" << c.TF() + 1 << "))\n";
-  {
-    const ObjectType& b = *scene.types.at(r.contact_type);
-    o << "contacts        within " << fmt(r.contact_error) << " world units of the other surface with "
-      << r.kind.text() << " ("
-      << (r.contact_accuracy > 0 ? fmt(r.contact_accuracy) + " requested"
-                                 : std::string("the scene file's voxmaps; --contact-accuracy chooses them"))
-      << "; worst type " << b.name << (r.convex.at(r.contact_type) ? ", convex" : ", not convex") << ": "
-      << contact_terms_text(r) << ")\n";
-  }
+  const ObjectType& b = *scene.types.at(r.contact_type);
+  o << "contacts        within " << fmt(r.contact_error) << " world units of the other surface with " << r.kind.text()
+    << " ("
+    << (r.contact_accuracy > 0 ? fmt(r.contact_accuracy) + " requested"
+                               : std::string("the scene file's voxmaps; --contact-accuracy chooses them"))
+    << "; worst type " << b.name << (r.convex.at(r.contact_type) ? ", convex" : ", not convex") << ": "
+    << contact_terms_text(r) << ")\n";
+}
+
+// The measured frames: per frame, cycles per lane count, frame rate, latency and memory.
+void frame_lines(std::ostream& o, const SizeReport& r) {
+  const DeviceConfig& c = r.config;
+  const LaneMeasure& m = r.chosen();
   o << "per frame       " << fmt(m.pairs) << " broadphase pairs, " << fmt(m.tested) << " tested, " << fmt(m.lookups)
     << " lookups, " << fmt(m.hits) << " hits (mean of " << r.frames << " frames on the cpu backend)\n";
   o << "cycles          ";
@@ -473,37 +497,54 @@ std::string size_text(const SizeReport& r) {
     << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.voxmap_copies()
     << (c.banked() ? " (shared banks)" : " lane copies") << " = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
     << bits_text(r.shell_bits() + r.map_bits()) << "\n";
-  if (r.depth) o << depth_lines(r);
+}
+
+// Shared banks against copies: memory, cycles, the budget, and their cost when synthesised.
+void banked_lines(std::ostream& o, const SizeReport& r) {
+  const SizeReport::Banked& b = *r.banked;
+  const LaneMeasure& m = r.chosen();
+  const uint64_t copies = r.map_bits(), shared = b.map_bits();
+  const double more = m.max_cycles ? double(b.measure.max_cycles) / double(m.max_cycles) - 1 : 0;
+  o << "banks           BANKS " << b.config.BANKS << " (one voxmap shared in " << memory_banks(b.config)
+    << " banks instead of " << r.config.LANES << " copies): voxmap " << bits_text(shared) << " instead of "
+    << bits_text(copies) << " (saves " << bits_text(copies - shared) << "); largest frame " << b.measure.max_cycles
+    << " cycles instead of " << m.max_cycles << " (" << (more >= 0 ? "+" : "") << fmt(100 * more, 3)
+    << "%, bank conflicts), mean " << fmt(b.measure.mean_cycles, 6) << "; "
+    << (b.meets(r.budget) ? "meets" : "misses") << " the budget of " << r.budget << " cycles\n";
+  if (b.cost)
+    o << "banks cost      " << b.cost->luts << " LUTs, " << b.cost->ffs << " FFs, " << b.cost->dsps << " DSPs, "
+      << fmt(b.cost->brams) << " block RAMs (RAMB36) with BANKS " << b.config.BANKS << ", against "
+      << fmt(r.cost->brams) << " with copies\n";
+}
+
+// The yosys cost, the banks, and the default widths' cost against it.
+void cost_lines(std::ostream& o, const SizeReport& r) {
   if (r.cost)
     o << "cost            " << r.cost->luts << " LUTs, " << r.cost->ffs << " FFs, " << r.cost->dsps << " DSPs, "
       << fmt(r.cost->brams) << " block RAMs (RAMB36) for Xilinx 7-series (yosys synth_xilinx, " << r.cost->version
       << ", " << fmt(r.cost->seconds, 3) << " s)\n";
   else
     o << "cost            not synthesised (add --cost to run yosys)\n";
-  if (r.banked) {
-    const SizeReport::Banked& b = *r.banked;
-    const uint64_t copies = r.map_bits(), shared = b.map_bits();
-    const double more = m.max_cycles ? double(b.measure.max_cycles) / double(m.max_cycles) - 1 : 0;
-    o << "banks           BANKS " << b.config.BANKS << " (one voxmap shared in " << memory_banks(b.config)
-      << " banks instead of " << c.LANES << " copies): voxmap " << bits_text(shared) << " instead of "
-      << bits_text(copies) << " (saves " << bits_text(copies - shared) << "); largest frame "
-      << b.measure.max_cycles << " cycles instead of " << m.max_cycles << " (" << (more >= 0 ? "+" : "")
-      << fmt(100 * more, 3) << "%, bank conflicts), mean " << fmt(b.measure.mean_cycles, 6) << "; "
-      << (b.meets(r.budget) ? "meets" : "misses") << " the budget of " << r.budget << " cycles\n";
-    if (b.cost)
-      o << "banks cost      " << b.cost->luts << " LUTs, " << b.cost->ffs << " FFs, " << b.cost->dsps << " DSPs, "
-        << fmt(b.cost->brams) << " block RAMs (RAMB36) with BANKS " << b.config.BANKS << ", against "
-        << fmt(r.cost->brams) << " with copies\n";
-  }
-  if (r.default_cost) {
-    const DeviceConfig d = r.default_widths();
-    o << "default widths  " << r.default_cost->luts << " LUTs, " << r.default_cost->ffs << " FFs, "
-      << r.default_cost->dsps << " DSPs, " << fmt(r.default_cost->brams) << " block RAMs for " << d.to_string()
-      << " (shell 2^" << d.SAW << " x " << 3 * d.PW << " bit); derived/default LUTs "
-      << fmt(double(r.cost->luts) / double(std::max<uint64_t>(1, r.default_cost->luts)), 3) << ", DSPs "
-      << fmt(double(r.cost->dsps) / double(std::max<uint64_t>(1, r.default_cost->dsps)), 3) << ", block RAMs "
-      << fmt(r.cost->brams / std::max(0.5, r.default_cost->brams), 3) << "\n";
-  }
+  if (r.banked) banked_lines(o, r);
+  if (!r.default_cost) return;
+  const DeviceConfig d = r.default_widths();
+  o << "default widths  " << r.default_cost->luts << " LUTs, " << r.default_cost->ffs << " FFs, "
+    << r.default_cost->dsps << " DSPs, " << fmt(r.default_cost->brams) << " block RAMs for " << d.to_string()
+    << " (shell 2^" << d.SAW << " x " << 3 * d.PW << " bit); derived/default LUTs "
+    << fmt(double(r.cost->luts) / double(std::max<uint64_t>(1, r.default_cost->luts)), 3) << ", DSPs "
+    << fmt(double(r.cost->dsps) / double(std::max<uint64_t>(1, r.default_cost->dsps)), 3) << ", block RAMs "
+    << fmt(r.cost->brams / std::max(0.5, r.default_cost->brams), 3) << "\n";
+}
+
+}  // namespace
+
+std::string size_text(const SizeReport& r) {
+  std::ostringstream o;
+  scene_lines(o, r);
+  width_lines(o, r);
+  frame_lines(o, r);
+  if (r.depth) o << depth_lines(r);
+  cost_lines(o, r);
   return o.str();
 }
 
@@ -533,24 +574,27 @@ nlohmann::ordered_json depth_json(const SizeReport& r) {
 }
 }  // namespace
 
-std::string size_json(const SizeReport& r) {
-  const Scene& scene = r.scene;
-  nlohmann::ordered_json j;
-  const DeviceConfig& c = r.config;
-  j["scene"] = r.file;
-  j["objects"] = r.objects;
-  j["accuracy"] = r.accuracy;
-  j["rate_hz"] = r.rate;
-  j["clock_mhz"] = r.clock.mhz;
-  j["clock_source"] = r.clock.source;
-  j["clock_estimate"] = r.clock.estimate;
-  j["frames"] = r.frames;
-  for (const auto& t : scene.types)
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// The scene and what is asked: objects, accuracy, rate, clock, frames, and each type.
+void add_request_json(json& j, const SizeReport& r) {
+  j = {{"scene", r.file}, {"objects", r.objects}, {"accuracy", r.accuracy}, {"rate_hz", r.rate},
+       {"clock_mhz", r.clock.mhz}, {"clock_source", r.clock.source}, {"clock_estimate", r.clock.estimate},
+       {"frames", r.frames}};
+  for (const auto& t : r.scene.types)
     j["types"].push_back({{"name", t->name},
                           {"voxel", t->voxmap().voxel()},
                           {"voxmap", t->voxmap().dims()},
                           {"shell_points", t->shell().size()},
                           {"shell_spacing", t->shell().frame().voxel}});
+}
+
+// The configuration, the extents it holds, the fixed-point error and the contacts' bound.
+void add_widths_json(json& j, const SizeReport& r) {
+  const Scene& scene = r.scene;
+  const DeviceConfig& c = r.config;
   j["config"] = {{"PW", c.PW}, {"PF", c.PF},     {"MW", c.MW},   {"MF", c.MF},   {"TW", c.TW},    {"DW", c.DW},
                  {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW},
                  {"SB", c.SB},     {"WB", c.WB},   {"BANKS", c.BANKS}};
@@ -562,18 +606,20 @@ std::string size_json(const SizeReport& r) {
   j["error"] = r.error;
   const auto& wp = r.extents.pairs.at(r.worst_pair);
   j["worst_pair"] = {scene.types[wp.a]->name, scene.types[wp.b]->name};
-  {
-    const ContactTerms& t = r.contact_terms;
-    nlohmann::ordered_json convex = nlohmann::ordered_json::array();
-    for (bool v : r.convex) convex.push_back(v);
-    j["contact"] = {{"requested", r.contact_accuracy > 0 ? nlohmann::ordered_json(r.contact_accuracy) : nullptr},
-                    {"bound", r.contact_error},
-                    {"voxmap", {{"SB", r.kind.SB}, {"WB", r.kind.WB}, {"band", r.kind.band}, {"step", r.kind.step()}}},
-                    {"worst_type", scene.types.at(r.contact_type)->name},
-                    {"terms_voxels", {{"cell", t.cell}, {"quantisation", t.quantisation}, {"weights", t.weights},
-                                      {"interpolation", t.interpolation}}},
-                    {"convex", convex}};
-  }
+  const ContactTerms& t = r.contact_terms;
+  json convex = json::array();
+  for (bool v : r.convex) convex.push_back(v);
+  j["contact"] = {{"requested", r.contact_accuracy > 0 ? json(r.contact_accuracy) : nullptr},
+                  {"bound", r.contact_error},
+                  {"voxmap", {{"SB", r.kind.SB}, {"WB", r.kind.WB}, {"band", r.kind.band}, {"step", r.kind.step()}}},
+                  {"worst_type", scene.types.at(r.contact_type)->name},
+                  {"terms_voxels", {{"cell", t.cell}, {"quantisation", t.quantisation}, {"weights", t.weights},
+                                    {"interpolation", t.interpolation}}},
+                  {"convex", convex}};
+}
+
+// The measured frames: budget, cycles per lane count, per frame, rate, memory, depth, latency and target.
+void add_frames_json(json& j, const SizeReport& r) {
   j["cycle_budget"] = r.budget;
   for (const auto& m : r.lanes)
     j["lanes_measured"].push_back({{"lanes", m.lanes}, {"max_cycles", m.max_cycles}, {"mean_cycles", m.mean_cycles}});
@@ -581,20 +627,25 @@ std::string size_json(const SizeReport& r) {
   j["per_frame"] = {{"pairs", m.pairs}, {"tested", m.tested}, {"lookups", m.lookups}, {"hits", m.hits}};
   j["cycles_per_frame"] = {{"max", m.max_cycles}, {"mean", m.mean_cycles}};
   // At clock_mhz (clock_source above); null when the frames needed no device cycles.
-  j["modelled_rate_hz"] = m.max_cycles ? nlohmann::ordered_json(r.modelled_rate()) : nullptr;
+  j["modelled_rate_hz"] = m.max_cycles ? json(r.modelled_rate()) : nullptr;
   j["memory_bits"] = {{"shell", r.shell_bits()}, {"voxmap", r.map_bits()}, {"total", r.shell_bits() + r.map_bits()}};
-  j["depth"] = depth_of(c);
+  j["depth"] = depth_of(r.config);
   j["latency_cycles"] = r.latency();
   j["latency_ns"] = r.latency_ns();
-  j["target"] = r.target.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.target);
-  j["depth_choice"] = r.depth ? depth_json(r) : nlohmann::ordered_json(nullptr);
+  j["target"] = r.target.empty() ? json(nullptr) : json(r.target);
+  j["depth_choice"] = r.depth ? depth_json(r) : json(nullptr);
   j["words_used"] = {{"shell", r.shell_words}, {"voxmap", r.map_words}};
+}
+
+// The yosys cost, the banks against copies, and the default widths' cost (null where not measured).
+void add_costs_json(json& j, const SizeReport& r) {
   if (r.cost)
     j["cost"] = {{"target", "xilinx 7-series (synth_xilinx)"}, {"luts", r.cost->luts}, {"ffs", r.cost->ffs},
                  {"dsps", r.cost->dsps}, {"brams", r.cost->brams}, {"yosys", r.cost->version},
                  {"seconds", r.cost->seconds}};
   else
     j["cost"] = nullptr;
+  j["banked"] = nullptr;
   if (r.banked) {
     const SizeReport::Banked& b = *r.banked;
     j["banked"] = {{"config_text", b.config.to_string()},
@@ -606,13 +657,21 @@ std::string size_json(const SizeReport& r) {
     if (b.cost)
       j["banked"]["cost"] = {{"luts", b.cost->luts}, {"ffs", b.cost->ffs}, {"dsps", b.cost->dsps},
                              {"brams", b.cost->brams}};
-  } else {
-    j["banked"] = nullptr;
   }
   if (r.default_cost)
     j["default_widths_cost"] = {{"config", r.default_widths().to_string()}, {"luts", r.default_cost->luts},
                                 {"ffs", r.default_cost->ffs}, {"dsps", r.default_cost->dsps},
                                 {"brams", r.default_cost->brams}};
+}
+
+}  // namespace
+
+std::string size_json(const SizeReport& r) {
+  json j;
+  add_request_json(j, r);
+  add_widths_json(j, r);
+  add_frames_json(j, r);
+  add_costs_json(j, r);
   return j.dump(2) + "\n";
 }
 

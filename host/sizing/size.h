@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/host/api/devices.h"
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
@@ -102,19 +103,15 @@ YosysCost yosys_cost(const DeviceConfig& cfg, const std::string& rtl_dir = "");
 // The package's RTL directory (share/voxcd/rtl), or "" when it cannot be found (yosys_cost then says where it looked).
 std::string default_rtl_dir();
 
-struct SizeRequest {
-  double accuracy = 0;  // world units; 0: the scene file's (or its default)
-  // World units: how far outside the other object's surface a contact may lie (contact_bound.h); the voxmap kind
-  // (2-bit states, or SB, WB and band) is chosen to meet it. 0: the scene file's "contact_accuracy", and without it
-  // the scene file's own distance_bits and band.
-  double contact_accuracy = 0;
-  double rate = 0;      // Hz; 0: the scene file's
-  std::optional<DeviceClock> clock;  // unset: the scene file's "clock", or default_device_clock()
-  uint64_t frames = 0;  // measured frames; 0: the scene file's
-  // Also synthesise the configuration and its default widths (SizeReport::cost, default_cost) from the RTL of
-  // rtl_dir ("" = the package's); yosys_cost's errors.
-  bool cost = false;
-  std::string rtl_dir;
+// What is asked of the device (SizeOptions: 0 takes the scene file's value, or its default) and how it is sized.
+// contact_accuracy (contact_bound.h) chooses the voxmap kind (2-bit states, or SB, WB and band) to meet it; 0: the
+// scene file's "contact_accuracy", and without it the scene file's own distance_bits and band. With cost, the
+// configuration and its default widths are synthesised too (SizeReport::cost, default_cost; yosys_cost's errors).
+struct SizeRequest : SizeOptions {
+  // The clock with where it was given; unset: clock_mhz when not 0 ("given by SizeOptions::clock_mhz"), else the
+  // scene file's "clock", or default_device_clock().
+  std::optional<DeviceClock> clock;
+  std::string rtl_dir;  // the RTL for cost ("" = the package's)
   // The implementation target (timing_targets(): "asic-osu018", "ice40-hx8k", "ice40-up5k", "xilinx-7") whose
   // measured clocks choose the pipeline depth: the shallowest that meets the clock (choose_depth). "": the default
   // depth, no choice. With cost, the configuration's standard-cell area at 0.18 um is synthesised too (asic_cost).

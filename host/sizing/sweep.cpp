@@ -5,23 +5,48 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
+#include "voxcd/host/detail/cross_product.h"
+#include "voxcd/host/detail/text_file.h"
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/contact_measure.h"
 #include "voxcd/host/sizing/depth.h"
+#include "voxcd/host/sizing/detail/digits.h"
+
+// A point's yosys cost in a results row: an object of its numbers, or null when not synthesised.
+namespace nlohmann {
+template <>
+struct adl_serializer<std::optional<voxcd::YosysCost>> {
+  template <class Json>
+  static void to_json(Json& j, const std::optional<voxcd::YosysCost>& c) {
+    if (c)
+      j = {{"luts", c->luts}, {"ffs", c->ffs}, {"dsps", c->dsps}, {"brams", c->brams}, {"seconds", c->seconds}};
+    else
+      j = nullptr;
+  }
+  template <class Json>
+  static void from_json(const Json& j, std::optional<voxcd::YosysCost>& c) {
+    c.reset();
+    if (j.is_null()) return;
+    voxcd::YosysCost y;
+    y.luts = j.at("luts").template get<uint64_t>();
+    y.ffs = j.at("ffs").template get<uint64_t>();
+    y.dsps = j.at("dsps").template get<uint64_t>();
+    y.brams = j.at("brams").template get<double>();
+    y.seconds = j.at("seconds").template get<double>();
+    c = y;
+  }
+};
+}  // namespace nlohmann
 
 namespace voxcd {
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return detail::digits_text(v, 6); }
 
 bool power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
@@ -40,16 +65,13 @@ SweepPoint point_at(const SweepSpec& s, uint64_t index) {
     throw std::out_of_range("point " + std::to_string(index) + " of a sweep of " + std::to_string(s.points()));
   SweepPoint p;
   p.index = index;
-  uint64_t i = index;
-  p.accuracy = s.accuracies[i % s.accuracies.size()];
-  i /= s.accuracies.size();
-  p.distance_bits = s.distance_bits[i % s.distance_bits.size()];
-  i /= s.distance_bits.size();
-  p.voxel_scale = s.voxel_scales[i % s.voxel_scales.size()];
-  i /= s.voxel_scales.size();
-  p.depth = s.depths[i % s.depths.size()];
-  i /= s.depths.size();
-  p.lanes = s.lanes[i];
+  const auto d = detail::cross_product_digits(
+      index, {s.accuracies.size(), s.distance_bits.size(), s.voxel_scales.size(), s.depths.size(), s.lanes.size()});
+  p.accuracy = s.accuracies[d[0]];
+  p.distance_bits = s.distance_bits[d[1]];
+  p.voxel_scale = s.voxel_scales[d[2]];
+  p.depth = s.depths[d[3]];
+  p.lanes = s.lanes[d[4]];
   return p;
 }
 
@@ -180,46 +202,81 @@ SweepSpec parse_sweep_file(const std::string& text, const std::string& where, Sw
 }
 
 SweepSpec read_sweep_file(const std::string& path, SweepSpec base) {
-  std::ifstream in(path);
-  if (!in) throw SweepError(path + ": cannot read the sweep file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_sweep_file(ss.str(), path, std::move(base));
+  const std::optional<std::string> text = detail::read_text_file(path);
+  if (!text) throw SweepError(path + ": cannot read the sweep file");
+  return parse_sweep_file(*text, path, std::move(base));
 }
+
+namespace {
+
+// A key of the sweep's JSON and the member it holds; `optional`: a file written before the key existed may leave it
+// out, and the member keeps its default.
+template <class S, class T>
+struct Field {
+  const char* key;
+  T S::*member;
+  bool optional;
+};
+template <class S, class T>
+constexpr Field<S, T> field(const char* key, T S::*member, bool optional = false) {
+  return {key, member, optional};
+}
+
+// The keys in the order they are written: the sweep (results files before depths: {0}), a point and the rest of a
+// row (rows before depths: 0; before conservative cells: none of those, and before latency: 0).
+constexpr auto kSpecFields = std::make_tuple(
+    field("scene", &SweepSpec::scene), field("lanes", &SweepSpec::lanes), field("depth", &SweepSpec::depths, true),
+    field("voxel_scale", &SweepSpec::voxel_scales), field("distance_bits", &SweepSpec::distance_bits),
+    field("accuracy", &SweepSpec::accuracies), field("frames", &SweepSpec::frames),
+    field("sample_frames", &SweepSpec::sample_frames), field("clock", &SweepSpec::clock),
+    field("clock_source", &SweepSpec::clock_source), field("cost", &SweepSpec::cost),
+    field("rtl_dir", &SweepSpec::rtl_dir));
+constexpr auto kPointFields = std::make_tuple(
+    field("point", &SweepPoint::index), field("lanes", &SweepPoint::lanes), field("depth", &SweepPoint::depth, true),
+    field("voxel_scale", &SweepPoint::voxel_scale), field("distance_bits", &SweepPoint::distance_bits),
+    field("accuracy", &SweepPoint::accuracy));
+constexpr auto kRowFields = std::make_tuple(
+    field("status", &SweepRow::status), field("config", &SweepRow::config),
+    field("error_bound", &SweepRow::error_bound), field("contact_bound", &SweepRow::contact_bound),
+    field("contact_measured", &SweepRow::contact_measured), field("contacts_checked", &SweepRow::contacts_checked),
+    field("contacts_conservative", &SweepRow::contacts_conservative, true),
+    field("contact_measured_conservative", &SweepRow::contact_measured_conservative, true),
+    field("contact_bound_conservative", &SweepRow::contact_bound_conservative, true),
+    field("latency", &SweepRow::latency, true), field("max_cycles", &SweepRow::max_cycles),
+    field("mean_cycles", &SweepRow::mean_cycles), field("rate", &SweepRow::rate),
+    field("shell_bits", &SweepRow::shell_bits), field("map_bits", &SweepRow::map_bits),
+    field("cost", &SweepRow::cost), field("rank", &SweepRow::rank), field("seconds", &SweepRow::seconds));
+
+// j[key] = s.*member for every field of the table, in its order.
+template <class S, class Table>
+void put_fields(json& j, const S& s, const Table& table) {
+  std::apply([&](const auto&... f) { ((j[f.key] = s.*(f.member)), ...); }, table);
+}
+
+template <class S, class T>
+void get_field(const json& j, S& s, const Field<S, T>& f) {
+  if (f.optional && !j.contains(f.key)) return;
+  s.*(f.member) = j.at(f.key).template get<T>();
+}
+
+// s.*member = j[key] for every field of the table (json::exception for a missing key or a wrong type).
+template <class S, class Table>
+void get_fields(const json& j, S& s, const Table& table) {
+  std::apply([&](const auto&... f) { (get_field(j, s, f), ...); }, table);
+}
+
+}  // namespace
 
 std::string sweep_json(const SweepSpec& s) {
   json j;
-  j["scene"] = s.scene;
-  j["lanes"] = s.lanes;
-  j["depth"] = s.depths;
-  j["voxel_scale"] = s.voxel_scales;
-  j["distance_bits"] = s.distance_bits;
-  j["accuracy"] = s.accuracies;
-  j["frames"] = s.frames;
-  j["sample_frames"] = s.sample_frames;
-  j["clock"] = s.clock;
-  j["clock_source"] = s.clock_source;
-  j["cost"] = s.cost;
-  j["rtl_dir"] = s.rtl_dir;
+  put_fields(j, s, kSpecFields);
   return j.dump();
 }
 
 SweepSpec sweep_from_json(const std::string& text, const std::string& where) {
   try {
-    const json j = json::parse(text);
     SweepSpec s;
-    s.scene = j.at("scene").get<std::string>();
-    s.lanes = j.at("lanes").get<std::vector<int>>();
-    if (j.contains("depth")) s.depths = j.at("depth").get<std::vector<int>>();  // results files before depths: {0}
-    s.voxel_scales = j.at("voxel_scale").get<std::vector<double>>();
-    s.distance_bits = j.at("distance_bits").get<std::vector<int>>();
-    s.accuracies = j.at("accuracy").get<std::vector<double>>();
-    s.frames = j.at("frames").get<uint64_t>();
-    s.sample_frames = j.at("sample_frames").get<uint64_t>();
-    s.clock = j.at("clock").get<double>();
-    s.clock_source = j.at("clock_source").get<std::string>();
-    s.cost = j.at("cost").get<bool>();
-    s.rtl_dir = j.at("rtl_dir").get<std::string>();
+    get_fields(json::parse(text), s, kSpecFields);
     return s;
   } catch (const json::exception& e) {
     throw SweepError(where + ": not a sweep: " + e.what());
@@ -228,34 +285,8 @@ SweepSpec sweep_from_json(const std::string& text, const std::string& where) {
 
 std::string sweep_row_line(const SweepRow& r) {
   json j;
-  j["point"] = r.point.index;
-  j["lanes"] = r.point.lanes;
-  j["depth"] = r.point.depth;
-  j["voxel_scale"] = r.point.voxel_scale;
-  j["distance_bits"] = r.point.distance_bits;
-  j["accuracy"] = r.point.accuracy;
-  j["status"] = r.status;
-  j["config"] = r.config;
-  j["error_bound"] = r.error_bound;
-  j["contact_bound"] = r.contact_bound;
-  j["contact_measured"] = r.contact_measured;
-  j["contacts_checked"] = r.contacts_checked;
-  j["contacts_conservative"] = r.contacts_conservative;
-  j["contact_measured_conservative"] = r.contact_measured_conservative;
-  j["contact_bound_conservative"] = r.contact_bound_conservative;
-  j["latency"] = r.latency;
-  j["max_cycles"] = r.max_cycles;
-  j["mean_cycles"] = r.mean_cycles;
-  j["rate"] = r.rate;
-  j["shell_bits"] = r.shell_bits;
-  j["map_bits"] = r.map_bits;
-  if (r.cost)
-    j["cost"] = {{"luts", r.cost->luts}, {"ffs", r.cost->ffs}, {"dsps", r.cost->dsps}, {"brams", r.cost->brams},
-                 {"seconds", r.cost->seconds}};
-  else
-    j["cost"] = nullptr;
-  j["rank"] = r.rank;
-  j["seconds"] = r.seconds;
+  put_fields(j, r.point, kPointFields);
+  put_fields(j, r, kRowFields);
   return j.dump();
 }
 
@@ -263,40 +294,8 @@ SweepRow parse_sweep_row(const std::string& line, const std::string& where) {
   try {
     const json j = json::parse(line);
     SweepRow r;
-    r.point.index = j.at("point").get<uint64_t>();
-    r.point.lanes = j.at("lanes").get<int>();
-    r.point.depth = j.value("depth", 0);  // rows before depths: 0
-    r.point.voxel_scale = j.at("voxel_scale").get<double>();
-    r.point.distance_bits = j.at("distance_bits").get<int>();
-    r.point.accuracy = j.at("accuracy").get<double>();
-    r.status = j.at("status").get<std::string>();
-    r.config = j.at("config").get<std::string>();
-    r.error_bound = j.at("error_bound").get<double>();
-    r.contact_bound = j.at("contact_bound").get<double>();
-    r.contact_measured = j.at("contact_measured").get<double>();
-    r.contacts_checked = j.at("contacts_checked").get<uint64_t>();
-    // (results files written before conservative cells have none of these)
-    r.contacts_conservative = j.value("contacts_conservative", uint64_t{0});
-    r.contact_measured_conservative = j.value("contact_measured_conservative", 0.0);
-    r.contact_bound_conservative = j.value("contact_bound_conservative", 0.0);
-    r.latency = j.value("latency", 0);
-    r.max_cycles = j.at("max_cycles").get<uint64_t>();
-    r.mean_cycles = j.at("mean_cycles").get<double>();
-    r.rate = j.at("rate").get<double>();
-    r.shell_bits = j.at("shell_bits").get<uint64_t>();
-    r.map_bits = j.at("map_bits").get<uint64_t>();
-    if (!j.at("cost").is_null()) {
-      const json& c = j["cost"];
-      YosysCost y;
-      y.luts = c.at("luts").get<uint64_t>();
-      y.ffs = c.at("ffs").get<uint64_t>();
-      y.dsps = c.at("dsps").get<uint64_t>();
-      y.brams = c.at("brams").get<double>();
-      y.seconds = c.at("seconds").get<double>();
-      r.cost = y;
-    }
-    r.rank = j.at("rank").get<int>();
-    r.seconds = j.at("seconds").get<double>();
+    get_fields(j, r.point, kPointFields);
+    get_fields(j, r, kRowFields);
     return r;
   } catch (const json::exception& e) {
     throw SweepError(where + ": not a sweep row: " + e.what());

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <utility>
 
+#include "voxcd/host/detail/text_file.h"
+
 namespace voxcd {
 
 // The text of host/sizing/timing.tsv, generated into the build (host/CMakeLists.txt).
@@ -141,12 +143,9 @@ TimingTable parse_timing_table(const std::string& text, const std::string& where
 }
 
 TimingTable read_timing_table(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw TimingTableError(path + ": cannot read");
-  std::stringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw TimingTableError(path + ": cannot read");
-  return parse_timing_table(s.str(), path);
+  const std::optional<std::string> text = detail::read_text_file(path);
+  if (!text) throw TimingTableError(path + ": cannot read");
+  return parse_timing_table(*text, path);
 }
 
 const TimingTable& builtin_timing_table() {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -105,6 +106,47 @@ TEST(SweepPoints, DepthIsTheSecondAxis) {
   std::string line = sweep_row_line(r);
   line.erase(line.find("\"depth\":3,"), std::string("\"depth\":3,").size());
   EXPECT_EQ(parse_sweep_row(line, "old").point.depth, 0) << "a row written before depths";
+}
+
+TEST(SweepRows, CostReadsBackAndOlderRowsTakeTheirDefaults) {
+  SweepRow r;
+  r.point.index = 3;
+  r.point.lanes = 2;
+  r.contacts_conservative = 7;
+  r.latency = 9;
+  r.cost = YosysCost{};
+  r.cost->luts = 1234;
+  r.cost->ffs = 56;
+  r.cost->dsps = 7;
+  r.cost->brams = 1.5;
+  const SweepRow back = parse_sweep_row(sweep_row_line(r), "x");
+  ASSERT_TRUE(back.cost.has_value());
+  EXPECT_EQ(back.cost->luts, 1234u);
+  EXPECT_EQ(back.cost->ffs, 56u);
+  EXPECT_EQ(back.cost->dsps, 7u);
+  EXPECT_EQ(back.cost->brams, 1.5);
+  EXPECT_EQ(back.contacts_conservative, 7u);
+  EXPECT_EQ(sweep_row_line(back), sweep_row_line(r)) << "a row reads back to the same line";
+  r.cost.reset();
+  const std::string line = sweep_row_line(r);
+  EXPECT_NE(line.find("\"cost\":null"), std::string::npos) << line;
+  EXPECT_FALSE(parse_sweep_row(line, "x").cost.has_value());
+  // A row written before conservative cells and latency: those keys absent, read as 0.
+  std::string old = line;
+  for (const char* key : {"\"contacts_conservative\":7,", "\"latency\":9,"}) old.erase(old.find(key), std::strlen(key));
+  const SweepRow o = parse_sweep_row(old, "old");
+  EXPECT_EQ(o.contacts_conservative, 0u);
+  EXPECT_EQ(o.latency, 0);
+  // A key every row has: its absence is an error naming the file and the key.
+  std::string broken = line;
+  broken.erase(broken.find("\"status\":\"ok\","), std::strlen("\"status\":\"ok\","));
+  try {
+    parse_sweep_row(broken, "results.jsonl:2");
+    ADD_FAILURE() << "a row without status was read";
+  } catch (const SweepError& e) {
+    EXPECT_NE(std::string(e.what()).find("results.jsonl:2: not a sweep row"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("status"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SweepPoints, ADepthTheDeviceDoesNotOfferIsRefusedNamingIt) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "voxcd/host/detail/text_file.h"
 #include "voxcd/host/package/paths.h"
 
 namespace voxcd::detail {
@@ -69,11 +70,9 @@ YosysRun run_yosys(const std::string& rtl_dir, const std::string& script, const 
   if (rc != 0)
     throw std::runtime_error("yosys failed (is the Debian package yosys installed?); the end of its log:" +
                              log_tail(tmp.path / "yosys.log"));
-  std::ifstream in(tmp.path / output);
-  if (!in) throw std::runtime_error("yosys: the script wrote no " + output);
-  std::stringstream s;
-  s << in.rdbuf();
-  r.output = s.str();
+  const std::optional<std::string> text = read_text_file((tmp.path / output).string());
+  if (!text) throw std::runtime_error("yosys: the script wrote no " + output);
+  r.output = *text;
   return r;
 }
 

@@ -172,6 +172,10 @@ TEST(Api, DevicesBackendsAndSizing) {
   EXPECT_GT(d.error, 0);
   EXPECT_NE(d.text.find("config"), std::string::npos) << d.text;
   EXPECT_EQ(d.json.front(), '{');
+  o.clock_mhz = 40;
+  const DeviceSize at40 = size_device(VOXCD_SCENES_DIR "/small.json", o);
+  EXPECT_NE(at40.text.find("at 40 MHz (given by SizeOptions::clock_mhz)"), std::string::npos) << at40.text;
+  EXPECT_NE(at40.json.find("\"clock_mhz\": 40"), std::string::npos) << at40.json;
   o.clock_mhz = -1;
   EXPECT_THROW(size_device(VOXCD_SCENES_DIR "/small.json", o), std::invalid_argument);
 }

@@ -280,5 +280,31 @@ TEST(Cli, PairJsonGivesTheObjectFilesVoxel) {
   std::remove(b.c_str());
 }
 
+// simulate --json prints its summary as it always did: keys in their order, on one line, every floating-point
+// number with at most 6 significant digits as a C++ stream prints it, the state hash in hex.
+TEST(Cli, SimulateJsonNumbersAsAStreamPrintsThem) {
+  const CliRun r = run("simulate --frames 5 --json --distance-bits 8");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("{\"device\": \"PW ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("\"voxel\": 1, \"shell_points\": "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"distance_bits\": 8, \"band\": 4, \"margin\": 0, \"ccd\": false, \"frames\": 5, "),
+            std::string::npos)
+      << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("\"state_hash\": \"[0-9a-f]+\"\\}\n$"))) << r.out;
+  const std::regex number(": (-?[0-9]+(\\.[0-9]+)?(e[-+][0-9]+)?)[,}]");
+  int checked = 0;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), number); it != std::sregex_iterator(); ++it) {
+    const std::string n = (*it)[1];
+    std::ostringstream again;
+    again.precision(6);
+    again << std::stod(n);
+    if (n.find_first_of(".e") != std::string::npos) {
+      EXPECT_EQ(n, again.str()) << "not as a stream prints it at 6 digits";
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 5) << r.out;
+}
+
 }  // namespace
 }  // namespace voxcd
