@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "voxcd/host/broadphase/broadphase.h"
-#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/collider.h"
 #include "voxcd/host/scene/body.h"
 #include "voxcd/host/scene/ccd.h"
 #include "voxcd/host/scene/exchange.h"
