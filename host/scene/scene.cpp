@@ -8,11 +8,13 @@
 #include <cstring>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/host/scene/scene_file.h"
+#include "voxcd/ref/fnv1a.h"
 
 namespace voxcd {
 
@@ -634,18 +636,21 @@ void Simulation::gather_outcomes(FrameStats& st) {
   st.device_cycles += total.cycles;
 }
 
+namespace {
+// The frame's statistics of continuous collision (FrameStats::ccd_*) and the CcdStats count each one is.
+constexpr std::pair<uint64_t FrameStats::*, uint64_t CcdStats::*> kCcdCounts[] = {
+    {&FrameStats::ccd_iterations, &CcdStats::iterations}, {&FrameStats::ccd_queries, &CcdStats::queries},
+    {&FrameStats::ccd_limited, &CcdStats::limited},       {&FrameStats::ccd_toi, &CcdStats::toi},
+    {&FrameStats::ccd_dropped, &CcdStats::dropped},       {&FrameStats::ccd_lookups, &CcdStats::lookups}};
+}  // namespace
+
 void Simulation::advance(FrameStats& st) {
   if (!ccd_) {
     integrate(st);
     return;
   }
   const CcdStats c = ccd_->advance(scene_, *collider_, moved_, st.wall_hits);
-  st.ccd_iterations = c.iterations;
-  st.ccd_queries = c.queries;
-  st.ccd_limited = c.limited;
-  st.ccd_toi = c.toi;
-  st.ccd_dropped = c.dropped;
-  st.ccd_lookups = c.lookups;
+  for (const auto& [frame, ccd] : kCcdCounts) st.*frame = c.*ccd;
   st.responses += c.pair_toi;
   st.device_cycles += c.cycles;
 }
@@ -710,14 +715,15 @@ FrameStats Simulation::step() {
 }
 
 uint64_t Simulation::state_hash() const {
+  // FNV-1a over each value's bit pattern, low byte first, from the state hash's own starting value (one digit short
+  // of FNV's basis: every state hash recorded so far starts there).
   uint64_t h = 1469598103934665603ull;
   auto mix = [&](double v) {
     uint64_t bits;
     std::memcpy(&bits, &v, 8);
-    for (int i = 0; i < 8; ++i) {
-      h ^= (bits >> (8 * i)) & 0xff;
-      h *= 1099511628211ull;
-    }
+    unsigned char bytes[8];
+    for (int i = 0; i < 8; ++i) bytes[i] = static_cast<unsigned char>(bits >> (8 * i));
+    h = fnv1a(bytes, 8, h);
   };
   for (const Body& b : scene_.bodies) {
     for (int i = 0; i < 3; ++i) mix(b.pose.translation[i]), mix(b.velocity[i]), mix(b.spin[i]);
