@@ -9,7 +9,7 @@
 namespace voxcd {
 namespace detail {
 
-void throw_bad_body(const std::string& who, size_t i, uint64_t frame, const char* what) {
+void throw_bad_body(const char* who, size_t i, uint64_t frame, const char* what) {
   std::ostringstream s;
   s << "broadphase " << who << ": body " << i << " at frame " << frame << ": " << what;
   throw std::invalid_argument(s.str());
@@ -60,10 +60,9 @@ namespace {
 // Every pair, no test: the paper's baseline. The list is rebuilt only when the body count changes.
 class AllPairs final : public BroadphaseBase {
  public:
-  std::string name() const override { return "all"; }
-  std::string predicate() const override { return "all"; }
+  AllPairs() : BroadphaseBase("all", "all") {}
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
-    for (size_t i = 0; i < bodies.size(); ++i) check_body(bodies[i], "all", i, frame);
+    for (size_t i = 0; i < bodies.size(); ++i) check_body(bodies[i], name_, i, frame);
     const size_t n = bodies.size();
     if (n != n_ || pairs_.size() != n * (n ? n - 1 : 0) / 2) {
       n_ = n;
@@ -83,8 +82,7 @@ class AllPairs final : public BroadphaseBase {
 // picks candidates; spheres_overlap() decides, so the result is exactly the predicate's.
 class SpherePairs final : public BroadphaseBase {
  public:
-  std::string name() const override { return "sphere"; }
-  std::string predicate() const override { return "sphere"; }
+  SpherePairs() : BroadphaseBase("sphere", "sphere") {}
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
     const size_t n = bodies.size();
     x_.resize(n);
@@ -92,7 +90,7 @@ class SpherePairs final : public BroadphaseBase {
     z_.resize(n);
     r_.resize(n);
     for (size_t i = 0; i < n; ++i) {
-      check_body(bodies[i], "sphere", i, frame);
+      check_body(bodies[i], name_, i, frame);
       x_[i] = bodies[i].centre.x();
       y_[i] = bodies[i].centre.y();
       z_[i] = bodies[i].centre.z();

@@ -19,8 +19,7 @@ namespace {
 
 class UniformGrid final : public BroadphaseBase {
  public:
-  std::string name() const override { return "grid"; }
-  std::string predicate() const override { return "box"; }
+  UniformGrid() : BroadphaseBase("grid", "box") {}
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
     const uint32_t n = uint32_t(bodies.size());
@@ -34,7 +33,7 @@ class UniformGrid final : public BroadphaseBase {
     for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
       double smallest = HUGE_VAL, largest = 0;
       for (size_t i = b; i < e; ++i) {
-        check_body(bodies[i], "grid", i, frame);
+        check_body(bodies[i], name_, i, frame);
         const FlatBox f = flat(bodies[i].box);
         box_[i] = f;
         ids_[i] = uint32_t(i);

@@ -15,9 +15,7 @@ constexpr uint32_t kMaxBodies = 8192;
 
 class PriorityQueue final : public BroadphaseBase {
  public:
-  std::string name() const override { return "queue"; }
-  bool keeps_state() const override { return true; }
-  std::string predicate() const override { return "sphere"; }
+  PriorityQueue() : BroadphaseBase("queue", "sphere", /*keeps_state=*/true) {}
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
     const uint32_t n = uint32_t(bodies.size());
@@ -27,7 +25,7 @@ class PriorityQueue final : public BroadphaseBase {
     bool restart = n != n_ || !started_ || frame <= frame_;
     resched_.clear();
     for (uint32_t i = 0; i < n; ++i) {
-      check_body(bodies[i], "queue", i, frame);
+      check_body(bodies[i], name_, i, frame);
       // A new radius breaks the bound as surely as an unexpected move.
       if (!restart && (bodies[i].moved_unexpectedly || bodies[i].radius != radius_[i])) resched_.push_back(i);
     }

@@ -37,16 +37,10 @@ inline float float_up(double x) {
 // its overlap. O(n + s + k), s the projections overlapping within columns: near O(n log(n / cells) + k).
 class SortAndSweep final : public BroadphaseBase {
  public:
-  std::string name() const override { return "sap"; }
-  std::string predicate() const override { return "box"; }
+  SortAndSweep() : BroadphaseBase("sap", "box") {}
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
-    const uint32_t n = uint32_t(bodies.size());
-    box_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) {
-      check_body(bodies[i], "sap", i, frame);
-      box_[i] = flat(bodies[i].box);
-    }
+    const uint32_t n = check_flatten(bodies, frame, box_);
     const Columns cols = columns();
     scatter(cols);
     found_.clear();
@@ -237,17 +231,10 @@ class PairSet {
 // min leftwards the only way to stop (the pair goes). O(n + swaps + k) a frame: O(n + k) in coherent scenes.
 class CoherentSweep final : public BroadphaseBase {
  public:
-  std::string name() const override { return "coherent"; }
-  bool keeps_state() const override { return true; }
-  std::string predicate() const override { return "box"; }
+  CoherentSweep() : BroadphaseBase("coherent", "box", /*keeps_state=*/true) {}
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
-    const uint32_t n = uint32_t(bodies.size());
-    box_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) {
-      check_body(bodies[i], "coherent", i, frame);
-      box_[i] = flat(bodies[i].box);
-    }
+    const uint32_t n = check_flatten(bodies, frame, box_);
     uint64_t tests = 0;
     if (n != n_ || !started_) {
       restart(bodies, frame, tests);

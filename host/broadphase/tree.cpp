@@ -32,27 +32,17 @@ inline bool contains(const FlatBox& outer, const FlatBox& inner) {
 
 class AabbTree final : public BroadphaseBase {
  public:
-  std::string name() const override { return "tree"; }
-  bool keeps_state() const override { return true; }
-  std::string predicate() const override { return "box"; }
+  AabbTree() : BroadphaseBase("tree", "box", /*keeps_state=*/true) {}
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
-    const uint32_t n = uint32_t(bodies.size());
-    box_.resize(n);
     tests_ = 0;
+    const uint32_t n = check_flatten(bodies, frame, box_);
     if (n != n_ || !started_) {
-      for (uint32_t i = 0; i < n; ++i) {
-        check_body(bodies[i], "tree", i, frame);
-        box_[i] = flat(bodies[i].box);
-      }
       restart(bodies);
     } else {
       moved_.clear();
-      for (uint32_t i = 0; i < n; ++i) {
-        check_body(bodies[i], "tree", i, frame);
-        box_[i] = flat(bodies[i].box);
+      for (uint32_t i = 0; i < n; ++i)
         if (!contains(fat_[i], box_[i])) moved_.push_back(i);
-      }
       if (!moved_.empty()) {
         for (uint32_t i : moved_) {
           is_moved_[i] = 1;

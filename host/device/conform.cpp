@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -27,6 +28,40 @@ ConformResult run_conformance(const std::string& path, const ConformOptions& opt
   return run_vector_file(f, opt, compare);
 }
 
+namespace {
+
+// The options' LANES, BANKS and depth in place of the file's, in that order; the error (naming the file) when the
+// file's cycles were recorded for another value or the depth does not fit the configuration, else empty.
+std::string override_config(const VectorFile& f, const ConformOptions& opt, DeviceConfig& cfg) {
+  struct Setting {
+    const std::optional<int>& want;
+    bool file_names;  // the file names this setting (a file without LANES gives no cycles for any)
+    int DeviceConfig::*field;
+    const char *name, *flag;
+  };
+  const Setting settings[] = {{opt.lanes, f.has_lanes, &DeviceConfig::LANES, "LANES", "lanes"},
+                              {opt.banks, true, &DeviceConfig::BANKS, "BANKS", "banks"},
+                              {opt.depth, true, &DeviceConfig::depth, "DEPTH", "depth"}};
+  for (const Setting& s : settings) {
+    if (!s.want) continue;
+    const int file = f.config.*s.field;
+    if (s.file_names && *s.want != file && opt.cycles)
+      return f.path + ": the file's cycles are for " + s.name + " " + std::to_string(file) + ", not --" + s.flag +
+             " " + std::to_string(*s.want);
+    cfg.*s.field = *s.want;
+  }
+  if (opt.depth) {
+    try {
+      cfg.validate();
+    } catch (const ConfigError& e) {
+      return f.path + ": --depth " + std::to_string(*opt.depth) + ": " + e.what();
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
 ConformResult run_vector_file(const VectorFile& f, const ConformOptions& opt, bool compare) {
   ConformResult res;
   const std::string& path = f.path;
@@ -35,36 +70,8 @@ ConformResult run_vector_file(const VectorFile& f, const ConformOptions& opt, bo
   res.expected = f.expected.size();
   res.version = f.version;
   DeviceConfig cfg = f.config;
-  if (opt.lanes) {
-    if (f.has_lanes && *opt.lanes != f.config.LANES && opt.cycles) {
-      res.error = path + ": the file's cycles are for LANES " + std::to_string(f.config.LANES) + ", not --lanes " +
-                  std::to_string(*opt.lanes);
-      return res;
-    }
-    cfg.LANES = *opt.lanes;
-  }
-  if (opt.banks) {
-    if (*opt.banks != f.config.BANKS && opt.cycles) {
-      res.error = path + ": the file's cycles are for BANKS " + std::to_string(f.config.BANKS) + ", not --banks " +
-                  std::to_string(*opt.banks);
-      return res;
-    }
-    cfg.BANKS = *opt.banks;
-  }
-  if (opt.depth) {
-    if (*opt.depth != f.config.depth && opt.cycles) {
-      res.error = path + ": the file's cycles are for DEPTH " + std::to_string(f.config.depth) + ", not --depth " +
-                  std::to_string(*opt.depth);
-      return res;
-    }
-    cfg.depth = *opt.depth;
-    try {
-      cfg.validate();
-    } catch (const ConfigError& e) {
-      res.error = path + ": --depth " + std::to_string(*opt.depth) + ": " + e.what();
-      return res;
-    }
-  }
+  res.error = override_config(f, opt, cfg);
+  if (!res.error.empty()) return res;
   DeviceOptions dopt;
   dopt.trace_path = opt.trace;
   dopt.threads = opt.threads;

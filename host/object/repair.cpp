@@ -13,6 +13,7 @@
 #include "voxcd/host/object/detail/cells.h"
 #include "voxcd/host/object/detail/edge_uses.h"
 #include "voxcd/host/object/detail/point_hash.h"
+#include "voxcd/host/object/detail/ray_crossing.h"
 #include "voxcd/host/object/detail/union_find.h"
 
 #include "voxcd/host/object/mesh.h"
@@ -277,19 +278,7 @@ double part_volume(const Mesh& m, const std::vector<uint32_t>& tris) {
 bool inside_part(const Mesh& m, const std::vector<uint32_t>& tris, const Eigen::Vector3d& p) {
   const Eigen::Vector3d d = Eigen::Vector3d(0.5773502691896258, 0.5780821362, 0.5766176874).normalized();
   int n = 0;
-  for (uint32_t t : tris) {
-    const Eigen::Vector3d a = m.corner(t, 0), e1 = m.corner(t, 1) - a, e2 = m.corner(t, 2) - a;
-    const Eigen::Vector3d h = d.cross(e2);
-    const double det = e1.dot(h);
-    if (det == 0) continue;
-    const Eigen::Vector3d s = p - a;
-    const double u = s.dot(h) / det;
-    if (u < 0 || u > 1) continue;
-    const Eigen::Vector3d q = s.cross(e1);
-    const double v = d.dot(q) / det;
-    if (v < 0 || u + v > 1) continue;
-    if (e2.dot(q) / det > 0) ++n;
-  }
+  for (uint32_t t : tris) n += detail::ray_crosses(m, t, p, d);
   return n % 2 == 1;
 }
 

@@ -4,7 +4,7 @@
 // ContactArrays; the parts of a batch that a caller runs on its own threads (collide_part, join_parts).
 #include <algorithm>
 
-#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/collider.h"
 #include "voxcd/host/pairs/detail/contact_out.h"
 #include "voxcd/host/pairs/detail/shell_order.h"
 #include "voxcd/ref/banks.h"

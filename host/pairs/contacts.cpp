@@ -1,9 +1,11 @@
 // Contacts from hit records: a shell point's world position and normal, the voxel and its state, the depth (the
 // voxel's penetration estimate, or on a distance device the interpolated distance and the field's gradient), written
 // into a PairResult's Contacts or into ContactArrays (host/pairs/detail/contact_out.h).
+#include "voxcd/host/pairs/contacts.h"
+
 #include <cmath>
 
-#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/collider.h"
 #include "voxcd/host/pairs/detail/contact_out.h"
 #include "voxcd/host/pairs/detail/shell_order.h"
 

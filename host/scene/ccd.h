@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "voxcd/host/broadphase/broadphase.h"
-#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/collider.h"
 #include "voxcd/host/scene/distance_bound.h"
 #include "voxcd/ref/fast/thread_pool.h"
 

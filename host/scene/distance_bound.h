@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/collider.h"
 
 namespace voxcd {
 

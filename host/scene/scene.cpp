@@ -8,11 +8,13 @@
 #include <cstring>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/host/scene/scene_file.h"
+#include "voxcd/ref/fnv1a.h"
 
 namespace voxcd {
 
@@ -278,111 +280,140 @@ constexpr double kLatticeSlack = 1e-9;
 
 uint64_t lattice_capacity(double side, double r) { return Lattice(side, r, 2 * r * (1 + kLatticeSlack)).sites; }
 
-void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed) {
-  const double side = scene.side;
+namespace {
+
+// What place_bodies' stages share: the bodies wanted of each type, their motion, and the largest radius.
+struct Placement {
+  const std::vector<uint64_t>& counts;
+  double speed, spin;
+  uint64_t seed;
   uint64_t total = 0;
   double rmax = 0;
-  for (size_t i = 0; i < counts.size(); ++i) {
-    if (counts[i] == 0) continue;
-    total += counts[i];
-    rmax = std::max(rmax, scene.types.at(i)->radius);
-  }
-  if (total == 0) return;
+};
+
+// A body of type `type` whose sphere is centred at c (its rotation drawn already): its position, then its random
+// velocity and spin.
+void launch(Body& b, const ObjectType& type, const Eigen::Vector3d& c, const Placement& pl, std::mt19937_64& rng,
+            std::uniform_real_distribution<double>& u) {
+  const double r = type.radius;
+  b.pose.translation = c - b.pose.rotation * type.centre;
+  b.velocity = scene_direction(rng) * (pl.speed * r * u(rng));
+  b.spin = scene_direction(rng) * (pl.spin * u(rng));
+}
+
+// At random: up to 10,000 uniform tries a body (the draws of the scenes before the lattice existed, so the same
+// bodies wherever they found places), within a budget of tries for the whole scene. False (and `bodies` partial)
+// when a body found no place.
+bool place_at_random(const Scene& scene, const Placement& pl, std::vector<Body>& bodies) {
+  const double side = scene.side;
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Body> bodies;
-  bodies.reserve(total);
-
-  // At random: up to 10,000 uniform tries a body (the draws of the scenes before the lattice existed, so the same
-  // bodies wherever they found places), within a budget of tries for the whole scene.
-  {
-    std::mt19937_64 rng(seed);
-    std::vector<Eigen::Vector3d> centres;
-    std::vector<double> radii;
-    centres.reserve(total);
-    radii.reserve(total);
-    PlacementGrid grid(side, rmax, total);
-    const uint64_t budget = 1000000 + 4 * total;
-    uint64_t tries = 0;
-    bool failed = false;
-    for (size_t i = 0; i < counts.size() && !failed; ++i) {
-      const ObjectType& type = *scene.types.at(i);
-      const double r = type.radius;
-      for (uint64_t k = 0; k < counts[i]; ++k) {
-        Body b;
-        b.type = uint32_t(i);
-        b.pose.rotation = scene_rotation(rng);
-        Eigen::Vector3d c;
-        bool placed = false;
-        for (int attempt = 0; attempt < 10000 && !placed && tries < budget; ++attempt, ++tries) {
-          c = Eigen::Vector3d(r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r));
-          placed = grid.free(c, r, centres, radii);
-        }
-        if (!placed) {
-          failed = true;
-          break;
-        }
-        grid.insert(c, int32_t(centres.size()));
-        centres.push_back(c);
-        radii.push_back(r);
-        b.pose.translation = c - b.pose.rotation * type.centre;
-        b.velocity = scene_direction(rng) * (speed * r * u(rng));
-        b.spin = scene_direction(rng) * (spin * u(rng));
-        bodies.push_back(b);
+  std::mt19937_64 rng(pl.seed);
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> radii;
+  centres.reserve(pl.total);
+  radii.reserve(pl.total);
+  PlacementGrid grid(side, pl.rmax, pl.total);
+  const uint64_t budget = 1000000 + 4 * pl.total;
+  uint64_t tries = 0;
+  for (size_t i = 0; i < pl.counts.size(); ++i) {
+    const ObjectType& type = *scene.types.at(i);
+    const double r = type.radius;
+    for (uint64_t k = 0; k < pl.counts[i]; ++k) {
+      Body b;
+      b.type = uint32_t(i);
+      b.pose.rotation = scene_rotation(rng);
+      Eigen::Vector3d c;
+      bool placed = false;
+      for (int attempt = 0; attempt < 10000 && !placed && tries < budget; ++attempt, ++tries) {
+        c = Eigen::Vector3d(r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r), r + u(rng) * (side - 2 * r));
+        placed = grid.free(c, r, centres, radii);
       }
+      if (!placed) return false;
+      grid.insert(c, int32_t(centres.size()));
+      centres.push_back(c);
+      radii.push_back(r);
+      launch(b, type, c, pl, rng, u);
+      bodies.push_back(b);
     }
-    if (!failed) {
-      scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
-      return;
-    }
-    bodies.clear();
   }
+  return true;
+}
 
-  // On a lattice: the widest spacing d whose lattice has a site for every body (its site count falls as d grows).
-  const double dmin = 2 * rmax * (1 + kLatticeSlack);
-  const Lattice closest(side, rmax, dmin);
-  if (closest.sites < total) {
+// The widest spacing d whose lattice has a site for every body (its site count falls as d grows); PlacementError
+// naming the first body without a site when even the closest spacing has too few.
+double lattice_spacing(double side, const Placement& pl) {
+  const double dmin = 2 * pl.rmax * (1 + kLatticeSlack);
+  const Lattice closest(side, pl.rmax, dmin);
+  if (closest.sites < pl.total) {
     uint64_t k = closest.sites;  // the first body without a site: which type's, which instance
     size_t t = 0;
-    while (t < counts.size() && k >= counts[t]) k -= counts[t++];
-    throw PlacementError(uint32_t(t), k, closest.sites, rmax);
+    while (t < pl.counts.size() && k >= pl.counts[t]) k -= pl.counts[t++];
+    throw PlacementError(uint32_t(t), k, closest.sites, pl.rmax);
   }
   double lo = dmin, hi = dmin;
-  while (Lattice(side, rmax, hi).sites >= total) lo = hi, hi *= 2;
+  while (Lattice(side, pl.rmax, hi).sites >= pl.total) lo = hi, hi *= 2;
   for (int i = 0; i < 60 && hi - lo > 1e-12 * lo; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (Lattice(side, rmax, mid).sites >= total ? lo : hi) = mid;
+    (Lattice(side, pl.rmax, mid).sites >= pl.total ? lo : hi) = mid;
   }
-  const double d = lo;
-  const Lattice lat(side, rmax, d);
-  // Every site, then `total` of them at random (a partial Fisher-Yates shuffle).
+  return lo;
+}
+
+// Every site of the lattice, the first `total` of them chosen at random (a partial Fisher-Yates shuffle).
+std::vector<std::array<uint32_t, 3>> shuffled_sites(const Lattice& lat, uint64_t total, std::mt19937_64& rng) {
   std::vector<std::array<uint32_t, 3>> sites;
   sites.reserve(lat.sites);
   for (uint32_t z = 0; z < lat.m; ++z)
     for (uint32_t y = 0; y < lat.m; ++y)
       for (uint32_t x = 0; x < lat.m; ++x)
         if (!lat.fcc || (x + y + z) % 2 == 0) sites.push_back({x, y, z});
-  std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ull);
   for (uint64_t k = 0; k < total; ++k) {
     std::uniform_int_distribution<uint64_t> pick(k, sites.size() - 1);
     std::swap(sites[k], sites[pick(rng)]);
   }
+  return sites;
+}
+
+// On a lattice at the widest spacing that fits every body: each body at a chosen site, jittered within the slack.
+void place_on_lattice(const Scene& scene, const Placement& pl, std::vector<Body>& bodies) {
+  const double d = lattice_spacing(scene.side, pl);
+  const Lattice lat(scene.side, pl.rmax, d);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::mt19937_64 rng(pl.seed ^ 0x9e3779b97f4a7c15ull);
+  const std::vector<std::array<uint32_t, 3>> sites = shuffled_sites(lat, pl.total, rng);
   uint64_t next = 0;
-  for (size_t i = 0; i < counts.size(); ++i) {
+  for (size_t i = 0; i < pl.counts.size(); ++i) {
     const ObjectType& type = *scene.types.at(i);
-    const double r = type.radius;
-    const double jitter = std::max(0.0, (0.5 * d - r) / std::sqrt(3.0) * (1 - kLatticeSlack));
-    for (uint64_t k = 0; k < counts[i]; ++k) {
+    const double jitter = std::max(0.0, (0.5 * d - type.radius) / std::sqrt(3.0) * (1 - kLatticeSlack));
+    for (uint64_t k = 0; k < pl.counts[i]; ++k) {
       Body b;
       b.type = uint32_t(i);
       b.pose.rotation = scene_rotation(rng);
       const auto& g = sites[next++];
       Eigen::Vector3d c;
       for (int a = 0; a < 3; ++a) c[a] = lat.start + lat.step * double(g[size_t(a)]) + jitter * (2 * u(rng) - 1);
-      b.pose.translation = c - b.pose.rotation * type.centre;
-      b.velocity = scene_direction(rng) * (speed * r * u(rng));
-      b.spin = scene_direction(rng) * (spin * u(rng));
+      launch(b, type, c, pl, rng, u);
       bodies.push_back(b);
     }
+  }
+}
+
+}  // namespace
+
+void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed) {
+  Placement pl{counts, speed, spin, seed};
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (counts[i] == 0) continue;
+    pl.total += counts[i];
+    pl.rmax = std::max(pl.rmax, scene.types.at(i)->radius);
+  }
+  if (pl.total == 0) return;
+  std::vector<Body> bodies;
+  bodies.reserve(pl.total);
+  // At random first; on the lattice when a body found no place that way.
+  if (!place_at_random(scene, pl, bodies)) {
+    bodies.clear();
+    place_on_lattice(scene, pl, bodies);
   }
   scene.bodies.insert(scene.bodies.end(), bodies.begin(), bodies.end());
 }
@@ -472,11 +503,8 @@ void Simulation::compute_bounds() {
   });
 }
 
-void Simulation::narrow(const std::vector<BodyPair>& pairs, const PairOptions& po) {
-  // The mid-phase: the enclosing spheres, then the oriented boxes of the two bodies (separating-axis test over the
-  // 15 axes); its verdicts on the pool, counted per range of pairs.
+size_t Simulation::midphase(const std::vector<BodyPair>& pairs, const Ranges& r) {
   keep_.resize(pairs.size());
-  const Ranges r = pool_ranges(pool_.get(), pairs.size(), kGrainNarrow, kPartsNarrow);
   if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
   // A range with no pairs is never visited: its count must not be a previous frame's (or uninitialised).
   for (size_t p = 0; p < r.parts; ++p) part_counts_[p].value = 0;
@@ -501,32 +529,27 @@ void Simulation::narrow(const std::vector<BodyPair>& pairs, const PairOptions& p
   requests_pairs_.resize(total);
   results_.resize(total);
   outcomes_.resize(total);
-  auto request = [&](size_t first, size_t end, size_t q) {
-    for (size_t k = first; k < end; ++k) {
-      if (!keep_[k]) continue;
-      const Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
-      PairRequest& rq = requests_[q];
-      rq.a = a.type;
-      rq.b = b.type;
-      rq.pose_a = a.pose;
-      rq.pose_b = b.pose;
-      requests_pairs_[q++] = pairs[k];
-    }
-  };
-  if (!pool_ || r.parts <= 1 || !collider_->runs_parts()) {
-    request(0, pairs.size(), 0);
-    collider_->collide(requests_, po, results_);
-    for_ranges(pool_.get(), pool_ranges(pool_.get(), total, kGrainPairs), [&](size_t, size_t first, size_t end) {
-      for (size_t q = first; q < end; ++q) outcome(q);
-    });
-    return;
+  return total;
+}
+
+void Simulation::make_requests(const std::vector<BodyPair>& pairs, size_t first, size_t end, size_t q) {
+  for (size_t k = first; k < end; ++k) {
+    if (!keep_[k]) continue;
+    const Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
+    PairRequest& rq = requests_[q];
+    rq.a = a.type;
+    rq.b = b.type;
+    rq.pose_a = a.pose;
+    rq.pose_b = b.pose;
+    requests_pairs_[q++] = pairs[k];
   }
-  // The device runs parts (the cpu backend): each range of pairs, from its requests to its outcomes, in one loop,
-  // each part timed on its own, then the parts' cycles joined in order.
+}
+
+void Simulation::narrow_parts(const std::vector<BodyPair>& pairs, const PairOptions& po, const Ranges& r) {
   if (narrow_parts_.size() < r.parts) narrow_parts_.resize(r.parts);
   for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
     const size_t q0 = part_first_[part], q1 = part_first_[part + 1];
-    request(first, end, q0);
+    make_requests(pairs, first, end, q0);
     collider_->collide_part(requests_.data() + q0, q1 - q0, q0, po, results_.data() + q0, narrow_parts_[part].value);
     for (size_t q = q0; q < q1; ++q) outcome(q);
   });
@@ -538,6 +561,22 @@ void Simulation::narrow(const std::vector<BodyPair>& pairs, const PairOptions& p
       const size_t q = size_t(p->first_result - results_.data());
       outcomes_[q].cycles = results_[q].cycles;
     }
+}
+
+void Simulation::narrow(const std::vector<BodyPair>& pairs, const PairOptions& po) {
+  // The mid-phase on the pool, in ranges of pairs.
+  const Ranges r = pool_ranges(pool_.get(), pairs.size(), kGrainNarrow, kPartsNarrow);
+  const size_t total = midphase(pairs, r);
+  if (pool_ && r.parts > 1 && collider_->runs_parts()) {
+    narrow_parts(pairs, po, r);
+    return;
+  }
+  // One batch on the device, then the outcomes on the pool.
+  make_requests(pairs, 0, pairs.size(), 0);
+  collider_->collide(requests_, po, results_);
+  for_ranges(pool_.get(), pool_ranges(pool_.get(), total, kGrainPairs), [&](size_t, size_t first, size_t end) {
+    for (size_t q = first; q < end; ++q) outcome(q);
+  });
 }
 
 void Simulation::outcome(size_t q) {
@@ -597,52 +636,26 @@ void Simulation::gather_outcomes(FrameStats& st) {
   st.device_cycles += total.cycles;
 }
 
-FrameStats Simulation::step() {
-  FrameStats st;
-  st.frame = frame_;
-  std::fill(moved_.begin(), moved_.end(), uint8_t(0));
+namespace {
+// The frame's statistics of continuous collision (FrameStats::ccd_*) and the CcdStats count each one is.
+constexpr std::pair<uint64_t FrameStats::*, uint64_t CcdStats::*> kCcdCounts[] = {
+    {&FrameStats::ccd_iterations, &CcdStats::iterations}, {&FrameStats::ccd_queries, &CcdStats::queries},
+    {&FrameStats::ccd_limited, &CcdStats::limited},       {&FrameStats::ccd_toi, &CcdStats::toi},
+    {&FrameStats::ccd_dropped, &CcdStats::dropped},       {&FrameStats::ccd_lookups, &CcdStats::lookups}};
+}  // namespace
 
-  // Integrate (explicit Euler), renormalising the orientation; bounce off the walls by the bounding sphere.
-  double t0 = now();
-  if (ccd_) {
-    const CcdStats c = ccd_->advance(scene_, *collider_, moved_, st.wall_hits);
-    st.ccd_iterations = c.iterations;
-    st.ccd_queries = c.queries;
-    st.ccd_limited = c.limited;
-    st.ccd_toi = c.toi;
-    st.ccd_dropped = c.dropped;
-    st.ccd_lookups = c.lookups;
-    st.responses += c.pair_toi;
-    st.device_cycles += c.cycles;
+void Simulation::advance(FrameStats& st) {
+  if (!ccd_) {
+    integrate(st);
+    return;
   }
-  if (!ccd_) integrate(st);
-  double t1 = now();
-  st.t_integrate = t1 - t0;
+  const CcdStats c = ccd_->advance(scene_, *collider_, moved_, st.wall_hits);
+  for (const auto& [frame, ccd] : kCcdCounts) st.*frame = c.*ccd;
+  st.responses += c.pair_toi;
+  st.device_cycles += c.cycles;
+}
 
-  compute_bounds();
-  double t2 = now();
-  st.t_bounds = t2 - t1;
-
-  const std::vector<BodyPair>& pairs = find_pairs();
-  double t3 = now();
-  st.t_broadphase = t3 - t2;
-
-  // Mid-phase, the device, and each tested pair's outcome.
-  PairOptions po;
-  po.mode = opt_.mode;
-  po.both_directions = opt_.both_directions;
-  po.cull = opt_.cull;
-  po.margin = opt_.margin;
-  narrow(pairs, po);
-  double t4 = now();
-  st.t_narrow = t4 - t3;
-  st.pairs = pairs.size();
-  st.tested = requests_.size();
-  gather_outcomes(st);
-
-  // Response, in pair order (deterministic): for a touching pair that is approaching along the contact normal,
-  // exchange the velocity components along it (an elastic impulse between equal masses) and reverse both spins (the
-  // paper's rotation response). A pair already separating is left alone, so it cannot stick.
+void Simulation::respond_all(FrameStats& st) {
   for (const PairOutcome& o : outcomes_) {
     st.lookups += o.lookups;
     st.hits += o.hits;
@@ -660,20 +673,57 @@ FrameStats Simulation::step() {
     moved_[o.a] = moved_[o.b] = 1;
     ++st.responses;
   }
+}
+
+FrameStats Simulation::step() {
+  FrameStats st;
+  st.frame = frame_;
+  std::fill(moved_.begin(), moved_.end(), uint8_t(0));
+
+  // Integrate (explicit Euler, or without tunnelling with ccd), bouncing off the walls.
+  double t0 = now();
+  advance(st);
+  double t1 = now();
+  st.t_integrate = t1 - t0;
+
+  // Bounds, then the broadphase's pairs.
+  compute_bounds();
+  double t2 = now();
+  st.t_bounds = t2 - t1;
+  const std::vector<BodyPair>& pairs = find_pairs();
+  double t3 = now();
+  st.t_broadphase = t3 - t2;
+
+  // Mid-phase, the device, and each tested pair's outcome.
+  PairOptions po;
+  po.mode = opt_.mode;
+  po.both_directions = opt_.both_directions;
+  po.cull = opt_.cull;
+  po.margin = opt_.margin;
+  narrow(pairs, po);
+  double t4 = now();
+  st.t_narrow = t4 - t3;
+  st.pairs = pairs.size();
+  st.tested = requests_.size();
+  gather_outcomes(st);
+
+  // Response, in pair order (deterministic).
+  respond_all(st);
   st.t_response = now() - t4;
   ++frame_;
   return st;
 }
 
 uint64_t Simulation::state_hash() const {
+  // FNV-1a over each value's bit pattern, low byte first, from the state hash's own starting value (one digit short
+  // of FNV's basis: every state hash recorded so far starts there).
   uint64_t h = 1469598103934665603ull;
   auto mix = [&](double v) {
     uint64_t bits;
     std::memcpy(&bits, &v, 8);
-    for (int i = 0; i < 8; ++i) {
-      h ^= (bits >> (8 * i)) & 0xff;
-      h *= 1099511628211ull;
-    }
+    unsigned char bytes[8];
+    for (int i = 0; i < 8; ++i) bytes[i] = static_cast<unsigned char>(bits >> (8 * i));
+    h = fnv1a(bytes, 8, h);
   };
   for (const Body& b : scene_.bodies) {
     for (int i = 0; i < 3; ++i) mix(b.pose.translation[i]), mix(b.velocity[i]), mix(b.spin[i]);

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "voxcd/host/broadphase/broadphase.h"
-#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/collider.h"
 #include "voxcd/host/scene/body.h"
 #include "voxcd/host/scene/ccd.h"
 #include "voxcd/host/scene/exchange.h"
@@ -78,9 +78,22 @@ class Simulation {
 
  private:
   void compute_bounds();
+  // Explicit Euler, renormalising the orientation; bounce off the walls by the bounding sphere.
   void integrate(FrameStats& st);
+  // The frame's motion: integrate(), or with ccd the advance without tunnelling (its statistics into st).
+  void advance(FrameStats& st);
   // The mid-phase, the pair tests and the tested pairs' outcomes (requests_, requests_pairs_, results_, outcomes_).
   void narrow(const std::vector<BodyPair>& pairs, const PairOptions& po);
+  // The mid-phase's verdict on every pair (keep_: the enclosing spheres, then the oriented boxes), per range r of
+  // pairs; sizes the requests, results and outcomes and sets where each range's requests go. Returns the kept.
+  size_t midphase(const std::vector<BodyPair>& pairs, const Ranges& r);
+  // The kept pairs of pairs[first, end) as requests from requests_[q] on.
+  void make_requests(const std::vector<BodyPair>& pairs, size_t first, size_t end, size_t q);
+  // The device runs parts (the cpu backend): each range of pairs, from its requests to its outcomes, in one loop,
+  // each part timed on its own, then the parts' cycles joined in order.
+  void narrow_parts(const std::vector<BodyPair>& pairs, const PairOptions& po, const Ranges& r);
+  // The response to every touching pair that approaches along its contact normal (respond()), in pair order.
+  void respond_all(FrameStats& st);
   void outcome(size_t q);
   std::unique_ptr<Broadphase> new_broadphase() const;
   // The broadphase's pairs, or in a distributed run those of this rank's slab (global body indices, sorted).

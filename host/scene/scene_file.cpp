@@ -50,14 +50,19 @@ class Reader {
     }
   }
 
-  // A number; false when the key is absent. `field` is its RunConfig::given key (by default the key).
-  bool number(const std::string& key, double& out, const std::string& field = "") const {
+  // A value of JSON type `T` (is(v) says whether v is one, `must` what it must be); false when the key is absent.
+  template <class T, class Is>
+  bool typed(const std::string& key, T& out, const std::string& field, Is is, const char* must) const {
     if (!has(key)) return false;
     const json& v = at(key);
-    if (!v.is_number()) fail(key_path(key), std::string("must be a number, not ") + v.type_name());
-    out = v.get<double>();
+    if (!is(v)) fail(key_path(key), std::string("must be ") + must + ", not " + v.type_name());
+    out = v.get<T>();
     note(key, field);
     return true;
+  }
+  // A number; false when the key is absent. `field` is its RunConfig::given key (by default the key).
+  bool number(const std::string& key, double& out, const std::string& field = "") const {
+    return typed(key, out, field, [](const json& v) { return v.is_number(); }, "a number");
   }
   // A whole number. [lo, hi] is the setting's range (check()'s), named here only for a value the field cannot hold
   // (negative, or too large): check() refuses the others.
@@ -75,22 +80,14 @@ class Reader {
     note(key, field);
     return true;
   }
+  // A string, not empty.
   bool string(const std::string& key, std::string& out, const std::string& field = "") const {
-    if (!has(key)) return false;
-    const json& v = at(key);
-    if (!v.is_string()) fail(key_path(key), std::string("must be a string, not ") + v.type_name());
-    out = v.get<std::string>();
+    if (!typed(key, out, field, [](const json& v) { return v.is_string(); }, "a string")) return false;
     if (out.empty()) fail(key_path(key), "must not be empty");
-    note(key, field);
     return true;
   }
   bool boolean(const std::string& key, bool& out, const std::string& field = "") const {
-    if (!has(key)) return false;
-    const json& v = at(key);
-    if (!v.is_boolean()) fail(key_path(key), std::string("must be true or false, not ") + v.type_name());
-    out = v.get<bool>();
-    note(key, field);
-    return true;
+    return typed(key, out, field, [](const json& v) { return v.is_boolean(); }, "true or false");
   }
   void one_of(const std::string& key, const std::string& value, const std::vector<std::string>& names) const {
     if (std::find(names.begin(), names.end(), value) != names.end()) return;

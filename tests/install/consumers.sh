@@ -46,7 +46,7 @@ while IFS= read -r h; do
     fail "$rel does not compile on its own"
 done < <(find "$inc" -name '*.h')
 # The umbrella includes the public API and nothing of the library's inside.
-if grep -n '#include "voxcd/host/\(object/\(voxelize\|object_type\|object_file\)\|scene/scene\|pairs/collide\|regress\|sizing\)' "$inc/voxcd/voxcd.h"; then
+if grep -n '#include "voxcd/host/\(object/\(voxelize\|object_type\|object_file\)\|scene/scene\|pairs/\(collide\|collider\|image\|contacts\)\|regress\|sizing\)' "$inc/voxcd/voxcd.h"; then
   fail "the umbrella header includes an internal header"
 fi
 

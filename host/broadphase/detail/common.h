@@ -15,11 +15,11 @@ namespace voxcd::detail {
 
 inline uint64_t pair_key(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
 
-[[noreturn]] void throw_bad_body(const std::string& who, size_t i, uint64_t frame, const char* what);
+[[noreturn]] void throw_bad_body(const char* who, size_t i, uint64_t frame, const char* what);
 
 // Checked in the one pass each broadphase makes over its input anyway: a box must be finite with lo <= hi
 // (which NaN fails), a sphere finite with radius >= 0, the motion bounds finite and >= 0.
-inline void check_body(const BodyBounds& b, const std::string& who, size_t i, uint64_t frame) {
+inline void check_body(const BodyBounds& b, const char* who, size_t i, uint64_t frame) {
   const auto& lo = b.box.lo;
   const auto& hi = b.box.hi;
   if (!(lo.x() <= hi.x() && lo.y() <= hi.y() && lo.z() <= hi.z()))
@@ -52,14 +52,38 @@ inline FlatBox flat(const Aabb& b) {
   return {{b.lo.x(), b.lo.y(), b.lo.z()}, {b.hi.x(), b.hi.y(), b.hi.z()}};
 }
 
+// What every broadphase shares: its name, predicate and whether it keeps state (given once, at construction),
+// its pairs and statistics, and the input pass that checks and flattens the boxes.
 class BroadphaseBase : public Broadphase {
  public:
-  const std::vector<BodyPair>& pairs() const override { return pairs_; }
-  BroadphaseStats stats() const override { return stats_; }
+  BroadphaseBase(const char* name, const char* predicate, bool keeps_state = false)
+      : name_(name), predicate_(predicate), keeps_state_(keeps_state) {}
+  std::string name() const final { return name_; }
+  std::string predicate() const final { return predicate_; }
+  bool keeps_state() const final { return keeps_state_; }
+  const std::vector<BodyPair>& pairs() const final { return pairs_; }
+  BroadphaseStats stats() const final { return stats_; }
 
  protected:
+  // Every body checked (check_body, under this broadphase's name) and its box flattened into `box`, in order.
+  // Returns the body count.
+  uint32_t check_flatten(const std::vector<BodyBounds>& bodies, uint64_t frame, std::vector<FlatBox>& box) const {
+    const uint32_t n = uint32_t(bodies.size());
+    box.resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+      check_body(bodies[i], name_, i, frame);
+      box[i] = flat(bodies[i].box);
+    }
+    return n;
+  }
+
+  const char* const name_;
   std::vector<BodyPair> pairs_;
   BroadphaseStats stats_;
+
+ private:
+  const char* const predicate_;
+  const bool keeps_state_;
 };
 
 std::unique_ptr<Broadphase> make_sap();

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/collider.h"
 
 namespace voxcd::detail {
 

@@ -3,24 +3,14 @@
 #include <algorithm>
 #include <limits>
 
+#include "voxcd/host/object/detail/ray_crossing.h"
+
 namespace voxcd::detail {
 
 bool inside_mesh(const Mesh& m, const Eigen::Vector3d& p) {
   const Eigen::Vector3d d = Eigen::Vector3d(0.5773, 0.3119, 0.7549).normalized();
   int n = 0;
-  for (size_t t = 0; t < m.size(); ++t) {
-    const Eigen::Vector3d a = m.corner(t, 0), e1 = m.corner(t, 1) - a, e2 = m.corner(t, 2) - a;
-    const Eigen::Vector3d q = d.cross(e2);
-    const double det = e1.dot(q);
-    if (det == 0) continue;
-    const Eigen::Vector3d s = p - a;
-    const double u = s.dot(q) / det;
-    if (u < 0 || u > 1) continue;
-    const Eigen::Vector3d r = s.cross(e1);
-    const double v = d.dot(r) / det;
-    if (v < 0 || u + v > 1) continue;
-    if (e2.dot(r) / det > 0) ++n;
-  }
+  for (size_t t = 0; t < m.size(); ++t) n += ray_crosses(m, t, p, d);
   return n % 2;
 }
 

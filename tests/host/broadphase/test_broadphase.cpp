@@ -382,6 +382,23 @@ TEST(Broadphase, NamesAndPredicates) {
   for (const char* n : {"sap", "coherent", "tree", "grid"}) EXPECT_EQ(make_broadphase(n)->predicate(), "box") << n;
 }
 
+// The broadphases that build on the previous frame's bodies say so (a distributed run restarts them when its slab's
+// bodies change); the others rebuild every frame. Each names itself in its errors by its own name.
+TEST(Broadphase, KeepsStateAndNamesItselfInErrors) {
+  for (const std::string& n : broadphase_names()) {
+    const auto bp = make_broadphase(n);
+    EXPECT_EQ(bp->keeps_state(), n == "coherent" || n == "queue" || n == "tree") << n;
+    std::vector<BodyBounds> b(2);
+    b[1].box.lo.x() = 1;  // lo > hi
+    try {
+      bp->update(b, 7);
+      ADD_FAILURE() << n << " took a box with lo > hi";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()), "broadphase " + n + ": body 1 at frame 7: box with lo > hi or NaN") << n;
+    }
+  }
+}
+
 TEST(Broadphase, UnknownNameListsTheNames) {
   try {
     make_broadphase("octree");
