@@ -36,8 +36,8 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   check(impl_->options);
 }
 
-World World::scene(const RunConfig& config) {
-  auto impl = std::make_unique<Impl>();
+World detail::world_of(const RunConfig& config) {
+  auto impl = std::make_unique<World::Impl>();
   impl->scene = make_scene(config);
   for (const auto& t : impl->scene.types) impl->objects.emplace_back(t);
   impl->options = config;
@@ -45,7 +45,13 @@ World World::scene(const RunConfig& config) {
   return World(std::move(impl));
 }
 
-World World::scene() { return scene(RunConfig{}); }
+World World::scene() { return detail::world_of(RunConfig{}); }
+
+World World::scene(const std::string& scene_file) {
+  RunConfig file;
+  file.where = scene_file;
+  return detail::world_of(run_config(file));
+}
 
 World::~World() = default;
 World::World(World&&) noexcept = default;

@@ -17,16 +17,22 @@
 
 namespace voxcd {
 
-struct RunConfig;  // a run's configuration, as `voxcd simulate` takes it (host/scene/run_config.h)
+struct RunConfig;  // a run's configuration, as `voxcd simulate` takes it (internal: host/scene/run_config.h)
+class World;
+namespace detail {
+// The world of a checked run configuration (the tool's and the Python module's door; no compatibility promise).
+World world_of(const RunConfig& config);
+}  // namespace detail
 
 // WorldDef (how a world runs) is in voxcd/host/scene/body.h.
 class World {
  public:
   explicit World(const WorldDef& def = {});
-  // The scene `voxcd simulate` runs for the same configuration (run_config: the built-in scene, or a scene file with
-  // the options given overriding it, checked). Stepped as many frames, it has the tool's state hash.
-  static World scene(const RunConfig& config);
-  static World scene();  // the built-in scene with its defaults
+  // The scene `voxcd simulate` runs: the built-in one with its defaults, or a scene file (docs/scenes.md) with its
+  // own settings. Stepped as many frames, it has the tool's state hash (`voxcd simulate [scene_file]`). An error
+  // (std::invalid_argument, std::runtime_error) names the file and the key for a scene file that cannot be used.
+  static World scene();
+  static World scene(const std::string& scene_file);
   ~World();
   World(World&&) noexcept;
   World& operator=(World&&) noexcept;
@@ -55,6 +61,7 @@ class World {
  private:
   struct Impl;
   explicit World(std::unique_ptr<Impl> impl);
+  friend World detail::world_of(const RunConfig& config);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -122,7 +122,7 @@ World world_scene(const RunArgs& a) {
   const RunConfig options = run_options(a, py::none(), text);
   return with_file(text ? "" : options.where, [&] {
     py::gil_scoped_release unlocked;
-    return World::scene(run_config(options, text));
+    return detail::world_of(run_config(options, text));
   });
 }
 

@@ -129,6 +129,24 @@ TEST(Api, AWorldSteppedByItsCallerIsTheToolsRun) {
   EXPECT_EQ(w.state_hash(), s.state_hash);
   EXPECT_EQ(w.frame(), 100u);
   EXPECT_EQ(w.size(), 64u);
+  // A scene file, as `voxcd simulate small.json --frames 30` runs it (its own settings; frames given by the caller).
+  RunConfig f;
+  f.where = VOXCD_SCENES_DIR "/small.json";
+  RunConfig file = run_config(f);
+  file.frames = 30;
+  const SimulationSummary fs = simulate(file);
+  World from_file = World::scene(VOXCD_SCENES_DIR "/small.json");
+  for (int k = 0; k < 30; ++k) from_file.step();
+  EXPECT_EQ(from_file.state_hash(), fs.state_hash);
+  EXPECT_EQ(from_file.size(), fs.config.objects());
+  EXPECT_NE(from_file.state_hash(), World::scene().state_hash());
+  // A file that cannot be read is an error naming it.
+  try {
+    World::scene("no/such/scene.json");
+    ADD_FAILURE() << "no error for a missing scene file";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("no/such/scene.json"), std::string::npos) << e.what();
+  }
   // A world of one's own: two bodies that meet.
   World own;
   ObjectDef def;
