@@ -497,15 +497,10 @@ size_t orient_outward(Mesh& m, Patches& p, const std::vector<char>& closed) {
   return size_t(std::count(p.flip.begin(), p.flip.end(), 1));
 }
 
-// Sheets: patches grouped with the open patches whose boundary vertices come within kCrackRelative of the model's size
-// of theirs (parts split by cracks close each other); a group whose boundary encloses more than kSheetRatio of
-// its area (the vector area of its boundary loops, origin-independent for closed loops) encloses nothing. A
-// resolved part's fins are sheets whatever their boundary.
-void mark_sheets(Mesh& m, const Patches& p, const std::vector<EdgeUse>& after, const std::vector<char>& closed,
-                 const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, MeshReport& r) {
-  const size_t n = m.size(), np = p.list.size();
-  UnionFind group{np};
-  const double gap = kCrackRelative * (hi - lo).norm();
+// The patches grouped with the open patches whose boundary vertices come within `gap` of theirs (parts split by
+// cracks close each other); resolved parts' fins (resolved 2) are left alone.
+UnionFind group_by_cracks(const Mesh& m, const Patches& p, const std::vector<EdgeUse>& after, double gap) {
+  UnionFind group{p.list.size()};
   std::unordered_map<std::array<int64_t, 3>, std::vector<std::pair<uint32_t, uint32_t>>, CellKeyHash> cells;
   auto key_of = [&](const Eigen::Vector3d& x) {
     std::array<int64_t, 3> k{};
@@ -532,6 +527,17 @@ void mark_sheets(Mesh& m, const Patches& p, const std::vector<EdgeUse>& after, c
     }
     i = j;
   }
+  return group;
+}
+
+// Sheets: patches grouped with the open patches whose boundary vertices come within kCrackRelative of the model's size
+// of theirs (parts split by cracks close each other); a group whose boundary encloses more than kSheetRatio of
+// its area (the vector area of its boundary loops, origin-independent for closed loops) encloses nothing. A
+// resolved part's fins are sheets whatever their boundary.
+void mark_sheets(Mesh& m, const Patches& p, const std::vector<EdgeUse>& after, const std::vector<char>& closed,
+                 const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, MeshReport& r) {
+  const size_t n = m.size(), np = p.list.size();
+  UnionFind group = group_by_cracks(m, p, after, kCrackRelative * (hi - lo).norm());
   std::vector<Eigen::Vector3d> loop_area(np, Eigen::Vector3d::Zero());
   std::vector<double> area(np, 0);
   const Eigen::Vector3d centre = (lo + hi) / 2;

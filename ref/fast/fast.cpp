@@ -534,6 +534,25 @@ void FastRunner::run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out
   }
 }
 
+namespace {
+// The voxels of n points' linear indices (-1: outside the map) fetched, selected and tested without branches
+// (outside points read the map's first word and are masked): state[k] bits 1:0 the state, bit 2 the hit; the hits.
+inline uint32_t fetch_states(const uint64_t* map, int slot_bits, uint32_t hit_mask, const int64_t* lin, size_t n,
+                             uint8_t* state) {
+  const uint64_t slot_mask = (uint64_t{1} << slot_bits) - 1;
+  uint32_t count = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const bool inside = lin[k] >= 0;
+    const uint64_t li = inside ? uint64_t(lin[k]) : 0;
+    const uint32_t st = uint32_t(map[li >> slot_bits] >> (2 * (li & slot_mask))) & 3u;
+    const uint32_t hit = uint32_t(inside) & (hit_mask >> st) & 1u;
+    state[k] = uint8_t(st | (hit << 2));
+    count += hit;
+  }
+  return count;
+}
+}  // namespace
+
 void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
                            uint32_t& hit_count) const {
   if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count);
@@ -550,7 +569,6 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
     for (int i = 0; i < 9; ++i) ms[i] = double(j.M[i / 3][i % 3]) * scale;
     for (int i = 0; i < 3; ++i) ts[i] = double(j.t[i]) * scale;
   }
-  const uint64_t slot_mask = (uint64_t{1} << slot_bits_) - 1;
   const uint64_t* map = map_.data() + j.map_base;
   size_t n = 0;
   for (uint32_t b = begin; b < end; b += uint32_t(n)) {
@@ -577,18 +595,8 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
         }
         break;
     }
-    // Fetch, select and test without branches (outside points read the map's first word and are masked); then
-    // walk only the hits.
-    const uint32_t mask = j.hit_mask;
-    uint32_t count = 0;
-    for (size_t k = 0; k < n; ++k) {
-      const bool inside = lin[k] >= 0;
-      const uint64_t li = inside ? uint64_t(lin[k]) : 0;
-      const uint32_t st = uint32_t(map[li >> slot_bits_] >> (2 * (li & slot_mask))) & 3u;
-      const uint32_t hit = uint32_t(inside) & (mask >> st) & 1u;
-      state[k] = uint8_t(st | (hit << 2));
-      count += hit;
-    }
+    // Then walk only the hits.
+    const uint32_t count = fetch_states(map, slot_bits_, j.hit_mask, lin, n, state);
     if (count == 0) continue;
     if (j.mode == Mode::Count) {
       hit_count += count;
