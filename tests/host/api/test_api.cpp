@@ -130,9 +130,9 @@ TEST(Api, AWorldSteppedByItsCallerIsTheToolsRun) {
   EXPECT_EQ(w.frame(), 100u);
   EXPECT_EQ(w.size(), 64u);
   // A scene file, as `voxcd simulate small.json --frames 30` runs it (its own settings; frames given by the caller).
-  RunConfig f;
-  f.where = VOXCD_SCENES_DIR "/small.json";
-  RunConfig file = run_config(f);
+  RunConfig given;
+  given.where = VOXCD_SCENES_DIR "/small.json";
+  RunConfig file = run_config(given);
   file.frames = 30;
   const SimulationSummary fs = simulate(file);
   World from_file = World::scene(VOXCD_SCENES_DIR "/small.json");
