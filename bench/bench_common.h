@@ -110,7 +110,7 @@ inline DeviceClock clock_arg(const char* text) {
 }
 
 // The two comment lines a benchmark's CSV starts with, so that its rates and plots name their clock:
-// "# clock_mhz: 93.6" and "# clock_source: OpenSTA, ...". bench/results.sh reads them for the plots' labels.
+// "# clock_mhz: 100.4" and "# clock_source: OpenSTA, ...". bench/results.sh reads them for the plots' labels.
 inline std::string clock_csv_lines(const DeviceClock& c) {
   char mhz[32];
   std::snprintf(mhz, sizeof mhz, "%g", c.mhz);

@@ -15,7 +15,7 @@ function(no_unexplained_200 text)
   endif()
 endfunction()
 function(json_mhz text want)
-  # The number as the tool wrote it (CMake's string(JSON) would print 93.6 as 93.599999999999994).
+  # The number as the tool wrote it (CMake's string(JSON) would print 100.4 as 100.40000000000001).
   if(NOT text MATCHES "\"clock_mhz\": ${want}(\\.0*)?[,}\n ]")
     message(FATAL_ERROR "clock_mhz is not ${want} in:\n${text}")
   endif()
