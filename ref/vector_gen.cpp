@@ -194,6 +194,15 @@ class Generator {
     blocks_.push_back(b);
   }
 
+  // The directed blocks' sizes (faces, extremes, wide, ends): in full where the shell memory holds them beside the
+  // cloud, else each shrunk in the same proportion to what is left (a small derived configuration's memory); a cloud
+  // the memory cannot hold is an error (add_block).
+  int fixed_count(int full) const {
+    const size_t fixed = 400 + 64 + 800 + (cfg_.distance() ? 400 : 0), depth = cfg_.shell_depth();
+    if (opt_.cloud_points + fixed <= depth || opt_.cloud_points >= depth) return full;
+    return std::max(1, int(uint64_t(full) * (depth - opt_.cloud_points) / fixed));
+  }
+
   void make_shell(DeviceMemory& mem) {
     const int64_t one = int64_t{1} << cfg_.PF;
     const FixedFormat pf = point_format(cfg_);
@@ -205,7 +214,7 @@ class Generator {
     // Voxel faces and their neighbours: integers, +-1 ulp, +-1/4, +-1/2.
     std::vector<ShellWord> faces;
     const int64_t offs[] = {0, 1, -1, one / 4, -one / 4, one / 2, -one / 2};
-    for (int k = 0; k < 400; ++k) {
+    for (int k = 0; k < fixed_count(400); ++k) {
       ShellWord w;
       int64_t c[3];
       for (int i = 0; i < 3; ++i) {
@@ -219,19 +228,19 @@ class Generator {
     // Full-range coordinates.
     std::vector<ShellWord> extremes;
     const int64_t ex[] = {pf.min_raw(), pf.max_raw(), 0, -1, 1, pf.min_raw() + 1, pf.max_raw() - 1, -one / 4};
-    for (int k = 0; k < 64; ++k) extremes.push_back({ex[uni(0, 7)], ex[uni(0, 7)], ex[uni(0, 7)]});
+    for (int k = 0; k < fixed_count(64); ++k) extremes.push_back({ex[uni(0, 7)], ex[uni(0, 7)], ex[uni(0, 7)]});
     add_block(mem, extremes);
     // A wide cloud across the whole 2^DW range.
     std::vector<ShellWord> wide;
     const double span = double(cfg_.max_dim());
-    for (int k = 0; k < 800; ++k) wide.push_back({raw(real(-10, span + 10)), raw(real(-2, 4)), raw(real(-2, 3))});
+    for (int k = 0; k < fixed_count(800); ++k) wide.push_back({raw(real(-10, span + 10)), raw(real(-2, 4)), raw(real(-2, 3))});
     add_block(mem, wide);
     if (cfg_.distance()) {
       // Weights at their ends: points on nodes (fraction 0), one ulp above, and one ulp below the next node
       // (fraction 2^WB - 1 under an identity pose).
       std::vector<ShellWord> ends;
       const int64_t fr[] = {0, 1, one - 1, one / 2, one - (one >> std::min(cfg_.PF, cfg_.WB))};
-      for (int k = 0; k < 400; ++k) {
+      for (int k = 0; k < fixed_count(400); ++k) {
         int64_t c[3];
         for (int i = 0; i < 3; ++i) c[i] = std::clamp(sint(-1, 17) * one + fr[uni(0, 4)], pf.min_raw(), pf.max_raw());
         ends.push_back({c[0], c[1], c[2]});

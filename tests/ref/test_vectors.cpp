@@ -59,6 +59,26 @@ TEST(Vectors, RoundTripOfGeneratedVectors) {
   EXPECT_EQ(compare_streams(f, recs, true), "");
 }
 
+TEST(Vectors, GeneratedVectorsFitASmallShellMemory) {
+  // A derived configuration's small shell memory (SAW 10: 1024 words, less than the directed blocks in full): the
+  // directed blocks shrink beside the cloud and every job still runs; a cloud larger than the memory is an error.
+  GenerateOptions g;
+  g.seed = 3;
+  g.jobs = 100;
+  g.cloud_points = 256;
+  g.config = parse_config_pairs("PW 7 PF 1 MW 12 MF 11 TW 21 DW 4 MEMW 64 LANES 1 SAW 10 MAW 6 TAGW 16", "test");
+  const GeneratedVectors v = generate_vectors(g);
+  EXPECT_LE(v.memory.shell.size(), g.config.shell_depth());
+  EXPECT_GT(v.memory.shell.size(), g.cloud_points + 4);
+  EXPECT_EQ(v.jobs.size(), g.jobs);
+  EXPECT_FALSE(run_stream(v.config, v.memory, v.jobs).empty());
+  g.cloud_points = 5000;
+  EXPECT_THROW(generate_vectors(g), std::invalid_argument);
+  // The default configuration's vectors are those of before (the blocks in full): the same shell size.
+  GenerateOptions d;
+  EXPECT_EQ(generate_vectors(d).memory.shell.size(), d.cloud_points + 400 + 64 + 800);
+}
+
 TEST(Vectors, ComparisonNamesJobPointExpectedAndGot) {
   const VectorFile f = parse(kGood);
   std::vector<Record> got = run_stream(f.config, f.memory, f.jobs);
