@@ -32,6 +32,17 @@ std::string scene_of(const DeviceConfig& cfg) {
 }
 
 TEST(SizeRtl, ModelsAreListedDerivedConfigurations) {
+  if (!VOXCD_HAS_MODELS) {
+    // A build without the device models (-DVOXCD_DEVICE_MODELS=OFF) has none, and the rtl backend says so.
+    EXPECT_TRUE(rtl_configs().empty());
+    try {
+      make_device("rtl", DeviceConfig{});
+      FAIL() << "an rtl device in a build without models";
+    } catch (const DeviceError& e) {
+      EXPECT_NE(std::string(e.what()).find("VOXCD_DEVICE_MODELS=OFF"), std::string::npos) << e.what();
+    }
+    return;
+  }
   ASSERT_FALSE(rtl_configs().empty()) << "the build has no models of derived configurations (VOXCD_RTL_CONFIGS)";
   for (const DeviceConfig& cfg : rtl_configs()) {
     EXPECT_NE(scene_of(cfg), "") << cfg.to_string();
