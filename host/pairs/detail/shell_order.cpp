@@ -27,8 +27,14 @@ ShellOrder block_order(const std::vector<std::array<uint32_t, 3>>& cells) {
   return o;
 }
 
-// Compiled for processors with and without the popcnt instruction (a library call per word without it).
-__attribute__((target_clones("popcnt", "default"))) void RankBits::place(const HitSpan* spans, size_t n,
+// Compiled for processors with and without the popcnt instruction (a library call per word without it); one version
+// in the fuzz build (VOXCD_NO_IFUNC: CMakeLists.txt says why).
+#ifdef VOXCD_NO_IFUNC
+#define VOXCD_POPCNT_CLONES
+#else
+#define VOXCD_POPCNT_CLONES __attribute__((target_clones("popcnt", "default")))
+#endif
+VOXCD_POPCNT_CLONES void RankBits::place(const HitSpan* spans, size_t n,
                                                                          const uint32_t* order, size_t points,
                                                                          SortedHit* out) {
   // Already in ascending point order (a direction whose hits all lie in one block, or one hit): in place.
