@@ -46,7 +46,8 @@ inline void load_mesh_input(const std::string& ext, const std::string& body) {
   write_bytes(path, reinterpret_cast<const uint8_t*>(body.data()), body.size());
   try {
     const Mesh m = load_mesh(path);
-    if (m.size() == 0) finding(path + ": load_mesh returned a mesh without triangles");
+    // A point cloud (no triangles, its vertices the surface) is a mesh; nothing at all is not.
+    if (m.size() == 0 && !m.points_only()) finding(path + ": load_mesh returned a mesh without triangles or points");
     voxelise(m, path);
   } catch (const MeshError& e) {
     expect_prefix(e.what(), path + ":", "MeshError");
