@@ -17,16 +17,14 @@ void throw_bad_body(const char* who, size_t i, uint64_t frame, const char* what)
 
 // LSD radix sort on the pair packed into 2 * bits(n - 1) bits, in as few passes of at most 11 bits as cover them
 // (two of 8 bits for 256 bodies, whose counts clear and sum in a blink): O(k) for any pair count.
-void sort_keys(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint32_t n) {
-  const size_t k = keys.size();
+const uint64_t* sort_keys(uint64_t* keys, uint64_t* scratch, size_t k, uint32_t n) {
   if (k < 256) {
-    std::sort(keys.begin(), keys.end());
-    return;
+    std::sort(keys, keys + k);
+    return keys;
   }
   int b = 1;
   while (b < 32 && (uint64_t(1) << b) < n) ++b;
-  for (auto& key : keys) key = (key >> 32) << b | (key & 0xffffffffu);
-  scratch.resize(k);
+  for (size_t i = 0; i < k; ++i) keys[i] = (keys[i] >> 32) << b | (keys[i] & 0xffffffffu);
   constexpr int kMaxDigit = 11;
   const int passes = (2 * b + kMaxDigit - 1) / kMaxDigit;
   const int digit = (2 * b + passes - 1) / passes;
@@ -34,18 +32,24 @@ void sort_keys(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint
   uint32_t count[1 << kMaxDigit];
   for (int shift = 0; shift < 2 * b; shift += digit) {
     std::fill(count, count + (size_t(1) << digit), 0u);
-    for (uint64_t key : keys) ++count[(key >> shift) & dmask];
+    for (size_t i = 0; i < k; ++i) ++count[(keys[i] >> shift) & dmask];
     uint32_t sum = 0;
     for (size_t d = 0; d < (size_t(1) << digit); ++d) {
       const uint32_t t = count[d];
       count[d] = sum;
       sum += t;
     }
-    for (uint64_t key : keys) scratch[count[(key >> shift) & dmask]++] = key;
-    keys.swap(scratch);
+    for (size_t i = 0; i < k; ++i) scratch[count[(keys[i] >> shift) & dmask]++] = keys[i];
+    std::swap(keys, scratch);
   }
   const uint64_t mask = (uint64_t(1) << b) - 1;
-  for (auto& key : keys) key = (key >> b) << 32 | (key & mask);
+  for (size_t i = 0; i < k; ++i) keys[i] = (keys[i] >> b) << 32 | (keys[i] & mask);
+  return keys;
+}
+
+void sort_keys(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint32_t n) {
+  scratch.resize(keys.size());
+  if (sort_keys(keys.data(), scratch.data(), keys.size(), n) != keys.data()) keys.swap(scratch);
 }
 
 void sort_pairs(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint32_t n,

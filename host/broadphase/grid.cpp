@@ -82,55 +82,57 @@ class UniformGrid final : public BroadphaseBase {
  private:
   // Pairs found (keys[0, n)) and tests made, by one part of the search.
   struct Found {
-    std::vector<uint64_t> keys, scratch;
+    std::vector<uint64_t> keys;
     size_t n = 0;
     uint64_t tests = 0;
   };
 
-  // The parts' keys sorted on the pool, each part its own; then merged on the pool in buckets of first bodies
-  // ([b n / B, (b + 1) n / B) for bucket b of B), each bucket written to its place in pairs_.
+  // The parts' keys sorted on the pool as one bucket sort by first body (bucket (a B) >> 32 for first body a and
+  // B = (buckets << 32) / n: ascending in a, below `buckets`): each part counts its keys per bucket, then puts them
+  // in their bucket's place (part after part within a bucket), then each bucket is sorted on its own and written to
+  // its place in pairs_. The same pairs in the same order as one sort.
   void sort_on_pool(uint32_t n, size_t total) {
-    const size_t parts = out_.size();
+    const size_t parts = out_.size(), buckets = kBucketsPerThread * size_t(pool_->size());
+    const uint64_t scale = (uint64_t(buckets) << 32) / n;
+    auto bucket_of = [scale](uint64_t key) { return size_t(((key >> 32) * scale) >> 32); };
+    if (count_.size() < parts) count_.resize(parts);
     pool_->parallel_for(parts, [&](size_t p) {
-      Found& f = out_[p].value;
-      f.keys.resize(f.n);
-      sort_keys(f.keys, f.scratch, n);
+      std::vector<uint32_t>& cnt = count_[p].value;
+      cnt.assign(buckets, 0);
+      const Found& f = out_[p].value;
+      for (size_t i = 0; i < f.n; ++i) ++cnt[bucket_of(f.keys[i])];
     });
-    const size_t buckets = 4 * size_t(pool_->size());
-    cut_.resize(parts * (buckets + 1));
-    bucket_at_.assign(buckets + 1, 0);
-    for (size_t p = 0; p < parts; ++p) {
-      const std::vector<uint64_t>& k = out_[p].value.keys;
-      for (size_t b = 0; b <= buckets; ++b) {
-        const uint64_t lo = uint64_t(uint64_t(b) * n / buckets) << 32;
-        const size_t at = b == buckets ? k.size() : size_t(std::lower_bound(k.begin(), k.end(), lo) - k.begin());
-        cut_[p * (buckets + 1) + b] = at;
-        if (b > 0) bucket_at_[b] += at - cut_[p * (buckets + 1) + b - 1];
-      }
-    }
-    for (size_t b = 1; b <= buckets; ++b) bucket_at_[b] += bucket_at_[b - 1];
+    bucket_places(parts, buckets, total);
+    keys_.resize(total);
+    tmp_.resize(total);
+    pool_->parallel_for(parts, [&](size_t p) {
+      std::vector<uint32_t>& at = count_[p].value;
+      const Found& f = out_[p].value;
+      for (size_t i = 0; i < f.n; ++i) keys_[at[bucket_of(f.keys[i])]++] = f.keys[i];
+    });
     pairs_.resize(total);
-    if (heads_.size() < buckets) heads_.resize(buckets);
     pool_->parallel_for(buckets, [&](size_t b) {
-      // A merge of the parts' runs of the bucket: the smallest head each time.
-      auto& h = heads_[b].value;
-      h.clear();
-      for (size_t p = 0; p < parts; ++p) {
-        const uint64_t* k = out_[p].value.keys.data();
-        const size_t from = cut_[p * (buckets + 1) + b], to = cut_[p * (buckets + 1) + b + 1];
-        if (from < to) h.push_back({k + from, k + to});
-      }
-      BodyPair* out = pairs_.data() + bucket_at_[b];
-      while (!h.empty()) {
-        size_t best = 0;
-        for (size_t q = 1; q < h.size(); ++q)
-          if (*h[q].first < *h[best].first) best = q;
-        const uint64_t key = *h[best].first++;
-        *out++ = {uint32_t(key >> 32), uint32_t(key)};
-        if (h[best].first == h[best].second) h.erase(h.begin() + std::ptrdiff_t(best));
-      }
+      const size_t from = bucket_at_[b], k = bucket_at_[b + 1] - from;
+      const uint64_t* sorted = sort_keys(keys_.data() + from, tmp_.data() + from, k, n);
+      for (size_t i = 0; i < k; ++i) pairs_[from + i] = {uint32_t(sorted[i] >> 32), uint32_t(sorted[i])};
     });
   }
+  // Where bucketed items go, buckets in order and parts in order within a bucket: count_[p].value[b] (part p's
+  // items in bucket b) becomes the place of the first of them, bucket_at_[b] the start of bucket b (of `total`).
+  void bucket_places(size_t parts, size_t buckets, size_t total) {
+    bucket_at_.resize(buckets + 1);
+    for (size_t b = 0, at = 0; b < buckets; ++b) {
+      bucket_at_[b] = at;
+      for (size_t p = 0; p < parts; ++p) {
+        uint32_t& c = count_[p].value[b];
+        const uint32_t k = c;
+        c = uint32_t(at);
+        at += k;
+      }
+    }
+    bucket_at_[buckets] = total;
+  }
+
   struct Entry {
     FlatBox box;
     uint32_t id;
@@ -296,17 +298,7 @@ class UniformGrid final : public BroadphaseBase {
         ++cnt[bucket_of(cell_tmp_[k])];
       }
     });
-    bucket_at_.assign(buckets + 1, 0);
-    for (size_t b = 0, at = 0; b < buckets; ++b) {
-      bucket_at_[b] = at;
-      for (size_t part = 0; part < r2.parts; ++part) {
-        uint32_t& c = count_[part].value[b];
-        const uint32_t n = c;
-        c = uint32_t(at);  // where the range's boxes of the bucket go
-        at += n;
-      }
-    }
-    bucket_at_[buckets] = s;
+    bucket_places(r2.parts, buckets, s);
     order_.resize(s);
     pool_->parallel_for(r2.parts, [&](size_t part) {
       std::vector<uint32_t>& at = count_[part].value;
@@ -414,7 +406,8 @@ class UniformGrid final : public BroadphaseBase {
   // Parts of the pool's loops (each a few microseconds): bodies checked and flattened, boxes split by size and
   // placed in cells, entries searched (about 50 ns each at 16 cells a box).
   static constexpr size_t kGrainBodies = 64, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 32;
-  static constexpr size_t kParallelSort = 1024;  // pairs of a frame sorted on the pool (part by part, then merged)
+  static constexpr size_t kParallelSort = 16384;  // pairs of a frame sorted on the pool (in buckets of first bodies)
+  static constexpr size_t kBucketsPerThread = 8;
   static constexpr size_t kParallelCells = 1024;  // boxes of a level sorted by cell on the pool
   std::vector<FlatBox> box_;
   std::vector<uint32_t> ids_, small_, cell_tmp_, fill_;
@@ -429,12 +422,12 @@ class UniformGrid final : public BroadphaseBase {
   std::vector<std::array<int, 3>> xyz_tmp_;
   std::vector<Level> levels_;
   std::vector<PartSlot<Found>> out_;  // the pairs of this frame, per part of the search
-  // sort_on_pool: where each bucket starts in each part's keys, in pairs_; each bucket's merge heads.
-  std::vector<size_t> cut_, bucket_at_;
+  // sort_on_pool: where each bucket starts in keys_ and pairs_; the keys by bucket.
+  std::vector<size_t> bucket_at_;
+  std::vector<uint64_t> keys_;
   // build's sort on the pool: per range of boxes its counts (then places) per bucket; the boxes by bucket.
   std::vector<PartSlot<std::vector<uint32_t>>> count_;
   std::vector<uint32_t> order_;
-  std::vector<PartSlot<std::vector<std::pair<const uint64_t*, const uint64_t*>>>> heads_;
   std::vector<uint64_t> tmp_;
 };
 

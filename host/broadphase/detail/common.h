@@ -36,6 +36,8 @@ inline void check_body(const BodyBounds& b, const char* who, size_t i, uint64_t 
 
 // keys: pair_key()s of bodies below n, sorted ascending in place (O(k) radix sort for large k).
 void sort_keys(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint32_t n);
+// The same on keys[0, k) with scratch[0, k): returns where the sorted keys are (keys or scratch).
+const uint64_t* sort_keys(uint64_t* keys, uint64_t* scratch, size_t k, uint32_t n);
 // keys: distinct pair_key()s of bodies below n, in any order (reordered here). out: the pairs ascending.
 void sort_pairs(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, uint32_t n,
                 std::vector<BodyPair>& out);
