@@ -451,10 +451,11 @@ Simulation::Simulation(Scene scene, const RunConfig& opt) : scene_(std::move(sce
 
 namespace {
 // Bodies per part of the per-body loops (integration, bounds: about 50 ns a body), tested pairs per part of the
-// outcomes (about 100 ns a pair); and the parts of the pair tests: at least 8 broadphase pairs each (one of three
-// reaches the device, a few microseconds each), up to 16 per thread, for their costs differ and a thread that
-// finishes early takes another's.
-constexpr size_t kGrainBodies = 64, kGrainPairs = 32, kGrainNarrow = 8, kPartsNarrow = 16;
+// outcomes (about 100 ns a pair); broadphase pairs per part of the mid-phase (about 20 ns a pair: below two parts'
+// worth it runs on the calling thread, where the bodies' bounds already are); and the parts of the pair tests: at
+// least 4 tested pairs each (a microsecond or more each), up to 16 per thread, cut by weight (the shell points the pair
+// looks up: their costs differ, and a thread that finishes early takes another's).
+constexpr size_t kGrainBodies = 64, kGrainPairs = 32, kGrainMidphase = 1024, kGrainTests = 4, kPartsTests = 16;
 }  // namespace
 
 void Simulation::integrate(FrameStats& st) {
@@ -503,7 +504,8 @@ void Simulation::compute_bounds() {
   });
 }
 
-size_t Simulation::midphase(const std::vector<BodyPair>& pairs, const Ranges& r) {
+size_t Simulation::midphase(const std::vector<BodyPair>& pairs) {
+  const Ranges r = pool_ranges(pool_.get(), pairs.size(), kGrainMidphase);
   keep_.resize(pairs.size());
   if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
   // A range with no pairs is never visited: its count must not be a previous frame's (or uninitialised).
@@ -520,7 +522,7 @@ size_t Simulation::midphase(const std::vector<BodyPair>& pairs, const Ranges& r)
     }
     part_counts_[part].value = kept;
   });
-  // Where each range's requests go: the requests in pair order.
+  // The requests in pair order: each range's from where the ranges before it end.
   size_t total = 0;
   part_first_.resize(r.parts + 1);
   for (size_t p = 0; p < r.parts; ++p) part_first_[p] = total, total += part_counts_[p].value;
@@ -529,6 +531,7 @@ size_t Simulation::midphase(const std::vector<BodyPair>& pairs, const Ranges& r)
   requests_pairs_.resize(total);
   results_.resize(total);
   outcomes_.resize(total);
+  for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) { make_requests(pairs, first, end, part_first_[part]); });
   return total;
 }
 
@@ -545,16 +548,40 @@ void Simulation::make_requests(const std::vector<BodyPair>& pairs, size_t first,
   }
 }
 
-void Simulation::narrow_parts(const std::vector<BodyPair>& pairs, const PairOptions& po, const Ranges& r) {
-  if (narrow_parts_.size() < r.parts) narrow_parts_.resize(r.parts);
-  for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
-    const size_t q0 = part_first_[part], q1 = part_first_[part + 1];
-    make_requests(pairs, first, end, q0);
+void Simulation::cut_tests(const PairOptions& po) {
+  // The weight of a request: the shell points its jobs look up before culling (A's in B, and B's in A both ways).
+  const size_t total = requests_.size();
+  weight_.resize(total + 1);
+  weight_[0] = 0;
+  for (size_t q = 0; q < total; ++q) {
+    const PairRequest& rq = requests_[q];
+    size_t w = scene_.types[rq.a]->shell().size();
+    if (po.both_directions) w += scene_.types[rq.b]->shell().size();
+    weight_[q + 1] = weight_[q] + w + 1;
+  }
+  // Part p: the requests whose weight starts in [p W / P, (p + 1) W / P); parts left empty are dropped.
+  const size_t parts = Ranges::of(total, kGrainTests, pool_->size(), kPartsTests).parts;
+  const uint64_t w = weight_[total];
+  test_first_.assign(1, 0);
+  for (size_t p = 1; p < parts; ++p) {
+    const uint64_t cut = w * p / parts;
+    const size_t q = size_t(std::upper_bound(weight_.begin(), weight_.begin() + std::ptrdiff_t(total), cut) - weight_.begin()) - 1;
+    if (q > test_first_.back()) test_first_.push_back(q);
+  }
+  test_first_.push_back(total);
+}
+
+void Simulation::narrow_parts(const PairOptions& po) {
+  cut_tests(po);
+  const size_t parts = test_first_.size() - 1;
+  if (narrow_parts_.size() < parts) narrow_parts_.resize(parts);
+  pool_->parallel_for(parts, [&](size_t part) {
+    const size_t q0 = test_first_[part], q1 = test_first_[part + 1];
     collider_->collide_part(requests_.data() + q0, q1 - q0, q0, po, results_.data() + q0, narrow_parts_[part].value);
     for (size_t q = q0; q < q1; ++q) outcome(q);
   });
   part_ptrs_.clear();
-  for (size_t p = 0; p < r.parts; ++p) part_ptrs_.push_back(&narrow_parts_[p].value);
+  for (size_t p = 0; p < parts; ++p) part_ptrs_.push_back(&narrow_parts_[p].value);
   collider_->join_parts(part_ptrs_.data(), part_ptrs_.size());
   for (const PairCollider::Part* p : part_ptrs_)
     if (p->any) {
@@ -564,15 +591,13 @@ void Simulation::narrow_parts(const std::vector<BodyPair>& pairs, const PairOpti
 }
 
 void Simulation::narrow(const std::vector<BodyPair>& pairs, const PairOptions& po) {
-  // The mid-phase on the pool, in ranges of pairs.
-  const Ranges r = pool_ranges(pool_.get(), pairs.size(), kGrainNarrow, kPartsNarrow);
-  const size_t total = midphase(pairs, r);
-  if (pool_ && r.parts > 1 && collider_->runs_parts()) {
-    narrow_parts(pairs, po, r);
+  // The mid-phase and the requests, then the pair tests: in parts on the pool when the device runs parts, else one
+  // batch on the device and the outcomes on the pool.
+  const size_t total = midphase(pairs);
+  if (pool_ && pool_->size() > 1 && total > 1 && collider_->runs_parts()) {
+    narrow_parts(po);
     return;
   }
-  // One batch on the device, then the outcomes on the pool.
-  make_requests(pairs, 0, pairs.size(), 0);
   collider_->collide(requests_, po, results_);
   for_ranges(pool_.get(), pool_ranges(pool_.get(), total, kGrainPairs), [&](size_t, size_t first, size_t end) {
     for (size_t q = first; q < end; ++q) outcome(q);

@@ -84,14 +84,16 @@ class Simulation {
   void advance(FrameStats& st);
   // The mid-phase, the pair tests and the tested pairs' outcomes (requests_, requests_pairs_, results_, outcomes_).
   void narrow(const std::vector<BodyPair>& pairs, const PairOptions& po);
-  // The mid-phase's verdict on every pair (keep_: the enclosing spheres, then the oriented boxes), per range r of
-  // pairs; sizes the requests, results and outcomes and sets where each range's requests go. Returns the kept.
-  size_t midphase(const std::vector<BodyPair>& pairs, const Ranges& r);
+  // The mid-phase's verdict on every pair (keep_: the enclosing spheres, then the oriented boxes), then the kept
+  // pairs as requests in pair order; sizes the results and outcomes. Returns the requests.
+  size_t midphase(const std::vector<BodyPair>& pairs);
   // The kept pairs of pairs[first, end) as requests from requests_[q] on.
   void make_requests(const std::vector<BodyPair>& pairs, size_t first, size_t end, size_t q);
-  // The device runs parts (the cpu backend): each range of pairs, from its requests to its outcomes, in one loop,
-  // each part timed on its own, then the parts' cycles joined in order.
-  void narrow_parts(const std::vector<BodyPair>& pairs, const PairOptions& po, const Ranges& r);
+  // The parts of the pair tests (test_first_): consecutive requests of near-equal weight (shell points looked up).
+  void cut_tests(const PairOptions& po);
+  // The device runs parts (the cpu backend): each part of the requests, to its outcomes, in one loop, each part timed
+  // on its own, then the parts' cycles joined in order.
+  void narrow_parts(const PairOptions& po);
   // The response to every touching pair that approaches along its contact normal (respond()), in pair order.
   void respond_all(FrameStats& st);
   void outcome(size_t q);
@@ -114,7 +116,9 @@ class Simulation {
   std::shared_ptr<ThreadPool> pool_;  // null on one thread
   std::vector<uint8_t> keep_;         // the mid-phase's verdict per broadphase pair
   std::vector<PartSlot<uint64_t>> part_counts_;
-  std::vector<size_t> part_first_;  // narrow(): the first request of each range of broadphase pairs
+  std::vector<size_t> part_first_;  // midphase(): the first request of each range of broadphase pairs
+  std::vector<uint64_t> weight_;    // cut_tests(): the requests' weights, summed (weight_[q]: those before q)
+  std::vector<size_t> test_first_;  // cut_tests(): the first request of each part of the pair tests
   std::vector<PartSlot<PairCollider::Part>> narrow_parts_;
   std::vector<PairCollider::Part*> part_ptrs_;
   std::vector<PairRequest> requests_;
