@@ -53,7 +53,7 @@ detail::DistanceJob distance_job(const DeviceConfig& cfg, const Job& j, const ui
   if (quads) {
     // The nodes' bias 2^(SB-1) times the weights' sum 2^(3 WB): 2^(IW-1), so threshold + bias is in [0, 2^IW).
     const int64_t bias = int64_t{1} << (cfg.SB - 1 + 3 * cfg.WB);
-    J.quads = quads->entries.data();
+    J.quads = quads->entries.get();
     J.nx1 = double(j.nx) + 1;
     J.bias = double(bias);
     J.biased_threshold = double(j.threshold + bias);

@@ -1,6 +1,13 @@
 // The node-quad copy of a distance voxmap (detail/node_quads.h), built plane by plane from the parity banks.
 #include "voxcd/ref/fast/detail/node_quads.h"
 
+#include <new>
+#include <vector>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
+
 namespace voxcd::detail {
 
 namespace {
@@ -32,6 +39,23 @@ struct PlaneDecoder {
   }
 };
 
+// Room for n entries, on 2 MiB pages when n takes at least one.
+uint32_t* allocate_entries(size_t n) {
+  constexpr size_t kHuge = size_t{1} << 21;
+  const size_t bytes = n * sizeof(uint32_t);
+  void* p = nullptr;
+  if (bytes >= kHuge) {
+    p = std::aligned_alloc(kHuge, (bytes + kHuge - 1) / kHuge * kHuge);
+#ifdef __linux__
+    if (p) madvise(p, (bytes + kHuge - 1) / kHuge * kHuge, MADV_HUGEPAGE);  // advice only: 4 KiB pages work too
+#endif
+  } else {
+    p = std::malloc(bytes ? bytes : 1);
+  }
+  if (!p) throw std::bad_alloc();
+  return static_cast<uint32_t*>(p);
+}
+
 }  // namespace
 
 uint64_t node_quad_bytes(uint32_t nx, uint32_t ny, uint32_t nz) {
@@ -44,12 +68,13 @@ NodeQuads build_node_quads(const uint64_t* map, uint64_t map_base, uint64_t map_
   q.map_base = map_base;
   q.map_end = map_base + map_words;
   q.nx = nx, q.ny = ny, q.nz = nz;
-  q.entries.resize(size_t(node_quad_bytes(nx, ny, nz) / sizeof(uint32_t)));
+  q.count = size_t(node_quad_bytes(nx, ny, nz) / sizeof(uint32_t));
+  q.entries.reset(allocate_entries(q.count));
   const PlaneDecoder decode{map, uint64_t{nx >> 1} + 1, uint64_t{ny >> 1} + 1, nx, ny, sb, uint64_t(nodes_per_word)};
   const size_t row = size_t(nx) + 1, plane_nodes = row * (size_t(ny) + 1);
   std::vector<uint8_t> lo(plane_nodes), hi(plane_nodes);
   if (nz > 0) decode(0, lo);
-  uint32_t* out = q.entries.data();
+  uint32_t* out = q.entries.get();
   for (uint32_t Z = 0; Z < nz; ++Z) {
     decode(Z + 1, hi);
     for (uint32_t Y = 0; Y < ny; ++Y) {

@@ -11,16 +11,23 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <cstdlib>
+#include <memory>
 
 namespace voxcd::detail {
 
 struct NodeQuads {
+  struct Free {
+    void operator()(uint32_t* p) const { std::free(p); }
+  };
   uint64_t map_base = 0;   // the map's first word and its words [map_base, map_end) in the voxmap memory
   uint64_t map_end = 0;
   uint32_t nx = 0, ny = 0, nz = 0;
-  std::vector<uint32_t> entries;  // (nx + 1) * ny * nz
-  uint64_t bytes() const { return uint64_t(entries.size()) * sizeof(uint32_t); }
+  // (nx + 1) * ny * nz entries; beyond 2 MiB on 2 MiB pages where the system gives them (madvise): a lookup reads
+  // anywhere in the copy, and with 4 KiB pages a large one misses the TLB on almost every point.
+  std::unique_ptr<uint32_t[], Free> entries;
+  size_t count = 0;
+  uint64_t bytes() const { return uint64_t(count) * sizeof(uint32_t); }
 };
 
 // The copy's size in bytes for a map of nx x ny x nz cells (no allocation).
