@@ -6,7 +6,6 @@
 // Every intermediate value is an integer of at most IW <= 51 bits, so the doubles are exact and D is ref/'s.
 #include <cmath>
 #include <cstring>
-#include <string>
 
 #include "voxcd/ref/fast/detail/distance_kernel.h"
 
@@ -220,14 +219,13 @@ struct Choice {
 };
 
 Choice choose() {
+  switch (widest_kernel()) {
 #ifdef VOXCD_QUAD_X86
-  __builtin_cpu_init();
-  const std::string want = kernel_override();
-  if (cpu_has_avx512() && (want.empty() || want == "avx512")) return {quad_avx512, "avx512"};
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && want != "baseline")
-    return {quad_avx2, "avx2"};
+    case KernelWidth::Avx512: return {quad_avx512, "avx512"};
+    case KernelWidth::Avx2: return {quad_avx2, "avx2"};
 #endif
-  return {quad_base, "baseline"};
+    default: return {quad_base, "baseline"};
+  }
 }
 
 const Choice kChoice = choose();

@@ -42,6 +42,9 @@ using DistanceBlockFn = uint32_t (*)(const int32_t* x, const int32_t* y, const i
 std::string kernel_override();
 // Whether this processor has the AVX-512 subsets the kernels use (F, DQ, VL, BW).
 bool cpu_has_avx512();
+// The widest kernel family to take: what the processor runs, narrowed by VOXCD_KERNEL.
+enum class KernelWidth { Avx512, Avx2, Baseline };
+KernelWidth widest_kernel();
 
 // The kernel for this processor: AVX-512, AVX2 with FMA, or the baseline; and its name.
 DistanceBlockFn distance_block();
