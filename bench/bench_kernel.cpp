@@ -4,7 +4,9 @@
 // core: times two). It uses only FastRunner's
 // constructor, load and run_into and ref/'s pose quantisation, which every revision has, so the same source measures
 // each revision's kernels.
-//   bench_kernel [--repeats N]                  one line per case: "case threads ns_per_point hits"
+//   bench_kernel [--repeats N]                  one line per case: "case threads ns_per_point hits", and per case
+//                                               "case:first-batch 1 ns_per_point hits": the first batch on one
+//                                               thread (bench/kernel_revisions.sh reads only the former)
 //   bench_kernel --count CASE JOBS              runs JOBS jobs of CASE once on one thread (for callgrind: the
 //                                               difference of two counts is the kernel's instructions)
 #include <algorithm>
@@ -88,10 +90,15 @@ int main(int argc, char** argv) {
       return 0;
     }
     const std::vector<Job> batch(c.jobs, job);
+    double first_ns = 0;
     for (unsigned threads : {1u, 2u}) {
       FastRunner runner(cfg, threads);
       runner.load(mem);
-      runner.run_into(batch, out, false);  // warm-up
+      const double w0 = cpu_now();
+      runner.run_into(batch, out, false);  // warm-up: the first batch on a freshly loaded runner
+      if (threads == 1)  // what the first batch costs above the others (a distance map's copy in cell order, built
+                         // at its first job: ref/fast/detail/node_quads.h), per point of the batch
+        first_ns = (cpu_now() - w0) * 1e9 / double(c.points * c.jobs);
       std::vector<double> t;
       for (int r = 0; r < repeats; ++r) {
         // One thread: its CPU time. Two: the wall time (the pool's workers spin between batches, so their CPU time
@@ -103,6 +110,7 @@ int main(int argc, char** argv) {
       std::sort(t.begin(), t.end());
       const double ns = t[t.size() / 2] * 1e9 / double(c.points * c.jobs) * threads;  // per point per core
       std::printf("%s %u %.4f %u\n", c.name, threads, ns, out.back().hits);
+      if (threads == 1) std::printf("%s:first-batch 1 %.4f %u\n", c.name, first_ns, out.back().hits);
     }
   }
   if (!count_case.empty()) {

@@ -1,10 +1,12 @@
-// FastRunner on a distance voxmap (SB > 2). Two paths give ref/'s bits (docs/contract.md, "Distance voxmaps"):
-//  - vector: on the double path (the accumulator fits 53 bits, the default widths) when an interpolated distance fits
-//    51 bits (IW <= 51) and the map's node words fit int32 indices: a block of points at a time, transform, floor,
-//    bounds, the 8 node values from their parity banks (gathers), the trilinear interpolation and the threshold test
-//    in one loop of doubles, where every value is an integer below 2^53 and so exact (the 2-bit path's argument):
-//    fast/distance_kernel.cpp, for AVX-512, AVX2 with FMA or the baseline, chosen at run time. Only the hits go on to
-//    records.
+// FastRunner on a distance voxmap (SB > 2). Three paths give ref/'s bits (docs/contract.md, "Distance voxmaps"):
+//  - node quads: on the double path when an interpolated distance fits 51 bits (IW <= 51), SB <= 8 and the map's copy
+//    in cell order (detail/node_quads.h, built here at the first job on the map) has fewer than 2^31 entries and fits
+//    the runner's limit: a block of points at a time, transform, floor, bounds, the cell's 8 nodes by one 8-byte
+//    read, the trilinear interpolation and the threshold test in one loop of doubles, where every value is an integer
+//    below 2^53 and so exact (the 2-bit path's argument): fast/distance_quad_kernel.cpp.
+//  - vector: otherwise on the double path when IW <= 51 and the map's node words fit int32 indices: the same loop with
+//    the 8 node values from their parity banks (8 reads a point): fast/distance_kernel.cpp. Both for AVX-512, AVX2
+//    with FMA or the baseline, chosen at run time; only the hits go on to records.
 //  - scalar: otherwise, transform, floor and bounds in 64-bit integers (the double and int64 paths' accumulators fit
 //    63 bits; the wide path takes ref/'s transform), and the interpolation as three exact linear interpolations,
 //    a * 2^WB + (b - a) * f, x then y then z, in 64-bit integers and in 128 bits for the last step when IW > 62.
@@ -13,6 +15,7 @@
 #include <cstdint>
 
 #include "voxcd/ref/fast/detail/distance_kernel.h"
+#include "voxcd/ref/fast/detail/node_quads.h"
 #include "voxcd/ref/fast/fast.h"
 #include "voxcd/ref/pipeline.h"
 
@@ -28,6 +31,36 @@ inline T lerp(T a, T b, int64_t f, int wb) {
 
 constexpr size_t kDistanceBlock = 256;
 
+// What the kernels need of job j (detail::DistanceJob); with `quads`, of that copy.
+detail::DistanceJob distance_job(const DeviceConfig& cfg, const Job& j, const uint64_t* map,
+                                 const detail::NodeQuads* quads) {
+  detail::DistanceJob J;
+  const int shift = cfg.TF() - cfg.WB;
+  const double scale = std::ldexp(1.0, -shift);
+  for (int i = 0; i < 9; ++i) J.m[i] = double(j.M[i / 3][i % 3]) * scale;
+  for (int i = 0; i < 3; ++i) J.t[i] = double(j.t[i]) * scale;
+  J.n[0] = j.nx, J.n[1] = j.ny, J.n[2] = j.nz;
+  J.weight = std::ldexp(1.0, cfg.WB);
+  J.inv_weight = std::ldexp(1.0, -cfg.WB);
+  J.threshold = double(j.threshold);
+  J.hx = int32_t(j.nx / 2 + 1), J.hy = int32_t(j.ny / 2 + 1);
+  J.npw_bits = 0;
+  while ((1 << J.npw_bits) < cfg.nodes_per_word()) ++J.npw_bits;
+  J.sb = cfg.SB;
+  J.sb_bits = 0;
+  while ((1 << J.sb_bits) < J.sb) ++J.sb_bits;
+  J.map = map + j.map_base;
+  if (quads) {
+    // The nodes' bias 2^(SB-1) times the weights' sum 2^(3 WB): 2^(IW-1), so threshold + bias is in [0, 2^IW).
+    const int64_t bias = int64_t{1} << (cfg.SB - 1 + 3 * cfg.WB);
+    J.quads = quads->entries.get();
+    J.nx1 = double(j.nx) + 1;
+    J.bias = double(bias);
+    J.biased_threshold = double(j.threshold + bias);
+  }
+  return J;
+}
+
 }  // namespace
 
 bool FastRunner::distance_vector(const Job& j) const {
@@ -39,28 +72,47 @@ bool FastRunner::distance_vector(const Job& j) const {
          8 * (nodes / uint64_t(npw) + 2) < (uint64_t{1} << 31);
 }
 
-void FastRunner::run_distance_vector(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
-                                     uint32_t& hit_count) const {
-  detail::DistanceJob J;
-  const int shift = cfg_.TF() - cfg_.WB;
-  const double scale = std::ldexp(1.0, -shift);
-  for (int i = 0; i < 9; ++i) J.m[i] = double(j.M[i / 3][i % 3]) * scale;
-  for (int i = 0; i < 3; ++i) J.t[i] = double(j.t[i]) * scale;
-  J.n[0] = j.nx, J.n[1] = j.ny, J.n[2] = j.nz;
-  J.weight = std::ldexp(1.0, cfg_.WB);
-  J.inv_weight = std::ldexp(1.0, -cfg_.WB);
-  J.threshold = double(j.threshold);
-  J.hx = int32_t(j.nx / 2 + 1), J.hy = int32_t(j.ny / 2 + 1);
-  J.npw_bits = 0;
-  while ((1 << J.npw_bits) < cfg_.nodes_per_word()) ++J.npw_bits;
-  J.sb = cfg_.SB;
-  J.sb_bits = 0;
-  while ((1 << J.sb_bits) < J.sb) ++J.sb_bits;
-  J.map = map_.data() + j.map_base;
+const detail::NodeQuads* FastRunner::node_quads(const Job& j) const {
+  // Exact doubles (IW <= 51: the biased distance too) and entries as int32 indices; then the limit.
+  if (path_ != Path::Double || cfg_.IW() > 51 || cfg_.SB > 8) return nullptr;
+  const uint64_t bytes = detail::node_quad_bytes(j.nx, j.ny, j.nz);
+  if (bytes / 4 >= (uint64_t{1} << 31)) return nullptr;
+  const std::lock_guard<std::mutex> lock(copies_mutex_);
+  for (const auto& q : copies_)
+    if (q->map_base == j.map_base && q->nx == j.nx && q->ny == j.ny && q->nz == j.nz) return q.get();
+  if (copy_bytes_ + bytes > copy_limit_) return nullptr;
+  copies_.push_back(std::make_unique<detail::NodeQuads>(detail::build_node_quads(
+      map_.data() + j.map_base, j.map_base, voxcd::map_words(cfg_, j), j.nx, j.ny, j.nz, cfg_.SB, cfg_.nodes_per_word())));
+  copy_bytes_ += bytes;
+  return copies_.back().get();
+}
+
+void FastRunner::drop_node_quads(uint64_t first, uint64_t end) {
+  const std::lock_guard<std::mutex> lock(copies_mutex_);
+  for (size_t i = copies_.size(); i-- > 0;) {
+    if (copies_[i]->map_base >= end || copies_[i]->map_end <= first) continue;
+    copy_bytes_ -= copies_[i]->bytes();
+    copies_.erase(copies_.begin() + std::ptrdiff_t(i));
+  }
+}
+
+void FastRunner::set_node_copy_limit(uint64_t bytes) {
+  copy_limit_ = bytes;
+  drop_node_quads(0, UINT64_MAX);
+}
+
+uint64_t FastRunner::node_copy_bytes() const {
+  const std::lock_guard<std::mutex> lock(copies_mutex_);
+  return copy_bytes_;
+}
+
+void FastRunner::run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
+                                     std::vector<Record>& hits, uint32_t& hit_count) const {
+  const detail::DistanceJob J = distance_job(cfg_, j, map_.data(), quads);
   uint8_t hit[kDistanceBlock];
   int32_t cx[kDistanceBlock], cy[kDistanceBlock], cz[kDistanceBlock];
   double dist[kDistanceBlock];
-  const detail::DistanceBlockFn block = detail::distance_block();
+  const detail::DistanceBlockFn block = quads ? detail::distance_quad_block() : detail::distance_block();
   for (uint32_t b = begin; b < end; b += uint32_t(kDistanceBlock)) {
     const size_t n = std::min<size_t>(kDistanceBlock, end - b);
     const size_t base = size_t(j.shell_base) + b;
@@ -88,7 +140,8 @@ void FastRunner::run_distance_vector(const Job& j, uint32_t begin, uint32_t end,
 
 void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
                                     uint32_t& hit_count) const {
-  if (distance_vector(j)) return run_distance_vector(j, begin, end, hits, hit_count);
+  if (const detail::NodeQuads* q = node_quads(j)) return run_distance_vector(j, q, begin, end, hits, hit_count);
+  if (distance_vector(j)) return run_distance_vector(j, nullptr, begin, end, hits, hit_count);
   const int tf = cfg_.TF(), wb = cfg_.WB, sb = cfg_.SB;
   const int64_t fmask = (int64_t{1} << wb) - 1;
   const uint64_t vmask = (uint64_t{1} << sb) - 1, sign = uint64_t{1} << (sb - 1);

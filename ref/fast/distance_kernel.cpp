@@ -258,14 +258,13 @@ struct Choice {
 };
 
 Choice choose() {
+  switch (widest_kernel()) {
 #ifdef VOXCD_DISTANCE_X86
-  __builtin_cpu_init();
-  const std::string want = kernel_override();
-  if (cpu_has_avx512() && (want.empty() || want == "avx512")) return {distance_avx512, "avx512"};
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && want != "baseline")
-    return {distance_avx2, "avx2"};
+    case KernelWidth::Avx512: return {distance_avx512, "avx512"};
+    case KernelWidth::Avx2: return {distance_avx2, "avx2"};
 #endif
-  return {distance_base, "baseline"};
+    default: return {distance_base, "baseline"};
+  }
 }
 
 const Choice kChoice = choose();
@@ -280,6 +279,16 @@ bool cpu_has_avx512() {
 #else
   return false;
 #endif
+}
+
+KernelWidth widest_kernel() {
+#ifdef VOXCD_DISTANCE_X86
+  __builtin_cpu_init();
+  const std::string want = kernel_override();
+  if (cpu_has_avx512() && (want.empty() || want == "avx512")) return KernelWidth::Avx512;
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && want != "baseline") return KernelWidth::Avx2;
+#endif
+  return KernelWidth::Baseline;
 }
 
 std::string kernel_override() {

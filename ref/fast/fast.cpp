@@ -13,6 +13,7 @@
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/fast/detail/distance_kernel.h"
+#include "voxcd/ref/fast/detail/node_quads.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/timing.h"
 
@@ -293,6 +294,7 @@ void FastRunner::load(const DeviceMemory& mem) {
   validate_memory(cfg_, mem);
   shell_.clear();
   map_.clear();
+  drop_node_quads(0, UINT64_MAX);
   write_shell(0, mem.shell.data(), mem.shell.size());
   write_map(0, mem.map.data(), mem.map.size());
 }
@@ -324,6 +326,7 @@ void FastRunner::write_map(uint64_t first, const uint64_t* words, size_t n) {
       throw JobError("voxmap word " + std::to_string(first + i) + " has bits above MEMW = " +
                      std::to_string(cfg_.MEMW));
   const size_t end = size_t(first + n);
+  drop_node_quads(first, end);
   if (map_.size() < end) map_.resize(end);
   std::copy(words, words + n, map_.begin() + std::ptrdiff_t(first));
 }

@@ -4,7 +4,10 @@
 // (sysc/tlm_target.cpp) both compute jobs with it.
 //
 // Distance voxmaps (SB > 2) take fast/distance.cpp's paths: a vector kernel in doubles where every value is exact (the
-// default widths), else 64- and 128-bit integers one point at a time.
+// default widths), else 64- and 128-bit integers one point at a time. At SB <= 8 the vector kernel reads a second
+// copy of the map that FastRunner builds at the first job on it (fast/detail/node_quads.h: a cell's eight nodes in
+// eight consecutive bytes, 4 bytes a cell), within node_copy_limit() bytes for all maps together; a map written
+// again (write_map, load) loses its copy, and a map whose copy would pass the limit is read from its parity banks.
 // Three arithmetic paths, chosen by the widths, give the same bits as ref/:
 //  - double: when the accumulator fits 53 bits (the default widths: 49), every product M*p and every partial sum
 //    is an integer below 2^53, so double arithmetic is exact (fused multiply-adds included), and so is
@@ -20,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "voxcd/ref/config.h"
@@ -29,6 +33,9 @@
 namespace voxcd {
 
 class ThreadPool;
+namespace detail {
+struct NodeQuads;
+}
 
 class FastRunner {
  public:
@@ -65,6 +72,13 @@ class FastRunner {
   uint64_t shell_words() const { return shell_.size(); }
   uint64_t map_words() const { return map_.size(); }
   const std::vector<ShellWord>& shell() const { return shell_; }
+  // The bytes the copies of distance maps in cell order may take together (default kNodeCopyLimit; 0: none, every
+  // map read from its parity banks), and the bytes they take now. Results never depend on either. Setting the
+  // limit drops the copies.
+  static constexpr uint64_t kNodeCopyLimit = uint64_t{1} << 30;
+  void set_node_copy_limit(uint64_t bytes);
+  uint64_t node_copy_limit() const { return copy_limit_; }
+  uint64_t node_copy_bytes() const;
   // On a banked device, the job's bank cycles given its hits' summary and its completion's hits (ref/banks.h).
   BankCycles bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const;
 
@@ -123,8 +137,14 @@ class FastRunner {
   void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
                           uint32_t& count) const;
   bool distance_vector(const Job& j) const;
-  void run_distance_vector(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
-                           uint32_t& count) const;
+  // The node-quad copy of job j's map, built at the first call (thread-safe); null where the kernel cannot take it
+  // (widths, SB > 8) or it would pass the limit.
+  const detail::NodeQuads* node_quads(const Job& j) const;
+  // Drops the copies of maps that overlap voxmap words [first, end).
+  void drop_node_quads(uint64_t first, uint64_t end);
+  // The vector kernel on the parity banks, or with `quads` on that copy.
+  void run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
+                           std::vector<Record>& hits, uint32_t& count) const;
 
   DeviceConfig cfg_;
   Path path_ = Path::Double;
@@ -143,6 +163,11 @@ class FastRunner {
   std::vector<size_t> task_first_;   // per task its first piece, and one past the last
   std::vector<size_t> done_at_;      // per job, where its completion record goes in the stream
   std::vector<TaskResult> results_;
+  // The node-quad copies (fast/distance.cpp), built by const lookups on any thread: under copies_mutex_.
+  uint64_t copy_limit_ = kNodeCopyLimit;
+  mutable std::mutex copies_mutex_;
+  mutable std::vector<std::unique_ptr<detail::NodeQuads>> copies_;
+  mutable uint64_t copy_bytes_ = 0;
 };
 
 }  // namespace voxcd

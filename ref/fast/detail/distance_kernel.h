@@ -19,6 +19,13 @@ struct DistanceJob {
   int npw_bits, sb;   // log2 of the nodes per word (a power of two), SB
   int sb_bits;        // log2 SB (a power of two)
   const uint64_t* map;
+  // The node-quad kernels' (detail/node_quads.h): the copy, nx + 1, and the threshold and a distance offset by the
+  // nodes' bias: with every node stored as q + 2^(SB-1), the interpolation gives D + 2^(SB-1) * 2^(3 WB) (its
+  // weights sum to 2^(3 WB)), at most 2^IW in magnitude, so exact.
+  const uint32_t* quads = nullptr;
+  double nx1 = 0;
+  double biased_threshold = 0;  // threshold + bias
+  double bias = 0;              // 2^(SB-1) * 2^(3 WB)
 };
 
 // Points [0, n) of coordinates x, y, z (the shell's words): per point hit[k] = 1 when it is inside and its
@@ -35,9 +42,15 @@ using DistanceBlockFn = uint32_t (*)(const int32_t* x, const int32_t* y, const i
 std::string kernel_override();
 // Whether this processor has the AVX-512 subsets the kernels use (F, DQ, VL, BW).
 bool cpu_has_avx512();
+// The widest kernel family to take: what the processor runs, narrowed by VOXCD_KERNEL.
+enum class KernelWidth { Avx512, Avx2, Baseline };
+KernelWidth widest_kernel();
 
 // The kernel for this processor: AVX-512, AVX2 with FMA, or the baseline; and its name.
 DistanceBlockFn distance_block();
 const char* distance_block_name();
+// The same on the node-quad copy (job.quads; ref/fast/distance_quad_kernel.cpp): one 8-byte read a point.
+DistanceBlockFn distance_quad_block();
+const char* distance_quad_block_name();
 
 }  // namespace voxcd::detail
