@@ -405,7 +405,7 @@ class UniformGrid final : public BroadphaseBase {
   static constexpr double kCellsPerBox = 16;
   // Parts of the pool's loops (each a few microseconds): bodies checked and flattened, boxes split by size and
   // placed in cells, entries searched (about 50 ns each at 16 cells a box).
-  static constexpr size_t kGrainBodies = 64, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 32;
+  static constexpr size_t kGrainBodies = 512, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 32;
   static constexpr size_t kParallelSort = 16384;  // pairs of a frame sorted on the pool (in buckets of first bodies)
   static constexpr size_t kBucketsPerThread = 8;
   static constexpr size_t kParallelCells = 1024;  // boxes of a level sorted by cell on the pool
