@@ -1,4 +1,4 @@
-// Where PairCollider::make_contacts (host/pairs/contacts.cpp) writes contact k of a run of hit records: a Contact of
+// Where PairCollider::make_contacts (host/pairs/contacts.cpp) writes contact k of a run of hits: a Contact of
 // a PairResult, or row k of ContactArrays. Both are filled field by field from the same values, so the two forms of a
 // batch's contacts are the same numbers.
 #pragma once
@@ -14,15 +14,15 @@ struct ToContacts {
   Contact* to;
   ToContacts shifted(size_t k) const { return {to + k}; }
   void put(size_t k, uint32_t pair, bool a_in_b, uint32_t point, const Eigen::Vector3d& position,
-           const Eigen::Vector3d& normal, const Record& rec, double depth) const {
+           const Eigen::Vector3d& normal, const HitColumns& h, size_t hit, double depth) const {
     Contact& c = to[k];
     c.pair = pair;
     c.a_in_b = a_in_b;
     c.point = point;
     c.position = position;
     c.normal = normal;
-    c.voxel = {rec.x, rec.y, rec.z};
-    c.state = rec.state;
+    c.voxel = {h.x[hit], h.y[hit], h.z[hit]};
+    c.state = h.state[hit];
     c.depth = depth;
   }
 };
@@ -33,7 +33,7 @@ struct ToArrays {
   size_t at;
   ToArrays shifted(size_t k) const { return {a, at + k}; }
   void put(size_t k, uint32_t pair, bool a_in_b, uint32_t point, const Eigen::Vector3d& position,
-           const Eigen::Vector3d& normal, const Record& rec, double depth) const {
+           const Eigen::Vector3d& normal, const HitColumns& h, size_t hit, double depth) const {
     const size_t i = at + k;
     a->pair[i] = pair;
     a->a_in_b[i] = a_in_b;
@@ -43,8 +43,8 @@ struct ToArrays {
     uint32_t* v = a->voxel.data() + 3 * i;
     p[0] = position.x(), p[1] = position.y(), p[2] = position.z();
     n[0] = normal.x(), n[1] = normal.y(), n[2] = normal.z();
-    v[0] = rec.x, v[1] = rec.y, v[2] = rec.z;
-    a->state[i] = rec.state;
+    v[0] = h.x[hit], v[1] = h.y[hit], v[2] = h.z[hit];
+    a->state[i] = h.state[hit];
     a->depth[i] = depth;
   }
 };
