@@ -81,7 +81,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
       row += t.contacts;
     }
     out.first[p1] = row;
-    write_contacts(pairs, [&](uint32_t pair) { return detail::ToArrays{&out, size_t(out.first[pair])}; });
+    write_contacts(pairs, [&](uint32_t pair) { return detail::ToArrays(out, size_t(out.first[pair])); });
   });
   out.resize(pairs.size(), size_t(row));
   if (pairs.empty()) out.first[0] = 0;
@@ -165,8 +165,10 @@ void PairCollider::run_records(const std::vector<Job>& js) {
     o.cycles = rec.cycles.value_or(0);
     if (cycles) {
       const JobHits h = job_hits(cfg, js[job], job, records_.data() + first, r - first, first);
+      // A banked device's conflicts from the shell the device holds (the image's), as ref/banks.h counts them.
       o.span = job_span(cfg, js[job], job, h, rec.hits,
-                        cfg.banked() ? device_->bank_cycles(js[job], h, rec.hits) : BankCycles{});
+                        cfg.banked() ? job_bank_cycles(cfg, image_.memory().shell, js[job], h, rec.hits)
+                                     : BankCycles{});
     }
     ++job, first = r + 1;
   }

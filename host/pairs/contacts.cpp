@@ -59,7 +59,9 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
   const double voxel = vm.voxel();
   const uint64_t nx = vm.dims()[0], nxy = nx * vm.dims()[1];
   const uint32_t *cx = cols.x.data(), *cy = cols.y.data(), *cz = cols.z.data();
+  to.run(n, pair, a_in_b);
   if (!device_->config().distance()) {
+    const uint8_t* st = cols.state.data();
     for (size_t k = 0; k < n; ++k) {
       if (k + kAhead < n) {
         const uint32_t a = hits[k + kAhead].hit;
@@ -67,8 +69,9 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
         if (i < nvox) __builtin_prefetch(depth + i);
       }
       const uint32_t h = hits[k].hit, point = hits[k].point;
-      to.put(k, pair, a_in_b, point, R * points[point] + t, R * normals[point], cols, h,
-             double(depth[cx[h] + nx * cy[h] + nxy * cz[h]]) * voxel);
+      const uint32_t x = cx[h], y = cy[h], z = cz[h];
+      to.put(k, point, R * points[point] + t, R * normals[point], x, y, z, st[h],
+             double(depth[x + nx * y + nxy * z]) * voxel);
     }
     return;
   }
@@ -87,7 +90,7 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
     field.sample(g, &grad);
     const Eigen::Vector3d nrm = -(Rm * grad);
     if (nrm.squaredNorm() > 1e-24) normal = nrm.normalized();
-    to.put(k, pair, a_in_b, point, position, normal, cols, h, -double(cols.dist[h]) * dist_unit);
+    to.put(k, point, position, normal, cx[h], cy[h], cz[h], cols.state[h], -double(cols.dist[h]) * dist_unit);
   }
 }
 

@@ -204,6 +204,8 @@ template <class Voxel>
 bool emit(const Job& j, uint32_t b, size_t n, const uint8_t* state, uint32_t found, HitColumns& hits, uint32_t& count,
           const Voxel& voxel) {
   hits.reserve_more(found);
+  const HitColumns::Rows out = hits.rows();
+  size_t w = 0;
   for (size_t k0 = 0; k0 < n; k0 += 8) {
     uint64_t word = 0;  // state k0 + i in byte i, so the lowest set bit is the next hit in point order
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
@@ -214,14 +216,18 @@ bool emit(const Job& j, uint32_t b, size_t n, const uint8_t* state, uint32_t fou
       for (size_t i = 0; i < std::min<size_t>(8, n - k0); ++i) word |= uint64_t(state[k0 + i]) << (8 * i);
     for (uint64_t flags = word & 0x0404040404040404ull; flags; flags &= flags - 1) {
       const size_t k = k0 + size_t(__builtin_ctzll(flags) / 8);
-      ++count;
       uint32_t v[3];
       voxel(k, v);
-      hits.put(b + uint32_t(k), v[0], v[1], v[2], uint8_t(state[k] & 3u), 0);
-      if (j.mode == Mode::First) return true;
+      out.point[w] = b + uint32_t(k), out.x[w] = v[0], out.y[w] = v[1], out.z[w] = v[2];
+      out.state[w] = uint8_t(state[k] & 3u), out.dist[w] = 0;
+      ++w;
+      if (j.mode == Mode::First) break;
     }
+    if (w && j.mode == Mode::First) break;
   }
-  return false;
+  hits.commit(w);
+  count += uint32_t(w);
+  return w && j.mode == Mode::First;
 }
 
 // The voxels given by the kernel.

@@ -33,6 +33,18 @@ struct HitColumns {
     point[n_] = p, x[n_] = vx, y[n_] = vy, z[n_] = vz, state[n_] = st, dist[n_] = d;
     ++n_;
   }
+  // Raw pointers to the columns from the first free row (reserve_more first), for a writer's tight loop; commit(n)
+  // then takes the n rows written as hits. (Stores through one column's pointer cannot move the others, as the
+  // vectors' own pointers could be reloaded after every byte store of put().)
+  struct Rows {
+    uint32_t *point, *x, *y, *z;
+    uint8_t* state;
+    int64_t* dist;
+  };
+  Rows rows() {
+    return {point.data() + n_, x.data() + n_, y.data() + n_, z.data() + n_, state.data() + n_, dist.data() + n_};
+  }
+  void commit(size_t n) { n_ += n; }
   // Appends hits [from, from + n) of `o`.
   void append(const HitColumns& o, size_t from, size_t n) {
     reserve_more(n);
