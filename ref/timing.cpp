@@ -41,6 +41,33 @@ JobHits job_hits(const DeviceConfig& cfg, const Job& job, size_t j, const Record
   return s;
 }
 
+JobHits job_hits(const DeviceConfig& cfg, const Job& job, const uint32_t* points, size_t n) {
+  const uint64_t L = uint64_t(cfg.LANES);
+  const uint64_t groups = job_groups(cfg, job);
+  JobHits s;
+  s.first_group = s.last_group = groups;
+  if (n == 0) return s;
+  s.records = n;
+  uint64_t last = points[0] / L, distinct = 1;
+  s.first_group = last;
+  auto count = [&](auto group) {  // a shift where the lanes are a power of two: a division a hit costs more
+    for (size_t k = 1; k < n; ++k) {
+      const uint64_t g = group(points[k]);
+      distinct += g != last;
+      last = g;
+    }
+  };
+  if ((L & (L - 1)) == 0) {
+    const int shift = __builtin_ctzll(L);
+    count([shift](uint64_t p) { return p >> shift; });
+  } else {
+    count([L](uint64_t p) { return p / L; });
+  }
+  s.groups = distinct;
+  s.last_group = last;
+  return s;
+}
+
 JobHits join_job_hits(const JobHits& a, const JobHits& b) {
   if (!a.records) return b;
   if (!b.records) return a;

@@ -41,6 +41,9 @@ struct JobHits {
 // std::invalid_argument as job_timing does when a record is not the job's or not in ascending point order;
 // `first` is the index of hits[0] in the stream, for the message.
 JobHits job_hits(const DeviceConfig& cfg, const Job& job, size_t j, const Record* hits, size_t n, size_t first = 0);
+// The same summary from a job's hit points alone (each relative to its shell_base, ascending, as a run gives them;
+// not checked): for a host that holds its hits in columns (ref/fast/hits.h).
+JobHits job_hits(const DeviceConfig& cfg, const Job& job, const uint32_t* points, size_t n);
 // The summary of two consecutive runs of one job's hit records (a before b), as job_hits of the whole run gives it;
 // the two runs are not checked against each other.
 JobHits join_job_hits(const JobHits& a, const JobHits& b);

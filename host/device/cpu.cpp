@@ -24,11 +24,13 @@ class CpuDevice final : public Device {
   void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) override { runner_.run_into(jobs, out); }
   std::shared_ptr<ThreadPool> pool() const override { return runner_.pool(); }
   bool runs_parts() const override { return true; }
-  void run_part(const Job* jobs, size_t n, std::vector<Record>& out) const override { runner_.run_part(jobs, n, out); }
+  void run_part(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out) const override {
+    runner_.run_hits(jobs, n, hits, out);
+  }
   BankCycles bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const override {
     return runner_.bank_cycles(job, hits, done_hits);
   }
-  void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+  void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, HitColumns& hits,
                  uint32_t& count) const override {
     runner_.run_piece(job, begin, end, validate, hits, count);
   }

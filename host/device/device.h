@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "voxcd/ref/config.h"
+#include "voxcd/ref/fast/hits.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/types.h"
 
@@ -47,15 +48,16 @@ class Device {
   virtual void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) { out = run(jobs); }
   // The pool the backend computes on (cpu), for the host's work around it (PairCollider); null when it has none.
   virtual std::shared_ptr<ThreadPool> pool() const { return nullptr; }
-  // Backends that compute on the host (cpu) can run a part of a batch on the calling thread: the records of jobs
-  // [jobs, jobs + n), each validated first (JobError), as a stream of their own without cycles, into `out`
-  // (replaced); calls for different parts may run at once. A host that splits its batches itself uses it
-  // (PairCollider::collide_part); the others throw DeviceError.
+  // Backends that compute on the host (cpu) can run a part of a batch on the calling thread, with no Record made:
+  // the hits of jobs [jobs, jobs + n), every one validated first (JobError), in columns into `hits` and what each
+  // job gave into `out` (both replaced; its cycles, where the backend models them, those of the jobs as a stream of
+  // their own); calls for different parts may run at once. A host that turns hits into contacts or splits its
+  // batches itself uses it (PairCollider); the others throw DeviceError.
   virtual bool runs_parts() const { return false; }
-  virtual void run_part(const Job* jobs, size_t n, std::vector<Record>& out) const;
-  // The same for points [begin, end) of one job: their hit records appended to `hits` (FIRST: up to the first), their
+  virtual void run_part(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out) const;
+  // The same for points [begin, end) of one job: their hits appended to `hits` (FIRST: up to the first), their
   // number added to `count`, the job validated first when `validate`.
-  virtual void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+  virtual void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, HitColumns& hits,
                          uint32_t& count) const;
   // On a banked device (DeviceConfig::BANKS), a job's bank cycles given its hits' summary and its completion's hits,
   // for a host that times parts itself (ref/banks.h: job_bank_cycles); a backend that runs parts implements it.

@@ -38,11 +38,11 @@ class RefDevice final : public Device {
 
 }  // namespace
 
-void Device::run_part(const Job*, size_t, std::vector<Record>&) const {
+void Device::run_part(const Job*, size_t, HitColumns&, std::vector<JobOutcome>&) const {
   throw DeviceError("the " + name() + " backend runs whole batches only (no run_part)");
 }
 
-void Device::run_piece(const Job&, uint32_t, uint32_t, bool, std::vector<Record>&, uint32_t&) const {
+void Device::run_piece(const Job&, uint32_t, uint32_t, bool, HitColumns&, uint32_t&) const {
   throw DeviceError("the " + name() + " backend runs whole batches only (no run_piece)");
 }
 

@@ -39,11 +39,11 @@ struct PairCollider::Scratch {
     if (kept) runs.push_back({off, kept, pair, a_in_b, at});
     return kept;
   }
-  // Its runs as ContactRuns of at most `piece` contacts each, appended to `out`.
-  void runs_into(std::vector<ContactRun>& out, size_t piece) const {
+  // Its runs (of hits held in `cols`) as ContactRuns of at most `piece` contacts each, appended to `out`.
+  void runs_into(std::vector<ContactRun>& out, size_t piece, const HitColumns* cols) const {
     for (const Run& r : runs)
       for (size_t k = 0; k < r.n; k += piece)
-        out.push_back({sorted.data() + r.off + k, std::min(piece, r.n - k), r.pair, r.a_in_b, r.at + k});
+        out.push_back({cols, sorted.data() + r.off + k, std::min(piece, r.n - k), r.pair, r.a_in_b, r.at + k});
   }
 };
 
@@ -81,7 +81,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
       row += t.contacts;
     }
     out.first[p1] = row;
-    write_contacts(pairs, [&](uint32_t pair) { return detail::ToArrays{&out, size_t(out.first[pair])}; });
+    write_contacts(pairs, [&](uint32_t pair) { return detail::ToArrays(out, size_t(out.first[pair])); });
   });
   out.resize(pairs.size(), size_t(row));
   if (pairs.empty()) out.first[0] = 0;
@@ -125,7 +125,8 @@ void PairCollider::run_groups(const std::vector<PairRequest>& pairs, const PairO
 template <class Out>
 void PairCollider::write_contacts(const std::vector<PairRequest>& pairs, const Out& out) {
   auto write = [&](const ContactRun& r) {
-    make_contacts(pairs[r.pair], r.pair, r.a_in_b, r.hits, r.n, rot_a_[r.pair], rot_b_[r.pair], out(r.pair).shifted(r.at));
+    make_contacts(pairs[r.pair], r.pair, r.a_in_b, *r.cols, r.hits, r.n, rot_a_[r.pair], rot_b_[r.pair],
+                  out(r.pair).shifted(r.at));
   };
   if (!pool_ || kept_total_ < kParallelContacts) {
     for (const ContactRun& r : runs_) write(r);
@@ -139,35 +140,39 @@ PairCollider::Scratch& PairCollider::scratch(std::shared_ptr<Scratch>& s) {
   return *s;
 }
 
-void PairCollider::find_completions(const std::vector<Job>& js) {
+void PairCollider::run_records(const std::vector<Job>& js) {
   // The stream is checked whole before the caller's results are touched, so a misbehaving device leaves them as
-  // they were: the completion records, one per job, the last record one of them.
-  const size_t nrec = records_.size();
-  job_records_.resize(js.size());
-  size_t job = 0, last = SIZE_MAX;
-  auto done = [&](size_t r) {
+  // they were: a completion record per job, the last record one of them.
+  device_->run_into(js, records_);
+  const DeviceConfig& cfg = device_->config();
+  const bool cycles = device_->models_cycles();
+  hits_.clear();
+  outcomes_.resize(js.size());
+  size_t job = 0, first = 0;
+  for (size_t r = 0; r < records_.size(); ++r) {
+    const Record& rec = records_[r];
+    if (rec.kind != Record::Done) {
+      hits_.append(rec);
+      continue;
+    }
     if (job == js.size())
       throw DeviceError("the device returned records after the completions of all " + std::to_string(js.size()) +
                         " jobs");
-    job_records_[job++].first = last + 1;
-    last = r;
-  };
-  if (pool_ && nrec >= kParallelScan) {
-    const Ranges parts = Ranges::of(nrec, kParallelScan / 4, pool_->size());
-    if (done_parts_.size() < parts.parts) done_parts_.resize(parts.parts);
-    pool_->parallel_for(parts.parts, [&](size_t p) {
-      std::vector<size_t>& d = done_parts_[p];
-      d.clear();
-      for (size_t r = parts.begin(p); r < parts.end(p); ++r)
-        if (records_[r].kind == Record::Done) d.push_back(r);
-    });
-    for (size_t p = 0; p < parts.parts; ++p)
-      for (size_t r : done_parts_[p]) done(r);
-  } else {
-    for (size_t r = 0; r < nrec; ++r)
-      if (records_[r].kind == Record::Done) done(r);
+    JobOutcome& o = outcomes_[job];
+    o.first = hits_.size() - (r - first);
+    o.records = r - first;
+    o.hits = rec.hits;
+    o.cycles = rec.cycles.value_or(0);
+    if (cycles) {
+      const JobHits h = job_hits(cfg, js[job], job, records_.data() + first, r - first, first);
+      // A banked device's conflicts from the shell the device holds (the image's), as ref/banks.h counts them.
+      o.span = job_span(cfg, js[job], job, h, rec.hits,
+                        cfg.banked() ? job_bank_cycles(cfg, image_.memory().shell, js[job], h, rec.hits)
+                                     : BankCycles{});
+    }
+    ++job, first = r + 1;
   }
-  if (job != js.size() || last + 1 != nrec)
+  if (job != js.size() || first != records_.size())
     throw DeviceError(job != js.size() ? "the device returned fewer completions than the " + std::to_string(js.size()) +
                                              " jobs it was given"
                                        : "the device returned records after the completions of all " +
@@ -175,13 +180,14 @@ void PairCollider::find_completions(const std::vector<Job>& js) {
 }
 
 void PairCollider::run_stream(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt) {
-  device_->run_into(jobs_, records_);
+  // A device that runs parts hands its hits over in columns, each job's cycles with them; another gives a stream of
+  // records.
   const std::vector<Job>& js = jobs_;
-  find_completions(js);
-  const size_t nrec = records_.size();
-  // Pair by pair (on the pool in ranges of pairs when they are many; a pair's jobs are consecutive): which hit
-  // records make contacts and where they go, the pair's hits, lookups, cycles and contacts and, for a pair with
-  // contacts, the pose of its objects as matrices.
+  if (device_->runs_parts()) device_->run_part(js.data(), js.size(), hits_, outcomes_);
+  else run_records(js);
+  // Pair by pair (on the pool in ranges of pairs when they are many; a pair's jobs are consecutive): which hits make
+  // contacts and where they go, the pair's hits, lookups, cycles and contacts and, for a pair with contacts, the
+  // pose of its objects as matrices.
   first_job_.resize(pairs.size() + 1);  // pair i's jobs: [first_job_[i], first_job_[i + 1])
   for (size_t i = p0, j = 0; i <= p1; ++i) {
     while (j < js.size() && sources_[j].pair < i) ++j;
@@ -191,27 +197,16 @@ void PairCollider::run_stream(const std::vector<PairRequest>& pairs, size_t p0, 
   if (kept_parts_.size() < parts.parts) kept_parts_.resize(parts.parts);
   if (scratch_.size() < parts.parts) scratch_.resize(parts.parts);
   for_ranges(pool_.get(), parts, [&](size_t part, size_t q0, size_t q1) {
-    kept_parts_[part].value = tally(pairs.data(), p0 + q0, p0 + q1, opt, js.data(), sources_.data(), js.size(),
-                                    first_job_.data(), job_records_.data(), records_.data(), nrec, tally_.data(),
-                                    rot_a_.data(), rot_b_.data(), scratch(scratch_[part]));
+    kept_parts_[part].value = tally(pairs.data(), p0 + q0, p0 + q1, opt, js.data(), sources_.data(),
+                                    first_job_.data(), outcomes_.data(), hits_, tally_.data(), rot_a_.data(),
+                                    rot_b_.data(), scratch(scratch_[part]));
   });
   kept_total_ = 0;
   for (size_t p = 0; p < parts.parts; ++p) kept_total_ += kept_parts_[p].value;
-  // The runs of records that make contacts, in pieces of up to kContactPiece records for the pool.
+  // The runs of hits that make contacts, in pieces of up to kContactPiece hits for the pool.
   runs_.clear();
-  for (size_t p = 0; p < parts.parts; ++p) scratch_[p]->runs_into(runs_, kContactPiece);
-  if (device_->models_cycles() && !js.empty()) first_span_ = stream_span(0), last_span_ = stream_span(js.size() - 1);
-}
-
-JobSpan PairCollider::stream_span(size_t j) const {
-  const DeviceConfig& cfg = device_->config();
-  const Job& job = jobs_[j];
-  const size_t first = job_records_[j].first;
-  const size_t end = j + 1 < jobs_.size() ? job_records_[j + 1].first - 1 : records_.size() - 1;
-  const uint32_t hits = records_[end].hits;
-  const JobHits h = job_hits(cfg, job, j, records_.data() + first, end - first, first);
-  const BankCycles bank = cfg.banked() ? device_->bank_cycles(job, h, hits) : BankCycles{};
-  return job_span(cfg, job, j, h, hits, bank);
+  for (size_t p = 0; p < parts.parts; ++p) scratch_[p]->runs_into(runs_, kContactPiece, &hits_);
+  if (device_->models_cycles() && !js.empty()) first_span_ = outcomes_.front().span, last_span_ = outcomes_.back().span;
 }
 
 void PairCollider::plan_pieces() {
@@ -247,7 +242,7 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
   // The lookups. A task validates a job before its first piece of it, so the lowest task that throws names the first
   // invalid job (the error run_into gives); nothing of the caller's is touched before every task has finished.
   pool_->parallel_for(tasks, [&](size_t t) {
-    std::vector<Record>& hits = piece_hits_[t].value;
+    HitColumns& hits = piece_hits_[t].value;
     hits.clear();
     size_t validated = SIZE_MAX;
     for (size_t i = task_first_piece_[t]; i < task_first_piece_[t + 1]; ++i) {
@@ -259,7 +254,7 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
       device_->run_piece(j, p.begin, p.end, validated != p.job, hits, p.count);
       validated = p.job;
       p.records = hits.size() - p.first;
-      if (cycles) p.sum = job_hits(cfg, j, p.job, hits.data() + p.first, p.records);
+      if (cycles) p.sum = job_hits(cfg, j, hits.point.data() + p.first, p.records);
     }
   });
   // Job by job, in order: its hits and summary as the device's stream would have them (FIRST: the first piece with a
@@ -296,8 +291,20 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
 
 void PairCollider::keep_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1,
                                const PairOptions& opt) {
-  // Direction by direction: which records make contacts, in contact order; then the runs of those records.
+  // The pieces' hits into hits_ in stream order (FIRST: each job's first piece with a hit only); direction by
+  // direction, which of them make contacts, in contact order; then the runs of those hits.
   const bool first_only = opt.mode == Mode::First;
+  hits_.clear();
+  for (size_t j = 0; j < jobs_.size(); ++j) {
+    bool found = false;
+    for (size_t i = job_first_piece_[j]; i < job_first_piece_[j + 1]; ++i) {
+      Piece& p = pieces_[i];
+      if (first_only && (found || p.records == 0)) p.records = 0;
+      else found = p.records > 0;
+      p.at = hits_.size();
+      hits_.append(piece_hits_[p.task].value, p.first, p.records);
+    }
+  }
   if (scratch_.empty()) scratch_.resize(1);
   Scratch& sc = scratch(scratch_[0]);
   sc.clear();
@@ -308,7 +315,7 @@ void PairCollider::keep_pieces(const std::vector<PairRequest>& pairs, size_t p0,
     sc.spans.clear();
     for (size_t i = job_first_piece_[j0]; i < job_first_piece_[j1]; ++i) {
       const Piece& p = pieces_[i];
-      sc.spans.push_back({piece_hits_[p.task].value.data() + p.first, p.records, sources_[p.job].first});
+      sc.spans.push_back({hits_.point.data() + p.at, p.records, sources_[p.job].first, p.at});
     }
     PairTally& res = tally_[src.pair];
     const uint32_t shell_type = src.a_in_b ? pairs[src.pair].a : pairs[src.pair].b;
@@ -333,32 +340,30 @@ void PairCollider::keep_pieces(const std::vector<PairRequest>& pairs, size_t p0,
     rot_b_[i] = pairs[i].pose_b.rotation.toRotationMatrix();
   }
   runs_.clear();
-  sc.runs_into(runs_, kContactPiece);
+  sc.runs_into(runs_, kContactPiece, &hits_);
 }
 
 size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
-                           const JobSource* sources, size_t njobs, const size_t* first_job,
-                           const Part::JobRecords* job_records, const Record* records, size_t nrec, PairTally* out,
-                           Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b, Scratch& sc) const {
+                           const JobSource* sources, const size_t* first_job, const JobOutcome* outs,
+                           const HitColumns& hits, PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b,
+                           Scratch& sc) const {
   const bool first_only = opt.mode == Mode::First;
   size_t kept_total = 0;
   sc.clear();
   for (size_t i = p0; i < p1; ++i) {
     PairTally& res = out[i];
     res = PairTally();
-    // Direction by direction (its jobs [j0, j1)): every job's hit records one span.
+    // Direction by direction (its jobs [j0, j1)): every job's hits one span.
     for (size_t j0 = first_job[i], j1 = j0; j0 < first_job[i + 1]; j0 = j1) {
       sc.spans.clear();
       bool any = false;
       for (; j1 < first_job[i + 1] && sources[j1].a_in_b == sources[j0].a_in_b; ++j1) {
-        const size_t first = job_records[j1].first;
-        const size_t end = j1 + 1 < njobs ? job_records[j1 + 1].first - 1 : nrec - 1;  // its completion record
-        const Record& done = records[end];
-        sc.spans.push_back({records + first, end - first, sources[j1].first});
-        any |= done.hits > 0;
-        if (!first_only) res.hits += done.hits;
+        const JobOutcome& o = outs[j1];
+        sc.spans.push_back({hits.point.data() + o.first, o.records, sources[j1].first, o.first});
+        any |= o.hits > 0;
+        if (!first_only) res.hits += o.hits;
         res.lookups += js[j1].shell_count;
-        if (done.cycles) res.cycles += *done.cycles;
+        res.cycles += o.cycles;
       }
       if (first_only) res.hits += any;
       const uint32_t shell_type = sources[j0].a_in_b ? pairs[i].a : pairs[i].b;
@@ -372,31 +377,6 @@ size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const
   return kept_total;
 }
 
-void PairCollider::time_part(Part& part) const {
-  // The cycles of the timing model (annotate_cycles' of the part as a stream of its own), and the spans of its first
-  // and last jobs for join_parts.
-  const std::vector<Job>& js = part.jobs;
-  const DeviceConfig& cfg = device_->config();
-  const size_t nrec = part.records.size();
-  part.any = !js.empty() && device_->models_cycles();
-  if (!part.any) return;
-  JobSpan prev;
-  for (size_t j = 0; j < js.size(); ++j) {
-    const Part::JobRecords& jr = part.job_records[j];
-    const size_t end = j + 1 < js.size() ? part.job_records[j + 1].first - 1 : nrec - 1;
-    Record& done = part.records[end];
-    const JobHits h = job_hits(cfg, js[j], j, part.records.data() + jr.first, end - jr.first, jr.first);
-    const BankCycles bank = cfg.banked() ? device_->bank_cycles(js[j], h, done.hits) : BankCycles{};
-    const JobSpan span = job_span(cfg, js[j], j, h, done.hits, bank);
-    done.cycles = span_cycles(cfg, j ? &prev : nullptr, span);
-    done.points = span.points;
-    done.stalls = 0;
-    if (j == 0) part.first = span;
-    prev = span;
-  }
-  part.last = prev;
-}
-
 void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base, const PairOptions& opt,
                                 PairResult* out, Part& part) const {
   // The part's jobs (tags: their index in the part), run on this thread, timed as a stream of their own.
@@ -408,12 +388,9 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
     for (size_t j = first; j < part.jobs.size(); ++j) part.sources[j].pair = uint32_t(i);
   }
   const std::vector<Job>& js = part.jobs;
-  device_->run_part(js.data(), js.size(), part.records);
-  const size_t nrec = part.records.size();
-  part.job_records.resize(js.size());
-  for (size_t r = 0, j = 0, first = 0; r < nrec; ++r)
-    if (part.records[r].kind == Record::Done) part.job_records[j++].first = first, first = r + 1;
-  time_part(part);
+  device_->run_part(js.data(), js.size(), part.hits, part.outcomes);
+  part.any = !js.empty() && device_->models_cycles();
+  if (part.any) part.first = part.outcomes.front().span, part.last = part.outcomes.back().span;
   part.first_job.resize(n + 1);
   for (size_t i = 0, j = 0; i <= n; ++i) {
     while (j < js.size() && part.sources[j].pair < i) ++j;
@@ -423,15 +400,15 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
   part.rot_b.resize(n);
   part.tally.resize(n);
   Scratch& sc = scratch(part.scratch);
-  tally(pairs, 0, n, opt, js.data(), part.sources.data(), js.size(), part.first_job.data(), part.job_records.data(),
-        part.records.data(), nrec, part.tally.data(), part.rot_a.data(), part.rot_b.data(), sc);
+  tally(pairs, 0, n, opt, js.data(), part.sources.data(), part.first_job.data(), part.outcomes.data(), part.hits,
+        part.tally.data(), part.rot_a.data(), part.rot_b.data(), sc);
   for (size_t i = 0; i < n; ++i) {
     const PairTally& t = part.tally[i];
     out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].cycles = t.cycles;
     out[i].contacts.resize(t.contacts);
   }
   for (const Scratch::Run& r : sc.runs)
-    make_contacts(pairs[r.pair], uint32_t(base + r.pair), r.a_in_b, sc.sorted.data() + r.off, r.n,
+    make_contacts(pairs[r.pair], uint32_t(base + r.pair), r.a_in_b, part.hits, sc.sorted.data() + r.off, r.n,
                   part.rot_a[r.pair], part.rot_b[r.pair], detail::ToContacts{out[r.pair].contacts.data() + r.at});
   if (part.any) part.first_result = out + part.sources[0].pair;
 }

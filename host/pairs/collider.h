@@ -96,15 +96,12 @@ class PairCollider {
     std::vector<Job> jobs;
     std::vector<JobSource> sources;
     std::vector<uint64_t> bits;
-    std::vector<Record> records;
+    HitColumns hits;                    // the part's hits, and what each job gave
+    std::vector<JobOutcome> outcomes;
     std::vector<size_t> first_job;
     std::vector<Eigen::Matrix3d> rot_a, rot_b;
     std::vector<PairTally> tally;
     std::shared_ptr<Scratch> scratch;
-    struct JobRecords {
-      size_t first = 0;  // its first record
-    };
-    std::vector<JobRecords> job_records;
     // For join_parts: whether the part had a job; the pair of its first job, and its first and last jobs' spans.
     bool any = false;
     PairResult* first_result = nullptr;
@@ -122,13 +119,11 @@ class PairCollider {
   Device& device() { return *device_; }
   const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
   // On the pool above these sizes (each part a few microseconds of work): pairs of a batch (a pair's jobs take about
-  // a microsecond), clusters of one shell (32 points each), hit records of a batch (a contact takes about 25 ns) and
-  // of a part, records of a stream scanned for its completions in parts.
+  // a microsecond), clusters of one shell (32 points each), hits of a batch that make contacts and of a part.
   static constexpr size_t kParallelPairs = 8;
   static constexpr size_t kParallelClusters = 1024;
   static constexpr size_t kParallelContacts = 256;
   static constexpr size_t kContactPiece = 256;
-  static constexpr size_t kParallelScan = 2048;
   // Groups of this many points (or one pair) of a batch run one after the other (PairCollider::run_groups).
   static constexpr size_t kGroupPoints = 16384;
   // A group of this many points or more runs in pieces on the pool; points per piece and (at least) per task.
@@ -143,9 +138,10 @@ class PairCollider {
   std::unique_ptr<Device> device_;
   std::vector<std::shared_ptr<const ObjectType>> types_;
   std::shared_ptr<ThreadPool> pool_;
-  // A run of hit records of one direction of a pair that make contacts, in contact order (with their shell points),
-  // and the place of the first in the pair's contacts.
+  // A run of hits (held in `cols`) of one direction of a pair that make contacts, in contact order (with their shell
+  // points), and the place of the first in the pair's contacts.
   struct ContactRun {
+    const HitColumns* cols;
     const detail::SortedHit* hits;
     size_t n;
     uint32_t pair;
@@ -164,45 +160,36 @@ class PairCollider {
   // pool, each piece's hit records kept where its task put them, each job timed from its pieces (ref/timing.h): no
   // stream is put together.
   void run_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt);
-  // The span of job j of the group's stream (for the timing of the next group's first job).
-  JobSpan stream_span(size_t j) const;
-  // The first record of each job of the stream in records_ (job_records_); DeviceError when the completions do not
-  // match the jobs.
-  void find_completions(const std::vector<Job>& js);
+  // A device that runs no parts: the group's jobs as one stream of records, turned into hits_ and outcomes_
+  // (DeviceError when the completions do not match the jobs).
+  void run_records(const std::vector<Job>& js);
   // The pieces and tasks of run_pieces.
   void plan_pieces();
   // run_pieces' records that make contacts, their places, the pairs' contacts and hits (FIRST), and the runs.
   void keep_pieces(const std::vector<PairRequest>& pairs, size_t p0, size_t p1, const PairOptions& opt);
-  // The cycles of a part's jobs as a stream of its own.
-  void time_part(Part& part) const;
   static Scratch& scratch(std::shared_ptr<Scratch>& s);
-  // run_batch of `points` shell points or more on a device that runs parts, with a pool: the jobs (in jobs_) in
-  // pieces on the pool, each piece's hit records kept where its task put them, each job timed from its pieces
-  // (ref/timing.h): no stream is put together.
-  void run_pieces(const std::vector<PairRequest>& pairs, const PairOptions& opt);
   // The contacts of runs_ through `out(pair)`, the writer of a pair's contacts (on the pool when they are many).
   template <class Out>
   void write_contacts(const std::vector<PairRequest>& pairs, const Out& out);
-  // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), their first hit records
-  // job_records[j].first, `nrec` records in all): which hit records make contacts, in contact order into the
-  // scratch's runs, its hits, lookups, cycles and contacts; the rotations of the pairs with contacts. Returns the
-  // contacts.
+  // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), what each gave `outs[j]`, their
+  // hits in `hits`): which hits make contacts, in contact order into the scratch's runs, its hits, lookups, cycles
+  // and contacts; the rotations of the pairs with contacts. Returns the contacts.
   size_t tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
-               const JobSource* sources, size_t njobs, const size_t* first_job, const Part::JobRecords* job_records,
-               const Record* records, size_t nrec, PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b,
-               Scratch& scratch) const;
+               const JobSource* sources, const size_t* first_job, const JobOutcome* outs, const HitColumns& hits,
+               PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b, Scratch& scratch) const;
   // The jobs of pair i, appended to out and sources (tags: their index in `out`); bits: add_runs' scratch.
   void pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
                  std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The culled runs of one direction of one pair, appended to out and sources.
   void add_runs(const Job& whole, uint32_t shell_type, uint32_t map_type, const JobSource& src, std::vector<Job>& out,
                 std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
-  // The contacts of hits [hits, hits + n) of one direction (a_in_b) of the pair `req` (its rotations Ra, Rb; its
-  // index `pair`), hit k written through `to` as contact k (host/pairs/detail/contact_out.h; instantiated in
-  // contacts.cpp).
+  // The contacts of hits [hits, hits + n) (held in `cols`) of one direction (a_in_b) of the pair `req` (its
+  // rotations Ra, Rb; its index `pair`), hit k written through `to` as contact k (host/pairs/detail/contact_out.h;
+  // instantiated in contacts.cpp).
   template <class Out>
-  void make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const detail::SortedHit* hits, size_t n,
-                     const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const;
+  void make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const HitColumns& cols,
+                     const detail::SortedHit* hits, size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb,
+                     const Out& to) const;
 
   // Per type, its shell as the device holds it (in blocks: detail::block_order) in clusters of up to
   // kClusterPoints consecutive slots of one block: the first slot of each (one past the end last), its block, and
@@ -237,30 +224,28 @@ class PairCollider {
   std::vector<Job> all_jobs_, jobs_;  // the batch's jobs, and those of the group running
   std::vector<JobSource> all_sources_, sources_;
   JobSpan first_span_, last_span_;    // of the group's first and last jobs
-  std::vector<Record> records_;
+  std::vector<Record> records_;      // run_records' stream
+  HitColumns hits_;                 // the group's hits, and what each of its jobs gave
+  std::vector<JobOutcome> outcomes_;
   std::vector<size_t> first_job_;
   std::vector<PartSlot<size_t>> kept_parts_;
-  // Per job: the stream index of its first hit record, how many of them make contacts, where they go in the
-  // pair's contacts.
-  std::vector<Part::JobRecords> job_records_;
-  std::vector<std::vector<size_t>> done_parts_;  // Done record indices found by each part of a parallel scan
   std::vector<PairTally> tally_;
   std::vector<ContactRun> runs_;
   std::vector<std::shared_ptr<Scratch>> scratch_;  // per part of a tally on the pool
   size_t kept_total_ = 0;  // contacts of the batch
   std::vector<Eigen::Matrix3d> rot_a_, rot_b_;
-  // run_pieces: points [begin, end) of a job; its task and where its hit records are in the task's list; its
-  // hits, the summary of its records, how many make contacts and where they go in the pair's contacts.
+  // run_pieces: points [begin, end) of a job; its task, where its hits are in the task's columns and then in hits_;
+  // its hits, the summary of its records.
   struct Piece {
     size_t job = 0;
     uint32_t begin = 0, end = 0;
-    size_t task = 0, first = 0, records = 0;
+    size_t task = 0, first = 0, records = 0, at = 0;
     uint32_t count = 0;
     JobHits sum;
   };
   std::vector<Piece> pieces_;
   std::vector<size_t> job_first_piece_, task_first_piece_, contact_count_;
-  std::vector<PartSlot<std::vector<Record>>> piece_hits_;
+  std::vector<PartSlot<HitColumns>> piece_hits_;
 };
 
 }  // namespace voxcd

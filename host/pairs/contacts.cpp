@@ -40,10 +40,11 @@ void ContactArrays::resize(size_t pairs, size_t rows) {
 }
 
 template <class Out>
-void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const detail::SortedHit* hits,
-                                 size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb, const Out& to) const {
+void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const HitColumns& cols,
+                                 const detail::SortedHit* hits, size_t n, const Eigen::Matrix3d& Ra,
+                                 const Eigen::Matrix3d& Rb, const Out& to) const {
   // The depth lookups land all over B's depth field (4 bytes per voxel, often larger than the cache), so the loop
-  // prefetches the depth of the hit a few records ahead.
+  // prefetches the depth of the hit a few hits ahead.
   constexpr size_t kAhead = 16;
   const ObjectType& shell_t = *types_[a_in_b ? req.a : req.b];
   const ObjectType& map_t = *types_[a_in_b ? req.b : req.a];
@@ -57,17 +58,20 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
   const size_t nvox = map_t.depth.size();
   const double voxel = vm.voxel();
   const uint64_t nx = vm.dims()[0], nxy = nx * vm.dims()[1];
+  const uint32_t *cx = cols.x.data(), *cy = cols.y.data(), *cz = cols.z.data();
+  to.run(n, pair, a_in_b);
   if (!device_->config().distance()) {
+    const uint8_t* st = cols.state.data();
     for (size_t k = 0; k < n; ++k) {
       if (k + kAhead < n) {
-        const Record& ahead = *hits[k + kAhead].rec;
-        const uint64_t i = ahead.x + nx * ahead.y + nxy * ahead.z;
+        const uint32_t a = hits[k + kAhead].hit;
+        const uint64_t i = cx[a] + nx * cy[a] + nxy * cz[a];
         if (i < nvox) __builtin_prefetch(depth + i);
       }
-      const Record& rec = *hits[k].rec;
-      const uint32_t point = hits[k].point;
-      to.put(k, pair, a_in_b, point, R * points[point] + t, R * normals[point], rec,
-             double(depth[rec.x + nx * rec.y + nxy * rec.z]) * voxel);
+      const uint32_t h = hits[k].hit, point = hits[k].point;
+      const uint32_t x = cx[h], y = cy[h], z = cz[h];
+      to.put(k, point, R * points[point] + t, R * normals[point], x, y, z, st[h],
+             double(depth[x + nx * y + nxy * z]) * voxel);
     }
     return;
   }
@@ -76,8 +80,7 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
   const RigidPose& map_pose = a_in_b ? req.pose_b : req.pose_a;
   const Eigen::Matrix3d& Rm = a_in_b ? Rb : Ra;
   for (size_t k = 0; k < n; ++k) {
-    const Record& rec = *hits[k].rec;
-    const uint32_t point = hits[k].point;
+    const uint32_t h = hits[k].hit, point = hits[k].point;
     const Eigen::Vector3d position = R * points[point] + t;
     Eigen::Vector3d normal = R * normals[point];
     // The field's gradient at the point, in the map's grid, to the world; negated, it points the way the shell
@@ -87,15 +90,15 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
     field.sample(g, &grad);
     const Eigen::Vector3d nrm = -(Rm * grad);
     if (nrm.squaredNorm() > 1e-24) normal = nrm.normalized();
-    to.put(k, pair, a_in_b, point, position, normal, rec, -double(rec.dist) * dist_unit);
+    to.put(k, point, position, normal, cx[h], cy[h], cz[h], cols.state[h], -double(cols.dist[h]) * dist_unit);
   }
 }
 
 template void PairCollider::make_contacts<detail::ToContacts>(const PairRequest&, uint32_t, bool,
-                                                              const detail::SortedHit*, size_t,
+                                                              const HitColumns&, const detail::SortedHit*, size_t,
                                                               const Eigen::Matrix3d&, const Eigen::Matrix3d&,
                                                               const detail::ToContacts&) const;
-template void PairCollider::make_contacts<detail::ToArrays>(const PairRequest&, uint32_t, bool,
+template void PairCollider::make_contacts<detail::ToArrays>(const PairRequest&, uint32_t, bool, const HitColumns&,
                                                             const detail::SortedHit*, size_t, const Eigen::Matrix3d&,
                                                             const Eigen::Matrix3d&, const detail::ToArrays&) const;
 

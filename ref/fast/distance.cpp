@@ -107,7 +107,7 @@ uint64_t FastRunner::node_copy_bytes() const {
 }
 
 void FastRunner::run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
-                                     std::vector<Record>& hits, uint32_t& hit_count) const {
+                                     HitColumns& hits, uint32_t& hit_count) const {
   const detail::DistanceJob J = distance_job(cfg_, j, map_.data(), quads);
   uint8_t hit[kDistanceBlock];
   int32_t cx[kDistanceBlock], cy[kDistanceBlock], cz[kDistanceBlock];
@@ -122,23 +122,17 @@ void FastRunner::run_distance_vector(const Job& j, const detail::NodeQuads* quad
       hit_count += count;
       continue;
     }
+    hits.reserve_more(count);
     for (size_t k = 0; k < n; ++k) {
       if (!hit[k]) continue;
       ++hit_count;
-      Record& r = hits.emplace_back();
-      r.kind = Record::Hit;
-      r.tag = j.tag;
-      r.point = b + uint32_t(k);
-      r.x = uint32_t(cx[k]);
-      r.y = uint32_t(cy[k]);
-      r.z = uint32_t(cz[k]);
-      r.dist = int64_t(dist[k]);
+      hits.put(b + uint32_t(k), uint32_t(cx[k]), uint32_t(cy[k]), uint32_t(cz[k]), 0, int64_t(dist[k]));
       if (j.mode == Mode::First) return;
     }
   }
 }
 
-void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
+void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,
                                     uint32_t& hit_count) const {
   if (const detail::NodeQuads* q = node_quads(j)) return run_distance_vector(j, q, begin, end, hits, hit_count);
   if (distance_vector(j)) return run_distance_vector(j, nullptr, begin, end, hits, hit_count);
@@ -190,14 +184,8 @@ void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, 
     if (d > j.threshold) continue;
     ++hit_count;
     if (j.mode == Mode::Count) continue;
-    Record& r = hits.emplace_back();
-    r.kind = Record::Hit;
-    r.tag = j.tag;
-    r.point = k;
-    r.x = uint32_t(idx[0]);
-    r.y = uint32_t(idx[1]);
-    r.z = uint32_t(idx[2]);
-    r.dist = d;
+    hits.reserve_more(1);
+    hits.put(k, uint32_t(idx[0]), uint32_t(idx[1]), uint32_t(idx[2]), 0, d);
     if (j.mode == Mode::First) return;
   }
 }

@@ -199,11 +199,14 @@ Record& push_record(std::vector<Record>& out, Record::Kind kind, uint32_t tag) {
   return r;
 }
 
-// Appends the block's hit records, voxel(k, r) setting point k's voxel in r; true when FIRST has its answer. Walks
+// Appends the block's `found` hits, voxel(k, v) setting point k's voxel in v; true when FIRST has its answer. Walks
 // the states eight at a time: most of a block's points are no hit.
 template <class Voxel>
-bool emit(const Job& j, uint32_t b, size_t n, const uint8_t* state, std::vector<Record>& hits, uint32_t& count,
+bool emit(const Job& j, uint32_t b, size_t n, const uint8_t* state, uint32_t found, HitColumns& hits, uint32_t& count,
           const Voxel& voxel) {
+  hits.reserve_more(found);
+  const HitColumns::Rows out = hits.rows();
+  size_t w = 0;
   for (size_t k0 = 0; k0 < n; k0 += 8) {
     uint64_t word = 0;  // state k0 + i in byte i, so the lowest set bit is the next hit in point order
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
@@ -214,37 +217,48 @@ bool emit(const Job& j, uint32_t b, size_t n, const uint8_t* state, std::vector<
       for (size_t i = 0; i < std::min<size_t>(8, n - k0); ++i) word |= uint64_t(state[k0 + i]) << (8 * i);
     for (uint64_t flags = word & 0x0404040404040404ull; flags; flags &= flags - 1) {
       const size_t k = k0 + size_t(__builtin_ctzll(flags) / 8);
-      ++count;
-      Record& r = push_record(hits, Record::Hit, j.tag);
-      r.point = b + uint32_t(k);
-      voxel(k, r);
-      r.state = uint8_t(state[k] & 3u);
-      if (j.mode == Mode::First) return true;
+      uint32_t v[3];
+      voxel(k, v);
+      out.point[w] = b + uint32_t(k), out.x[w] = v[0], out.y[w] = v[1], out.z[w] = v[2];
+      out.state[w] = uint8_t(state[k] & 3u), out.dist[w] = 0;
+      ++w;
+      if (j.mode == Mode::First) break;
     }
+    if (w && j.mode == Mode::First) break;
   }
-  return false;
+  hits.commit(w);
+  count += uint32_t(w);
+  return w && j.mode == Mode::First;
 }
 
 // The voxels given by the kernel.
 bool emit_cells(const Job& j, uint32_t b, size_t n, const int32_t* cx, const int32_t* cy, const int32_t* cz,
-                const uint8_t* state, std::vector<Record>& hits, uint32_t& count) {
-  return emit(j, b, n, state, hits, count, [&](size_t k, Record& r) {
-    r.x = uint32_t(cx[k]), r.y = uint32_t(cy[k]), r.z = uint32_t(cz[k]);
+                const uint8_t* state, uint32_t found, HitColumns& hits, uint32_t& count) {
+  return emit(j, b, n, state, found, hits, count, [&](size_t k, uint32_t* v) {
+    v[0] = uint32_t(cx[k]), v[1] = uint32_t(cy[k]), v[2] = uint32_t(cz[k]);
   });
 }
 
 // The voxels from their linear indices.
 template <class Lin>
-bool emit_hits(const Job& j, uint32_t b, size_t n, const Lin* lin, const uint8_t* state, std::vector<Record>& hits,
-               uint32_t& count) {
+bool emit_hits(const Job& j, uint32_t b, size_t n, const Lin* lin, const uint8_t* state, uint32_t found,
+               HitColumns& hits, uint32_t& count) {
   const Dividers div(j);
-  return emit(j, b, n, state, hits, count, [&](size_t k, Record& r) {
+  return emit(j, b, n, state, found, hits, count, [&](size_t k, uint32_t* v) {
     const uint64_t li = uint64_t(lin[k]);
     const uint64_t yz = div.x(li), z = div.y(yz);
-    r.x = uint32_t(li - yz * j.nx);
-    r.y = uint32_t(yz - z * j.ny);
-    r.z = uint32_t(z);
+    v[0] = uint32_t(li - yz * j.nx);
+    v[1] = uint32_t(yz - z * j.ny);
+    v[2] = uint32_t(z);
   });
+}
+
+// Hits [from, end) of `c` appended to `out` as hit records of job `tag`.
+void append_records(const HitColumns& c, size_t from, uint32_t tag, std::vector<Record>& out) {
+  for (size_t k = from; k < c.size(); ++k) {
+    Record& r = push_record(out, Record::Hit, tag);
+    r.point = c.point[k], r.x = c.x[k], r.y = c.y[k], r.z = c.z[k], r.state = c.state[k], r.dist = c.dist[k];
+  }
 }
 
 }  // namespace
@@ -349,21 +363,30 @@ void FastRunner::run_validated_into(const std::vector<Job>& jobs, std::vector<Re
   run_jobs(jobs, out, cycles, false);
 }
 
-void FastRunner::run_part(const Job* jobs, size_t n, std::vector<Record>& out) const {
-  out.clear();
+void FastRunner::run_hits(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out,
+                          bool cycles) const {
+  for (size_t j = 0; j < n; ++j) validate_job(cfg_, jobs[j], shell_.size(), map_.size());
+  hits.clear();
+  out.resize(n);
+  JobSpan prev;
   for (size_t j = 0; j < n; ++j) {
     const Job& job = jobs[j];
-    validate_job(cfg_, job, shell_.size(), map_.size());
-    uint32_t hits = 0;
-    for (uint32_t b = 0; b < job.shell_count; b += uint32_t(kChunk)) {
-      run_chunk(job, b, uint32_t(std::min<size_t>(job.shell_count, b + kChunk)), out, hits);
-      if (job.mode == Mode::First && hits) break;
-    }
-    push_record(out, Record::Done, job.tag).hits = hits;
+    JobOutcome& o = out[j];
+    o = JobOutcome();
+    o.first = hits.size();
+    run_chunk(job, 0, job.shell_count, hits, o.hits);  // FIRST stops at its hit
+    o.records = hits.size() - o.first;
+    if (!cycles) continue;
+    // The timing model's cycles from the hits' summary, as annotate_cycles gives them for this run as a stream.
+    const JobHits sum = job_hits(cfg_, job, hits.point.data() + o.first, o.records);
+    o.span = job_span(cfg_, job, j, sum, o.hits,
+                      cfg_.banked() ? job_bank_cycles(cfg_, shell_, job, sum, o.hits) : BankCycles{});
+    o.cycles = span_cycles(cfg_, j ? &prev : nullptr, o.span);
+    prev = o.span;
   }
 }
 
-void FastRunner::run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
+void FastRunner::run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, HitColumns& hits,
                            uint32_t& count) const {
   if (validate) validate_job(cfg_, job, shell_.size(), map_.size());
   run_chunk(job, begin, end, hits, count);
@@ -399,7 +422,9 @@ void FastRunner::run_serial(const std::vector<Job>& jobs, std::vector<Record>& o
   for (size_t j = 0; j < jobs.size(); ++j) {
     uint32_t hits = 0;
     for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
-      run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, out, hits);
+      serial_hits_.clear();
+      run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, serial_hits_, hits);
+      append_records(serial_hits_, 0, jobs[j].tag, out);
       if (jobs[j].mode == Mode::First && hits) break;
     }
     push_record(out, Record::Done, jobs[j].tag).hits = hits;
@@ -424,6 +449,7 @@ void FastRunner::run_tasks(const std::vector<Job>& jobs, bool cycles, bool valid
   // every task has finished.
   pool_->parallel_for(tasks, [&](size_t t) {
     std::vector<Record>& hits = results_[t].hits;
+    HitColumns& cols = results_[t].columns;
     hits.clear();
     size_t validated = SIZE_MAX;
     for (size_t i = task_first_[t]; i < task_first_[t + 1]; ++i) {
@@ -433,7 +459,9 @@ void FastRunner::run_tasks(const std::vector<Job>& jobs, bool cycles, bool valid
       p.task = t;
       p.first = hits.size();
       p.count = 0;
-      run_chunk(j, p.begin, p.end, hits, p.count);
+      cols.clear();
+      run_chunk(j, p.begin, p.end, cols, p.count);
+      append_records(cols, 0, j.tag, hits);
       p.records = hits.size() - p.first;
       if (cycles) p.sum = job_hits(cfg_, j, p.job, hits.data() + p.first, p.records);
     }
@@ -556,7 +584,7 @@ inline uint32_t fetch_states(const uint64_t* map, int slot_bits, uint32_t hit_ma
 }
 }  // namespace
 
-void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
+void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,
                            uint32_t& hit_count) const {
   if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count);
   int64_t lin[kBlock];
@@ -585,7 +613,7 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
         hit_count += count;
         continue;
       }
-      if (emit_cells(j, b, n, cx, cy, cz, state, hits, hit_count)) return;
+      if (emit_cells(j, b, n, cx, cy, cz, state, count, hits, hit_count)) return;
       continue;
     }
     switch (path_) {
@@ -605,7 +633,7 @@ void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vect
       hit_count += count;
       continue;
     }
-    if (emit_hits(j, b, n, lin, state, hits, hit_count)) return;
+    if (emit_hits(j, b, n, lin, state, count, hits, hit_count)) return;
   }
 }
 

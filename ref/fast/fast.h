@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "voxcd/ref/config.h"
+#include "voxcd/ref/fast/hits.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/types.h"
 
@@ -91,15 +92,16 @@ class FastRunner {
   // as they are now, as the SystemC target does when a descriptor arrives. An invalid job is undefined behaviour.
   void run_validated_into(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles = true);
   std::vector<Record> run(const std::vector<Job>& jobs, bool cycles = true);
-  // Jobs [jobs, jobs + n) on the calling thread alone, each validated before it runs (JobError), their records
-  // (no cycles) into `out`, replaced: for a caller that runs the parts of a batch on its own threads. Calls on
-  // different `out`s may run at once (it only reads the runner).
-  void run_part(const Job* jobs, size_t n, std::vector<Record>& out) const;
-  // Points [begin, end) of one job on the calling thread: their hit records appended to `hits` (FIRST: up to the
-  // first), their number added to `count`; the job validated first when `validate` (JobError). For a caller that
-  // splits the jobs of a batch itself; calls may run at once.
-  void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, std::vector<Record>& hits,
-                 uint32_t& count) const;
+  // Jobs [jobs, jobs + n) on the calling thread alone, every one validated before any runs (JobError): their hits in
+  // columns into `hits` and what each gave into `out` (both replaced), with `cycles` the timing model's cycles and
+  // spans of the jobs as a stream of their own. The hits of run_into's stream, in its order, with no Record made:
+  // for a caller that turns hits into contacts (PairCollider) or runs the parts of a batch on its own threads. Calls
+  // on different outputs may run at once (it only reads the runner).
+  void run_hits(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out, bool cycles = true) const;
+  // Points [begin, end) of one job on the calling thread: their hits appended to `hits` (FIRST: up to the first),
+  // their number added to `count`; the job validated first when `validate` (JobError). For a caller that splits the
+  // jobs of a batch itself; calls may run at once.
+  void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, HitColumns& hits, uint32_t& count) const;
 
  private:
   // A piece of a job: points [begin, end), at most kChunk of them. A task is a run of consecutive pieces.
@@ -114,6 +116,7 @@ class FastRunner {
   };
   struct alignas(64) TaskResult {
     std::vector<Record> hits;  // the hit records of its pieces, in order
+    HitColumns columns;        // a piece's hits as the kernels write them
   };
 
   void set_shell_word(size_t k, const ShellWord& w);
@@ -131,11 +134,10 @@ class FastRunner {
   void job_result(const std::vector<Job>& jobs, size_t j, bool cycles, uint32_t& hits, JobHits& sum) const;
   // Looks up points [begin, end) of job j: appends their hit records (ALL: every one; FIRST: the first, then stops)
   // to `hits` and adds their number to `count`.
-  void run_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits, uint32_t& count) const;
+  void run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count) const;
   // run_chunk on a distance voxmap (SB > 2), in fast/distance.cpp: the vector kernel where distance_vector(j), else
   // one point at a time.
-  void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, std::vector<Record>& hits,
-                          uint32_t& count) const;
+  void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count) const;
   bool distance_vector(const Job& j) const;
   // The node-quad copy of job j's map, built at the first call (thread-safe); null where the kernel cannot take it
   // (widths, SB > 8) or it would pass the limit.
@@ -144,7 +146,7 @@ class FastRunner {
   void drop_node_quads(uint64_t first, uint64_t end);
   // The vector kernel on the parity banks, or with `quads` on that copy.
   void run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
-                           std::vector<Record>& hits, uint32_t& count) const;
+                           HitColumns& hits, uint32_t& count) const;
 
   DeviceConfig cfg_;
   Path path_ = Path::Double;
@@ -168,6 +170,7 @@ class FastRunner {
   mutable std::mutex copies_mutex_;
   mutable std::vector<std::unique_ptr<detail::NodeQuads>> copies_;
   mutable uint64_t copy_bytes_ = 0;
+  HitColumns serial_hits_;  // run_serial's hits of a piece
 };
 
 }  // namespace voxcd

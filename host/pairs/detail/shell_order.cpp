@@ -42,7 +42,7 @@ VOXCD_POPCNT_CLONES void RankBits::place(const HitSpan* spans, size_t n,
   bool ascending = true;
   for (size_t s = 0; s < n && ascending; ++s)
     for (size_t r = 0; r < spans[s].n; ++r, ++k) {
-      const uint32_t p = order[spans[s].first + spans[s].recs[r].point];
+      const uint32_t p = order[spans[s].first + spans[s].point[r]];
       if (k && p <= prev) {
         ascending = false;
         break;
@@ -52,7 +52,8 @@ VOXCD_POPCNT_CLONES void RankBits::place(const HitSpan* spans, size_t n,
   if (ascending) {
     k = 0;
     for (size_t s = 0; s < n; ++s)
-      for (size_t r = 0; r < spans[s].n; ++r) out[k++] = {spans[s].recs + r, order[spans[s].first + spans[s].recs[r].point]};
+      for (size_t r = 0; r < spans[s].n; ++r)
+        out[k++] = {uint32_t(spans[s].at + r), order[spans[s].first + spans[s].point[r]]};
     return;
   }
   // Else a bit per point: a hit's rank is the bits set below its own.
@@ -61,7 +62,7 @@ VOXCD_POPCNT_CLONES void RankBits::place(const HitSpan* spans, size_t n,
   size_t lo = words, hi = 0;
   for (size_t s = 0; s < n; ++s)
     for (size_t r = 0; r < spans[s].n; ++r) {
-      const uint32_t p = order[spans[s].first + spans[s].recs[r].point];
+      const uint32_t p = order[spans[s].first + spans[s].point[r]];
       bits_[p >> 6] |= uint64_t{1} << (p & 63);
       lo = std::min<size_t>(lo, p >> 6), hi = std::max<size_t>(hi, p >> 6);
     }
@@ -69,9 +70,9 @@ VOXCD_POPCNT_CLONES void RankBits::place(const HitSpan* spans, size_t n,
   for (size_t w = lo; w <= hi; ++w) below_[w] = sum, sum += uint32_t(__builtin_popcountll(bits_[w]));
   for (size_t s = 0; s < n; ++s)
     for (size_t r = 0; r < spans[s].n; ++r) {
-      const uint32_t p = order[spans[s].first + spans[s].recs[r].point];
+      const uint32_t p = order[spans[s].first + spans[s].point[r]];
       const uint32_t rank = below_[p >> 6] + uint32_t(__builtin_popcountll(bits_[p >> 6] & ((uint64_t{1} << (p & 63)) - 1)));
-      out[rank] = {spans[s].recs + r, p};
+      out[rank] = {uint32_t(spans[s].at + r), p};
     }
   std::fill(bits_.begin() + std::ptrdiff_t(lo), bits_.begin() + std::ptrdiff_t(hi + 1), uint64_t(0));
 }
@@ -83,11 +84,11 @@ size_t keep_direction(const HitSpan* spans, size_t n, bool first_only, const uin
     uint32_t lowest = UINT32_MAX;
     for (size_t s = 0; s < n; ++s) {
       if (spans[s].n == 0) continue;
-      const uint32_t p = order[spans[s].first + spans[s].recs[0].point];
+      const uint32_t p = order[spans[s].first + spans[s].point[0]];
       if (p < lowest) lowest = p, best = s;
     }
     if (best == n) return 0;
-    out[0] = {spans[best].recs, lowest};
+    out[0] = {uint32_t(spans[best].at), lowest};
     return 1;
   }
   size_t kept = 0;

@@ -23,16 +23,18 @@ struct ShellOrder {
 // keeps them): blocks in linear order of the block grid, each block's points in ascending point order.
 ShellOrder block_order(const std::vector<std::array<uint32_t, 3>>& cells);
 
-// The hit records of one job of a direction: recs[0, n), their slots first + rec.point.
+// The hits of one job of a direction, held in columns (ref/fast/hits.h) from index `at`: their points point[0, n)
+// (relative to the job), their slots first + point[r].
 struct HitSpan {
-  const Record* recs;
+  const uint32_t* point;
   size_t n;
   uint32_t first;
+  size_t at;
 };
 
-// A hit record that makes a contact, with its shell point.
+// A hit that makes a contact: its index in the columns, and its shell point.
 struct SortedHit {
-  const Record* rec;
+  uint32_t hit;
   uint32_t point;
 };
 
