@@ -6,7 +6,8 @@
 #     at once, so no spinning is counted); the difference over F is one frame's work, the set-up cancelling;
 #   - instructions a frame in all; of them inside the pool's loops (ThreadPool::drain, on either thread: the loop
 #     bodies and the taking of tasks); the pool's loops a frame (calls of ThreadPool::run_loop);
-#   - Amdahl's bound for 2 threads: I / (I - P + P / 2), with P the instructions inside the loops.
+#   - Amdahl's bound for 2 threads: I / (I - P + P / 2), with P the instructions inside the loops;
+#   - the same frames on one thread (--threads 1): its instructions a frame, so that what two threads add is seen.
 # The bound counts instructions, not cycles: the cache lines that move between cores, the wake-ups and the loops'
 # imbalance (a loop is as slow as its slowest thread) are what separate a measured speed-up from it.
 # Usage: bash bench/thread_share.sh [VOXCD] [N:F ...]     (default build/voxcd 256:200 4096:20)
@@ -52,23 +53,29 @@ print(total, drain, loops)
 EOF
 }
 
-echo "| objects | frames (F, 2F) | instructions a frame | inside the pool's loops | pool loops a frame | 2-thread bound (Amdahl) | state hash |"
-echo "|--:|--:|--:|--:|--:|--:|---|"
+echo "| objects | frames (F, 2F) | instructions a frame, 2 threads | inside the pool's loops | pool loops a frame | 2-thread bound (Amdahl) | instructions a frame, 1 thread | state hash |"
+echo "|--:|--:|--:|--:|--:|--:|--:|---|"
 for c in "${cases[@]}"; do
   n="${c%%:*}" f="${c##*:}"
-  for k in 1 2; do
-    VOXCD_SPIN_US=0 valgrind --tool=callgrind --callgrind-out-file="$tmp/cg$k.out" "$voxcd" simulate --objects "$n" \
-      --threads 2 --frames $((k * f)) --no-progress >"$tmp/out$k.txt" 2>"$tmp/err$k.txt" ||
-      { cat "$tmp/err$k.txt" >&2; exit 1; }
+  for threads in 2 1; do
+    for k in 1 2; do
+      VOXCD_SPIN_US=0 valgrind --tool=callgrind --callgrind-out-file="$tmp/cg$threads$k.out" "$voxcd" simulate \
+        --objects "$n" --threads "$threads" --frames $((k * f)) --no-progress >"$tmp/out$threads$k.txt" \
+        2>"$tmp/err$k.txt" || { cat "$tmp/err$k.txt" >&2; exit 1; }
+    done
   done
-  read -r t1 d1 l1 <<<"$(counts "$tmp/cg1.out")"
-  read -r t2 d2 l2 <<<"$(counts "$tmp/cg2.out")"
-  hash="$(awk '/^state hash/ {print $3}' "$tmp/out2.txt")"
-  /usr/bin/python3 - "$n" "$f" "$t1" "$d1" "$l1" "$t2" "$d2" "$l2" "$hash" <<'EOF'
+  read -r t1 d1 l1 <<<"$(counts "$tmp/cg21.out")"
+  read -r t2 d2 l2 <<<"$(counts "$tmp/cg22.out")"
+  read -r s1 _ _ <<<"$(counts "$tmp/cg11.out")"
+  read -r s2 _ _ <<<"$(counts "$tmp/cg12.out")"
+  hash="$(awk '/^state hash/ {print $3}' "$tmp/out22.txt")"
+  [ "$hash" = "$(awk '/^state hash/ {print $3}' "$tmp/out12.txt")" ] ||
+    { echo "thread_share.sh: $n objects: the state hash differs between 1 and 2 threads" >&2; exit 1; }
+  /usr/bin/python3 - "$n" "$f" "$t1" "$d1" "$l1" "$t2" "$d2" "$l2" "$s1" "$s2" "$hash" <<'EOF'
 import sys
-n, f, t1, d1, l1, t2, d2, l2 = map(int, sys.argv[1:9])
-i, p, loops = (t2 - t1) / f, (d2 - d1) / f, (l2 - l1) / f
-print(f"| {n} | {f}, {2 * f} | {i:,.0f} | {p:,.0f} ({100 * p / i:.1f}%) | {loops:.1f} | {i / (i - p / 2):.2f}x | {sys.argv[9]} |")
+n, f, t1, d1, l1, t2, d2, l2, s1, s2 = map(int, sys.argv[1:11])
+i, p, loops, one = (t2 - t1) / f, (d2 - d1) / f, (l2 - l1) / f, (s2 - s1) / f
+print(f"| {n} | {f}, {2 * f} | {i:,.0f} | {p:,.0f} ({100 * p / i:.1f}%) | {loops:.1f} | {i / (i - p / 2):.2f}x | {one:,.0f} | {sys.argv[11]} |")
 EOF
 done
 echo
