@@ -141,6 +141,22 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t quad_
   return count;
 }
 
+// The hits of mask h among four points: their cells (c) and distances (d less the bias); returns their number.
+__attribute__((target("avx2,fma"))) inline uint32_t put_hits4(int h, __m256d d, const __m256d* c, double bias,
+                                                               int32_t* cx, int32_t* cy, int32_t* cz, double* dist) {
+  alignas(32) double dd[4];
+  alignas(16) int32_t xs[3][4];
+  _mm256_store_pd(dd, d);
+  for (int i = 0; i < 3; ++i) _mm_store_si128(reinterpret_cast<__m128i*>(xs[i]), _mm256_cvttpd_epi32(c[i]));
+  uint32_t count = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (!(h >> i & 1)) continue;
+    cx[i] = xs[0][i], cy[i] = xs[1][i], cz[i] = xs[2][i], dist[i] = dd[i] - bias;
+    ++count;
+  }
+  return count;
+}
+
 // Four points a step, the node words by four scalar loads (AVX2's gather is no faster here and slower on some
 // processors); a byte in a 64-bit lane becomes a double as the bits of 2^52 + byte, less 2^52. The tail (fewer than
 // four) one at a time.
@@ -195,17 +211,7 @@ __attribute__((target("avx2,fma"))) uint32_t quad_avx2(const int32_t* x, const i
     const __m256d d = step256(step256(a0, a1, f[1], g[1]), step256(a2, a3, f[1], g[1]), f[2], g[2]);
     const int h = _mm256_movemask_pd(_mm256_and_pd(in, _mm256_cmp_pd(d, thr, _CMP_LE_OQ)));
     for (int i = 0; i < 4; ++i) hit[k + size_t(i)] = uint8_t(h >> i & 1);
-    if (h == 0) continue;
-    alignas(32) double dd[4];
-    alignas(16) int32_t xs[3][4];
-    _mm256_store_pd(dd, d);
-    for (int i = 0; i < 3; ++i) _mm_store_si128(reinterpret_cast<__m128i*>(xs[i]), _mm256_cvttpd_epi32(c[i]));
-    for (int i = 0; i < 4; ++i) {
-      if (!(h >> i & 1)) continue;
-      const size_t kk = k + size_t(i);
-      cx[kk] = xs[0][i], cy[kk] = xs[1][i], cz[kk] = xs[2][i], dist[kk] = dd[i] - J.bias;
-      ++count;
-    }
+    if (h) count += put_hits4(h, d, c, J.bias, cx + k, cy + k, cz + k, dist + k);
   }
   for (; k < n; ++k) count += quad_point(x, y, z, k, J, hit, cx, cy, cz, dist);
   return count;
