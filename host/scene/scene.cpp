@@ -53,6 +53,18 @@ bool boxes_overlap(const ObjectType& ta, const Eigen::Matrix3d& Ra, const Eigen:
 }
 
 
+// A body's rotation matrix and the world centre of its type's box (what body_bounds and boxes_overlap take).
+struct Placed {
+  Eigen::Matrix3d R;
+  Eigen::Vector3d c;
+};
+Placed placed(const ObjectType& t, const Body& b) {
+  Placed p;
+  p.R = b.pose.rotation.toRotationMatrix();
+  p.c = p.R * (0.5 * (t.lo + t.hi)) + b.pose.translation;
+  return p;
+}
+
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 }  // namespace
@@ -490,16 +502,15 @@ void Simulation::integrate(FrameStats& st) {
 void Simulation::compute_bounds() {
   const size_t n = scene_.bodies.size();
   bounds_.resize(n);
-  rot_.resize(n);
-  box_centre_.resize(n);
+  sphere_.resize(n);
   for_ranges(pool_.get(), pool_ranges(pool_.get(), n, kGrainBodies), [&](size_t, size_t first, size_t end) {
     for (size_t i = first; i < end; ++i) {
       const Body& b = scene_.bodies[i];
       const ObjectType& t = *scene_.types[b.type];
-      rot_[i] = b.pose.rotation.toRotationMatrix();
-      box_centre_[i] = rot_[i] * (0.5 * (t.lo + t.hi)) + b.pose.translation;
-      bounds_[i] = body_bounds(t, b, rot_[i], box_centre_[i]);
+      const Placed p = placed(t, b);
+      bounds_[i] = body_bounds(t, b, p.R, p.c);
       bounds_[i].moved_unexpectedly = moved_[i] != 0;
+      sphere_[i] = {bounds_[i].centre, bounds_[i].radius};
     }
   });
 }
@@ -510,15 +521,21 @@ size_t Simulation::midphase(const std::vector<BodyPair>& pairs) {
   if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
   // A range with no pairs is never visited: its count must not be a previous frame's (or uninitialised).
   for (size_t p = 0; p < r.parts; ++p) part_counts_[p].value = 0;
+  // Most pairs fail the spheres' test, which reads only the compact spheres; the bodies' rotations and box centres
+  // are worked out (as compute_bounds did) for the few that pass.
   for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
     uint64_t kept = 0;
     for (size_t k = first; k < end; ++k) {
       const uint32_t ia = pairs[k].first, ib = pairs[k].second;
-      const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
-      keep_[k] = !opt_.midphase || (spheres_overlap(bounds_[ia], bounds_[ib]) &&
-                                    boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia],
-                                                  *scene_.types[b.type], rot_[ib], box_centre_[ib]));
-      kept += keep_[k];
+      bool keep = !opt_.midphase;
+      if (!keep && sphere_[ia].overlaps(sphere_[ib])) {
+        const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
+        const ObjectType &ta = *scene_.types[a.type], &tb = *scene_.types[b.type];
+        const Placed pa = placed(ta, a), pb = placed(tb, b);
+        keep = boxes_overlap(ta, pa.R, pa.c, tb, pb.R, pb.c);
+      }
+      keep_[k] = keep;
+      kept += keep;
     }
     part_counts_[part].value = kept;
   });

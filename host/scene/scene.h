@@ -109,9 +109,16 @@ class Simulation {
   std::unique_ptr<PairCollider> collider_;
   std::unique_ptr<ContinuousCollision> ccd_;  // when opt.ccd
   std::vector<BodyBounds> bounds_;
-  // Each body's rotation matrix and the world centre of its contact box, this frame (for the mid-phase).
-  std::vector<Eigen::Matrix3d> rot_;
-  std::vector<Eigen::Vector3d> box_centre_;
+  // Each body's enclosing sphere this frame (bounds_'s, in 32 bytes: the mid-phase's first test reads only these).
+  struct Sphere {
+    Eigen::Vector3d centre;
+    double radius;
+    bool overlaps(const Sphere& o) const {  // as spheres_overlap()
+      const double r = radius + o.radius;
+      return (centre - o.centre).squaredNorm() <= r * r;
+    }
+  };
+  std::vector<Sphere> sphere_;
   std::vector<uint8_t> moved_;  // bytes, not bits: the threads write them body by body
   std::shared_ptr<ThreadPool> pool_;  // null on one thread
   std::vector<uint8_t> keep_;         // the mid-phase's verdict per broadphase pair
