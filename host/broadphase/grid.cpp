@@ -279,6 +279,8 @@ class UniformGrid final : public BroadphaseBase {
     cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
   }
 
+  // Counts in start[c + 1], which becomes the place of cell c's next box as the boxes are placed, and so ends as the
+  // start of cell c + 1 (no second array of places to clear and fill).
   void sort_by_cell(Level& lv, uint64_t cells) {
     const uint32_t s = uint32_t(small_.size());
     lv.start.assign(cells + 1, 0);
@@ -286,9 +288,12 @@ class UniformGrid final : public BroadphaseBase {
       find_cell(lv, k);
       ++lv.start[cell_tmp_[k] + 1];
     }
-    for (uint64_t c = 0; c < cells; ++c) lv.start[c + 1] += lv.start[c];
-    fill_.assign(lv.start.begin(), lv.start.end() - 1);
-    for (uint32_t k = 0; k < s; ++k) place(lv, k, fill_[cell_tmp_[k]]++);
+    for (uint64_t c = 0, at = 0; c < cells; ++c) {
+      const uint32_t k = lv.start[c + 1];
+      lv.start[c + 1] = uint32_t(at);
+      at += k;
+    }
+    for (uint32_t k = 0; k < s; ++k) place(lv, k, lv.start[cell_tmp_[k] + 1]++);
   }
 
   // On the pool, in buckets of consecutive cells (bucket c * B / cells of cell c): each range of boxes finds their
@@ -317,23 +322,24 @@ class UniformGrid final : public BroadphaseBase {
       for (size_t k = r2.begin(part); k < r2.end(part); ++k) order_[at[bucket_of(cell_tmp_[k])]++] = uint32_t(k);
     });
     lv.start.resize(cells + 1);
-    fill_.resize(cells);
+    lv.start[0] = 0;
+    // Each bucket its cells' counts, then places, in start[c + 1] (as sort_by_cell): start[c0 + 1 .. c1] are its own.
     pool_->parallel_for(buckets, [&](size_t b) {
       const uint64_t c0 = first_cell(b), c1 = first_cell(b + 1);
-      std::fill(fill_.begin() + std::ptrdiff_t(c0), fill_.begin() + std::ptrdiff_t(c1), 0u);
-      for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) ++fill_[cell_tmp_[order_[i]]];
+      uint32_t* at_cell = lv.start.data() + 1;
+      std::fill(at_cell + c0, at_cell + c1, 0u);
+      for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) ++at_cell[cell_tmp_[order_[i]]];
       uint32_t at = uint32_t(bucket_at_[b]);
       for (uint64_t c = c0; c < c1; ++c) {
-        const uint32_t n = fill_[c];
-        lv.start[c] = fill_[c] = at;
+        const uint32_t n = at_cell[c];
+        at_cell[c] = at;
         at += n;
       }
       for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) {
         const uint32_t k = order_[i];
-        place(lv, k, fill_[cell_tmp_[k]]++);
+        place(lv, k, at_cell[cell_tmp_[k]]++);
       }
     });
-    lv.start[cells] = s;
   }
 
   // Small box k (small_[k], its cell and coordinates in cell_tmp_ and xyz_tmp_) to entry p of the level.
@@ -422,7 +428,7 @@ class UniformGrid final : public BroadphaseBase {
   static constexpr size_t kBucketsPerThread = 8;
   static constexpr size_t kParallelCells = 1024;  // boxes of a level sorted by cell on the pool
   std::vector<FlatBox> box_;
-  std::vector<uint32_t> ids_, small_, cell_tmp_, fill_;
+  std::vector<uint32_t> ids_, small_, cell_tmp_;
   std::vector<double> size_, sorted_;  // size_: by body
   double sizes_[2] = {0, 0};           // the smallest and largest box
   uint32_t last_all_ = 0;              // the first level holds every one of this many bodies (0: not so)
