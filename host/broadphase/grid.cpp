@@ -170,6 +170,7 @@ class UniformGrid final : public BroadphaseBase {
     lv.entries.resize(s);
     cell_tmp_.resize(s);
     xyz_tmp_.resize(s);
+    entry_tmp_.resize(s);
     if (!pool_ || s < kParallelCells)
       sort_by_cell(lv, cells);
     else
@@ -271,9 +272,18 @@ class UniformGrid final : public BroadphaseBase {
     return uint64_t(lv.dims[0]) * lv.dims[1] * lv.dims[2];
   }
 
-  // Small box k's cell coordinates and cell into xyz_tmp_ and cell_tmp_.
+  // Small box k's cell coordinates and cell into xyz_tmp_ and cell_tmp_, its entry into entry_tmp_ (read from box_
+  // once, in small_'s order, which need not be the bodies').
   void find_cell(const Level& lv, uint32_t k) {
+    // small_'s order is the last frame's cells', not the bodies': box_ is read at random, so a few boxes ahead are
+    // fetched while this one is placed (both of its cache lines).
+    if (k + kAhead < small_.size()) {
+      const char* ahead = reinterpret_cast<const char*>(&box_[small_[k + kAhead]]);
+      __builtin_prefetch(ahead);
+      __builtin_prefetch(ahead + sizeof(FlatBox) - 1);
+    }
     const FlatBox& box = box_[small_[k]];
+    entry_tmp_[k] = {box, small_[k]};
     auto& q = xyz_tmp_[k];
     for (int a = 0; a < 3; ++a) q[a] = coord(lv, box.lo[a], a);
     cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
@@ -335,16 +345,20 @@ class UniformGrid final : public BroadphaseBase {
         at_cell[c] = at;
         at += n;
       }
-      for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) {
+      // (Where a box a few ahead will go is fetched first: in the first frame, or after a shuffle, those places are
+      // random.)
+      const size_t i1 = bucket_at_[b + 1];
+      for (size_t i = bucket_at_[b]; i < i1; ++i) {
+        if (i + kAhead < i1) __builtin_prefetch(&lv.entries[at_cell[cell_tmp_[order_[i + kAhead]]]], 1);
         const uint32_t k = order_[i];
         place(lv, k, at_cell[cell_tmp_[k]]++);
       }
     });
   }
 
-  // Small box k (small_[k], its cell and coordinates in cell_tmp_ and xyz_tmp_) to entry p of the level.
+  // Small box k (its entry, cell and coordinates in entry_tmp_, cell_tmp_ and xyz_tmp_) to entry p of the level.
   void place(Level& lv, uint32_t k, uint32_t p) {
-    lv.entries[p] = {box_[small_[k]], small_[k]};
+    lv.entries[p] = entry_tmp_[k];
     lv.cell[p] = cell_tmp_[k];
     lv.xyz[p] = xyz_tmp_[k];
   }
@@ -426,7 +440,8 @@ class UniformGrid final : public BroadphaseBase {
   static constexpr size_t kGrainBodies = 512, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 32;
   static constexpr size_t kParallelSort = 16384;  // pairs of a frame sorted on the pool (in buckets of first bodies)
   static constexpr size_t kBucketsPerThread = 8;
-  static constexpr size_t kParallelCells = 1024;  // boxes of a level sorted by cell on the pool
+  static constexpr size_t kParallelCells = 1024;
+  static constexpr size_t kAhead = 16;  // boxes fetched ahead of the one read  // boxes of a level sorted by cell on the pool
   std::vector<FlatBox> box_;
   std::vector<uint32_t> ids_, small_, cell_tmp_;
   std::vector<double> size_, sorted_;  // size_: by body
@@ -439,6 +454,7 @@ class UniformGrid final : public BroadphaseBase {
   std::vector<PartSlot<std::array<double, 2>>> span_;
   std::vector<PartSlot<Split>> split_;
   std::vector<std::array<int, 3>> xyz_tmp_;
+  std::vector<Entry> entry_tmp_;
   std::vector<Level> levels_;
   std::vector<PartSlot<Found>> out_;  // the pairs of this frame, per part of the search
   // sort_on_pool: where each bucket starts in keys_ and pairs_; the keys by bucket.

@@ -468,6 +468,7 @@ namespace {
 // least 4 tested pairs each (a microsecond or more each), up to 16 per thread, cut by weight (the shell points the pair
 // looks up: their costs differ, and a thread that finishes early takes another's).
 constexpr size_t kGrainBodies = 64, kGrainPairs = 32, kGrainMidphase = 1024, kGrainTests = 4, kPartsTests = 16;
+constexpr size_t kAheadMidphase = 16;  // pairs ahead whose second sphere is fetched
 }  // namespace
 
 void Simulation::integrate(FrameStats& st) {
@@ -527,6 +528,8 @@ size_t Simulation::midphase(const std::vector<BodyPair>& pairs) {
     uint64_t kept = 0;
     for (size_t k = first; k < end; ++k) {
       const uint32_t ia = pairs[k].first, ib = pairs[k].second;
+      // Pairs come by first body; the second is anywhere: its sphere is fetched a few pairs ahead.
+      if (k + kAheadMidphase < end) __builtin_prefetch(&sphere_[pairs[k + kAheadMidphase].second]);
       bool keep = !opt_.midphase;
       if (!keep && sphere_[ia].overlaps(sphere_[ib])) {
         const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
