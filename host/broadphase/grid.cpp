@@ -136,15 +136,14 @@ class UniformGrid final : public BroadphaseBase {
   struct Entry {
     FlatBox box;
     uint32_t id;
+    uint32_t cell;  // in the level (its coordinates follow from box.lo again: coord())
   };
   struct Level {
     double origin[3] = {0, 0, 0};
     double inv = 0;      // 1 / cell width (0: one cell along every axis)
     int dims[3] = {1, 1, 1};
     std::vector<uint32_t> start;  // start[c] .. start[c + 1]: cell c's boxes in `entries`
-    std::vector<uint32_t> cell;   // the cell of each entry
-    std::vector<std::array<int, 3>> xyz;  // and its coordinates
-    std::vector<Entry> entries;   // in cell order, then body order
+    std::vector<Entry> entries;   // in cell order, then in the order visited (build())
   };
 
   // The cell coordinate of x along axis a: monotonic in x and clamped to the grid, so that two lower corners at
@@ -165,11 +164,8 @@ class UniformGrid final : public BroadphaseBase {
     if (first) visit_in_last_order(lv, sb.large == 0);
     // Counting sort of the small boxes by cell, stable (in small_ order within a cell).
     const uint32_t s = uint32_t(small_.size());
-    lv.cell.resize(s);
-    lv.xyz.resize(s);
     lv.entries.resize(s);
     cell_tmp_.resize(s);
-    xyz_tmp_.resize(s);
     entry_tmp_.resize(s);
     if (!pool_ || s < kParallelCells)
       sort_by_cell(lv, cells);
@@ -272,8 +268,8 @@ class UniformGrid final : public BroadphaseBase {
     return uint64_t(lv.dims[0]) * lv.dims[1] * lv.dims[2];
   }
 
-  // Small box k's cell coordinates and cell into xyz_tmp_ and cell_tmp_, its entry into entry_tmp_ (read from box_
-  // once, in small_'s order, which need not be the bodies').
+  // Small box k's cell into cell_tmp_, its entry into entry_tmp_ (read from box_ once, in small_'s order, which need
+  // not be the bodies').
   void find_cell(const Level& lv, uint32_t k) {
     // small_'s order is the last frame's cells', not the bodies': box_ is read at random, so a few boxes ahead are
     // fetched while this one is placed (both of its cache lines).
@@ -283,10 +279,10 @@ class UniformGrid final : public BroadphaseBase {
       __builtin_prefetch(ahead + sizeof(FlatBox) - 1);
     }
     const FlatBox& box = box_[small_[k]];
-    entry_tmp_[k] = {box, small_[k]};
-    auto& q = xyz_tmp_[k];
+    int q[3];
     for (int a = 0; a < 3; ++a) q[a] = coord(lv, box.lo[a], a);
     cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
+    entry_tmp_[k] = {box, small_[k], cell_tmp_[k]};
   }
 
   // Counts in start[c + 1], which becomes the place of cell c's next box as the boxes are placed, and so ends as the
@@ -356,11 +352,9 @@ class UniformGrid final : public BroadphaseBase {
     });
   }
 
-  // Small box k (its entry, cell and coordinates in entry_tmp_, cell_tmp_ and xyz_tmp_) to entry p of the level.
+  // Small box k (its entry in entry_tmp_) to entry p of the level.
   void place(Level& lv, uint32_t k, uint32_t p) {
     lv.entries[p] = entry_tmp_[k];
-    lv.cell[p] = cell_tmp_[k];
-    lv.xyz[p] = xyz_tmp_[k];
   }
 
   // Box e against the entries [from, to). Without a branch on the outcome (which the scenes make hard to
@@ -396,8 +390,8 @@ class UniformGrid final : public BroadphaseBase {
     const int dy = lv.dims[1], dz = lv.dims[2];
     for (uint32_t p = first; p < end; ++p) {
       const Entry& e = en[p];
-      const int c = int(lv.cell[p]);
-      const int x = lv.xyz[p][0], y = lv.xyz[p][1], z = lv.xyz[p][2];
+      const int c = int(e.cell);
+      const int x = coord(lv, e.box.lo[0], 0), y = coord(lv, e.box.lo[1], 1), z = coord(lv, e.box.lo[2], 2);
       // The same cell after p, and (x, y, z+1).
       test_run(e, en, p + 1, st[z + 1 < dz ? c + 2 : c + 1], f);
       const int z0 = z > 0 ? z - 1 : 0, z1 = z + 1 < dz ? z + 1 : z;
@@ -423,7 +417,7 @@ class UniformGrid final : public BroadphaseBase {
       c0[a] = std::max(coord(lv, b.lo[a], a) - 1, 0);
       c1[a] = coord(lv, b.hi[a], a);
     }
-    const Entry e{b, id};
+    const Entry e{b, id, 0};
     const Entry* en = lv.entries.data();
     for (int x = c0[0]; x <= c1[0]; ++x)
       for (int y = c0[1]; y <= c1[1]; ++y) {
@@ -453,7 +447,6 @@ class UniformGrid final : public BroadphaseBase {
   };
   std::vector<PartSlot<std::array<double, 2>>> span_;
   std::vector<PartSlot<Split>> split_;
-  std::vector<std::array<int, 3>> xyz_tmp_;
   std::vector<Entry> entry_tmp_;
   std::vector<Level> levels_;
   std::vector<PartSlot<Found>> out_;  // the pairs of this frame, per part of the search
