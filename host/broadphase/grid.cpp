@@ -23,29 +23,7 @@ class UniformGrid final : public BroadphaseBase {
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
     const uint32_t n = uint32_t(bodies.size());
-    box_.resize(n);
-    ids_.resize(n);
-    size_.resize(n);
-    // Every box checked, flattened and sized (its largest side), on the pool in ranges of bodies (the lowest range
-    // that throws names the first bad body, as one thread would); the smallest and largest size per range.
-    const Ranges r = pool_ranges(pool_, n, kGrainBodies);
-    if (span_.size() < r.parts) span_.resize(r.parts);
-    for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
-      double smallest = HUGE_VAL, largest = 0;
-      for (size_t i = b; i < e; ++i) {
-        check_body(bodies[i], name_, i, frame);
-        const FlatBox f = flat(bodies[i].box);
-        box_[i] = f;
-        ids_[i] = uint32_t(i);
-        size_[i] = std::max({f.hi[0] - f.lo[0], f.hi[1] - f.lo[1], f.hi[2] - f.lo[2]});
-        smallest = std::min(smallest, size_[i]);
-        largest = std::max(largest, size_[i]);
-      }
-      span_[part].value = {smallest, largest};
-    });
-    sizes_[0] = HUGE_VAL, sizes_[1] = 0;
-    for (size_t p = 0; p < r.parts; ++p)
-      sizes_[0] = std::min(sizes_[0], span_[p].value[0]), sizes_[1] = std::max(sizes_[1], span_[p].value[1]);
+    flatten(bodies, frame);
     if (out_.empty()) out_.resize(1);
     for (auto& o : out_) o.value.n = 0, o.value.tests = 0;
     size_t used = 0;
@@ -159,7 +137,10 @@ class UniformGrid final : public BroadphaseBase {
   // front of ids_ (their count is returned). The passes over the boxes run on the pool in ranges, each range's
   // results joined in range order (the same level whatever the ranges).
   uint32_t build(Level& lv, uint32_t m, bool first) {
-    const SmallBoxes sb = split_by_size(m, size_limit(m));
+    // The first level of every box (the usual case: sizes within a factor of two) needs no split: all of them, in
+    // body order, with the range flatten() found.
+    const double limit = size_limit(m);
+    const SmallBoxes sb = first && limit >= sizes_[1] ? every_box() : split_by_size(m, limit);
     const uint64_t cells = size_cells(lv, sb);
     if (first) visit_in_last_order(lv, sb.large == 0);
     // Counting sort of the small boxes by cell, stable (in small_ order within a cell).
@@ -185,6 +166,41 @@ class UniformGrid final : public BroadphaseBase {
     last_all_ = all ? s : 0;  // what the entries will hold once this level is built
   }
 
+  // Every box checked, flattened and sized (its largest side), on the pool in ranges of bodies (the lowest range
+  // that throws names the first bad body, as one thread would); per range the smallest and largest size and the
+  // range of the lower corners, joined into sizes_ and all_.
+  void flatten(const std::vector<BodyBounds>& bodies, uint64_t frame) {
+    const uint32_t n = uint32_t(bodies.size());
+    box_.resize(n);
+    ids_.resize(n);
+    size_.resize(n);
+    const Ranges r = pool_ranges(pool_, n, kGrainBodies);
+    if (span_.size() < r.parts) span_.resize(r.parts);
+    for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
+      Span& sp = span_[part].value;
+      sp = Span{};
+      for (size_t i = b; i < e; ++i) {
+        check_body(bodies[i], name_, i, frame);
+        const FlatBox f = flat(bodies[i].box);
+        box_[i] = f;
+        ids_[i] = uint32_t(i);
+        size_[i] = std::max({f.hi[0] - f.lo[0], f.hi[1] - f.lo[1], f.hi[2] - f.lo[2]});
+        sp.smallest = std::min(sp.smallest, size_[i]);
+        sp.largest = std::max(sp.largest, size_[i]);
+        for (int a = 0; a < 3; ++a) sp.lo[a] = std::min(sp.lo[a], f.lo[a]), sp.hi[a] = std::max(sp.hi[a], f.lo[a]);
+      }
+    });
+    sizes_[0] = HUGE_VAL, sizes_[1] = 0;
+    all_ = SmallBoxes{};
+    for (int a = 0; a < 3; ++a) all_.lo[a] = HUGE_VAL, all_.hi[a] = -HUGE_VAL;
+    for (size_t p = 0; p < r.parts; ++p) {
+      const Span& sp = span_[p].value;
+      sizes_[0] = std::min(sizes_[0], sp.smallest), sizes_[1] = std::max(sizes_[1], sp.largest);
+      for (int a = 0; a < 3; ++a) all_.lo[a] = std::min(all_.lo[a], sp.lo[a]), all_.hi[a] = std::max(all_.hi[a], sp.hi[a]);
+    }
+    all_.width = sizes_[1];
+  }
+
   // The size of a box: its largest side (size_, by body). The level takes boxes up to twice the median of
   // ids_[0, m) when the sizes differ by more than a factor of two, else all. The first level's smallest and largest
   // come from update().
@@ -206,6 +222,12 @@ class UniformGrid final : public BroadphaseBase {
     uint32_t large = 0;
     double width = 0, lo[3], hi[3];
   };
+
+  SmallBoxes every_box() {
+    small_.resize(box_.size());
+    for (uint32_t k = 0; k < small_.size(); ++k) small_[k] = k;
+    return all_;
+  }
 
   // Split: the small ones (size <= limit, which includes the median and everything below) into small_, in order;
   // the large ones to the front of ids_. Per range its small and large ones, joined in range order.
@@ -445,7 +467,11 @@ class UniformGrid final : public BroadphaseBase {
     std::vector<uint32_t> small, large;
     double width = 0, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   };
-  std::vector<PartSlot<std::array<double, 2>>> span_;
+  struct Span {
+    double smallest = HUGE_VAL, largest = 0, lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  };
+  std::vector<PartSlot<Span>> span_;
+  SmallBoxes all_;  // every box: the largest, the range of the lower corners
   std::vector<PartSlot<Split>> split_;
   std::vector<Entry> entry_tmp_;
   std::vector<Level> levels_;

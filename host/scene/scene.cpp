@@ -58,11 +58,11 @@ struct Placed {
   Eigen::Matrix3d R;
   Eigen::Vector3d c;
 };
-Placed placed(const ObjectType& t, const Body& b) {
-  Placed p;
-  p.R = b.pose.rotation.toRotationMatrix();
-  p.c = p.R * (0.5 * (t.lo + t.hi)) + b.pose.translation;
-  return p;
+// (R from a local, not read back from the result: a 16-byte load across two stores that were just made stalls.)
+inline Placed placed(const ObjectType& t, const Body& b) {
+  const Eigen::Matrix3d R = b.pose.rotation.toRotationMatrix();
+  const Eigen::Vector3d c = R * (0.5 * (t.lo + t.hi)) + b.pose.translation;
+  return {R, c};
 }
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
