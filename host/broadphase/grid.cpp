@@ -456,8 +456,8 @@ class UniformGrid final : public BroadphaseBase {
   static constexpr size_t kGrainBodies = 512, kGrainSplit = 512, kGrainCells = 64, kGrainEntries = 32;
   static constexpr size_t kParallelSort = 16384;  // pairs of a frame sorted on the pool (in buckets of first bodies)
   static constexpr size_t kBucketsPerThread = 8;
-  static constexpr size_t kParallelCells = 1024;
-  static constexpr size_t kAhead = 16;  // boxes fetched ahead of the one read  // boxes of a level sorted by cell on the pool
+  static constexpr size_t kParallelCells = 1024;  // boxes of a level sorted by cell on the pool
+  static constexpr size_t kAhead = 16;            // boxes (or their places) fetched ahead of the one read
   std::vector<FlatBox> box_;
   std::vector<uint32_t> ids_, small_, cell_tmp_;
   std::vector<double> size_, sorted_;  // size_: by body
