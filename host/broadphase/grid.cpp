@@ -5,7 +5,9 @@
 // in memory). Boxes more than twice the median size of a level go up to the next level, built the same way from
 // what is left; each of them is also tested against the boxes of every lower level in the cells its box covers.
 // Every level holds at most half of the boxes of the level below, so there are at most log2(n) levels.
-// O(n + k) a frame for boxes of similar sizes (at most 16 cells a box), whatever the motion: no state between frames.
+// O(n + k) a frame for boxes of similar sizes (at most 16 cells a box), whatever the motion. The only thing kept
+// between frames is the order of the first level's entries, the order in which the next frame visits its boxes when
+// they are all in that level again (visit_in_last_order): its sort then writes nearly in sequence.
 #include <algorithm>
 #include <array>
 #include <cmath>
