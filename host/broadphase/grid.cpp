@@ -369,7 +369,7 @@ class UniformGrid final : public BroadphaseBase {
       // random.)
       const size_t i1 = bucket_at_[b + 1];
       for (size_t i = bucket_at_[b]; i < i1; ++i) {
-        if (i + kAhead < i1) __builtin_prefetch(&lv.entries[at_cell[cell_tmp_[order_[i + kAhead]]]], 1);
+        if (i + kAhead < i1) __builtin_prefetch(lv.entries.data() + at_cell[cell_tmp_[order_[i + kAhead]]], 1);
         const uint32_t k = order_[i];
         place(lv, k, at_cell[cell_tmp_[k]]++);
       }
