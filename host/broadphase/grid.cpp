@@ -205,7 +205,7 @@ class UniformGrid final : public BroadphaseBase {
 
   // The size of a box: its largest side (size_, by body). The level takes boxes up to twice the median of
   // ids_[0, m) when the sizes differ by more than a factor of two, else all. The first level's smallest and largest
-  // come from update().
+  // come from flatten().
   double size_limit(uint32_t m) {
     double smallest = sizes_[0], largest = sizes_[1];
     if (m != box_.size()) {

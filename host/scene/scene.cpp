@@ -525,6 +525,8 @@ void Simulation::integrate_and_bound(FrameStats& st) {
   const Ranges r = pool_ranges(pool_.get(), scene_.bodies.size(), kGrainBodies);
   if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
   if (part_seconds_.size() < r.parts) part_seconds_.resize(r.parts);
+  // (Without bodies no part runs: its counts must not be another loop's.)
+  for (size_t p = 0; p < r.parts; ++p) part_counts_[p].value = 0, part_seconds_[p].value = {0, 0};
   const double t0 = now();
   for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
     uint64_t walls = 0;
