@@ -24,7 +24,7 @@ namespace {
 // every non-empty voxel and shell point) grown by one of its voxels, which covers the fixed-point error of a job
 // (a small fraction of a voxel) and rounding here. Gottschalk's separating-axis test: 3 + 3 face axes and 9 edge
 // cross products, with a relative slack on the near-parallel cross products.
-// Ra, ca: A's rotation and the centre of its box in the world (as compute_bounds keeps them for every body).
+// Ra, ca: A's rotation and the centre of its box in the world (placed()).
 bool boxes_overlap(const ObjectType& ta, const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca, const ObjectType& tb,
                    const Eigen::Matrix3d& Rb, const Eigen::Vector3d& cb) {
   const double ga = ta.voxmap().voxel(), gb = tb.voxmap().voxel();
