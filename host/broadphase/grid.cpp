@@ -5,7 +5,9 @@
 // in memory). Boxes more than twice the median size of a level go up to the next level, built the same way from
 // what is left; each of them is also tested against the boxes of every lower level in the cells its box covers.
 // Every level holds at most half of the boxes of the level below, so there are at most log2(n) levels.
-// O(n + k) a frame for boxes of similar sizes (at most 16 cells a box), whatever the motion: no state between frames.
+// O(n + k) a frame for boxes of similar sizes (at most 16 cells a box), whatever the motion. The only thing kept
+// between frames is the order of the first level's entries, the order in which the next frame visits its boxes when
+// they are all in that level again (visit_in_last_order): its sort then writes nearly in sequence.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -23,29 +25,7 @@ class UniformGrid final : public BroadphaseBase {
 
   void update(const std::vector<BodyBounds>& bodies, uint64_t frame) override {
     const uint32_t n = uint32_t(bodies.size());
-    box_.resize(n);
-    ids_.resize(n);
-    size_.resize(n);
-    // Every box checked, flattened and sized (its largest side), on the pool in ranges of bodies (the lowest range
-    // that throws names the first bad body, as one thread would); the smallest and largest size per range.
-    const Ranges r = pool_ranges(pool_, n, kGrainBodies);
-    if (span_.size() < r.parts) span_.resize(r.parts);
-    for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
-      double smallest = HUGE_VAL, largest = 0;
-      for (size_t i = b; i < e; ++i) {
-        check_body(bodies[i], name_, i, frame);
-        const FlatBox f = flat(bodies[i].box);
-        box_[i] = f;
-        ids_[i] = uint32_t(i);
-        size_[i] = std::max({f.hi[0] - f.lo[0], f.hi[1] - f.lo[1], f.hi[2] - f.lo[2]});
-        smallest = std::min(smallest, size_[i]);
-        largest = std::max(largest, size_[i]);
-      }
-      span_[part].value = {smallest, largest};
-    });
-    sizes_[0] = HUGE_VAL, sizes_[1] = 0;
-    for (size_t p = 0; p < r.parts; ++p)
-      sizes_[0] = std::min(sizes_[0], span_[p].value[0]), sizes_[1] = std::max(sizes_[1], span_[p].value[1]);
+    flatten(bodies, frame);
     if (out_.empty()) out_.resize(1);
     for (auto& o : out_) o.value.n = 0, o.value.tests = 0;
     size_t used = 0;
@@ -53,7 +33,7 @@ class UniformGrid final : public BroadphaseBase {
     for (uint32_t m = n; m > 0; ++used) {
       if (levels_.size() == used) levels_.emplace_back();
       Level& lv = levels_[used];
-      m = build(lv, m);
+      m = build(lv, m, used == 0 && m == n);
       pairs_within(lv);
       // The boxes left over are larger than the level's cell: each against the level's boxes it can reach (and,
       // as it goes up, against every later level it does not end in).
@@ -136,15 +116,14 @@ class UniformGrid final : public BroadphaseBase {
   struct Entry {
     FlatBox box;
     uint32_t id;
+    uint32_t cell;  // in the level (its coordinates follow from box.lo again: coord())
   };
   struct Level {
     double origin[3] = {0, 0, 0};
     double inv = 0;      // 1 / cell width (0: one cell along every axis)
     int dims[3] = {1, 1, 1};
     std::vector<uint32_t> start;  // start[c] .. start[c + 1]: cell c's boxes in `entries`
-    std::vector<uint32_t> cell;   // the cell of each entry
-    std::vector<std::array<int, 3>> xyz;  // and its coordinates
-    std::vector<Entry> entries;   // in cell order, then body order
+    std::vector<Entry> entries;   // in cell order, then in the order visited (build())
   };
 
   // The cell coordinate of x along axis a: monotonic in x and clamped to the grid, so that two lower corners at
@@ -159,16 +138,18 @@ class UniformGrid final : public BroadphaseBase {
   // Builds a level from ids_[0, m): the boxes up to twice the median size go into it, the rest are moved to the
   // front of ids_ (their count is returned). The passes over the boxes run on the pool in ranges, each range's
   // results joined in range order (the same level whatever the ranges).
-  uint32_t build(Level& lv, uint32_t m) {
-    const SmallBoxes sb = split_by_size(m, size_limit(m));
+  uint32_t build(Level& lv, uint32_t m, bool first) {
+    // The first level of every box (the usual case: sizes within a factor of two) needs no split: all of them, in
+    // body order, with the range flatten() found.
+    const double limit = size_limit(m);
+    const SmallBoxes sb = first && limit >= sizes_[1] ? every_box() : split_by_size(m, limit);
     const uint64_t cells = size_cells(lv, sb);
+    if (first) visit_in_last_order(lv, sb.large == 0);
     // Counting sort of the small boxes by cell, stable (in small_ order within a cell).
     const uint32_t s = uint32_t(small_.size());
-    lv.cell.resize(s);
-    lv.xyz.resize(s);
     lv.entries.resize(s);
     cell_tmp_.resize(s);
-    xyz_tmp_.resize(s);
+    entry_tmp_.resize(s);
     if (!pool_ || s < kParallelCells)
       sort_by_cell(lv, cells);
     else
@@ -176,9 +157,55 @@ class UniformGrid final : public BroadphaseBase {
     return sb.large;
   }
 
+  // When the first level holds every body, as it did in the last frame with as many bodies, its boxes are visited in
+  // the order of the last frame's entries (small_ becomes that order): bodies move little between frames, so the
+  // sort by cell then writes its entries nearly in sequence rather than to random places. Only the order within a
+  // cell changes, and with it neither the pairs (sorted at the end) nor the tests counted.
+  void visit_in_last_order(const Level& lv, bool all) {
+    const uint32_t s = uint32_t(small_.size());
+    if (all && last_all_ == s && lv.entries.size() == s)
+      for (uint32_t k = 0; k < s; ++k) small_[k] = lv.entries[k].id;
+    last_all_ = all ? s : 0;  // what the entries will hold once this level is built
+  }
+
+  // Every box checked, flattened and sized (its largest side), on the pool in ranges of bodies (the lowest range
+  // that throws names the first bad body, as one thread would); per range the smallest and largest size and the
+  // range of the lower corners, joined into sizes_ and all_.
+  void flatten(const std::vector<BodyBounds>& bodies, uint64_t frame) {
+    const uint32_t n = uint32_t(bodies.size());
+    box_.resize(n);
+    ids_.resize(n);
+    size_.resize(n);
+    const Ranges r = pool_ranges(pool_, n, kGrainBodies);
+    if (span_.size() < r.parts) span_.resize(r.parts);
+    for_ranges(pool_, r, [&](size_t part, size_t b, size_t e) {
+      Span& sp = span_[part].value;
+      sp = Span{};
+      for (size_t i = b; i < e; ++i) {
+        check_body(bodies[i], name_, i, frame);
+        const FlatBox f = flat(bodies[i].box);
+        box_[i] = f;
+        ids_[i] = uint32_t(i);
+        size_[i] = std::max({f.hi[0] - f.lo[0], f.hi[1] - f.lo[1], f.hi[2] - f.lo[2]});
+        sp.smallest = std::min(sp.smallest, size_[i]);
+        sp.largest = std::max(sp.largest, size_[i]);
+        for (int a = 0; a < 3; ++a) sp.lo[a] = std::min(sp.lo[a], f.lo[a]), sp.hi[a] = std::max(sp.hi[a], f.lo[a]);
+      }
+    });
+    sizes_[0] = HUGE_VAL, sizes_[1] = 0;
+    all_ = SmallBoxes{};
+    for (int a = 0; a < 3; ++a) all_.lo[a] = HUGE_VAL, all_.hi[a] = -HUGE_VAL;
+    for (size_t p = 0; p < r.parts; ++p) {
+      const Span& sp = span_[p].value;
+      sizes_[0] = std::min(sizes_[0], sp.smallest), sizes_[1] = std::max(sizes_[1], sp.largest);
+      for (int a = 0; a < 3; ++a) all_.lo[a] = std::min(all_.lo[a], sp.lo[a]), all_.hi[a] = std::max(all_.hi[a], sp.hi[a]);
+    }
+    all_.width = sizes_[1];
+  }
+
   // The size of a box: its largest side (size_, by body). The level takes boxes up to twice the median of
   // ids_[0, m) when the sizes differ by more than a factor of two, else all. The first level's smallest and largest
-  // come from update().
+  // come from flatten().
   double size_limit(uint32_t m) {
     double smallest = sizes_[0], largest = sizes_[1];
     if (m != box_.size()) {
@@ -197,6 +224,12 @@ class UniformGrid final : public BroadphaseBase {
     uint32_t large = 0;
     double width = 0, lo[3], hi[3];
   };
+
+  SmallBoxes every_box() {
+    small_.resize(box_.size());
+    for (uint32_t k = 0; k < small_.size(); ++k) small_[k] = k;
+    return all_;
+  }
 
   // Split: the small ones (size <= limit, which includes the median and everything below) into small_, in order;
   // the large ones to the front of ids_. Per range its small and large ones, joined in range order.
@@ -259,14 +292,25 @@ class UniformGrid final : public BroadphaseBase {
     return uint64_t(lv.dims[0]) * lv.dims[1] * lv.dims[2];
   }
 
-  // Small box k's cell coordinates and cell into xyz_tmp_ and cell_tmp_.
+  // Small box k's cell into cell_tmp_, its entry into entry_tmp_ (read from box_ once, in small_'s order, which need
+  // not be the bodies').
   void find_cell(const Level& lv, uint32_t k) {
+    // small_'s order is the last frame's cells', not the bodies': box_ is read at random, so a few boxes ahead are
+    // fetched while this one is placed (both of its cache lines).
+    if (k + kAhead < small_.size()) {
+      const char* ahead = reinterpret_cast<const char*>(&box_[small_[k + kAhead]]);
+      __builtin_prefetch(ahead);
+      __builtin_prefetch(ahead + sizeof(FlatBox) - 1);
+    }
     const FlatBox& box = box_[small_[k]];
-    auto& q = xyz_tmp_[k];
+    int q[3];
     for (int a = 0; a < 3; ++a) q[a] = coord(lv, box.lo[a], a);
     cell_tmp_[k] = uint32_t((q[0] * lv.dims[1] + q[1]) * lv.dims[2] + q[2]);
+    entry_tmp_[k] = {box, small_[k], cell_tmp_[k]};
   }
 
+  // Counts in start[c + 1], which becomes the place of cell c's next box as the boxes are placed, and so ends as the
+  // start of cell c + 1 (no second array of places to clear and fill).
   void sort_by_cell(Level& lv, uint64_t cells) {
     const uint32_t s = uint32_t(small_.size());
     lv.start.assign(cells + 1, 0);
@@ -274,9 +318,12 @@ class UniformGrid final : public BroadphaseBase {
       find_cell(lv, k);
       ++lv.start[cell_tmp_[k] + 1];
     }
-    for (uint64_t c = 0; c < cells; ++c) lv.start[c + 1] += lv.start[c];
-    fill_.assign(lv.start.begin(), lv.start.end() - 1);
-    for (uint32_t k = 0; k < s; ++k) place(lv, k, fill_[cell_tmp_[k]]++);
+    for (uint64_t c = 0, at = 0; c < cells; ++c) {
+      const uint32_t k = lv.start[c + 1];
+      lv.start[c + 1] = uint32_t(at);
+      at += k;
+    }
+    for (uint32_t k = 0; k < s; ++k) place(lv, k, lv.start[cell_tmp_[k] + 1]++);
   }
 
   // On the pool, in buckets of consecutive cells (bucket c * B / cells of cell c): each range of boxes finds their
@@ -305,30 +352,33 @@ class UniformGrid final : public BroadphaseBase {
       for (size_t k = r2.begin(part); k < r2.end(part); ++k) order_[at[bucket_of(cell_tmp_[k])]++] = uint32_t(k);
     });
     lv.start.resize(cells + 1);
-    fill_.resize(cells);
+    lv.start[0] = 0;
+    // Each bucket its cells' counts, then places, in start[c + 1] (as sort_by_cell): start[c0 + 1 .. c1] are its own.
     pool_->parallel_for(buckets, [&](size_t b) {
       const uint64_t c0 = first_cell(b), c1 = first_cell(b + 1);
-      std::fill(fill_.begin() + std::ptrdiff_t(c0), fill_.begin() + std::ptrdiff_t(c1), 0u);
-      for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) ++fill_[cell_tmp_[order_[i]]];
+      uint32_t* at_cell = lv.start.data() + 1;
+      std::fill(at_cell + c0, at_cell + c1, 0u);
+      for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) ++at_cell[cell_tmp_[order_[i]]];
       uint32_t at = uint32_t(bucket_at_[b]);
       for (uint64_t c = c0; c < c1; ++c) {
-        const uint32_t n = fill_[c];
-        lv.start[c] = fill_[c] = at;
+        const uint32_t n = at_cell[c];
+        at_cell[c] = at;
         at += n;
       }
-      for (size_t i = bucket_at_[b]; i < bucket_at_[b + 1]; ++i) {
+      // (Where a box a few ahead will go is fetched first: in the first frame, or after a shuffle, those places are
+      // random.)
+      const size_t i1 = bucket_at_[b + 1];
+      for (size_t i = bucket_at_[b]; i < i1; ++i) {
+        if (i + kAhead < i1) __builtin_prefetch(lv.entries.data() + at_cell[cell_tmp_[order_[i + kAhead]]], 1);
         const uint32_t k = order_[i];
-        place(lv, k, fill_[cell_tmp_[k]]++);
+        place(lv, k, at_cell[cell_tmp_[k]]++);
       }
     });
-    lv.start[cells] = s;
   }
 
-  // Small box k (small_[k], its cell and coordinates in cell_tmp_ and xyz_tmp_) to entry p of the level.
+  // Small box k (its entry in entry_tmp_) to entry p of the level.
   void place(Level& lv, uint32_t k, uint32_t p) {
-    lv.entries[p] = {box_[small_[k]], small_[k]};
-    lv.cell[p] = cell_tmp_[k];
-    lv.xyz[p] = xyz_tmp_[k];
+    lv.entries[p] = entry_tmp_[k];
   }
 
   // Box e against the entries [from, to). Without a branch on the outcome (which the scenes make hard to
@@ -364,8 +414,8 @@ class UniformGrid final : public BroadphaseBase {
     const int dy = lv.dims[1], dz = lv.dims[2];
     for (uint32_t p = first; p < end; ++p) {
       const Entry& e = en[p];
-      const int c = int(lv.cell[p]);
-      const int x = lv.xyz[p][0], y = lv.xyz[p][1], z = lv.xyz[p][2];
+      const int c = int(e.cell);
+      const int x = coord(lv, e.box.lo[0], 0), y = coord(lv, e.box.lo[1], 1), z = coord(lv, e.box.lo[2], 2);
       // The same cell after p, and (x, y, z+1).
       test_run(e, en, p + 1, st[z + 1 < dz ? c + 2 : c + 1], f);
       const int z0 = z > 0 ? z - 1 : 0, z1 = z + 1 < dz ? z + 1 : z;
@@ -391,7 +441,7 @@ class UniformGrid final : public BroadphaseBase {
       c0[a] = std::max(coord(lv, b.lo[a], a) - 1, 0);
       c1[a] = coord(lv, b.hi[a], a);
     }
-    const Entry e{b, id};
+    const Entry e{b, id, 0};
     const Entry* en = lv.entries.data();
     for (int x = c0[0]; x <= c1[0]; ++x)
       for (int y = c0[1]; y <= c1[1]; ++y) {
@@ -409,17 +459,23 @@ class UniformGrid final : public BroadphaseBase {
   static constexpr size_t kParallelSort = 16384;  // pairs of a frame sorted on the pool (in buckets of first bodies)
   static constexpr size_t kBucketsPerThread = 8;
   static constexpr size_t kParallelCells = 1024;  // boxes of a level sorted by cell on the pool
+  static constexpr size_t kAhead = 16;            // boxes (or their places) fetched ahead of the one read
   std::vector<FlatBox> box_;
-  std::vector<uint32_t> ids_, small_, cell_tmp_, fill_;
+  std::vector<uint32_t> ids_, small_, cell_tmp_;
   std::vector<double> size_, sorted_;  // size_: by body
   double sizes_[2] = {0, 0};           // the smallest and largest box
+  uint32_t last_all_ = 0;              // the first level holds every one of this many bodies (0: not so)
   struct Split {
     std::vector<uint32_t> small, large;
     double width = 0, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   };
-  std::vector<PartSlot<std::array<double, 2>>> span_;
+  struct Span {
+    double smallest = HUGE_VAL, largest = 0, lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  };
+  std::vector<PartSlot<Span>> span_;
+  SmallBoxes all_;  // every box: the largest, the range of the lower corners
   std::vector<PartSlot<Split>> split_;
-  std::vector<std::array<int, 3>> xyz_tmp_;
+  std::vector<Entry> entry_tmp_;
   std::vector<Level> levels_;
   std::vector<PartSlot<Found>> out_;  // the pairs of this frame, per part of the search
   // sort_on_pool: where each bucket starts in keys_ and pairs_; the keys by bucket.

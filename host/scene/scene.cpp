@@ -24,7 +24,7 @@ namespace {
 // every non-empty voxel and shell point) grown by one of its voxels, which covers the fixed-point error of a job
 // (a small fraction of a voxel) and rounding here. Gottschalk's separating-axis test: 3 + 3 face axes and 9 edge
 // cross products, with a relative slack on the near-parallel cross products.
-// Ra, ca: A's rotation and the centre of its box in the world (as compute_bounds keeps them for every body).
+// Ra, ca: A's rotation and the centre of its box in the world (placed()).
 bool boxes_overlap(const ObjectType& ta, const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca, const ObjectType& tb,
                    const Eigen::Matrix3d& Rb, const Eigen::Vector3d& cb) {
   const double ga = ta.voxmap().voxel(), gb = tb.voxmap().voxel();
@@ -52,6 +52,18 @@ bool boxes_overlap(const ObjectType& ta, const Eigen::Matrix3d& Ra, const Eigen:
   return true;
 }
 
+
+// A body's rotation matrix and the world centre of its type's box (what body_bounds and boxes_overlap take).
+struct Placed {
+  Eigen::Matrix3d R;
+  Eigen::Vector3d c;
+};
+// (R from a local, not read back from the result: a 16-byte load across two stores that were just made stalls.)
+inline Placed placed(const ObjectType& t, const Body& b) {
+  const Eigen::Matrix3d R = b.pose.rotation.toRotationMatrix();
+  const Eigen::Vector3d c = R * (0.5 * (t.lo + t.hi)) + b.pose.translation;
+  return {R, c};
+}
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
@@ -456,52 +468,88 @@ namespace {
 // least 4 tested pairs each (a microsecond or more each), up to 16 per thread, cut by weight (the shell points the pair
 // looks up: their costs differ, and a thread that finishes early takes another's).
 constexpr size_t kGrainBodies = 64, kGrainPairs = 32, kGrainMidphase = 1024, kGrainTests = 4, kPartsTests = 16;
+constexpr size_t kAheadMidphase = 16;  // pairs ahead whose second sphere is fetched
+constexpr size_t kBlockBodies = 64;    // bodies integrated, then bounded, in turn (8 KiB of bodies)
 }  // namespace
 
-void Simulation::integrate(FrameStats& st) {
-  // Explicit Euler, renormalising the orientation; bounce off the walls by the bounding sphere. Body by body on the
-  // pool; the wall bounces counted per part.
-  const Ranges r = pool_ranges(pool_.get(), scene_.bodies.size(), kGrainBodies);
-  if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
-  for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
-    uint64_t walls = 0;
-    for (size_t i = first; i < end; ++i) {
-      Body& b = scene_.bodies[i];
-      b.pose.translation += b.velocity;
-      const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
-      Eigen::Quaterniond q = b.pose.rotation;
-      q.coeffs() += 0.5 * (w * q).coeffs();
-      b.pose.rotation = q.normalized();
-      const ObjectType& t = *scene_.types[b.type];
-      const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
-      for (int a = 0; a < 3; ++a) {
-        if ((c[a] - t.radius < 0 && b.velocity[a] < 0) || (c[a] + t.radius > scene_.side && b.velocity[a] > 0)) {
-          b.velocity[a] = -b.velocity[a];
-          moved_[i] = 1;
-          ++walls;
-        }
+uint64_t Simulation::integrate(size_t first, size_t end) {
+  uint64_t walls = 0;
+  for (size_t i = first; i < end; ++i) {
+    Body& b = scene_.bodies[i];
+    b.pose.translation += b.velocity;
+    const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
+    Eigen::Quaterniond q = b.pose.rotation;
+    q.coeffs() += 0.5 * (w * q).coeffs();
+    b.pose.rotation = q.normalized();
+    const ObjectType& t = *scene_.types[b.type];
+    const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
+    for (int a = 0; a < 3; ++a) {
+      if ((c[a] - t.radius < 0 && b.velocity[a] < 0) || (c[a] + t.radius > scene_.side && b.velocity[a] > 0)) {
+        b.velocity[a] = -b.velocity[a];
+        moved_[i] = 1;
+        ++walls;
       }
     }
-    part_counts_[part].value = walls;
-  });
-  for (size_t p = 0; p < r.parts; ++p) st.wall_hits += part_counts_[p].value;
+  }
+  return walls;
+}
+
+void Simulation::compute_bounds(size_t first, size_t end) {
+  for (size_t i = first; i < end; ++i) {
+    const Body& b = scene_.bodies[i];
+    const ObjectType& t = *scene_.types[b.type];
+    const Placed p = placed(t, b);
+    bounds_[i] = body_bounds(t, b, p.R, p.c);
+    bounds_[i].moved_unexpectedly = moved_[i] != 0;
+    sphere_[i] = {bounds_[i].centre, bounds_[i].radius};
+  }
+}
+
+void Simulation::size_bounds() {
+  bounds_.resize(scene_.bodies.size());
+  sphere_.resize(scene_.bodies.size());
 }
 
 void Simulation::compute_bounds() {
+  size_bounds();
   const size_t n = scene_.bodies.size();
-  bounds_.resize(n);
-  rot_.resize(n);
-  box_centre_.resize(n);
-  for_ranges(pool_.get(), pool_ranges(pool_.get(), n, kGrainBodies), [&](size_t, size_t first, size_t end) {
-    for (size_t i = first; i < end; ++i) {
-      const Body& b = scene_.bodies[i];
-      const ObjectType& t = *scene_.types[b.type];
-      rot_[i] = b.pose.rotation.toRotationMatrix();
-      box_centre_[i] = rot_[i] * (0.5 * (t.lo + t.hi)) + b.pose.translation;
-      bounds_[i] = body_bounds(t, b, rot_[i], box_centre_[i]);
-      bounds_[i].moved_unexpectedly = moved_[i] != 0;
+  for_ranges(pool_.get(), pool_ranges(pool_.get(), n, kGrainBodies),
+             [&](size_t, size_t first, size_t end) { compute_bounds(first, end); });
+}
+
+void Simulation::integrate_and_bound(FrameStats& st) {
+  // Body by body on the pool, in blocks small enough to stay in the first-level cache between the two steps (one
+  // pass over the bodies' memory, not two). Each part times its steps; the stage's time is split between
+  // t_integrate and t_bounds in the proportion of their summed times.
+  size_bounds();
+  const Ranges r = pool_ranges(pool_.get(), scene_.bodies.size(), kGrainBodies);
+  if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
+  if (part_seconds_.size() < r.parts) part_seconds_.resize(r.parts);
+  // (Without bodies no part runs: its counts must not be another loop's.)
+  for (size_t p = 0; p < r.parts; ++p) part_counts_[p].value = 0, part_seconds_[p].value = {0, 0};
+  const double t0 = now();
+  for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
+    uint64_t walls = 0;
+    double ti = 0, tb = 0;
+    for (size_t b = first; b < end; b += kBlockBodies) {
+      const size_t e = std::min(end, b + kBlockBodies);
+      const double a0 = now();
+      walls += integrate(b, e);
+      const double a1 = now();
+      compute_bounds(b, e);
+      ti += a1 - a0, tb += now() - a1;
     }
+    part_counts_[part].value = walls;
+    part_seconds_[part].value = {ti, tb};
   });
+  const double wall = now() - t0;
+  double ti = 0, tb = 0;
+  for (size_t p = 0; p < r.parts; ++p) {
+    st.wall_hits += part_counts_[p].value;
+    ti += part_seconds_[p].value[0], tb += part_seconds_[p].value[1];
+  }
+  st.t_integrate = ti + tb > 0 ? wall * ti / (ti + tb) : 0;
+  st.t_bounds = wall - st.t_integrate;
 }
 
 size_t Simulation::midphase(const std::vector<BodyPair>& pairs) {
@@ -510,14 +558,35 @@ size_t Simulation::midphase(const std::vector<BodyPair>& pairs) {
   if (part_counts_.size() < r.parts) part_counts_.resize(r.parts);
   // A range with no pairs is never visited: its count must not be a previous frame's (or uninitialised).
   for (size_t p = 0; p < r.parts; ++p) part_counts_[p].value = 0;
+  // Most pairs fail the spheres' test, which reads only the compact spheres; the few that pass are listed, and their
+  // bodies' rotations and box centres worked out (as compute_bounds did) for the boxes' test, their bodies fetched a
+  // few pairs ahead (they are anywhere in memory).
+  if (passing_.size() < r.parts) passing_.resize(r.parts);
   for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
-    uint64_t kept = 0;
+    std::vector<uint32_t>& passing = passing_[part].value;
+    passing.clear();
     for (size_t k = first; k < end; ++k) {
       const uint32_t ia = pairs[k].first, ib = pairs[k].second;
-      const Body &a = scene_.bodies[ia], &b = scene_.bodies[ib];
-      keep_[k] = !opt_.midphase || (spheres_overlap(bounds_[ia], bounds_[ib]) &&
-                                    boxes_overlap(*scene_.types[a.type], rot_[ia], box_centre_[ia],
-                                                  *scene_.types[b.type], rot_[ib], box_centre_[ib]));
+      // Pairs come by first body; the second is anywhere: its sphere is fetched a few pairs ahead.
+      if (k + kAheadMidphase < end) __builtin_prefetch(&sphere_[pairs[k + kAheadMidphase].second]);
+      const bool keep = !opt_.midphase || sphere_[ia].overlaps(sphere_[ib]);
+      keep_[k] = keep;
+      if (keep && opt_.midphase) passing.push_back(uint32_t(k - first));
+    }
+    uint64_t kept = opt_.midphase ? 0 : end - first;
+    for (size_t j = 0; j < passing.size(); ++j) {
+      if (j + kAheadMidphase < passing.size()) {
+        const BodyPair& ahead = pairs[first + passing[j + kAheadMidphase]];
+        for (const uint32_t i : {ahead.first, ahead.second}) {
+          __builtin_prefetch(&scene_.bodies[i]);
+          __builtin_prefetch(reinterpret_cast<const char*>(&scene_.bodies[i] + 1) - 1);
+        }
+      }
+      const size_t k = first + passing[j];
+      const Body &a = scene_.bodies[pairs[k].first], &b = scene_.bodies[pairs[k].second];
+      const ObjectType &ta = *scene_.types[a.type], &tb = *scene_.types[b.type];
+      const Placed pa = placed(ta, a), pb = placed(tb, b);
+      keep_[k] = boxes_overlap(ta, pa.R, pa.c, tb, pb.R, pb.c);
       kept += keep_[k];
     }
     part_counts_[part].value = kept;
@@ -671,13 +740,18 @@ constexpr std::pair<uint64_t FrameStats::*, uint64_t CcdStats::*> kCcdCounts[] =
 
 void Simulation::advance(FrameStats& st) {
   if (!ccd_) {
-    integrate(st);
+    integrate_and_bound(st);
     return;
   }
+  double t0 = now();
   const CcdStats c = ccd_->advance(scene_, *collider_, moved_, st.wall_hits);
   for (const auto& [frame, ccd] : kCcdCounts) st.*frame = c.*ccd;
   st.responses += c.pair_toi;
   st.device_cycles += c.cycles;
+  double t1 = now();
+  st.t_integrate = t1 - t0;
+  compute_bounds();
+  st.t_bounds = now() - t1;
 }
 
 void Simulation::respond_all(FrameStats& st) {
@@ -705,16 +779,11 @@ FrameStats Simulation::step() {
   st.frame = frame_;
   std::fill(moved_.begin(), moved_.end(), uint8_t(0));
 
-  // Integrate (explicit Euler, or without tunnelling with ccd), bouncing off the walls.
-  double t0 = now();
+  // Integrate (explicit Euler, or without tunnelling with ccd), bouncing off the walls, and the bounds.
   advance(st);
-  double t1 = now();
-  st.t_integrate = t1 - t0;
-
-  // Bounds, then the broadphase's pairs.
-  compute_bounds();
   double t2 = now();
-  st.t_bounds = t2 - t1;
+
+  // The broadphase's pairs.
   const std::vector<BodyPair>& pairs = find_pairs();
   double t3 = now();
   st.t_broadphase = t3 - t2;

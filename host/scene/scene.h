@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -77,10 +78,17 @@ class Simulation {
   uint64_t state_hash() const;
 
  private:
+  // Bounds and spheres of bodies [first, end) (sized by size_bounds()); compute_bounds(): of every body, on the pool.
+  void compute_bounds(size_t first, size_t end);
   void compute_bounds();
-  // Explicit Euler, renormalising the orientation; bounce off the walls by the bounding sphere.
-  void integrate(FrameStats& st);
-  // The frame's motion: integrate(), or with ccd the advance without tunnelling (its statistics into st).
+  void size_bounds();
+  // Explicit Euler on bodies [first, end), renormalising the orientation; bounce off the walls by the bounding
+  // sphere. Returns the bounces.
+  uint64_t integrate(size_t first, size_t end);
+  // Every body integrated and bounded, a block at a time (st: wall hits, t_integrate and t_bounds).
+  void integrate_and_bound(FrameStats& st);
+  // The frame's motion and the bounds: integrate_and_bound(), or with ccd the advance without tunnelling (its
+  // statistics into st), then the bounds.
   void advance(FrameStats& st);
   // The mid-phase, the pair tests and the tested pairs' outcomes (requests_, requests_pairs_, results_, outcomes_).
   void narrow(const std::vector<BodyPair>& pairs, const PairOptions& po);
@@ -109,13 +117,22 @@ class Simulation {
   std::unique_ptr<PairCollider> collider_;
   std::unique_ptr<ContinuousCollision> ccd_;  // when opt.ccd
   std::vector<BodyBounds> bounds_;
-  // Each body's rotation matrix and the world centre of its contact box, this frame (for the mid-phase).
-  std::vector<Eigen::Matrix3d> rot_;
-  std::vector<Eigen::Vector3d> box_centre_;
+  // Each body's enclosing sphere this frame (bounds_'s, in 32 bytes: the mid-phase's first test reads only these).
+  struct Sphere {
+    Eigen::Vector3d centre;
+    double radius;
+    bool overlaps(const Sphere& o) const {  // as spheres_overlap()
+      const double r = radius + o.radius;
+      return (centre - o.centre).squaredNorm() <= r * r;
+    }
+  };
+  std::vector<Sphere> sphere_;
   std::vector<uint8_t> moved_;  // bytes, not bits: the threads write them body by body
   std::shared_ptr<ThreadPool> pool_;  // null on one thread
   std::vector<uint8_t> keep_;         // the mid-phase's verdict per broadphase pair
+  std::vector<PartSlot<std::vector<uint32_t>>> passing_;  // midphase(): per range, its pairs whose spheres overlap
   std::vector<PartSlot<uint64_t>> part_counts_;
+  std::vector<PartSlot<std::array<double, 2>>> part_seconds_;  // integrate_and_bound(): each part's two steps
   std::vector<size_t> part_first_;  // midphase(): the first request of each range of broadphase pairs
   std::vector<uint64_t> weight_;    // cut_tests(): the requests' weights, summed (weight_[q]: those before q)
   std::vector<size_t> test_first_;  // cut_tests(): the first request of each part of the pair tests

@@ -230,6 +230,28 @@ TEST(ThreadsSimulate, TheDefaultRunKeepsItsHash) {
   }
 }
 
+TEST(ThreadsSimulate, ManyObjectsKeepTheirHashAndStageTimes) {
+  // `voxcd simulate --objects 65536 --frames 4` as revision 2194d6a ran it (before the grid visited its boxes in the
+  // last frame's order, the mid-phase read compact spheres and the integration and bounds became one pass), on 1
+  // and 2 threads: the same pairs, tested pairs and state; the fused integration and bounds still time each step.
+  for (unsigned threads : {1u, 2u}) {
+    RunConfig c;
+    c.types[0].count = 65536;
+    c.threads = threads;
+    Simulation sim(make_scene(c), c);
+    uint64_t pairs = 0, tested = 0;
+    for (int f = 0; f < 4; ++f) {
+      const FrameStats st = sim.step();
+      pairs += st.pairs, tested += st.tested;
+      EXPECT_GT(st.t_integrate, 0) << "frame " << f;
+      EXPECT_GT(st.t_bounds, 0) << "frame " << f;
+    }
+    EXPECT_EQ(pairs, 189672u) << threads << " threads";
+    EXPECT_EQ(tested, 8847u) << threads << " threads";
+    EXPECT_EQ(sim.state_hash(), 0x9589b37c3919a5d8ull) << std::hex << sim.state_hash() << ", " << threads << " threads";
+  }
+}
+
 // Two 10,000-triangle tori (bench_pair's) at `voxel`, the device a cpu backend of `threads` threads.
 struct Tori {
   std::shared_ptr<const ObjectType> a, b;
