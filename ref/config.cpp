@@ -57,6 +57,17 @@ void DeviceConfig::validate() const {
     require(BANKS == 0, "BANKS = " + std::to_string(BANKS) + " is negative (0: a voxmap copy per lane)");
   }
   range("DEPTH", depth, 0, kMaxDepth);
+  require(BL == 0 || (BL >= 2 && BL <= 4), "BL = " + std::to_string(BL) + " is not 0 (dense only) or 2..4");
+  if (sparse()) {
+    // A shell brick word holds a 64-bit mask, a 6-bit step and the origin flag (docs/contract.md).
+    require(3 * PW >= 72, "a sparse device's shell word (3 * PW = " + std::to_string(3 * PW) +
+                              " bits) cannot hold a shell brick (72 bits: PW >= 24)");
+    require(MEMW >= 8, "a sparse device's table word (MEMW = " + std::to_string(MEMW) +
+                           ") cannot hold a rank and a code (MEMW >= 8)");
+    if (distance())
+      require(TF() >= WB + 3, "TF = " + std::to_string(TF()) + " leaves no room for the weights of a level-3 brick (" +
+                                  "a sparse distance device needs TF >= WB + 3 = " + std::to_string(WB + 3) + ")");
+  }
   // An index must be able to hold every in-grid value 0 .. 2^DW - 1 plus a sign.
   require(index_width() >= DW + 1, "the accumulator's integer part (" + std::to_string(index_width()) +
                                        " bits) cannot hold DW = " + std::to_string(DW));
@@ -69,12 +80,14 @@ std::string DeviceConfig::to_string() const {
   if (distance()) s << " SB " << SB << " WB " << WB;
   if (banked()) s << " BANKS " << BANKS;
   if (depth != 0) s << " DEPTH " << depth;
+  if (sparse()) s << " BL " << BL;
   return s.str();
 }
 
 bool DeviceConfig::same_widths(const DeviceConfig& o) const {
   return PW == o.PW && PF == o.PF && MW == o.MW && MF == o.MF && TW == o.TW && DW == o.DW && MEMW == o.MEMW &&
-         SAW == o.SAW && MAW == o.MAW && TAGW == o.TAGW && SB == o.SB && (!distance() || WB == o.WB);
+         SAW == o.SAW && MAW == o.MAW && TAGW == o.TAGW && SB == o.SB && (!distance() || WB == o.WB) &&
+         BL == o.BL;
 }
 
 }  // namespace voxcd

@@ -43,6 +43,9 @@ struct DeviceConfig {
                   // bank conflicts resolved by the device (timing only, never results)
   int depth = 0;  // register stages added to every lane, 0 .. kMaxDepth (the RTL's Depth; timing only, never
                   // results): each adds one slot register, so one cycle of latency and of a FIRST job's squash
+  int BL = 0;     // 0: dense maps and point shells only; 2..4: a sparse device, which also takes sparse maps (a table
+                  // of cells of 2^BL voxels per axis, uniform or a brick) and sparse shells (shell bricks of 4^3
+                  // points); docs/contract.md, "Sparse voxmaps and shells". More slot registers, never other results
 
   int TF() const { return MF + PF; }
   int states_per_word() const { return MEMW / 2; }
@@ -51,6 +54,8 @@ struct DeviceConfig {
   int nodes_per_word() const { return MEMW / SB; }
   // The lanes share one voxmap memory in BANKS banks (docs/contract.md, "Shared voxmap banks").
   bool banked() const { return BANKS > 0; }
+  // A sparse device (BL > 0) takes sparse maps and shells besides dense ones (ref/sparse.h).
+  bool sparse() const { return BL > 0; }
   // Voxmap copies the device holds: LANES, or one when banked.
   int voxmap_copies() const { return banked() ? 1 : LANES; }
   // Width of an interpolated distance, a job's threshold and a hit record's distance: SB + 3*WB.
@@ -67,10 +72,11 @@ struct DeviceConfig {
   // Throws ConfigError naming the parameter and the rule it breaks.
   void validate() const;
   // "PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 LANES 4 SAW 16 MAW 18 TAGW 16", then "SB 8 WB 8" on a
-  // distance device, "BANKS B" on a banked one and "DEPTH D" on a deeper pipeline (a 2-bit device's text is the
-  // paper device's, unchanged).
+  // distance device, "BANKS B" on a banked one, "DEPTH D" on a deeper pipeline and "BL B" on a sparse one (a 2-bit
+  // device's text is the paper device's, unchanged).
   std::string to_string() const;
-  // Same widths; LANES, BANKS and depth may differ (they change timing, never results).
+  // Same widths (BL among them: it decides which jobs a device takes); LANES, BANKS and depth may differ (they
+  // change timing, never results).
   bool same_widths(const DeviceConfig& o) const;
   bool operator==(const DeviceConfig& o) const {
     return same_widths(o) && LANES == o.LANES && BANKS == o.BANKS && depth == o.depth;

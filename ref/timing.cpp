@@ -5,6 +5,7 @@
 #include <string>
 
 #include "voxcd/ref/banks.h"
+#include "voxcd/ref/sparse.h"
 
 namespace voxcd {
 
@@ -14,23 +15,68 @@ uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 
 }  // namespace
 
-uint64_t job_groups(const DeviceConfig& cfg, const Job& job) {
-  const uint64_t count = job.shell_count;
-  return count == 0 ? 1 : ceil_div(count, uint64_t(cfg.LANES));
+PipelinePlaces pipeline_places(const DeviceConfig& cfg) {
+  PipelinePlaces p;
+  const int P = pipeline_slots(cfg);
+  // R4 follows R0 (after the shell word register on a sparse device), PROD, ACC and R3, and the depth's IN, SUM,
+  // FLOOR and ADDR stages.
+  p.table_read = (cfg.sparse() ? 1 : 0) + 4 + (cfg.depth > kRankIn) + (cfg.depth > kRankSum) +
+                 (cfg.depth > kRankFloor) + (cfg.depth > kRankAddr);
+  // R5, the entry, on a distance device the rows: then the brick word.
+  if (cfg.sparse()) p.brick_read = p.table_read + (cfg.distance() ? 3 : 2);
+  p.hit_known = (!cfg.distance() && cfg.depth > kRankRead) ? P - 2 : P - 1;
+  return p;
 }
 
-JobHits job_hits(const DeviceConfig& cfg, const Job& job, size_t j, const Record* hits, size_t n, size_t first) {
-  const uint64_t L = uint64_t(cfg.LANES);
-  const uint64_t count = job.shell_count;
-  const uint64_t groups = job_groups(cfg, job);
+uint64_t JobSlots::slot_of(uint64_t point) const {
+  if (starts.empty()) return point / lanes;
+  // The last slot that begins at or before the point: an empty slot (an origin word) shares its beginning with the
+  // slot after it, which holds the point.
+  return uint64_t(std::upper_bound(starts.begin(), starts.end() - 1, uint32_t(point)) - starts.begin()) - 1;
+}
+
+JobSlots job_slots(const DeviceConfig& cfg, const Job& job) {
+  if (job.sparse_shell())
+    throw std::invalid_argument("timing: job tag " + std::to_string(job.tag) +
+                                " has a sparse shell, whose slots follow its words: time it with the shell memory");
+  JobSlots s;
+  s.lanes = uint64_t(cfg.LANES);
+  s.points = job.shell_count;
+  s.groups = s.points == 0 ? 1 : ceil_div(s.points, s.lanes);
+  return s;
+}
+
+JobSlots job_slots(const DeviceConfig& cfg, const std::vector<ShellWord>& shell, const Job& job) {
+  if (!job.sparse_shell()) return job_slots(cfg, job);
+  std::vector<uint32_t> pops;
+  shell_points(cfg, shell, job, &pops);
+  JobSlots s;
+  s.lanes = uint64_t(cfg.LANES);
+  uint32_t point = 0;
+  for (uint32_t pop : pops) {
+    const uint64_t n = pop == 0 ? 1 : ceil_div(pop, s.lanes);
+    for (uint64_t k = 0; k < n; ++k) s.starts.push_back(point + uint32_t(std::min<uint64_t>(k * s.lanes, pop)));
+    point += pop;
+  }
+  if (s.starts.empty()) s.starts.push_back(0);  // an empty job: one empty slot
+  s.groups = s.starts.size();
+  s.points = point;
+  s.starts.push_back(point);
+  return s;
+}
+
+uint64_t job_groups(const DeviceConfig& cfg, const Job& job) { return job_slots(cfg, job).groups; }
+
+JobHits job_hits(const JobSlots& slots, const Job& job, size_t j, const Record* hits, size_t n, size_t first) {
+  const uint64_t groups = slots.groups;
   JobHits s;
   s.first_group = s.last_group = groups;
   for (size_t k = 0; k < n; ++k) {
     const Record& h = hits[k];
-    if (h.tag != job.tag || h.point >= count)
+    if (h.tag != job.tag || h.point >= slots.points)
       throw std::invalid_argument("timing: hit record " + std::to_string(first + k) + " does not belong to job " +
                                   std::to_string(j));
-    const uint64_t g = h.point / L;
+    const uint64_t g = slots.slot_of(h.point);
     if (s.records && g < s.last_group)
       throw std::invalid_argument("timing: hit record " + std::to_string(first + k) + " of job " + std::to_string(j) +
                                   " is not in ascending point order");
@@ -41,14 +87,17 @@ JobHits job_hits(const DeviceConfig& cfg, const Job& job, size_t j, const Record
   return s;
 }
 
-JobHits job_hits(const DeviceConfig& cfg, const Job& job, const uint32_t* points, size_t n) {
-  const uint64_t L = uint64_t(cfg.LANES);
-  const uint64_t groups = job_groups(cfg, job);
+JobHits job_hits(const DeviceConfig& cfg, const Job& job, size_t j, const Record* hits, size_t n, size_t first) {
+  return job_hits(job_slots(cfg, job), job, j, hits, n, first);
+}
+
+JobHits job_hits(const JobSlots& slots, const uint32_t* points, size_t n) {
+  const uint64_t L = slots.lanes;
   JobHits s;
-  s.first_group = s.last_group = groups;
+  s.first_group = s.last_group = slots.groups;
   if (n == 0) return s;
   s.records = n;
-  uint64_t last = points[0] / L, distinct = 1;
+  uint64_t last = slots.slot_of(points[0]), distinct = 1;
   s.first_group = last;
   auto count = [&](auto group) {  // a shift where the lanes are a power of two: a division a hit costs more
     for (size_t k = 1; k < n; ++k) {
@@ -57,7 +106,9 @@ JobHits job_hits(const DeviceConfig& cfg, const Job& job, const uint32_t* points
       last = g;
     }
   };
-  if ((L & (L - 1)) == 0) {
+  if (!slots.starts.empty()) {
+    count([&slots](uint64_t p) { return slots.slot_of(p); });
+  } else if ((L & (L - 1)) == 0) {
     const int shift = __builtin_ctzll(L);
     count([shift](uint64_t p) { return p >> shift; });
   } else {
@@ -66,6 +117,10 @@ JobHits job_hits(const DeviceConfig& cfg, const Job& job, const uint32_t* points
   s.groups = distinct;
   s.last_group = last;
   return s;
+}
+
+JobHits job_hits(const DeviceConfig& cfg, const Job& job, const uint32_t* points, size_t n) {
+  return job_hits(job_slots(cfg, job), points, n);
 }
 
 JobHits join_job_hits(const JobHits& a, const JobHits& b) {
@@ -81,9 +136,14 @@ JobHits join_job_hits(const JobHits& a, const JobHits& b) {
 
 JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHits& h, uint32_t done_hits,
                  const BankCycles& bank) {
-  const uint64_t L = uint64_t(cfg.LANES), P = uint64_t(pipeline_slots(cfg));
-  const uint64_t count = job.shell_count;
-  const uint64_t groups = count == 0 ? 1 : ceil_div(count, L);
+  return job_span(cfg, job, job_slots(cfg, job), j, h, done_hits, bank);
+}
+
+JobSpan job_span(const DeviceConfig& cfg, const Job& job, const JobSlots& slots, size_t j, const JobHits& h,
+                 uint32_t done_hits, const BankCycles& bank) {
+  const uint64_t P = uint64_t(pipeline_slots(cfg));
+  const uint64_t count = slots.points;
+  const uint64_t groups = slots.groups;
   JobSpan s;
   if (job.mode == Mode::First && done_hits > 0) {
     if (h.first_group == groups)
@@ -99,7 +159,7 @@ JobSpan job_span(const DeviceConfig& cfg, const Job& job, size_t j, const JobHit
     s.done = f + 1 + (bank.conflicts - window);
     s.advance = s.done + 1 + drain;
     s.slots = f + 1 + drain - window;
-    s.points = std::min(count, (f + 1) * L);
+    s.points = slots.end(f);
     return s;
   } else {
     // A slot takes max(1, its records) cycles: its hit records (ALL only), and the completion record on the
@@ -127,8 +187,10 @@ uint64_t span_cycles(const DeviceConfig& cfg, const JobSpan* prev, const JobSpan
 
 namespace {
 
+// `shell`: the shell memory the jobs read (null: dense shells only).
 std::vector<JobTiming> timing_of(const DeviceConfig& cfg, const std::vector<Job>& jobs,
-                                 const std::vector<Record>& records, const std::vector<BankCycles>* bank) {
+                                 const std::vector<Record>& records, const std::vector<BankCycles>* bank,
+                                 const std::vector<ShellWord>* shell) {
   if (bank && bank->size() != jobs.size())
     throw std::invalid_argument("timing: " + std::to_string(bank->size()) + " bank conflict counts for " +
                                 std::to_string(jobs.size()) + " jobs");
@@ -139,11 +201,12 @@ std::vector<JobTiming> timing_of(const DeviceConfig& cfg, const std::vector<Job>
     const Job& job = jobs[j];
     const size_t first = r;
     while (r < records.size() && records[r].kind == Record::Hit) ++r;
-    const JobHits h = job_hits(cfg, job, j, records.data() + first, r - first, first);
+    const JobSlots slots = shell ? job_slots(cfg, *shell, job) : job_slots(cfg, job);
+    const JobHits h = job_hits(slots, job, j, records.data() + first, r - first, first);
     if (r == records.size() || records[r].tag != job.tag)
       throw std::invalid_argument("timing: no completion record for job " + std::to_string(j));
     const Record& done = records[r++];
-    const JobSpan s = job_span(cfg, job, j, h, done.hits, bank ? (*bank)[j] : BankCycles{});
+    const JobSpan s = job_span(cfg, job, slots, j, h, done.hits, bank ? (*bank)[j] : BankCycles{});
     out[j].cycles = span_cycles(cfg, j ? &prev : nullptr, s);
     out[j].slots = s.slots;
     out[j].points = s.points;
@@ -175,19 +238,25 @@ void annotate(const std::vector<JobTiming>& t, std::vector<Record>& records) {
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records) {
   require_unbanked(cfg);
-  return timing_of(cfg, jobs, records, nullptr);
+  return timing_of(cfg, jobs, records, nullptr, nullptr);
 }
 
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records, const std::vector<BankCycles>& bank) {
-  return timing_of(cfg, jobs, records, &bank);
+  return timing_of(cfg, jobs, records, &bank, nullptr);
+}
+
+std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const std::vector<ShellWord>& shell,
+                                  const std::vector<Job>& jobs, const std::vector<Record>& records,
+                                  const std::vector<BankCycles>& bank) {
+  return timing_of(cfg, jobs, records, &bank, &shell);
 }
 
 std::vector<JobTiming> job_timing(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs,
                                   const std::vector<Record>& records) {
-  if (!cfg.banked()) return timing_of(cfg, jobs, records, nullptr);
-  const std::vector<BankCycles> bank = bank_cycles(cfg, mem.shell, jobs, records);
-  return timing_of(cfg, jobs, records, &bank);
+  if (!cfg.banked()) return timing_of(cfg, jobs, records, nullptr, &mem.shell);
+  const std::vector<BankCycles> bank = bank_cycles(cfg, mem, jobs, records);
+  return timing_of(cfg, jobs, records, &bank, &mem.shell);
 }
 
 void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records) {
@@ -202,6 +271,11 @@ void annotate_cycles(const DeviceConfig& cfg, const DeviceMemory& mem, const std
 void annotate_cycles(const DeviceConfig& cfg, const std::vector<Job>& jobs, std::vector<Record>& records,
                      const std::vector<BankCycles>& bank) {
   annotate(job_timing(cfg, jobs, records, bank), records);
+}
+
+void annotate_cycles(const DeviceConfig& cfg, const std::vector<ShellWord>& shell, const std::vector<Job>& jobs,
+                     std::vector<Record>& records, const std::vector<BankCycles>& bank) {
+  annotate(job_timing(cfg, shell, jobs, records, bank), records);
 }
 
 uint64_t stream_cycles(const std::vector<JobTiming>& t) {

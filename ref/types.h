@@ -24,6 +24,9 @@ struct ShellWord {
   bool operator==(const ShellWord& o) const { return x == o.x && y == o.y && z == o.z; }
 };
 
+// Job::sparse bits: the map is sparse (a table of cells and bricks), the shell is sparse (shell bricks).
+constexpr uint8_t kSparseMap = 1, kSparseShell = 2;
+
 // One job: test shell words [shell_base, shell_base + shell_count) against the map at map_base.
 struct Job {
   uint32_t tag = 0;
@@ -36,8 +39,15 @@ struct Job {
   int64_t M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // MW-bit signed, MF fraction bits
   int64_t t[3] = {0, 0, 0};                             // TW-bit signed, TF = MF + PF fraction bits
   int64_t threshold = 0;  // distance voxmaps: hit when the interpolated distance D <= threshold (IW-bit signed)
+  // Sparse devices (DeviceConfig::BL > 0): kSparseMap, kSparseShell; a sparse map's bricks lie from word brick_base,
+  // brick_units units of brick memory (ref/sparse.h); both 0 for a dense map.
+  uint8_t sparse = 0;
+  uint32_t brick_base = 0;
+  uint32_t brick_units = 0;
 
   uint64_t voxels() const { return uint64_t{nx} * ny * nz; }
+  bool sparse_map() const { return sparse & kSparseMap; }
+  bool sparse_shell() const { return sparse & kSparseShell; }
 };
 
 // One record of the output stream. Hits of a job come in ascending point order, then its completion record;

@@ -9,7 +9,9 @@
 
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/float_model.h"
+#include "voxcd/ref/detail/vector_gen_sparse.h"
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/sparse.h"
 
 namespace voxcd {
 
@@ -17,11 +19,14 @@ namespace {
 
 struct MapDesc {
   uint32_t base, nx, ny, nz;
+  bool sparse = false;  // a sparse map: its bricks at brick_base (brick_units units)
+  uint32_t brick_base = 0, brick_units = 0;
 };
 struct Block {
   uint32_t base, count;
   double centre[3];
-  double extent;  // largest axis extent, in voxels
+  double extent;        // largest axis extent, in voxels
+  bool sparse = false;  // shell words of a sparse shell (count words)
 };
 
 class Generator {
@@ -32,7 +37,9 @@ class Generator {
     GeneratedVectors g;
     g.config = cfg_;
     make_maps(g.memory);
+    if (cfg_.sparse()) make_sparse_maps(g.memory);
     make_shell(g.memory);
+    if (cfg_.sparse()) make_sparse_shell(g.memory);
     for (size_t k = 0; k < opt_.jobs; ++k) g.jobs.push_back(make_job(uint32_t(k)));
     return g;
   }
@@ -165,6 +172,73 @@ class Generator {
           const uint64_t sh = uint64_t(cfg_.SB) * a.slot;
           mem.map[a.word] = (mem.map[a.word] & ~(vmask << sh)) | ((uint64_t(q) & vmask) << sh);
         }
+  }
+
+  // A sparse device's sparse maps (ref/detail/vector_gen_sparse.h), after the dense ones, with garbage between and
+  // around them: sizes from a single cell to more cells than a table word holds, every pattern.
+  void make_sparse_maps(DeviceMemory& mem) {
+    const uint64_t B = brick_edge(cfg_);
+    std::vector<std::array<uint64_t, 3>> dims = {
+        {1, 1, 1}, {B, B, B}, {3 * B + 1, B - 1, 2}, {37, 17, 9}, {uni(1, 40), uni(1, 40), uni(1, 40)},
+        {uni(1, 24), uni(1, 24), uni(1, 24)}, {std::min<uint64_t>(cfg_.max_dim(), 96), 2 * B, 3}};
+    const uint64_t word_mask = cfg_.MEMW >= 64 ? ~uint64_t{0} : (uint64_t{1} << cfg_.MEMW) - 1;
+    const int shift = int(uni(0, detail::kSparseMapPatterns - 1));
+    uint64_t next = mem.map.size() + uni(1, 9);
+    for (size_t k = 0; k < dims.size(); ++k) {
+      detail::SparseMapPlan plan;
+      const int pattern = int((k + size_t(shift)) % detail::kSparseMapPatterns);
+      const size_t before = mem.map.size();
+      if (!detail::add_sparse_map(cfg_, rng_, clip_dim(dims[k][0]), clip_dim(dims[k][1]), clip_dim(dims[k][2]),
+                                  pattern, next, cfg_.map_depth(), mem.map, plan))
+        continue;
+      for (size_t w = before; w < mem.map.size(); ++w)
+        if (w < plan.map_base || (w >= plan.map_base + table_words(cfg_, sparse_job(plan)) && w < plan.brick_base))
+          mem.map[w] = rng_() & word_mask;  // garbage before and between
+      maps_.push_back({plan.map_base, plan.nx, plan.ny, plan.nz, true, plan.brick_base, plan.brick_units});
+      next = mem.map.size() + uni(0, 5);
+    }
+  }
+
+  static Job sparse_job(const detail::SparseMapPlan& p) {
+    Job j;
+    j.nx = p.nx, j.ny = p.ny, j.nz = p.nz;
+    return j;
+  }
+
+  // A sparse device's sparse shells: blocks of every pattern.
+  void make_sparse_shell(DeviceMemory& mem) {
+    const size_t room = cfg_.shell_depth() > mem.shell.size() ? cfg_.shell_depth() - mem.shell.size() : 0;
+    for (int pattern = 0; pattern < detail::kSparseShellPatterns; ++pattern) {
+      const size_t words = std::min<size_t>(room / detail::kSparseShellPatterns, 120);
+      if (words == 0) return;
+      std::vector<ShellWord> block = detail::sparse_shell_block(cfg_, rng_, pattern, words);
+      if (block.empty()) continue;
+      Job j;
+      j.shell_base = uint32_t(mem.shell.size());
+      j.shell_count = uint32_t(block.size());
+      const std::vector<ShellWord> pts = shell_points(cfg_, block, Job{0, Mode::All, 0, 0, j.shell_count});
+      const size_t first = blocks_.size();
+      add_block(mem, block);
+      if (blocks_.size() == first) continue;
+      Block& b = blocks_.back();
+      b.sparse = true;
+      extent_of(pts, b);
+    }
+  }
+
+  // A block's centre and extent from its points (a sparse block's words are not points).
+  void extent_of(const std::vector<ShellWord>& pts, Block& b) const {
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    b.extent = 0;
+    for (int i = 0; i < 3; ++i) b.centre[i] = 0;
+    for (const ShellWord& w : pts)
+      for (int i = 0; i < 3; ++i) {
+        const double v = to_double(w[i], cfg_.PF);
+        b.centre[i] += v / double(pts.size());
+        lo[i] = std::min(lo[i], v);
+        hi[i] = std::max(hi[i], v);
+      }
+    for (int i = 0; i < 3; ++i) b.extent = pts.empty() ? 0 : std::max(b.extent, hi[i] - lo[i]);
   }
 
   // Raw shell coordinate for a real value, clipped into PW.
@@ -366,7 +440,13 @@ class Generator {
     j.nx = m.nx;
     j.ny = m.ny;
     j.nz = m.nz;
+    if (m.sparse) {
+      j.sparse |= kSparseMap;
+      j.brick_base = m.brick_base;
+      j.brick_units = m.brick_units;
+    }
     const Block& b = blocks_[uni(0, blocks_.size() - 1)];
+    if (b.sparse) j.sparse |= kSparseShell;
     // Shell window: empty, one point, around a lane boundary, or random.
     const uint64_t L = uint64_t(cfg_.LANES);
     uint64_t count = 0;

@@ -62,14 +62,14 @@ class Parser {
   }
 
  private:
-  // "voxcd-vectors 1" or "voxcd-vectors 2".
+  // "voxcd-vectors 1", "voxcd-vectors 2" or "voxcd-vectors 3".
   void parse_header(VectorFile& f) {
     if (tok_[0] != "voxcd-vectors")
-      fail("the file must start with 'voxcd-vectors 1' or 'voxcd-vectors 2', found '" + std::string(tok_[0]) + "'");
+      fail("the file must start with 'voxcd-vectors 1', 2 or 3, found '" + std::string(tok_[0]) + "'");
     want(2);
-    if (tok_[1] != "1" && tok_[1] != "2")
-      fail("unsupported vector format version '" + std::string(tok_[1]) + "' (this reads 1 and 2)");
-    version_ = tok_[1] == "1" ? 1 : 2;
+    if (tok_[1] != "1" && tok_[1] != "2" && tok_[1] != "3")
+      fail("unsupported vector format version '" + std::string(tok_[1]) + "' (this reads 1, 2 and 3)");
+    version_ = tok_[1][0] - '0';
     f.version = version_;
   }
 
@@ -195,12 +195,15 @@ class Parser {
                                         {"SAW", &c.SAW},   {"MAW", &c.MAW}, {"TAGW", &c.TAGW}, {"BANKS", &c.BANKS},
                                         {"DEPTH", &c.depth}};
     if (version_ >= 2) keys.insert({{"SB", &c.SB}, {"WB", &c.WB}});
+    if (version_ >= 3) keys.insert({"BL", &c.BL});
     std::map<std::string, bool> seen;
     for (size_t i = 1; i + 1 < tok_.size(); i += 2) {
       const std::string k(tok_[i]);
       auto it = keys.find(k);
       if (it == keys.end() && version_ == 1 && (k == "SB" || k == "WB"))
         fail("config parameter " + k + " needs format version 2 ('voxcd-vectors 2')");
+      if (it == keys.end() && version_ < 3 && k == "BL")
+        fail("config parameter BL needs format version 3 ('voxcd-vectors 3')");
       if (it == keys.end()) fail("unknown config parameter '" + k + "'");
       if (seen[k]) fail("config parameter " + k + " given twice");
       seen[k] = true;
@@ -266,7 +269,7 @@ class Parser {
   }
 
   void parse_job(VectorFile& f) {
-    want(version_ == 1 ? 22 : 23);
+    want(version_ == 1 ? 22 : version_ == 2 ? 23 : 26);
     const DeviceConfig& c = f.config;
     Job j;
     j.tag = u32(1, "TAG", c.TAGW);
@@ -287,6 +290,13 @@ class Parser {
     static const char* tname[3] = {"T0", "T1", "T2"};
     for (int k = 0; k < 3; ++k) j.t[k] = signed_field(19 + k, tname[k], c.TW, "TW");
     if (version_ >= 2) j.threshold = signed_field(22, "THRESHOLD", c.distance() ? c.IW() : 64, "IW");
+    if (version_ >= 3) {
+      const uint64_t sparse = u64(23, "SPARSE");
+      if (sparse > 3) fail("SPARSE " + std::to_string(sparse) + " is outside 0..3 (1: the map, 2: the shell)");
+      j.sparse = uint8_t(sparse);
+      j.brick_base = u32(24, "BRICK_BASE", c.MAW);
+      j.brick_units = u32(25, "BRICK_UNITS", c.MAW + 1);
+    }
     f.jobs.push_back(j);
     f.job_lines.push_back(line_);
   }
@@ -307,7 +317,7 @@ DeviceConfig parse_config_pairs(const std::string& pairs, const std::string& wha
   if (pairs.find('\n') != std::string::npos) throw VectorError(what + ": one line of NAME VALUE pairs expected");
   const std::string prefix = what + ":2: ";
   try {
-    return parse_vectors("voxcd-vectors 2\nconfig " + pairs + "\n", what).config;
+    return parse_vectors("voxcd-vectors 3\nconfig " + pairs + "\n", what).config;
   } catch (const VectorError& e) {
     const std::string m = e.what();
     throw VectorError(what + ": " + (m.rfind(prefix, 0) == 0 ? m.substr(prefix.size()) : m));
@@ -322,7 +332,7 @@ VectorFile read_vectors(const std::string& path) {
   return parse_vectors(text, path);
 }
 
-int vector_version(const DeviceConfig& cfg) { return cfg.distance() ? 2 : 1; }
+int vector_version(const DeviceConfig& cfg) { return cfg.sparse() ? 3 : cfg.distance() ? 2 : 1; }
 
 std::string job_line(const Job& j, int version) {
   std::ostringstream s;
@@ -332,6 +342,7 @@ std::string job_line(const Job& j, int version) {
     for (int k = 0; k < 3; ++k) s << ' ' << j.M[i][k];
   for (int i = 0; i < 3; ++i) s << ' ' << j.t[i];
   if (version >= 2) s << ' ' << j.threshold;
+  if (version >= 3) s << ' ' << unsigned(j.sparse) << ' ' << j.brick_base << ' ' << j.brick_units;
   return s.str();
 }
 
@@ -349,6 +360,7 @@ void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, 
   if (cfg.distance()) os << " SB " << cfg.SB << " WB " << cfg.WB;
   if (cfg.banked()) os << " BANKS " << cfg.BANKS;
   if (cfg.depth != 0) os << " DEPTH " << cfg.depth;
+  if (cfg.sparse()) os << " BL " << cfg.BL;
   os << '\n';
   std::string buf;
   os << "shell " << mem.shell.size() << '\n';

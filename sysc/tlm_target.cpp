@@ -37,7 +37,7 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   runner_.run_validated_into(jobs, batch_, /*cycles=*/false);
   // The completion records get ref/timing.h's cycles as annotate_cycles gives them (cycles, points, no stalls),
   // in the same pass that encodes the batch's records into the result queue, where they wait for their edge.
-  const std::vector<BankCycles> bank = cfg_.banked() ? bank_cycles(cfg_, runner_.shell(), jobs, batch_)
+  const std::vector<BankCycles> bank = cfg_.banked() ? bank_cycles(cfg_, runner_.shell(), runner_.map(), jobs, batch_)
                                                       : std::vector<BankCycles>(jobs.size());
   const std::vector<JobTiming> timing = job_timing(cfg_, jobs, batch_, bank);
   future_.erase(future_.begin(), future_.begin() + std::ptrdiff_t(future_head_));  // the jobs already readable

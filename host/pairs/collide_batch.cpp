@@ -167,7 +167,7 @@ void PairCollider::run_records(const std::vector<Job>& js) {
       const JobHits h = job_hits(cfg, js[job], job, records_.data() + first, r - first, first);
       // A banked device's conflicts from the shell the device holds (the image's), as ref/banks.h counts them.
       o.span = job_span(cfg, js[job], job, h, rec.hits,
-                        cfg.banked() ? job_bank_cycles(cfg, image_.memory().shell, js[job], h, rec.hits)
+                        cfg.banked() ? job_bank_cycles(cfg, image_.memory().shell, image_.memory().map, js[job], h, rec.hits)
                                      : BankCycles{});
     }
     ++job, first = r + 1;

@@ -346,7 +346,7 @@ void FastRunner::write_map(uint64_t first, const uint64_t* words, size_t n) {
 }
 
 BankCycles FastRunner::bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const {
-  return job_bank_cycles(cfg_, shell_, job, hits, done_hits);
+  return job_bank_cycles(cfg_, shell_, map_, job, hits, done_hits);
 }
 
 std::vector<Record> FastRunner::run(const std::vector<Job>& jobs, bool cycles) {
@@ -380,7 +380,7 @@ void FastRunner::run_hits(const Job* jobs, size_t n, HitColumns& hits, std::vect
     // The timing model's cycles from the hits' summary, as annotate_cycles gives them for this run as a stream.
     const JobHits sum = job_hits(cfg_, job, hits.point.data() + o.first, o.records);
     o.span = job_span(cfg_, job, j, sum, o.hits,
-                      cfg_.banked() ? job_bank_cycles(cfg_, shell_, job, sum, o.hits) : BankCycles{});
+                      cfg_.banked() ? job_bank_cycles(cfg_, shell_, map_, job, sum, o.hits) : BankCycles{});
     o.cycles = span_cycles(cfg_, j ? &prev : nullptr, o.span);
     prev = o.span;
   }
@@ -429,7 +429,7 @@ void FastRunner::run_serial(const std::vector<Job>& jobs, std::vector<Record>& o
     }
     push_record(out, Record::Done, jobs[j].tag).hits = hits;
   }
-  if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_cycles(cfg_, shell_, jobs, out));
+  if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_cycles(cfg_, shell_, map_, jobs, out));
   else if (cycles) annotate_cycles(cfg_, jobs, out);
 }
 
@@ -517,7 +517,7 @@ void FastRunner::finish_task(size_t t, const std::vector<Job>& jobs, std::vector
               out.begin() + std::ptrdiff_t(p.out));
   }
   auto conflicts = [&](const Job& job, const JobHits& sum, uint32_t n) -> BankCycles {
-    return cfg_.banked() ? job_bank_cycles(cfg_, shell_, job, sum, n) : BankCycles{};
+    return cfg_.banked() ? job_bank_cycles(cfg_, shell_, map_, job, sum, n) : BankCycles{};
   };
   const size_t j0 = t == 0 ? 0 : pieces_[task_first_[t]].job;
   const size_t j1 = t + 1 == tasks ? jobs.size() : pieces_[task_first_[t + 1]].job;

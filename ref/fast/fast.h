@@ -73,6 +73,7 @@ class FastRunner {
   uint64_t shell_words() const { return shell_.size(); }
   uint64_t map_words() const { return map_.size(); }
   const std::vector<ShellWord>& shell() const { return shell_; }
+  const std::vector<uint64_t>& map() const { return map_; }
   // The bytes the copies of distance maps in cell order may take together (default kNodeCopyLimit; 0: none, every
   // map read from its parity banks), and the bytes they take now. Results never depend on either. Setting the
   // limit drops the copies.

@@ -90,7 +90,7 @@ TEST(Banks, TimingABankedDeviceNeedsItsReads) {
 TEST(Banks, ConflictsAddToTheCyclesOfTheirJobOnly) {
   const GeneratedVectors v = banked_vectors(8, 2, 12, 400);
   const std::vector<Record> recs = run_stream(v.config, v.memory, v.jobs);
-  const std::vector<uint64_t> c = bank_conflicts(v.config, v.memory.shell, v.jobs, recs);
+  const std::vector<uint64_t> c = bank_conflicts(v.config, v.memory, v.jobs, recs);
   DeviceConfig copies = v.config;
   copies.BANKS = 0;
   const std::vector<JobTiming> with = job_timing(v.config, v.memory, v.jobs, recs);
@@ -128,11 +128,11 @@ TEST(Banks, FirstStopsCountingAtTheSlotOfItsHit) {
   std::vector<Record> recs = run_stream(cfg, mem, {job});
   ASSERT_EQ(recs.size(), 2u);
   EXPECT_EQ(recs[0].point, 1u);
-  EXPECT_EQ(bank_conflicts(cfg, mem.shell, {job}, recs), (std::vector<uint64_t>{1}))
+  EXPECT_EQ(bank_conflicts(cfg, mem, {job}, recs), (std::vector<uint64_t>{1}))
       << "the hit is in slot 0: its one conflict, none of the three slots behind it";
   job.mode = Mode::Count;
   recs = run_stream(cfg, mem, {job});
-  EXPECT_EQ(bank_conflicts(cfg, mem.shell, {job}, recs), (std::vector<uint64_t>{4})) << "four slots of two rounds";
+  EXPECT_EQ(bank_conflicts(cfg, mem, {job}, recs), (std::vector<uint64_t>{4})) << "four slots of two rounds";
 }
 
 // A distance device's lane reads the 8 node words of its cell, one from each parity bank; with BANKS = 1 two lanes
@@ -145,7 +145,7 @@ TEST(Banks, DistanceDevicesReadEightWordsAndKeepReadingBehindAFirstHit) {
   cfg.LANES = 2;
   cfg.BANKS = 1;
   ASSERT_EQ(memory_banks(cfg), 8);
-  ASSERT_EQ(first_read_window(cfg), uint64_t(kDistanceSlots));
+  ASSERT_EQ(pipeline_places(cfg).hit_known - pipeline_places(cfg).table_read - 1, kDistanceSlots);
   DeviceMemory mem;
   Job job;
   job.mode = Mode::First;
@@ -158,8 +158,8 @@ TEST(Banks, DistanceDevicesReadEightWordsAndKeepReadingBehindAFirstHit) {
     const std::vector<Record> recs = run_stream(cfg, mem, {job, Job{}});
     ASSERT_EQ(recs.size(), 3u);
     EXPECT_EQ(recs[0].point, 0u);
-    EXPECT_EQ(slot_rounds(cfg, mem.shell, job, 0), 2u);
-    const std::vector<BankCycles> b = bank_cycles(cfg, mem.shell, {job, Job{}}, recs);
+    EXPECT_EQ(slot_rounds(cfg, mem.map, job, job_points(cfg, mem.shell, job), job_slots(cfg, job), 0).table, 2u);
+    const std::vector<BankCycles> b = bank_cycles(cfg, mem, {job, Job{}}, recs);
     EXPECT_EQ(b[0].conflicts, 3u) << "slot 0's conflict and the window's two empty slots";
     EXPECT_EQ(b[0].window, 2u);
     const std::vector<JobTiming> t = job_timing(cfg, {job, Job{}}, recs, b);

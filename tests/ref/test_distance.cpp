@@ -320,7 +320,7 @@ TEST(DistanceVectors, Version2RoundTripsAndVersion1StaysAsItWas) {
     }
   };
   fails("voxcd-vectors 1\nconfig SB 8\n", "x.vec:2: config parameter SB needs format version 2");
-  fails("voxcd-vectors 3\n", "x.vec:1: unsupported vector format version '3' (this reads 1 and 2)");
+  fails("voxcd-vectors 4\n", "x.vec:1: unsupported vector format version '4' (this reads 1, 2 and 3)");
   fails("voxcd-vectors 2\nconfig SB 8\njob 0 ALL 6 0 0 0 1 1 1 65536 0 0 0 65536 0 0 0 65536 0 0 0\n",
         "x.vec:3: 'job' takes 22 fields, found 21");
   fails("voxcd-vectors 2\nconfig SB 8\nhit 0 0 0 0 0 0\n", "x.vec:3: 'hit' takes 7 fields, found 6");

@@ -121,7 +121,7 @@ TEST(Vectors, MalformedFilesGiveFileLineAndReason) {
   const std::vector<Bad> bad = {
       {"empty", "", 0, "empty file"},
       {"no header", "config PW 24\n", 1, "must start with 'voxcd-vectors 1'"},
-      {"version", "voxcd-vectors 3\n", 1, "unsupported vector format version '3' (this reads 1 and 2)"},
+      {"version", "voxcd-vectors 4\n", 1, "unsupported vector format version '4' (this reads 1, 2 and 3)"},
       {"truncated shell", g.substr(0, g.find("-64 0 0")), 5, "truncated: the shell section at line 4 declares 3"},
       {"truncated map", g.substr(0, g.find("0000000000000004")), 8, "truncated: the map section at line 8"},
       {"shell count larger than its lines", good_with("shell 3", "shell 4"), 8,

@@ -40,7 +40,7 @@ std::vector<DeviceConfig> banked_models() {
 
 // A FIRST job on a distance device with shared banks: the slots behind its hit keep reading (each two rounds: the
 // lanes' cells are 4 apart in z, so they ask every parity bank for two words) until the hit reaches the hit test,
-// and the empty slots they leave take squashed slots' places (ref/banks.h, first_read_window). Cycles against the
+// and the empty slots they leave take squashed slots' places (ref/banks.h, first_window). Cycles against the
 // timing model, with the job long enough to fill the pipeline behind its hit and too short to.
 TEST(RtlBanks, DistanceFirstKeepsReadingBehindItsHit) {
   size_t ran = 0;
@@ -57,7 +57,7 @@ TEST(RtlBanks, DistanceFirstKeepsReadingBehindItsHit) {
       job.shell_count = uint32_t(cfg.LANES) * groups;
       const std::vector<Job> jobs = {job, Job{}, job};
       std::vector<Record> want = run_stream(cfg, mem, jobs);
-      const std::vector<BankCycles> b = bank_cycles(cfg, mem.shell, jobs, want);
+      const std::vector<BankCycles> b = bank_cycles(cfg, mem, jobs, want);
       annotate_cycles(cfg, jobs, want, b);
       if (groups >= 3) {
         EXPECT_GT(b[0].window, 0u) << cfg.to_string() << ": the case must read behind its hit";
@@ -85,8 +85,8 @@ TEST(RtlBanks, RandomJobsBitExactAndCycleExact) {
     g.config = cfg;
     const GeneratedVectors v = generate_vectors(g);
     std::vector<Record> want = run_stream(v.config, v.memory, v.jobs);
-    const std::vector<uint64_t> conflicts = bank_conflicts(v.config, v.memory.shell, v.jobs, want);
-    annotate_cycles(v.config, v.jobs, want, bank_cycles(v.config, v.memory.shell, v.jobs, want));
+    const std::vector<uint64_t> conflicts = bank_conflicts(v.config, v.memory, v.jobs, want);
+    annotate_cycles(v.config, v.jobs, want, bank_cycles(v.config, v.memory, v.jobs, want));
     auto dev = make_device("rtl", v.config);
     dev->load(v.memory);
     const std::vector<Record> got = dev->run(v.jobs);

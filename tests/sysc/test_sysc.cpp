@@ -179,7 +179,7 @@ void banked_and_deeper(TargetKind k) {
     expect_stream(c.expected, got, what);
     uint64_t want = 0;
     if (c.config.banked())
-      for (uint64_t n : bank_conflicts(c.config, c.memory.shell, c.jobs, c.expected)) want += n;
+      for (uint64_t n : bank_conflicts(c.config, c.memory, c.jobs, c.expected)) want += n;
     EXPECT_EQ(conflicts, want) << what << ": the CONFLICTS register";
     if (c.config.banked()) {
       EXPECT_GT(want, 0u) << what << ": the jobs must make the banks conflict";
