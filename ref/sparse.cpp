@@ -46,7 +46,9 @@ uint64_t unit_words(const DeviceConfig& cfg) {
   return 2 * b * b * b / uint64_t(cfg.MEMW);
 }
 
-uint64_t level_units(const DeviceConfig& cfg, int level) { return ceil_div(level_words(cfg, level), unit_words(cfg)); }
+uint64_t level_units(const DeviceConfig& cfg, int level) {
+  return cfg.distance() ? ceil_div(level_words(cfg, level), unit_words(cfg)) : 1;  // a 2-bit brick is one unit
+}
 
 int code_level(const DeviceConfig& cfg, uint8_t code) {
   if (!cfg.distance()) return code == kCodeBrick ? 0 : -1;

@@ -40,7 +40,8 @@ uint64_t table_words(const DeviceConfig& cfg, const Job& job);
 
 // UW: the words of a unit of brick memory (a 2-bit brick; a distance brick of level 0).
 uint64_t unit_words(const DeviceConfig& cfg);
-// A distance brick of level l: H_l = B 2^(l-1) + 1 half-grid positions per axis, W_l words, U_l units.
+// A distance brick of level l: H_l = B 2^(l-1) + 1 half-grid positions per axis, W_l words, U_l units (a 2-bit
+// brick: one unit).
 uint64_t level_half_extent(const DeviceConfig& cfg, int level);
 uint64_t level_words(const DeviceConfig& cfg, int level);
 uint64_t level_units(const DeviceConfig& cfg, int level);
