@@ -78,6 +78,23 @@ double sample(const ExtGrid& e, const std::array<uint32_t, 3>& dims, double step
   return lerp(y0, y1, f[2]);
 }
 
+// The depth test of a brick's sub-cell at x, a point of triangle t: the point delta inside along the inward normal
+// reads at most 0, delta the depth or half the part's thickness there (the distance along the normal to the next
+// triangle), whichever is less; so a part thinner than the depth is tested at its middle, where nodes that see its
+// inside read below 0. A point of that kind within delta / 2 of the surface is not inside the part (x on a convex
+// edge, whose inward normal runs along the next face) and passes.
+template <class Field>
+bool deep_resolved(const BrickContext& ctx, const Field& field, uint32_t t, const Eigen::Vector3d& x,
+                   const Eigen::Vector3d& inward, double depth) {
+  double l = HUGE_VAL;
+  bool front = false;
+  const uint32_t hit = ctx.measure.tree.first_hit(x, inward, t, 1e-9, &l, &front);
+  const double delta = hit == UINT32_MAX ? depth : std::min(depth, l / 2);
+  const Eigen::Vector3d y = x + delta * inward;
+  if (ctx.measure.tree.closest(y, delta * delta / 4).found()) return true;
+  return field(y) <= 0;
+}
+
 // The sub-cells of e's level that a triangle of `tris` crosses and that are not resolved, as flags over the
 // brick's sub-cells (X + s (Y + s Z), s = 8 2^l); *sheet: a sheet's triangle crosses the cell.
 std::vector<uint8_t> unresolved(const BrickContext& ctx, const std::array<uint32_t, 3>& c,
@@ -97,11 +114,12 @@ std::vector<uint8_t> unresolved(const BrickContext& ctx, const std::array<uint32
     *sheet |= is_sheet;
     Eigen::Vector3d inward;
     const bool solid = !is_sheet && inward_normal(a, b, cc, inward);
+    const auto deep = [&](const Eigen::Vector3d& x) { return deep_resolved(ctx, field, t, x, inward, depth); };
     for_each_cube_meeting(a - o, b - o, cc - o, h, kGrow, {0, 0, 0}, {s, s, s}, [&](int64_t i, int64_t j, int64_t k) {
       uint8_t& fl = flag[uint64_t(i + s * (j + s * k))];
       if (fl) return;
       const Eigen::Vector3d lo = o + Eigen::Vector3d(double(i), double(j), double(k)) * h;
-      fl = !(solid && piece_resolved(field, piece_in_cube(a, b, cc, lo, h), inward, tolerance, depth));
+      fl = !(solid && piece_resolved(field, piece_in_cube(a, b, cc, lo, h), tolerance, deep));
     });
   }
   return flag;

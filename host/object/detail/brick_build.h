@@ -38,8 +38,10 @@ struct BrickResult {
 // that a triangle of `tris` (the triangles meeting the cell) crosses is unresolved at the brick's level, the brick
 // measured again at the next level (straight to max_level when a sheet crosses it: a sheet resolves at none); at
 // max_level the unresolved sub-cells' nodes are lowered to at most 0. A sub-cell of side h = 2^-l voxel is resolved
-// when the triangle is not a sheet's, and at the corners and centroid of the triangle's piece in it the interpolant
-// is at most kResolvedTolerance + step / 2 and, kResolvedDepth * h further inside, at most 0.
+// when the triangle is not a sheet's and, at the corners and centroid x of the triangle's piece in it, the
+// interpolant is at most kResolvedTolerance + step / 2 (the same bound at every level) and reads at most 0 at
+// min(kResolvedDepth h, half the part's thickness along the inward normal) inside x, unless that point lies nearer
+// the surface than half that depth (docs/objects.md, "Sparse distance field").
 BrickResult build_brick(const BrickContext& ctx, const std::array<uint32_t, 3>& c, uint64_t t,
                         const std::vector<uint32_t>& tris);
 

@@ -66,9 +66,9 @@ uint64_t make_unresolved_conservative(const Mesh& mesh, const GridPlacement& g, 
         const Eigen::Vector3d& c = gv[tri[2]];
         Eigen::Vector3d inward;
         const auto sample = [&f](const Eigen::Vector3d& p) { return f.sample(p); };
+        const auto deep = [&](const Eigen::Vector3d& p) { return f.sample(p + kResolvedDepth * inward) <= 0; };
         if (inward_normal(a, b, c, inward) &&
-            piece_resolved(sample, piece_in_cube(a, b, c, Eigen::Vector3d(x, y, z), 1.0), inward, tolerance,
-                           kResolvedDepth))
+            piece_resolved(sample, piece_in_cube(a, b, c, Eigen::Vector3d(x, y, z), 1.0), tolerance, deep))
           return;
       }
       flags[i >> 6].fetch_or(uint64_t{1} << (i & 63), std::memory_order_relaxed);

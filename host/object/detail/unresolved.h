@@ -28,17 +28,17 @@ using Polygon = std::vector<Eigen::Vector3d>;
 Polygon piece_in_cube(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                       const Eigen::Vector3d& lo, double size);
 
-// The piece's corners and centroid lie on the surface within `tolerance` of the interpolant `sample` (a callable
-// from grid coordinates to voxels) and the same points `depth` inside (along `inward`, a unit vector) read at most 0.
-// An empty piece (a cell that holds the triangle only through the voxeliser's growth) is resolved.
-template <class Sample>
-bool piece_resolved(const Sample& sample, const Polygon& piece, const Eigen::Vector3d& inward, double tolerance,
-                    double depth) {
+// The piece's corners and centroid x lie on the surface within `tolerance` of the interpolant `sample` (a callable
+// from grid coordinates to voxels), and each passes `deep(x)`, the test a little inside the surface (callers say
+// where and what: make_unresolved_conservative's and the sparse bricks' differ). An empty piece (a cell that holds
+// the triangle only through the voxeliser's growth) is resolved.
+template <class Sample, class Deep>
+bool piece_resolved(const Sample& sample, const Polygon& piece, double tolerance, const Deep& deep) {
   if (piece.empty()) return true;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& x : piece) centroid += x;
   centroid /= double(piece.size());
-  auto fine = [&](const Eigen::Vector3d& x) { return sample(x) <= tolerance && sample(x + depth * inward) <= 0; };
+  auto fine = [&](const Eigen::Vector3d& x) { return sample(x) <= tolerance && deep(x); };
   if (!fine(centroid)) return false;
   for (const Eigen::Vector3d& x : piece)
     if (!fine(x)) return false;
