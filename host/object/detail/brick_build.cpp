@@ -95,8 +95,31 @@ bool deep_resolved(const BrickContext& ctx, const Field& field, uint32_t t, cons
   return field(y) <= 0;
 }
 
-// The sub-cells of e's level that a triangle of `tris` crosses and that are not resolved, as flags over the
-// brick's sub-cells (X + s (Y + s Z), s = 8 2^l); *sheet: a sheet's triangle crosses the cell.
+// What the resolution test says of a sub-cell (flags over the brick's sub-cells X + s (Y + s Z), s = 8 2^l).
+constexpr uint8_t kCrossed = 1;     // a triangle crosses it
+constexpr uint8_t kUnresolved = 2;  // and the field does not resolve it: refine, and at max_level lower its nodes
+constexpr uint8_t kMembrane = 4;    // no triangle crosses it, yet its nodes hold both signs: the solid's boundary where
+                                    // the winding number fills a hole; refine (the zero crossing moves with the nodes)
+
+// Flags the sub-cells whose nodes hold both signs that no triangle crosses.
+void flag_membranes(const ExtGrid& e, std::vector<uint8_t>& flag) {
+  const uint64_t s = uint64_t{8} << e.level;
+  for (uint64_t k = 0; k < s; ++k)
+    for (uint64_t j = 0; j < s; ++j)
+      for (uint64_t i = 0; i < s; ++i) {
+        uint8_t& fl = flag[i + s * (j + s * k)];
+        if (fl) continue;
+        bool neg = false, pos = false;
+        for (int m = 0; m < 8; ++m) {
+          const int16_t q = e.at(i + 1 + (m & 1), j + 1 + (m >> 1 & 1), k + 1 + (m >> 2 & 1));
+          neg |= q < 0;
+          pos |= q > 0;
+        }
+        if (neg && pos) fl = kMembrane;
+      }
+}
+
+// The resolution test of every sub-cell of e's level; *sheet: a sheet's triangle crosses the cell.
 std::vector<uint8_t> unresolved(const BrickContext& ctx, const std::array<uint32_t, 3>& c,
                                 const std::vector<uint32_t>& tris, const ExtGrid& e, bool* sheet) {
   const int64_t s = int64_t{8} << e.level;
@@ -117,11 +140,13 @@ std::vector<uint8_t> unresolved(const BrickContext& ctx, const std::array<uint32
     const auto deep = [&](const Eigen::Vector3d& x) { return deep_resolved(ctx, field, t, x, inward, depth); };
     for_each_cube_meeting(a - o, b - o, cc - o, h, kGrow, {0, 0, 0}, {s, s, s}, [&](int64_t i, int64_t j, int64_t k) {
       uint8_t& fl = flag[uint64_t(i + s * (j + s * k))];
-      if (fl) return;
+      if (fl & kUnresolved) return;
+      fl |= kCrossed;
       const Eigen::Vector3d lo = o + Eigen::Vector3d(double(i), double(j), double(k)) * h;
-      fl = !(solid && piece_resolved(field, piece_in_cube(a, b, cc, lo, h), tolerance, deep));
+      if (!(solid && piece_resolved(field, piece_in_cube(a, b, cc, lo, h), tolerance, deep))) fl |= kUnresolved;
     });
   }
+  flag_membranes(e, flag);
   return flag;
 }
 
@@ -132,7 +157,7 @@ std::vector<uint64_t> lower(ExtGrid& e, const std::vector<uint8_t>& flag, uint64
   for (uint64_t k = 0; k < s; ++k)
     for (uint64_t j = 0; j < s; ++j)
       for (uint64_t i = 0; i < s; ++i) {
-        if (!flag[i + s * (j + s * k)]) continue;
+        if (!(flag[i + s * (j + s * k)] & kUnresolved)) continue;
         keys.push_back(SparseDistanceField::conservative_key(t, uint32_t(i), uint32_t(j), uint32_t(k)));
         for (int m = 0; m < 8; ++m) {
           int16_t& q = e.at(i + 1 + (m & 1), j + 1 + (m >> 1 & 1), k + 1 + (m >> 2 & 1));
@@ -166,8 +191,21 @@ BrickResult finish(const ExtGrid& e, const NodeMeasure& m, std::vector<uint64_t>
   return r;
 }
 
-bool any(const std::vector<uint8_t>& flags) {
-  return std::any_of(flags.begin(), flags.end(), [](uint8_t f) { return f != 0; });
+bool any_to_refine(const std::vector<uint8_t>& flags) {
+  return std::any_of(flags.begin(), flags.end(), [](uint8_t f) { return (f & (kUnresolved | kMembrane)) != 0; });
+}
+
+// A cell whose nodes all lie beyond the band at level l: each node clamped by its sign.
+BrickResult clamped_brick(const BrickContext& ctx, const std::array<uint32_t, 3>& c, int level) {
+  const uint32_t n = uint32_t(brick_side(level));
+  const std::array<int64_t, 3> lo = {int64_t(c[0]) * (n - 1), int64_t(c[1]) * (n - 1), int64_t(c[2]) * (n - 1)};
+  const std::vector<uint64_t> in = ctx.signs.fine(level, lo, n);
+  BrickResult r;
+  r.code = uint8_t(2 + level);
+  r.nodes.resize(uint64_t(n) * n * n);
+  for (uint64_t i = 0; i < r.nodes.size(); ++i)
+    r.nodes[i] = int16_t((in[i >> 6] >> (i & 63)) & 1 ? ctx.measure.qmin : ctx.measure.qmax);
+  return r;
 }
 
 }  // namespace
@@ -176,10 +214,10 @@ BrickResult build_brick(const BrickContext& ctx, const std::array<uint32_t, 3>& 
                         const std::vector<uint32_t>& tris) {
   ExtGrid e = measure_level(ctx, c, 0);
   std::vector<uint64_t> keys;
-  while (ctx.resolve && !tris.empty()) {
+  while (ctx.resolve) {
     bool sheet = false;
     const std::vector<uint8_t> flags = unresolved(ctx, c, tris, e, &sheet);
-    if (!any(flags)) break;
+    if (!any_to_refine(flags)) break;
     if (e.level >= ctx.max_level) {
       keys = lower(e, flags, t);
       break;
@@ -204,6 +242,8 @@ BrickResult far_cell(const BrickContext& ctx, const std::array<uint32_t, 3>& c) 
   if (all_in || all_out) {
     r.code = all_in ? 1 : 0;
     r.nodes.clear();
+  } else if (ctx.resolve && ctx.max_level > 0) {
+    return clamped_brick(ctx, c, ctx.max_level);  // a hole's filling: its boundary at the finest level
   } else {
     r.code = 2;
   }

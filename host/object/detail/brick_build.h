@@ -41,12 +41,14 @@ struct BrickResult {
 // when the triangle is not a sheet's and, at the corners and centroid x of the triangle's piece in it, the
 // interpolant is at most kResolvedTolerance + step / 2 (the same bound at every level) and reads at most 0 at
 // min(kResolvedDepth h, half the part's thickness along the inward normal) inside x, unless that point lies nearer
-// the surface than half that depth (docs/objects.md, "Sparse distance field").
+// the surface than half that depth (docs/objects.md, "Sparse distance field"). A sub-cell no triangle crosses whose
+// nodes hold both signs (the boundary of a hole's filling) is refined too, and never lowered.
 BrickResult build_brick(const BrickContext& ctx, const std::array<uint32_t, 3>& c, uint64_t t,
                         const std::vector<uint32_t>& tris);
 
 // Cell c wholly beyond the band (no triangle within it of any node): uniform by the sign of its level-0 nodes, or
-// (where the solid's boundary crosses it far from any triangle: a hole's filling) a level-0 brick of clamped values.
+// (where the solid's boundary crosses it far from any triangle: a hole's filling) a brick of clamped values at
+// max_level (level 0 when the resolution test is off).
 BrickResult far_cell(const BrickContext& ctx, const std::array<uint32_t, 3>& c);
 
 }  // namespace voxcd::detail

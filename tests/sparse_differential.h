@@ -1,0 +1,123 @@
+// The differential check of tests/differential.h for sparse distance voxmaps with refined bricks, on ref's sparse
+// device (tests/sparse_pairs.h): at each of PairCheck's poses (FCL's truth, the 2-bit and dense distance answers),
+// the sparse device's contacts (both directions, margin 0), each against the other mesh's exact surface (the nearest
+// triangle's distance; inside by the model's solid, or by voxcd's: the generalized winding number of the repaired mesh,
+// which fills a hole across its rim, docs/objects.md), and the sparse device's misses measured as PairCheck measures
+// its own (the translational penetration depth).
+#pragma once
+
+#include "tests/differential.h"
+#include "tests/sparse_pairs.h"
+
+namespace voxcd::test::diff {
+
+// The goal of refined bricks (docs/pairs.md): every contact inside the other object or within this many voxels of
+// its surface.
+constexpr double kContactBoundSparse = 0.25;
+
+struct SparseOutcome {
+  Outcome o;                  // PairCheck's: truth, 2-bit, dense distance
+  bool sparse = false;        // the sparse device found a contact
+  double depth = 0;           // a sparse miss: the translational penetration depth, voxels
+  size_t contacts = 0, beyond = 0, conservative = 0;  // contacts; beyond kContactBoundSparse; by conservative cells
+  size_t filled = 0;          // contacts beyond the bound from the mesh, inside voxcd's solid only or within the bound
+                              // of it (a hole's filling, whose boundary no triangle bounds)
+  double worst = -HUGE_VAL;   // the farthest contact outside the other surface, voxels (negative: all inside)
+};
+
+class SparseCheck {
+ public:
+  SparseCheck(const Model& a, const Model& b, uint32_t resolution) : check_(a, b, resolution) {
+    const Model* m[2] = {&a, &b};
+    for (int k = 0; k < 2; ++k) {
+      mesh_[k] = m[k]->mesh;
+      MeshReport rep = repair(mesh_[k]);
+      obj_[k] = sparse::make_sparse_object(mesh_[k], m[k]->name, check_.voxel(), 3, &rep);
+      tree_[k] = std::make_unique<detail::TriangleTree>(mesh_[k].vertices, mesh_[k].triangles);
+      inside_[k] = std::make_unique<Inside>(*m[k]);
+      Model gwn = *m[k];
+      gwn.known_solid = false;
+      filled_[k] = std::make_unique<Inside>(gwn);
+    }
+    device_ = std::make_unique<sparse::SparseDevice>(std::vector<const sparse::SparseObject*>{&obj_[0], &obj_[1]});
+  }
+
+  PairCheck& pair_check() { return check_; }
+  // The sparse device's contacts at the last pose checked.
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  const sparse::SparseObject& object(int k) const { return obj_[k]; }
+
+  SparseOutcome check(const RigidPose& pb) {
+    SparseOutcome s;
+    s.o = check_.check(pb);
+    contacts_ = device_->collide(0, RigidPose(), 1, pb, true);
+    const std::vector<Contact>& cs = contacts_;
+    s.sparse = !cs.empty();
+    s.contacts = cs.size();
+    for (const Contact& c : cs) {
+      const int k = c.a_in_b ? 1 : 0;  // the object whose field the contact read
+      const RigidPose po = k == 1 ? pb : RigidPose();
+      const Eigen::Vector3d local = po.rotation.conjugate() * (c.position - po.translation);
+      double d = std::sqrt(tree_[k]->closest(local).d2) / check_.voxel();
+      // Within the bound either way; beyond it, inside the solid is no error.
+      if (d > kContactBoundSparse && inside_[k]->depth(local) > 0) d = -d;
+      if (d > kContactBoundSparse && near_filling(*filled_[k], local, kContactBoundSparse * check_.voxel()))
+        d = -d, ++s.filled;
+      s.worst = std::max(s.worst, d);
+      s.beyond += d > kContactBoundSparse;
+      s.conservative += obj_[k].field.near_conservative(sparse::grid_of(obj_[k], po, c.position));
+    }
+    if (s.o.truth && !s.sparse) s.depth = check_.penetration_depth(pb) / check_.voxel();
+    return s;
+  }
+
+ private:
+  // A point of voxcd's solid within r of p (p itself, or one of 26 directions at r/2 and r): a contact by the
+  // boundary of a hole's filling, which no triangle bounds.
+  static bool near_filling(const Inside& filled, const Eigen::Vector3d& p, double r) {
+    if (filled.depth(p) > 0) return true;
+    for (double f : {0.5, 1.0})
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            if ((dx || dy || dz) && filled.depth(p + Eigen::Vector3d(dx, dy, dz).normalized() * (f * r)) > 0) return true;
+    return false;
+  }
+
+  PairCheck check_;
+  Mesh mesh_[2];
+  sparse::SparseObject obj_[2];
+  std::unique_ptr<detail::TriangleTree> tree_[2];
+  std::unique_ptr<Inside> inside_[2], filled_[2];
+  std::unique_ptr<sparse::SparseDevice> device_;
+  std::vector<Contact> contacts_;
+};
+
+// What a run of poses found in sparse mode.
+struct SparseTally {
+  uint64_t tp = 0, fn = 0, fp = 0, tn = 0;
+  uint64_t missed_beyond = 0;     // misses deeper than kMissDepthDistance
+  uint64_t missed_found_2bit = 0; // misses the 2-bit voxmap found
+  uint64_t contacts = 0, beyond = 0, conservative = 0, filled = 0;
+  double worst_missed_depth = 0, worst_contact = -HUGE_VAL;
+  std::string worst_missed, worst_contact_at;
+};
+
+inline void tally(SparseTally& t, const SparseOutcome& s, const std::string& where) {
+  if (s.o.truth && s.sparse) ++t.tp;
+  if (!s.o.truth && !s.sparse) ++t.tn;
+  if (!s.o.truth && s.sparse) ++t.fp;
+  if (s.o.truth && !s.sparse) {
+    ++t.fn;
+    t.missed_beyond += s.depth > kMissDepthDistance;
+    t.missed_found_2bit += s.o.voxcd[0];
+    if (s.depth > t.worst_missed_depth) t.worst_missed_depth = s.depth, t.worst_missed = where;
+  }
+  t.contacts += s.contacts;
+  t.beyond += s.beyond;
+  t.conservative += s.conservative;
+  t.filled += s.filled;
+  if (s.contacts && s.worst > t.worst_contact) t.worst_contact = s.worst, t.worst_contact_at = where;
+}
+
+}  // namespace voxcd::test::diff
