@@ -29,70 +29,9 @@ constexpr double kContactBound = test::diff::kContactBoundSparse;
 // bound for dense fields).
 constexpr double kDepthBound = 0.5;
 
-double signed_distance(const Mesh& m, const Eigen::Vector3d& p) {
-  const double d = test::mesh_distance(m, p);
-  return test::inside_reference(m, p) ? -d : d;
-}
+using test::diff::ExactContacts;
 
-// An L-shaped block: the outline (0,0) (3,0) (3,1) (1,1) (1,3) (0,3) extruded over z in [0, 1], a closed mesh with one
-// concave crease (x = y = 1).
-Mesh l_block() {
-  const double xy[6][2] = {{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 3}, {0, 3}};
-  Mesh m;
-  for (double z : {0.0, 1.0})
-    for (const auto& p : xy) m.vertices.emplace_back(p[0], p[1], z);
-  // Caps: the outline as the rectangles (0,0)-(3,1) and (0,1)-(1,3); bottom faces down, top faces up.
-  const uint32_t quads[2][4] = {{0, 1, 2, 3}, {0, 3, 4, 5}};
-  for (const auto& q : quads) {
-    m.triangles.push_back({q[0], q[2], q[1]});
-    m.triangles.push_back({q[0], q[3], q[2]});
-    m.triangles.push_back({q[0] + 6, q[1] + 6, q[2] + 6});
-    m.triangles.push_back({q[0] + 6, q[2] + 6, q[3] + 6});
-  }
-  for (uint32_t i = 0; i < 6; ++i) {
-    const uint32_t j = (i + 1) % 6;
-    m.triangles.push_back({i, j, j + 6});
-    m.triangles.push_back({i, j + 6, i + 6});
-  }
-  m.name = "an L-shaped block";
-  return m;
-}
-
-Model solid_model(const Mesh& m) {
-  Model r;
-  r.name = m.name;
-  r.mesh = m;
-  r.solid = {m};
-  r.known_solid = true;
-  return r;
-}
-
-struct Exact {
-  size_t poses = 0, touching = 0, contacts = 0, beyond = 0, depth_off = 0;
-  double worst = -HUGE_VAL, worst_depth_error = 0;
-};
-
-// Each contact against the meshes by brute force: its signed distance to the other mesh (voxels), and with `band`
-// its depth against that distance where the contact's cell lies within the band.
-void measure(const std::vector<Contact>& cs, const Mesh& ma, const Mesh& mb, const RigidPose& pb, double voxel,
-             Exact& e, double band = 0) {
-  ++e.poses;
-  e.touching += !cs.empty();
-  e.contacts += cs.size();
-  for (const Contact& c : cs) {
-    const RigidPose po = c.a_in_b ? pb : RigidPose();
-    const double d = signed_distance(c.a_in_b ? mb : ma, po.rotation.conjugate() * (c.position - po.translation)) / voxel;
-    e.worst = std::max(e.worst, d);
-    e.beyond += d > kContactBound;
-    if (band > 0 && -d <= band - 2) {
-      const double err = std::abs(c.depth / voxel + d);
-      e.worst_depth_error = std::max(e.worst_depth_error, err);
-      e.depth_off += err > kDepthBound;
-    }
-  }
-}
-
-void print(const char* what, const Exact& e) {
+void print(const char* what, const ExactContacts& e) {
   std::printf("%-42s poses %zu touching %zu contacts %zu: worst %.3f voxel outside, %zu beyond 1/4 voxel; worst "
               "depth error %.3f voxel\n",
               what, e.poses, e.touching, e.contacts, e.worst, e.beyond, e.worst_depth_error);
@@ -133,16 +72,16 @@ TEST(SparseAccuracy, TorusAgainstAnLShapedBlock) {
   const uint64_t seed = test::seed();
   std::printf("sparse accuracy seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed,
               (unsigned long long)seed);
-  const Model torus = solid_model(make_shape("torus")), block = solid_model(l_block());
+  const Model torus = test::diff::solid_model(make_shape("torus")), block = test::diff::solid_model(test::diff::l_block());
   SparseCheck check(torus, block, 12);  // the block is 3 across: voxel 0.25
   ASSERT_DOUBLE_EQ(check.pair_check().voxel(), 0.25);
   const std::vector<std::shared_ptr<const ObjectType>> types = {check.object(0).type, check.object(1).type};
   PairCollider dense(make_device("cpu", device_config_for("cpu", 4, {types[0].get(), types[1].get()}, 8)), types);
-  Exact sparse_exact, dense_exact;
+  ExactContacts sparse_exact, dense_exact;
   for (const RigidPose& pb : check.pair_check().poses(80, seed)) {
     const test::diff::SparseOutcome s = check.check(pb);
-    measure(check.contacts(), torus.mesh, block.mesh, pb, 0.25, sparse_exact);
-    measure(dense_contacts(dense, pb), torus.mesh, block.mesh, pb, 0.25, dense_exact);
+    test::diff::measure_contacts(check.contacts(), torus.mesh, block.mesh, pb, 0.25, sparse_exact);
+    test::diff::measure_contacts(dense_contacts(dense, pb), torus.mesh, block.mesh, pb, 0.25, dense_exact);
     expect_no_bad_miss(s, pose_text("torus / L-block", pb, seed));
   }
   print("torus / L-block, dense distance voxmaps", dense_exact);
@@ -158,13 +97,14 @@ TEST(SparseAccuracy, ShapesAgainstExactGeometry) {
       {"sphere", "cube"}, {"torus", "stellated"}, {"stellated", "torus"}, {"polytope36", "sphere"}, {"cube", "torus"}};
   size_t k = 0;
   for (const auto& [a, b] : cases) {
-    const Model ma = solid_model(make_shape(a)), mb = solid_model(make_shape(b));
+    const Model ma = test::diff::solid_model(make_shape(a)), mb = test::diff::solid_model(make_shape(b));
     SparseCheck check(ma, mb, 24);
     const double band = check.object(0).field.band();
-    Exact e;
+    ExactContacts e;
     for (const RigidPose& pb : check.pair_check().poses(40, seed + k)) {
       const test::diff::SparseOutcome s = check.check(pb);
-      measure(check.contacts(), ma.mesh, mb.mesh, pb, check.pair_check().voxel(), e, band);
+      test::diff::measure_contacts(check.contacts(), ma.mesh, mb.mesh, pb, check.pair_check().voxel(), e, band,
+                                   kDepthBound);
       expect_no_bad_miss(s, pose_text(std::string(a) + " / " + b, pb, seed + k));
     }
     ++k;
