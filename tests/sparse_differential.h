@@ -85,13 +85,13 @@ inline void measure_contacts(const std::vector<Contact>& cs, const Mesh& ma, con
 }
 
 struct SparseOutcome {
-  Outcome o;                  // PairCheck's: truth, 2-bit, dense distance
-  bool sparse = false;        // the sparse device found a contact
-  double depth = 0;           // a sparse miss: the translational penetration depth, voxels
+  Outcome o;                                          // PairCheck's: truth, 2-bit, dense distance
+  bool sparse = false;                                // the sparse device found a contact
+  double depth = 0;                                   // a sparse miss: the translational penetration depth, voxels
   size_t contacts = 0, beyond = 0, conservative = 0;  // contacts; beyond kContactBoundSparse; by conservative cells
-  size_t filled = 0;          // contacts beyond the bound from the mesh, inside voxcd's solid only or within the bound
-                              // of it (a hole's filling, whose boundary no triangle bounds)
-  double worst = -HUGE_VAL;   // the farthest contact outside the other surface, voxels (negative: all inside)
+  size_t filled = 0;         // contacts beyond the bound from the mesh, inside voxcd's solid only or within the bound
+                             // of it (a hole's filling, whose boundary no triangle bounds)
+  double worst = -HUGE_VAL;  // the farthest contact outside the other surface, voxels (negative: all inside)
 };
 
 class SparseCheck {
@@ -149,7 +149,8 @@ class SparseCheck {
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx)
-            if ((dx || dy || dz) && filled.depth(p + Eigen::Vector3d(dx, dy, dz).normalized() * (f * r)) > 0) return true;
+            if ((dx || dy || dz) && filled.depth(p + Eigen::Vector3d(dx, dy, dz).normalized() * (f * r)) > 0)
+              return true;
     return false;
   }
 
@@ -165,8 +166,8 @@ class SparseCheck {
 // What a run of poses found in sparse mode.
 struct SparseTally {
   uint64_t tp = 0, fn = 0, fp = 0, tn = 0;
-  uint64_t missed_beyond = 0;     // misses deeper than kMissDepthDistance
-  uint64_t missed_found_2bit = 0; // misses the 2-bit voxmap found
+  uint64_t missed_beyond = 0;      // misses deeper than kMissDepthDistance
+  uint64_t missed_found_2bit = 0;  // misses the 2-bit voxmap found
   uint64_t contacts = 0, beyond = 0, conservative = 0, filled = 0;
   double worst_missed_depth = 0, worst_found_2bit_depth = 0, worst_contact = -HUGE_VAL;
   std::string worst_missed, worst_contact_at;

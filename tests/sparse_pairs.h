@@ -114,7 +114,8 @@ class SparseDevice {
     return j;
   }
 
-  Contact contact(uint32_t s, const RigidPose& ps, uint32_t m, const RigidPose& pm, const Record& r, bool a_in_b) const {
+  Contact contact(uint32_t s, const RigidPose& ps, uint32_t m, const RigidPose& pm, const Record& r,
+                  bool a_in_b) const {
     const ObjectType& st = *objects_[s]->type;
     const ObjectType& mt = *objects_[m]->type;
     const SparseDistanceField& f = objects_[m]->field;
@@ -125,11 +126,13 @@ class SparseDevice {
     c.position = Rs * st.shell().points[r.point] + ps.translation;
     c.voxel = {r.x, r.y, r.z};
     c.depth = -double(r.dist) * mt.voxmap().voxel() * f.step() / std::ldexp(1.0, 3 * cfg_.WB);
-    const Eigen::Vector3d g = (Rm.transpose() * (c.position - pm.translation) - mt.voxmap().origin()) / mt.voxmap().voxel();
+    const Eigen::Vector3d g =
+        (Rm.transpose() * (c.position - pm.translation) - mt.voxmap().origin()) / mt.voxmap().voxel();
     Eigen::Vector3d grad;
     f.sample(g, &grad);
     const Eigen::Vector3d n = -(Rm * grad);
-    c.normal = n.squaredNorm() > 1e-24 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d(Rs * st.shell().normals[r.point]);
+    c.normal =
+        n.squaredNorm() > 1e-24 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d(Rs * st.shell().normals[r.point]);
     return c;
   }
 

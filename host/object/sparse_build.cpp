@@ -26,8 +26,8 @@ std::vector<std::pair<uint64_t, uint32_t>> cell_triangles(const Mesh& mesh, cons
   pool.parallel_for(parts, [&](size_t p) {
     for (size_t t = mesh.size() * p / parts; t < mesh.size() * (p + 1) / parts; ++t) {
       const auto& tri = mesh.triangles[t];
-      detail::for_each_cube_meeting(gv[tri[0]], gv[tri[1]], gv[tri[2]], kEdge, 1.0 / (1 << 19), {0, 0, 0},
-                                    cells_hi(c), [&](int64_t x, int64_t y, int64_t z) {
+      detail::for_each_cube_meeting(gv[tri[0]], gv[tri[1]], gv[tri[2]], kEdge, 1.0 / (1 << 19), {0, 0, 0}, cells_hi(c),
+                                    [&](int64_t x, int64_t y, int64_t z) {
                                       const uint64_t i = uint64_t(x) + c[0] * (uint64_t(y) + c[1] * uint64_t(z));
                                       found[p].emplace_back(i, uint32_t(t));
                                     });
@@ -46,10 +46,9 @@ std::vector<uint8_t> near_cells(const Mesh& mesh, const std::vector<Eigen::Vecto
   std::vector<uint8_t> near(uint64_t(c[0]) * c[1] * c[2], 0);
   const double grow = band * (1 + 1e-6) + 1e-6;
   for (const auto& tri : mesh.triangles)
-    detail::for_each_cube_meeting(gv[tri[0]], gv[tri[1]], gv[tri[2]], kEdge, grow, {0, 0, 0}, cells_hi(c),
-                                  [&](int64_t x, int64_t y, int64_t z) {
-                                    near[uint64_t(x) + c[0] * (uint64_t(y) + c[1] * uint64_t(z))] = 1;
-                                  });
+    detail::for_each_cube_meeting(
+        gv[tri[0]], gv[tri[1]], gv[tri[2]], kEdge, grow, {0, 0, 0}, cells_hi(c),
+        [&](int64_t x, int64_t y, int64_t z) { near[uint64_t(x) + c[0] * (uint64_t(y) + c[1] * uint64_t(z))] = 1; });
   return near;
 }
 
@@ -94,7 +93,8 @@ SparseDistanceField sparse_distance_field(const Mesh& mesh, const GridPlacement&
   const int bits = opt.distance.bits;
   const double step = opt.distance.band / double(1 << (bits - 1));
   std::array<uint32_t, 3> cells;
-  for (int a = 0; a < 3; ++a) cells[size_t(a)] = (g.dims[size_t(a)] + SparseDistanceField::kEdge - 1) / SparseDistanceField::kEdge;
+  for (int a = 0; a < 3; ++a)
+    cells[size_t(a)] = (g.dims[size_t(a)] + SparseDistanceField::kEdge - 1) / SparseDistanceField::kEdge;
   std::vector<Eigen::Vector3d> gv(mesh.vertices.size());
   for (size_t i = 0; i < gv.size(); ++i) gv[i] = (mesh.vertices[i] - g.origin) / g.voxel;
   const detail::TriangleTree tree(gv, mesh.triangles);

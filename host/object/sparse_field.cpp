@@ -28,7 +28,11 @@ uint64_t brick_nodes(int level) {
 SparseDistanceField::SparseDistanceField(int bits, double step, const std::array<uint32_t, 3>& dims,
                                          std::vector<uint8_t> codes, std::vector<int16_t> nodes,
                                          std::vector<uint64_t> conservative)
-    : bits_(bits), step_(step), dims_(dims), codes_(std::move(codes)), nodes_(std::move(nodes)),
+    : bits_(bits),
+      step_(step),
+      dims_(dims),
+      codes_(std::move(codes)),
+      nodes_(std::move(nodes)),
       conservative_(std::move(conservative)) {
   if (!valid_distance_bits(bits)) bad("bits " + std::to_string(bits) + " is not " + distance_bits_text());
   if (!(std::isfinite(step) && step > 0)) bad("the step must be a positive finite number");
@@ -168,9 +172,12 @@ bool SparseDistanceField::near_conservative(const Eigen::Vector3d& g) const {
 SparseFieldCounts SparseDistanceField::counts() const {
   SparseFieldCounts c;
   for (uint8_t code : codes_) {
-    if (code == 0) ++c.far;
-    else if (code == 1) ++c.deep;
-    else ++c.bricks[size_t(code - 2)];
+    if (code == 0)
+      ++c.far;
+    else if (code == 1)
+      ++c.deep;
+    else
+      ++c.bricks[size_t(code - 2)];
   }
   c.conservative = conservative_.size();
   c.nodes = nodes_.size();
@@ -185,8 +192,8 @@ uint64_t SparseDistanceField::bytes() const {
 SparseImage SparseDistanceField::device_image(const DeviceConfig& cfg) const {
   if (!cfg.distance() || cfg.SB != bits_)
     throw std::invalid_argument("device_image: a field of " + std::to_string(bits_) +
-                                " bits needs a distance device with SB = " + std::to_string(bits_) + ", not SB = " +
-                                std::to_string(cfg.SB));
+                                " bits needs a distance device with SB = " + std::to_string(bits_) +
+                                ", not SB = " + std::to_string(cfg.SB));
   if (cfg.BL != kBrickLog)
     throw std::invalid_argument("device_image: bricks of 8 voxels need BL = 3, not BL = " + std::to_string(cfg.BL));
   SparseImage im;
@@ -248,12 +255,12 @@ DistanceField dense_from_sparse(const SparseDistanceField& s) {
   for (uint64_t Z = 0; Z <= f.dims[2]; ++Z)
     for (uint64_t Y = 0; Y <= f.dims[1]; ++Y)
       for (uint64_t X = 0; X <= f.dims[0]; ++X) {
-        const uint64_t cx = std::min<uint64_t>(X / e, s.cells()[0] - 1), cy = std::min<uint64_t>(Y / e, s.cells()[1] - 1),
+        const uint64_t cx = std::min<uint64_t>(X / e, s.cells()[0] - 1),
+                       cy = std::min<uint64_t>(Y / e, s.cells()[1] - 1),
                        cz = std::min<uint64_t>(Z / e, s.cells()[2] - 1);
         const uint64_t t = s.cell_index(cx, cy, cz);
         const int l = std::max(0, s.level(t));
-        f.q[f.node_index(X, Y, Z)] =
-            int16_t(s.at(t, (X - cx * e) << l, (Y - cy * e) << l, (Z - cz * e) << l));
+        f.q[f.node_index(X, Y, Z)] = int16_t(s.at(t, (X - cx * e) << l, (Y - cy * e) << l, (Z - cz * e) << l));
       }
   return f;
 }

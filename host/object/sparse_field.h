@@ -29,15 +29,15 @@ struct SparseImage {
 
 // How many cells of each kind a sparse field has.
 struct SparseFieldCounts {
-  uint64_t far = 0, deep = 0;             // uniform cells: qmax, qmin
-  std::array<uint64_t, 4> bricks = {};    // bricks of level 0 .. 3
-  uint64_t conservative = 0;              // sub-cells whose nodes were lowered to at most 0
-  uint64_t nodes = 0;                     // node values stored in all bricks
+  uint64_t far = 0, deep = 0;           // uniform cells: qmax, qmin
+  std::array<uint64_t, 4> bricks = {};  // bricks of level 0 .. 3
+  uint64_t conservative = 0;            // sub-cells whose nodes were lowered to at most 0
+  uint64_t nodes = 0;                   // node values stored in all bricks
 };
 
 class SparseDistanceField {
  public:
-  static constexpr int kBrickLog = 3;             // BL: a coarse cell is 2^3 = 8 voxels per axis
+  static constexpr int kBrickLog = 3;  // BL: a coarse cell is 2^3 = 8 voxels per axis
   static constexpr uint32_t kEdge = 1u << kBrickLog;
   static constexpr int kMaxLevel = 3;
 
@@ -105,8 +105,8 @@ class SparseDistanceField {
 inline uint64_t brick_side(int level) { return (uint64_t{SparseDistanceField::kEdge} << level) + 1; }
 
 struct SparseFieldOptions {
-  DistanceOptions distance;    // bits, band, threads; `conservative` off leaves out the resolution test entirely
-  int max_level = 3;           // 0 .. 3: the finest level a brick may be refined to
+  DistanceOptions distance;  // bits, band, threads; `conservative` off leaves out the resolution test entirely
+  int max_level = 3;         // 0 .. 3: the finest level a brick may be refined to
   // Level-0 signs from one solid over every node up to this many nodes, else one layer of cells at a time (the
   // same values: docs/objects.md); tests lower it to run the layered path on small grids.
   uint64_t whole_solid_nodes = uint64_t{1} << 27;

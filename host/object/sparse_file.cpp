@@ -74,8 +74,8 @@ uint64_t read_header(In& in, int& bits, double& step, std::array<uint32_t, 3>& d
   uint64_t cells = 1;
   for (uint32_t& d : dims) {
     d = in.get<uint32_t>("the grid dimensions");
-    if (d == 0 || d > kObjectMaxDim) in.bad("grid dimension " + std::to_string(d) + " is outside 1.." +
-                                            std::to_string(kObjectMaxDim));
+    if (d == 0 || d > kObjectMaxDim)
+      in.bad("grid dimension " + std::to_string(d) + " is outside 1.." + std::to_string(kObjectMaxDim));
     cells *= (d + SparseDistanceField::kEdge - 1) / SparseDistanceField::kEdge;
   }
   const uint32_t edge = in.get<uint32_t>("the brick edge");

@@ -16,13 +16,13 @@ namespace voxcd::detail {
 // What every brick of one field shares.
 struct BrickContext {
   const Mesh& mesh;
-  const GridPlacement& g;             // the voxmap's grid
-  std::array<uint32_t, 3> cells;      // coarse cells per axis
-  const NodeMeasure& measure;         // distances (grid coordinates) and quantisation
-  const BrickSigns& signs;            // level-0 nodes: the layer of the cell must be loaded
-  double step;                        // voxels per node unit
-  int max_level;                      // 0 .. 3
-  bool resolve;                       // test (and refine, and make conservative) at all
+  const GridPlacement& g;         // the voxmap's grid
+  std::array<uint32_t, 3> cells;  // coarse cells per axis
+  const NodeMeasure& measure;     // distances (grid coordinates) and quantisation
+  const BrickSigns& signs;        // level-0 nodes: the layer of the cell must be loaded
+  double step;                    // voxels per node unit
+  int max_level;                  // 0 .. 3
+  bool resolve;                   // test (and refine, and make conservative) at all
 };
 
 // A cell as the field stores it: code 0 / 1 (uniform), or 2 + level with its brick's nodes (X + n (Y + n Z),

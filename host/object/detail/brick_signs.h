@@ -38,7 +38,7 @@ class BrickSigns {
   std::array<uint64_t, 3> nodes_;  // 8 cells + 1 per axis
   unsigned threads_;
   bool whole_;
-  int64_t z0_ = 0;                 // the first node layer in bits_
+  int64_t z0_ = 0;  // the first node layer in bits_
   std::vector<uint64_t> bits_;
 };
 

@@ -45,8 +45,8 @@ DistanceOptions distance_options(int bits, double band, bool conservative) {
   return o;
 }
 
-SparseDistanceField sparse_of(const Mesh& m, const Voxmap& vm, int bits, double band, bool conservative,
-                              int max_level, uint64_t whole = uint64_t{1} << 27) {
+SparseDistanceField sparse_of(const Mesh& m, const Voxmap& vm, int bits, double band, bool conservative, int max_level,
+                              uint64_t whole = uint64_t{1} << 27) {
   SparseFieldOptions o;
   o.distance = distance_options(bits, band, conservative);
   o.max_level = max_level;
@@ -84,7 +84,8 @@ void expect_same_nodes(const DistanceField& d, const SparseDistanceField& s, con
   ASSERT_EQ(back.q.size(), d.q.size()) << what;
   uint64_t differ = 0;
   for (size_t i = 0; i < d.q.size(); ++i)
-    if (back.q[i] != d.q[i] && ++differ <= 5) ADD_FAILURE() << what << ": node " << i << " dense " << d.q[i] << " sparse " << back.q[i];
+    if (back.q[i] != d.q[i] && ++differ <= 5)
+      ADD_FAILURE() << what << ": node " << i << " dense " << d.q[i] << " sparse " << back.q[i];
   EXPECT_EQ(differ, 0u) << what;
 }
 
@@ -258,14 +259,15 @@ TEST(SparseField, SampleIsTheDevicesInterpolantAtEveryLevel) {
       if (!r.loc.inside) continue;
       const Transformed tr = transform(cfg, j, w);
       const Cell cell = read_cell(cfg, map, j, table_ref(cfg, j, r.loc));
-      const uint64_t t_index = s.cell_index(uint64_t(r.loc.index[0]) / 8, uint64_t(r.loc.index[1]) / 8,
-                                            uint64_t(r.loc.index[2]) / 8);
+      const uint64_t t_index =
+          s.cell_index(uint64_t(r.loc.index[0]) / 8, uint64_t(r.loc.index[1]) / 8, uint64_t(r.loc.index[2]) / 8);
       ASSERT_EQ(cell.level, s.level(t_index));
       const SubCell sc = sub_cell(cfg, cell, r.loc, tr);
       const int l = std::max(0, cell.level);
       Eigen::Vector3d g;
       for (int i = 0; i < 3; ++i)
-        g[i] = double(r.loc.index[i] / 8 * 8) + std::ldexp(double(sc.X[i]) + std::ldexp(double(sc.f.f[i]), -cfg.WB), -l);
+        g[i] =
+            double(r.loc.index[i] / 8 * 8) + std::ldexp(double(sc.X[i]) + std::ldexp(double(sc.f.f[i]), -cfg.WB), -l);
       const double want = double(r.dist) * s.step() / std::ldexp(1.0, 3 * cfg.WB);
       ASSERT_NEAR(s.sample(g), want, 1e-9) << m.name << " at (" << g.transpose() << "), level " << cell.level;
       refined += cell.level > 0;
@@ -308,7 +310,8 @@ uint64_t check_resolved(const Mesh& m, const Voxmap& vm, const SparseDistanceFie
     for (int k = 0; k < 60; ++k) {
       double r1 = u(rng), r2 = u(rng);
       if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;
-      const Eigen::Vector3d p = m.corner(t, 0) + r1 * (m.corner(t, 1) - m.corner(t, 0)) + r2 * (m.corner(t, 2) - m.corner(t, 0));
+      const Eigen::Vector3d p =
+          m.corner(t, 0) + r1 * (m.corner(t, 1) - m.corner(t, 0)) + r2 * (m.corner(t, 2) - m.corner(t, 0));
       const Eigen::Vector3d g = (p - vm.origin()) / vm.voxel();
       if (s.near_conservative(g)) continue;
       const double v = s.sample(g);
@@ -331,12 +334,12 @@ TEST(SparseField, RefinedBricksResolveBoxesAndThinPlates) {
     distance_field(m, vm, distance_options(8, 4, true), &dense_conservative);
     const SparseDistanceField s = sparse_of(m, vm, 8, 4, true, 3);
     const SparseFieldCounts c = s.counts();
-    std::printf("%-16s dense conservative cells %llu; sparse: far %llu deep %llu bricks %llu %llu %llu %llu, "
-                "conservative sub-cells %llu, %llu bytes\n",
-                m.name.c_str(), (unsigned long long)dense_conservative, (unsigned long long)c.far,
-                (unsigned long long)c.deep, (unsigned long long)c.bricks[0], (unsigned long long)c.bricks[1],
-                (unsigned long long)c.bricks[2], (unsigned long long)c.bricks[3], (unsigned long long)c.conservative,
-                (unsigned long long)s.bytes());
+    std::printf(
+        "%-16s dense conservative cells %llu; sparse: far %llu deep %llu bricks %llu %llu %llu %llu, "
+        "conservative sub-cells %llu, %llu bytes\n",
+        m.name.c_str(), (unsigned long long)dense_conservative, (unsigned long long)c.far, (unsigned long long)c.deep,
+        (unsigned long long)c.bricks[0], (unsigned long long)c.bricks[1], (unsigned long long)c.bricks[2],
+        (unsigned long long)c.bricks[3], (unsigned long long)c.conservative, (unsigned long long)s.bytes());
     EXPECT_GT(dense_conservative, 0u) << m.name << ": the dense field needs conservative cells here";
     EXPECT_EQ(check_resolved(m, vm, s, test::seed() + 3), 0u) << m.name;
     EXPECT_GT(c.bricks[1] + c.bricks[2] + c.bricks[3], 0u) << m.name;
@@ -359,7 +362,8 @@ TEST(SparseField, SheetsAloneKeepConservativeSubCells) {
     double r1 = u(rng), r2 = u(rng);
     if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;
     const size_t t = k % 2;
-    const Eigen::Vector3d p = m.corner(t, 0) + r1 * (m.corner(t, 1) - m.corner(t, 0)) + r2 * (m.corner(t, 2) - m.corner(t, 0));
+    const Eigen::Vector3d p =
+        m.corner(t, 0) + r1 * (m.corner(t, 1) - m.corner(t, 0)) + r2 * (m.corner(t, 2) - m.corner(t, 0));
     const Eigen::Vector3d g = (p - vm.origin()) / vm.voxel();
     ASSERT_LE(s.sample(g), 0.0) << "at (" << g.transpose() << ")";
     ASSERT_TRUE(s.near_conservative(g));
@@ -391,7 +395,8 @@ SparseDistanceField small_refined_field() {
 TEST(SparseFieldFile, RoundTrip) {
   const Mesh s = sheet();
   const Voxmap sv = voxmap_of(s, 0.1);
-  for (const SparseDistanceField& f : {small_refined_field(), sparse_of(s, sv, 4, 2, true, 3), sparse_of(s, sv, 16, 2, true, 1)}) {
+  for (const SparseDistanceField& f :
+       {small_refined_field(), sparse_of(s, sv, 4, 2, true, 3), sparse_of(s, sv, 16, 2, true, 1)}) {
     std::vector<uint8_t> bytes = {1, 2, 3};  // appended after what is there
     write_sparse_field(bytes, f);
     const SparseDistanceField g = read_sparse_field(bytes.data() + 3, bytes.size() - 3, "f.voxcd");
@@ -431,7 +436,7 @@ TEST(SparseFieldFile, TruncatedAndDamagedCopiesNameTheOffset) {
     return b;
   };
   fails(damaged(0, 5), "bits per node value 5");
-  fails(damaged(11, 0xff), "the step");                       // the step's sign and exponent: NaN
+  fails(damaged(11, 0xff), "the step");  // the step's sign and exponent: NaN
   fails(damaged(12, 0), "grid dimension 0");
   fails(damaged(24, 9), "brick edge 9");
   fails(damaged(28, 1), "the cell count");
@@ -446,18 +451,33 @@ TEST(SparseFieldFile, TruncatedAndDamagedCopiesNameTheOffset) {
 TEST(SparseField, BadOptionsAndConfigurationsAreErrors) {
   const Mesh m = named_shape("cube");
   const Voxmap vm = voxmap_of(m, longest(m) / 8);
-  EXPECT_NE(test::error_text<MeshError>([&] { sparse_of(m, vm, 8, 4, true, 4); }).find("levels 0 to 3, not 4"), std::string::npos);
-  EXPECT_NE(test::error_text<MeshError>([&] { sparse_of(m, vm, 5, 4, true, 3); }).find("distance bits must be 4, 8 or 16, got 5"), std::string::npos);
-  EXPECT_NE(test::error_text<MeshError>([&] { sparse_of(m, vm, 8, -1, true, 3); }).find("positive finite number of voxels"), std::string::npos);
+  EXPECT_NE(test::error_text<MeshError>([&] { sparse_of(m, vm, 8, 4, true, 4); }).find("levels 0 to 3, not 4"),
+            std::string::npos);
+  EXPECT_NE(test::error_text<MeshError>([&] {
+              sparse_of(m, vm, 5, 4, true, 3);
+            }).find("distance bits must be 4, 8 or 16, got 5"),
+            std::string::npos);
+  EXPECT_NE(
+      test::error_text<MeshError>([&] { sparse_of(m, vm, 8, -1, true, 3); }).find("positive finite number of voxels"),
+      std::string::npos);
   const SparseDistanceField f = sparse_of(m, vm, 8, 4, true, 1);
   DeviceConfig cfg = sparse_config();
   cfg.SB = 16;
-  EXPECT_NE(test::error_text<std::invalid_argument>([&] { f.device_image(cfg); }).find("needs a distance device with SB = 8"), std::string::npos);
+  EXPECT_NE(
+      test::error_text<std::invalid_argument>([&] { f.device_image(cfg); }).find("needs a distance device with SB = 8"),
+      std::string::npos);
   cfg.SB = 8;
   cfg.BL = 2;
-  EXPECT_NE(test::error_text<std::invalid_argument>([&] { f.device_image(cfg); }).find("need BL = 3, not BL = 2"), std::string::npos);
-  EXPECT_NE(test::error_text<std::invalid_argument>([&] { SparseDistanceField(8, 0.1, {8, 8, 8}, {7}, {}, {}); }).find("cell 0 has code 7"), std::string::npos);
-  EXPECT_NE(test::error_text<std::invalid_argument>([&] { SparseDistanceField(8, 0.1, {8, 8, 8}, {2}, {}, {}); }).find("0 node values for bricks of 729 nodes"), std::string::npos);
+  EXPECT_NE(test::error_text<std::invalid_argument>([&] { f.device_image(cfg); }).find("need BL = 3, not BL = 2"),
+            std::string::npos);
+  EXPECT_NE(test::error_text<std::invalid_argument>([&] {
+              SparseDistanceField(8, 0.1, {8, 8, 8}, {7}, {}, {});
+            }).find("cell 0 has code 7"),
+            std::string::npos);
+  EXPECT_NE(test::error_text<std::invalid_argument>([&] {
+              SparseDistanceField(8, 0.1, {8, 8, 8}, {2}, {}, {});
+            }).find("0 node values for bricks of 729 nodes"),
+            std::string::npos);
 }
 
 }  // namespace

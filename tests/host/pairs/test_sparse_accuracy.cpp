@@ -32,9 +32,10 @@ constexpr double kDepthBound = 0.5;
 using test::diff::ExactContacts;
 
 void print(const char* what, const ExactContacts& e) {
-  std::printf("%-42s poses %zu touching %zu contacts %zu: worst %.3f voxel outside, %zu beyond 1/4 voxel; worst "
-              "depth error %.3f voxel\n",
-              what, e.poses, e.touching, e.contacts, e.worst, e.beyond, e.worst_depth_error);
+  std::printf(
+      "%-42s poses %zu touching %zu contacts %zu: worst %.3f voxel outside, %zu beyond 1/4 voxel; worst "
+      "depth error %.3f voxel\n",
+      what, e.poses, e.touching, e.contacts, e.worst, e.beyond, e.worst_depth_error);
 }
 
 // The dense distance voxmaps of the same objects on the pair collider (cpu backend), for the figures beside.
@@ -63,8 +64,8 @@ void expect_no_bad_miss(const test::diff::SparseOutcome& s, const std::string& w
 std::string pose_text(const std::string& pair, const RigidPose& p, uint64_t seed) {
   char b[512];
   std::snprintf(b, sizeof b, "%s, B at (%.9g, %.9g, %.9g) q (%.9g, %.9g, %.9g, %.9g) (seed %llu)", pair.c_str(),
-                p.translation.x(), p.translation.y(), p.translation.z(), p.rotation.w(), p.rotation.x(),
-                p.rotation.y(), p.rotation.z(), (unsigned long long)seed);
+                p.translation.x(), p.translation.y(), p.translation.z(), p.rotation.w(), p.rotation.x(), p.rotation.y(),
+                p.rotation.z(), (unsigned long long)seed);
   return b;
 }
 
@@ -72,7 +73,8 @@ TEST(SparseAccuracy, TorusAgainstAnLShapedBlock) {
   const uint64_t seed = test::seed();
   std::printf("sparse accuracy seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed,
               (unsigned long long)seed);
-  const Model torus = test::diff::solid_model(make_shape("torus")), block = test::diff::solid_model(test::diff::l_block());
+  const Model torus = test::diff::solid_model(make_shape("torus")),
+              block = test::diff::solid_model(test::diff::l_block());
   SparseCheck check(torus, block, 12);  // the block is 3 across: voxel 0.25
   ASSERT_DOUBLE_EQ(check.pair_check().voxel(), 0.25);
   const std::vector<std::shared_ptr<const ObjectType>> types = {check.object(0).type, check.object(1).type};
@@ -118,9 +120,14 @@ TEST(SparseAccuracy, ShapesAgainstExactGeometry) {
 // The sample of the differential corpus that test_differential runs: each model against the next.
 std::vector<Model> sample_corpus() {
   using namespace test;
-  std::vector<Model> v = {diff::robot(), diff::from_defect(face_sharing_boxes()), diff::from_defect(wedge_union()),
-                          diff::from_defect(box_with_internal_face()), diff::from_defect(pinwheel()),
-                          diff::thin_plate(0.012), diff::open_tube(), diff::open_square()};
+  std::vector<Model> v = {diff::robot(),
+                          diff::from_defect(face_sharing_boxes()),
+                          diff::from_defect(wedge_union()),
+                          diff::from_defect(box_with_internal_face()),
+                          diff::from_defect(pinwheel()),
+                          diff::thin_plate(0.012),
+                          diff::open_tube(),
+                          diff::open_square()};
   for (Model& m : diff::real_models({"STL/Spider_binary.stl"})) v.push_back(std::move(m));
   for (Model& m : v) m = diff::normalized(std::move(m));
   return v;
@@ -143,16 +150,16 @@ void run_sample(const std::vector<std::pair<Model, Model>>& pairs, uint32_t reso
     }
     const auto c = check.object(0).field.counts(), d = check.object(1).field.counts();
     std::printf("%-60s contacts %llu (worst %.3f voxel), conservative sub-cells %llu / %llu, missed %llu\n",
-                pair.c_str(), (unsigned long long)here.contacts, here.worst_contact,
-                (unsigned long long)c.conservative, (unsigned long long)d.conservative, (unsigned long long)here.fn);
+                pair.c_str(), (unsigned long long)here.contacts, here.worst_contact, (unsigned long long)c.conservative,
+                (unsigned long long)d.conservative, (unsigned long long)here.fn);
   }
-  std::printf("sparse: collisions found %llu, missed %llu (deepest %.3f voxels; %llu found by 2-bit), separated %llu, "
-              "false contacts %llu; contacts %llu, beyond 1/4 voxel %llu (worst %.3f), by conservative sub-cells %llu, "
-              "in a hole's filling %llu\n",
-              (unsigned long long)t.tp, (unsigned long long)t.fn, t.worst_missed_depth,
-              (unsigned long long)t.missed_found_2bit, (unsigned long long)t.tn, (unsigned long long)t.fp,
-              (unsigned long long)t.contacts, (unsigned long long)t.beyond, t.worst_contact,
-              (unsigned long long)t.conservative, (unsigned long long)t.filled);
+  std::printf(
+      "sparse: collisions found %llu, missed %llu (deepest %.3f voxels; %llu found by 2-bit), separated %llu, "
+      "false contacts %llu; contacts %llu, beyond 1/4 voxel %llu (worst %.3f), by conservative sub-cells %llu, "
+      "in a hole's filling %llu\n",
+      (unsigned long long)t.tp, (unsigned long long)t.fn, t.worst_missed_depth, (unsigned long long)t.missed_found_2bit,
+      (unsigned long long)t.tn, (unsigned long long)t.fp, (unsigned long long)t.contacts, (unsigned long long)t.beyond,
+      t.worst_contact, (unsigned long long)t.conservative, (unsigned long long)t.filled);
   EXPECT_GT(t.tp, 0u);
   EXPECT_GT(t.tn + t.fp, 0u);
 }
