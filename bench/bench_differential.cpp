@@ -83,9 +83,8 @@ ModelRow model_row(const test::sparse::SparseObject& o, uint32_t resolution) {
 void model_table(std::ostringstream& md, const std::vector<ModelRow>& rows) {
   md << "\nPer model (SB 8, band 4 voxels): the dense field's conservative cells and device bytes; the sparse field's "
         "uniform cells, bricks per level, conservative sub-cells and device bytes (table and bricks, BL 3).\n\n"
-        "| model | voxels across | dense: conservative cells | dense bytes | uniform cells | bricks at level 0 / 1 / 2 / "
-        "3 "
-        "| conservative sub-cells | sparse bytes |\n|---|---|---|---|---|---|---|---|\n";
+        "| model | voxels across | dense: conservative cells | dense bytes | uniform cells | "
+        "bricks at level 0 / 1 / 2 / 3 | conservative sub-cells | sparse bytes |\n|---|---|---|---|---|---|---|---|\n";
   for (const ModelRow& r : rows) {
     const auto& c = r.counts;
     md << "| " << r.name << " | " << r.resolution << " | " << r.dense_conservative << " | " << r.dense_bytes << " | "
@@ -103,6 +102,7 @@ void l_block_case(std::ostringstream& md, size_t poses, uint64_t seed) {
   test::diff::SparseCheck check(torus, block, 12);
   const std::vector<std::shared_ptr<const ObjectType>> types = {check.object(0).type, check.object(1).type};
   PairCollider dense(make_device("cpu", device_config_for("cpu", 4, {types[0].get(), types[1].get()}, 8)), types);
+  const test::diff::ExactPair exact(torus.mesh, block.mesh);
   ExactContacts e[2];
   PairOptions opt;
   opt.both_directions = true;
@@ -112,17 +112,22 @@ void l_block_case(std::ostringstream& md, size_t poses, uint64_t seed) {
     r.a = 0;
     r.b = 1;
     r.pose_b = pb;
-    test::diff::measure_contacts(dense.collide({r}, opt).at(0).contacts, torus.mesh, block.mesh, pb, 0.25, e[0]);
-    test::diff::measure_contacts(check.contacts(), torus.mesh, block.mesh, pb, 0.25, e[1]);
+    test::diff::measure_contacts(dense.collide({r}, opt).at(0).contacts, exact, pb, 0.25, e[0], 4);
+    test::diff::measure_contacts(check.contacts(), exact, pb, 0.25, e[1], 4);
   }
   md << "\nThe torus (the built-in shape) against an L-shaped block (3 x 3 x 1, one concave crease) at voxel 0.25, "
         "SB 8, "
      << poses << " poses as above; every contact's distance outside the other mesh by brute force (every triangle, "
-        "ray parity):\n\n| field | touching poses | contacts | worst contact outside (voxels) | beyond 1/4 voxel |\n"
-        "|---|---|---|---|---|\n";
+        "ray parity); depth and normal errors of the contacts whose cell lies within the band (the depth against the "
+        "exact signed distance; within 1/2 voxel of the surface, the normal against the exact distance's gradient):\n\n"
+        "| field | touching poses | contacts | worst contact outside (voxels) | beyond 1/4 voxel | depth error, worst "
+        "/ 99% (voxels) | normal error, worst / 99% (degrees) |\n|---|---|---|---|---|---|---|\n";
   for (int k = 0; k < 2; ++k)
     md << "| " << (k ? "sparse, refined bricks" : "dense (conservative cells)") << " | " << e[k].touching << " | "
-       << e[k].contacts << " | " << bench_fmt(e[k].worst) << " | " << e[k].beyond << " |\n";
+       << e[k].contacts << " | " << bench_fmt(e[k].worst) << " | " << e[k].beyond << " | "
+       << bench_fmt(e[k].worst_depth_error) << " / " << bench_fmt(test::diff::quantile(e[k].depth_error, 0.99))
+       << " | " << bench_fmt(test::diff::quantile(e[k].normal_error, 1.0)) << " / "
+       << bench_fmt(test::diff::quantile(e[k].normal_error, 0.99)) << " |\n";
 }
 
 // What the whole corpus gave, per mode.

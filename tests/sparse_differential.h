@@ -54,23 +54,36 @@ inline Model solid_model(const Mesh& m) {
 struct ExactContacts {
   size_t poses = 0, touching = 0, contacts = 0, beyond = 0, depth_checked = 0, depth_off = 0;
   double worst = -HUGE_VAL, worst_depth_error = 0;
-  std::vector<double> outside, depth_error;  // per contact: voxels outside (0 inside); |depth - exact| in the band
+  // Per contact: voxels outside (0 inside); in the band, |depth - exact| (voxels), and within 1/2 voxel of the surface
+  // the angle (degrees) between the contact's normal and the exact one (the exact distance's gradient, negated).
+  std::vector<double> outside, depth_error, normal_error;
 };
 
-// Each contact's signed distance to the other closed mesh (A at the origin, B at pb), in voxels; with band > 0 its
-// depth against that distance where the contact's cell lies within the band (the point 2 voxels inside its edge),
-// counted off beyond depth_bound.
-inline void measure_contacts(const std::vector<Contact>& cs, const Mesh& ma, const Mesh& mb, const RigidPose& pb,
-                             double voxel, ExactContacts& e, double band = 0, double depth_bound = 0.5) {
+// The closed meshes a pair's contacts are measured against: the meshes, and for the normals their trees and
+// pseudo-normals.
+struct ExactPair {
+  ExactPair(const Mesh& a, const Mesh& b)
+      : mesh{a, b}, tree{{a.vertices, a.triangles}, {b.vertices, b.triangles}},
+        normals{{a.vertices, a.triangles}, {b.vertices, b.triangles}} {}
+  Mesh mesh[2];
+  detail::TriangleTree tree[2];
+  detail::PseudoNormals normals[2];
+};
+
+// Each contact's signed distance to the other closed mesh (A at the origin, B at pb) by brute force, in voxels; with
+// band > 0, where the contact's cell lies within the band (the point 2 voxels inside its edge), its depth against
+// that distance (counted off beyond depth_bound) and its normal against the exact one.
+inline void measure_contacts(const std::vector<Contact>& cs, const ExactPair& x, const RigidPose& pb, double voxel,
+                             ExactContacts& e, double band = 0, double depth_bound = 0.5) {
   ++e.poses;
   e.touching += !cs.empty();
   e.contacts += cs.size();
   for (const Contact& c : cs) {
-    const RigidPose po = c.a_in_b ? pb : RigidPose();
-    const Mesh& other = c.a_in_b ? mb : ma;
+    const int k = c.a_in_b ? 1 : 0;
+    const RigidPose po = k ? pb : RigidPose();
     const Eigen::Vector3d local = po.rotation.conjugate() * (c.position - po.translation);
-    const double u = test::mesh_distance(other, local) / voxel;
-    const double d = test::inside_reference(other, local) ? -u : u;
+    const double u = test::mesh_distance(x.mesh[k], local) / voxel;
+    const double d = test::inside_reference(x.mesh[k], local) ? -u : u;
     e.worst = std::max(e.worst, d);
     e.beyond += d > kContactBoundSparse;
     e.outside.push_back(std::max(0.0, d));
@@ -80,8 +93,25 @@ inline void measure_contacts(const std::vector<Contact>& cs, const Mesh& ma, con
       e.worst_depth_error = std::max(e.worst_depth_error, err);
       ++e.depth_checked;
       e.depth_off += err > depth_bound;
+      if (std::abs(d) > 0.5) continue;  // deeper, near a medial surface the exact gradient turns at once
+      // The exact field's gradient: away from the closest point (towards it inside), or on the surface the
+      // pseudo-normal there; negated, as the contact's normal is.
+      const detail::Closest cl = x.tree[k].closest(local);
+      const Eigen::Vector3d away = local - cl.point;
+      const Eigen::Vector3d grad = away.norm() > 1e-9 * voxel ? Eigen::Vector3d(away.normalized() * (d < 0 ? -1 : 1))
+                                                              : x.normals[k].at(cl);
+      const Eigen::Vector3d exact = -(po.rotation * grad);
+      const double cosine = std::clamp(exact.dot(c.normal), -1.0, 1.0);
+      e.normal_error.push_back(std::acos(cosine) * 180 / M_PI);
     }
   }
+}
+
+// The q-quantile of v (0 for none).
+inline double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, size_t(q * double(v.size() - 1) + 0.5))];
 }
 
 struct SparseOutcome {
