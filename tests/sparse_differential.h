@@ -1,13 +1,14 @@
 // The differential check of tests/differential.h for sparse distance voxmaps with refined bricks, on ref's sparse
 // device (tests/sparse_pairs.h): at each of PairCheck's poses (FCL's truth, the 2-bit and dense distance answers),
 // the sparse device's contacts (both directions, margin 0), each against the other mesh's exact surface (the nearest
-// triangle's distance; inside by the model's solid, or by voxcd's: the generalized winding number of the repaired mesh,
-// which fills a hole across its rim, docs/objects.md), and the sparse device's misses measured as PairCheck measures
-// its own (the translational penetration depth).
+// triangle's distance; inside by the model's solid, or within the bound of voxcd's own solid, which fills a hole across
+// its rim, docs/objects.md), and the sparse device's misses measured as PairCheck measures its own (the translational
+// penetration depth).
 #pragma once
 
 #include "tests/differential.h"
 #include "tests/exact_geometry.h"
+#include "voxcd/host/object/detail/solid.h"
 #include "tests/sparse_pairs.h"
 
 namespace voxcd::test::diff {
@@ -134,9 +135,6 @@ class SparseCheck {
       obj_[k] = sparse::make_sparse_object(mesh_[k], m[k]->name, check_.voxel(), 3, &rep);
       tree_[k] = std::make_unique<detail::TriangleTree>(mesh_[k].vertices, mesh_[k].triangles);
       inside_[k] = std::make_unique<Inside>(*m[k]);
-      Model gwn = *m[k];
-      gwn.known_solid = false;
-      filled_[k] = std::make_unique<Inside>(gwn);
     }
     device_ = std::make_unique<sparse::SparseDevice>(std::vector<const sparse::SparseObject*>{&obj_[0], &obj_[1]});
   }
@@ -160,7 +158,7 @@ class SparseCheck {
       double d = std::sqrt(tree_[k]->closest(local).d2) / check_.voxel();
       if (inside_[k]->depth(local) > 0) d = -d;
       // Beyond the bound from every triangle, a hole's filling (voxcd's solid) may still hold the contact.
-      if (d > kContactBoundSparse && near_filling(*filled_[k], local, kContactBoundSparse * check_.voxel()))
+      if (d > kContactBoundSparse && near_filling(k, local, kContactBoundSparse * check_.voxel()))
         d = -d, ++s.filled;
       s.worst = std::max(s.worst, d);
       s.beyond += d > kContactBoundSparse;
@@ -171,16 +169,22 @@ class SparseCheck {
   }
 
  private:
-  // A point of voxcd's solid within r of p (p itself, or one of 26 directions at r/2 and r): a contact by the
+  // A level-3 node of object k's grid (where refined bricks take their signs) within r of p (object k's frame) that
+  // lies in voxcd's own solid (the voxeliser's, detail/solid.h: the winding number with its caps): a contact by the
   // boundary of a hole's filling, which no triangle bounds.
-  static bool near_filling(const Inside& filled, const Eigen::Vector3d& p, double r) {
-    if (filled.depth(p) > 0) return true;
-    for (double f : {0.5, 1.0})
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            if ((dx || dy || dz) && filled.depth(p + Eigen::Vector3d(dx, dy, dz).normalized() * (f * r)) > 0)
-              return true;
+  bool near_filling(int k, const Eigen::Vector3d& p, double r) const {
+    const GridPlacement& vm = obj_[k].type->voxmap().grid();
+    const double h = vm.voxel / 8;
+    const Eigen::Vector3d first = ((p - vm.origin) / h).array().floor().matrix() - Eigen::Vector3d::Constant(2);
+    GridPlacement g;
+    g.voxel = h;
+    g.origin = vm.origin + (first - Eigen::Vector3d::Constant(0.5)) * h;  // voxel centres on the nodes
+    g.dims = {6, 6, 6};
+    const std::vector<uint64_t> in = detail::solid_bits(mesh_[k], g, 1);
+    for (uint64_t i = 0; i < 216; ++i) {
+      const Eigen::Vector3d node = vm.origin + (first + Eigen::Vector3d(double(i % 6), double(i / 6 % 6), double(i / 36))) * h;
+      if ((in[i >> 6] >> (i & 63) & 1) && (node - p).norm() <= r) return true;
+    }
     return false;
   }
 
@@ -188,7 +192,7 @@ class SparseCheck {
   Mesh mesh_[2];
   sparse::SparseObject obj_[2];
   std::unique_ptr<detail::TriangleTree> tree_[2];
-  std::unique_ptr<Inside> inside_[2], filled_[2];
+  std::unique_ptr<Inside> inside_[2];
   std::unique_ptr<sparse::SparseDevice> device_;
   std::vector<Contact> contacts_;
 };
