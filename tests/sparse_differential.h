@@ -8,8 +8,8 @@
 
 #include "tests/differential.h"
 #include "tests/exact_geometry.h"
-#include "voxcd/host/object/detail/solid.h"
 #include "tests/sparse_pairs.h"
+#include "voxcd/host/object/detail/solid.h"
 
 namespace voxcd::test::diff {
 
@@ -64,7 +64,8 @@ struct ExactContacts {
 // pseudo-normals.
 struct ExactPair {
   ExactPair(const Mesh& a, const Mesh& b)
-      : mesh{a, b}, tree{{a.vertices, a.triangles}, {b.vertices, b.triangles}},
+      : mesh{a, b},
+        tree{{a.vertices, a.triangles}, {b.vertices, b.triangles}},
         normals{{a.vertices, a.triangles}, {b.vertices, b.triangles}} {}
   Mesh mesh[2];
   detail::TriangleTree tree[2];
@@ -99,8 +100,8 @@ inline void measure_contacts(const std::vector<Contact>& cs, const ExactPair& x,
       // pseudo-normal there; negated, as the contact's normal is.
       const detail::Closest cl = x.tree[k].closest(local);
       const Eigen::Vector3d away = local - cl.point;
-      const Eigen::Vector3d grad = away.norm() > 1e-9 * voxel ? Eigen::Vector3d(away.normalized() * (d < 0 ? -1 : 1))
-                                                              : x.normals[k].at(cl);
+      const Eigen::Vector3d grad =
+          away.norm() > 1e-9 * voxel ? Eigen::Vector3d(away.normalized() * (d < 0 ? -1 : 1)) : x.normals[k].at(cl);
       const Eigen::Vector3d exact = -(po.rotation * grad);
       const double cosine = std::clamp(exact.dot(c.normal), -1.0, 1.0);
       e.normal_error.push_back(std::acos(cosine) * 180 / M_PI);
@@ -158,8 +159,7 @@ class SparseCheck {
       double d = std::sqrt(tree_[k]->closest(local).d2) / check_.voxel();
       if (inside_[k]->depth(local) > 0) d = -d;
       // Beyond the bound from every triangle, a hole's filling (voxcd's solid) may still hold the contact.
-      if (d > kContactBoundSparse && near_filling(k, local, kContactBoundSparse * check_.voxel()))
-        d = -d, ++s.filled;
+      if (d > kContactBoundSparse && near_filling(k, local, kContactBoundSparse * check_.voxel())) d = -d, ++s.filled;
       s.worst = std::max(s.worst, d);
       s.beyond += d > kContactBoundSparse;
       s.conservative += obj_[k].field.near_conservative(sparse::grid_of(obj_[k], po, c.position));
@@ -182,7 +182,8 @@ class SparseCheck {
     g.dims = {6, 6, 6};
     const std::vector<uint64_t> in = detail::solid_bits(mesh_[k], g, 1);
     for (uint64_t i = 0; i < 216; ++i) {
-      const Eigen::Vector3d node = vm.origin + (first + Eigen::Vector3d(double(i % 6), double(i / 6 % 6), double(i / 36))) * h;
+      const Eigen::Vector3d node =
+          vm.origin + (first + Eigen::Vector3d(double(i % 6), double(i / 6 % 6), double(i / 36))) * h;
       if ((in[i >> 6] >> (i & 63) & 1) && (node - p).norm() <= r) return true;
     }
     return false;
