@@ -98,13 +98,14 @@ SparseDistanceField sparse_distance_field(const Mesh& mesh, const GridPlacement&
   std::vector<Eigen::Vector3d> gv(mesh.vertices.size());
   for (size_t i = 0; i < gv.size(); ++i) gv[i] = (mesh.vertices[i] - g.origin) / g.voxel;
   const detail::TriangleTree tree(gv, mesh.triangles);
+  const detail::PseudoNormals normals(gv, mesh.triangles);
   const int qmax = (1 << (bits - 1)) - 1, qmin = -(1 << (bits - 1));
   const detail::NodeMeasure m{mesh, gv, tree, opt.distance.band * (1 + 1e-9), 1 / step, qmin, qmax};
   ThreadPool pool(opt.distance.threads);
   const auto ct = cell_triangles(mesh, gv, cells, pool);
   const std::vector<uint8_t> near = near_cells(mesh, gv, cells, opt.distance.band);
   detail::BrickSigns signs(mesh, g, cells, opt.whole_solid_nodes, opt.distance.threads);
-  const detail::BrickContext ctx{mesh, g, cells, m, signs, step, opt.max_level, opt.distance.conservative};
+  const detail::BrickContext ctx{mesh, g, cells, m, normals, signs, step, opt.max_level, opt.distance.conservative};
   Parts parts;
   for (uint32_t cz = 0; cz < cells[2]; ++cz) {
     signs.load_layer(cz);

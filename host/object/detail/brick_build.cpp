@@ -100,6 +100,33 @@ constexpr uint8_t kCrossed = 1;     // a triangle crosses it
 constexpr uint8_t kUnresolved = 2;  // and the field does not resolve it: refine, and at max_level lower its nodes
 constexpr uint8_t kMembrane = 4;    // no triangle crosses it, yet its nodes hold both signs: the solid's boundary where
                                     // the winding number fills a hole; refine (the zero crossing moves with the nodes)
+constexpr uint8_t kTooFarIn = 8;    // a triangle crosses it and the interpolant reads at most 0 at a point of it that
+                                    // lies outside, farther than kOutsideTolerance from the surface: refine (a contact
+                                    // there would lie that far out), never lower
+
+// Flags the crossed sub-cells where the field puts the surface too far out: at the sub-cell's centre, face centres and
+// edge midpoints, a point where the interpolant is at most 0 that lies outside (by the nearest feature's
+// pseudo-normal) farther than kOutsideTolerance from every triangle.
+template <class Field>
+void flag_too_far_in(const BrickContext& ctx, const Field& field, const Eigen::Vector3d& o, double h,
+                     std::vector<uint8_t>& flag) {
+  const uint64_t s = uint64_t{8} << int(std::lround(std::log2(1 / h)));
+  const double far2 = kOutsideTolerance * kOutsideTolerance;
+  for (uint64_t i = 0; i < flag.size(); ++i) {
+    if (!(flag[i] & kCrossed) || (flag[i] & kUnresolved)) continue;
+    const Eigen::Vector3d lo = o + Eigen::Vector3d(double(i % s), double(i / s % s), double(i / (s * s))) * h;
+    for (int m = 0; m < 27; ++m) {
+      const Eigen::Vector3d f(m % 3, m / 3 % 3, m / 9);
+      if ((f.array() != 1).count() == 3) continue;  // the corners are nodes: the field is exact there
+      const Eigen::Vector3d p = lo + f * (h / 2);
+      if (field(p) > 0 || ctx.measure.tree.closest(p, far2).found()) continue;
+      const Closest c = ctx.measure.tree.closest(p);
+      if (!c.found() || ctx.mesh.is_sheet(c.triangle) || (p - c.point).dot(ctx.normals.at(c)) <= 0) continue;
+      flag[i] |= kTooFarIn;
+      break;
+    }
+  }
+}
 
 // Flags the sub-cells whose nodes hold both signs that no triangle crosses.
 void flag_membranes(const ExtGrid& e, std::vector<uint8_t>& flag) {
@@ -146,6 +173,7 @@ std::vector<uint8_t> unresolved(const BrickContext& ctx, const std::array<uint32
       if (!(solid && piece_resolved(field, piece_in_cube(a, b, cc, lo, h), tolerance, deep))) fl |= kUnresolved;
     });
   }
+  flag_too_far_in(ctx, field, o, h, flag);
   flag_membranes(e, flag);
   return flag;
 }
@@ -192,7 +220,8 @@ BrickResult finish(const ExtGrid& e, const NodeMeasure& m, std::vector<uint64_t>
 }
 
 bool any_to_refine(const std::vector<uint8_t>& flags) {
-  return std::any_of(flags.begin(), flags.end(), [](uint8_t f) { return (f & (kUnresolved | kMembrane)) != 0; });
+  return std::any_of(flags.begin(), flags.end(),
+                     [](uint8_t f) { return (f & (kUnresolved | kMembrane | kTooFarIn)) != 0; });
 }
 
 // A cell whose nodes all lie beyond the band at level l: each node clamped by its sign.

@@ -13,12 +13,18 @@
 
 namespace voxcd::detail {
 
+// How far outside the surface, in voxels, a point of a crossed sub-cell may lie where the interpolant reads at most 0
+// (a contact at margin 0) before the brick is refined: a contact's 1/4 voxel, less the device's weight truncation
+// (3 (h + s) 2^-WB) and the fixed-point path's share.
+constexpr double kOutsideTolerance = 0.2;
+
 // What every brick of one field shares.
 struct BrickContext {
   const Mesh& mesh;
   const GridPlacement& g;         // the voxmap's grid
   std::array<uint32_t, 3> cells;  // coarse cells per axis
   const NodeMeasure& measure;     // distances (grid coordinates) and quantisation
+  const PseudoNormals& normals;   // of the mesh in grid coordinates: which side of the surface a point lies on
   const BrickSigns& signs;        // level-0 nodes: the layer of the cell must be loaded
   double step;                    // voxels per node unit
   int max_level;                  // 0 .. 3
@@ -41,8 +47,10 @@ struct BrickResult {
 // when the triangle is not a sheet's and, at the corners and centroid x of the triangle's piece in it, the
 // interpolant is at most kResolvedTolerance + step / 2 (the same bound at every level) and reads at most 0 at
 // min(kResolvedDepth h, half the part's thickness along the inward normal) inside x, unless that point lies nearer
-// the surface than half that depth (docs/objects.md, "Sparse distance field"). A sub-cell no triangle crosses whose
-// nodes hold both signs (the boundary of a hole's filling) is refined too, and never lowered.
+// the surface than half that depth (docs/objects.md, "Sparse distance field"). Refined too, and never lowered: a
+// crossed sub-cell where the interpolant reads at most 0 at a point (its centre, a face centre or an edge midpoint)
+// that lies outside, farther than kOutsideTolerance from the surface; a sub-cell no triangle crosses whose nodes hold
+// both signs (the boundary of a hole's filling).
 BrickResult build_brick(const BrickContext& ctx, const std::array<uint32_t, 3>& c, uint64_t t,
                         const std::vector<uint32_t>& tris);
 

@@ -151,14 +151,13 @@ void run_sample(const std::vector<std::pair<Model, Model>>& pairs, uint32_t reso
                 pair.c_str(), (unsigned long long)here.contacts, here.worst_contact, (unsigned long long)c.conservative,
                 (unsigned long long)d.conservative, (unsigned long long)here.fn);
   }
-  std::printf(
-      "sparse: collisions found %llu, missed %llu (deepest %.3f voxels; %llu found by 2-bit, deepest %.3f), separated "
-      "%llu, "
-      "false contacts %llu; contacts %llu, beyond 1/4 voxel %llu (worst %.3f), by conservative sub-cells %llu, "
-      "in a hole's filling %llu\n",
-      (unsigned long long)t.tp, (unsigned long long)t.fn, t.worst_missed_depth, (unsigned long long)t.missed_found_2bit,
-      (unsigned long long)t.tn, (unsigned long long)t.fp, (unsigned long long)t.contacts, (unsigned long long)t.beyond,
-      t.worst_contact, (unsigned long long)t.conservative, (unsigned long long)t.filled);
+  std::printf("sparse: collisions found %llu, missed %llu (deepest %.3f voxels; %llu found by 2-bit, deepest %.3f), "
+              "separated %llu, false contacts %llu; contacts %llu, beyond 1/4 voxel %llu (worst %.3f), by "
+              "conservative sub-cells %llu, in a hole's filling %llu\n",
+              (unsigned long long)t.tp, (unsigned long long)t.fn, t.worst_missed_depth,
+              (unsigned long long)t.missed_found_2bit, t.worst_found_2bit_depth, (unsigned long long)t.tn,
+              (unsigned long long)t.fp, (unsigned long long)t.contacts, (unsigned long long)t.beyond, t.worst_contact,
+              (unsigned long long)t.conservative, (unsigned long long)t.filled);
   EXPECT_GT(t.tp, 0u);
   EXPECT_GT(t.tn + t.fp, 0u);
 }
