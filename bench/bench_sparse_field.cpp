@@ -101,7 +101,8 @@ int main(int argc, char** argv) {
   std::ostringstream md;
   md << bench::provenance(argc, argv) << "\n\n"
      << "Sparse distance fields (SB 8, band 4 voxels, bricks refined up to level 3), built brick by brick on "
-     << (threads ? std::to_string(threads) + (threads == 1 ? " thread" : " threads") : std::string("every hardware thread"))
+     << (threads ? std::to_string(threads) + (threads == 1 ? " thread" : " threads")
+                 : std::string("every hardware thread"))
      << "; peak memory is the process's peak so far (the rows run in order). Device bytes: the sparse device's table "
         "and bricks (BL 3, MEMW 64) and a dense distance map of the same grid.\n\n"
      << "| shape | voxels across | grid | seconds | peak MiB | uniform cells | bricks at level 0 / 1 / 2 / 3 | "
