@@ -196,33 +196,49 @@ std::vector<ShellWord> cloud(const std::array<uint32_t, 3>& dims, int pf, size_t
   return out;
 }
 
+// Table at word 0, bricks from the next multiple of 8; the job that reads it (grid coordinates from the shell words).
+struct SparseMap {
+  std::vector<uint64_t> words;
+  Job job;
+};
+SparseMap sparse_map(const DeviceConfig& cfg, const SparseDistanceField& s) {
+  const SparseImage im = s.device_image(cfg);
+  SparseMap m{im.table, identity_job(cfg, s.dims())};
+  m.words.resize((m.words.size() + 7) / 8 * 8, 0);
+  m.job.sparse = kSparseMap;
+  m.job.brick_base = uint32_t(m.words.size());
+  m.job.brick_units = uint32_t(im.brick_units);
+  m.words.insert(m.words.end(), im.bricks.begin(), im.bricks.end());
+  return m;
+}
+
+// Every point of a random cloud over the grid (and a little beyond) reads the same D from both images.
+void expect_same_lookups(const DeviceConfig& cfg, const DistanceField& d, const SparseDistanceField& s,
+                         const std::string& what) {
+  const SparseMap sm = sparse_map(cfg, s);
+  const std::vector<uint64_t> dense_words = d.device_words(cfg);
+  const Job dj = identity_job(cfg, d.dims);
+  uint64_t inside = 0;
+  for (const ShellWord& p : cloud(d.dims, cfg.PF, 20000, test::seed())) {
+    const Lookup a = look_up(cfg, dense_words, dj, p), b = look_up(cfg, sm.words, sm.job, p);
+    ASSERT_EQ(a.loc.inside, b.loc.inside);
+    ASSERT_EQ(a.dist, b.dist) << what << ": point (" << p.x << ", " << p.y << ", " << p.z << ")";
+    inside += a.loc.inside;
+  }
+  EXPECT_GT(inside, 10000u) << what;
+}
+
 TEST(SparseField, LookUpOnTheSparseImageGivesTheDenseD) {
   std::printf("seed %llu (VOXCD_SEED)\n", static_cast<unsigned long long>(test::seed()));
   const DeviceConfig cfg = sparse_config();
   for (const char* name : {"torus", "stellated"}) {
     const Mesh m = named_shape(name);
     const Voxmap vm = voxmap_of(m, longest(m) / 30);
+    // The dense field converted (its conservative cells included), and a level-0 field built brick by brick.
     const DistanceField d = distance_field(m, vm, distance_options(8, 4, true));
-    const SparseDistanceField s = sparse_from_dense(d);
-    const SparseImage im = s.device_image(cfg);
-    // Table at word 0, bricks from the next multiple of 8.
-    std::vector<uint64_t> sparse_map = im.table;
-    sparse_map.resize((sparse_map.size() + 7) / 8 * 8, 0);
-    const uint32_t brick_base = uint32_t(sparse_map.size());
-    sparse_map.insert(sparse_map.end(), im.bricks.begin(), im.bricks.end());
-    const std::vector<uint64_t> dense_map = d.device_words(cfg);
-    Job dj = identity_job(cfg, d.dims), sj = dj;
-    sj.sparse = kSparseMap;
-    sj.brick_base = brick_base;
-    sj.brick_units = uint32_t(im.brick_units);
-    uint64_t inside = 0;
-    for (const ShellWord& p : cloud(d.dims, cfg.PF, 20000, test::seed())) {
-      const Lookup a = look_up(cfg, dense_map, dj, p), b = look_up(cfg, sparse_map, sj, p);
-      ASSERT_EQ(a.loc.inside, b.loc.inside);
-      ASSERT_EQ(a.dist, b.dist) << name << ": point (" << p.x << ", " << p.y << ", " << p.z << ")";
-      inside += a.loc.inside;
-    }
-    EXPECT_GT(inside, 10000u) << name;
+    expect_same_lookups(cfg, d, sparse_from_dense(d), std::string(name) + " (converted)");
+    const DistanceField raw = distance_field(m, vm, distance_options(8, 4, false));
+    expect_same_lookups(cfg, raw, sparse_of(m, vm, 8, 4, false, 0), std::string(name) + " (built)");
   }
 }
 
@@ -236,14 +252,9 @@ TEST(SparseField, SampleIsTheDevicesInterpolantAtEveryLevel) {
     const SparseDistanceField s = sparse_of(m, vm, 8, 4, true, 3);
     const SparseFieldCounts c = s.counts();
     EXPECT_GT(c.bricks[1] + c.bricks[2] + c.bricks[3], 0u) << m.name << ": nothing refined";
-    const SparseImage im = s.device_image(cfg);
-    std::vector<uint64_t> map = im.table;
-    map.resize((map.size() + 7) / 8 * 8, 0);
-    Job j = identity_job(cfg, s.dims());
-    j.sparse = kSparseMap;
-    j.brick_base = uint32_t(map.size());
-    j.brick_units = uint32_t(im.brick_units);
-    map.insert(map.end(), im.bricks.begin(), im.bricks.end());
+    const SparseMap sm = sparse_map(cfg, s);
+    const std::vector<uint64_t>& map = sm.words;
+    const Job& j = sm.job;
     // Points near the surface, where the bricks are: vertices and edge midpoints moved a little.
     std::normal_distribution<double> n(0, 0.7);
     uint64_t refined = 0;
