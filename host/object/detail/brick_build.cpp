@@ -1,6 +1,6 @@
-// build_brick() and far_cell() (host/object/detail/brick_build.h). A brick is measured with a margin of one node on
-// every side, so that the resolution test, which samples up to kResolvedDepth sub-cells inside the surface, reads the
-// field of the brick's own level wherever it samples.
+// build_brick() and far_cell() (host/object/detail/brick_build.h). A brick that a triangle crosses is measured with a
+// margin of one node on every side, so that the resolution test, which samples up to kResolvedDepth sub-cells inside
+// the surface, reads the field of the brick's own level wherever it samples.
 #include "voxcd/host/object/detail/brick_build.h"
 
 #include <algorithm>
@@ -18,9 +18,11 @@ namespace {
 // one the triangle crosses, as at level 0.
 constexpr double kGrow = 1.0 / (1 << 19);
 
-// The level-l nodes lo + (i, j, k), 0 <= i, j, k < n: the cell's 8 2^l + 1 nodes per axis and one more on each side.
+// The level-l nodes lo + (i, j, k), 0 <= i, j, k < n: the cell's 8 2^l + 1 nodes per axis and `margin` (0 or 1) more
+// on each side (the resolution test samples up to one sub-cell outside the cell; a cell no triangle crosses needs none).
 struct ExtGrid {
   int level = 0;
+  uint32_t margin = 1;
   std::array<int64_t, 3> lo = {0, 0, 0};
   uint32_t n = 0;
   std::vector<int16_t> q;
@@ -28,12 +30,13 @@ struct ExtGrid {
   int16_t at(uint64_t i, uint64_t j, uint64_t k) const { return q[i + n * (j + uint64_t(n) * k)]; }
 };
 
-ExtGrid measure_level(const BrickContext& ctx, const std::array<uint32_t, 3>& c, int level) {
+ExtGrid measure_level(const BrickContext& ctx, const std::array<uint32_t, 3>& c, int level, uint32_t margin) {
   ExtGrid e;
   e.level = level;
+  e.margin = margin;
   const int64_t side = int64_t{8} << level;
-  e.n = uint32_t(side + 3);
-  for (int a = 0; a < 3; ++a) e.lo[size_t(a)] = int64_t(c[size_t(a)]) * side - 1;
+  e.n = uint32_t(side + 1 + 2 * margin);
+  for (int a = 0; a < 3; ++a) e.lo[size_t(a)] = int64_t(c[size_t(a)]) * side - margin;
   e.q.assign(uint64_t(e.n) * e.n * e.n, int16_t(ctx.measure.qmax));
   const std::vector<uint64_t> fine = level > 0 ? ctx.signs.fine(level, e.lo, e.n) : std::vector<uint64_t>();
   const double h = std::ldexp(1.0, -level);
@@ -138,7 +141,7 @@ void flag_membranes(const ExtGrid& e, std::vector<uint8_t>& flag) {
         if (fl) continue;
         bool neg = false, pos = false;
         for (int m = 0; m < 8; ++m) {
-          const int16_t q = e.at(i + 1 + (m & 1), j + 1 + (m >> 1 & 1), k + 1 + (m >> 2 & 1));
+          const int16_t q = e.at(i + e.margin + (m & 1), j + e.margin + (m >> 1 & 1), k + e.margin + (m >> 2 & 1));
           neg |= q < 0;
           pos |= q > 0;
         }
@@ -188,7 +191,7 @@ std::vector<uint64_t> lower(ExtGrid& e, const std::vector<uint8_t>& flag, uint64
         if (!(flag[i + s * (j + s * k)] & kUnresolved)) continue;
         keys.push_back(SparseDistanceField::conservative_key(t, uint32_t(i), uint32_t(j), uint32_t(k)));
         for (int m = 0; m < 8; ++m) {
-          int16_t& q = e.at(i + 1 + (m & 1), j + 1 + (m >> 1 & 1), k + 1 + (m >> 2 & 1));
+          int16_t& q = e.at(i + e.margin + (m & 1), j + e.margin + (m >> 1 & 1), k + e.margin + (m >> 2 & 1));
           q = std::min<int16_t>(q, 0);
         }
       }
@@ -198,12 +201,12 @@ std::vector<uint64_t> lower(ExtGrid& e, const std::vector<uint8_t>& flag, uint64
 // The cell's brick from e (its margin dropped), or a uniform code when every node is qmax or every node qmin.
 BrickResult finish(const ExtGrid& e, const NodeMeasure& m, std::vector<uint64_t> keys) {
   BrickResult r;
-  const uint64_t n = e.n - 2;
+  const uint64_t n = e.n - 2 * e.margin, lo = e.margin;
   r.nodes.reserve(n * n * n);
   bool far = true, deep = true;
-  for (uint64_t k = 1; k <= n; ++k)
-    for (uint64_t j = 1; j <= n; ++j)
-      for (uint64_t i = 1; i <= n; ++i) {
+  for (uint64_t k = lo; k < lo + n; ++k)
+    for (uint64_t j = lo; j < lo + n; ++j)
+      for (uint64_t i = lo; i < lo + n; ++i) {
         const int16_t q = e.at(i, j, k);
         r.nodes.push_back(q);
         far = far && q == m.qmax;
@@ -241,7 +244,8 @@ BrickResult clamped_brick(const BrickContext& ctx, const std::array<uint32_t, 3>
 
 BrickResult build_brick(const BrickContext& ctx, const std::array<uint32_t, 3>& c, uint64_t t,
                         const std::vector<uint32_t>& tris) {
-  ExtGrid e = measure_level(ctx, c, 0);
+  const uint32_t margin = ctx.resolve && !tris.empty() ? 1 : 0;
+  ExtGrid e = measure_level(ctx, c, 0, margin);
   std::vector<uint64_t> keys;
   while (ctx.resolve) {
     bool sheet = false;
@@ -251,7 +255,7 @@ BrickResult build_brick(const BrickContext& ctx, const std::array<uint32_t, 3>& 
       keys = lower(e, flags, t);
       break;
     }
-    e = measure_level(ctx, c, sheet ? ctx.max_level : e.level + 1);
+    e = measure_level(ctx, c, sheet ? ctx.max_level : e.level + 1, margin);
   }
   return finish(e, ctx.measure, std::move(keys));
 }
