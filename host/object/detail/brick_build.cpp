@@ -103,15 +103,15 @@ constexpr uint8_t kCrossed = 1;     // a triangle crosses it
 constexpr uint8_t kUnresolved = 2;  // and the field does not resolve it: refine, and at max_level lower its nodes
 constexpr uint8_t kMembrane = 4;    // no triangle crosses it, yet its nodes hold both signs: the solid's boundary where
                                     // the winding number fills a hole; refine (the zero crossing moves with the nodes)
-constexpr uint8_t kTooFarIn = 8;    // a triangle crosses it and the interpolant reads at most 0 at a point of it that
+constexpr uint8_t kTooFarOut = 8;    // a triangle crosses it and the interpolant reads at most 0 at a point of it that
                                     // lies outside, farther than kOutsideTolerance from the surface: refine (a contact
                                     // there would lie that far out), never lower
 
-// Flags the crossed sub-cells where the field puts the surface too far out: at the sub-cell's centre, face centres and
-// edge midpoints, a point where the interpolant is at most 0 that lies outside (by the nearest feature's
-// pseudo-normal) farther than kOutsideTolerance from every triangle.
+// Flags the crossed sub-cells where the field puts the surface too far out (its zero set outside the object): at the
+// sub-cell's centre, face centres and edge midpoints, a point where the interpolant is at most 0 that lies outside (by
+// the nearest feature's pseudo-normal) farther than kOutsideTolerance from every triangle.
 template <class Field>
-void flag_too_far_in(const BrickContext& ctx, const Field& field, const Eigen::Vector3d& o, double h,
+void flag_too_far_out(const BrickContext& ctx, const Field& field, const Eigen::Vector3d& o, double h,
                      std::vector<uint8_t>& flag) {
   const uint64_t s = uint64_t{8} << int(std::lround(std::log2(1 / h)));
   const double far2 = kOutsideTolerance * kOutsideTolerance;
@@ -125,7 +125,7 @@ void flag_too_far_in(const BrickContext& ctx, const Field& field, const Eigen::V
       if (field(p) > 0 || ctx.measure.tree.closest(p, far2).found()) continue;
       const Closest c = ctx.measure.tree.closest(p);
       if (!c.found() || ctx.mesh.is_sheet(c.triangle) || (p - c.point).dot(ctx.normals.at(c)) <= 0) continue;
-      flag[i] |= kTooFarIn;
+      flag[i] |= kTooFarOut;
       break;
     }
   }
@@ -176,7 +176,7 @@ std::vector<uint8_t> unresolved(const BrickContext& ctx, const std::array<uint32
       if (!(solid && piece_resolved(field, piece_in_cube(a, b, cc, lo, h), tolerance, deep))) fl |= kUnresolved;
     });
   }
-  flag_too_far_in(ctx, field, o, h, flag);
+  flag_too_far_out(ctx, field, o, h, flag);
   flag_membranes(e, flag);
   return flag;
 }
@@ -224,7 +224,7 @@ BrickResult finish(const ExtGrid& e, const NodeMeasure& m, std::vector<uint64_t>
 
 bool any_to_refine(const std::vector<uint8_t>& flags) {
   return std::any_of(flags.begin(), flags.end(),
-                     [](uint8_t f) { return (f & (kUnresolved | kMembrane | kTooFarIn)) != 0; });
+                     [](uint8_t f) { return (f & (kUnresolved | kMembrane | kTooFarOut)) != 0; });
 }
 
 // A cell whose nodes all lie beyond the band at level l: each node clamped by its sign.
