@@ -19,7 +19,8 @@ namespace {
 constexpr double kGrow = 1.0 / (1 << 19);
 
 // The level-l nodes lo + (i, j, k), 0 <= i, j, k < n: the cell's 8 2^l + 1 nodes per axis and `margin` (0 or 1) more
-// on each side (the resolution test samples up to one sub-cell outside the cell; a cell no triangle crosses needs none).
+// on each side (the resolution test samples up to one sub-cell outside the cell; a cell no triangle crosses needs
+// none).
 struct ExtGrid {
   int level = 0;
   uint32_t margin = 1;
