@@ -421,6 +421,7 @@ class PairCheck {
     return false;
   }
 
+ public:
   // The translational penetration depth, from above: the shortest translation of B along any of the 26 directions
   // to the neighbours of a cube (axes, face and space diagonals) that leaves the models apart (FCL's collide and
   // the containment test both false), found by steps of v/4 and bisection to v/1000 (world units).
@@ -462,6 +463,7 @@ class PairCheck {
     return best;
   }
 
+ private:
   const Inside& inside(int k) {
     if (!inside_[k]) inside_[k] = std::make_unique<Inside>(k == 0 ? a_ : b_);
     return *inside_[k];

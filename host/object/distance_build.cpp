@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "voxcd/host/object/detail/closest.h"
+#include "voxcd/host/object/detail/node_value.h"
 #include "voxcd/host/object/detail/solid.h"
 #include "voxcd/host/object/detail/unresolved.h"
 #include "voxcd/host/object/distance_field.h"
@@ -84,6 +85,34 @@ std::vector<uint8_t> near_nodes(const std::vector<uint64_t>& surface, const std:
 
 namespace {
 
+// What step 3 of distance_field needs: the nodes' sign and nearness, the triangles in grid coordinates.
+struct NodeGrid {
+  std::array<uint64_t, 3> n;
+  const std::vector<uint64_t>& solid;
+  const std::vector<uint8_t>& near;
+  std::vector<Eigen::Vector3d> gv;  // the vertices in grid coordinates: node (X, Y, Z) at (X, Y, Z)
+};
+
+// The values of the nodes of one row (Y, Z): clamped beyond the band, else the rounded signed distance.
+void measure_row(const NodeGrid& ng, const detail::NodeMeasure& m, uint64_t row, DistanceField& f) {
+  const uint64_t Y = row % ng.n[1], Z = row / ng.n[1];
+  uint32_t prev = UINT32_MAX;  // the previous node's nearest triangle in this row, when measured
+  for (uint64_t X = 0; X < ng.n[0]; ++X) {
+    const uint64_t i = X + ng.n[0] * row;
+    const bool inside = bit(ng.solid, i);
+    if (!ng.near[i]) {
+      f.q[i] = int16_t(inside ? m.qmin : m.qmax);
+      prev = UINT32_MAX;
+      continue;
+    }
+    f.q[i] = detail::node_value(m, Eigen::Vector3d(double(X), double(Y), double(Z)), inside, prev);
+  }
+}
+
+}  // namespace
+
+namespace detail {
+
 void check_distance_options(const Mesh& mesh, const DistanceOptions& opt) {
   if (!valid_distance_bits(opt.bits))
     throw MeshError(mesh.name + ": distance bits must be " + distance_bits_text() + ", got " +
@@ -99,57 +128,11 @@ void check_distance_options(const Mesh& mesh, const DistanceOptions& opt) {
   if (mesh.triangles.empty()) throw MeshError(mesh.name + ": the mesh has no triangles");
 }
 
-// What step 3 of distance_field needs: the nodes' sign and nearness, the triangles in grid coordinates.
-struct NodeGrid {
-  std::array<uint64_t, 3> n;
-  const std::vector<uint64_t>& solid;
-  const std::vector<uint8_t>& near;
-  std::vector<Eigen::Vector3d> gv;  // the vertices in grid coordinates: node (X, Y, Z) at (X, Y, Z)
-};
-
-// The values of the nodes of one row (Y, Z): clamped beyond the band, else the rounded signed distance.
-void measure_row(const Mesh& mesh, const NodeGrid& ng, const detail::TriangleTree& tree, double band, uint64_t row,
-                 DistanceField& f) {
-  const int qmax = f.qmax(), qmin = f.qmin();
-  // Nodes beyond the band clamp: any distance > band rounds to at least 2^(bits-1) steps. The search radius is a
-  // little larger so that a distance at the band's edge is still measured exactly.
-  const double radius = band * (1 + 1e-9);
-  const double inv_step = 1 / f.step;
-  const uint64_t Y = row % ng.n[1], Z = row / ng.n[1];
-  uint32_t prev = UINT32_MAX;  // the previous node's nearest triangle in this row, when measured
-  for (uint64_t X = 0; X < ng.n[0]; ++X) {
-    const uint64_t i = X + ng.n[0] * row;
-    const bool inside = bit(ng.solid, i);
-    if (!ng.near[i]) {
-      f.q[i] = int16_t(inside ? qmin : qmax);
-      prev = UINT32_MAX;
-      continue;
-    }
-    const Eigen::Vector3d p = Eigen::Vector3d(double(X), double(Y), double(Z));
-    // The previous node's nearest triangle is usually this one's too, or nearly as near: its distance bounds
-    // the search, which still returns the nearest of all (the same value whatever the bound).
-    double r2 = radius * radius;
-    if (prev != UINT32_MAX) {
-      const auto& t = mesh.triangles[prev];
-      r2 = std::min(r2, detail::closest_on_triangle(p, ng.gv[t[0]], ng.gv[t[1]], ng.gv[t[2]]).d2);
-    }
-    const detail::Closest c = tree.closest(p, r2);
-    prev = c.triangle;
-    if (!c.found()) {
-      f.q[i] = int16_t(inside ? qmin : qmax);
-      continue;
-    }
-    const double d = std::sqrt(c.d2);
-    const double v = std::round((inside ? -d : d) * inv_step);
-    f.q[i] = int16_t(std::clamp(v, double(qmin), double(qmax)));
-  }
-}
-
-}  // namespace
+}  // namespace detail
 
 DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const DistanceOptions& opt,
                              uint64_t* conservative) {
-  check_distance_options(mesh, opt);
+  detail::check_distance_options(mesh, opt);
   const GridPlacement& g = voxmap.grid();
   DistanceField f;
   f.bits = opt.bits;
@@ -181,11 +164,13 @@ DistanceField distance_field(const Mesh& mesh, const Voxmap& voxmap, const Dista
   NodeGrid ng{n, solid, near, std::vector<Eigen::Vector3d>(mesh.vertices.size())};
   for (size_t i = 0; i < ng.gv.size(); ++i) ng.gv[i] = (mesh.vertices[i] - g.origin) / g.voxel;
   const detail::TriangleTree tree(ng.gv, mesh.triangles);
+  // Nodes beyond the band clamp: any distance > band rounds to at least 2^(bits-1) steps. The search radius is a
+  // little larger so that a distance at the band's edge is still measured exactly.
+  const detail::NodeMeasure m{mesh, ng.gv, tree, opt.band * (1 + 1e-9), 1 / f.step, f.qmin(), f.qmax()};
   const uint64_t rows = n[1] * n[2];
   const uint64_t parts = std::min<uint64_t>(rows, 1024);
   pool.parallel_for(parts, [&](size_t part) {
-    for (uint64_t row = rows * part / parts; row < rows * (part + 1) / parts; ++row)
-      measure_row(mesh, ng, tree, opt.band, row, f);
+    for (uint64_t row = rows * part / parts; row < rows * (part + 1) / parts; ++row) measure_row(ng, m, row, f);
   });
   // 4. What the nodes cannot resolve becomes conservative.
   const uint64_t lowered = opt.conservative ? detail::make_unresolved_conservative(mesh, g, f, opt.threads) : 0;

@@ -13,8 +13,6 @@ namespace voxcd::detail {
 
 namespace {
 
-using Polygon = std::vector<Eigen::Vector3d>;
-
 // The part of polygon p on the side x[axis] * sign <= bound * sign (Sutherland-Hodgman, one plane).
 Polygon clip(const Polygon& p, int axis, double bound, double sign) {
   Polygon out;
@@ -28,35 +26,24 @@ Polygon clip(const Polygon& p, int axis, double bound, double sign) {
   return out;
 }
 
-// Triangle abc (grid coordinates) clipped to the cell [c, c + 1]^3.
-Polygon piece_in_cell(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                      const Eigen::Vector3d& lo) {
+}  // namespace
+
+Polygon piece_in_cube(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& lo, double size) {
   Polygon p = {a, b, c};
   for (int axis = 0; axis < 3 && !p.empty(); ++axis) {
     p = clip(p, axis, lo[axis], -1);
-    if (!p.empty()) p = clip(p, axis, lo[axis] + 1, 1);
+    if (!p.empty()) p = clip(p, axis, lo[axis] + size, 1);
   }
   return p;
 }
 
-// The piece's corners and centroid on the surface within the tolerance, and the same points kResolvedDepth inside
-// (along `inward`, a unit vector in grid units) hits.
-bool resolved(const DistanceField& f, const Polygon& piece, const Eigen::Vector3d& inward) {
-  if (piece.empty()) return true;  // the cell holds the triangle only through the voxeliser's growth
-  const double tolerance = kResolvedTolerance + f.step / 2;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& x : piece) centroid += x;
-  centroid /= double(piece.size());
-  auto fine = [&](const Eigen::Vector3d& x) {
-    return f.sample(x) <= tolerance && f.sample(x + kResolvedDepth * inward) <= 0;
-  };
-  if (!fine(centroid)) return false;
-  for (const Eigen::Vector3d& x : piece)
-    if (!fine(x)) return false;
+bool inward_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, Eigen::Vector3d& n) {
+  const Eigen::Vector3d x = (b - a).cross(c - a);
+  if (!(x.squaredNorm() > 0)) return false;
+  n = -x.normalized();
   return true;
 }
-
-}  // namespace
 
 uint64_t make_unresolved_conservative(const Mesh& mesh, const GridPlacement& g, DistanceField& f, unsigned threads) {
   const uint64_t nx = g.dims[0], nxy = nx * g.dims[1];
@@ -65,6 +52,7 @@ uint64_t make_unresolved_conservative(const Mesh& mesh, const GridPlacement& g, 
   std::vector<Eigen::Vector3d> gv(mesh.vertices.size());
   for (size_t i = 0; i < gv.size(); ++i) gv[i] = (mesh.vertices[i] - g.origin) / g.voxel;
   ThreadPool pool(threads);
+  const double tolerance = kResolvedTolerance + f.step / 2;
   const size_t parts = std::max<size_t>(1, std::min<size_t>(mesh.size(), size_t(pool.size()) * 16));
   pool.parallel_for(parts, [&](size_t part) {
     const size_t t0 = mesh.size() * part / parts, t1 = mesh.size() * (part + 1) / parts;
@@ -76,9 +64,11 @@ uint64_t make_unresolved_conservative(const Mesh& mesh, const GridPlacement& g, 
         const Eigen::Vector3d& a = gv[tri[0]];
         const Eigen::Vector3d& b = gv[tri[1]];
         const Eigen::Vector3d& c = gv[tri[2]];
-        const Eigen::Vector3d n = (b - a).cross(c - a);
-        // (repair orients every non-sheet triangle outward; a degenerate one has no inside to test)
-        if (n.squaredNorm() > 0 && resolved(f, piece_in_cell(a, b, c, Eigen::Vector3d(x, y, z)), -n.normalized()))
+        Eigen::Vector3d inward;
+        const auto sample = [&f](const Eigen::Vector3d& p) { return f.sample(p); };
+        const auto deep = [&](const Eigen::Vector3d& p) { return f.sample(p + kResolvedDepth * inward) <= 0; };
+        if (inward_normal(a, b, c, inward) &&
+            piece_resolved(sample, piece_in_cube(a, b, c, Eigen::Vector3d(x, y, z), 1.0), tolerance, deep))
           return;
       }
       flags[i >> 6].fetch_or(uint64_t{1} << (i & 63), std::memory_order_relaxed);
