@@ -55,7 +55,9 @@ int code_level(const DeviceConfig& cfg, uint8_t code) {
 
 uint64_t code_units(const DeviceConfig& cfg, uint8_t code) {
   const int l = code_level(cfg, code);
-  return l < 0 ? 0 : level_units(cfg, l);
+  if (l < 0) return 0;
+  // A 2-bit brick is one unit (the contract's table); level_units counts distance nodes, which a 2-bit brick has not.
+  return cfg.distance() ? level_units(cfg, l) : 1;
 }
 
 uint64_t table_units(const DeviceConfig& cfg, const std::vector<uint8_t>& codes) {

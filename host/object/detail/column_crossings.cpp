@@ -34,16 +34,16 @@ int64_t ColumnCrossings::prefix(size_t c, double x) const {
 }
 
 ColumnCrossings column_crossings(const Chain& chain, const GridMesh& gm, const GridPlacement& gp, ThreadPool& pool,
-                                 const ZWindow& win, const std::vector<uint32_t>* items) {
+                                 const ZWindow& win, const uint32_t* items, size_t n) {
   const int64_t z0 = std::max<int64_t>(0, win.z0);
   const int64_t z1 = std::min<int64_t>(int64_t(gp.dims[2]) - 1, win.z1);
-  const size_t n_items = items ? items->size() : chain.size();
+  const size_t n_items = items ? n : chain.size();
   const auto parts = chunks(n_items, pool.size());
   std::vector<std::vector<SignedCrossing>> found(parts.size());
   const uint32_t ny = gp.dims[1];
   pool.parallel_for(parts.size(), [&](size_t p) {
-    for (size_t n = parts[p].first; n < parts[p].second; ++n) {
-      const size_t i = items ? (*items)[n] : n;
+    for (size_t k = parts[p].first; k < parts[p].second; ++k) {
+      const size_t i = items ? items[k] : k;
       auto emit = [&](int32_t weight) {
         return [&, weight](uint32_t y, uint32_t z, double x, bool front) {
           found[p].push_back({uint32_t(y + uint64_t(ny) * uint64_t(z - z0)), (front ? 1 : -1) * weight, x});

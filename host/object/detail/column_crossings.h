@@ -42,9 +42,10 @@ struct ColumnCrossings {
 };
 
 // The crossings of chain items (indices < chain.size(): solid triangles first, then caps) with the columns of the
-// window. `items` null: every item. Spread over `pool` (run inline when called from one of its tasks).
+// window: items[0, n), or every item when items is null. Spread over `pool` (run inline when called from one of its
+// tasks).
 ColumnCrossings column_crossings(const Chain& chain, const GridMesh& gm, const GridPlacement& gp, ThreadPool& pool,
-                                 const ZWindow& win, const std::vector<uint32_t>* items = nullptr);
+                                 const ZWindow& win, const uint32_t* items = nullptr, size_t n = 0);
 
 // Calls fill(c, lo, hi) for every run of voxels [lo, hi) of column c whose centres have W >= 1, in order along the
 // column (runs may touch). std::logic_error naming the mesh and the column when a column's signs do not sum to zero
