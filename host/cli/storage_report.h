@@ -2,6 +2,7 @@
 // each form takes in device memory with the default widths (docs/objects.md, "Sparse objects").
 #pragma once
 
+#include <array>
 #include <sstream>
 #include <string>
 
@@ -11,15 +12,34 @@
 
 namespace voxcd::cli {
 
-// The bytes of both forms of the voxmap and the shell (a shell on the surface has no sparse form).
+// The bytes of both forms of the voxmap and the shell (a shell on the surface has no sparse form), and the sparse
+// forms' make-up, as stored or as they would be.
 struct StorageFigures {
   bool voxmap_sparse = false, shell_sparse = false, shell_has_sparse = false;
   uint64_t dense_voxmap = 0, dense_shell = 0;
-  SparseVoxmap sparse_voxmap;  // as stored, or as it would be
-  SparseShell sparse_shell;
-  uint64_t sparse_voxmap_bytes() const { return sparse_voxmap.bytes(); }
-  uint64_t sparse_shell_bytes() const { return shell_has_sparse ? sparse_shell.bytes() : dense_shell; }
+  int bl = 0;
+  std::array<uint64_t, 3> coarse{};
+  std::array<uint64_t, 4> cells{};  // per code
+  uint64_t table_bytes = 0, brick_bytes = 0;
+  uint64_t shell_words = 0, shell_bricks = 0, origin_words = 0, sparse_shell = 0;
+  uint64_t sparse_voxmap() const { return table_bytes + brick_bytes; }
+  uint64_t sparse_shell_bytes() const { return shell_has_sparse ? sparse_shell : dense_shell; }
 };
+
+inline void sparse_voxmap_figures(const SparseVoxmap& sm, StorageFigures& f) {
+  f.bl = sm.bl();
+  f.coarse = sm.coarse();
+  f.cells = sm.code_counts();
+  f.table_bytes = sm.table_bytes();
+  f.brick_bytes = sm.brick_bytes();
+}
+
+inline void sparse_shell_figures(const SparseShell& s, StorageFigures& f) {
+  f.shell_words = s.words();
+  f.shell_bricks = s.bricks.size();
+  f.origin_words = s.origin_words();
+  f.sparse_shell = s.bytes();
+}
 
 inline StorageFigures storage_figures(const ObjectFile& obj) {
   const DeviceConfig cfg;
@@ -29,27 +49,28 @@ inline StorageFigures storage_figures(const ObjectFile& obj) {
   const uint64_t per = uint64_t(cfg.states_per_word());
   f.dense_voxmap = (obj.voxmap_grid().size() + per - 1) / per * uint64_t(cfg.MEMW) / 8;
   f.dense_shell = (uint64_t(obj.shell_points()) * 3 * uint64_t(cfg.PW) + 7) / 8;
-  f.sparse_voxmap = f.voxmap_sparse ? obj.sparse_voxmap : SparseVoxmap::from_dense(obj.voxmap);
+  if (f.voxmap_sparse)  // (not a ?: which would copy the stored map)
+    sparse_voxmap_figures(obj.sparse_voxmap, f);
+  else
+    sparse_voxmap_figures(SparseVoxmap::from_dense(obj.voxmap), f);
   f.shell_has_sparse = f.shell_sparse || !obj.shell.on_surface;
-  if (f.shell_has_sparse) f.sparse_shell = f.shell_sparse ? obj.sparse_shell : SparseShell::from_point_shell(obj.shell);
+  if (f.shell_sparse) sparse_shell_figures(obj.sparse_shell, f);
+  else if (f.shell_has_sparse) sparse_shell_figures(SparseShell::from_point_shell(obj.shell), f);
   return f;
 }
 
 // info --json's "storage" object.
 inline Json storage_json(const StorageFigures& f) {
-  const SparseVoxmap& sm = f.sparse_voxmap;
-  const auto cc = sm.code_counts();
-  const auto& cd = sm.coarse();
-  Json sparse = {{"voxmap_bytes", f.sparse_voxmap_bytes()}, {"shell_bytes", f.sparse_shell_bytes()},
-                 {"bytes", f.sparse_voxmap_bytes() + f.sparse_shell_bytes()}, {"bl", sm.bl()},
-                 {"coarse_dims", {cd[0], cd[1], cd[2]}},
-                 {"cells", {{"empty", cc[kEmpty]}, {"surface", cc[kSurface]}, {"interior", cc[kInterior]},
-                            {"brick", cc[kCodeBrick]}}},
-                 {"table_bytes", sm.table_bytes()}, {"brick_bytes", sm.brick_bytes()}};
+  Json sparse = {{"voxmap_bytes", f.sparse_voxmap()}, {"shell_bytes", f.sparse_shell_bytes()},
+                 {"bytes", f.sparse_voxmap() + f.sparse_shell_bytes()}, {"bl", f.bl},
+                 {"coarse_dims", {f.coarse[0], f.coarse[1], f.coarse[2]}},
+                 {"cells", {{"empty", f.cells[kEmpty]}, {"surface", f.cells[kSurface]}, {"interior", f.cells[kInterior]},
+                            {"brick", f.cells[kCodeBrick]}}},
+                 {"table_bytes", f.table_bytes}, {"brick_bytes", f.brick_bytes}};
   if (f.shell_has_sparse) {
-    sparse["shell_words"] = f.sparse_shell.words();
-    sparse["shell_bricks"] = f.sparse_shell.bricks.size();
-    sparse["origin_words"] = f.sparse_shell.origin_words();
+    sparse["shell_words"] = f.shell_words;
+    sparse["shell_bricks"] = f.shell_bricks;
+    sparse["origin_words"] = f.origin_words;
   }
   return Json{{"voxmap", f.voxmap_sparse ? "sparse" : "dense"},
               {"shell", f.shell_sparse ? "sparse" : "dense"},
@@ -60,19 +81,16 @@ inline Json storage_json(const StorageFigures& f) {
 
 // The same as two lines of text.
 inline std::string storage_text(const StorageFigures& f) {
-  const SparseVoxmap& sm = f.sparse_voxmap;
-  const auto cc = sm.code_counts();
-  const auto& cd = sm.coarse();
   std::ostringstream t;
-  t << "  storage  voxmap stored " << (f.voxmap_sparse ? "sparse" : "dense") << "; sparse (BL " << sm.bl() << "): "
-    << cd[0] << " x " << cd[1] << " x " << cd[2] << " cells, " << cc[kEmpty] << " empty, " << cc[kSurface]
-    << " surface, " << cc[kInterior] << " interior, " << cc[kCodeBrick] << " bricks; table " << sm.table_bytes()
-    << " + bricks " << sm.brick_bytes() << " = " << sm.bytes() << " bytes; dense " << f.dense_voxmap << " bytes\n";
+  t << "  storage  voxmap stored " << (f.voxmap_sparse ? "sparse" : "dense") << "; sparse (BL " << f.bl << "): "
+    << f.coarse[0] << " x " << f.coarse[1] << " x " << f.coarse[2] << " cells, " << f.cells[kEmpty] << " empty, "
+    << f.cells[kSurface] << " surface, " << f.cells[kInterior] << " interior, " << f.cells[kCodeBrick]
+    << " bricks; table " << f.table_bytes << " + bricks " << f.brick_bytes << " = " << f.sparse_voxmap()
+    << " bytes; dense " << f.dense_voxmap << " bytes\n";
   t << "  storage  shell stored " << (f.shell_sparse ? "sparse" : "dense");
   if (f.shell_has_sparse)
-    t << "; sparse: " << f.sparse_shell.words() << " words (" << f.sparse_shell.bricks.size() << " bricks, "
-      << f.sparse_shell.origin_words() << " origin words) = " << f.sparse_shell.bytes() << " bytes; dense "
-      << f.dense_shell << " bytes\n";
+    t << "; sparse: " << f.shell_words << " words (" << f.shell_bricks << " bricks, " << f.origin_words
+      << " origin words) = " << f.sparse_shell << " bytes; dense " << f.dense_shell << " bytes\n";
   else
     t << " (points on the surface have no sparse form)\n";
   return t.str();
