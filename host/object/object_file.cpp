@@ -182,34 +182,33 @@ void put_distance(Writer& w, const DistanceField& df) {
   if (have > 0) w.buf += char(acc & 0xff);
 }
 
-// About the bytes of the object's file (a little more), so that writing it never grows the buffer.
-size_t object_bytes(const ObjectFile& obj) {
-  size_t n = 1024 + obj.source.size() + (obj.distance.q.size() * 2);
-  n += obj.voxmap_sparse() ? obj.sparse_voxmap.code_words().size() * 8 + obj.sparse_voxmap.brick_data().size() * 8
-                           : obj.voxmap.words().size() * 8;
-  n += obj.shell_sparse() ? obj.sparse_shell.bricks.size() * 14 + obj.sparse_shell.normals.size() * 4
-                          : obj.shell.size() * 60;
-  return n;
-}
-
-// Writes bytes to path through path.tmp, renamed into place only once written whole.
-void write_whole(const std::string& path, const std::string& bytes) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw ObjectFileError(path + ": cannot write " + tmp);
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    if (!out.flush()) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw ObjectFileError(path + ": write failed");
+// The file being written: path.tmp, renamed into place only once written whole, and removed when writing fails.
+class TmpFile {
+ public:
+  explicit TmpFile(const std::string& path) : path_(path), tmp_(path + ".tmp"), out_(tmp_, std::ios::binary | std::ios::trunc) {
+    if (!out_) throw ObjectFileError(path_ + ": cannot write " + tmp_);
+  }
+  ~TmpFile() {
+    if (!done_) {
+      out_.close();
+      std::remove(tmp_.c_str());
     }
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw ObjectFileError(path + ": cannot rename " + tmp + " into place");
+  TmpFile(const TmpFile&) = delete;
+  TmpFile& operator=(const TmpFile&) = delete;
+  std::ostream& stream() { return out_; }
+  void commit() {
+    if (!out_.flush()) throw ObjectFileError(path_ + ": write failed");
+    out_.close();
+    if (std::rename(tmp_.c_str(), path_.c_str()) != 0) throw ObjectFileError(path_ + ": cannot rename " + tmp_ + " into place");
+    done_ = true;
   }
-}
+
+ private:
+  std::string path_, tmp_;
+  std::ofstream out_;
+  bool done_ = false;
+};
 
 }  // namespace
 
@@ -224,8 +223,9 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   const bool v5 = obj.voxmap_sparse() || obj.shell_sparse();
   v4 = v4 || v5;
   const bool v3 = !df.empty() || sh.on_surface || v4;
+  TmpFile file(path);
   Writer w;
-  w.buf.reserve(object_bytes(obj));
+  w.sink = &file.stream();
   w.buf.append(kMagic, 8);
   w.put(v5 ? kVersionSparse : v4 ? kVersionReport2 : v3 ? kVersionDistance : kVersion);
   w.put((sh.on_surface && !obj.shell_sparse() ? kFlagSurfaceShell : uint32_t{0}) |
@@ -252,9 +252,11 @@ void write_object(const std::string& path, const ObjectFile& obj) {
     for (uint64_t* f : report2_fields(mr, vr)) w.put(*f);
   }
   if (v5) detail::put_sparse_distance(w, obj);
-  const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
+  w.flush();
+  const uint32_t crc = w.crc;
   w.put(crc);
-  write_whole(path, w.buf);
+  w.flush();
+  file.commit();
 }
 
 namespace {

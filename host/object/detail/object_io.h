@@ -4,9 +4,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <zlib.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <ostream>
 #include <string>
 #include <type_traits>
 
@@ -17,14 +20,20 @@ namespace voxcd::detail {
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the object file is little-endian; add byte swaps here");
 
+// Builds a file's bytes. With a sink, bytes go on to the file as they come (past kSpill at a time, large arrays at
+// once), with their running CRC-32, so that a large object is never held twice in memory; the bytes are the same.
 struct Writer {
   std::string buf;
+  std::ostream* sink = nullptr;
+  uint32_t crc = 0;  // of the bytes already sent to the sink
+  static constexpr size_t kSpill = size_t{1} << 24;
   template <class T>
   void put(T v) {
     static_assert(std::is_trivially_copyable<T>::value, "plain values only");
     char b[sizeof(T)];
     std::memcpy(b, &v, sizeof(T));  // the file is little-endian, as is every machine this runs on
     buf.append(b, sizeof(T));
+    if (sink && buf.size() >= kSpill) flush();
   }
   void str(const std::string& s) {
     put(uint32_t(s.size()));
@@ -34,7 +43,25 @@ struct Writer {
   template <class T>
   void put_array(const T* p, size_t n) {
     static_assert(std::is_trivially_copyable<T>::value, "plain values only");
-    buf.append(reinterpret_cast<const char*>(p), n * sizeof(T));
+    const char* bytes = reinterpret_cast<const char*>(p);
+    if (sink && n * sizeof(T) >= kSpill) {
+      flush();
+      send(bytes, n * sizeof(T));
+      return;
+    }
+    buf.append(bytes, n * sizeof(T));
+    if (sink && buf.size() >= kSpill) flush();
+  }
+  // Sends what is held to the sink.
+  void flush() {
+    send(buf.data(), buf.size());
+    buf.clear();
+  }
+
+ private:
+  void send(const char* p, size_t n) {
+    crc = uint32_t(crc32_z(crc, reinterpret_cast<const Bytef*>(p), n));
+    sink->write(p, std::streamsize(n));
   }
 };
 
