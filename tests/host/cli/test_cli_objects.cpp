@@ -217,16 +217,16 @@ TEST(Cli, StorageDenseSparseAndAuto) {
   const CliRun e = run("voxelize torus --voxel 0.07 --storage sparse --distance-bits 8 -o " + sp);
   EXPECT_NE(e.rc, 0);
   EXPECT_NE(e.out.find("a sparse object cannot have one"), std::string::npos) << e.out;
-  // 1,500 voxels across: more than a dense voxmap takes, so sparse; a picture needs the dense one.
-  const CliRun b = run("voxelize torus --resolution 1500 -o " + big);
+  // 1,100 voxels across: more than a dense voxmap takes, so sparse; a picture needs the dense one.
+  const CliRun b = run("voxelize torus --resolution 1100 -o " + big);
   ASSERT_EQ(b.rc, 0) << b.out;
-  EXPECT_NE(b.out.find("voxmap   1503 x 1503 x"), std::string::npos) << b.out;
+  EXPECT_NE(b.out.find("voxmap   1103 x 1103 x"), std::string::npos) << b.out;
   EXPECT_NE(b.out.find("storage  voxmap stored sparse"), std::string::npos) << b.out;
   const ObjectFile stored = read_object(big, ObjectRead::kStored);
   EXPECT_TRUE(stored.voxmap_sparse() && !stored.has_dense_voxmap());
   const CliRun p = run("info " + big + " --png " + png);
   EXPECT_NE(p.rc, 0);
-  EXPECT_NE(p.out.find("no picture of an object stored sparse at 1503 x 1503"), std::string::npos) << p.out;
+  EXPECT_NE(p.out.find("no picture of an object stored sparse at 1103 x 1103"), std::string::npos) << p.out;
   for (const auto& f : {d, sp, lib, big, png}) std::remove(f.c_str());
 }
 
