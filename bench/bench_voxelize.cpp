@@ -276,6 +276,20 @@ void defect_section(std::ostringstream& md, int repeats, int argc, char** argv) 
 
 }  // namespace
 
+namespace {
+
+// docs/voxelize.md's last section, "Sparse voxmaps", is bench/sparse_memory.sh's: a rewrite of the file keeps it as it is.
+std::string kept_tail(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string t = text.str();
+  const size_t at = t.find("\n## Sparse voxmaps\n");
+  return at == std::string::npos ? std::string() : t.substr(at);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   std::string out_path;
   int repeats = 5;
@@ -395,6 +409,9 @@ int main(int argc, char** argv) {
     md << "\nLoad average when the run ended (1, 5, 15 min): " << l1 << ", " << l5 << ", " << l15 << ".\n";
   }
   std::cout << md.str();
-  if (!out_path.empty()) std::ofstream(out_path) << md.str();
+  if (!out_path.empty()) {
+    const std::string tail = kept_tail(out_path);
+    std::ofstream(out_path) << md.str() << tail;
+  }
   return 0;
 }

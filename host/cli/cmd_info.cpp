@@ -38,7 +38,7 @@ bool source_mesh(const ObjectFile& obj, Mesh& mesh, std::string& why_not) {
 }
 
 int info_cmd(const InfoArgs& a) {
-  const ObjectFile obj = read_object(a.file);
+  const ObjectFile obj = read_object(a.file, ObjectRead::kStored);  // the picture makes the dense forms it needs
   if (!a.png.empty()) {
     Mesh mesh;
     std::string why_not;

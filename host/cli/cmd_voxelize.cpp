@@ -36,6 +36,7 @@ const CLI::Validator kDistanceBitsCheck(
 struct VoxelizeArgs {
   std::string input;
   ObjectOptions object;  // the voxel, shell, threads and distance field
+  std::string storage = "auto";
   bool strict = false;
   std::string output;
   std::string png;
@@ -47,7 +48,10 @@ int voxelize_cmd(const VoxelizeArgs& a) {
   uint64_t hash = 0;
   MeshReport report;
   const Mesh mesh = load_source(a.input, &source, &hash, &report, LoadOptions{a.strict});
-  const ObjectFile obj = make_object(mesh, source, hash, a.object, &report);
+  ObjectOptions opt = a.object;
+  // A sparse object's memory grows with its surface: it may be up to kMaxSparseVoxelsAcross voxels across.
+  set_storage(opt, *parse_storage(a.storage));
+  const ObjectFile obj = make_object(mesh, source, hash, opt, &report);
   write_object(a.output, obj);
   if (!a.png.empty()) write_object_picture(a.png, obj, &mesh);
   std::cout << (a.json ? object_json(a.output, obj) : object_text(a.output, obj));
@@ -80,6 +84,11 @@ void add_voxelize(CLI::App& app) {
       ->capture_default_str();
   c->add_option("--threads", a->object.threads, "Worker threads (0: one per hardware thread)")->capture_default_str();
   c->add_flag("--json", a->json, "Describe the written object as JSON (as `voxcd info --json`)");
+  c->add_option("--storage", a->storage,
+                "auto: the voxmap and the shell each dense or sparse, whichever takes less device memory (sparse "
+                "objects up to 4096 voxels across); dense; sparse (docs/objects.md, \"Sparse objects\")")
+      ->check(CLI::IsMember({"auto", "dense", "sparse"}))
+      ->capture_default_str();
   CLI::Option* bits =
       c->add_option("--distance-bits", a->object.distance_bits,
                     "Also store the signed distance field at the voxmap's nodes, quantised to 4, 8 or 16 bits over "

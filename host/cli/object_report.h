@@ -8,6 +8,7 @@
 #include <string>
 
 #include "voxcd/host/cli/json_text.h"
+#include "voxcd/host/cli/storage_report.h"
 
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/png.h"
@@ -17,16 +18,25 @@
 namespace voxcd::cli {
 
 // Device memory an object takes with the default DeviceConfig: the voxmap image (MEMW-bit words) and the shell
-// words (three PW-bit coordinates per point), in bytes rounded up to whole words and whole bytes.
+// words (three PW-bit coordinates per point), in bytes rounded up to whole words and whole bytes; of the forms it is
+// stored in (a sparse voxmap: its table and bricks; a sparse shell: its shell words).
 struct ObjectMemory {
   uint64_t voxmap_bytes = 0, shell_bytes = 0;
 };
 
-inline ObjectMemory object_memory(const ObjectFile& obj, const DeviceConfig& cfg = DeviceConfig{}) {
+// The dense forms' bytes, whichever form is stored.
+inline ObjectMemory dense_memory(const ObjectFile& obj, const DeviceConfig& cfg = DeviceConfig{}) {
   ObjectMemory m;
   const uint64_t per = uint64_t(cfg.states_per_word());
-  m.voxmap_bytes = (obj.voxmap.size() + per - 1) / per * uint64_t(cfg.MEMW) / 8;
-  m.shell_bytes = (uint64_t(obj.shell.size()) * 3 * uint64_t(cfg.PW) + 7) / 8;
+  m.voxmap_bytes = (obj.voxmap_grid().size() + per - 1) / per * uint64_t(cfg.MEMW) / 8;
+  m.shell_bytes = (uint64_t(obj.shell_points()) * 3 * uint64_t(cfg.PW) + 7) / 8;
+  return m;
+}
+
+inline ObjectMemory object_memory(const ObjectFile& obj, const DeviceConfig& cfg = DeviceConfig{}) {
+  ObjectMemory m = dense_memory(obj, cfg);
+  if (obj.voxmap_sparse()) m.voxmap_bytes = obj.sparse_voxmap.bytes(cfg.MEMW);
+  if (obj.shell_sparse()) m.shell_bytes = obj.sparse_shell.bytes(cfg);
   return m;
 }
 
@@ -123,19 +133,20 @@ inline Json distance_json(const ObjectFile& obj) {
 
 // The object's description as JSON, one key a line (docs/objects.md lists the keys).
 inline std::string object_json(const std::string& path, const ObjectFile& obj) {
-  const Voxmap& vm = obj.voxmap;
-  const auto counts = vm.counts();
+  const GridPlacement& g = obj.voxmap_grid();
+  const auto counts = obj.voxmap_counts();
   const ObjectMemory mem = object_memory(obj);
-  const auto& sd = obj.shell.grid.dims;
+  const GridPlacement& sg = obj.shell_grid();
+  const auto& sd = sg.dims;
   Json j = {{"file", path}, {"source", obj.source}, {"source_hash", hex64(obj.source_hash)},
-            {"dims", {vm.dims()[0], vm.dims()[1], vm.dims()[2]}}, {"voxel_size", vm.voxel()},
-            {"origin", {vm.origin().x(), vm.origin().y(), vm.origin().z()}}, {"voxels", vm.size()},
+            {"dims", {g.dims[0], g.dims[1], g.dims[2]}}, {"voxel_size", g.voxel},
+            {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}}, {"voxels", g.size()},
             {"empty", counts[kEmpty]}, {"surface", counts[kSurface]}, {"interior", counts[kInterior]},
-            {"shell_points", obj.shell.size()}, {"shell_spacing", obj.shell.grid.voxel},
+            {"shell_points", obj.shell_points()}, {"shell_spacing", sg.voxel},
             {"shell_ratio", obj.shell_ratio}, {"shell_dims", {sd[0], sd[1], sd[2]}},
             {"voxmap_bytes", mem.voxmap_bytes}, {"shell_bytes", mem.shell_bytes},
             {"memory_bytes", mem.voxmap_bytes + mem.shell_bytes}, {"memory_config", DeviceConfig{}.to_string()},
-            {"repair", repair_json(obj)}};
+            {"storage", storage_json(storage_figures(obj))}, {"repair", repair_json(obj)}};
   // Objects with a distance field (file version 3) have two more keys; the others print exactly as before.
   if (!obj.distance.empty() || obj.shell.on_surface) {
     j["shell_on_surface"] = obj.shell.on_surface;
@@ -145,24 +156,27 @@ inline std::string object_json(const std::string& path, const ObjectFile& obj) {
 }
 
 inline std::string object_text(const std::string& path, const ObjectFile& obj) {
-  const Voxmap& vm = obj.voxmap;
-  const auto c = vm.counts();
-  const auto& d = vm.dims();
-  const auto& sd = obj.shell.grid.dims;
+  const GridPlacement& g = obj.voxmap_grid();
+  const auto c = obj.voxmap_counts();
+  const auto& d = g.dims;
+  const GridPlacement& sg = obj.shell_grid();
+  const auto& sd = sg.dims;
   const ObjectMemory mem = object_memory(obj);
   const DeviceConfig cfg;
   std::ostringstream t;
   t.precision(9);
   t << path << ": object of " << obj.source << " (source hash " << hex64(obj.source_hash) << ")\n"
-    << "  voxmap   " << d[0] << " x " << d[1] << " x " << d[2] << " voxels of size " << vm.voxel() << ", origin ("
-    << vm.origin().x() << ", " << vm.origin().y() << ", " << vm.origin().z() << ")\n"
+    << "  voxmap   " << d[0] << " x " << d[1] << " x " << d[2] << " voxels of size " << g.voxel << ", origin ("
+    << g.origin.x() << ", " << g.origin.y() << ", " << g.origin.z() << ")\n"
     << "  states   empty " << c[kEmpty] << ", surface " << c[kSurface] << ", interior " << c[kInterior] << "\n"
-    << "  shell    " << obj.shell.size() << (obj.shell.on_surface ? " points on the surface" : " points")
-    << " at spacing " << obj.shell.grid.voxel << " (voxel / " << obj.shell_ratio << "), grid " << sd[0] << " x "
+    << "  shell    " << obj.shell_points() << (obj.shell.on_surface ? " points on the surface" : " points")
+    << " at spacing " << sg.voxel << " (voxel / " << obj.shell_ratio << "), grid " << sd[0] << " x "
     << sd[1] << " x " << sd[2] << "\n"
-    << "  memory   voxmap " << mem.voxmap_bytes << " bytes (MEMW " << cfg.MEMW << "), shell " << mem.shell_bytes
-    << " bytes (3 x PW " << cfg.PW << " bits per point), total " << mem.voxmap_bytes + mem.shell_bytes
-    << " bytes\n";
+    << "  memory   voxmap " << mem.voxmap_bytes << " bytes (" << (obj.voxmap_sparse() ? "sparse, " : "") << "MEMW "
+    << cfg.MEMW << "), shell " << mem.shell_bytes << " bytes (3 x PW " << cfg.PW << " bits per "
+    << (obj.shell_sparse() ? "shell word, sparse" : "point") << "), total " << mem.voxmap_bytes + mem.shell_bytes
+    << " bytes\n"
+    << storage_text(storage_figures(obj));
   if (!obj.distance.empty()) {
     const DistanceField& f = obj.distance;
     const DistanceMemory dm = distance_memory(obj);
@@ -174,9 +188,21 @@ inline std::string object_text(const std::string& path, const ObjectFile& obj) {
   return t.str();
 }
 
-// The picture of `obj` (voxmap slices, shell over the mesh when there is one) written to png_path.
+// The picture of `obj` (voxmap slices, shell over the mesh when there is one) written to png_path, from the dense
+// forms (made of a sparse object's when they fit: MeshError naming the object when they do not).
 inline void write_object_picture(const std::string& png_path, const ObjectFile& obj, const Mesh* mesh) {
-  write_png(png_path, object_picture(obj.voxmap, obj.shell, mesh));
+  if (obj.has_dense_voxmap() && obj.has_dense_shell() && obj.shell.size() == obj.shell_points()) {
+    write_png(png_path, object_picture(obj.voxmap, obj.shell, mesh));
+    return;
+  }
+  ObjectFile dense = obj;
+  add_dense_forms(dense);
+  const auto& d = dense.voxmap_grid().dims;
+  if (!dense.has_dense_voxmap() || dense.shell.size() != dense.shell_points())
+    throw MeshError(png_path + ": no picture of an object stored sparse at " + std::to_string(d[0]) + " x " +
+                    std::to_string(d[1]) + " x " + std::to_string(d[2]) + " voxels (pictures draw the dense voxmap, "
+                    "at most " + std::to_string(kMaxDenseDim) + " per axis)");
+  write_png(png_path, object_picture(dense.voxmap, dense.shell, mesh));
 }
 
 }  // namespace voxcd::cli

@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "voxcd/host/object/detail/object_io.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/ref/fnv1a.h"
 
@@ -25,11 +27,15 @@ constexpr char kMagic[8] = {'V', 'O', 'X', 'C', 'D', 'O', 'B', 'J'};
 // and 2 are still read.
 // Version 4 adds the report's second section (after the distance section): the counts of non-manifold parts and
 // conservative distance cells, written only when one of them is not 0.
-constexpr uint32_t kVersion = 2, kVersionDistance = 3, kVersionReport2 = 4;
+// Version 5 holds the voxmap or the shell (or both) in its sparse form (header flags 2 and 4), with version 4's
+// sections after them and the reserved sparse distance section before the checksum; it is written only for objects
+// held sparse.
+constexpr uint32_t kVersion = 2, kVersionDistance = 3, kVersionReport2 = 4, kVersionSparse = 5;
 // The report's second section (version 4): its count, then the counts, in file order.
 constexpr uint32_t kReport2Counts = 4;
-// Header flags (version 3 only): the shell's points lie on the surface (PointShell::on_surface).
-constexpr uint32_t kFlagSurfaceShell = 1;
+// Header flags: the shell's points lie on the surface (PointShell::on_surface; version 3 on); the voxmap, the shell is
+// sparse (version 5).
+constexpr uint32_t kFlagSurfaceShell = 1, kFlagSparseVoxmap = 2, kFlagSparseShell = 4;
 // The report section's fields (version 2), in file order.
 constexpr int kReportCounts = 19;
 constexpr uint32_t kClosed = 1, kFlipped = 2, kPointsOnly = 4, kSurfaceOnly = 8, kReportFlags = 15;
@@ -51,88 +57,13 @@ std::array<uint64_t*, kReport2Counts> report2_fields(MeshReport& m, VoxelizeRepo
           reinterpret_cast<uint64_t*>(&m.fin_triangles), &v.conservative};
 }
 static_assert(sizeof(size_t) == sizeof(uint64_t), "report counts are stored as u64");
-static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the object file is little-endian; add byte swaps here");
 
-struct Writer {
-  std::string buf;
-  template <class T>
-  void put(T v) {
-    static_assert(std::is_trivially_copyable<T>::value, "plain values only");
-    char b[sizeof(T)];
-    std::memcpy(b, &v, sizeof(T));  // the file is little-endian, as is every machine this runs on
-    buf.append(b, sizeof(T));
-  }
-  void str(const std::string& s) {
-    put(uint32_t(s.size()));
-    buf += s;
-  }
-};
-
-// Errors name the byte offset where the field that is wrong begins.
-struct Reader {
-  const std::string& buf;
-  const std::string& path;
-  size_t pos = 0;
-  size_t field = 0;  // offset of the last field read
-  template <class T>
-  T get(const char* what) {
-    need(sizeof(T), what);
-    field = pos;
-    T v;
-    std::memcpy(&v, buf.data() + pos, sizeof(T));
-    pos += sizeof(T);
-    return v;
-  }
-  // count items of `size` bytes each must follow (no overflow for any count).
-  void need(uint64_t n, const char* what, uint64_t size = 1) {
-    const uint64_t left = buf.size() - pos;
-    if (n > left / size)
-      throw ObjectFileError(path + ": truncated at byte " + std::to_string(pos) + " while reading " + what + " (" +
-                            (n <= UINT64_MAX / size ? std::to_string(n * size) : std::to_string(n) + " x " +
-                                                                                     std::to_string(size)) +
-                            " bytes needed, " + std::to_string(left) + " left)");
-  }
-  std::string str(const char* what) {
-    const uint32_t n = get<uint32_t>(what);
-    need(n, what);
-    field = pos;
-    std::string s = buf.substr(pos, n);
-    pos += n;
-    return s;
-  }
-  [[noreturn]] void bad(const std::string& msg) const {
-    throw ObjectFileError(path + ": " + msg + " (byte " + std::to_string(field) + ")");
-  }
-};
-
-void put_vec(Writer& w, const Eigen::Vector3d& v) {
-  for (int i = 0; i < 3; ++i) w.put(v[i]);
-}
-Eigen::Vector3d get_vec(Reader& r, const char* what) {
-  Eigen::Vector3d v;
-  for (int i = 0; i < 3; ++i) v[i] = r.get<double>(what);
-  return v;
-}
-void put_grid(Writer& w, const GridPlacement& g) {
-  w.put(g.voxel);
-  put_vec(w, g.origin);
-  for (uint32_t d : g.dims) w.put(d);
-}
-GridPlacement get_grid(Reader& r, const char* what) {
-  GridPlacement g;
-  g.voxel = r.get<double>(what);
-  if (!(std::isfinite(g.voxel) && g.voxel > 0))
-    r.bad(std::string(what) + ": the voxel size " + std::to_string(g.voxel) + " is not a positive finite number");
-  g.origin = get_vec(r, what);
-  if (!g.origin.allFinite()) r.bad(std::string(what) + ": the origin is not finite");
-  for (auto& d : g.dims) {
-    d = r.get<uint32_t>(what);
-    if (d == 0 || d > kObjectMaxDim)
-      r.bad(std::string(what) + ": dimension " + std::to_string(d) + " is out of range (1.." +
-            std::to_string(kObjectMaxDim) + ")");
-  }
-  return g;
-}
+using detail::get_grid;
+using detail::get_vec;
+using detail::put_grid;
+using detail::put_vec;
+using detail::Reader;
+using detail::Writer;
 
 // The distance section of version 3 (write_object describes it).
 void read_distance(Reader& r, const GridPlacement& g, DistanceField& f) {
@@ -174,96 +105,27 @@ void read_distance(Reader& r, const GridPlacement& g, DistanceField& f) {
 
 }  // namespace
 
-uint64_t hash_bytes(const std::string& bytes) { return fnv1a(bytes); }
-
-uint64_t hash_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ObjectFileError(path + ": cannot open");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return hash_bytes(bytes);
-}
-
-Mesh load_source(const std::string& mesh_or_shape, std::string* source, uint64_t* hash, MeshReport* report,
-                 const LoadOptions& opt) {
-  std::error_code ec;
-  if (std::filesystem::is_regular_file(mesh_or_shape, ec)) {
-    Mesh m = load_mesh(mesh_or_shape, report, opt);
-    if (source) *source = mesh_or_shape;
-    if (hash) *hash = hash_file(mesh_or_shape);
-    return m;
-  }
-  if (is_shape(mesh_or_shape)) {
-    if (source) *source = "shape:" + mesh_or_shape;
-    if (hash) *hash = hash_bytes("shape:" + mesh_or_shape);
-    Mesh m = make_shape(mesh_or_shape);
-    if (report) {
-      *report = MeshReport{};
-      report->input_vertices = report->vertices = m.vertices.size();
-      report->input_triangles = report->triangles = m.size();
-      report->components = report->closed_components = 1;
-      report->closed = true;
-    }
-    return m;
-  }
-  std::string known;
-  for (const auto& n : shape_names()) known += (known.empty() ? "" : ", ") + n;
-  if (std::filesystem::exists(mesh_or_shape, ec))
-    throw MeshError(mesh_or_shape + ": not a regular file");
-  throw MeshError(mesh_or_shape + ": no such file, and not a built-in shape (" + known + ")");
-}
-
-ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t source_hash, const ObjectOptions& opt,
-                       const MeshReport* report) {
-  ObjectFile obj;
-  if (opt.distance_bits != 0 && !valid_distance_bits(opt.distance_bits))
-    throw MeshError(mesh.name + ": distance bits must be " + distance_bits_text() + " (or 0 for none), got " +
-                    std::to_string(opt.distance_bits));
-  const double voxel = opt.resolution ? voxel_for_resolution(mesh, opt.resolution) : opt.voxel;
-  obj.source = source;
-  obj.source_hash = source_hash;
-  obj.shell_ratio = opt.shell_ratio;
-  obj.shift = opt.shift;
-  VoxelizeOptions vo;
-  vo.voxel = voxel;
-  vo.shift = opt.shift;
-  vo.max_dim = opt.max_dim;
-  vo.threads = opt.threads;
-  obj.voxmap = voxelize(mesh, vo, &obj.voxelize_report);
-  if (report) {
-    obj.has_report = true;
-    obj.mesh_report = *report;
-  }
-  ShellOptions so;
-  so.target_voxel = voxel;
-  so.ratio = opt.shell_ratio;
-  so.shift = opt.shift;
-  so.threads = opt.threads;
-  if (opt.distance_bits) {
-    DistanceOptions d;
-    d.bits = opt.distance_bits;
-    d.band = opt.band;
-    d.threads = opt.threads;
-    obj.distance = distance_field(mesh, obj.voxmap, d, &obj.voxelize_report.conservative);
-    so.on_surface = true;
-  }
-  obj.shell = point_shell(mesh, so);
-  return obj;
-}
-
 namespace {
 
 // ObjectFileError for an object no object file can hold: shell arrays of different lengths, a distance field on
 // another grid, a grid dimension of 0 or above kObjectMaxDim.
 void check_writable(const std::string& path, const ObjectFile& obj) {
   const PointShell& sh = obj.shell;
-  if (sh.points.size() != sh.size() || sh.normals.size() != sh.size())
+  if (!obj.shell_sparse() && (sh.points.size() != sh.size() || sh.normals.size() != sh.size()))
     throw ObjectFileError(path + ": the shell's cells, points and normals differ in number");
-  if (sh.on_surface && sh.coords.size() != sh.size())
+  if (!obj.shell_sparse() && sh.on_surface && sh.coords.size() != sh.size())
     throw ObjectFileError(path + ": the shell's coordinates and cells differ in number");
+  if (obj.shell_sparse()) {
+    const SparseShell& ss = obj.sparse_shell;
+    uint64_t points = 0;
+    for (uint64_t m : ss.masks) points += uint64_t(__builtin_popcountll(m));
+    if (ss.masks.size() != ss.bricks.size() || points != ss.normals.size())
+      throw ObjectFileError(path + ": the sparse shell's bricks, masks and normals differ in number");
+  }
   const DistanceField& df = obj.distance;
-  if (!df.empty() && (df.dims != obj.voxmap.dims() || df.q.size() != df.node_index(0, 0, df.dims[2] + 1)))
+  if (!df.empty() && (df.dims != obj.voxmap_grid().dims || df.q.size() != df.node_index(0, 0, df.dims[2] + 1)))
     throw ObjectFileError(path + ": the distance field's grid is not the voxmap's");
-  for (const GridPlacement* g : {&obj.voxmap.grid(), &sh.grid})
+  for (const GridPlacement* g : {&obj.voxmap_grid(), &obj.shell_grid()})
     for (uint32_t d : g->dims)
       if (d == 0 || d > kObjectMaxDim)
         throw ObjectFileError(path + ": grid dimension " + std::to_string(d) + " does not fit an object file");
@@ -320,24 +182,33 @@ void put_distance(Writer& w, const DistanceField& df) {
   if (have > 0) w.buf += char(acc & 0xff);
 }
 
-// Writes bytes to path through path.tmp, renamed into place only once written whole.
-void write_whole(const std::string& path, const std::string& bytes) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw ObjectFileError(path + ": cannot write " + tmp);
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    if (!out.flush()) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw ObjectFileError(path + ": write failed");
+// The file being written: path.tmp, renamed into place only once written whole, and removed when writing fails.
+class TmpFile {
+ public:
+  explicit TmpFile(const std::string& path) : path_(path), tmp_(path + ".tmp"), out_(tmp_, std::ios::binary | std::ios::trunc) {
+    if (!out_) throw ObjectFileError(path_ + ": cannot write " + tmp_);
+  }
+  ~TmpFile() {
+    if (!done_) {
+      out_.close();
+      std::remove(tmp_.c_str());
     }
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw ObjectFileError(path + ": cannot rename " + tmp + " into place");
+  TmpFile(const TmpFile&) = delete;
+  TmpFile& operator=(const TmpFile&) = delete;
+  std::ostream& stream() { return out_; }
+  void commit() {
+    if (!out_.flush()) throw ObjectFileError(path_ + ": write failed");
+    out_.close();
+    if (std::rename(tmp_.c_str(), path_.c_str()) != 0) throw ObjectFileError(path_ + ": cannot rename " + tmp_ + " into place");
+    done_ = true;
   }
-}
+
+ private:
+  std::string path_, tmp_;
+  std::ofstream out_;
+  bool done_ = false;
+};
 
 }  // namespace
 
@@ -349,27 +220,43 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   VoxelizeReport vr = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
   bool v4 = false;
   for (uint64_t* f : report2_fields(mr, vr)) v4 |= *f != 0;
+  const bool v5 = obj.voxmap_sparse() || obj.shell_sparse();
+  v4 = v4 || v5;
   const bool v3 = !df.empty() || sh.on_surface || v4;
+  TmpFile file(path);
   Writer w;
+  w.sink = &file.stream();
   w.buf.append(kMagic, 8);
-  w.put(v4 ? kVersionReport2 : v3 ? kVersionDistance : kVersion);
-  w.put(sh.on_surface ? kFlagSurfaceShell : uint32_t{0});
+  w.put(v5 ? kVersionSparse : v4 ? kVersionReport2 : v3 ? kVersionDistance : kVersion);
+  w.put((sh.on_surface && !obj.shell_sparse() ? kFlagSurfaceShell : uint32_t{0}) |
+        (obj.voxmap_sparse() ? kFlagSparseVoxmap : uint32_t{0}) | (obj.shell_sparse() ? kFlagSparseShell : uint32_t{0}));
   w.put(obj.source_hash);
   w.str(obj.source);
   w.put(obj.shell_ratio);
   put_vec(w, obj.shift);
-  put_voxmap(w, obj.voxmap);
-  put_shell(w, sh);
+  if (obj.voxmap_sparse()) {
+    put_grid(w, obj.sparse_voxmap.grid());
+    detail::put_sparse_voxmap(w, obj.sparse_voxmap);
+  } else {
+    put_voxmap(w, obj.voxmap);
+  }
+  if (obj.shell_sparse())
+    detail::put_sparse_shell(w, obj.sparse_shell);
+  else
+    put_shell(w, sh);
   put_report(w, obj);
   if (v3) put_distance(w, df);
-  // The report's second section (version 4): u32 count, then the counts as u64.
+  // The report's second section (version 4 on): u32 count, then the counts as u64.
   if (v4) {
     w.put(kReport2Counts);
     for (uint64_t* f : report2_fields(mr, vr)) w.put(*f);
   }
-  const uint32_t crc = uint32_t(crc32_z(0L, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
+  if (v5) detail::put_sparse_distance(w, obj);
+  w.flush();
+  const uint32_t crc = w.crc;
   w.put(crc);
-  write_whole(path, w.buf);
+  w.flush();
+  file.commit();
 }
 
 namespace {
@@ -380,14 +267,19 @@ void read_header(Reader& r, uint32_t& version, uint32_t& flags) {
   if (std::memcmp(r.buf.data(), kMagic, 8) != 0) r.bad("not a voxcd object file (bad magic)");
   r.pos = 8;
   version = r.get<uint32_t>("the version");
-  if (version < 1 || version > kVersionReport2)
+  if (version < 1 || version > kVersionSparse)
     r.bad("object file version " + std::to_string(version) + " is not supported (this reader knows versions 1 to " +
-          std::to_string(kVersionReport2) + ")");
+          std::to_string(kVersionSparse) + ")");
   flags = r.get<uint32_t>("the flags");
-  const uint32_t known_flags = version >= kVersionDistance ? kFlagSurfaceShell : 0;
+  const uint32_t known_flags = (version >= kVersionDistance ? kFlagSurfaceShell : 0) |
+                               (version >= kVersionSparse ? kFlagSparseVoxmap | kFlagSparseShell : 0);
   if (flags & ~known_flags)
     r.bad("unknown flags " + std::to_string(flags) + " (version " + std::to_string(version) + " knows " +
           std::to_string(known_flags) + ")");
+  if ((flags & kFlagSurfaceShell) && (flags & kFlagSparseShell))
+    r.bad("flags " + std::to_string(flags) + ": a shell on the surface is never sparse");
+  if (version >= kVersionSparse && !(flags & (kFlagSparseVoxmap | kFlagSparseShell)))
+    r.bad("a version 5 file holds its voxmap or its shell sparse, and its flags say neither");
 }
 
 // Where the voxmap section's checks point once the whole file is read.
@@ -506,7 +398,7 @@ void read_report(Reader& r, uint32_t version, ObjectFile& obj) {
 }
 
 // The checks that need the whole file: nothing after the checksum, the checksum, the voxmap's states and counts.
-void check_whole(Reader& r, const VoxmapAt& at, const Voxmap& vm) {
+void check_whole(Reader& r, const VoxmapAt& at, const Voxmap& vm, bool dense_voxmap) {
   const std::string& buf = r.buf;
   uint32_t stored_crc;
   std::memcpy(&stored_crc, buf.data() + buf.size() - 4, 4);
@@ -517,6 +409,7 @@ void check_whole(Reader& r, const VoxmapAt& at, const Voxmap& vm) {
     r.bad(std::to_string(buf.size() - r.pos) + " unexpected bytes after the checksum");
   }
   if (crc != stored_crc) r.bad("checksum mismatch: the file is corrupt");
+  if (!dense_voxmap) return;  // a sparse voxmap's states and counts were checked as it was read
   const auto c = vm.counts();
   if (c[kReserved] != 0) {
     r.field = at.words_at;
@@ -530,7 +423,7 @@ void check_whole(Reader& r, const VoxmapAt& at, const Voxmap& vm) {
 
 }  // namespace
 
-ObjectFile read_object(const std::string& path) {
+ObjectFile read_object(const std::string& path, ObjectRead forms) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ObjectFileError(path + ": cannot open");
   const std::string buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -545,11 +438,31 @@ ObjectFile read_object(const std::string& path) {
   obj.shift = get_vec(r, "the grid shift");
   if (!obj.shift.allFinite()) r.bad("the grid shift is not finite");
   const GridPlacement g = get_grid(r, "the voxmap grid");
-  const VoxmapAt at = read_voxmap(r, g, obj.voxmap);
-  read_shell(r, header_flags & kFlagSurfaceShell, obj.shell);
+  VoxmapAt at{};
+  if (header_flags & kFlagSparseVoxmap)
+    detail::read_sparse_voxmap(r, g, obj.sparse_voxmap);
+  else
+    at = read_voxmap(r, g, obj.voxmap);
+  if (header_flags & kFlagSparseShell)
+    detail::read_sparse_shell(r, obj.sparse_shell);
+  else
+    read_shell(r, header_flags & kFlagSurfaceShell, obj.shell);
   if (version >= 2) read_report(r, version, obj);
-  check_whole(r, at, obj.voxmap);
+  if (version >= kVersionSparse) detail::read_sparse_distance(r, obj);
+  check_whole(r, at, obj.voxmap, !(header_flags & kFlagSparseVoxmap));
+  if (forms == ObjectRead::kWithDense) add_dense_forms(obj);
   return obj;
+}
+
+void add_dense_forms(ObjectFile& obj) {
+  if (obj.voxmap_sparse() && !obj.has_dense_voxmap()) {
+    const auto& d = obj.sparse_voxmap.dims();
+    if (std::max({d[0], d[1], d[2]}) <= kMaxDenseDim) obj.voxmap = obj.sparse_voxmap.to_dense();
+  }
+  if (obj.shell_sparse() && obj.shell.size() == 0) {
+    const auto& d = obj.sparse_shell.grid.dims;
+    if (std::max({d[0], d[1], d[2]}) <= ShellOptions{}.max_dim) obj.shell = obj.sparse_shell.to_point_shell();
+  }
 }
 
 }  // namespace voxcd

@@ -78,6 +78,14 @@ ObjectType make_object_type(ObjectFile obj, const std::string& name) {
   ObjectType t;
   t.name = name;
   t.object = std::move(obj);
+  add_dense_forms(t.object);
+  // Pair tests and scenes read the dense forms; a sparse object too large for them says so.
+  if (!t.object.has_dense_voxmap() || !t.object.has_dense_shell()) {
+    const auto& d = t.object.voxmap_grid().dims;
+    throw MeshError(name + ": the object is stored sparse (voxmap " + std::to_string(d[0]) + "x" + std::to_string(d[1]) +
+                    "x" + std::to_string(d[2]) + "); collision queries take a dense voxmap of at most " +
+                    std::to_string(kMaxDenseDim) + " voxels per axis and a dense shell");
+  }
   const Voxmap& vm = t.object.voxmap;
   const auto counts = vm.counts();
   if (counts[kSurface] == 0) throw MeshError(name + ": the voxmap has no surface voxel");

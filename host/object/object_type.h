@@ -30,7 +30,8 @@ struct ObjectType {
   const PointShell& shell() const { return object.shell; }
 };
 
-// Derives depth and bounds. MeshError when the voxmap has no surface voxel (nothing to collide with).
+// Derives depth and bounds (from the dense forms: add_dense_forms makes them of a sparse object). MeshError when the
+// voxmap has no surface voxel (nothing to collide with), or a sparse object is too large for its dense forms.
 ObjectType make_object_type(ObjectFile obj, const std::string& name);
 
 // An object type from an object file (recognised by its magic, whatever its name), a mesh file or a built-in

@@ -9,14 +9,14 @@
 #include <string>
 
 #include "voxcd/host/object/detail/shell_grid.h"
+#include "voxcd/host/object/detail/shell_normals.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/float_model.h"
 
 namespace voxcd {
 
-namespace {
+namespace detail {
 
-// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
 double dist2_point_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                             const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
@@ -39,12 +39,17 @@ double dist2_point_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, 
   return (ap - ab * (vb * denom) - ac * (vc * denom)).squaredNorm();
 }
 
-// Normals of a point cloud's shell points: the direction of least spread of the cloud's points within two shell
-// spacings of the point (principal components), turned away from the cloud's centroid (+z when at right angles);
-// with fewer than three neighbours, the direction from the centroid.
-std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh, const PointShell& s) {
-  const double h = s.grid.voxel;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> cells;
+Eigen::Vector3d triangle_normal(const Mesh& mesh, size_t t) {
+  return (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).normalized();
+}
+
+// The direction of least spread of the cloud's points within two shell spacings of the point (principal components),
+// turned away from the cloud's centroid (+z when at right angles); with fewer than three neighbours, the direction
+// from the centroid.
+std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh, const GridPlacement& grid,
+                                           const std::vector<std::array<uint32_t, 3>>& cells) {
+  const double h = grid.voxel;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> by_cell;
   auto key = [](int64_t x, int64_t y, int64_t z) {
     return (uint64_t(x) & 0x1fffff) | (uint64_t(y) & 0x1fffff) << 21 | (uint64_t(z) & 0x1fffff) << 42;
   };
@@ -53,23 +58,23 @@ std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh, const PointShell& s
   for (uint32_t v = 0; v < mesh.vertices.size(); ++v) {
     const Eigen::Vector3d& p = mesh.vertices[v];
     if (!p.allFinite()) continue;
-    const Eigen::Vector3d g = (p - s.grid.origin) / h;
-    cells[key(int64_t(std::floor(g.x())), int64_t(std::floor(g.y())), int64_t(std::floor(g.z())))].push_back(v);
+    const Eigen::Vector3d g = (p - grid.origin) / h;
+    by_cell[key(int64_t(std::floor(g.x())), int64_t(std::floor(g.y())), int64_t(std::floor(g.z())))].push_back(v);
     centroid += p;
     ++n;
   }
   centroid /= double(std::max<size_t>(n, 1));
-  std::vector<Eigen::Vector3d> normals(s.size());
-  for (size_t k = 0; k < s.size(); ++k) {
-    const Eigen::Vector3d& c = s.points[k];
+  std::vector<Eigen::Vector3d> normals(cells.size());
+  for (size_t k = 0; k < cells.size(); ++k) {
+    const Eigen::Vector3d c = centre_of(grid, cells[k]);
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     std::vector<Eigen::Vector3d> near;
     for (int64_t dz = -2; dz <= 2; ++dz)
       for (int64_t dy = -2; dy <= 2; ++dy)
         for (int64_t dx = -2; dx <= 2; ++dx) {
-          const auto it = cells.find(key(int64_t(s.cells[k][0]) + dx, int64_t(s.cells[k][1]) + dy,
-                                         int64_t(s.cells[k][2]) + dz));
-          if (it == cells.end()) continue;
+          const auto it = by_cell.find(key(int64_t(cells[k][0]) + dx, int64_t(cells[k][1]) + dy,
+                                           int64_t(cells[k][2]) + dz));
+          if (it == by_cell.end()) continue;
           for (uint32_t v : it->second)
             if ((mesh.vertices[v] - c).norm() <= 2 * h) {
               near.push_back(mesh.vertices[v]);
@@ -91,7 +96,7 @@ std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh, const PointShell& s
   return normals;
 }
 
-}  // namespace
+}  // namespace detail
 
 std::vector<ShellWord> PointShell::words(const DeviceConfig& cfg) const {
   std::vector<ShellWord> w(size());
@@ -125,27 +130,19 @@ std::vector<uint64_t> centre_points(const std::vector<uint64_t>& bits, PointShel
       const uint64_t v = i * 64 + uint64_t(__builtin_ctzll(w));
       const std::array<uint32_t, 3> c = {uint32_t(v % nx), uint32_t(v / nx % s.grid.dims[1]), uint32_t(v / nxy)};
       s.cells.push_back(c);
-      s.points.push_back(s.grid.origin + s.grid.voxel * Eigen::Vector3d(c[0] + 0.5, c[1] + 0.5, c[2] + 0.5));
+      s.points.push_back(detail::centre_of(s.grid, c));
     }
   return rank;
 }
 
-struct Nearest {
-  double d2 = std::numeric_limits<double>::infinity();
-  uint32_t tri = UINT32_MAX;
-  // Ties go to the lower triangle index, so that the result does not depend on the split over workers.
-  bool better_than(const Nearest& o) const { return d2 < o.d2 || (d2 == o.d2 && tri < o.tri); }
-};
-
-// Each point's normal: that of the nearest triangle overlapping its voxel. Each worker keeps its own nearest for a
-// share of the triangles, merged by (distance, triangle).
-std::vector<Eigen::Vector3d> nearest_normals(const Mesh& mesh, const PointShell& s, const std::vector<uint64_t>& bits,
-                                             const std::vector<uint64_t>& rank, unsigned threads) {
+// Each point's normal: that of the nearest triangle overlapping its voxel (index_of(linear index) gives the voxel's
+// point). Each worker keeps its own nearest for a share of the triangles, merged by (distance, triangle).
+template <class IndexOf>
+std::vector<Eigen::Vector3d> nearest_normals(const Mesh& mesh, const PointShell& s, IndexOf&& index_of,
+                                             unsigned threads) {
+  using detail::Nearest;
   const size_t n = s.size();
   const uint64_t nx = s.grid.dims[0], nxy = nx * s.grid.dims[1];
-  auto index_of = [&](uint64_t v) {
-    return size_t(rank[v >> 6] + uint64_t(__builtin_popcountll(bits[v >> 6] & ((uint64_t{1} << (v & 63)) - 1))));
-  };
   ThreadPool pool(threads);
   const size_t parts = std::max<size_t>(1, std::min<size_t>(mesh.size(), pool.size()));
   std::vector<std::vector<Nearest>> best(parts, std::vector<Nearest>(n));
@@ -154,9 +151,9 @@ std::vector<Eigen::Vector3d> nearest_normals(const Mesh& mesh, const PointShell&
     for_each_overlap(mesh, s.grid, mesh.size() * p / parts, mesh.size() * (p + 1) / parts,
                      [&](size_t t, uint32_t x, uint32_t y, uint32_t z) {
                        const size_t k = index_of(x + nx * y + nxy * z);
-                       const Nearest here{
-                           dist2_point_triangle(s.points[k], mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)),
-                           uint32_t(t)};
+                       const Nearest here{detail::dist2_point_triangle(s.points[k], mesh.corner(t, 0),
+                                                                       mesh.corner(t, 1), mesh.corner(t, 2)),
+                                          uint32_t(t)};
                        if (here.better_than(b[k])) b[k] = here;
                      });
   });
@@ -166,8 +163,7 @@ std::vector<Eigen::Vector3d> nearest_normals(const Mesh& mesh, const PointShell&
     for (size_t p = 1; p < parts; ++p)
       if (best[p][k].better_than(b)) b = best[p][k];
     if (b.tri == UINT32_MAX) throw std::logic_error("point_shell: shell point without a triangle");
-    const size_t t = b.tri;
-    normals[k] = (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).normalized();
+    normals[k] = detail::triangle_normal(mesh, b.tri);
   }
   return normals;
 }
@@ -180,7 +176,35 @@ PointShell point_shell(const Mesh& mesh, const ShellOptions& opt) {
   s.grid = detail::shell_grid(mesh, opt);
   const std::vector<uint64_t> bits = surface_bits(mesh, s.grid, opt.threads);
   const std::vector<uint64_t> rank = centre_points(bits, s);
-  s.normals = mesh.points_only() ? cloud_normals(mesh, s) : nearest_normals(mesh, s, bits, rank, opt.threads);
+  if (mesh.points_only()) {
+    s.normals = detail::cloud_normals(mesh, s.grid, s.cells);
+    return s;
+  }
+  s.normals = nearest_normals(
+      mesh, s,
+      [&](uint64_t v) {
+        return size_t(rank[v >> 6] + uint64_t(__builtin_popcountll(bits[v >> 6] & ((uint64_t{1} << (v & 63)) - 1))));
+      },
+      opt.threads);
+  return s;
+}
+
+PointShell detail::centre_shell(const Mesh& mesh, const GridPlacement& g, std::vector<std::array<uint32_t, 3>> cells,
+                                unsigned threads) {
+  PointShell s;
+  s.grid = g;
+  s.cells = std::move(cells);
+  s.points.reserve(s.cells.size());
+  for (const auto& c : s.cells) s.points.push_back(centre_of(g, c));
+  if (mesh.points_only()) {
+    s.normals = cloud_normals(mesh, g, s.cells);
+    return s;
+  }
+  const uint64_t nx = g.dims[0], ny = g.dims[1];
+  std::vector<uint64_t> lin(s.size());
+  for (size_t k = 0; k < s.size(); ++k) lin[k] = s.cells[k][0] + nx * (s.cells[k][1] + ny * uint64_t(s.cells[k][2]));
+  s.normals = nearest_normals(
+      mesh, s, [&](uint64_t v) { return size_t(std::lower_bound(lin.begin(), lin.end(), v) - lin.begin()); }, threads);
   return s;
 }
 

@@ -77,8 +77,13 @@ class Voxmap {
 // Fewest voxels voxelize accepts along the model's longest side.
 constexpr uint32_t kMinVoxelsAcross = 4;
 // Most voxels a scene's object may have along its longest side: the device's 2^DW (DW = 10) voxels per axis, less
-// room for the grid's padding.
+// room for the grid's padding. Scenes hold dense voxmaps (and a depth per voxel), which is what bounds them.
 constexpr uint32_t kMaxVoxelsAcross = 1020;
+// Most voxels an object stored sparse may have along its longest side (voxcd voxelize --resolution): its memory grows
+// with the surface. Its grid, with the padding, has up to kMaxSparseDim voxels per axis: a device with DW = 12 takes
+// models up to 4092 voxels across, DW = 13 the rest.
+constexpr uint32_t kMaxSparseVoxelsAcross = 4096;
+constexpr uint32_t kMaxSparseDim = kMaxSparseVoxelsAcross + 4;
 
 // The voxel edge that puts `resolution` voxels along the longest side of the mesh's bounding box (of its points
 // for a point cloud). MeshError when resolution < kMinVoxelsAcross or the mesh is empty or flat in every axis.

@@ -103,7 +103,8 @@ std::optional<Mesh> mesh_arg(const py::object& source) {
 }
 
 ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel, std::optional<int64_t> resolution,
-                          double shell_ratio, bool strict, unsigned threads, int distance_bits, double band) {
+                          double shell_ratio, bool strict, unsigned threads, int distance_bits, double band,
+                          const std::string& storage) {
   std::optional<Mesh> given = mesh_arg(source);
   const std::string input = given ? std::string() : path_arg(source, "source");
   if (voxel.has_value() == resolution.has_value())
@@ -114,6 +115,8 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
   if (!(std::isfinite(shell_ratio) && shell_ratio > 0))
     value_error("shell_ratio: " + std::to_string(shell_ratio) + " is not a positive finite number");
   check_distance_args(distance_bits, band);
+  const std::optional<ObjectStorage> kind = parse_storage(storage);
+  if (!kind) value_error("storage: '" + storage + "' is not 'auto', 'dense' or 'sparse'");
   ObjectOptions opt;
   opt.distance_bits = distance_bits;
   opt.band = band;
@@ -121,7 +124,13 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
   opt.resolution = uint32_t(resolution.value_or(0));
   opt.shell_ratio = shell_ratio;
   opt.threads = threads;
+  set_storage(opt, *kind);
   py::gil_scoped_release unlocked;
+  // The arrays below read the dense forms: made of a sparse object's where they fit.
+  auto made = [](ObjectFile obj) {
+    add_dense_forms(obj);
+    return std::make_shared<ObjectFile>(std::move(obj));
+  };
   std::string src;
   uint64_t hash = 0;
   MeshReport report;
@@ -132,10 +141,10 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
     std::string bytes;
     for (const auto& p : given->vertices) bytes.append(reinterpret_cast<const char*>(p.data()), 3 * sizeof(double));
     hash = hash_bytes(bytes);
-    return std::make_shared<ObjectFile>(make_object(*given, src, hash, opt, &report));
+    return made(make_object(*given, src, hash, opt, &report));
   }
   const Mesh mesh = load_source(input, &src, &hash, &report, LoadOptions{strict});
-  return std::make_shared<ObjectFile>(make_object(mesh, src, hash, opt, &report));
+  return made(make_object(mesh, src, hash, opt, &report));
 }
 
 }  // namespace
@@ -144,23 +153,36 @@ namespace {
 
 using ObjectClass = py::class_<ObjectFile, ObjectPtr>;
 
+// The dense forms the arrays read; ValueError for a sparse object too large for them.
+const Voxmap& dense_voxmap(const ObjectFile& o) {
+  if (!o.has_dense_voxmap())
+    value_error("the object's voxmap is stored sparse and is larger than " + std::to_string(kMaxDenseDim) +
+                " voxels per axis: it has no dense states");
+  return o.voxmap;
+}
+const PointShell& dense_shell(const ObjectFile& o) {
+  if (o.shell.size() != o.shell_points())
+    value_error("the object's shell is stored sparse on a grid too large for its dense form");
+  return o.shell;
+}
+
 // Object's voxmap: its source, grid and states.
 void bind_voxmap(ObjectClass& cls) {
   cls.def_readonly("source", &ObjectFile::source, "The mesh file as given, or 'shape:NAME' for a built-in shape.")
       .def_readonly("source_hash", &ObjectFile::source_hash, "FNV-1a 64 of the source file's bytes (of the shape's name).")
-      .def_property_readonly("voxel", [](const ObjectFile& o) { return o.voxmap.voxel(); }, "Voxel edge, mesh units.")
-      .def_property_readonly("origin", [](const ObjectFile& o) { return vec3(o.voxmap.origin()); },
+      .def_property_readonly("voxel", [](const ObjectFile& o) { return o.voxmap_grid().voxel; }, "Voxel edge, mesh units.")
+      .def_property_readonly("origin", [](const ObjectFile& o) { return vec3(o.voxmap_grid().origin); },
                              "Corner of voxel (0, 0, 0) in the object's frame: voxel (x, y, z) covers origin + "
                              "voxel * ([x, x+1] x [y, y+1] x [z, z+1]).")
-      .def_property_readonly("dims", [](const ObjectFile& o) { return dims3(o.voxmap.dims()); },
+      .def_property_readonly("dims", [](const ObjectFile& o) { return dims3(o.voxmap_grid().dims); },
                              "Voxels along x, y and z.")
-      .def_property_readonly("states", [](const ObjectFile& o) { return states(o.voxmap); },
+      .def_property_readonly("states", [](const ObjectFile& o) { return states(dense_voxmap(o)); },
                              "The voxmap's states as a new uint8 array of shape dims, indexed [x, y, z]: EMPTY (0), "
                              "SURFACE (1) or INTERIOR (2).")
       .def_property_readonly(
           "counts",
           [](const ObjectFile& o) {
-            const auto c = o.voxmap.counts();
+            const auto c = o.voxmap_counts();
             return py::dict(py::arg("empty") = c[kEmpty], py::arg("surface") = c[kSurface],
                             py::arg("interior") = c[kInterior]);
           },
@@ -169,17 +191,18 @@ void bind_voxmap(ObjectClass& cls) {
 
 // Object's point shell.
 void bind_shell(ObjectClass& cls) {
-  cls.def_property_readonly("shell_points", [](const ObjectFile& o) { return rows(o.shell.points); },
+  cls.def_property_readonly("shell_points", [](const ObjectFile& o) { return rows(dense_shell(o).points); },
                              "The point shell in the object's frame, an (N, 3) float64 array.")
-      .def_property_readonly("shell_normals", [](const ObjectFile& o) { return rows(o.shell.normals); },
+      .def_property_readonly("shell_normals", [](const ObjectFile& o) { return rows(dense_shell(o).normals); },
                              "Each shell point's outward unit normal, an (N, 3) float64 array.")
       .def_property_readonly(
           "shell_cells",
           [](const ObjectFile& o) {
-            py::array_t<uint32_t> a({py::ssize_t(o.shell.size()), py::ssize_t(3)});
+            const PointShell& sh = dense_shell(o);
+            py::array_t<uint32_t> a({py::ssize_t(sh.size()), py::ssize_t(3)});
             auto w = a.mutable_unchecked<2>();
-            for (size_t k = 0; k < o.shell.size(); ++k)
-              for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = o.shell.cells[k][size_t(i)];
+            for (size_t k = 0; k < sh.size(); ++k)
+              for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = sh.cells[k][size_t(i)];
             return a;
           },
           "Each shell point's cell of the shell grid, an (N, 3) uint32 array: the point is the cell's centre, or, "
@@ -204,11 +227,11 @@ void bind_distance(ObjectClass& cls) {
 
 // Object's shell grid, report, save() and repr.
 void bind_rest(ObjectClass& cls) {
-  cls.def_property_readonly("shell_spacing", [](const ObjectFile& o) { return o.shell.grid.voxel; },
+  cls.def_property_readonly("shell_spacing", [](const ObjectFile& o) { return o.shell_grid().voxel; },
                              "The shell grid's spacing: voxel / shell_ratio.")
-      .def_property_readonly("shell_origin", [](const ObjectFile& o) { return vec3(o.shell.grid.origin); },
+      .def_property_readonly("shell_origin", [](const ObjectFile& o) { return vec3(o.shell_grid().origin); },
                              "Corner of the shell grid's cell (0, 0, 0) in the object's frame.")
-      .def_property_readonly("shell_dims", [](const ObjectFile& o) { return dims3(o.shell.grid.dims); },
+      .def_property_readonly("shell_dims", [](const ObjectFile& o) { return dims3(o.shell_grid().dims); },
                              "Cells of the shell grid along x, y and z.")
       .def_readonly("shell_ratio", &ObjectFile::shell_ratio, "Voxel / shell spacing the shell was built with.")
       .def_property_readonly("repair", &repair_dict,
@@ -228,10 +251,10 @@ void bind_rest(ObjectClass& cls) {
           },
           py::arg("path"), "Writes the object file (as `voxcd voxelize -o`), atomically. OSError when it cannot.")
       .def("__repr__", [](const ObjectFile& o) {
-        const auto& d = o.voxmap.dims();
+        const auto& d = o.voxmap_grid().dims;
         return "<voxcd.Object " + o.source + ": " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
-               std::to_string(d[2]) + " voxels of " + py::repr(py::float_(o.voxmap.voxel())).cast<std::string>() +
-               ", " + std::to_string(o.shell.size()) + " shell points>";
+               std::to_string(d[2]) + " voxels of " + py::repr(py::float_(o.voxmap_grid().voxel)).cast<std::string>() +
+               ", " + std::to_string(o.shell_points()) + " shell points>";
       });
 }
 
@@ -247,14 +270,16 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
 
   m.def("voxelize", &voxelize_source, py::arg("source"), py::kw_only(), py::arg("voxel") = py::none(),
         py::arg("resolution") = py::none(), py::arg("shell_ratio") = std::sqrt(2.0), py::arg("strict") = false,
-        py::arg("threads") = 0u, py::arg("distance_bits") = 0, py::arg("band") = 4.0,
+        py::arg("threads") = 0u, py::arg("distance_bits") = 0, py::arg("band") = 4.0, py::arg("storage") = "auto",
         R"(Voxelises a mesh file (any format `voxcd voxelize` reads; repaired unless strict), a built-in shape
 (voxcd.shapes()), or a mesh as arrays: (vertices, faces), or any object with .vertices and .faces (a trimesh mesh;
 .triangles for Open3D), vertices (V, 3) numbers and faces (F, 3) integer indices, repaired as a file is; at `voxel`
 (mesh units) or at `resolution` voxels along its longest side: exactly one of the two.
 distance_bits (4, 8 or 16) also stores the signed distance field over a band of +-band voxels, with the shell on
-the surface. Returns an Object, the same as `voxcd voxelize SOURCE --voxel V | --resolution R [--distance-bits B
---band K]` writes.)");
+the surface. storage ('auto', 'dense' or 'sparse') chooses how the voxmap and the shell are kept and saved, as the
+tool's --storage (docs/objects.md, "Sparse objects"); the arrays below need the dense forms (ValueError for an object
+too large for them). Returns an Object, the same as `voxcd voxelize SOURCE --voxel V | --resolution R
+[--distance-bits B --band K] [--storage S]` writes.)");
   m.def(
       "read_object",
       [](const py::object& path) {

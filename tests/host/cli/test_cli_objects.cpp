@@ -56,27 +56,43 @@ std::array<double, 3> json_triple(const std::string& json, const std::string& ke
   return {std::stod(m[1]), std::stod(m[2]), std::stod(m[3])};
 }
 
-// Every number `info --json` prints, against the object the library makes from the same input.
+// Every number `info --json` prints, against the object the library makes from the same input (with the tool's
+// default storage, auto: each of the voxmap and the shell in whichever form is smaller).
 void expect_matches(const std::string& json, const ObjectFile& obj) {
-  const auto c = obj.voxmap.counts();
+  const auto c = obj.voxmap_counts();
+  const GridPlacement& g = obj.voxmap_grid();
   const auto d = json_triple(json, "dims");
-  for (int a = 0; a < 3; ++a) EXPECT_EQ(d[a], obj.voxmap.dims()[a]);
-  EXPECT_EQ(json_number(json, "voxel_size"), obj.voxmap.voxel());
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(d[a], g.dims[a]);
+  EXPECT_EQ(json_number(json, "voxel_size"), g.voxel);
   const auto o = json_triple(json, "origin");
-  for (int a = 0; a < 3; ++a) EXPECT_EQ(o[a], obj.voxmap.origin()[a]);
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(o[a], g.origin[a]);
   EXPECT_EQ(json_number(json, "empty"), c[kEmpty]);
   EXPECT_EQ(json_number(json, "surface"), c[kSurface]);
   EXPECT_EQ(json_number(json, "interior"), c[kInterior]);
-  EXPECT_EQ(json_number(json, "voxels"), obj.voxmap.size());
-  EXPECT_EQ(json_number(json, "shell_points"), obj.shell.size());
-  EXPECT_EQ(json_number(json, "shell_spacing"), obj.shell.grid.voxel);
-  // Default device widths: MEMW-bit voxmap words, three PW-bit coordinates per shell point.
+  EXPECT_EQ(json_number(json, "voxels"), g.size());
+  EXPECT_EQ(json_number(json, "shell_points"), obj.shell_points());
+  EXPECT_EQ(json_number(json, "shell_spacing"), obj.shell_grid().voxel);
+  // Default device widths: MEMW-bit voxmap words, three PW-bit coordinates per shell point; or the sparse forms'
+  // table and bricks, and shell words.
   const DeviceConfig cfg;
-  const double vbytes = double(obj.voxmap.device_words(cfg.MEMW).size() * cfg.MEMW / 8);
-  const double sbytes = std::ceil(double(obj.shell.size()) * 3 * cfg.PW / 8);
+  const double dense_v = std::ceil(double(g.size()) / 32) * 8;
+  const double dense_s = std::ceil(double(obj.shell_points()) * 3 * cfg.PW / 8);
+  const double vbytes = obj.voxmap_sparse() ? double(obj.sparse_voxmap.bytes()) : dense_v;
+  const double sbytes = obj.shell_sparse() ? double(obj.sparse_shell.words() * 9) : dense_s;
   EXPECT_EQ(json_number(json, "voxmap_bytes"), vbytes);
   EXPECT_EQ(json_number(json, "shell_bytes"), sbytes);
   EXPECT_EQ(json_number(json, "memory_bytes"), vbytes + sbytes);
+  EXPECT_NE(json.find(std::string("\"voxmap\": \"") + (obj.voxmap_sparse() ? "sparse" : "dense")), std::string::npos);
+  EXPECT_NE(json.find("\"dense\": {\"voxmap_bytes\": " + std::to_string(uint64_t(dense_v)) + ", \"shell_bytes\": " +
+                      std::to_string(uint64_t(dense_s))),
+            std::string::npos)
+      << json;
+}
+
+// The library's object as voxcd voxelize makes it by default.
+ObjectFile tool_object(const Mesh& m, const std::string& source, uint64_t hash, ObjectOptions opt) {
+  set_storage(opt, ObjectStorage::kAuto);
+  return make_object(m, source, hash, opt);
 }
 
 TEST(Cli, VoxelizeShapeThenInfo) {
@@ -88,17 +104,23 @@ TEST(Cli, VoxelizeShapeThenInfo) {
   ASSERT_EQ(i.rc, 0) << i.out;
   ObjectOptions opt;
   opt.voxel = 0.07;
-  const ObjectFile lib = make_object(make_shape("torus"), "shape:torus", hash_bytes("shape:torus"), opt);
+  const ObjectFile lib = tool_object(make_shape("torus"), "shape:torus", hash_bytes("shape:torus"), opt);
   expect_matches(i.out, lib);
   EXPECT_NE(i.out.find("\"source\": \"shape:torus\""), std::string::npos) << i.out;
-  // The file holds exactly the library's object.
+  // The file holds exactly the library's object (the shell sparse here), and the dense object's states and points.
+  ASSERT_TRUE(lib.shell_sparse());
   const ObjectFile back = read_object(vox);
-  EXPECT_EQ(back.voxmap.words(), lib.voxmap.words());
-  EXPECT_EQ(back.shell.cells, lib.shell.cells);
+  EXPECT_EQ(back.voxmap_sparse(), lib.voxmap_sparse());
+  EXPECT_TRUE(back.sparse_voxmap == lib.sparse_voxmap);
+  EXPECT_EQ(back.sparse_shell.bricks, lib.sparse_shell.bricks);
+  EXPECT_EQ(back.sparse_shell.normals, lib.sparse_shell.normals);
+  const ObjectFile dense = make_object(make_shape("torus"), "shape:torus", hash_bytes("shape:torus"), opt);
+  EXPECT_EQ(back.voxmap.words(), dense.voxmap.words());
+  EXPECT_EQ(back.shell.cells, dense.shell.cells);
   // The text form says the same numbers.
   const CliRun t = run("info " + vox);
   ASSERT_EQ(t.rc, 0) << t.out;
-  const auto c = lib.voxmap.counts();
+  const auto c = lib.voxmap_counts();
   EXPECT_NE(t.out.find("empty " + std::to_string(c[kEmpty]) + ", surface " + std::to_string(c[kSurface]) +
                        ", interior " + std::to_string(c[kInterior])),
             std::string::npos)
@@ -114,8 +136,8 @@ TEST(Cli, VoxelizeShapeThenInfo) {
     return uint32_t(uint8_t(head[at])) << 24 | uint32_t(uint8_t(head[at + 1])) << 16 |
            uint32_t(uint8_t(head[at + 2])) << 8 | uint32_t(uint8_t(head[at + 3]));
   };
-  EXPECT_GE(be32(16), 3 * lib.voxmap.dims()[0]);
-  EXPECT_GE(be32(20), lib.voxmap.dims()[1]);
+  EXPECT_GE(be32(16), 3 * dense.voxmap.dims()[0]);
+  EXPECT_GE(be32(20), dense.voxmap.dims()[1]);
   // info --png draws from the object file alone (the shape is regenerated for the mesh).
   const std::string png2 = test::tmp_path("cli_torus_info.png");
   EXPECT_EQ(run("info " + vox + " --png " + png2).rc, 0);
@@ -136,13 +158,76 @@ TEST(Cli, VoxelizeMeshFileThenInfo) {
   ObjectOptions opt;
   opt.voxel = 0.05;
   opt.shell_ratio = 2;
-  expect_matches(i.out, make_object(m, source, hash, opt));
+  expect_matches(i.out, tool_object(m, source, hash, opt));
   EXPECT_EQ(json_number(i.out, "shell_ratio"), 2.0);
   char hex[20];
   std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hash_file(mesh));
   EXPECT_NE(i.out.find(std::string("\"source_hash\": \"") + hex + "\""), std::string::npos) << i.out;
   std::remove(mesh.c_str());
   std::remove(vox.c_str());
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// --storage: dense is the file the library wrote before sparse objects existed (version 2), sparse holds the same
+// states and points, auto picks per part, and a grid larger than a dense voxmap takes is sparse.
+TEST(Cli, StorageDenseSparseAndAuto) {
+  const std::string d = test::tmp_path("cli_dense.vox"), sp = test::tmp_path("cli_sparse.vox"),
+                    lib = test::tmp_path("cli_lib.vox"), big = test::tmp_path("cli_big.vox"),
+                    png = test::tmp_path("cli_big.png");
+  ASSERT_EQ(run("voxelize torus --voxel 0.07 --storage dense -o " + d).rc, 0);
+  ObjectOptions opt;
+  opt.voxel = 0.07;
+  std::string src;
+  uint64_t hash = 0;
+  MeshReport report;
+  const Mesh torus = load_source("torus", &src, &hash, &report);
+  const ObjectFile dense = make_object(torus, src, hash, opt, &report);
+  write_object(lib, dense);
+  EXPECT_TRUE(file_bytes(d) == file_bytes(lib)) << "--storage dense is the library's dense object file";
+  EXPECT_EQ(uint8_t(file_bytes(d)[8]), 2u) << "version 2";
+  const CliRun s = run("voxelize torus --voxel 0.07 --storage sparse --json -o " + sp);
+  ASSERT_EQ(s.rc, 0) << s.out;
+  EXPECT_NE(s.out.find("\"voxmap\": \"sparse\", \"shell\": \"sparse\""), std::string::npos) << s.out;
+  EXPECT_EQ(uint8_t(file_bytes(sp)[8]), 5u) << "version 5";
+  const ObjectFile back = read_object(sp);
+  EXPECT_EQ(back.voxmap.words(), dense.voxmap.words());
+  EXPECT_EQ(back.shell.cells, dense.shell.cells);
+  double worst = 0;
+  for (size_t k = 0; k < dense.shell.size(); ++k)
+    worst = std::max(worst, std::acos(std::min(1.0, back.shell.normals[k].dot(dense.shell.normals[k]))));
+  EXPECT_LT(worst, 1e-4) << "the normals' encoding";
+  // A tiny object: its dense voxmap is smaller than a table and one brick.
+  const CliRun a = run("voxelize cube --voxel 0.5 --json -o " + sp);
+  ASSERT_EQ(a.rc, 0) << a.out;
+  EXPECT_NE(a.out.find("\"voxmap\": \"dense\""), std::string::npos) << a.out;
+  // A dense voxmap has at most 1024 voxels per axis; an unknown storage names the option.
+  CliRun r = run("voxelize cube --voxel 0.001 --storage dense -o " + sp);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("at most 1024 per axis"), std::string::npos) << r.out;
+  r = run("voxelize cube --voxel 0.1 --storage thin -o " + sp);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.out.find("--storage"), std::string::npos) << r.out;
+  // A distance field is built on the dense voxmap.
+  const CliRun e = run("voxelize torus --voxel 0.07 --storage sparse --distance-bits 8 -o " + sp);
+  EXPECT_NE(e.rc, 0);
+  EXPECT_NE(e.out.find("a sparse object cannot have one"), std::string::npos) << e.out;
+  // 1,100 voxels across: more than a dense voxmap takes, so sparse; a picture needs the dense one.
+  const CliRun b = run("voxelize torus --resolution 1100 -o " + big);
+  ASSERT_EQ(b.rc, 0) << b.out;
+  EXPECT_NE(b.out.find("voxmap   1103 x 1103 x"), std::string::npos) << b.out;
+  EXPECT_NE(b.out.find("storage  voxmap stored sparse"), std::string::npos) << b.out;
+  const ObjectFile stored = read_object(big, ObjectRead::kStored);
+  EXPECT_TRUE(stored.voxmap_sparse() && !stored.has_dense_voxmap());
+  const CliRun p = run("info " + big + " --png " + png);
+  EXPECT_NE(p.rc, 0);
+  EXPECT_NE(p.out.find("no picture of an object stored sparse at 1103 x 1103"), std::string::npos) << p.out;
+  for (const auto& f : {d, sp, lib, big, png}) std::remove(f.c_str());
 }
 
 TEST(Cli, ErrorsNameWhatAndWhere) {
@@ -188,7 +273,7 @@ TEST(Cli, ErrorsNameWhatAndWhere) {
   }
   r = run("voxelize cube --voxel 0.0001 -o " + vox);
   EXPECT_NE(r.rc, 0);
-  EXPECT_NE(r.out.find("at most 1024 per axis"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("at most 4100 per axis"), std::string::npos) << r.out;
   EXPECT_FALSE(std::ifstream(vox).good()) << "no object file after an error";
   // info on a missing, a truncated and a non-object file.
   r = run("info /nonexistent/x.vox");

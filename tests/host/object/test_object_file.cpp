@@ -250,9 +250,9 @@ TEST(ObjectFile, DamagedFilesNameTheFileAndTheByte) {
     c[0] = 'W';
     EXPECT_EQ(expect_error(c, "bad magic", "magic"), where + "not a voxcd object file (bad magic) (byte 0)");
     c = b;
-    c[8] = 5;
-    EXPECT_EQ(expect_error(c, "version 5 is not supported", "version"),
-              where + "object file version 5 is not supported (this reader knows versions 1 to 4) (byte 8)");
+    c[8] = 6;
+    EXPECT_EQ(expect_error(c, "version 6 is not supported", "version"),
+              where + "object file version 6 is not supported (this reader knows versions 1 to 5) (byte 8)");
     c = b;
     c[12] = 1;
     expect_error(c, "unknown flags 1", "flags");
