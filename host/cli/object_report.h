@@ -117,11 +117,43 @@ inline std::string repair_text(const ObjectFile& obj) {
   if (!obj.distance.empty())
     t << "  distance " << obj.voxelize_report.conservative
       << " conservative cells (a surface the nodes do not resolve: every point in them is a hit)\n";
+  if (obj.distance_sparse())
+    t << "  distance " << obj.voxelize_report.conservative
+      << " conservative sub-cells (a surface even level-3 bricks do not resolve: every point in them is a hit)\n";
   return t.str();
+}
+
+// A sparse distance field's device memory with the default widths, SB = its bits and BL = 3: the table and brick
+// words of its image.
+inline DistanceMemory sparse_distance_memory(const ObjectFile& obj) {
+  DistanceMemory m;
+  const SparseDistanceField& f = obj.sparse_distance;
+  m.cfg.SB = f.bits();
+  m.cfg.BL = SparseDistanceField::kBrickLog;
+  const SparseImage img = f.device_image(m.cfg);
+  m.words = img.table.size() + img.bricks.size();
+  m.bytes = m.words * uint64_t(m.cfg.MEMW) / 8;
+  m.nodes = f.counts().nodes;
+  return m;
+}
+
+// A sparse field's keys: its cells per kind, its bricks per level and the conservative sub-cells left.
+inline Json sparse_distance_json(const ObjectFile& obj) {
+  const SparseDistanceField& f = obj.sparse_distance;
+  const SparseFieldCounts c = f.counts();
+  const DistanceMemory dm = sparse_distance_memory(obj);
+  const auto [lo, hi] = std::minmax_element(f.nodes().begin(), f.nodes().end());
+  return Json{{"storage", "sparse"}, {"bits", f.bits()}, {"step", f.step()}, {"band", f.band()},
+              {"nodes", dm.nodes}, {"cells", {f.cells()[0], f.cells()[1], f.cells()[2]}},
+              {"far_cells", c.far}, {"deep_cells", c.deep}, {"bricks_per_level", c.bricks},
+              {"conservative_subcells", c.conservative},
+              {"min", f.nodes().empty() ? f.qmax() : *lo}, {"max", f.nodes().empty() ? f.qmax() : *hi},
+              {"memory_words", dm.words}, {"memory_bytes", dm.bytes}, {"memory_config", dm.cfg.to_string()}};
 }
 
 // The distance field's keys of object_json (objects of file version 3): null when the object has none.
 inline Json distance_json(const ObjectFile& obj) {
+  if (obj.distance_sparse()) return sparse_distance_json(obj);
   if (obj.distance.empty()) return nullptr;
   const DistanceField& f = obj.distance;
   const DistanceMemory dm = distance_memory(obj);
@@ -148,11 +180,30 @@ inline std::string object_json(const std::string& path, const ObjectFile& obj) {
             {"memory_bytes", mem.voxmap_bytes + mem.shell_bytes}, {"memory_config", DeviceConfig{}.to_string()},
             {"storage", storage_json(storage_figures(obj))}, {"repair", repair_json(obj)}};
   // Objects with a distance field (file version 3) have two more keys; the others print exactly as before.
-  if (!obj.distance.empty() || obj.shell.on_surface) {
+  if (obj.has_distance() || obj.shell.on_surface) {
     j["shell_on_surface"] = obj.shell.on_surface;
     j["distance"] = distance_json(obj);
   }
   return json_text(j, true) + "\n";
+}
+
+// A sparse field's line: its values, cells, bricks per level, and device memory beside a dense field's.
+inline std::string sparse_distance_text(const ObjectFile& obj) {
+  const SparseDistanceField& f = obj.sparse_distance;
+  const SparseFieldCounts c = f.counts();
+  const DistanceMemory dm = sparse_distance_memory(obj);
+  DeviceConfig dense;
+  dense.SB = f.bits();
+  Job j;
+  j.nx = f.dims()[0], j.ny = f.dims()[1], j.nz = f.dims()[2];
+  std::ostringstream t;
+  t << "  distance " << f.bits() << "-bit node values, step " << f.step() << " voxels, band +-" << f.band()
+    << " voxels, stored sparse: " << f.cells()[0] << " x " << f.cells()[1] << " x " << f.cells()[2] << " cells of 8^3, "
+    << c.far << " far outside, " << c.deep << " far inside, bricks of level 0/1/2/3: " << c.bricks[0] << "/"
+    << c.bricks[1] << "/" << c.bricks[2] << "/" << c.bricks[3] << " (" << c.nodes << " nodes); device memory "
+    << dm.words << " words (" << dm.bytes << " bytes, " << dm.cfg.to_string().substr(dm.cfg.to_string().find("SB"))
+    << "), dense " << map_words(dense, j) << " words\n";
+  return t.str();
 }
 
 inline std::string object_text(const std::string& path, const ObjectFile& obj) {
@@ -184,6 +235,7 @@ inline std::string object_text(const std::string& path, const ObjectFile& obj) {
       << " voxels, " << f.dims[0] + 1 << " x " << f.dims[1] + 1 << " x " << f.dims[2] + 1 << " nodes; device memory "
       << dm.words << " words (" << dm.bytes << " bytes, MEMW " << dm.cfg.MEMW << ", SB " << dm.cfg.SB << ")\n";
   }
+  if (obj.distance_sparse()) t << sparse_distance_text(obj);
   t << repair_text(obj);
   return t.str();
 }

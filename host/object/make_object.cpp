@@ -10,6 +10,7 @@
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize_sparse.h"
 #include "voxcd/ref/fnv1a.h"
+#include "voxcd/ref/pipeline.h"
 
 namespace voxcd {
 
@@ -85,6 +86,34 @@ void sparse_shell_of(const Mesh& mesh, ShellOptions so, ObjectStorage storage, O
   }
 }
 
+// The distance field in the form `storage` asks for: sparse with refined bricks (docs/objects.md, "Sparse distance
+// field"), dense, or (auto) whichever takes fewer words of a device with the default widths and SB = d.bits.
+void distance_of(const Mesh& mesh, const DistanceOptions& d, ObjectStorage storage, ObjectFile& obj) {
+  if (storage != ObjectStorage::kDense) {
+    SparseFieldOptions so;
+    so.distance = d;
+    obj.sparse_distance = sparse_distance_field(mesh, obj.voxmap.grid(), so);
+    if (storage == ObjectStorage::kSparse) {
+      obj.voxelize_report.conservative = obj.sparse_distance.counts().conservative;
+      return;
+    }
+  }
+  obj.distance = distance_field(mesh, obj.voxmap, d, &obj.voxelize_report.conservative);
+  if (storage != ObjectStorage::kAuto) return;
+  DeviceConfig cfg;
+  cfg.SB = d.bits;
+  cfg.BL = SparseDistanceField::kBrickLog;
+  const SparseImage img = obj.sparse_distance.device_image(cfg);
+  Job j;
+  j.nx = obj.voxmap.dims()[0], j.ny = obj.voxmap.dims()[1], j.nz = obj.voxmap.dims()[2];
+  if (img.table.size() + img.bricks.size() < map_words(cfg, j)) {
+    obj.distance = DistanceField{};
+    obj.voxelize_report.conservative = obj.sparse_distance.counts().conservative;
+  } else {
+    obj.sparse_distance = SparseDistanceField{};
+  }
+}
+
 }  // namespace
 
 void set_storage(ObjectOptions& opt, ObjectStorage storage) {
@@ -105,8 +134,6 @@ ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t sou
   if (opt.distance_bits != 0 && !valid_distance_bits(opt.distance_bits))
     throw MeshError(mesh.name + ": distance bits must be " + distance_bits_text() + " (or 0 for none), got " +
                     std::to_string(opt.distance_bits));
-  if (opt.distance_bits != 0 && opt.storage == ObjectStorage::kSparse)
-    throw MeshError(mesh.name + ": a distance field is built on the dense voxmap; a sparse object cannot have one");
   const double voxel = opt.resolution ? voxel_for_resolution(mesh, opt.resolution) : opt.voxel;
   obj.source = source;
   obj.source_hash = source_hash;
@@ -137,7 +164,7 @@ ObjectFile make_object(const Mesh& mesh, const std::string& source, uint64_t sou
     d.bits = opt.distance_bits;
     d.band = opt.band;
     d.threads = opt.threads;
-    obj.distance = distance_field(mesh, obj.voxmap, d, &obj.voxelize_report.conservative);
+    distance_of(mesh, d, opt.storage, obj);
     so.on_surface = true;
   }
   obj.shell = point_shell(mesh, so);

@@ -33,9 +33,9 @@ constexpr char kMagic[8] = {'V', 'O', 'X', 'C', 'D', 'O', 'B', 'J'};
 constexpr uint32_t kVersion = 2, kVersionDistance = 3, kVersionReport2 = 4, kVersionSparse = 5;
 // The report's second section (version 4): its count, then the counts, in file order.
 constexpr uint32_t kReport2Counts = 4;
-// Header flags: the shell's points lie on the surface (PointShell::on_surface; version 3 on); the voxmap, the shell is
-// sparse (version 5).
-constexpr uint32_t kFlagSurfaceShell = 1, kFlagSparseVoxmap = 2, kFlagSparseShell = 4;
+// Header flags: the shell's points lie on the surface (PointShell::on_surface; version 3 on); the voxmap, the shell, the
+// distance field is sparse (version 5; the field in the sparse distance section).
+constexpr uint32_t kFlagSurfaceShell = 1, kFlagSparseVoxmap = 2, kFlagSparseShell = 4, kFlagSparseDistance = 8;
 // The report section's fields (version 2), in file order.
 constexpr int kReportCounts = 19;
 constexpr uint32_t kClosed = 1, kFlipped = 2, kPointsOnly = 4, kSurfaceOnly = 8, kReportFlags = 15;
@@ -220,7 +220,7 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   VoxelizeReport vr = obj.has_report ? obj.voxelize_report : VoxelizeReport{};
   bool v4 = false;
   for (uint64_t* f : report2_fields(mr, vr)) v4 |= *f != 0;
-  const bool v5 = obj.voxmap_sparse() || obj.shell_sparse();
+  const bool v5 = obj.voxmap_sparse() || obj.shell_sparse() || obj.distance_sparse();
   v4 = v4 || v5;
   const bool v3 = !df.empty() || sh.on_surface || v4;
   TmpFile file(path);
@@ -229,7 +229,8 @@ void write_object(const std::string& path, const ObjectFile& obj) {
   w.buf.append(kMagic, 8);
   w.put(v5 ? kVersionSparse : v4 ? kVersionReport2 : v3 ? kVersionDistance : kVersion);
   w.put((sh.on_surface && !obj.shell_sparse() ? kFlagSurfaceShell : uint32_t{0}) |
-        (obj.voxmap_sparse() ? kFlagSparseVoxmap : uint32_t{0}) | (obj.shell_sparse() ? kFlagSparseShell : uint32_t{0}));
+        (obj.voxmap_sparse() ? kFlagSparseVoxmap : uint32_t{0}) | (obj.shell_sparse() ? kFlagSparseShell : uint32_t{0}) |
+        (obj.distance_sparse() ? kFlagSparseDistance : uint32_t{0}));
   w.put(obj.source_hash);
   w.str(obj.source);
   w.put(obj.shell_ratio);
@@ -272,14 +273,14 @@ void read_header(Reader& r, uint32_t& version, uint32_t& flags) {
           std::to_string(kVersionSparse) + ")");
   flags = r.get<uint32_t>("the flags");
   const uint32_t known_flags = (version >= kVersionDistance ? kFlagSurfaceShell : 0) |
-                               (version >= kVersionSparse ? kFlagSparseVoxmap | kFlagSparseShell : 0);
+                               (version >= kVersionSparse ? kFlagSparseVoxmap | kFlagSparseShell | kFlagSparseDistance : 0);
   if (flags & ~known_flags)
     r.bad("unknown flags " + std::to_string(flags) + " (version " + std::to_string(version) + " knows " +
           std::to_string(known_flags) + ")");
   if ((flags & kFlagSurfaceShell) && (flags & kFlagSparseShell))
     r.bad("flags " + std::to_string(flags) + ": a shell on the surface is never sparse");
-  if (version >= kVersionSparse && !(flags & (kFlagSparseVoxmap | kFlagSparseShell)))
-    r.bad("a version 5 file holds its voxmap or its shell sparse, and its flags say neither");
+  if (version >= kVersionSparse && !(flags & (kFlagSparseVoxmap | kFlagSparseShell | kFlagSparseDistance)))
+    r.bad("a version 5 file holds its voxmap, its shell or its distance field sparse, and its flags say none");
 }
 
 // Where the voxmap section's checks point once the whole file is read.
@@ -449,9 +450,22 @@ ObjectFile read_object(const std::string& path, ObjectRead forms) {
     read_shell(r, header_flags & kFlagSurfaceShell, obj.shell);
   if (version >= 2) read_report(r, version, obj);
   if (version >= kVersionSparse) detail::read_sparse_distance(r, obj);
+  if (obj.distance_sparse() != bool(header_flags & kFlagSparseDistance))
+    r.bad(std::string("the flags say the distance field is ") + (obj.distance_sparse() ? "not " : "") +
+          "sparse, and the sparse distance section " + (obj.distance_sparse() ? "holds one" : "holds none"));
+  if (obj.distance_sparse() && !obj.distance.empty())
+    r.bad("the object holds both a dense and a sparse distance field");
   check_whole(r, at, obj.voxmap, !(header_flags & kFlagSparseVoxmap));
   if (forms == ObjectRead::kWithDense) add_dense_forms(obj);
   return obj;
+}
+
+bool ObjectFile::distance_near_conservative(const Eigen::Vector3d& g) const {
+  if (distance_sparse()) return sparse_distance.near_conservative(g);
+  if (distance.empty() || voxmap.words().empty()) return false;
+  uint32_t v[3];
+  for (int i = 0; i < 3; ++i) v[i] = uint32_t(std::clamp(std::floor(g[i]), 0.0, double(distance.dims[i]) - 1));
+  return distance.near_conservative(voxmap, v[0], v[1], v[2]);
 }
 
 void add_dense_forms(ObjectFile& obj) {

@@ -10,6 +10,7 @@
 
 #include "voxcd/host/object/distance_field.h"
 #include "voxcd/host/object/point_shell.h"
+#include "voxcd/host/object/sparse_field.h"
 #include "voxcd/host/object/sparse_shell.h"
 #include "voxcd/host/object/sparse_voxmap.h"
 #include "voxcd/host/object/voxelize.h"
@@ -33,6 +34,9 @@ struct ObjectFile {
   SparseVoxmap sparse_voxmap;    // the voxmap stored sparse (cells() > 0), docs/objects.md "Sparse objects"
   SparseShell sparse_shell;      // the shell stored sparse (not empty)
   DistanceField distance;        // the signed distance field on the voxmap's grid (empty unless asked for)
+  // The field stored sparse, with refined bricks (docs/objects.md, "Sparse distance field"): an object holds this or
+  // `distance`, never both; the accessors below read whichever it holds.
+  SparseDistanceField sparse_distance;
   // What loading, repair and voxelising found (file version 2; a version 1 file has none: has_report false).
   bool has_report = false;
   MeshReport mesh_report;
@@ -45,6 +49,19 @@ struct ObjectFile {
   // The voxmap's grid and its voxels per state, from whichever form is held.
   const GridPlacement& voxmap_grid() const { return voxmap_sparse() ? sparse_voxmap.grid() : voxmap.grid(); }
   std::array<uint64_t, 4> voxmap_counts() const { return voxmap_sparse() ? sparse_voxmap.counts() : voxmap.counts(); }
+  bool distance_sparse() const { return !sparse_distance.empty(); }
+  // The distance field, from whichever form is held: whether there is one, its bits (0: none), step (voxels a unit),
+  // band (voxels) and largest value; its interpolant at grid point g (voxels) as the device computes it, with the
+  // gradient; whether g's cell shares a node with a conservative cell (a hit there has the 2-bit bound).
+  bool has_distance() const { return !distance.empty() || distance_sparse(); }
+  int distance_bits() const { return distance_sparse() ? sparse_distance.bits() : distance.bits; }
+  double distance_step() const { return distance_sparse() ? sparse_distance.step() : distance.step; }
+  double distance_band() const { return distance_sparse() ? sparse_distance.band() : distance.band(); }
+  int distance_qmax() const { return distance_sparse() ? sparse_distance.qmax() : distance.qmax(); }
+  double distance_at(const Eigen::Vector3d& g, Eigen::Vector3d* gradient = nullptr) const {
+    return distance_sparse() ? sparse_distance.sample(g, gradient) : distance.sample(g, gradient);
+  }
+  bool distance_near_conservative(const Eigen::Vector3d& g) const;
   // The shell's grid and point count, from whichever form is held.
   const GridPlacement& shell_grid() const { return shell_sparse() ? sparse_shell.grid : shell.grid; }
   size_t shell_points() const { return shell_sparse() ? sparse_shell.size() : shell.size(); }
@@ -53,7 +70,8 @@ struct ObjectFile {
 // Which forms make_object builds. kDense: the dense voxmap and shell, as before sparse forms existed (the library's
 // default). kSparse: the sparse voxmap and shell. kAuto: each of the two in whichever form takes fewer bytes of device
 // memory with the default widths (a dense voxmap only while it fits kMaxDenseDim per axis, a dense shell while its
-// grid fits 4096). Objects with a distance field are dense.
+// grid fits 4096). An object with a distance field keeps its voxmap and its shell on the surface dense (up to
+// kMaxDenseDim per axis); kSparse stores its field sparse with refined bricks, kAuto in the smaller form.
 enum class ObjectStorage { kDense, kSparse, kAuto };
 
 // The largest dense voxmap an object holds, per axis (the default device's 2^DW): larger grids are sparse only.

@@ -154,19 +154,37 @@ void read_sparse_shell(Reader& r, SparseShell& s) {
   r.get_array(s.normals.data(), points, "the shell normals");
 }
 
-void put_sparse_distance(Writer& w, const ObjectFile&) {
-  w.put(kDistanceAbsent);
-  w.put(uint64_t{0});
+void put_sparse_distance(Writer& w, const ObjectFile& obj) {
+  if (!obj.distance_sparse()) {
+    w.put(kDistanceAbsent);
+    w.put(uint64_t{0});
+    return;
+  }
+  std::vector<uint8_t> bytes;
+  write_sparse_field(bytes, obj.sparse_distance);
+  w.put(kDistanceSparseField);
+  w.put(uint64_t(bytes.size()));
+  w.put_array(bytes.data(), bytes.size());
 }
 
-void read_sparse_distance(Reader& r, ObjectFile&) {
+void read_sparse_distance(Reader& r, ObjectFile& obj) {
   const uint32_t kind = r.get<uint32_t>("the sparse distance section's kind");
   const uint64_t bytes = r.get<uint64_t>("the sparse distance section's length");
-  if (kind == kDistanceSparseField)
-    r.bad("the object holds a sparse distance field (" + std::to_string(bytes) +
-          " bytes), which this version of voxcd does not read");
-  if (kind != kDistanceAbsent) r.bad("unknown sparse distance section kind " + std::to_string(kind));
-  if (bytes != 0) r.bad("an absent sparse distance section has a length of " + std::to_string(bytes) + ", not 0");
+  if (kind == kDistanceAbsent) {
+    if (bytes != 0) r.bad("an absent sparse distance section has a length of " + std::to_string(bytes) + ", not 0");
+    return;
+  }
+  if (kind != kDistanceSparseField) r.bad("unknown sparse distance section kind " + std::to_string(kind));
+  r.need(bytes, "the sparse distance field");
+  const size_t at = r.pos;
+  obj.sparse_distance = read_sparse_field(reinterpret_cast<const uint8_t*>(r.buf.data()) + at, size_t(bytes),
+                                          r.path + ": the sparse distance section from byte " + std::to_string(at));
+  r.pos = at + size_t(bytes);
+  const auto& d = obj.sparse_distance.dims();
+  const auto& g = obj.voxmap_grid().dims;
+  if (d != g)
+    r.bad("the sparse distance field's " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
+          std::to_string(d[2]) + " cells do not match the voxmap's grid");
 }
 
 }  // namespace voxcd::detail

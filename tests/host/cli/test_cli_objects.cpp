@@ -213,10 +213,14 @@ TEST(Cli, StorageDenseSparseAndAuto) {
   r = run("voxelize cube --voxel 0.1 --storage thin -o " + sp);
   EXPECT_NE(r.rc, 0);
   EXPECT_NE(r.out.find("--storage"), std::string::npos) << r.out;
-  // A distance field is built on the dense voxmap.
+  // A sparse distance field: refined bricks, read back the same.
   const CliRun e = run("voxelize torus --voxel 0.07 --storage sparse --distance-bits 8 -o " + sp);
-  EXPECT_NE(e.rc, 0);
-  EXPECT_NE(e.out.find("a sparse object cannot have one"), std::string::npos) << e.out;
+  ASSERT_EQ(e.rc, 0) << e.out;
+  EXPECT_NE(e.out.find("stored sparse: 6 x 6 x 2 cells of 8^3"), std::string::npos) << e.out;
+  const ObjectFile with_field = read_object(sp);
+  EXPECT_TRUE(with_field.distance_sparse());
+  EXPECT_TRUE(with_field.distance.empty());
+  EXPECT_EQ(with_field.distance_bits(), 8);
   // 1,100 voxels across: more than a dense voxmap takes, so sparse; a picture needs the dense one.
   const CliRun b = run("voxelize torus --resolution 1100 -o " + big);
   ASSERT_EQ(b.rc, 0) << b.out;

@@ -196,11 +196,11 @@ TEST_F(DamagedSparseFile, EachCheckNamesWhatIsWrong) {
   expect_error(c, "a shell on the surface is never sparse", true, "flags");
   c = bytes_;
   c[12] = 0;
-  expect_error(c, "its flags say neither", true, "no sparse part");
-  // The reserved sparse distance section, 12 bytes before the checksum: a field this version does not read.
+  expect_error(c, "its flags say none", true, "no sparse part");
+  // The sparse distance section, 12 bytes before the checksum: a field of no bytes.
   c = bytes_;
   c[c.size() - 16] = 1;
-  expect_error(c, "holds a sparse distance field", true, "distance kind");
+  expect_error(c, "the sparse distance field: truncated", true, "distance kind");
   c = bytes_;
   c[c.size() - 12] = 5;
   expect_error(c, "an absent sparse distance section has a length of 5", true, "distance length");
