@@ -26,12 +26,12 @@ module voxcd_ram2 #(
 
   logic [Width-1:0] mem_q [2**AddrW];
 
+  // Port A: one address, a write or else a read (a block RAM port in NO_CHANGE mode).
+  logic [AddrW-1:0] addr_a;
+  assign addr_a = we_i ? waddr_i : raddr_a_i;
   always_ff @(posedge clk_i) begin
-    if (we_i) mem_q[waddr_i] <= wdata_i;
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (re_a_i && !we_i) rdata_a_o <= mem_q[raddr_a_i];
+    if (we_i)        mem_q[addr_a] <= wdata_i;
+    else if (re_a_i) rdata_a_o <= mem_q[addr_a];
   end
 
   always_ff @(posedge clk_i) begin
