@@ -773,11 +773,11 @@ module voxcd_device #(
   if (Banked) begin : g_banks
     logic                 pre_first_hit;  // the register before READ (2-bit, HasRead) holds a FIRST job's hit
     logic                 hit_now;        // the last register holds a FIRST job's hit
-    logic                 r4_squashed, brick_squashed;
-    logic [NReq-1:0]      table_want, brick_want;
-    logic [NumB-1:0]      table_re, brick_re;
-    logic [NumB*MAW-1:0]  table_word_addr, brick_word_addr;
-    logic [NumB*MEMW-1:0] table_rdata, brick_rdata;
+    logic                 r4_squashed;
+    logic [NReq-1:0]      table_want;
+    logic [NumB-1:0]      table_re;
+    logic [NumB*MAW-1:0]  table_word_addr;
+    logic [NumB*MEMW-1:0] table_rdata;
 
     always_comb begin
       pre_first_hit = 1'b0;
@@ -789,15 +789,10 @@ module voxcd_device #(
       end
     end
     assign hit_now        = last_slot.valid && !squash && is_first && (|lane_hit);
-    assign r4_squashed    = (found_q && (found_seq_q == r4_slot.seq)) || (hit_now && (last_slot.seq == r4_slot.seq)) ||
-                            (pre_first_hit && (pre_slot.seq == r4_slot.seq));
-    assign brick_squashed = (found_q && (found_seq_q == brick_slot.seq)) ||
-                            (hit_now && (last_slot.seq == brick_slot.seq)) ||
-                            (pre_first_hit && (pre_slot.seq == brick_slot.seq));
+    assign r4_squashed = (found_q && (found_seq_q == r4_slot.seq)) || (hit_now && (last_slot.seq == r4_slot.seq)) ||
+                         (pre_first_hit && (pre_slot.seq == r4_slot.seq));
     for (genvar r = 0; r < NReq; r++) begin : g_want
       assign table_want[r] = r4_slot.valid && !r4_squashed && r4_slot.lanes[r / NPar] && lane_read[r];
-      assign brick_want[r] = Sparse && brick_slot.valid && !brick_squashed && brick_slot.lanes[r / NPar] &&
-                             lane_bread[r];
     end
 
     voxcd_bank_rounds #(.NReq(NReq), .NumB(NumB), .MAW(MAW), .MEMW(MEMW)) u_table_rounds (
@@ -815,6 +810,17 @@ module voxcd_device #(
     );
 
     if (Sparse) begin : g_brick_port
+      logic                 brick_squashed;
+      logic [NReq-1:0]      brick_want;
+      logic [NumB-1:0]      brick_re;
+      logic [NumB*MAW-1:0]  brick_word_addr;
+      logic [NumB*MEMW-1:0] brick_rdata;
+      assign brick_squashed = (found_q && (found_seq_q == brick_slot.seq)) ||
+                              (hit_now && (last_slot.seq == brick_slot.seq)) ||
+                              (pre_first_hit && (pre_slot.seq == brick_slot.seq));
+      for (genvar r = 0; r < NReq; r++) begin : g_want
+        assign brick_want[r] = brick_slot.valid && !brick_squashed && brick_slot.lanes[r / NPar] && lane_bread[r];
+      end
       voxcd_bank_rounds #(.NReq(NReq), .NumB(NumB), .MAW(MAW), .MEMW(MEMW)) u_brick_rounds (
         .clk_i      (clk_i),
         .rst_ni     (rst_ni),
@@ -849,11 +855,8 @@ module voxcd_device #(
       // sparse, and a lane whose cell is a brick (a uniform cell and a dense map read nothing there).
       `VOXCD_ASSERT(BrickReadsOnlyBricks, !(|brick_want) || stage_bricks[BrickW-1])
     end else begin : g_table_port
-      assign brick_wait      = 1'b0;
-      assign brick_re        = '0;
-      assign brick_word_addr = '0;
-      assign brick_rdata     = '0;
-      assign lane_bword      = '0;
+      assign brick_wait = 1'b0;
+      assign lane_bword = '0;
       for (genvar b = 0; b < NumB; b++) begin : g_bank
         voxcd_ram #(
           .Width(MEMW),
@@ -869,7 +872,7 @@ module voxcd_device #(
         );
       end
       logic unused_brick;  // a dense device has no brick port
-      assign unused_brick = ^{brick_want, lane_baddr, brick_re, brick_word_addr, brick_rdata};
+      assign unused_brick = ^{lane_baddr, lane_bread};
     end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin

@@ -730,7 +730,7 @@ module voxcd_lane #(
       assign baddr_o  = '0;
       assign bread_o  = '0;
       logic unused_sparse;  // a dense lane reads no table and no brick
-      assign unused_sparse = ^{sparse5_q, tbank5_q, tslot5_q, wordk, brick_base_i, brick_units_i};
+      assign unused_sparse = ^{sparse5_q, tbank5_q, tslot5_q, wordk, brow_f, brick_base_i, brick_units_i};
     end
 
     logic [8*SB-1:0] q;
