@@ -3,7 +3,7 @@
 // model, the timing model's cycles, which equal the RTL's: ref/timing.h), the same for sparse-shell jobs with the
 // shell's brick fill beside it, and the latency the sparse registers add. Every RTL figure is read from the device's
 // own completion records. Writes Markdown to stdout (bench/sparse.sh puts it into docs/hardware.md).
-//   bench_sparse [--jobs N]   N back-to-back jobs per stream (default 8; the first, with the pipeline fill, is left out)
+//   bench_sparse [--jobs N]   N back-to-back jobs a stream (default 8; the first, with the pipeline fill, left out)
 #include <verilated.h>
 
 #include <algorithm>
@@ -317,7 +317,8 @@ void latency_table(std::ostream& md) {
 int main(int argc, char** argv) {
   size_t n = 8;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--jobs") == 0 && i + 1 < argc) n = std::max<size_t>(2, std::strtoul(argv[++i], nullptr, 0));
+    if (std::strcmp(argv[i], "--jobs") == 0 && i + 1 < argc)
+      n = std::max<size_t>(2, std::strtoul(argv[++i], nullptr, 0));
     else return std::fprintf(stderr, "usage: bench_sparse [--jobs N]\n"), 2;
   }
   if (!rtl_unavailable().empty() || rtl_sparse_configs().empty()) {
@@ -332,7 +333,8 @@ int main(int argc, char** argv) {
      << "pipeline fill) left out, read from the RTL's completion records (or, marked *, at the depths the build has no "
      << "model of, the timing model's cycles, which equal the RTL's). Sparse-map jobs with dense shells: " << kPoints
      << " random points each in the map's box, hit mask surface (distance: the threshold under which 1% of the points "
-     << "lie). Sparse-shell jobs: the sphere's surface voxels as 4^3 shell bricks (a brick word each, chained by steps), "
+     << "lie). Sparse-shell jobs: the sphere's surface voxels as 4^3 shell bricks (a brick word each, chained by "
+     << "steps), "
      << "moved 3 voxels along x, on the same sparse map; a word of p points takes max(1, ceil(p / LANES)) slots, so "
      << "their rate is set by the brick fill. Goal: at least 0.95 x LANES for sparse-map jobs at every depth (shared "
      << "banks: random points conflict, as on a dense device).\n\n";

@@ -338,7 +338,7 @@ module voxcd_device #(
     if (head_sparse_shell) issue.lanes = '0;
   end
 
-  // ---- Slot registers R0 .. R(N-1) (W, R0 .. on a sparse device): bookkeeping and job, shifting with the pipeline ----
+  // ---- Slot registers R0 .. R(N-1) (W, R0, .. on a sparse device): bookkeeping and job, shifting with them ----
   // The registers up to R4 (AddrR) advance with the issue stage (advance); R5 up to the brick stage with advance_mid,
   // R5 taking an empty slot while R4 waits for a shared voxmap bank; K (R5 on a dense device) and the registers after
   // it with the last register (advance_out), K taking an empty slot while the brick stage waits. Each register is a

@@ -25,7 +25,8 @@ inline std::vector<DeviceConfig> sparse_models(bool distance) {
 }
 
 // ref/'s stream with the timing model's cycles.
-inline std::vector<Record> exact_stream(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs) {
+inline std::vector<Record> exact_stream(const DeviceConfig& cfg, const DeviceMemory& mem,
+                                        const std::vector<Job>& jobs) {
   std::vector<Record> r = run_stream(cfg, mem, jobs);
   annotate_cycles(cfg, mem, jobs, r);
   return r;

@@ -98,7 +98,9 @@ TEST(RtlSparse, Case2DistanceCells) {
     auto q = [&](double x, double y, double z) {
       return std::clamp<int64_t>(std::llround(qmax * std::sin(0.37 * x + 0.21 * y) * std::cos(0.29 * z)), -qmax, qmax);
     };
-    auto level = [](uint64_t cx, uint64_t, uint64_t) { return cx == 0 ? -1 : cx == 1 ? -2 : cx < 6 ? int(cx) - 2 : -1; };
+    auto level = [](uint64_t cx, uint64_t, uint64_t) {
+      return cx == 0 ? -1 : cx == 1 ? -2 : cx < 6 ? int(cx) - 2 : -1;
+    };
     DeviceMemory mem;
     const test::SparsePlacement p = test::append_sparse_field(cfg, 64, 8, 8, q, level, mem);
     mem.map[p.map_base] |= uint64_t{6} << 24 | uint64_t{15} << 28;  // cells 6 and 7: codes past the levels

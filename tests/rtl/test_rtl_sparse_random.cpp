@@ -1,7 +1,7 @@
 // Sparse devices on the RTL with random jobs: on every sparse model of the build (rtl_sparse_configs()), generated
-// version-3 vectors (sparse maps and shells, dense ones, mixed in one stream: ref/vector_gen.h) bit-exact and cycle-exact
-// against ref/'s timing model (a banked model's conflicts, and the windows of FIRST jobs, counted from the addresses),
-// and under random back-pressure with the scoreboard. Seed: printed; VOXCD_SEED replays.
+// version-3 vectors (sparse maps and shells, dense ones, mixed in one stream: ref/vector_gen.h) bit-exact and
+// cycle-exact against ref/'s timing model (a banked model's conflicts, and the windows of FIRST jobs, counted from the
+// addresses), and under random back-pressure with the scoreboard. Seed: printed; VOXCD_SEED replays.
 #include <gtest/gtest.h>
 
 #include <cstdio>

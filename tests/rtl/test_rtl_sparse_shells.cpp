@@ -1,5 +1,6 @@
-// Sparse shells on the RTL (docs/contract.md, "Shell bricks"): the directed cases 3 to 5 of tests/rtl/test_rtl_sparse.cpp
-// on every sparse model of the build, against what each case says by hand and against ref/'s stream with cycles.
+// Sparse shells on the RTL (docs/contract.md, "Shell bricks"): the directed cases 3 to 5 of
+// tests/rtl/test_rtl_sparse.cpp on every sparse model of the build, against what each case says by hand and against
+// ref/'s stream with cycles.
 #include <gtest/gtest.h>
 
 #include "tests/rtl/sparse_cases.h"
