@@ -784,6 +784,28 @@ std::vector<uint8_t> random_descriptor(const DeviceConfig& cfg, const DeviceMemo
   return bytes;
 }
 
+// The records of jobs that ran in `runs` (split where a refused descriptor came between them) against ref/'s, run by
+// run; with one-beat descriptors the jobs of a run reach the device back to back (the first after a refusal an idle
+// device), so their cycles are the timing model's plus the stalls.
+void expect_runs(const Axi& a, const DeviceMemory& mem, const std::vector<std::vector<Job>>& runs, uint64_t seed) {
+  size_t at = 0;
+  for (const std::vector<Job>& run : runs) {
+    std::vector<Record> want = run_stream(a.cfg, mem, run);
+    annotate_cycles(a.cfg, mem, run, want);
+    for (size_t i = 0; i < want.size(); ++i, ++at) {
+      ASSERT_LT(at, a.records.size());
+      ASSERT_TRUE(a.records[at].same_as(want[i], false))
+          << "record " << at << ": got " << a.records[at].to_string(true) << ", want " << want[i].to_string(true)
+          << "; seed " << seed;
+      if (a.job_beats == 1 && want[i].kind == Record::Done) {
+        ASSERT_EQ(*a.records[at].cycles, *want[i].cycles + *a.records[at].stalls)
+            << "record " << at << ": cycles = timing model + stalls; seed " << seed;
+      }
+    }
+  }
+  EXPECT_EQ(at, a.records.size());
+}
+
 // 8. Random descriptors, about half of them refused: the records of the jobs that run are ref/'s, each refused
 // descriptor is one error record, in its place, with its tag and exactly the faults ref/'s job_faults gives. With
 // one-beat descriptors the jobs between two refusals reach the device back to back (and the first job after a
@@ -832,23 +854,7 @@ TEST_P(AxiTest, RandomDescriptorsAreRefusedAsTheReferenceRefusesThem) {
     ASSERT_EQ(a.refusals[k].faults, want_refused[k].faults) << "error record " << k << " (tag "
                                                             << want_refused[k].tag << "); seed " << seed_;
   }
-  // Records and cycles, run by run.
-  size_t at = 0;
-  for (const std::vector<Job>& run : runs) {
-    std::vector<Record> want = run_stream(a.cfg, g.memory, run);
-    annotate_cycles(a.cfg, g.memory, run, want);
-    for (size_t i = 0; i < want.size(); ++i, ++at) {
-      ASSERT_LT(at, a.records.size());
-      ASSERT_TRUE(a.records[at].same_as(want[i], false))
-          << "record " << at << ": got " << a.records[at].to_string(true) << ", want " << want[i].to_string(true)
-          << "; seed " << seed_;
-      if (a.job_beats == 1 && want[i].kind == Record::Done) {
-        ASSERT_EQ(*a.records[at].cycles, *want[i].cycles + *a.records[at].stalls)
-            << "record " << at << ": cycles = timing model + stalls; seed " << seed_;
-      }
-    }
-  }
-  EXPECT_EQ(at, a.records.size());
+  expect_runs(a, g.memory, runs, seed_);
   EXPECT_EQ(a.reg(kRegDropped), want_refused.size());
   EXPECT_EQ(a.reg(kRegJobsDone), all.size());
   EXPECT_EQ(a.reg(kRegStatus), 0u);
