@@ -371,7 +371,7 @@ module voxcd_device #(
   // ---- Shell banks: address a is in bank a % LANES, row a / LANES ----
   // The issue stage reads them: its slot's LANES points (into R0, or W on a sparse device), or a sparse shell's word
   // (into W, from bank a % LANES).
-  logic [3*PW-1:0] bank_rdata [LANES];
+  logic [LANES*3*PW-1:0] bank_rdata;  // bank b's output at [b*3*PW +: 3*PW]
   for (genvar b = 0; b < LANES; b++) begin : g_bank
     // The LANES consecutive addresses of a slot fall one in each bank: bank b holds the one (b - rot) mod LANES
     // after the first.
@@ -389,13 +389,15 @@ module voxcd_device #(
       .wdata_i(shell_wdata_i),
       .re_i   (issue_taken),
       .raddr_i(row),
-      .rdata_o(bank_rdata[b])
+      .rdata_o(bank_rdata[b*3*PW +: 3*PW])
     );
   end
 
   // The job of register 0 (R0; W on a sparse device) and of R0; the lanes' points.
   job_t            reg0_job_q, r0_job;
-  logic [3*PW-1:0] lane_point [LANES];
+  meta_t           w_meta;     // sparse devices: W's slot register (g_slot[0]); declared here: yosys resolves struct
+  job_t            r0_job_q;   // members only of module-level variables. R0's job register (sparse devices)
+  logic [LANES*3*PW-1:0] lane_point;  // lane l's point at [l*3*PW +: 3*PW]
   logic            w_stop;  // sparse devices: FIRST stops W's job, W takes an empty slot
   always_ff @(posedge clk_i) begin
     if (issue_taken) reg0_job_q <= head_job;
@@ -407,7 +409,6 @@ module voxcd_device #(
     // for as many cycles as it has slots: its mask's set bits LANES at a time (w_rem_q: those not yet in a slot after
     // the word's first), the brick origin moved by the word's step (or set by an origin word) for its points.
     localparam int unsigned Half = PF > 0 ? PF - 1 : 0;
-    meta_t            w_meta;
     logic             w_word_q;    // W holds a sparse shell's word
     logic             w_first_q;   // W's slot is its word's first
     logic             w_jfirst_q;  // W's word is its job's first (the origin starts at 0)
@@ -418,11 +419,11 @@ module voxcd_device #(
     logic [LANES-1:0] exp_lanes;
     logic [6*LANES-1:0] exp_bit;
     logic [PtW:0]     cnt;         // W's slot's points
-    job_t             r0_job_q;
-    logic [3*PW-1:0]  p_r0_q [LANES];
 
+    logic [RotW-1:0]  word_bank;
     assign w_meta    = g_slot[0].meta_q;
-    assign word      = bank_rdata[w_meta.rot];
+    assign word_bank = w_meta.rot;
+    assign word      = bank_rdata[3*PW*32'(word_bank) +: 3*PW];
     assign is_origin = word[3*PW-1];
     assign rem       = w_first_q ? (is_origin ? 64'd0 : word[63:0]) : w_rem_q;
 
@@ -507,10 +508,13 @@ module voxcd_device #(
         assign d = exp_bit[6*l + 2*i +: 2];
         assign gen[i*PW +: PW] = org_eff[i*PW +: PW] + (PW'(d) << PF) + PW'(PF > 0 ? (1 << Half) : 0);
       end
+      logic [3*PW-1:0] p_r0_q;  // a register of its own per lane (no array written from several processes)
+      logic [RotW-1:0] src;     // the shell bank of lane l's point in a dense slot
+      assign src = RotW'(32'(word_bank) + l);
       always_ff @(posedge clk_i) begin
-        if (advance) p_r0_q[l] <= w_word_q ? gen : bank_rdata[RotW'(32'(w_meta.rot) + l) & RotW'(LANES - 1)];
+        if (advance) p_r0_q <= w_word_q ? gen : bank_rdata[3*PW*32'(src) +: 3*PW];
       end
-      assign lane_point[l] = p_r0_q[l];
+      assign lane_point[l*3*PW +: 3*PW] = p_r0_q;
     end
     always_ff @(posedge clk_i) begin
       if (advance) r0_job_q <= reg0_job_q;
@@ -527,8 +531,12 @@ module voxcd_device #(
     assign w_next      = '0;
     assign w_out       = '0;
     assign r0_job      = reg0_job_q;
+    assign w_meta      = '0;
+    assign r0_job_q    = '0;
     for (genvar l = 0; l < LANES; l++) begin : g_point
-      assign lane_point[l] = bank_rdata[RotW'(32'(g_slot[0].meta_q[RotW-1:0]) + l) & RotW'(LANES - 1)];
+      logic [RotW-1:0] src;  // the shell bank of lane l's point
+      assign src = RotW'(32'(g_slot[0].meta_q[RotW-1:0]) + l);
+      assign lane_point[l*3*PW +: 3*PW] = bank_rdata[3*PW*32'(src) +: 3*PW];
     end
   end
 
@@ -646,7 +654,7 @@ module voxcd_device #(
       .map_we_i     (map_we_i),
       .map_waddr_i  (map_waddr_i),
       .map_wdata_i  (map_wdata_i),
-      .point_i      (lane_point[l]),
+      .point_i      (lane_point[l*3*PW +: 3*PW]),
       .m_i          (prod_m),
       .t_i          (t_r[ProdR*3*TW +: 3*TW]),
       .n_i          (acc_map.n),
@@ -973,7 +981,7 @@ module voxcd_device #(
                     r3_map, lin_map, last_test, job_threshold_i, hx_in, hy_in, cx_in, cy_in, job_sparse_i,
                     job_brick_base_i, job_brick_units_i, word_bricks, stage_bricks, w_next, w_out, w_stop, bricks_r,
                     info_r[0 +: InfoW], stamps_r[0 +: 2*CW], t_r[0 +: 3*TW], map_r[0 +: MapW], lane_inside_pre,
-                    lane_state_pre};
+                    lane_state_pre, w_meta, r0_job_q};
 
   // ---- Assertions (Verilator runs them with --assert; voxcd_assert.sv) ----
   // Parameter sanity, at elaboration.
