@@ -371,7 +371,7 @@ module voxcd_device #(
   // ---- Shell banks: address a is in bank a % LANES, row a / LANES ----
   // The issue stage reads them: its slot's LANES points (into R0, or W on a sparse device), or a sparse shell's word
   // (into W, from bank a % LANES).
-  logic [LANES*3*PW-1:0] bank_rdata;  // bank b's output at [b*3*PW +: 3*PW]
+  logic [3*PW-1:0] bank_rdata [LANES];
   for (genvar b = 0; b < LANES; b++) begin : g_bank
     // The LANES consecutive addresses of a slot fall one in each bank: bank b holds the one (b - rot) mod LANES
     // after the first.
@@ -389,7 +389,7 @@ module voxcd_device #(
       .wdata_i(shell_wdata_i),
       .re_i   (issue_taken),
       .raddr_i(row),
-      .rdata_o(bank_rdata[b*3*PW +: 3*PW])
+      .rdata_o(bank_rdata[b])
     );
   end
 
@@ -423,7 +423,7 @@ module voxcd_device #(
     logic [RotW-1:0]  word_bank;
     assign w_meta    = g_slot[0].meta_q;
     assign word_bank = w_meta.rot;
-    assign word      = bank_rdata[3*PW*32'(word_bank) +: 3*PW];
+    assign word      = bank_rdata[word_bank];
     assign is_origin = word[3*PW-1];
     assign rem       = w_first_q ? (is_origin ? 64'd0 : word[63:0]) : w_rem_q;
 
@@ -512,7 +512,7 @@ module voxcd_device #(
       logic [RotW-1:0] src;     // the shell bank of lane l's point in a dense slot
       assign src = RotW'(32'(word_bank) + l);
       always_ff @(posedge clk_i) begin
-        if (advance) p_r0_q <= w_word_q ? gen : bank_rdata[3*PW*32'(src) +: 3*PW];
+        if (advance) p_r0_q <= w_word_q ? gen : bank_rdata[src];
       end
       assign lane_point[l*3*PW +: 3*PW] = p_r0_q;
     end
@@ -536,7 +536,7 @@ module voxcd_device #(
     for (genvar l = 0; l < LANES; l++) begin : g_point
       logic [RotW-1:0] src;  // the shell bank of lane l's point
       assign src = RotW'(32'(g_slot[0].meta_q[RotW-1:0]) + l);
-      assign lane_point[l*3*PW +: 3*PW] = bank_rdata[3*PW*32'(src) +: 3*PW];
+      assign lane_point[l*3*PW +: 3*PW] = bank_rdata[src];
     end
   end
 
