@@ -47,27 +47,28 @@ TEST(RtlSparse, BuildHasSparseModelsOfEveryKind) {
   EXPECT_TRUE(distance && banked && deep) << "a distance, a banked and a deepest sparse model";
 }
 
-// Case 1: a 24 x 8 x 8 map of three coarse cells: uniform surface, a brick of states (x + y + z) % 3, and a brick
-// that the job's units do not cover (its voxels read as empty). Every inside point is a hit (mask 15), so each
-// record shows its voxel's state.
+// Case 1: a 3B x B x B map (B = 2^BL) of three coarse cells: uniform surface, a brick of states (x + y + z) % 3, and
+// a brick that the job's units do not cover (its voxels read as empty). Every inside point is a hit (mask 15), so
+// each record shows its voxel's state.
 TEST(RtlSparse, Case1TwoBitCells) {
   size_t ran = 0;
   for (const DeviceConfig& cfg : test::sparse_models(false)) {
+    const uint32_t B = uint32_t(brick_edge(cfg));
     DeviceMemory mem;
     mem.map.assign(3, ~uint64_t{0} >> (64 - cfg.MEMW));  // words before the map: never read
     Job job = identity_job(cfg);
-    job.sparse = kSparseMap, job.nx = 24, job.ny = job.nz = 8, job.map_base = 3, job.hit_mask = 15;
+    job.sparse = kSparseMap, job.nx = 3 * B, job.ny = job.nz = B, job.map_base = 3, job.hit_mask = 15;
     for (uint64_t w : table_image(cfg, {kSurface, kCodeBrick, kCodeBrick})) mem.map.push_back(w);
     job.brick_base = uint32_t(mem.map.size()), job.brick_units = 1;
     const uint64_t spw = uint64_t(cfg.states_per_word());
     mem.map.resize(mem.map.size() + 2 * unit_words(cfg), ~uint64_t{0} >> (64 - cfg.MEMW));  // the second: all 3s
-    for (uint64_t i = 0; i < 512; ++i) {
+    for (uint64_t i = 0; i < uint64_t(B) * B * B; ++i) {
       uint64_t& w = mem.map[job.brick_base + i / spw];
       if (i % spw == 0) w = 0;
-      w |= uint64_t((i % 8 + i / 8 % 8 + i / 64) % 3) << (2 * (i % spw));
+      w |= uint64_t((i % B + i / B % B + i / (B * B)) % 3) << (2 * (i % spw));
     }
-    for (int64_t x = 0; x < 24; ++x)
-      for (int64_t y = 0; y < 8; ++y) mem.shell.push_back(centre(cfg, x, y, (x + y) % 8));
+    for (int64_t x = 0; x < 3 * B; ++x)
+      for (int64_t y = 0; y < B; ++y) mem.shell.push_back(centre(cfg, x, y, (x + y) % B));
     job.shell_count = uint32_t(mem.shell.size());
     Job count = job, first = job;
     count.tag = 1, count.mode = Mode::Count, count.hit_mask = 0b0110;
@@ -75,44 +76,64 @@ TEST(RtlSparse, Case1TwoBitCells) {
     const std::vector<Record> want = test::expect_rtl_exact(cfg, mem, {job, count, first}, "case 1");
     if (HasFatalFailure()) return;
     const std::vector<Record> hits = test::hits_of(want);
-    ASSERT_EQ(hits.size(), 192u + 1u);
-    for (size_t k = 0; k < 192; ++k) {
+    ASSERT_EQ(hits.size(), mem.shell.size() + 1u);
+    for (size_t k = 0; k < mem.shell.size(); ++k) {
       const Record& r = hits[k];
-      const uint32_t brick_state = (r.x % 8 + r.y + r.z) % 3;
-      EXPECT_EQ(r.state, r.x < 8 ? 1u : r.x < 16 ? brick_state : 0u) << "point " << r.point;
+      const uint32_t brick_state = (r.x % B + r.y + r.z) % 3;
+      EXPECT_EQ(r.state, r.x < B ? 1u : r.x < 2 * B ? brick_state : 0u) << "point " << r.point;
     }
-    EXPECT_GE(hits.back().x, 8u) << "FIRST's interior voxel is in the brick";
+    EXPECT_GE(hits.back().x, B) << "FIRST's interior voxel is in the brick";
     ++ran;
   }
   EXPECT_GT(ran, 0u);
 }
 
-// Case 2: a 64 x 8 x 8 distance map of eight coarse cells with codes 0, 1, 2, 3, 4, 5, 6, 15: far, deep, a brick of
-// each level, and two codes past the levels. Every inside point is a hit (the largest threshold), so each record
-// carries D; uniform cells give q * 2^(3 WB). A second job's units end before the level-2 brick: cells 4 and 5 read
-// as far.
+// The deepest level whose bricks of levels 0 .. it fit half the voxmap memory (every level at BL 3 and the default
+// MAW; at BL 4 a level-3 brick alone is more than 2^18 words).
+int deepest_fitting_level(const DeviceConfig& cfg) {
+  uint64_t words = 0;
+  int l = 0;
+  for (; l <= kMaxLevel && (words += level_words(cfg, l)) <= cfg.map_depth() / 2; ++l) {
+  }
+  return l - 1;
+}
+
+// Sets the code of cell t of the table at word `base`.
+void set_code(const DeviceConfig& cfg, DeviceMemory& mem, uint64_t base, uint64_t t, uint8_t code) {
+  const uint64_t cpw = table_cells_per_word(cfg);
+  uint64_t& w = mem.map[base + t / cpw];
+  w = (w & ~(uint64_t{15} << (4 * (t % cpw)))) | uint64_t(code) << (4 * (t % cpw));
+}
+
+// Case 2: an 8B x B x B distance map of eight coarse cells with codes 0, 1, 2, 3, 4, 5, 6, 15: far, deep, a brick of
+// each level (up to the deepest the memory holds: deepest_fitting_level), and two codes past the levels. Every inside
+// point is a hit (the largest threshold), so each record carries D; uniform cells give q * 2^(3 WB). A second job's
+// units end before the level-2 brick: cells 4 and 5 read as far.
 TEST(RtlSparse, Case2DistanceCells) {
   size_t ran = 0;
   for (const DeviceConfig& cfg : test::sparse_models(true)) {
+    const uint32_t B = uint32_t(brick_edge(cfg));
+    const int deepest = deepest_fitting_level(cfg);
     const int64_t qmax = (int64_t{1} << (cfg.SB - 1)) - 1, one = int64_t{1} << (3 * cfg.WB);
     auto q = [&](double x, double y, double z) {
       return std::clamp<int64_t>(std::llround(qmax * std::sin(0.37 * x + 0.21 * y) * std::cos(0.29 * z)), -qmax, qmax);
     };
-    auto level = [](uint64_t cx, uint64_t, uint64_t) {
-      return cx == 0 ? -1 : cx == 1 ? -2 : cx < 6 ? int(cx) - 2 : -1;
+    auto level = [deepest](uint64_t cx, uint64_t, uint64_t) {
+      return cx == 0 ? -1 : cx == 1 ? -2 : cx < 6 ? std::min(int(cx) - 2, deepest) : -1;
     };
     DeviceMemory mem;
-    const test::SparsePlacement p = test::append_sparse_field(cfg, 64, 8, 8, q, level, mem);
-    mem.map[p.map_base] |= uint64_t{6} << 24 | uint64_t{15} << 28;  // cells 6 and 7: codes past the levels
+    const test::SparsePlacement p = test::append_sparse_field(cfg, 8 * B, B, B, q, level, mem);
+    set_code(cfg, mem, p.map_base, 6, 6);  // cells 6 and 7: codes past the levels
+    set_code(cfg, mem, p.map_base, 7, 15);
     // Ten points a voxel column along x, spread over the cell by the fractional parts of multiples of irrationals.
-    auto spread = [](int k, double a) { return k * a - std::floor(k * a); };
-    for (int k = 0; k < 640; ++k)
+    auto spread = [](uint32_t k, double a) { return k * a - std::floor(k * a); };
+    for (uint32_t k = 0; k < 80 * B; ++k)
       mem.shell.push_back({int64_t(std::ldexp(k / 10 + spread(k, 0.7548776662), cfg.PF)),
-                           int64_t(std::ldexp(8 * spread(k, 0.5698402910), cfg.PF)),
-                           int64_t(std::ldexp(8 * spread(k, 0.4142135624), cfg.PF))});
+                           int64_t(std::ldexp(B * spread(k, 0.5698402910), cfg.PF)),
+                           int64_t(std::ldexp(B * spread(k, 0.4142135624), cfg.PF))});
     Job job = identity_job(cfg);
     job.sparse = kSparseMap, job.map_base = p.map_base, job.brick_base = p.brick_base;
-    job.brick_units = p.brick_units, job.nx = 64, job.ny = job.nz = 8, job.shell_count = uint32_t(mem.shell.size());
+    job.brick_units = p.brick_units, job.nx = 8 * B, job.ny = job.nz = B, job.shell_count = uint32_t(mem.shell.size());
     job.threshold = (int64_t{1} << (cfg.IW() - 1)) - 1;
     Job short_units = job;
     short_units.tag = 1, short_units.brick_units = uint32_t(level_units(cfg, 0) + level_units(cfg, 1));
@@ -121,7 +142,7 @@ TEST(RtlSparse, Case2DistanceCells) {
     const std::vector<Record> hits = test::hits_of(want);
     ASSERT_EQ(hits.size(), 2 * mem.shell.size());
     for (const Record& r : hits) {
-      const uint32_t cell = r.x / 8;
+      const uint32_t cell = r.x / B;
       if (cell == 0 || cell >= 6 || (r.tag == 1 && cell >= 4)) {
         EXPECT_EQ(r.dist, qmax * one) << r.to_string(true);
       } else if (cell == 1) {

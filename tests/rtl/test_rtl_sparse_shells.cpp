@@ -23,7 +23,7 @@ void append_uniform_map(const DeviceConfig& cfg, uint32_t n, uint64_t s, DeviceM
   job.nx = job.ny = job.nz = n;
   uint64_t word = 0;
   const int width = cfg.distance() ? cfg.SB : 2;
-  for (int b = 0; b < cfg.MEMW; b += width) word |= (s & ((uint64_t{1} << width) - 1)) << b;
+  for (int b = 0; b < cfg.MEMW; b += width) word |= (s & ((uint64_t{1} << width) - 1)) << b;  // every slot s
   mem.map.resize(mem.map.size() + map_words(cfg, job), word);
 }
 
@@ -53,7 +53,8 @@ std::vector<Job> case3_jobs(const DeviceConfig& cfg, DeviceMemory& mem) {
   if (!cfg.distance()) {  // the same states as a sparse map: every cell uniform surface
     jobs[4].sparse |= kSparseMap;
     jobs[4].map_base = uint32_t(mem.map.size()), jobs[4].brick_base = 0, jobs[4].brick_units = 0;
-    for (uint64_t w : table_image(cfg, std::vector<uint8_t>(8, kSurface))) mem.map.push_back(w);
+    for (uint64_t w : table_image(cfg, std::vector<uint8_t>(coarse_dims(cfg, jobs[4]).cells(), kSurface)))
+      mem.map.push_back(w);
   }
   return jobs;
 }
@@ -117,7 +118,8 @@ TEST(RtlSparse, Case4FirstAtEverySlotOfABrickWord) {
           mem.map[a.word] &= ~(((uint64_t{1} << cfg.SB) - 1) << (cfg.SB * a.slot));  // node value 0
         }
       } else {
-        mem.map[first.map_base + (x + 8 * (y + 8 * z)) / 32] |= uint64_t{2} << (2 * ((x + 8 * (y + 8 * z)) % 32));
+        const uint64_t i = x + 8 * (y + 8 * z), spw = uint64_t(cfg.states_per_word());
+        mem.map[first.map_base + i / spw] |= uint64_t{2} << (2 * (i % spw));
       }
       Job dense = first;
       dense.tag = first.tag + 1, dense.mode = Mode::Count, dense.sparse = 0, dense.shell_base = 2;
