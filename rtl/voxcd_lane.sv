@@ -287,12 +287,13 @@ module voxcd_lane #(
     logic [SlotW-1:0] slot5_q;
     logic [MEMW-1:0]  wordk;     // the brick port's word (sparse lanes)
     logic [MAW-1:0]   baddr_e;   // the brick word the E slot reads (sparse lanes)
+    logic             brick_e;   // and whether it reads one (a brick cell)
 
     if (SharedMap) begin : g_shared
       assign word5 = word_i;
       assign wordk = bword_i;
       logic unused_write;  // the device writes its shared banks (and reads the bricks at baddr_o)
-      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i, baddr_e};
+      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i, baddr_e, brick_e};
     end else if (Sparse) begin : g_copy2
       voxcd_ram2 #(
         .Width(MEMW),
@@ -305,7 +306,7 @@ module voxcd_lane #(
         .re_a_i   (en_r5),
         .raddr_a_i(addr4_q),
         .rdata_a_o(word5),
-        .re_b_i   (en_out_i),
+        .re_b_i   (en_out_i && brick_e),  // the brick port reads for a brick cell only
         .raddr_b_i(baddr_e),
         .rdata_b_o(wordk)
       );
@@ -326,7 +327,7 @@ module voxcd_lane #(
       );
       assign wordk = '0;
       logic unused_word;  // a lane with its own copy reads no shared bank
-      assign unused_word = ^{word_i, bword_i, baddr_e};
+      assign unused_word = ^{word_i, bword_i, baddr_e, brick_e};
     end
     assign addr_o = addr4_q;
     assign read_o = inside4_q;
@@ -387,6 +388,7 @@ module voxcd_lane #(
         end
       end
       assign baddr_e = baddr_e_q;
+      assign brick_e = brick_e_q;
       assign baddr_o = baddr_e_q;
       assign bread_o = brick_e_q;
 
@@ -412,6 +414,7 @@ module voxcd_lane #(
       assign vox_p    = vox5_q;
       assign state_p  = state5;
       assign baddr_e  = '0;
+      assign brick_e  = 1'b0;
       assign baddr_o  = '0;
       assign bread_o  = 1'b0;
       logic unused_sparse;  // a dense lane reads no table and no brick
@@ -521,6 +524,7 @@ module voxcd_lane #(
     // ---- R5: the 8 bank words (word w of the voxmap is row w >> 3 of bank w & 7) ----
     logic [8*MEMW-1:0] word5, wordk;
     logic [8*RowW-1:0] brow_f;  // the brick rows the F slot reads (sparse lanes)
+    logic              brick_f; // and whether it reads them (a brick cell)
     logic              inside5_q;
     logic [3*DW-1:0]   vox5_q;
     logic [FW-1:0]     frac5_q;
@@ -537,7 +541,7 @@ module voxcd_lane #(
       assign word5 = word_i;
       assign wordk = bword_i;
       logic unused_write;  // the device writes its shared banks (and reads the bricks at baddr_o)
-      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i, brow_f};
+      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i, brow_f, brick_f};
     end else begin : g_copy
       for (genvar p = 0; p < 8; p++) begin : g_bank
         if (Sparse) begin : g_two_ports
@@ -552,7 +556,7 @@ module voxcd_lane #(
             .re_a_i   (en_r5),
             .raddr_a_i(row4_q[p*RowW +: RowW]),
             .rdata_a_o(word5[p*MEMW +: MEMW]),
-            .re_b_i   (en_out_i),
+            .re_b_i   (en_out_i && brick_f),  // for a brick cell only
             .raddr_b_i(brow_f[p*RowW +: RowW]),
             .rdata_b_o(wordk[p*MEMW +: MEMW])
           );
@@ -684,7 +688,8 @@ module voxcd_lane #(
           q_f_q      <= q_e_q;
         end
       end
-      assign brow_f = brow_f_q;
+      assign brow_f  = brow_f_q;
+      assign brick_f = brick_f_q;
       for (genvar p = 0; p < 8; p++) begin : g_baddr
         assign baddr_o[p*MAW +: MAW] = MAW'({brow_f_q[p*RowW +: RowW], 3'(p)});
       end
@@ -727,10 +732,11 @@ module voxcd_lane #(
       assign vox_p    = vox5_q;
       assign frac_p   = frac5_q[3*WB-1:0];
       assign brow_f   = '0;
+      assign brick_f  = 1'b0;
       assign baddr_o  = '0;
       assign bread_o  = '0;
       logic unused_sparse;  // a dense lane reads no table and no brick
-      assign unused_sparse = ^{sparse5_q, tbank5_q, tslot5_q, wordk, brow_f, brick_base_i, brick_units_i};
+      assign unused_sparse = ^{sparse5_q, tbank5_q, tslot5_q, wordk, brow_f, brick_f, brick_base_i, brick_units_i};
     end
 
     logic [8*SB-1:0] q;
