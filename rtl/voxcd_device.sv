@@ -680,7 +680,8 @@ module voxcd_device #(
 
   logic [CW-1:0]    conflicts_q;   // bank conflict cycles since reset
 
-  // ---- Hit test and record emission at the last register (R5, R8 on a distance device) ----
+  // ---- Hit test and record emission at the last register (R5, R8 on a distance device; K, or the registers after it,
+  // on a sparse one) ----
   logic [LANES-1:0] lane_hit;              // lanes whose point is a hit
   logic [LANES-1:0] emitted_d, emitted_q;  // hit records of the last slot already emitted (ALL)
   logic             found_d, found_q;      // a FIRST job's hit has been emitted; its later slots are squashed
