@@ -6,7 +6,8 @@ Verilator with the build's own command, rtl/model_units.cmake, then the model's 
 compile commands without ccache. Prints a Markdown table: per list of docs/build.md's options (read from the
 build's CMakeCache.txt), its models and their cold cost in seconds; with --models, a row per model too.
 
-Usage: python3 bench/model_cost.py [--build DIR] [--models]
+Usage: python3 bench/model_cost.py [--build DIR] [--models] [--only LIST ...]
+(--only: just the models of the lists named, e.g. --only VOXCD_RTL_SPARSE_MODELS VOXCD_RTL_LANES)
 """
 import argparse
 import os
@@ -53,6 +54,7 @@ def lists(c):
         ("VOXCD_RTL_DIST_MODELS", [prefix("Vvoxcd", p) for p in split("VOXCD_RTL_DIST_MODELS")]),
         ("VOXCD_RTL_BANKED_MODELS", [prefix("Vvoxcd", p) for p in split("VOXCD_RTL_BANKED_MODELS")]),
         ("VOXCD_RTL_DEPTH_MODELS", [prefix("Vvoxcd", p) for p in split("VOXCD_RTL_DEPTH_MODELS")]),
+        ("VOXCD_RTL_SPARSE_MODELS", [prefix("Vvoxcd", p) for p in split("VOXCD_RTL_SPARSE_MODELS")]),
         ("VOXCD_AXI_MODELS", [prefix("Vvoxcd_axi", p) for p in split("VOXCD_AXI_MODELS")]),
         ("VOXCD_SYSC_LANES", [prefix("Vvoxcd_sc", "LANES " + l) for l in split("VOXCD_SYSC_LANES")]),
         ("VOXCD_SYSC_DIST_MODELS", [prefix("Vvoxcd_sc", p) for p in split("VOXCD_SYSC_DIST_MODELS")]),
@@ -93,7 +95,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--models", action="store_true", help="a row per model as well")
+    ap.add_argument("--only", nargs="+", metavar="LIST", help="only the models of these lists")
     a = ap.parse_args()
+    wanted = None
+    if a.only:
+        known = lists(cache(a.build))
+        wanted = set(n for title, names in known if title.split(" ")[0] in a.only for n in names)
     ninja = open(os.path.join(a.build, "build.ninja")).read()
     found = re.findall(r"^build ([^\s:]+/(V[A-Za-z0-9_]+)__fast\.cpp\.o):", ninja, re.M)
     objs = dict((name, obj) for obj, name in found)
@@ -103,12 +110,16 @@ def main():
         for name, obj in objs.items():
             if name.startswith("Vtb_"):
                 continue  # tests/dpi's testbenches: one prefix for several, not a list of docs/build.md
+            if wanted is not None and name not in wanted:
+                continue
             cost[name] = measure(a.build, obj, name, work)
             print(f"{name}: Verilator {cost[name][0]:.1f} s, compiler {cost[name][1]:.1f} s", file=sys.stderr)
     print("| list | models | seconds per model | seconds for the list |\n|---|--:|--:|--:|")
     total = 0.0
     for title, names in lists(cache(a.build)):
         names = list(dict.fromkeys(n for n in names if n in cost))
+        if not names and wanted is not None:
+            continue
         each = [sum(cost[n]) for n in names]
         total += sum(each)
         span = f"{min(each):.1f} - {max(each):.1f}" if len(each) > 1 else (f"{each[0]:.1f}" if each else "-")

@@ -19,8 +19,11 @@ module voxcd_fmax_top #(
 
   localparam int unsigned CW = voxcd_arch_pkg::CW;
   localparam int unsigned IW = SB + 3 * WB;
-  // The threshold and distance ports count only on a distance device (a 2-bit device leaves them unused).
+  // The threshold and distance ports count only on a distance device (a 2-bit device leaves them unused), the sparse
+  // job fields only on a sparse device; a hit's point and a completion's counts are 6 bits wider there.
   localparam int unsigned DistW = SB > 2 ? IW : 0;
+  localparam int unsigned SpW   = BL > 0 ? 2 + MAW + (MAW + 1) : 0;
+  localparam int unsigned PtW   = BL > 0 ? SAW + 6 : SAW;
 
   // Every device input but clk_i / rst_ni, in port order (the threshold last).
   localparam int unsigned BaseInW = 1 + SAW + 3 * PW       // shell write port
@@ -28,11 +31,11 @@ module voxcd_fmax_top #(
                               + 1 + TAGW + 2 + 4 + SAW + (SAW + 1) + MAW + 3 * (DW + 1) + 9 * MW + 3 * TW  // job
                               + 1                          // hit_ready_i
                               + 1;                         // done_ready_i
-  localparam int unsigned InW = BaseInW + DistW;
+  localparam int unsigned InW = BaseInW + DistW + SpW;
   // Every device output, in port order (the distance last).
   localparam int unsigned BaseOutW = 1                                    // job_ready_o
-                               + 1 + TAGW + SAW + 3 * DW + 2              // hit stream
-                               + 1 + TAGW + (SAW + 1) + CW + (SAW + 1) + CW  // completion stream
+                               + 1 + TAGW + PtW + 3 * DW + 2              // hit stream
+                               + 1 + TAGW + (PtW + 1) + CW + (PtW + 1) + CW  // completion stream
                                + 1                                        // busy_o
                                + CW;                                      // conflicts_o
   localparam int unsigned OutW = BaseOutW + DistW;
@@ -59,6 +62,9 @@ module voxcd_fmax_top #(
   logic [TW-1:0]       job_t0, job_t1, job_t2;
   logic                hit_ready, done_ready;
   logic [IW-1:0]       job_threshold;
+  logic [1:0]          job_sparse;
+  logic [MAW-1:0]      job_brick_base;
+  logic [MAW:0]        job_brick_units;
 
   assign {shell_we, shell_waddr, shell_wdata,
           map_we, map_waddr, map_wdata,
@@ -68,24 +74,29 @@ module voxcd_fmax_top #(
           job_t0, job_t1, job_t2,
           hit_ready, done_ready} = in_q[InW-1 -: BaseInW];
   if (SB > 2) begin : g_threshold
-    assign job_threshold = in_q[IW-1:0];
+    assign job_threshold = in_q[SpW +: IW];
   end else begin : g_no_threshold
     assign job_threshold = '0;
+  end
+  if (BL > 0) begin : g_sparse
+    assign {job_sparse, job_brick_base, job_brick_units} = in_q[SpW-1:0];
+  end else begin : g_no_sparse
+    assign {job_sparse, job_brick_base, job_brick_units} = '0;
   end
 
   // ---- The device ----
   logic            job_ready;
   logic            hit_valid;
   logic [TAGW-1:0] hit_tag;
-  logic [SAW-1:0]  hit_point;
+  logic [PtW-1:0]  hit_point;
   logic [DW-1:0]   hit_x, hit_y, hit_z;
   logic [1:0]      hit_state;
   logic [IW-1:0]   hit_dist;
   logic            done_valid;
   logic [TAGW-1:0] done_tag;
-  logic [SAW:0]    done_hits;
+  logic [PtW:0]    done_hits;
   logic [CW-1:0]   done_cycles;
-  logic [SAW:0]    done_points;
+  logic [PtW:0]    done_points;
   logic [CW-1:0]   done_stalls;
   logic            busy;
   logic [CW-1:0]   conflicts;
@@ -125,6 +136,9 @@ module voxcd_fmax_top #(
     .job_t1_i          (job_t1),
     .job_t2_i          (job_t2),
     .job_threshold_i   (job_threshold),
+    .job_sparse_i      (job_sparse),
+    .job_brick_base_i  (job_brick_base),
+    .job_brick_units_i (job_brick_units),
     .hit_valid_o       (hit_valid),
     .hit_ready_i       (hit_ready),
     .hit_tag_o         (hit_tag),

@@ -11,6 +11,11 @@ voxcd_ram.sv
 voxcd_fifo.sv
 voxcd_skid.sv
 voxcd_stage.sv
+voxcd_ram2.sv
+voxcd_bank_rounds.sv
+voxcd_shell_expand.sv
+voxcd_cell.sv
+voxcd_brick_rows.sv
 voxcd_lane.sv
 voxcd_device.sv
 voxcd_axi.sv

@@ -25,6 +25,7 @@ package voxcd_arch_pkg;
   localparam int unsigned WB    = 8;   // interpolation weight bits (distance voxmaps)
   localparam int unsigned BANKS = 0;   // 0: a voxmap copy per lane; B: one voxmap in B shared banks (2-bit devices)
   localparam int unsigned Depth = 0;   // register stages added to every lane, 0 .. MaxDepth (DeviceConfig::depth)
+  localparam int unsigned BL    = 0;   // 0: dense maps and shells only; 2..4: a sparse device (cells of 2^BL voxels)
 
   // ---- Counters in completion records ----
   localparam int unsigned CW = 32;  // cycles and stall counters
@@ -36,6 +37,11 @@ package voxcd_arch_pkg;
   // A distance device (SB > 2) has three more (R6 node select and x interpolation, R7 y, R8 z): ref/timing.h's
   // kDistanceSlots.
   localparam int unsigned DistSlots = 3;
+  // A sparse device (BL > 0) has three more (the shell word register W before R0; the entry E and the brick word K
+  // after R5), a sparse distance device four (the rows F between E and K): ref/timing.h's kSparseSlots and
+  // kSparseDistanceSlots.
+  localparam int unsigned SparseSlots     = 3;
+  localparam int unsigned SparseDistSlots = 4;
   // Depth adds one slot register per unit, each a register stage in every lane (voxcd_lane), so a device has
   // PipeSlots + Depth (+ DistSlots) slot registers. The stages in the order Depth adds them (a stage of rank r is
   // there when Depth > r); MaxDepth, the deepest pipeline, has all of them (ref/config.h: kMaxDepth):
@@ -81,8 +87,10 @@ endpackage
   parameter int unsigned MAW   = voxcd_arch_pkg::MAW, \
   parameter int unsigned SB    = voxcd_arch_pkg::SB, \
   parameter int unsigned WB    = voxcd_arch_pkg::WB, \
-  parameter int unsigned Depth = voxcd_arch_pkg::Depth
-// BANKS 0: a voxmap copy per lane; B: one voxmap in B shared banks. Depth: register stages added to every lane.
+  parameter int unsigned Depth = voxcd_arch_pkg::Depth, \
+  parameter int unsigned BL    = voxcd_arch_pkg::BL
+// BANKS 0: a voxmap copy per lane; B: one voxmap in B shared banks. Depth: register stages added to every lane. BL:
+// a sparse device's coarse cells (0: a dense device).
 `define VOXCD_DEVICE_PARAMS \
   `VOXCD_LANE_PARAMS, \
   parameter int unsigned LANES = voxcd_arch_pkg::LANES, \
@@ -90,6 +98,7 @@ endpackage
   parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW, \
   parameter int unsigned BANKS = voxcd_arch_pkg::BANKS
 `define VOXCD_LANE_PARAM_MAP \
-  .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB), .Depth(Depth)
+  .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB), .Depth(Depth), \
+  .BL(BL)
 `define VOXCD_DEVICE_PARAM_MAP \
   `VOXCD_LANE_PARAM_MAP, .LANES(LANES), .SAW(SAW), .TAGW(TAGW), .BANKS(BANKS)

@@ -23,7 +23,11 @@
 //   descriptor is checked as the reference checks a job (ref/pipeline.h, job_faults): a reserved byte set, a mode
 //   of 3 or a mask above 15, a tag wider than TAGW, a shell range past the words loaded, map dimensions outside
 //   1..2^DW, a voxmap range past the words loaded (or, on a distance device, a map base off a bank boundary), an M,
-//   t or threshold that does not fit. A descriptor that breaks any rule is refused: the device never sees it; once
+//   t or threshold that does not fit; on a sparse device (BL > 0) also a sparse map's table and bricks past the words
+//   loaded (or off a bank boundary on a distance device), a dense map's brick fields not 0, and anywhere a sparse
+//   map or shell on a dense device or sparse bits other than 0 and 1 (byte 0x06: bits 2..7 are reserved, so such a
+//   descriptor breaks the format, fault bit 0, as well as bit 1: ref/pipeline.h's job_faults). A descriptor that
+//   breaks any rule is refused: the device never sees it; once
 //   the records of every job before it have left, an error record {kind 3, tag, faults} takes its place in the
 //   record stream (the rules it breaks, one bit each: sysc/address_map.h), and DROPPED counts it.
 //
@@ -78,6 +82,7 @@ module voxcd_axi #(
 );
 
   localparam int unsigned IW       = SB + 3 * WB;
+  localparam int unsigned PtW      = BL > 0 ? SAW + 6 : SAW;  // a point index (a sparse shell's: 64 a word)
   localparam int unsigned CW       = voxcd_arch_pkg::CW;
   localparam int unsigned JobBytes = 128;
   localparam int unsigned RecBytes = 32;
@@ -104,7 +109,7 @@ module voxcd_axi #(
                           RegStalls = 12'h060, RegShellWords = 12'h068, RegMapWords = 12'h070,
                           RegDropped = 12'h078, RegConflicts = 12'h080;
   localparam logic [63:0] Config0 = {8'(LANES), 8'(MEMW), 8'(DW), 8'(TW), 8'(MF), 8'(MW), 8'(PF), 8'(PW)};
-  localparam logic [63:0] Config1 = {8'd0, 8'(Depth), 8'(BANKS), 8'(WB), 8'(SB), 8'(TAGW), 8'(MAW), 8'(SAW)};
+  localparam logic [63:0] Config1 = {8'(BL), 8'(Depth), 8'(BANKS), 8'(WB), 8'(SB), 8'(TAGW), 8'(MAW), 8'(SAW)};
   // The rules a refused descriptor breaks (the error record's faults; ref/pipeline.h and sysc/address_map.h).
   localparam int unsigned FaultW = 8;
   localparam int unsigned FaultReserved = 0, FaultMode = 1, FaultTag = 2, FaultShell = 3, FaultDims = 4,
@@ -119,11 +124,11 @@ module voxcd_axi #(
   logic                 job_valid, job_ready;
   logic                 hit_valid, done_valid, rec_take;
   logic [TAGW-1:0]      hit_tag, done_tag;
-  logic [SAW-1:0]       hit_point;
+  logic [PtW-1:0]       hit_point;
   logic [DW-1:0]        hit_x, hit_y, hit_z;
   logic [1:0]           hit_state;
   logic [IW-1:0]        hit_dist;
-  logic [SAW:0]         done_hits, done_points;
+  logic [PtW:0]         done_hits, done_points;
   logic [CW-1:0]        done_cycles, done_stalls, conflicts;  // conflicts: the device's bank conflict cycles
   logic                 dev_busy;
 
@@ -135,6 +140,8 @@ module voxcd_axi #(
   logic [31:0]           d_m [9];
   logic [63:0]           d_t [3];
   logic [63:0]           d_thr;
+  logic [7:0]            d_sparse;
+  logic [31:0]           d_brick_units, d_brick_base;
   logic [FaultW-1:0]     d_faults;  // the rules the descriptor in desc_q breaks
 
   always_comb begin
@@ -150,6 +157,9 @@ module voxcd_axi #(
     for (int i = 0; i < 9; i++) d_m[i] = desc_q[8*(32'h20 + 4*i) +: 32];
     for (int i = 0; i < 3; i++) d_t[i] = desc_q[8*(32'h48 + 8*i) +: 64];
     d_thr         = desc_q[8*32'h60 +: 64];
+    d_sparse      = desc_q[8*32'h06 +: 8];
+    d_brick_units = desc_q[8*32'h44 +: 32];
+    d_brick_base  = desc_q[8*32'h68 +: 32];
   end
 
   // Whether v, read as signed, fits `w` (1..64) bits signed: the bits from w-1 up all equal.
@@ -174,19 +184,47 @@ module voxcd_axi #(
   assign d_values    = VoxW'(d_ex) * VoxW'(d_ey) * VoxW'(d_ez);
   assign d_map_words = (64'(d_values) + 64'((1 << PerLg) - 1)) >> PerLg << (SB > 2 ? 3 : 0);
 
+  // A sparse map's words (ref/sparse.h): its table, ceil(Cx*Cy*Cz / CPW) words from map_base (C_i = ceil(n_i / 2^BL),
+  // CPW = MEMW / 4 codes a word on a 2-bit device, MEMW / 8 on a distance one), and its bricks, brick_units * UW words
+  // from brick_base (UW: a 2-bit brick's 2^(3BL+1) / MEMW words, or a distance brick's of level 0, 8 ceil(H_0^3 /
+  // NPW), H_0 = 2^(BL-1) + 1).
+  localparam int unsigned BLW    = BL > 0 ? BL : 1;
+  localparam int unsigned CpwLg  = $clog2(MEMW / (SB > 2 ? 8 : 4));
+  localparam logic [63:0] H0     = (64'd1 << (BLW - 1)) + 64'd1;
+  localparam logic [63:0] NPW    = SB > 2 ? 64'(MEMW) / 64'(SB) : 64'd1;
+  localparam logic [63:0] UnitW  = BL == 0 ? 64'd1 : SB > 2 ? 64'd8 * ((H0 * H0 * H0 + NPW - 64'd1) / NPW)
+                                                            : (64'd2 << (3 * BLW)) / 64'(MEMW);
+  logic [DW:0]     d_cx, d_cy, d_cz;
+  logic [VoxW-1:0] d_cells;
+  logic [63:0]     d_table_words, d_bricks_end;
+  assign d_cx          = (DW + 1)'((d_nx + 32'((1 << BLW) - 1)) >> BLW);
+  assign d_cy          = (DW + 1)'((d_ny + 32'((1 << BLW) - 1)) >> BLW);
+  assign d_cz          = (DW + 1)'((d_nz + 32'((1 << BLW) - 1)) >> BLW);
+  assign d_cells       = VoxW'(d_cx) * VoxW'(d_cy) * VoxW'(d_cz);
+  assign d_table_words = (64'(d_cells) + 64'((1 << CpwLg) - 1)) >> CpwLg;
+  assign d_bricks_end  = 64'(d_brick_base) + 64'(d_brick_units) * UnitW;
+
   always_comb begin
     logic dims_ok;
     dims_ok  = d_nx != '0 && d_ny != '0 && d_nz != '0 &&
                d_nx <= (32'd1 << DW) && d_ny <= (32'd1 << DW) && d_nz <= (32'd1 << DW);
     d_faults = '0;
-    d_faults[FaultReserved] = desc_q[8*32'h06 +: 16] != '0 || desc_q[8*32'h44 +: 32] != '0 ||
-                              desc_q[8*JobBytes-1 : 8*32'h68] != '0;
-    d_faults[FaultMode]  = d_mode > 8'd2 || d_mask > 8'd15;
+    d_faults[FaultReserved] = d_sparse[7:2] != '0 || desc_q[8*32'h07 +: 8] != '0 ||
+                              desc_q[8*JobBytes-1 : 8*32'h6c] != '0;
+    d_faults[FaultMode]  = d_mode > 8'd2 || d_mask > 8'd15 || d_sparse > 8'd3;
     d_faults[FaultTag]   = TAGW < 32 && (d_tag >> TAGW) != '0;
-    d_faults[FaultShell] = (d_shell_base >> SAW) != '0 || 64'(d_shell_base) + 64'(d_shell_count) > shell_words_q;
+    d_faults[FaultShell] = (d_shell_base >> SAW) != '0 || 64'(d_shell_base) + 64'(d_shell_count) > shell_words_q ||
+                           (BL == 0 && d_sparse[1]);
     d_faults[FaultDims]  = !dims_ok;
     d_faults[FaultMap]   = (d_map_base >> MAW) != '0 || (SB > 2 && d_map_base[2:0] != 3'd0) ||
-                           (dims_ok && 64'(d_map_base) + d_map_words > map_words_q);
+                           (dims_ok && 64'(d_map_base) + (d_sparse[0] ? d_table_words : d_map_words) > map_words_q);
+    // A sparse map's bricks (any sparse map on a dense device), or a dense map's brick fields.
+    if (d_sparse[0]) begin
+      d_faults[FaultMap] = d_faults[FaultMap] || BL == 0 || (d_brick_base >> MAW) != '0 ||
+                           (SB > 2 && d_brick_base[2:0] != 3'd0) || d_bricks_end > map_words_q;
+    end else begin
+      d_faults[FaultMap] = d_faults[FaultMap] || d_brick_base != '0 || d_brick_units != '0;
+    end
     for (int i = 0; i < 9; i++) d_faults[FaultPose] = d_faults[FaultPose] || !fits_signed64(64'($signed(d_m[i])), MW);
     for (int i = 0; i < 3; i++) d_faults[FaultPose] = d_faults[FaultPose] || !fits_signed64(d_t[i], TW);
     d_faults[FaultThreshold] = SB > 2 ? !fits_signed64(d_thr, IW) : d_thr != '0;
@@ -208,6 +246,9 @@ module voxcd_axi #(
   logic [MW-1:0]     chk_m_q [9];
   logic [TW-1:0]     chk_t_q [3];
   logic [IW-1:0]     chk_thr_q;
+  logic [1:0]        chk_sparse_q;
+  logic [MAW-1:0]    chk_brick_base_q;
+  logic [MAW:0]      chk_brick_units_q;
   logic              err_emit;   // the checked descriptor's error record enters the record register
   logic              chk_leave;  // the checked descriptor leaves (into the device, or as its error record)
   logic              desc_leave; // the descriptor register empties into the checked one
@@ -241,6 +282,9 @@ module voxcd_axi #(
       for (int i = 0; i < 9; i++) chk_m_q[i] <= MW'(d_m[i]);
       for (int i = 0; i < 3; i++) chk_t_q[i] <= TW'(d_t[i]);
       chk_thr_q         <= IW'(d_thr);
+      chk_sparse_q      <= d_sparse[1:0];
+      chk_brick_base_q  <= MAW'(d_brick_base);
+      chk_brick_units_q <= (MAW + 1)'(d_brick_units);
     end
   end
 
@@ -271,6 +315,9 @@ module voxcd_axi #(
     .job_m20_i        (chk_m_q[6]), .job_m21_i(chk_m_q[7]), .job_m22_i(chk_m_q[8]),
     .job_t0_i         (chk_t_q[0]), .job_t1_i(chk_t_q[1]), .job_t2_i(chk_t_q[2]),
     .job_threshold_i  (chk_thr_q),
+    .job_sparse_i     (chk_sparse_q),
+    .job_brick_base_i (chk_brick_base_q),
+    .job_brick_units_i(chk_brick_units_q),
     .hit_valid_o      (hit_valid),
     .hit_ready_i      (rec_take),
     .hit_tag_o        (hit_tag),

@@ -33,23 +33,43 @@
 // Each interpolation is a*2^WB + (b - a)*f, exact at its width; outputs show the R8 slot: inside_o, dist_o (D),
 // the voxel index, and state_o = 0. Latency: 8 + Depth cycles from the point in R0 to D at R8.
 //
+// A sparse lane (BL > 0, docs/contract.md "Sparse voxmaps and shells") also looks up sparse maps (sparse_*_i: the
+// slot's job has one). Its index products then compute the coarse cell's table index t = cx + Cx*(cy + Cy*cz) (c =
+// the voxel index >> BL; Cx, Cy the job's coarse extents), R4 the table word map_base + t / CPW and the code's slot,
+// R5 reads the table word (the table port), and three registers (four on a distance lane) follow R5 before READ:
+//   E      entry        the cell (voxcd_cell): a uniform cell's state (its node value), or a brick's first word; a
+//                       2-bit lane also the brick word's address first + i / (MEMW/2) and slot, i = the voxel's
+//                       place in the brick; a dense map's state (node values) selected from the R5 word(s)
+//   [F]    rows         (distance) the sub-cell at the brick's level, its weights and the 8 parity-bank rows of its
+//                       corner nodes (voxcd_brick_rows)
+//   K      brick word   the brick port's read (the brick's word, 8 bank words on a distance lane) for a brick cell
+//                       only; the state (node values) selected from it, or E's (F's) for a uniform cell or a dense map
+// so a lookup's two dependent reads cost 3 (4) cycles of latency and no throughput; dense maps read at the table
+// port as a dense device does and pass through E (F) and K. The lane's copy of the voxmap memory then has two read
+// ports (voxcd_ram2). Latency: 8 + Depth (12 + Depth on a distance lane) cycles from R0 to the last register.
+//
 // Vectors of three coordinates hold x in the low bits: {z, y, x}; the matrix is {m22, m21, ..., m00} (entry
 // (i, j) at [(3i + j) * MW +: MW]). Written in the subset of SystemVerilog that Verilator and yosys both read.
 // Each lane owns a copy of the voxmap memory, written through the shared write port, so that every lane can
-// read one word (eight bank words on a distance device) in every cycle. With SharedMap (2-bit lanes only) the lane
-// has no copy: it shows its R4 address (a distance lane its 8 addresses, one in each parity bank) and whether it
-// reads (read_o: the point is inside), and the device's shared banks give it the words for R5 (word_i, in the R5
-// slot's cycles). Its registers from R5 on then advance on en_out_i, which the device may raise without en_i: R5
-// takes a bubble while R4 waits for a bank (voxcd_device).
-// inside5_o and state5_o show R5's point before READ (the device's banks stop reading for a FIRST job at a hit in R5).
+// read one word (eight bank words on a distance device) in every cycle. With SharedMap the lane has no copy: it shows
+// its R4 address (a distance lane its 8 addresses, one in each parity bank) and whether it reads (read_o: the point
+// is inside; a sparse table word is one address), and the device's shared banks give it the words for R5 (word_i,
+// in the R5 slot's cycles); a sparse lane likewise shows its brick addresses (baddr_o, bread_o: a brick cell's, at
+// E, or F) and takes the words for K (bword_i). Registers up to R4 advance on en_i; R5 (and E, F) on en_mid_i, which
+// the device may raise without en_i (R5 takes a bubble while R4 waits for a bank); K and the registers after it on
+// en_out_i, which it may raise without en_mid_i (K takes a bubble while the brick stage waits). Without a sparse
+// device R5 advances on en_out_i.
+// inside_pre_o and state_pre_o show the register before READ (R5; K on a sparse lane) of a 2-bit lane: the device's
+// banks stop reading for a FIRST job at a hit there.
 module voxcd_lane #(
   `VOXCD_LANE_PARAMS,
   parameter bit          SharedMap = 1'b0
 ) (
   input  logic                  clk_i,
-  input  logic                  en_i,        // every register up to R4 (all of a lane with its own copy) advances
-  input  logic                  en_out_i,    // R5 and the registers after it advance (en_i implies it; the same as en_i
-                                             // without SharedMap)
+  input  logic                  en_i,        // every register up to R4 advances
+  input  logic                  en_mid_i,    // R5, E and F advance (sparse lanes; en_i implies it)
+  input  logic                  en_out_i,    // K and the registers after it advance (R5 on a dense lane; en_mid_i
+                                             // implies it); all three the same without SharedMap
   // voxmap write port (shared by all lanes)
   input  logic                  map_we_i,
   input  logic [MAW-1:0]        map_waddr_i,
@@ -61,22 +81,35 @@ module voxcd_lane #(
   input  logic [3*TW-1:0]       t_i,
   // ACC: the map dimensions of the job in the accumulator's register (the bounds)
   input  logic [3*(DW+1)-1:0]   n_i,
-  // the register the y + ny*z product reads (FLOOR, or ACC without it): that job's ny
+  // the register the y + ny*z product reads (FLOOR, or ACC without it): that job's ny (Cy and whether its map is
+  // sparse: sparse lanes)
   input  logic [DW:0]           ny_i,
-  // R3: the job in R3 (the linear index's nx)
+  input  logic                  sparse_yz_i,
+  input  logic [DW:0]           cy_i,
+  // R3: the job in R3 (the linear index's nx; Cx and whether its map is sparse)
   input  logic [DW:0]           nx_i,
+  input  logic                  sparse_r3_i,
+  input  logic [DW:0]           cx_i,
   // the register R4 is computed from (ADDR, or R3 without it): the job's map base and Hx*Hy (distance lanes only)
+  // and whether its map is sparse
   input  logic [MAW-1:0]        map_base_i,
   input  logic [2*DW:0]         hxy_i,
+  input  logic                  sparse_lin_i,
+  // R5: its job's bricks (sparse lanes)
+  input  logic [MAW-1:0]        brick_base_i,
+  input  logic [MAW:0]          brick_units_i,
   // Shared voxmap banks (SharedMap): the R4 word addresses (one; a distance lane's eight, one per parity bank p at
-  // [p*MAW +: MAW]), whether the point reads them, and the R5 words
+  // [p*MAW +: MAW]), whether the point reads them, and the R5 words; the brick stage's likewise, and the K words
   output logic [(SB > 2 ? 8 : 1)*MAW-1:0]  addr_o,
   output logic [(SB > 2 ? 8 : 1)-1:0]      read_o,
   input  logic [(SB > 2 ? 8 : 1)*MEMW-1:0] word_i,
-  // R5's point before READ (2-bit lanes): inside and its state
-  output logic                  inside5_o,
-  output logic [1:0]            state5_o,
-  // The result: R5 or READ (SB = 2), R8 (SB > 2)
+  output logic [(SB > 2 ? 8 : 1)*MAW-1:0]  baddr_o,
+  output logic [(SB > 2 ? 8 : 1)-1:0]      bread_o,
+  input  logic [(SB > 2 ? 8 : 1)*MEMW-1:0] bword_i,
+  // The register before READ (2-bit lanes): inside and its state
+  output logic                  inside_pre_o,
+  output logic [1:0]            state_pre_o,
+  // The result: R5, K or READ (SB = 2), R8 (SB > 2)
   output logic                  inside_o,
   output logic [1:0]            state_o,
   output logic [SB+3*WB-1:0]    dist_o,
@@ -89,12 +122,20 @@ module voxcd_lane #(
   localparam int unsigned IdxW  = AccW - TF;                                // signed voxel index
   localparam int unsigned CmpW  = (IdxW - 1 > DW + 1) ? IdxW - 1 : DW + 1;  // unsigned compare width
   localparam int unsigned IW    = SB + 3 * WB;                              // interpolated distance D
-  localparam int unsigned FW    = SB > 2 ? 3 * WB : 1;                      // the weights a stage carries
+  localparam bit          Sparse = BL > 0;
+  // The fraction bits per axis a stage carries: a distance lane's weights (the top WB), a sparse distance lane's the
+  // top WB + 3 (a brick of level l takes its weights l bits lower).
+  localparam int unsigned FxW   = SB > 2 ? (Sparse ? WB + 3 : WB) : 1;
+  localparam int unsigned FW    = 3 * FxW;
+  localparam int unsigned BLW   = Sparse ? BL : 1;                          // the coarse shift (1 unused)
   localparam bit HasIn    = Depth > voxcd_arch_pkg::RankIn;
   localparam bit HasSum   = Depth > voxcd_arch_pkg::RankSum;
   localparam bit HasFloor = Depth > voxcd_arch_pkg::RankFloor;
   localparam bit HasAddr  = Depth > voxcd_arch_pkg::RankAddr;
   localparam bit HasRead  = Depth > voxcd_arch_pkg::RankRead;
+
+  logic en_r5;  // R5's enable: en_mid_i on a sparse lane (E follows it), en_out_i on a dense one
+  assign en_r5 = Sparse ? en_mid_i : en_out_i;
 
   // ---- IN: the multipliers' inputs (the point after the shell banks' rotation; M comes registered) ----
   logic [3*PW-1:0] p_in;
@@ -136,7 +177,7 @@ module voxcd_lane #(
     assign acc_q[i] = sum_q;
   end
 
-  // The floor drops each coordinate's TF fraction bits (a distance lane keeps the top WB of them as its weights).
+  // The floor drops each coordinate's TF fraction bits (a distance lane keeps the top of them as its weights).
   logic unused_fraction;
   assign unused_fraction = ^{acc_q[2][TF-1:0], acc_q[1][TF-1:0], acc_q[0][TF-1:0]};
 
@@ -144,7 +185,7 @@ module voxcd_lane #(
   // The upper bits of a two's complement value are floor(acc / 2^TF).
   logic [IdxW-1:0] idx_x, idx_y, idx_z;
   logic [2:0]      in_axis;
-  logic [FW-1:0]   frac_acc;  // {fz, fy, fx}: the top WB fraction bits of each coordinate (distance lanes)
+  logic [FW-1:0]   frac_acc;  // {fz, fy, fx}: the top FxW fraction bits of each coordinate (distance lanes)
   assign idx_x = acc_q[0][TF +: IdxW];
   assign idx_y = acc_q[1][TF +: IdxW];
   assign idx_z = acc_q[2][TF +: IdxW];
@@ -153,7 +194,7 @@ module voxcd_lane #(
   assign in_axis[2] = !idx_z[IdxW-1] && (CmpW'(idx_z[IdxW-2:0]) < CmpW'(n_i[2*(DW+1) +: DW+1]));
   if (SB > 2) begin : g_frac_acc
     for (genvar i = 0; i < 3; i++) begin : g_f
-      assign frac_acc[i*WB +: WB] = acc_q[i][TF - WB +: WB];
+      assign frac_acc[i*FxW +: FxW] = acc_q[i][TF - FxW +: FxW];
     end
   end else begin : g_no_frac_acc
     assign frac_acc = '0;
@@ -182,26 +223,39 @@ module voxcd_lane #(
   assign y_f = vox_f[DW +: DW];
   assign z_f = vox_f[2*DW +: DW];
 
+  // A sparse map's index products take the coarse cell (the voxel index >> BL) and the coarse extents.
+  logic          coarse_yz, coarse_r3, coarse_lin;
+  logic [DW-1:0] cy_f, cz_f, cx3;
+  assign coarse_yz  = Sparse && sparse_yz_i;
+  assign coarse_r3  = Sparse && sparse_r3_i;
+  assign coarse_lin = Sparse && sparse_lin_i;
+  assign cy_f = y_f >> BLW;
+  assign cz_f = z_f >> BLW;
+  assign cx3  = vox3_q[DW-1:0] >> BLW;
+
   if (SB == 2) begin : g_states
     // ---- 2-bit voxel states (the paper's device) ----
     localparam int unsigned YzW   = 2 * DW + 1;                               // y + ny*z < 2^(2DW)
     localparam int unsigned LinW  = 3 * DW + 2;                               // x + nx*yz < 2^(3DW)
     localparam int unsigned SlotW = $clog2(MEMW / 2) > 0 ? $clog2(MEMW / 2) : 1;
     localparam int unsigned SpwLg = $clog2(MEMW / 2);
+    localparam int unsigned CpwLg = Sparse ? $clog2(MEMW / 4) : 0;           // table codes a word, log2
+    localparam int unsigned CslW  = CpwLg > 0 ? CpwLg : 1;
 
-    // ---- R3: y + ny*z ----
+    // ---- R3: y + ny*z (a sparse map's cy + Cy*cz) ----
     logic [YzW-1:0] yz3_q;
     always_ff @(posedge clk_i) begin
-      if (en_i) yz3_q <= YzW'(y_f) + YzW'(ny_i) * YzW'(z_f);
+      if (en_i) yz3_q <= coarse_yz ? YzW'(cy_f) + YzW'(cy_i) * YzW'(cz_f) : YzW'(y_f) + YzW'(ny_i) * YzW'(z_f);
     end
 
-    // ---- [ADDR]: the linear index; R4: word address and slot ----
+    // ---- [ADDR]: the linear index (a sparse map's table index); R4: word address and slot ----
     logic [LinW-1:0]  linear;
     logic             inside_l;
     logic [3*DW-1:0]  vox_l;
     voxcd_stage #(.Width(LinW + 1 + 3*DW), .Enable(HasAddr)) u_addr (
       .clk_i(clk_i), .en_i(en_i),
-      .d_i  ({LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q), inside3_q, vox3_q}),
+      .d_i  ({coarse_r3 ? LinW'(cx3) + LinW'(cx_i) * LinW'(yz3_q) : LinW'(vox3_q[DW-1:0]) + LinW'(nx_i) * LinW'(yz3_q),
+              inside3_q, vox3_q}),
       .q_o  ({linear, inside_l, vox_l})
     );
 
@@ -209,26 +263,55 @@ module voxcd_lane #(
     logic [3*DW-1:0]  vox4_q;
     logic [MAW-1:0]   addr4_q;
     logic [SlotW-1:0] slot4_q;
+    logic             sparse4_q;
     always_ff @(posedge clk_i) begin
       if (en_i) begin
         inside4_q <= inside_l;
         vox4_q    <= vox_l;
+        sparse4_q <= coarse_lin;
         // Inside points of a valid job address loaded words only, so the MAW-bit sum is exact for them.
-        addr4_q   <= map_base_i + MAW'(linear >> SpwLg);
-        slot4_q   <= SlotW'(linear & LinW'((MEMW / 2) - 1));  // 0 when MEMW = 2
+        if (coarse_lin) begin
+          addr4_q <= map_base_i + MAW'(linear >> CpwLg);
+          slot4_q <= SlotW'(linear & LinW'((1 << CpwLg) - 1));
+        end else begin
+          addr4_q <= map_base_i + MAW'(linear >> SpwLg);
+          slot4_q <= SlotW'(linear & LinW'((MEMW / 2) - 1));  // 0 when MEMW = 2
+        end
       end
     end
 
-    // ---- R5: voxmap read, state select ----
+    // ---- R5: voxmap read (the table port), state select ----
     logic [MEMW-1:0]  word5;
     logic             inside5_q;
     logic [3*DW-1:0]  vox5_q;
     logic [SlotW-1:0] slot5_q;
+    logic [MEMW-1:0]  wordk;     // the brick port's word (sparse lanes)
+    logic [MAW-1:0]   baddr_e;   // the brick word the E slot reads (sparse lanes)
+    logic             brick_e;   // and whether it reads one (a brick cell)
 
     if (SharedMap) begin : g_shared
       assign word5 = word_i;
-      logic unused_write;  // the device writes its shared banks
-      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i};
+      assign wordk = bword_i;
+      logic unused_write;  // the device writes its shared banks (and reads the bricks at baddr_o)
+      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i, baddr_e, brick_e};
+    end else if (Sparse) begin : g_copy2
+      voxcd_ram2 #(
+        .Width(MEMW),
+        .AddrW(MAW)
+      ) u_map (
+        .clk_i    (clk_i),
+        .we_i     (map_we_i),
+        .waddr_i  (map_waddr_i),
+        .wdata_i  (map_wdata_i),
+        .re_a_i   (en_r5),
+        .raddr_a_i(addr4_q),
+        .rdata_a_o(word5),
+        .re_b_i   (en_out_i && brick_e),  // the brick port reads for a brick cell only
+        .raddr_b_i(baddr_e),
+        .rdata_b_o(wordk)
+      );
+      logic unused_word;  // a lane with its own copy reads no shared bank
+      assign unused_word = ^{word_i, bword_i};
     end else begin : g_copy
       voxcd_ram #(
         .Width(MEMW),
@@ -242,29 +325,108 @@ module voxcd_lane #(
         .raddr_i(addr4_q),
         .rdata_o(word5)
       );
+      assign wordk = '0;
       logic unused_word;  // a lane with its own copy reads no shared bank
-      assign unused_word = ^word_i;
+      assign unused_word = ^{word_i, bword_i, baddr_e, brick_e};
     end
     assign addr_o = addr4_q;
     assign read_o = inside4_q;
 
+    logic sparse5_q;
     always_ff @(posedge clk_i) begin
-      if (en_out_i) begin
+      if (en_r5) begin
         inside5_q <= inside4_q;
         vox5_q    <= vox4_q;
         slot5_q   <= slot4_q;
+        sparse5_q <= sparse4_q;
       end
     end
 
     logic [1:0] state5;
-    assign state5    = word5[2 * slot5_q +: 2];
-    assign inside5_o = inside5_q;
-    assign state5_o  = state5;
+    assign state5 = word5[2 * slot5_q +: 2];
+
+    // The register before READ: R5, or K on a sparse lane.
+    logic            inside_p;
+    logic [3*DW-1:0] vox_p;
+    logic [1:0]      state_p;
+
+    if (Sparse) begin : g_sparse
+      // ---- E: the cell, and its brick word's address ----
+      logic             brick5;
+      logic [1:0]       cell_state;
+      logic [MAW-1:0]   first5;
+      logic [1:0]       unused_level;
+      logic             unused_deep;
+      voxcd_cell #(.MEMW(MEMW), .MAW(MAW), .SB(SB), .BL(BL)) u_cell (
+        .word_i       (word5),
+        .slot_i       (CslW'(slot5_q)),
+        .brick_base_i (brick_base_i),
+        .brick_units_i(brick_units_i),
+        .brick_o      (brick5),
+        .level_o      (unused_level),
+        .state_o      (cell_state),
+        .deep_o       (unused_deep),
+        .first_o      (first5)
+      );
+      // The voxel's place in its brick: i = fx + B (fy + B fz), the low BL bits of each index.
+      logic [3*BL-1:0] fine5;
+      assign fine5 = {vox5_q[2*DW +: BL], vox5_q[DW +: BL], vox5_q[0 +: BL]};
+
+      logic             inside_e_q, brick_e_q;
+      logic [3*DW-1:0]  vox_e_q;
+      logic [1:0]       state_e_q;
+      logic [MAW-1:0]   baddr_e_q;
+      logic [SlotW-1:0] bslot_e_q;
+      always_ff @(posedge clk_i) begin
+        if (en_mid_i) begin
+          inside_e_q <= inside5_q;
+          vox_e_q    <= vox5_q;
+          brick_e_q  <= sparse5_q && inside5_q && brick5;
+          state_e_q  <= sparse5_q ? cell_state : state5;
+          baddr_e_q  <= first5 + (MAW'(fine5) >> SpwLg);
+          bslot_e_q  <= SlotW'(fine5 & (3*BL)'((MEMW / 2) - 1));
+        end
+      end
+      assign baddr_e = baddr_e_q;
+      assign brick_e = brick_e_q;
+      assign baddr_o = baddr_e_q;
+      assign bread_o = brick_e_q;
+
+      // ---- K: the brick word (the brick port), the state ----
+      logic             inside_k_q, brick_k_q;
+      logic [3*DW-1:0]  vox_k_q;
+      logic [1:0]       state_k_q;
+      logic [SlotW-1:0] bslot_k_q;
+      always_ff @(posedge clk_i) begin
+        if (en_out_i) begin
+          inside_k_q <= inside_e_q;
+          vox_k_q    <= vox_e_q;
+          brick_k_q  <= brick_e_q;
+          state_k_q  <= state_e_q;
+          bslot_k_q  <= bslot_e_q;
+        end
+      end
+      assign inside_p = inside_k_q;
+      assign vox_p    = vox_k_q;
+      assign state_p  = brick_k_q ? wordk[2 * bslot_k_q +: 2] : state_k_q;
+    end else begin : g_dense
+      assign inside_p = inside5_q;
+      assign vox_p    = vox5_q;
+      assign state_p  = state5;
+      assign baddr_e  = '0;
+      assign brick_e  = 1'b0;
+      assign baddr_o  = '0;
+      assign bread_o  = 1'b0;
+      logic unused_sparse;  // a dense lane reads no table and no brick
+      assign unused_sparse = ^{sparse5_q, wordk, brick_base_i, brick_units_i};
+    end
+    assign inside_pre_o = inside_p;
+    assign state_pre_o  = state_p;
 
     // ---- [READ]: the state in a register of its own ----
     voxcd_stage #(.Width(1 + 3*DW + 2), .Enable(HasRead)) u_read (
       .clk_i(clk_i), .en_i(en_out_i),
-      .d_i  ({inside5_q, vox5_q, state5}),
+      .d_i  ({inside_p, vox_p, state_p}),
       .q_o  ({inside_o, voxel_o, state_o})
     );
     assign dist_o = '0;  // a 2-bit voxmap has no distance
@@ -285,11 +447,13 @@ module voxcd_lane #(
     localparam int unsigned XIW   = XW + 1;                     // b - a and (b - a)*f need one bit more
     localparam int unsigned YIW   = YW + 1;
     localparam int unsigned ZIW   = IW + 1;
+    localparam int unsigned CpwLg = Sparse ? $clog2(MEMW / 8) : 0;  // table codes a word, log2 (a sparse map)
+    localparam int unsigned CslW  = CpwLg > 0 ? CpwLg : 1;
 
-    // ---- R3: the weights, and (y>>1) + Hy*(z>>1) ----
+    // ---- R3: the weights, and (y>>1) + Hy*(z>>1) (a sparse map's cy + Cy*cz) ----
     logic [DW:0]     hy;
     logic [DW-1:0]   y_half, z_half;
-    logic [3*WB-1:0] frac3_q;  // {fz, fy, fx}
+    logic [FW-1:0]   frac3_q;  // {fz, fy, fx}
     logic [YzhW-1:0] yzh3_q;
     assign hy     = (ny_i >> 1) + (DW + 1)'(1);
     assign y_half = y_f >> 1;
@@ -297,23 +461,23 @@ module voxcd_lane #(
     always_ff @(posedge clk_i) begin
       if (en_i) begin
         frac3_q <= frac_f;
-        yzh3_q  <= YzhW'(y_half) + YzhW'(hy) * YzhW'(z_half);
+        yzh3_q  <= coarse_yz ? YzhW'(cy_f) + YzhW'(cy_i) * YzhW'(cz_f) : YzhW'(y_half) + YzhW'(hy) * YzhW'(z_half);
       end
     end
 
-    // ---- [ADDR]: the half-index of the cell's corner; R4: one row and slot per bank ----
+    // ---- [ADDR]: the half-index of the cell's corner (a sparse map's table index); R4: one row and slot per bank ----
     // Bank p holds the cell's corner node whose coordinate parities are p: on an axis where the cell's index is odd
     // and p's bit is even, that node is one further on, so its half-index is one more.
     logic [DW:0]       hx3, hx;   // Hx of the R3 slot's job, and of the job R4 is computed for
     logic [HW-1:0]     hbase3, hbase;
     logic              inside_l;
     logic [3*DW-1:0]   vox_l;
-    logic [3*WB-1:0]   frac_l;
+    logic [FW-1:0]     frac_l;
     assign hx3    = (nx_i >> 1) + (DW + 1)'(1);
     logic [DW-1:0] x_half;
     assign x_half = vox3_q[DW-1:0] >> 1;
-    assign hbase3 = HW'(x_half) + HW'(hx3) * HW'(yzh3_q);
-    voxcd_stage #(.Width(DW + 1 + HW + 1 + 3*DW + 3*WB), .Enable(HasAddr)) u_addr (
+    assign hbase3 = coarse_r3 ? HW'(cx3) + HW'(cx_i) * HW'(yzh3_q) : HW'(x_half) + HW'(hx3) * HW'(yzh3_q);
+    voxcd_stage #(.Width(DW + 1 + HW + 1 + 3*DW + FW), .Enable(HasAddr)) u_addr (
       .clk_i(clk_i), .en_i(en_i),
       .d_i  ({hx3, hbase3, inside3_q, vox3_q, frac3_q}),
       .q_o  ({hx, hbase, inside_l, vox_l, frac_l})
@@ -322,22 +486,28 @@ module voxcd_lane #(
     logic [2:0]        par_l;   // parities of the cell's x, y, z
     logic [8*RowW-1:0] row;
     logic [8*NslW-1:0] slot;
-    assign par_l = {vox_l[2*DW], vox_l[DW], vox_l[0]};
+    logic [MAW-1:0]    table_word;  // a sparse map's table word
+    assign par_l      = {vox_l[2*DW], vox_l[DW], vox_l[0]};
+    assign table_word = map_base_i + MAW'(hbase >> CpwLg);
     for (genvar p = 0; p < 8; p++) begin : g_row
       logic [2:0]    step;  // the half-index steps of bank p's node: x, y, z
       logic [HW-1:0] h;
       assign step = par_l & ~3'(p);
       assign h    = hbase + HW'(step[0]) + (step[1] ? HW'(hx) : HW'(0)) + (step[2] ? HW'(hxy_i) : HW'(0));
-      // Inside points of a valid job read loaded words only, so the RowW-bit sum is exact for them.
-      assign row[p*RowW +: RowW]  = RowW'(map_base_i >> 3) + RowW'(h >> NpwLg);
+      // Inside points of a valid job read loaded words only, so the RowW-bit sum is exact for them. A sparse map's
+      // table word is in bank table_word % 8: every bank reads its row, the lane takes that bank's word.
+      assign row[p*RowW +: RowW]  = coarse_lin ? RowW'(table_word >> 3) : RowW'(map_base_i >> 3) + RowW'(h >> NpwLg);
       assign slot[p*NslW +: NslW] = NslW'(h & HW'(NPW - 1));  // 0 when a word holds one node
     end
 
     logic              inside4_q;
     logic [3*DW-1:0]   vox4_q;
-    logic [3*WB-1:0]   frac4_q;
+    logic [FW-1:0]     frac4_q;
     logic [8*RowW-1:0] row4_q;
     logic [8*NslW-1:0] slot4_q;
+    logic              sparse4_q;
+    logic [2:0]        tbank4_q;   // a sparse map's table word: its bank and code slot
+    logic [CslW-1:0]   tslot4_q;
     always_ff @(posedge clk_i) begin
       if (en_i) begin
         inside4_q <= inside_l;
@@ -345,52 +515,83 @@ module voxcd_lane #(
         frac4_q   <= frac_l;
         row4_q    <= row;
         slot4_q   <= slot;
+        sparse4_q <= coarse_lin;
+        tbank4_q  <= table_word[2:0];
+        tslot4_q  <= CslW'(hbase & HW'((1 << CpwLg) - 1));
       end
     end
 
     // ---- R5: the 8 bank words (word w of the voxmap is row w >> 3 of bank w & 7) ----
-    logic [8*MEMW-1:0] word5;
+    logic [8*MEMW-1:0] word5, wordk;
+    logic [8*RowW-1:0] brow_f;  // the brick rows the F slot reads (sparse lanes)
+    logic              brick_f; // and whether it reads them (a brick cell)
     logic              inside5_q;
     logic [3*DW-1:0]   vox5_q;
-    logic [3*WB-1:0]   frac5_q;
+    logic [FW-1:0]     frac5_q;
     logic [8*NslW-1:0] slot5_q;
+    logic              sparse5_q;
+    logic [2:0]        tbank5_q;
+    logic [CslW-1:0]   tslot5_q;
     for (genvar p = 0; p < 8; p++) begin : g_addr_out
       // Word (map_base/8 + h_p/NPW)*8 + p: the shared banks' address of bank p's node.
       assign addr_o[p*MAW +: MAW] = MAW'({row4_q[p*RowW +: RowW], 3'(p)});
+      assign read_o[p]            = inside4_q && (!sparse4_q || tbank4_q == 3'(p));
     end
-    assign read_o = {8{inside4_q}};
     if (SharedMap) begin : g_shared
       assign word5 = word_i;
-      logic unused_write;  // the device writes its shared banks
-      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i};
+      assign wordk = bword_i;
+      logic unused_write;  // the device writes its shared banks (and reads the bricks at baddr_o)
+      assign unused_write = ^{map_we_i, map_waddr_i, map_wdata_i, brow_f, brick_f};
     end else begin : g_copy
       for (genvar p = 0; p < 8; p++) begin : g_bank
-        voxcd_ram #(
-          .Width(MEMW),
-          .AddrW(RowW)
-        ) u_bank (
-          .clk_i  (clk_i),
-          .we_i   (map_we_i && (map_waddr_i[2:0] == 3'(p))),
-          .waddr_i(RowW'(map_waddr_i >> 3)),
-          .wdata_i(map_wdata_i),
-          .re_i   (en_out_i),
-          .raddr_i(row4_q[p*RowW +: RowW]),
-          .rdata_o(word5[p*MEMW +: MEMW])
-        );
+        if (Sparse) begin : g_two_ports
+          voxcd_ram2 #(
+            .Width(MEMW),
+            .AddrW(RowW)
+          ) u_bank (
+            .clk_i    (clk_i),
+            .we_i     (map_we_i && (map_waddr_i[2:0] == 3'(p))),
+            .waddr_i  (RowW'(map_waddr_i >> 3)),
+            .wdata_i  (map_wdata_i),
+            .re_a_i   (en_r5),
+            .raddr_a_i(row4_q[p*RowW +: RowW]),
+            .rdata_a_o(word5[p*MEMW +: MEMW]),
+            .re_b_i   (en_out_i && brick_f),  // for a brick cell only
+            .raddr_b_i(brow_f[p*RowW +: RowW]),
+            .rdata_b_o(wordk[p*MEMW +: MEMW])
+          );
+        end else begin : g_one_port
+          voxcd_ram #(
+            .Width(MEMW),
+            .AddrW(RowW)
+          ) u_bank (
+            .clk_i  (clk_i),
+            .we_i   (map_we_i && (map_waddr_i[2:0] == 3'(p))),
+            .waddr_i(RowW'(map_waddr_i >> 3)),
+            .wdata_i(map_wdata_i),
+            .re_i   (en_out_i),
+            .raddr_i(row4_q[p*RowW +: RowW]),
+            .rdata_o(word5[p*MEMW +: MEMW])
+          );
+          assign wordk[p*MEMW +: MEMW] = '0;
+        end
       end
       logic unused_word;  // a lane with its own copy reads no shared bank
-      assign unused_word = ^word_i;
+      assign unused_word = ^{word_i, bword_i};
     end
     always_ff @(posedge clk_i) begin
-      if (en_out_i) begin
+      if (en_r5) begin
         inside5_q <= inside4_q;
         vox5_q    <= vox4_q;
         frac5_q   <= frac4_q;
         slot5_q   <= slot4_q;
+        sparse5_q <= sparse4_q;
+        tbank5_q  <= tbank4_q;
+        tslot5_q  <= tslot4_q;
       end
     end
 
-    // ---- Node select (into READ, or into R6 with the x interpolations) ----
+    // ---- Node select (into READ, or into R6 with the x interpolations; on a sparse lane into E) ----
     logic [8*SB-1:0] bank_val;  // the value bank p read
     logic [8*SB-1:0] q5;        // q(dx, dy, dz) at [(dx | dy<<1 | dz<<2)*SB +: SB]
     logic [2:0]      par5;
@@ -405,13 +606,146 @@ module voxcd_lane #(
       assign q5[c*SB +: SB] = bank_val[bank*SB +: SB];
     end
 
+    // The register before READ: R5 (its node values selected), or K on a sparse lane.
+    logic [8*SB-1:0] q_p;
+    logic            inside_p;
+    logic [3*DW-1:0] vox_p;
+    logic [3*WB-1:0] frac_p;
+
+    if (Sparse) begin : g_sparse
+      // ---- E: the cell; a dense map's node values, a uniform cell's value at every node ----
+      logic            brick5, deep5;
+      logic [1:0]      level5;
+      logic [MAW-1:0]  first5;
+      logic [1:0]      unused_state;
+      voxcd_cell #(.MEMW(MEMW), .MAW(MAW), .SB(SB), .BL(BL)) u_cell (
+        .word_i       (word5[MEMW*tbank5_q +: MEMW]),
+        .slot_i       (tslot5_q),
+        .brick_base_i (brick_base_i),
+        .brick_units_i(brick_units_i),
+        .brick_o      (brick5),
+        .level_o      (level5),
+        .state_o      (unused_state),
+        .deep_o       (deep5),
+        .first_o      (first5)
+      );
+      localparam logic [SB-1:0] QMax = {1'b0, {(SB-1){1'b1}}}, QMin = {1'b1, {(SB-1){1'b0}}};
+
+      logic            inside_e_q, brick_e_q;
+      logic [3*DW-1:0] vox_e_q;
+      logic [FW-1:0]   frac_e_q;
+      logic [1:0]      level_e_q;
+      logic [MAW-1:0]  first_e_q;
+      logic [8*SB-1:0] q_e_q;
+      always_ff @(posedge clk_i) begin
+        if (en_mid_i) begin
+          inside_e_q <= inside5_q;
+          vox_e_q    <= vox5_q;
+          frac_e_q   <= frac5_q;
+          brick_e_q  <= sparse5_q && inside5_q && brick5;
+          level_e_q  <= level5;
+          first_e_q  <= first5;
+          q_e_q      <= sparse5_q ? {8{deep5 ? QMin : QMax}} : q5;
+        end
+      end
+
+      // ---- F: the sub-cell's rows in the brick, and the weights ----
+      logic [8*RowW-1:0] brow;
+      logic [8*NslW-1:0] bslot;
+      logic [2:0]        bpar;
+      logic [3*WB-1:0]   bweight, dweight;
+      voxcd_brick_rows #(.MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB), .BL(BL)) u_rows (
+        .fine_i  ({vox_e_q[2*DW +: BL], vox_e_q[DW +: BL], vox_e_q[0 +: BL]}),
+        .frac_i  (frac_e_q),
+        .level_i (level_e_q),
+        .first_i (first_e_q),
+        .row_o   (brow),
+        .slot_o  (bslot),
+        .par_o   (bpar),
+        .weight_o(bweight)
+      );
+      // A dense map's (and a uniform cell's) weights: the top WB fraction bits.
+      for (genvar i = 0; i < 3; i++) begin : g_w
+        assign dweight[i*WB +: WB] = frac_e_q[i*FxW + 3 +: WB];
+      end
+
+      logic              inside_f_q, brick_f_q;
+      logic [3*DW-1:0]   vox_f_q;
+      logic [8*RowW-1:0] brow_f_q;
+      logic [8*NslW-1:0] bslot_f_q;
+      logic [2:0]        bpar_f_q;
+      logic [3*WB-1:0]   w_f_q;
+      logic [8*SB-1:0]   q_f_q;
+      always_ff @(posedge clk_i) begin
+        if (en_mid_i) begin
+          inside_f_q <= inside_e_q;
+          vox_f_q    <= vox_e_q;
+          brick_f_q  <= brick_e_q;
+          brow_f_q   <= brow;
+          bslot_f_q  <= bslot;
+          bpar_f_q   <= bpar;
+          w_f_q      <= brick_e_q ? bweight : dweight;
+          q_f_q      <= q_e_q;
+        end
+      end
+      assign brow_f  = brow_f_q;
+      assign brick_f = brick_f_q;
+      for (genvar p = 0; p < 8; p++) begin : g_baddr
+        assign baddr_o[p*MAW +: MAW] = MAW'({brow_f_q[p*RowW +: RowW], 3'(p)});
+      end
+      assign bread_o = {8{brick_f_q}};
+
+      // ---- K: the brick's 8 bank words (the brick port), its node values ----
+      logic              inside_k_q, brick_k_q;
+      logic [3*DW-1:0]   vox_k_q;
+      logic [8*NslW-1:0] bslot_k_q;
+      logic [2:0]        bpar_k_q;
+      logic [3*WB-1:0]   w_k_q;
+      logic [8*SB-1:0]   q_k_q;
+      always_ff @(posedge clk_i) begin
+        if (en_out_i) begin
+          inside_k_q <= inside_f_q;
+          vox_k_q    <= vox_f_q;
+          brick_k_q  <= brick_f_q;
+          bslot_k_q  <= bslot_f_q;
+          bpar_k_q   <= bpar_f_q;
+          w_k_q      <= w_f_q;
+          q_k_q      <= q_f_q;
+        end
+      end
+      logic [8*SB-1:0] bval_k, qsel_k;
+      for (genvar p = 0; p < 8; p++) begin : g_bval
+        assign bval_k[p*SB +: SB] = wordk[p*MEMW + SB*bslot_k_q[p*NslW +: NslW] +: SB];
+      end
+      for (genvar c = 0; c < 8; c++) begin : g_bnode
+        logic [2:0] bank;
+        assign bank               = 3'(c) ^ bpar_k_q;
+        assign qsel_k[c*SB +: SB] = bval_k[bank*SB +: SB];
+      end
+      assign q_p      = brick_k_q ? qsel_k : q_k_q;
+      assign inside_p = inside_k_q;
+      assign vox_p    = vox_k_q;
+      assign frac_p   = w_k_q;
+    end else begin : g_dense
+      assign q_p      = q5;
+      assign inside_p = inside5_q;
+      assign vox_p    = vox5_q;
+      assign frac_p   = frac5_q[3*WB-1:0];
+      assign brow_f   = '0;
+      assign brick_f  = 1'b0;
+      assign baddr_o  = '0;
+      assign bread_o  = '0;
+      logic unused_sparse;  // a dense lane reads no table and no brick
+      assign unused_sparse = ^{sparse5_q, tbank5_q, tslot5_q, wordk, brow_f, brick_f, brick_base_i, brick_units_i};
+    end
+
     logic [8*SB-1:0] q;
     logic            inside_r;
     logic [3*DW-1:0] vox_r;
     logic [3*WB-1:0] frac_r;
     voxcd_stage #(.Width(8*SB + 1 + 3*DW + 3*WB), .Enable(HasRead)) u_read (
       .clk_i(clk_i), .en_i(en_out_i),
-      .d_i  ({q5, inside5_q, vox5_q, frac5_q}),
+      .d_i  ({q_p, inside_p, vox_p, frac_p}),
       .q_o  ({q, inside_r, vox_r, frac_r})
     );
 
@@ -485,22 +819,28 @@ module voxcd_lane #(
       end
     end
 
-    assign inside_o  = inside8_q;
-    assign voxel_o   = vox8_q;
-    assign dist_o    = dist8_q;
-    assign state_o   = 2'd0;  // a distance voxmap has no states
-    assign inside5_o = 1'b0;
-    assign state5_o  = 2'd0;
+    assign inside_o     = inside8_q;
+    assign voxel_o      = vox8_q;
+    assign dist_o       = dist8_q;
+    assign state_o      = 2'd0;  // a distance voxmap has no states
+    assign inside_pre_o = 1'b0;
+    assign state_pre_o  = 2'd0;
 
     logic unused_dist;  // the bank bits of map_base (a distance map starts on a bank boundary) and D's sign copy
     assign unused_dist = ^{map_base_i[2:0], zv[ZIW-1:IW]};
 
   end
 
+  logic unused_sparse_in;  // the coarse inputs of a dense device's lanes
+  assign unused_sparse_in = ^{sparse_yz_i, cy_i, sparse_r3_i, cx_i, sparse_lin_i, cy_f, cz_f, cx3, coarse_yz,
+                              coarse_r3, coarse_lin};
+
   // Parameter sanity, at elaboration: the index keeps its sign bit above DW + 1 magnitude bits, SB is a width the
-  // lane has a data path for, and Depth a pipeline it has.
+  // lane has a data path for, Depth a pipeline it has, and a sparse lane's widths hold its table and bricks.
   `VOXCD_ASSERT_INIT(IndexHoldsDims, IdxW >= DW + 1)
   `VOXCD_ASSERT_INIT(ValueWidthKnown, SB == 2 || SB == 4 || SB == 8 || SB == 16)
   `VOXCD_ASSERT_INIT(DepthInRange, Depth <= voxcd_arch_pkg::MaxDepth)
+  `VOXCD_ASSERT_INIT(SparseWidths, !Sparse || (BL >= 2 && BL <= 4 && BL <= DW && MEMW >= 8 && 3 * PW >= 72 &&
+                                               (SB == 2 || MF + PF >= WB + 3)))
 
 endmodule

@@ -30,6 +30,7 @@ std::vector<DeviceConfig> rtl_target_configs() {
   X(bool, job_valid_i) X(bool, job_ready_o) X(uint32_t, job_tag_i) X(uint32_t, job_mode_i) X(uint32_t, job_mask_i) \
   X(uint32_t, job_shell_base_i) X(uint32_t, job_shell_count_i) X(uint32_t, job_map_base_i)                        \
   X(uint32_t, job_nx_i) X(uint32_t, job_ny_i) X(uint32_t, job_nz_i)                                               \
+  X(uint32_t, job_sparse_i) X(uint32_t, job_brick_base_i) X(uint32_t, job_brick_units_i)                           \
   X(bool, hit_valid_o) X(uint32_t, hit_tag_o) X(uint32_t, hit_point_o) X(uint32_t, hit_x_o) X(uint32_t, hit_y_o)  \
   X(uint32_t, hit_z_o) X(uint32_t, hit_state_o)                                                                    \
   X(bool, done_valid_o) X(uint32_t, done_tag_o) X(uint32_t, done_hits_o) X(uint32_t, done_cycles_o)              \
@@ -153,6 +154,10 @@ void RtlTarget::drive_job(const Job& j) {
   p.job_nx_i.write(j.nx);
   p.job_ny_i.write(j.ny);
   p.job_nz_i.write(j.nz);
+  // A sparse device's fields (0 for a dense job, the only kind a dense device takes).
+  p.job_sparse_i.write(j.sparse);
+  p.job_brick_base_i.write(j.brick_base);
+  p.job_brick_units_i.write(j.brick_units);
   for (int i = 0; i < 9; ++i) p.job_m_i[i].write(masked(j.M[i / 3][i % 3], cfg_.MW));
   const uint64_t tmask = cfg_.TW >= 64 ? ~uint64_t{0} : (uint64_t{1} << cfg_.TW) - 1;
   for (int i = 0; i < 3; ++i) p.job_t_i[i].write(uint64_t(j.t[i]) & tmask);

@@ -104,6 +104,7 @@ std::vector<DeviceConfig> rtl_configs() { return family("derived"); }
 std::vector<DeviceConfig> rtl_distance_configs() { return family("distance"); }
 std::vector<DeviceConfig> rtl_banked_configs() { return family("banked"); }
 std::vector<DeviceConfig> rtl_depth_configs() { return family("depth"); }
+std::vector<DeviceConfig> rtl_sparse_configs() { return family("sparse"); }
 
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
   return make_rtl_device(cfg, opt, RtlFaults{});

@@ -114,8 +114,9 @@ class RtlDevice final : public Device {
     std::bernoulli_distribution hit_stall(opt_.hit_stall_prob), done_stall(opt_.done_stall_prob);
     size_t next = 0, dones = 0;
     uint64_t idle = 0;
-    // A job takes at most one cycle per point and record plus the pipeline; allow far more before giving up.
-    const uint64_t patience = 1000 + 64 * (uint64_t{1} << cfg_.SAW);
+    // A job takes at most one cycle per point and record plus the pipeline; allow far more before giving up (a sparse
+    // shell's word holds up to 64 points).
+    const uint64_t patience = 1000 + 64 * (uint64_t{1} << cfg_.SAW) * (cfg_.sparse() ? 64 : 1);
     const size_t completions = jobs.size() - (faults_.miss_last_completion && !jobs.empty() ? 1 : 0);
     bool wrote_while_busy = false;
     while (dones < completions) {
@@ -193,6 +194,10 @@ class RtlDevice final : public Device {
     m.job_t2_i = masked<uint64_t>(j.t[2], tw);
     // IW bits: a 32-bit or a 64-bit port depending on the model (0 on a 2-bit device).
     m.job_threshold_i = masked<std::remove_reference_t<decltype(m.job_threshold_i)>>(j.threshold, cfg_.IW());
+    // Sparse devices: which of the map and the shell are sparse, and the map's bricks (0 on a dense device).
+    m.job_sparse_i = j.sparse;
+    m.job_brick_base_i = j.brick_base;
+    m.job_brick_units_i = j.brick_units;
   }
 
   // Verilator reports a failed assertion to the calling thread's current context, and making any context makes

@@ -4,8 +4,9 @@
 // (vector files and generated vectors), the cycles equal ref/timing.h's (plus the counted stalls) at the model's
 // pipeline depth, the latency the top adds is exactly the documented one, the responses are OKAY / SLVERR / DECERR
 // as documented, refused descriptors come back as error records with the faults ref/'s job_faults names, and every
-// output payload is stable while valid and not taken, with no dropped or repeated beat. Every test prints its
-// seed; VOXCD_SEED replays.
+// output payload is stable while valid and not taken, with no dropped or repeated beat. A sparse top (BL > 0) runs
+// every test too, with sparse maps and shells in its streams and its descriptors' sparse fields (bytes 0x06, 0x44,
+// 0x68: sparse_descriptor below) among the rules it refuses. Every test prints its seed; VOXCD_SEED replays.
 #include <gtest/gtest.h>
 #include <verilated.h>
 
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/sparse.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/vectors.h"
@@ -42,6 +44,35 @@ uint64_t test_seed() {
   const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 20261125;
   std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
   return seed;
+}
+
+// ---- Descriptors with a sparse device's fields ----
+// The address map's descriptor (encode_job, decode_job) with the sparse fields at their offsets: byte 0x06 `sparse`
+// (bits 0 and 1; bits 2..7 and byte 0x07 reserved), 0x44 u32 brick_units, 0x68 u32 brick_base (the rest zero).
+constexpr size_t kSparseByte = 0x06, kBrickUnits = 0x44, kBrickBase = 0x68, kReservedFrom = 0x6c;
+
+std::vector<uint8_t> sparse_descriptor(const Job& j) {
+  std::vector<uint8_t> bytes(kJobBytes);
+  Job dense = j;
+  dense.sparse = 0, dense.brick_base = dense.brick_units = 0;
+  encode_job(dense, bytes.data());
+  bytes[kSparseByte] = j.sparse;
+  put_le(&bytes[kBrickUnits], j.brick_units, 4);
+  put_le(&bytes[kBrickBase], j.brick_base, 4);
+  return bytes;
+}
+
+// The job of descriptor bytes whose reserved bytes are zero (false and `why` otherwise).
+bool decode_sparse_descriptor(const std::vector<uint8_t>& bytes, Job& j, std::string& why) {
+  std::vector<uint8_t> dense = bytes;
+  dense[kSparseByte] = 0;
+  std::memset(&dense[kBrickUnits], 0, 4);
+  std::memset(&dense[kBrickBase], 0, 4);
+  if (!decode_job(dense.data(), j, why)) return false;
+  j.sparse = bytes[kSparseByte];
+  j.brick_units = uint32_t(get_le(&bytes[kBrickUnits], 4));
+  j.brick_base = uint32_t(get_le(&bytes[kBrickBase], 4));
+  return true;
 }
 
 // ---- The model's pins, whatever their Verilated types ----
@@ -215,11 +246,7 @@ class Axi {
       beats_.push_back(std::move(beat));
     }
   }
-  void queue_job(const Job& j) {
-    std::vector<uint8_t> bytes(kJobBytes);
-    encode_job(j, bytes.data());
-    queue_bytes(bytes, job_beats);
-  }
+  void queue_job(const Job& j) { queue_bytes(sparse_descriptor(j), job_beats); }
   bool jobs_pending() const { return !beats_.empty(); }
 
   // One clock cycle of every agent.
@@ -456,7 +483,7 @@ std::string join(const std::vector<std::string>& v) {
 void expect_stream(const Axi& axi, const DeviceMemory& mem, const std::vector<Job>& jobs,
                    const std::vector<Record>& got, bool cycles, uint64_t seed) {
   std::vector<Record> want = run_stream(axi.cfg, mem, jobs);
-  if (cycles) annotate_cycles(axi.cfg, jobs, want);
+  if (cycles) annotate_cycles(axi.cfg, mem, jobs, want);
   ASSERT_EQ(got.size(), want.size()) << "seed " << seed;
   for (size_t i = 0; i < want.size(); ++i) {
     ASSERT_TRUE(got[i].same_as(want[i], false))
@@ -486,7 +513,7 @@ TEST_P(AxiTest, RegistersAfterReset) {
   a.p_lite = 0.4;
   EXPECT_EQ(a.reg(kRegId), kDeviceId);
   EXPECT_EQ(a.reg(kRegConfig0), config_word0(a.cfg));
-  EXPECT_EQ(a.reg(kRegConfig1), config_word1(a.cfg));
+  EXPECT_EQ(a.reg(kRegConfig1), config_word1(a.cfg) | uint64_t(a.cfg.BL) << 56) << "CONFIG1 holds BL in 56..63";
   EXPECT_EQ(a.reg(kRegClockPs), 10000u);
   EXPECT_EQ(a.reg(kRegStatus), 0u);
   for (uint64_t r : {kRegStaged, kRegResultCount, kRegJobsDone, kRegHits, kRegPoints, kRegCycles, kRegStalls,
@@ -573,7 +600,7 @@ TEST_P(AxiTest, AddedLatencyIsExact) {
     Job j = g.jobs[i];
     j.mode = Mode::Count;  // one record: a hit record before it would hold the completion for RecBeats cycles
     const std::vector<Record> want = run_stream(a.cfg, g.memory, {j});
-    const std::vector<JobTiming> t = job_timing(a.cfg, {j}, want);
+    const std::vector<JobTiming> t = job_timing(a.cfg, g.memory, {j}, want);
     const size_t before = a.records.size();
     a.queue_job(j);
     a.run_until_records(before + want.size());
@@ -635,6 +662,7 @@ TEST_P(AxiTest, VectorFiles) {
     DeviceConfig c = v.config;
     c.LANES = axi_->cfg.LANES;
     c.depth = axi_->cfg.depth;  // the files have no cycles to compare: any depth gives their records
+    c.BL = axi_->cfg.BL;        // and a sparse device runs their dense jobs with the same records
     if (!(c == axi_->cfg) || (v.has_lanes && v.config.LANES != axi_->cfg.LANES)) continue;
     Axi a(models()[GetParam()], seed_);
     a.p_lite = a.p_rec_ready = a.p_job_valid = 0.6;
@@ -668,8 +696,7 @@ TEST_P(AxiTest, MalformedDescriptorsAreRefused) {
     a.queue_job(g.jobs[i]);
     ran.push_back(g.jobs[i]);
     before = run_stream(a.cfg, g.memory, ran).size();
-    std::vector<uint8_t> bad(kJobBytes);
-    encode_job(g.jobs[i], bad.data());
+    std::vector<uint8_t> bad = sparse_descriptor(g.jobs[i]);
     const uint32_t tag = 1000 + uint32_t(i);
     put_le(&bad[0x00], tag, 4);
     switch (i % 6) {
@@ -718,7 +745,7 @@ std::vector<uint8_t> random_descriptor(const DeviceConfig& cfg, const DeviceMemo
   bool reserved = false;
   const int changes = int(pick(3));  // 0, 1 or 2 fields changed
   for (int c = 0; c < changes; ++c) {
-    switch (pick(12)) {
+    switch (pick(cfg.sparse() ? 15 : 14)) {
       case 0: j.mode = Mode(3); break;
       case 1: j.hit_mask = uint8_t(16 + pick(240)); break;
       case 2: j.tag = uint32_t((uint64_t{1} << cfg.TAGW) + pick(1000)); break;
@@ -735,13 +762,48 @@ std::vector<uint8_t> random_descriptor(const DeviceConfig& cfg, const DeviceMemo
       case 9: j.t[pick(3)] = pick(2) ? (int64_t{1} << (cfg.TW - 1)) : -(int64_t{1} << (cfg.TW - 1)) - 1; break;
       case 10: j.threshold = int64_t(pick(5)) - 2; break;  // 0 is the only threshold of a 2-bit device
       case 11: reserved = true; break;
+      case 12: j.sparse ^= uint8_t(1 + pick(3)); break;  // a map or shell made sparse (or dense)
+      case 13: (pick(2) ? j.brick_base : j.brick_units) = uint32_t(1 + pick(8)); break;
+      case 14: {  // a sparse map's bricks up to, or one or two words past, the end of the loaded words
+        const uint64_t words = brick_words(cfg, j);
+        if (j.sparse_map() && words <= loaded_map) j.brick_base = uint32_t(loaded_map - words + pick(3));
+        break;
+      }
     }
   }
+  std::vector<uint8_t> bytes = sparse_descriptor(j);
+  if (reserved) {
+    // A reserved bit of the sparse byte (so also the rule of sparse bits other than 0 and 1), byte 0x07, or a
+    // reserved byte after brick_base.
+    const uint64_t where = pick(3);
+    if (where == 0) bytes[kSparseByte] |= uint8_t(4 << pick(6));
+    else bytes[where == 1 ? kSparseByte + 1 : kReservedFrom + pick(kJobBytes - kReservedFrom)] = uint8_t(1 + pick(255));
+    j.sparse = bytes[kSparseByte];
+  }
   faults = job_faults(cfg, j, loaded_shell, loaded_map) | (reserved ? kFaultDescriptor : 0u);
-  std::vector<uint8_t> bytes(kJobBytes);
-  encode_job(j, bytes.data());
-  if (reserved) bytes[pick(2) ? 0x06 : 0x68 + pick(kJobBytes - 0x68)] = uint8_t(1 + pick(255));
   return bytes;
+}
+
+// The records of jobs that ran in `runs` (split where a refused descriptor came between them) against ref/'s, run by
+// run; with one-beat descriptors the jobs of a run reach the device back to back (the first after a refusal an idle
+// device), so their cycles are the timing model's plus the stalls.
+void expect_runs(const Axi& a, const DeviceMemory& mem, const std::vector<std::vector<Job>>& runs, uint64_t seed) {
+  size_t at = 0;
+  for (const std::vector<Job>& run : runs) {
+    std::vector<Record> want = run_stream(a.cfg, mem, run);
+    annotate_cycles(a.cfg, mem, run, want);
+    for (size_t i = 0; i < want.size(); ++i, ++at) {
+      ASSERT_LT(at, a.records.size());
+      ASSERT_TRUE(a.records[at].same_as(want[i], false))
+          << "record " << at << ": got " << a.records[at].to_string(true) << ", want " << want[i].to_string(true)
+          << "; seed " << seed;
+      if (a.job_beats == 1 && want[i].kind == Record::Done) {
+        ASSERT_EQ(*a.records[at].cycles, *want[i].cycles + *a.records[at].stalls)
+            << "record " << at << ": cycles = timing model + stalls; seed " << seed;
+      }
+    }
+  }
+  EXPECT_EQ(at, a.records.size());
 }
 
 // 8. Random descriptors, about half of them refused: the records of the jobs that run are ref/'s, each refused
@@ -771,7 +833,7 @@ TEST_P(AxiTest, RandomDescriptorsAreRefusedAsTheReferenceRefusesThem) {
       if (!runs.back().empty()) runs.emplace_back();
       continue;
     }
-    ASSERT_TRUE(decode_job(bytes.data(), sent, why)) << why;
+    ASSERT_TRUE(decode_sparse_descriptor(bytes, sent, why)) << why;
     records += run_stream(a.cfg, g.memory, {sent}).size();
     runs.back().push_back(sent);
     all.push_back(sent);
@@ -792,23 +854,7 @@ TEST_P(AxiTest, RandomDescriptorsAreRefusedAsTheReferenceRefusesThem) {
     ASSERT_EQ(a.refusals[k].faults, want_refused[k].faults) << "error record " << k << " (tag "
                                                             << want_refused[k].tag << "); seed " << seed_;
   }
-  // Records and cycles, run by run.
-  size_t at = 0;
-  for (const std::vector<Job>& run : runs) {
-    std::vector<Record> want = run_stream(a.cfg, g.memory, run);
-    annotate_cycles(a.cfg, run, want);
-    for (size_t i = 0; i < want.size(); ++i, ++at) {
-      ASSERT_LT(at, a.records.size());
-      ASSERT_TRUE(a.records[at].same_as(want[i], false))
-          << "record " << at << ": got " << a.records[at].to_string(true) << ", want " << want[i].to_string(true)
-          << "; seed " << seed_;
-      if (a.job_beats == 1 && want[i].kind == Record::Done) {
-        ASSERT_EQ(*a.records[at].cycles, *want[i].cycles + *a.records[at].stalls)
-            << "record " << at << ": cycles = timing model + stalls; seed " << seed_;
-      }
-    }
-  }
-  EXPECT_EQ(at, a.records.size());
+  expect_runs(a, g.memory, runs, seed_);
   EXPECT_EQ(a.reg(kRegDropped), want_refused.size());
   EXPECT_EQ(a.reg(kRegJobsDone), all.size());
   EXPECT_EQ(a.reg(kRegStatus), 0u);

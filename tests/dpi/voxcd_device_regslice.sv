@@ -29,10 +29,13 @@ module voxcd_device_regslice #(
   input  logic [MW-1:0]            job_m20_i, job_m21_i, job_m22_i,
   input  logic [TW-1:0]            job_t0_i, job_t1_i, job_t2_i,
   input  logic [SB+3*WB-1:0]       job_threshold_i,
+  input  logic [1:0]               job_sparse_i,
+  input  logic [MAW-1:0]           job_brick_base_i,
+  input  logic [MAW:0]             job_brick_units_i,
   output logic                     hit_valid_o,
   input  logic                     hit_ready_i,
   output logic [TAGW-1:0]          hit_tag_o,
-  output logic [SAW-1:0]           hit_point_o,
+  output logic [(BL > 0 ? SAW + 6 : SAW)-1:0] hit_point_o,
   output logic [DW-1:0]            hit_x_o,
   output logic [DW-1:0]            hit_y_o,
   output logic [DW-1:0]            hit_z_o,
@@ -41,24 +44,25 @@ module voxcd_device_regslice #(
   output logic                     done_valid_o,
   input  logic                     done_ready_i,
   output logic [TAGW-1:0]          done_tag_o,
-  output logic [SAW:0]             done_hits_o,
+  output logic [(BL > 0 ? SAW + 6 : SAW):0] done_hits_o,
   output logic [voxcd_arch_pkg::CW-1:0] done_cycles_o,
-  output logic [SAW:0]             done_points_o,
+  output logic [(BL > 0 ? SAW + 6 : SAW):0] done_points_o,
   output logic [voxcd_arch_pkg::CW-1:0] done_stalls_o,
   output logic                     busy_o,
   output logic [voxcd_arch_pkg::CW-1:0] conflicts_o
 );
 
-  localparam int unsigned CW = voxcd_arch_pkg::CW;
+  localparam int unsigned CW  = voxcd_arch_pkg::CW;
+  localparam int unsigned PtW = BL > 0 ? SAW + 6 : SAW;  // a point index (voxcd_device)
 
   // The core's output streams.
   logic            c_hit_valid, c_done_valid, c_busy;
   logic [TAGW-1:0] c_hit_tag, c_done_tag;
-  logic [SAW-1:0]  c_hit_point;
+  logic [PtW-1:0]  c_hit_point;
   logic [DW-1:0]   c_hit_x, c_hit_y, c_hit_z;
   logic [1:0]      c_hit_state;
   logic [SB+3*WB-1:0] c_hit_dist;
-  logic [SAW:0]    c_done_hits, c_done_points;
+  logic [PtW:0]    c_done_hits, c_done_points;
   logic [CW-1:0]   c_done_cycles, c_done_stalls, c_conflicts;
 
   // The slice: one record of either kind, so the stream keeps its order.
@@ -73,6 +77,7 @@ module voxcd_device_regslice #(
     .job_valid_i, .job_ready_o, .job_tag_i, .job_mode_i, .job_mask_i, .job_shell_base_i, .job_shell_count_i,
     .job_map_base_i, .job_nx_i, .job_ny_i, .job_nz_i, .job_m00_i, .job_m01_i, .job_m02_i, .job_m10_i, .job_m11_i,
     .job_m12_i, .job_m20_i, .job_m21_i, .job_m22_i, .job_t0_i, .job_t1_i, .job_t2_i, .job_threshold_i,
+    .job_sparse_i, .job_brick_base_i, .job_brick_units_i,
     .hit_valid_o  (c_hit_valid),
     .hit_ready_i  (free),
     .hit_tag_o    (c_hit_tag),

@@ -35,7 +35,7 @@ TEST(RtlPackage, WidthsMatchDeviceConfig) {
   const std::pair<const char*, int> want[] = {{"PW", c.PW},   {"PF", c.PF},       {"MW", c.MW},   {"MF", c.MF},
                                               {"TW", c.TW},   {"DW", c.DW},       {"MEMW", c.MEMW},
                                               {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW},
-                                              {"SB", c.SB},   {"WB", c.WB}};
+                                              {"SB", c.SB},   {"WB", c.WB},       {"BL", c.BL}};
   for (const auto& [name, value] : want) {
     ASSERT_TRUE(p.count(name)) << "voxcd_arch_pkg.sv has no " << name;
     EXPECT_EQ(p.at(name), value) << name << ": voxcd_arch_pkg.sv and DeviceConfig disagree";
@@ -52,6 +52,22 @@ TEST(RtlPackage, PipelineMatchesTheModels) {
   dist.SB = 8;
   EXPECT_EQ(pipeline_slots(dist), p.at("PipeSlots") + p.at("DistSlots"));
   EXPECT_EQ(pipeline_slots(DeviceConfig{}), p.at("PipeSlots"));
+}
+
+// A sparse device's registers (W, E, K; and F on a distance device): the package's counts are the timing model's.
+TEST(RtlPackage, SparseSlotsMatchTheModels) {
+  const auto p = package_params();
+  ASSERT_TRUE(p.count("SparseSlots"));
+  ASSERT_TRUE(p.count("SparseDistSlots"));
+  EXPECT_EQ(p.at("SparseSlots"), kSparseSlots);
+  EXPECT_EQ(p.at("SparseDistSlots"), kSparseDistanceSlots);
+  DeviceConfig sparse;
+  sparse.BL = 3;
+  EXPECT_EQ(pipeline_slots(sparse), p.at("PipeSlots") + p.at("SparseSlots"));
+  sparse.SB = 8;
+  sparse.depth = kMaxDepth;
+  EXPECT_EQ(pipeline_slots(sparse),
+            p.at("PipeSlots") + p.at("DistSlots") + p.at("SparseDistSlots") + p.at("MaxDepth"));
 }
 
 // The depth: the package's default and deepest are DeviceConfig's, its stages come in the order ref/config.h names

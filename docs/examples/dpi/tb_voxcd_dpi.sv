@@ -122,6 +122,9 @@ module tb_voxcd_dpi #(
     .job_t1_i         (job_t[1]),
     .job_t2_i         (job_t[2]),
     .job_threshold_i  (job_threshold),
+    .job_sparse_i     (2'd0),             // the reference draws dense jobs: a dense device (BL = 0) takes no other
+    .job_brick_base_i (MAW'(0)),
+    .job_brick_units_i((MAW + 1)'(0)),
     .hit_valid_o      (hit_valid),
     .hit_ready_i      (hit_ready),
     .hit_tag_o        (hit_tag),

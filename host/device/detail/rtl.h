@@ -23,6 +23,8 @@ std::vector<DeviceConfig> rtl_distance_configs();
 std::vector<DeviceConfig> rtl_banked_configs();
 // Devices with a deeper pipeline (DeviceConfig::depth > 0) this build has RTL models for (VOXCD_RTL_DEPTH_MODELS).
 std::vector<DeviceConfig> rtl_depth_configs();
+// Sparse devices (BL > 0) this build has RTL models for (VOXCD_RTL_SPARSE_MODELS).
+std::vector<DeviceConfig> rtl_sparse_configs();
 // Throws DeviceError when the models cannot be loaded (rtl_unavailable()) or have none for cfg (its lane count or
 // widths), naming what there is.
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt);

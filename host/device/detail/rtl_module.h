@@ -13,7 +13,7 @@
 namespace voxcd {
 
 // One model of the module: its configuration and the list of rtl/CMakeLists.txt that named it ("lanes",
-// "derived", "distance", "banked" or "depth").
+// "derived", "distance", "banked", "depth" or "sparse").
 struct RtlModelInfo {
   std::string family;
   DeviceConfig config;
