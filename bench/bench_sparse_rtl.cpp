@@ -2,8 +2,8 @@
 // back-to-back sparse-map jobs with dense shells on every sparse model the build has (and, at the depths without a
 // model, the timing model's cycles, which equal the RTL's: ref/timing.h), the same for sparse-shell jobs with the
 // shell's brick fill beside it, and the latency the sparse registers add. Every RTL figure is read from the device's
-// own completion records. Writes Markdown to stdout (bench/sparse.sh puts it into docs/hardware.md).
-//   bench_sparse [--jobs N]   N back-to-back jobs a stream (default 8; the first, with the pipeline fill, left out)
+// own completion records. Writes Markdown to stdout (bench/sparse_rtl.sh puts it into docs/hardware.md).
+//   bench_sparse_rtl [--jobs N]   N back-to-back jobs a stream (default 8; the first, with the pipeline fill, left out)
 #include <verilated.h>
 
 #include <algorithm>
@@ -273,7 +273,7 @@ uint64_t one_point_cycles(const DeviceConfig& cfg) {
     auto dev = make_device("rtl", cfg);
     dev->load(mem);
     const std::vector<Record> r = dev->run({j});
-    if (r.size() != 2 || r.front().kind != Record::Hit) throw std::runtime_error("bench_sparse: the job did not hit");
+    if (r.size() != 2 || r.front().kind != Record::Hit) throw std::runtime_error("bench_sparse_rtl: the job did not hit");
     return *r.back().cycles;
   } catch (const DeviceError&) {
     return 0;
@@ -321,10 +321,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--jobs") == 0 && i + 1 < argc)
       n = std::max<size_t>(2, std::strtoul(argv[++i], nullptr, 0));
-    else return std::fprintf(stderr, "usage: bench_sparse [--jobs N]\n"), 2;
+    else return std::fprintf(stderr, "usage: bench_sparse_rtl [--jobs N]\n"), 2;
   }
   if (!rtl_unavailable().empty() || rtl_sparse_configs().empty()) {
-    std::fprintf(stderr, "bench_sparse: no sparse RTL models: %s\n", rtl_unavailable().c_str());
+    std::fprintf(stderr, "bench_sparse_rtl: no sparse RTL models: %s\n", rtl_unavailable().c_str());
     return 1;
   }
   std::ostringstream md;
