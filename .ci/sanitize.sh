@@ -19,5 +19,6 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
 # Left out as well: the rtl-labelled tests this build still has (they need the Verilated models), and the browser
-# tests (a real browser driving the tool's page: their C++ side, the recordings, is tested here by host.Record.*).
-cd build-asan && exec ctest -j2 --output-on-failure -LE "slow|rtl|browser" "$@"
+# tests (a real browser driving the tool's page: their C++ side, the recordings, is tested here by host.Record.*), and
+# the heavy ones (a minute or more under the sanitizers, seconds in the other builds, which run them).
+cd build-asan && exec ctest -j2 --output-on-failure -LE "slow|rtl|browser|heavy" "$@"
