@@ -15,6 +15,16 @@
 //    run time).
 //  - int64: when the accumulator fits 63 bits.
 //  - wide: otherwise, ref/'s own stage functions on 128-bit integers.
+// Sparse maps and shells (docs/contract.md, "Sparse voxmaps and shells"; sparse devices, BL > 0) take the same paths:
+//  - a sparse shell's points are generated from its words a block at a time (fast/sparse_shell.cpp) into the arrays
+//    the kernels read; its pieces and chunks are runs of points (a job's point k is its k-th generated point) and its
+//    slots, for the cycles, follow its words.
+//  - a 2-bit sparse map is read as the contract lays it out, the table word (its code and rank) and then the brick
+//    word, both by gathers on the double path (fast/sparse_kernel.cpp); one point at a time elsewhere.
+//  - a sparse distance map (SB <= 8, the double path) is read from a copy built at the first job on it, the table
+//    resolved and every brick in node quads (fast/detail/brick_quads.h): one gather for the cell's entry, one for the
+//    sub-cell's eight nodes. It counts against node_copy_limit() with the dense maps' copies and is dropped like them;
+//    without it (the limit, SB = 16, other widths) the map is read one point at a time.
 // Jobs are split into chunks of points spread over a thread pool; chunk results are merged in order, so the
 // stream is the same for any thread count. A batch of fewer than kParallelMinPoints points runs on the calling
 // thread.
@@ -36,6 +46,9 @@ namespace voxcd {
 class ThreadPool;
 namespace detail {
 struct NodeQuads;
+struct BrickQuads;
+struct ShellCursor;
+struct ShellArrays;
 }
 
 class FastRunner {
@@ -57,6 +70,9 @@ class FastRunner {
   // The double path's kernel on this processor: "avx512", "avx2" or "baseline"; and the distance path's.
   static const char* double_kernel();
   static const char* distance_kernel();
+  // The sparse maps' kernels on this processor (2-bit; distance on the copy): "avx512", "avx2" or "baseline".
+  static const char* sparse_kernel();
+  static const char* sparse_distance_kernel();
   unsigned threads() const;
   // The pool the batches run on (null without one).
   const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
@@ -83,6 +99,10 @@ class FastRunner {
   uint64_t node_copy_bytes() const;
   // On a banked device, the job's bank cycles given its hits' summary and its completion's hits (ref/banks.h).
   BankCycles bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const;
+  // The points of a job valid for the loaded shell memory: shell_count for a dense shell, the points its words
+  // generate for a sparse one (the range of run_piece's begin and end). And its slots (ref/timing.h, job_slots).
+  uint64_t job_points(const Job& job) const;
+  JobSlots job_slots(const Job& job) const;
 
   // Validates every job against the loaded memories (throws JobError before running any), runs them in order
   // and replaces `out` (reusing its capacity) with the stream run_stream gives. With `cycles`, every completion
@@ -101,7 +121,8 @@ class FastRunner {
   void run_hits(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out, bool cycles = true) const;
   // Points [begin, end) of one job on the calling thread: their hits appended to `hits` (FIRST: up to the first),
   // their number added to `count`; the job validated first when `validate` (JobError). For a caller that splits the
-  // jobs of a batch itself; calls may run at once.
+  // jobs of a batch itself; calls may run at once. A sparse shell's points are its generated points
+  // (job_points): a piece of one walks its words from the first to `begin`.
   void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, HitColumns& hits, uint32_t& count) const;
 
  private:
@@ -121,6 +142,8 @@ class FastRunner {
   };
 
   void set_shell_word(size_t k, const ShellWord& w);
+  // The shell memory's copies the kernels read (fast/detail/point_blocks.h).
+  detail::ShellArrays shell_arrays() const;
   // run_into (validate: every job first) and run_validated_into.
   void run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate);
   // The parts of run_jobs: the jobs cut into pieces (returns their points); on one thread; on the pool, the tasks'
@@ -134,20 +157,33 @@ class FastRunner {
   // Job j's hits and the summary of its kept records, from its pieces (all done).
   void job_result(const std::vector<Job>& jobs, size_t j, bool cycles, uint32_t& hits, JobHits& sum) const;
   // Looks up points [begin, end) of job j: appends their hit records (ALL: every one; FIRST: the first, then stops)
-  // to `hits` and adds their number to `count`.
-  void run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count) const;
+  // to `hits` and adds their number to `count`. A sparse shell's points from the cursor `at` (at `begin`), or from
+  // its first word.
+  void run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                 const detail::ShellCursor* at = nullptr) const;
   // run_chunk on a distance voxmap (SB > 2), in fast/distance.cpp: the vector kernel where distance_vector(j), else
   // one point at a time.
-  void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count) const;
+  void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                          const detail::ShellCursor* at) const;
   bool distance_vector(const Job& j) const;
+  // run_chunk on a sparse map, in fast/sparse_map.cpp: the 2-bit kernel, the distance copy's kernel, or one point at
+  // a time; and the copy of a sparse distance map (built at the first call; null where none serves).
+  void run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                        const detail::ShellCursor* at) const;
+  const detail::BrickQuads* brick_quads(const Job& j) const;
+  void run_sparse_points(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                         const detail::ShellCursor* at) const;
+  // The walk over a sparse-shell job's words (fast/detail/sparse_shell.h): its points, the cursors at every kChunk
+  // points, its slots where `slots`.
+  uint64_t walk_sparse_shell(const Job& j, std::vector<detail::ShellCursor>* cursors, JobSlots* slots) const;
   // The node-quad copy of job j's map, built at the first call (thread-safe); null where the kernel cannot take it
   // (widths, SB > 8) or it would pass the limit.
   const detail::NodeQuads* node_quads(const Job& j) const;
-  // Drops the copies of maps that overlap voxmap words [first, end).
+  // Drops the copies of maps (dense and sparse) made from any of voxmap words [first, end).
   void drop_node_quads(uint64_t first, uint64_t end);
   // The vector kernel on the parity banks, or with `quads` on that copy.
   void run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
-                           HitColumns& hits, uint32_t& count) const;
+                           HitColumns& hits, uint32_t& count, const detail::ShellCursor* at) const;
 
   DeviceConfig cfg_;
   Path path_ = Path::Double;
@@ -162,6 +198,10 @@ class FastRunner {
   std::vector<int32_t> sx_, sy_, sz_;
   std::vector<int64_t> ix_, iy_, iz_;
   std::vector<Piece> pieces_;
+  // Per piece, where a sparse shell's points begin (fast/detail/sparse_shell.h); per job of the batch, its slots (a
+  // sparse shell's from its words) and its points.
+  std::vector<detail::ShellCursor> piece_at_;
+  std::vector<JobSlots> batch_slots_;
   std::vector<size_t> first_piece_;  // per job, and one past the last
   std::vector<size_t> task_first_;   // per task its first piece, and one past the last
   std::vector<size_t> done_at_;      // per job, where its completion record goes in the stream
@@ -170,6 +210,7 @@ class FastRunner {
   uint64_t copy_limit_ = kNodeCopyLimit;
   mutable std::mutex copies_mutex_;
   mutable std::vector<std::unique_ptr<detail::NodeQuads>> copies_;
+  mutable std::vector<std::unique_ptr<detail::BrickQuads>> brick_copies_;  // sparse distance maps' (fast/sparse_map.cpp)
   mutable uint64_t copy_bytes_ = 0;
   HitColumns serial_hits_;  // run_serial's hits of a piece
 };

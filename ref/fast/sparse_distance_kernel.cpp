@@ -1,0 +1,196 @@
+// The sparse distance map's block kernel on its node-quad copy (detail/brick_quads.h): transform at the finest level's
+// weights (acc >> (TF - WB - 3)), the voxel and the bounds, the cell's entry (its brick's level and first quad) by one
+// gather, the sub-cell and the weights at the brick's level (the finest steps scaled by 2^-(3 - l), floored: acc >>
+// (TF - WB - l)), the sub-cell's eight nodes by a second gather (one 8-byte quad), the interpolation and the threshold
+// test. As ref/'s sub_cell: the sub-cell is acc >> (TF - l) within the cell (its low BL + l bits) and its weights the
+// next WB bits. Every value is an integer below 2^53, so the doubles are exact.
+#include <cmath>
+#include <cstring>
+
+#include "voxcd/ref/fast/detail/brick_quads.h"
+#include "voxcd/ref/fast/detail/distance_kernel.h"
+#include "voxcd/ref/fast/detail/quad_interp.h"
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define VOXCD_BRICK_X86 1
+#endif
+
+namespace voxcd::detail {
+
+namespace {
+
+// One point (the baseline, and AVX2 compiled from the same body).
+#define VOXCD_BRICK_POINT_BODY                                                                                       \
+  {                                                                                                                  \
+    const double px = x[k], py = y[k], pz = z[k];                                                                    \
+    const double W = J.weight;                                                                                       \
+    const double s[3] = {std::floor(J.m[0] * px + J.m[1] * py + J.m[2] * pz + J.t[0]),                               \
+                         std::floor(J.m[3] * px + J.m[4] * py + J.m[5] * pz + J.t[1]),                               \
+                         std::floor(J.m[6] * px + J.m[7] * py + J.m[8] * pz + J.t[2])};                              \
+    double v[3];                                                                                                     \
+    bool inside = true;                                                                                              \
+    for (int i = 0; i < 3; ++i) {                                                                                    \
+      v[i] = std::floor(s[i] * J.inv_fine);                                                                          \
+      inside &= v[i] >= 0 && v[i] < J.n[i];                                                                          \
+    }                                                                                                                \
+    hit[k] = 0;                                                                                                      \
+    if (!inside) return 0;                                                                                           \
+    const int32_t X = int32_t(v[0]), Y = int32_t(v[1]), Z = int32_t(v[2]);                                           \
+    const uint32_t e = J.entries[(X >> J.bl) + J.cx * ((Y >> J.bl) + J.cy * (Z >> J.bl))];                           \
+    const int l = int(e >> 30);                                                                                      \
+    const int32_t n = J.edge[l];                                                                                     \
+    double f[3], g[3];                                                                                               \
+    int32_t sub[3];                                                                                                  \
+    for (int i = 0; i < 3; ++i) {                                                                                    \
+      const double sl = std::floor(s[i] * J.level_scale[l]);                                                         \
+      const double c = std::floor(sl * J.inv_weight);                                                                \
+      f[i] = sl - c * W, g[i] = W - f[i];                                                                            \
+      sub[i] = int32_t(c) & (n - 1);                                                                                 \
+    }                                                                                                                \
+    uint64_t w;                                                                                                      \
+    std::memcpy(&w, J.quads + (e & 0x3fffffffu) + uint32_t(sub[0] + (n + 1) * (sub[1] + n * sub[2])), sizeof w);    \
+    double u[8]; /* byte b: node (sub_x + (b >> 2), sub_y + (b & 1), sub_z + (b >> 1 & 1)) */                        \
+    for (int b = 0; b < 8; ++b) u[b] = double((w >> (8 * b)) & 0xffu);                                              \
+    double a[4];                                                                                                     \
+    for (int b = 0; b < 4; ++b) a[b] = u[b] * g[0] + u[b + 4] * f[0];                                                \
+    const double b0 = a[0] * g[1] + a[1] * f[1], b1 = a[2] * g[1] + a[3] * f[1];                                     \
+    const double d = b0 * g[2] + b1 * f[2];                                                                          \
+    if (!(d <= J.biased_threshold)) return 0;                                                                        \
+    hit[k] = 1, cx[k] = X, cy[k] = Y, cz[k] = Z, dist[k] = d - J.bias;                                               \
+    return 1;                                                                                                        \
+  }
+#define VOXCD_BRICK_POINT_ARGS                                                                                       \
+  const int32_t *x, const int32_t *y, const int32_t *z, size_t k, const BrickQuadJob &J, uint8_t *hit, int32_t *cx, \
+      int32_t *cy, int32_t *cz, double *dist
+
+inline uint32_t point_base(VOXCD_BRICK_POINT_ARGS) VOXCD_BRICK_POINT_BODY
+
+uint32_t brick_base(const int32_t* x, const int32_t* y, const int32_t* z, size_t n, const BrickQuadJob& J,
+                    uint8_t* hit, int32_t* cx, int32_t* cy, int32_t* cz, double* dist) {
+  uint32_t count = 0;
+  for (size_t k = 0; k < n; ++k) count += point_base(x, y, z, k, J, hit, cx, cy, cz, dist);
+  return count;
+}
+
+#ifdef VOXCD_BRICK_X86
+__attribute__((target("arch=haswell"), always_inline)) inline uint32_t point_avx2(VOXCD_BRICK_POINT_ARGS)
+    VOXCD_BRICK_POINT_BODY
+
+__attribute__((target("arch=haswell"))) uint32_t brick_avx2(const int32_t* x, const int32_t* y, const int32_t* z,
+                                                             size_t n, const BrickQuadJob& J, uint8_t* hit,
+                                                             int32_t* cx, int32_t* cy, int32_t* cz, double* dist) {
+  uint32_t count = 0;
+  for (size_t k = 0; k < n; ++k) count += point_avx2(x, y, z, k, J, hit, cx, cy, cz, dist);
+  return count;
+}
+
+// GCC 12's intrinsics fill unused lanes from a self-initialised "undefined" vector, which -Wmaybe-uninitialized
+// reports once inlined here.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+constexpr int kFloor = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+
+// The quads of eight inside points (lanes `in`) of voxels v and finest steps s: their cells' entries, the sub-cells
+// and weights (f, g = 2^WB - f) at each brick's level, and the sub-cells' quads.
+__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline)) inline __m512i quads512(
+    const BrickQuadJob& J, __mmask8 in, const __m512d (&v)[3], const __m512d (&s)[3], __m512d (&f)[3],
+    __m512d (&g)[3]) {
+  const __m128i bl = _mm_cvtsi32_si128(J.bl);
+  __m256i c[3];
+  for (int i = 0; i < 3; ++i) c[i] = _mm256_sra_epi32(_mm256_maskz_mov_epi32(in, _mm512_cvttpd_epi32(v[i])), bl);
+  const __m256i t = _mm256_add_epi32(
+      c[0], _mm256_mullo_epi32(_mm256_set1_epi32(J.cx),
+                               _mm256_add_epi32(c[1], _mm256_mullo_epi32(_mm256_set1_epi32(J.cy), c[2]))));
+  const __m256i e = _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), in, t, J.entries, 4);
+  const __m256i level = _mm256_srli_epi32(e, 30);
+  const __m512d scale = _mm512_permutexvar_pd(_mm512_cvtepu32_epi64(level), _mm512_loadu_pd(J.level_scale));
+  const __m256i n = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(J.edge)), level);
+  const __m256i mask = _mm256_sub_epi32(n, _mm256_set1_epi32(1));
+  const __m512d W = _mm512_set1_pd(J.weight), iW = _mm512_set1_pd(J.inv_weight);
+  __m256i sub[3];
+  for (int i = 0; i < 3; ++i) {
+    const __m512d sl = _mm512_roundscale_pd(_mm512_mul_pd(s[i], scale), kFloor);
+    const __m512d cl = _mm512_roundscale_pd(_mm512_mul_pd(sl, iW), kFloor);
+    f[i] = _mm512_fnmadd_pd(cl, W, sl);
+    g[i] = _mm512_sub_pd(W, f[i]);
+    sub[i] = _mm256_and_si256(_mm512_cvttpd_epi32(cl), mask);
+  }
+  const __m256i q = _mm256_add_epi32(
+      _mm256_add_epi32(_mm256_and_si256(e, _mm256_set1_epi32(0x3fffffff)), sub[0]),
+      _mm256_mullo_epi32(_mm256_add_epi32(n, _mm256_set1_epi32(1)),
+                         _mm256_add_epi32(sub[1], _mm256_mullo_epi32(n, sub[2]))));
+  return _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), in, q, reinterpret_cast<const long long*>(J.quads), 4);
+}
+
+__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t brick_avx512(
+    const int32_t* x, const int32_t* y, const int32_t* z, size_t n, const BrickQuadJob& J, uint8_t* hit, int32_t* cx,
+    int32_t* cy, int32_t* cz, double* dist) {
+  __m512d m[9], t[3], nn[3];
+  for (int i = 0; i < 9; ++i) m[i] = _mm512_set1_pd(J.m[i]);
+  for (int i = 0; i < 3; ++i) t[i] = _mm512_set1_pd(J.t[i]), nn[i] = _mm512_set1_pd(J.n[i]);
+  const __m512d fine = _mm512_set1_pd(J.inv_fine), zero = _mm512_setzero_pd();
+  const __m512d thr = _mm512_set1_pd(J.biased_threshold), bias = _mm512_set1_pd(J.bias);
+  __m512i sel[8];
+  for (int b = 0; b < 8; ++b) sel[b] = _mm512_set_epi64(shuffle_hi(b), shuffle_lo(b), shuffle_hi(b), shuffle_lo(b),
+                                                        shuffle_hi(b), shuffle_lo(b), shuffle_hi(b), shuffle_lo(b));
+  uint32_t count = 0;
+  for (size_t k = 0; k < n; k += 8) {
+    const __mmask8 live = n - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (n - k)) - 1);
+    const __m512d p[3] = {_mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, x + k)),
+                          _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, y + k)),
+                          _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, z + k))};
+    __m512d s[3], v[3];
+    __mmask8 in = live;
+    for (int i = 0; i < 3; ++i) {
+      const __m512d a =
+          _mm512_fmadd_pd(m[3 * i], p[0], _mm512_fmadd_pd(m[3 * i + 1], p[1], _mm512_fmadd_pd(m[3 * i + 2], p[2], t[i])));
+      s[i] = _mm512_roundscale_pd(a, kFloor);
+      v[i] = _mm512_roundscale_pd(_mm512_mul_pd(s[i], fine), kFloor);
+      in = _mm512_mask_cmp_pd_mask(in, v[i], zero, _CMP_GE_OQ);
+      in = _mm512_mask_cmp_pd_mask(in, v[i], nn[i], _CMP_LT_OQ);
+    }
+    if (in == 0) {
+      _mm_mask_storeu_epi8(hit + k, live, _mm_setzero_si128());
+      continue;
+    }
+    __m512d f[3], g[3];
+    const __m512i w = quads512(J, in, v, s, f, g);
+    const __m512d d = interpolate512(w, sel, f, g);
+    const __mmask8 h = _mm512_mask_cmp_pd_mask(in, d, thr, _CMP_LE_OQ);
+    count += uint32_t(__builtin_popcount(h));
+    _mm_mask_storeu_epi8(hit + k, live, _mm512_cvtepi64_epi8(_mm512_maskz_set1_epi64(h, 1)));
+    if (h == 0) continue;
+    _mm256_mask_storeu_epi32(cx + k, h, _mm512_cvttpd_epi32(v[0]));
+    _mm256_mask_storeu_epi32(cy + k, h, _mm512_cvttpd_epi32(v[1]));
+    _mm256_mask_storeu_epi32(cz + k, h, _mm512_cvttpd_epi32(v[2]));
+    _mm512_mask_storeu_pd(dist + k, h, _mm512_sub_pd(d, bias));
+  }
+  return count;
+}
+#pragma GCC diagnostic pop
+#endif
+
+struct Choice {
+  BrickQuadBlockFn fn;
+  const char* name;
+};
+
+Choice choose() {
+  switch (widest_kernel()) {
+#ifdef VOXCD_BRICK_X86
+    case KernelWidth::Avx512: return {brick_avx512, "avx512"};
+    case KernelWidth::Avx2: return {brick_avx2, "avx2"};
+#endif
+    default: return {brick_base, "baseline"};
+  }
+}
+
+const Choice kChoice = choose();
+
+}  // namespace
+
+BrickQuadBlockFn brick_quad_block() { return kChoice.fn; }
+const char* brick_quad_block_name() { return kChoice.name; }
+
+}  // namespace voxcd::detail
