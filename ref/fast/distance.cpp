@@ -14,7 +14,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "voxcd/ref/fast/detail/brick_quads.h"
+#include "voxcd/ref/fast/detail/sparse_copy.h"
 #include "voxcd/ref/fast/detail/distance_kernel.h"
 #include "voxcd/ref/fast/detail/emit.h"
 #include "voxcd/ref/fast/detail/node_quads.h"
@@ -97,10 +97,10 @@ void FastRunner::drop_node_quads(uint64_t first, uint64_t end) {
     copy_bytes_ -= copies_[i]->bytes();
     copies_.erase(copies_.begin() + std::ptrdiff_t(i));
   }
-  for (size_t i = brick_copies_.size(); i-- > 0;) {
-    if (!brick_copies_[i]->overlaps(first, end)) continue;
-    copy_bytes_ -= brick_copies_[i]->bytes();
-    brick_copies_.erase(brick_copies_.begin() + std::ptrdiff_t(i));
+  for (size_t i = sparse_copies_.size(); i-- > 0;) {
+    if (!sparse_copies_[i]->overlaps(first, end)) continue;
+    copy_bytes_ -= sparse_copies_[i]->bytes();
+    sparse_copies_.erase(sparse_copies_.begin() + std::ptrdiff_t(i));
   }
 }
 

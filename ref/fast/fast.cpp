@@ -16,7 +16,7 @@
 #include "voxcd/ref/fast/detail/emit.h"
 #include "voxcd/ref/fast/detail/point_blocks.h"
 #include "voxcd/ref/fast/detail/sparse_shell.h"
-#include "voxcd/ref/fast/detail/brick_quads.h"
+#include "voxcd/ref/fast/detail/sparse_copy.h"
 #include "voxcd/ref/fast/detail/node_quads.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/timing.h"

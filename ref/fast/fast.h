@@ -22,7 +22,7 @@
 //  - a 2-bit sparse map is read as the contract lays it out, the table word (its code and rank) and then the brick
 //    word, both by gathers on the double path (fast/sparse_kernel.cpp); one point at a time elsewhere.
 //  - a sparse distance map (SB <= 8, the double path) is read from a copy built at the first job on it, the table
-//    resolved and every brick in node quads (fast/detail/brick_quads.h): one gather for the cell's entry, one for the
+//    resolved and every brick in node quads (fast/detail/sparse_copy.h): one gather for the cell's entry, one for the
 //    sub-cell's eight nodes. It counts against node_copy_limit() with the dense maps' copies and is dropped like them;
 //    without it (the limit, SB = 16, other widths) the map is read one point at a time.
 // Jobs are split into chunks of points spread over a thread pool; chunk results are merged in order, so the
@@ -46,7 +46,7 @@ namespace voxcd {
 class ThreadPool;
 namespace detail {
 struct NodeQuads;
-struct BrickQuads;
+struct SparseCopy;
 struct ShellCursor;
 struct ShellArrays;
 }
@@ -170,7 +170,7 @@ class FastRunner {
   // a time; and the copy of a sparse distance map (built at the first call; null where none serves).
   void run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
                         const detail::ShellCursor* at) const;
-  const detail::BrickQuads* brick_quads(const Job& j) const;
+  const detail::SparseCopy* sparse_copy(const Job& j) const;
   void run_sparse_points(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
                          const detail::ShellCursor* at) const;
   // The walk over a sparse-shell job's words (fast/detail/sparse_shell.h): its points, the cursors at every kChunk
@@ -210,7 +210,7 @@ class FastRunner {
   uint64_t copy_limit_ = kNodeCopyLimit;
   mutable std::mutex copies_mutex_;
   mutable std::vector<std::unique_ptr<detail::NodeQuads>> copies_;
-  mutable std::vector<std::unique_ptr<detail::BrickQuads>> brick_copies_;  // sparse distance maps' (fast/sparse_map.cpp)
+  mutable std::vector<std::unique_ptr<detail::SparseCopy>> sparse_copies_;  // sparse distance maps' (fast/sparse_map.cpp)
   mutable uint64_t copy_bytes_ = 0;
   HitColumns serial_hits_;  // run_serial's hits of a piece
 };

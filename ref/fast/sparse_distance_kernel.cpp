@@ -1,13 +1,13 @@
-// The sparse distance map's block kernel on its node-quad copy (detail/brick_quads.h): transform at the finest level's
-// weights (acc >> (TF - WB - 3)), the voxel and the bounds, the cell's entry (its brick's level and first quad) by one
-// gather, the sub-cell and the weights at the brick's level (the finest steps scaled by 2^-(3 - l), floored: acc >>
-// (TF - WB - l)), the sub-cell's eight nodes by a second gather (one 8-byte quad), the interpolation and the threshold
-// test. As ref/'s sub_cell: the sub-cell is acc >> (TF - l) within the cell (its low BL + l bits) and its weights the
-// next WB bits. Every value is an integer below 2^53, so the doubles are exact.
+// The sparse distance map's block kernel on its node-quad copy (detail/sparse_copy.h): the transform as a =
+// acc * 2^-(TF - WB) (exact), the voxel and the bounds, the cell's entry (its brick's level and first quad) by one
+// gather, the sub-cell and the weights at the brick's level (floor(a 2^l) = acc >> (TF - WB - l)), the sub-cell's eight
+// nodes by a second gather (one 8-byte quad), the interpolation and the threshold test. As ref/'s sub_cell: the
+// sub-cell is acc >> (TF - l) within the cell (its low BL + l bits) and its weights the next WB bits. Every value is
+// exact in a double (integers below 2^53, and a with TF - WB fraction bits).
 #include <cmath>
 #include <cstring>
 
-#include "voxcd/ref/fast/detail/brick_quads.h"
+#include "voxcd/ref/fast/detail/sparse_copy.h"
 #include "voxcd/ref/fast/detail/distance_kernel.h"
 #include "voxcd/ref/fast/detail/quad_interp.h"
 
@@ -24,13 +24,13 @@ namespace {
   {                                                                                                                  \
     const double px = x[k], py = y[k], pz = z[k];                                                                    \
     const double W = J.weight;                                                                                       \
-    const double s[3] = {std::floor(J.m[0] * px + J.m[1] * py + J.m[2] * pz + J.t[0]),                               \
-                         std::floor(J.m[3] * px + J.m[4] * py + J.m[5] * pz + J.t[1]),                               \
-                         std::floor(J.m[6] * px + J.m[7] * py + J.m[8] * pz + J.t[2])};                              \
+    const double s[3] = {J.m[0] * px + J.m[1] * py + J.m[2] * pz + J.t[0],                                          \
+                         J.m[3] * px + J.m[4] * py + J.m[5] * pz + J.t[1],                                           \
+                         J.m[6] * px + J.m[7] * py + J.m[8] * pz + J.t[2]};                                          \
     double v[3];                                                                                                     \
     bool inside = true;                                                                                              \
     for (int i = 0; i < 3; ++i) {                                                                                    \
-      v[i] = std::floor(s[i] * J.inv_fine);                                                                          \
+      v[i] = std::floor(std::floor(s[i]) * J.inv_weight);                                                            \
       inside &= v[i] >= 0 && v[i] < J.n[i];                                                                          \
     }                                                                                                                \
     hit[k] = 0;                                                                                                      \
@@ -91,80 +91,113 @@ __attribute__((target("arch=haswell"))) uint32_t brick_avx2(const int32_t* x, co
 
 constexpr int kFloor = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
 
-// The quads of eight inside points (lanes `in`) of voxels v and finest steps s: their cells' entries, the sub-cells
-// and weights (f, g = 2^WB - f) at each brick's level, and the sub-cells' quads.
-__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline)) inline __m512i quads512(
-    const BrickQuadJob& J, __mmask8 in, const __m512d (&v)[3], const __m512d (&s)[3], __m512d (&f)[3],
-    __m512d (&g)[3]) {
+// One group of eight points between the two reads: which are live and inside, their finest steps (acc >> (TF - WB -
+// 3)) and voxels, and their cells' entries.
+struct Group {
+  __mmask8 live, in;
+  __m512d a[3], s[3], v[3];  // acc * 2^-(TF - WB); its floor (level 0's steps); the voxel
+  __m256i iv[3], e;          // the voxel (int32; outside lanes 0); the entry
+};
+
+// The first half of a group: the transform, the voxels and the bounds, the cells and their entries by one gather.
+__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline)) inline void group_entries(
+    const BrickQuadJob& J, const __m512d (&m)[9], const __m512d (&t)[3], const __m512d (&nn)[3], const int32_t* x,
+    const int32_t* y, const int32_t* z, size_t k, size_t n, Group& g) {
+  g.live = n - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (n - k)) - 1);
+  const __m512d p[3] = {_mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(g.live, x + k)),
+                        _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(g.live, y + k)),
+                        _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(g.live, z + k))};
+  const __m512d iW = _mm512_set1_pd(J.inv_weight), zero = _mm512_setzero_pd();
+  g.in = g.live;
+  for (int i = 0; i < 3; ++i) {
+    g.a[i] =
+        _mm512_fmadd_pd(m[3 * i], p[0], _mm512_fmadd_pd(m[3 * i + 1], p[1], _mm512_fmadd_pd(m[3 * i + 2], p[2], t[i])));
+    g.s[i] = _mm512_roundscale_pd(g.a[i], kFloor);
+    g.v[i] = _mm512_roundscale_pd(_mm512_mul_pd(g.s[i], iW), kFloor);
+    g.in = _mm512_mask_cmp_pd_mask(g.in, g.v[i], zero, _CMP_GE_OQ);
+    g.in = _mm512_mask_cmp_pd_mask(g.in, g.v[i], nn[i], _CMP_LT_OQ);
+  }
   const __m128i bl = _mm_cvtsi32_si128(J.bl);
   __m256i c[3];
-  for (int i = 0; i < 3; ++i) c[i] = _mm256_sra_epi32(_mm256_maskz_mov_epi32(in, _mm512_cvttpd_epi32(v[i])), bl);
-  const __m256i t = _mm256_add_epi32(
+  for (int i = 0; i < 3; ++i) {
+    g.iv[i] = _mm512_maskz_cvttpd_epi32(g.in, g.v[i]);
+    c[i] = _mm256_srl_epi32(g.iv[i], bl);
+  }
+  const __m256i cell = _mm256_add_epi32(
       c[0], _mm256_mullo_epi32(_mm256_set1_epi32(J.cx),
                                _mm256_add_epi32(c[1], _mm256_mullo_epi32(_mm256_set1_epi32(J.cy), c[2]))));
-  const __m256i e = _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), in, t, J.entries, 4);
-  const __m256i level = _mm256_srli_epi32(e, 30);
-  const __m512d scale = _mm512_permutexvar_pd(_mm512_cvtepu32_epi64(level), _mm512_loadu_pd(J.level_scale));
-  const __m256i n = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(J.edge)), level);
-  const __m256i mask = _mm256_sub_epi32(n, _mm256_set1_epi32(1));
-  const __m512d W = _mm512_set1_pd(J.weight), iW = _mm512_set1_pd(J.inv_weight);
-  __m256i sub[3];
-  for (int i = 0; i < 3; ++i) {
-    const __m512d sl = _mm512_roundscale_pd(_mm512_mul_pd(s[i], scale), kFloor);
-    const __m512d cl = _mm512_roundscale_pd(_mm512_mul_pd(sl, iW), kFloor);
-    f[i] = _mm512_fnmadd_pd(cl, W, sl);
-    g[i] = _mm512_sub_pd(W, f[i]);
-    sub[i] = _mm256_and_si256(_mm512_cvttpd_epi32(cl), mask);
-  }
-  const __m256i q = _mm256_add_epi32(
-      _mm256_add_epi32(_mm256_and_si256(e, _mm256_set1_epi32(0x3fffffff)), sub[0]),
-      _mm256_mullo_epi32(_mm256_add_epi32(n, _mm256_set1_epi32(1)),
-                         _mm256_add_epi32(sub[1], _mm256_mullo_epi32(n, sub[2]))));
-  return _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), in, q, reinterpret_cast<const long long*>(J.quads), 4);
+  g.e = _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), g.in, cell, J.entries, 4);
 }
 
+// The second half: the sub-cells and weights (f, g = 2^WB - f) at each brick's level, the sub-cells' quads by a second
+// gather, the interpolation, the threshold test and the outputs; returns the hits.
+__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline)) inline uint32_t group_distances(
+    const BrickQuadJob& J, const Group& gr, const __m512i (&sel)[8], uint8_t* hit, int32_t* cx, int32_t* cy,
+    int32_t* cz, double* dist) {
+  if (gr.in == 0) {
+    _mm_mask_storeu_epi8(hit, gr.live, _mm_setzero_si128());
+    return 0;
+  }
+  const __m256i level = _mm256_srli_epi32(gr.e, 30);
+  const __m512d W = _mm512_set1_pd(J.weight), iW = _mm512_set1_pd(J.inv_weight);
+  __m512d f[3], g[3];
+  __m256i sub[3], n;
+  if (_mm256_testz_si256(level, level)) {  // every brick of level 0: the steps and voxels of the first half
+    n = _mm256_set1_epi32(J.edge[0]);
+    const __m256i mask = _mm256_set1_epi32(J.edge[0] - 1);
+    for (int i = 0; i < 3; ++i) {
+      f[i] = _mm512_fnmadd_pd(gr.v[i], W, gr.s[i]);
+      g[i] = _mm512_sub_pd(W, f[i]);
+      sub[i] = _mm256_and_si256(gr.iv[i], mask);
+    }
+  } else {  // level l: the steps of acc * 2^-(TF - WB - l)
+    n = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(J.edge)), level);
+    const __m256i mask = _mm256_sub_epi32(n, _mm256_set1_epi32(1));
+    const __m512d scale = _mm512_permutexvar_pd(_mm512_cvtepu32_epi64(level), _mm512_loadu_pd(J.level_scale));
+    for (int i = 0; i < 3; ++i) {
+      const __m512d sl = _mm512_roundscale_pd(_mm512_mul_pd(gr.a[i], scale), kFloor);
+      const __m512d cl = _mm512_roundscale_pd(_mm512_mul_pd(sl, iW), kFloor);
+      f[i] = _mm512_fnmadd_pd(cl, W, sl);
+      g[i] = _mm512_sub_pd(W, f[i]);
+      sub[i] = _mm256_and_si256(_mm512_cvttpd_epi32(cl), mask);
+    }
+  }
+  const __m256i q = _mm256_add_epi32(
+      _mm256_add_epi32(_mm256_and_si256(gr.e, _mm256_set1_epi32(0x3fffffff)), sub[0]),
+      _mm256_mullo_epi32(_mm256_add_epi32(n, _mm256_set1_epi32(1)),
+                         _mm256_add_epi32(sub[1], _mm256_mullo_epi32(n, sub[2]))));
+  const __m512i w = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), gr.in, q,
+                                                reinterpret_cast<const long long*>(J.quads), 4);
+  const __m512d d = interpolate512(w, sel, f, g);
+  const __mmask8 h = _mm512_mask_cmp_pd_mask(gr.in, d, _mm512_set1_pd(J.biased_threshold), _CMP_LE_OQ);
+  _mm_mask_storeu_epi8(hit, gr.live, _mm512_cvtepi64_epi8(_mm512_maskz_set1_epi64(h, 1)));
+  if (h == 0) return 0;
+  _mm256_mask_storeu_epi32(cx, h, _mm512_cvttpd_epi32(gr.v[0]));
+  _mm256_mask_storeu_epi32(cy, h, _mm512_cvttpd_epi32(gr.v[1]));
+  _mm256_mask_storeu_epi32(cz, h, _mm512_cvttpd_epi32(gr.v[2]));
+  _mm512_mask_storeu_pd(dist, h, _mm512_sub_pd(d, _mm512_set1_pd(J.bias)));
+  return uint32_t(__builtin_popcount(h));
+}
+
+// Eight points a step, software-pipelined: the next group's entries are gathered before this group's quads, so that
+// a group's two dependent reads overlap the other group's work.
 __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t brick_avx512(
     const int32_t* x, const int32_t* y, const int32_t* z, size_t n, const BrickQuadJob& J, uint8_t* hit, int32_t* cx,
     int32_t* cy, int32_t* cz, double* dist) {
   __m512d m[9], t[3], nn[3];
   for (int i = 0; i < 9; ++i) m[i] = _mm512_set1_pd(J.m[i]);
   for (int i = 0; i < 3; ++i) t[i] = _mm512_set1_pd(J.t[i]), nn[i] = _mm512_set1_pd(J.n[i]);
-  const __m512d fine = _mm512_set1_pd(J.inv_fine), zero = _mm512_setzero_pd();
-  const __m512d thr = _mm512_set1_pd(J.biased_threshold), bias = _mm512_set1_pd(J.bias);
   __m512i sel[8];
   for (int b = 0; b < 8; ++b) sel[b] = _mm512_set_epi64(shuffle_hi(b), shuffle_lo(b), shuffle_hi(b), shuffle_lo(b),
                                                         shuffle_hi(b), shuffle_lo(b), shuffle_hi(b), shuffle_lo(b));
+  if (n == 0) return 0;
   uint32_t count = 0;
-  for (size_t k = 0; k < n; k += 8) {
-    const __mmask8 live = n - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (n - k)) - 1);
-    const __m512d p[3] = {_mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, x + k)),
-                          _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, y + k)),
-                          _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(live, z + k))};
-    __m512d s[3], v[3];
-    __mmask8 in = live;
-    for (int i = 0; i < 3; ++i) {
-      const __m512d a =
-          _mm512_fmadd_pd(m[3 * i], p[0], _mm512_fmadd_pd(m[3 * i + 1], p[1], _mm512_fmadd_pd(m[3 * i + 2], p[2], t[i])));
-      s[i] = _mm512_roundscale_pd(a, kFloor);
-      v[i] = _mm512_roundscale_pd(_mm512_mul_pd(s[i], fine), kFloor);
-      in = _mm512_mask_cmp_pd_mask(in, v[i], zero, _CMP_GE_OQ);
-      in = _mm512_mask_cmp_pd_mask(in, v[i], nn[i], _CMP_LT_OQ);
-    }
-    if (in == 0) {
-      _mm_mask_storeu_epi8(hit + k, live, _mm_setzero_si128());
-      continue;
-    }
-    __m512d f[3], g[3];
-    const __m512i w = quads512(J, in, v, s, f, g);
-    const __m512d d = interpolate512(w, sel, f, g);
-    const __mmask8 h = _mm512_mask_cmp_pd_mask(in, d, thr, _CMP_LE_OQ);
-    count += uint32_t(__builtin_popcount(h));
-    _mm_mask_storeu_epi8(hit + k, live, _mm512_cvtepi64_epi8(_mm512_maskz_set1_epi64(h, 1)));
-    if (h == 0) continue;
-    _mm256_mask_storeu_epi32(cx + k, h, _mm512_cvttpd_epi32(v[0]));
-    _mm256_mask_storeu_epi32(cy + k, h, _mm512_cvttpd_epi32(v[1]));
-    _mm256_mask_storeu_epi32(cz + k, h, _mm512_cvttpd_epi32(v[2]));
-    _mm512_mask_storeu_pd(dist + k, h, _mm512_sub_pd(d, bias));
+  Group g[3];
+  group_entries(J, m, t, nn, x, y, z, 0, n, g[0]);
+  if (8 < n) group_entries(J, m, t, nn, x, y, z, 8, n, g[1]);
+  for (size_t k = 0, i = 0; k < n; k += 8, i = i == 2 ? 0 : i + 1) {
+    if (k + 16 < n) group_entries(J, m, t, nn, x, y, z, k + 16, n, g[i == 0 ? 2 : i - 1]);
+    count += group_distances(J, g[i], sel, hit + k, cx + k, cy + k, cz + k, dist + k);
   }
   return count;
 }

@@ -4,7 +4,7 @@
 // (fast/sparse_reader.cpp), the transform as the dense paths make it.
 #include <mutex>
 
-#include "voxcd/ref/fast/detail/brick_quads.h"
+#include "voxcd/ref/fast/detail/sparse_copy.h"
 #include "voxcd/ref/fast/detail/emit.h"
 #include "voxcd/ref/fast/detail/point_blocks.h"
 #include "voxcd/ref/fast/detail/sparse_kernel.h"
@@ -20,17 +20,19 @@ constexpr size_t kSparseBlock = 256;
 const char* FastRunner::sparse_kernel() { return detail::sparse_block_name(); }
 const char* FastRunner::sparse_distance_kernel() { return detail::brick_quad_block_name(); }
 
-const detail::BrickQuads* FastRunner::brick_quads(const Job& j) const {
-  // Exact doubles (IW <= 51), node bytes (SB <= 8), int32 voxels and cells (below 2^31 voxels); then the limit.
-  if (path_ != Path::Double || cfg_.IW() > 51 || cfg_.SB > 8 || j.voxels() >= (uint64_t{1} << 31)) return nullptr;
+const detail::SparseCopy* FastRunner::sparse_copy(const Job& j) const {
+  // int32 voxels and cells (below 2^31 voxels); on a distance map exact doubles (IW <= 51) and node bytes (SB <= 8);
+  // then the limit.
+  if (path_ != Path::Double || j.voxels() >= (uint64_t{1} << 31)) return nullptr;
+  if (cfg_.distance() && (cfg_.IW() > 51 || cfg_.SB > 8)) return nullptr;
   const std::lock_guard<std::mutex> lock(copies_mutex_);
-  for (const auto& q : brick_copies_)
+  for (const auto& q : sparse_copies_)
     if (q->serves(j)) return q.get();
-  const uint64_t bytes = detail::brick_quad_bytes(cfg_, map_, j);
+  const uint64_t bytes = detail::sparse_copy_bytes(cfg_, map_, j);
   if (bytes == UINT64_MAX || copy_bytes_ + bytes > copy_limit_) return nullptr;
-  brick_copies_.push_back(std::make_unique<detail::BrickQuads>(detail::build_brick_quads(cfg_, map_, j)));
+  sparse_copies_.push_back(std::make_unique<detail::SparseCopy>(detail::build_sparse_copy(cfg_, map_, j)));
   copy_bytes_ += bytes;
-  return brick_copies_.back().get();
+  return sparse_copies_.back().get();
 }
 
 void FastRunner::run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& hit_count,
@@ -39,8 +41,10 @@ void FastRunner::run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, Hi
   int32_t cx[kSparseBlock], cy[kSparseBlock], cz[kSparseBlock];
   const bool vector = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
   if (vector && !cfg_.distance()) {
-    const detail::SparseJob S = detail::sparse_job(cfg_, j, map_.data(), tf_scale_);
-    const detail::SparseBlockFn kernel = detail::sparse_block();
+    detail::SparseJob S = detail::sparse_job(cfg_, j, map_.data(), tf_scale_);
+    const detail::SparseCopy* copy = sparse_copy(j);
+    if (copy) S.entries = copy->entries.get();
+    const detail::SparseBlockFn kernel = copy ? detail::sparse_entry_block() : detail::sparse_block();
     uint8_t state[kSparseBlock];
     return detail::for_blocks(cfg_, arrays, j, begin, end, at, detail::PointBlocks::kInt32, kSparseBlock,
                               [&](uint32_t b, size_t n, const detail::BlockCoords& c) {
@@ -50,7 +54,7 @@ void FastRunner::run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, Hi
                                 return detail::emit_cells(j, b, n, cx, cy, cz, state, count, hits, hit_count);
                               });
   }
-  if (const detail::BrickQuads* q = cfg_.distance() ? brick_quads(j) : nullptr) {
+  if (const detail::SparseCopy* q = cfg_.distance() ? sparse_copy(j) : nullptr) {
     const detail::BrickQuadJob J = detail::brick_quad_job(cfg_, j, *q);
     const detail::BrickQuadBlockFn kernel = detail::brick_quad_block();
     uint8_t hit[kSparseBlock];

@@ -19,12 +19,8 @@ namespace voxcd::detail {
 
 namespace {
 
-// v wrapped to `bits` bits, two's complement (bits <= 64).
-int64_t wrap(int64_t v, int bits) {
-  if (bits >= 64) return v;
-  const uint64_t m = (uint64_t{1} << bits) - 1, u = uint64_t(v) & m;
-  return (u >> (bits - 1)) & 1 ? int64_t(u) - int64_t(m) - 1 : int64_t(u);
-}
+// v wrapped to `bits` bits, two's complement (1 <= bits <= 64).
+inline int64_t wrap(int64_t v, int bits) { return int64_t(uint64_t(v) << (64 - bits)) >> (64 - bits); }
 
 // The low PW bits of a 32-bit sum, sign-extended (PW <= 32).
 inline int32_t wrap32(uint32_t v, int pw) { return int32_t(v << (32 - pw)) >> (32 - pw); }
@@ -43,6 +39,7 @@ uint64_t keep_low_bits(uint64_t m, size_t n) {
   return kept;
 }
 
+// pw: the width to wrap the sums at, or 32 where none wraps (int32 sums are exact).
 using BrickFn = size_t (*)(const int32_t (*off)[64], uint64_t mask, const int64_t o[3], int pw, int32_t* x,
                            int32_t* y, int32_t* z);
 
@@ -64,6 +61,7 @@ size_t brick_base(const int32_t (*off)[64], uint64_t mask, const int64_t o[3], i
 // reports once inlined here.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 // Sixteen bits of the mask at a time: the offsets of its set bits compressed to the front of a register, the origin
 // added, the sum wrapped, all 16 lanes stored (the arrays have room) and the cursor moved by the bits' count.
 __attribute__((target("avx512f,avx512bw,popcnt"))) size_t brick_avx512(const int32_t (*off)[64], uint64_t mask,
@@ -73,15 +71,21 @@ __attribute__((target("avx512f,avx512bw,popcnt"))) size_t brick_avx512(const int
   const __m512i oz = _mm512_set1_epi32(int32_t(o[2]));
   const __m128i sh = _mm_cvtsi32_si128(32 - pw);
   size_t n = 0;
+  // Every chunk, empty or not: a branch on it would be mispredicted as often as not.
   for (int c = 0; c < 4; ++c) {
     const __mmask16 m = __mmask16(mask >> (16 * c));
-    if (!m) continue;
     const __m512i dx = _mm512_maskz_compress_epi32(m, _mm512_load_si512(off[0] + 16 * c));
     const __m512i dy = _mm512_maskz_compress_epi32(m, _mm512_load_si512(off[1] + 16 * c));
     const __m512i dz = _mm512_maskz_compress_epi32(m, _mm512_load_si512(off[2] + 16 * c));
-    _mm512_storeu_si512(x + n, _mm512_sra_epi32(_mm512_sll_epi32(_mm512_add_epi32(dx, ox), sh), sh));
-    _mm512_storeu_si512(y + n, _mm512_sra_epi32(_mm512_sll_epi32(_mm512_add_epi32(dy, oy), sh), sh));
-    _mm512_storeu_si512(z + n, _mm512_sra_epi32(_mm512_sll_epi32(_mm512_add_epi32(dz, oz), sh), sh));
+    __m512i px = _mm512_add_epi32(dx, ox), py = _mm512_add_epi32(dy, oy), pz = _mm512_add_epi32(dz, oz);
+    if (pw < 32) {
+      px = _mm512_sra_epi32(_mm512_sll_epi32(px, sh), sh);
+      py = _mm512_sra_epi32(_mm512_sll_epi32(py, sh), sh);
+      pz = _mm512_sra_epi32(_mm512_sll_epi32(pz, sh), sh);
+    }
+    _mm512_storeu_si512(x + n, px);
+    _mm512_storeu_si512(y + n, py);
+    _mm512_storeu_si512(z + n, pz);
     n += size_t(__builtin_popcount(m));
   }
   return n;
@@ -104,6 +108,7 @@ ShellBricks::ShellBricks(const DeviceConfig& cfg, const ShellWord* words, uint32
     : words_(words), count_(count), pw_(cfg.PW), pf_(cfg.PF), brick_step_(int64_t{kShellBrick} << cfg.PF) {
   if (count == 0) return;  // nothing to generate (a dense shell's runs make one too): no table
   const int64_t half = cfg.PF > 0 ? int64_t{1} << (cfg.PF - 1) : 0;
+  off_max_ = (int64_t{kShellBrick - 1} << cfg.PF) + half;
   for (int b = 0; b < 64; ++b) {
     off_[0][b] = int32_t((int64_t(b & 3) << cfg.PF) + half);
     off_[1][b] = int32_t((int64_t((b >> 2) & 3) << cfg.PF) + half);
@@ -117,20 +122,16 @@ void ShellBricks::origin(uint32_t k, int64_t o[3]) const {
 }
 
 uint64_t ShellBricks::mask(uint32_t k) const {
-  // W = x | y << PW | z << 2 PW (each PW bits); its low 64 bits (3 PW >= 72).
+  // W = x | y << PW | z << 2 PW (each PW bits); its low 64 bits (3 PW >= 72, and PW <= 32: 2 PW <= 64).
   const ShellWord& w = words_[k];
   const uint64_t m = (uint64_t{1} << pw_) - 1;
-  const uint64_t x = uint64_t(w.x) & m, y = uint64_t(w.y) & m, z = uint64_t(w.z) & m;
-  return x | y << pw_ | (2 * pw_ < 64 ? z << (2 * pw_) : 0);
+  const uint64_t x = uint64_t(w.x) & m, y = uint64_t(w.y) & m;
+  return x | y << pw_ | (2 * pw_ < 64 ? uint64_t(w.z) << (2 * pw_) : 0);
 }
 
 void ShellBricks::step(uint32_t k, int64_t o[3]) const {
-  // Bits 64 .. 69 of W: step i in bits 64 + 2i, 65 + 2i, 2-bit signed.
-  const ShellWord& w = words_[k];
-  const uint64_t m = (uint64_t{1} << pw_) - 1;
-  const unsigned __int128 bits = (unsigned __int128)(uint64_t(w.y) & m) << pw_ |
-                                 (unsigned __int128)(uint64_t(w.z) & m) << (2 * pw_);
-  const uint32_t s = uint32_t(bits >> 64) & 63;
+  // Bits 64 .. 69 of W, step i in bits 64 + 2i and 65 + 2i (2-bit signed): z's bits from 64 - 2 PW on.
+  const uint64_t s = uint64_t(words_[k].z) >> (64 - 2 * pw_);
   for (int i = 0; i < 3; ++i) {
     const int64_t v = int64_t((s >> (2 * i)) & 3);
     o[i] = wrap(o[i] + (v >= 2 ? v - 4 : v) * brick_step_, pw_);
@@ -138,7 +139,10 @@ void ShellBricks::step(uint32_t k, int64_t o[3]) const {
 }
 
 size_t ShellBricks::brick_points(uint64_t m, const int64_t o[3], int32_t* x, int32_t* y, int32_t* z) const {
-  return kBrick(off_, m, o, pw_, x, y, z);
+  // No sum wraps where every coordinate of the origin is at most 2^(PW-1) - 1 - off_max (the offsets are positive).
+  const int64_t room = (int64_t{1} << (pw_ - 1)) - 1 - off_max_;
+  const int pw = o[0] <= room && o[1] <= room && o[2] <= room ? 32 : pw_;
+  return kBrick(off_, m, o, pw, x, y, z);
 }
 
 size_t ShellBricks::generate(ShellCursor& at, size_t n, int32_t* x, int32_t* y, int32_t* z) const {

@@ -38,7 +38,7 @@ uint32_t* allocate_quads(size_t n);
 
 // Writes the copy of the map of nx x ny x nz cells at `map` (its first word) with SB-bit nodes, nodes_per_word of
 // them in a word, into out[0, (nx + 1) ny nz): the layout above. A sparse map's distance brick of level l is laid out as
-// such a map of B 2^l cells per axis (docs/contract.md), so its copy is this too (detail/brick_quads.h).
+// such a map of B 2^l cells per axis (docs/contract.md), so its copy is this too (detail/sparse_copy.h).
 void fill_node_quads(const uint64_t* map, uint32_t nx, uint32_t ny, uint32_t nz, int sb, int nodes_per_word,
                      uint32_t* out);
 

@@ -1,4 +1,4 @@
-// Internal to FastRunner's distance kernels on node quads (detail/node_quads.h, detail/brick_quads.h): a cell's eight
+// Internal to FastRunner's distance kernels on node quads (detail/node_quads.h, detail/sparse_copy.h): a cell's eight
 // node bytes (stored as q + 2^(SB-1)) to doubles and their trilinear interpolation, each linear step
 // u0 (2^WB - f) + u1 f (one multiply, one fused multiply-add), exact on integers below 2^53.
 #pragma once

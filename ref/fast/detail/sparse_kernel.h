@@ -2,7 +2,7 @@
 // shells") on the double path: the table read (a cell's code and, from the word's rank and the codes before the cell,
 // its brick's first word), then the brick read, both by gathers. 2-bit maps read the contract's layout as it is
 // (ref/fast/sparse_kernel.cpp); distance maps a copy in which every brick's sub-cells are node quads
-// (detail/brick_quads.h, ref/fast/sparse_distance_kernel.cpp).
+// (detail/sparse_copy.h, ref/fast/sparse_distance_kernel.cpp).
 #pragma once
 
 #include <cstddef>
@@ -27,6 +27,9 @@ struct SparseJob {
   int spw_bits;     // log2 MEMW / 2 (states a word)
   int half;         // MEMW / 2: the rank's place in a table word
   uint32_t hit_mask;
+  // The map's copy with its table resolved (detail/sparse_copy.h), or null: the kernel of sparse_entry_block reads
+  // it for the table read, that of sparse_block the table itself.
+  const uint32_t* entries = nullptr;
 };
 // The job's fields (scale: 2^-TF).
 SparseJob sparse_job(const DeviceConfig& cfg, const Job& j, const uint64_t* map, double scale);
@@ -36,6 +39,7 @@ SparseJob sparse_job(const DeviceConfig& cfg, const Job& j, const uint64_t* map,
 using SparseBlockFn = uint32_t (*)(const int32_t* x, const int32_t* y, const int32_t* z, size_t n, const SparseJob& job,
                                    int32_t* cx, int32_t* cy, int32_t* cz, uint8_t* state);
 SparseBlockFn sparse_block();
+SparseBlockFn sparse_entry_block();
 const char* sparse_block_name();
 
 // A sparse map read one point at a time with 64-bit integers (the int64 and wide paths, and distance maps the copy

@@ -51,6 +51,7 @@ class ShellBricks {
   uint32_t count_;
   int pw_, pf_;
   int64_t brick_step_;  // 4 * 2^PF
+  int64_t off_max_ = 0;  // the largest offset, 3 * 2^PF + 2^(PF-1)
   alignas(64) int32_t off_[3][64];
 };
 
