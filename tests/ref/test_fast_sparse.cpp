@@ -5,6 +5,7 @@
 // copy, the copy's limit), and through run_hits and run_piece. Seed: printed at start; VOXCD_SEED replays it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -308,10 +309,27 @@ TEST(FastSparse, TwoBitCodesPastTheUnitsAndNarrowWords) {
       jobs.push_back(j);
     }
     const std::vector<Record> want = reference(cfg, mem, jobs);
-    FastRunner fr(cfg, 1);
-    fr.load(mem);
-    expect_same(want, fr.run(jobs), "MEMW " + std::to_string(memw));
     EXPECT_NE(want.size(), 4u);
+    // On the map's copy (its table resolved) and, with no room for copies, on the table itself.
+    for (uint64_t limit : {FastRunner::kNodeCopyLimit, uint64_t{0}}) {
+      FastRunner fr(cfg, 1);
+      fr.set_node_copy_limit(limit);
+      fr.load(mem);
+      const std::string what = "MEMW " + std::to_string(memw) + " copy limit " + std::to_string(limit);
+      expect_same(want, fr.run(jobs), what);
+      EXPECT_EQ(fr.node_copy_bytes() > 0, limit > 0) << what;
+      // The table rewritten (every brick cell made uniform surface): the copy must follow.
+      DeviceMemory m2 = mem;
+      for (uint64_t w = p.map_base; w < p.brick_base; ++w)
+        for (uint64_t c = 0; c < table_cells_per_word(cfg); ++c)
+          if (((m2.map[w] >> (2 * c)) & 3) == kCodeBrick) m2.map[w] ^= uint64_t{2} << (2 * c);
+      const std::vector<Record> want2 = reference(cfg, m2, jobs);
+      ASSERT_FALSE(std::equal(want.begin(), want.end(), want2.begin(), want2.end(),
+                              [](const Record& a, const Record& b) { return a.same_as(b, true); }))
+          << what << ": the rewrite must change the stream";
+      fr.write_map(p.map_base, m2.map.data() + p.map_base, p.brick_base - p.map_base);
+      expect_same(want2, fr.run(jobs), what + " after rewriting the table");
+    }
   }
 }
 
