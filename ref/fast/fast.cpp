@@ -430,14 +430,27 @@ void FastRunner::run_serial(const std::vector<Job>& jobs, std::vector<Record>& o
     }
     push_record(out, Record::Done, jobs[j].tag).hits = hits;
   }
-  if (!cycles) return;
-  const bool sparse_shells = std::any_of(jobs.begin(), jobs.end(), [](const Job& j) { return j.sparse_shell(); });
-  if (cfg_.banked())
-    annotate_cycles(cfg_, shell_, jobs, out, voxcd::bank_cycles(cfg_, shell_, map_, jobs, out));
-  else if (sparse_shells)
-    annotate_cycles(cfg_, shell_, jobs, out, std::vector<BankCycles>(jobs.size()));
-  else
-    annotate_cycles(cfg_, jobs, out);
+  if (cycles) annotate(jobs, out);
+}
+
+void FastRunner::annotate(const std::vector<Job>& jobs, std::vector<Record>& out) const {
+  // annotate_cycles with the batch's slots (a sparse shell's from make_pieces' walk of its words) and, on a banked
+  // device, each job's bank cycles.
+  JobSpan prev;
+  size_t r = 0;
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    const size_t first = r;
+    while (out[r].kind == Record::Hit) ++r;
+    const JobHits h = job_hits(batch_slots_[j], jobs[j], j, out.data() + first, r - first, first);
+    Record& done = out[r++];
+    const BankCycles bank =
+        cfg_.banked() ? job_bank_cycles(cfg_, shell_, map_, jobs[j], h, done.hits) : BankCycles{};
+    const JobSpan span = job_span(cfg_, jobs[j], batch_slots_[j], j, h, done.hits, bank);
+    done.cycles = span_cycles(cfg_, j ? &prev : nullptr, span);
+    done.points = span.points;
+    done.stalls = 0;
+    prev = span;
+  }
 }
 
 void FastRunner::run_tasks(const std::vector<Job>& jobs, bool cycles, bool validate) {

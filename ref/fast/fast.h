@@ -151,6 +151,8 @@ class FastRunner {
   // task t's records and completions.
   size_t make_pieces(const std::vector<Job>& jobs);
   void run_serial(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate);
+  // run_serial's cycles: every completion record of `out` (the batch's stream) timed (ref/timing.h).
+  void annotate(const std::vector<Job>& jobs, std::vector<Record>& out) const;
   void run_tasks(const std::vector<Job>& jobs, bool cycles, bool validate);
   size_t place_records(const std::vector<Job>& jobs);
   void finish_task(size_t t, const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) const;
