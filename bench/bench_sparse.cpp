@@ -189,8 +189,10 @@ int count_only(const std::string& c, size_t jobs) {
   FastRunner runner(sc.cfg, 1);
   runner.load(sc.mem);
   std::vector<Record> out;
-  runner.run_into(std::vector<Job>(jobs, sc.jobs.at(name)), out, false);
-  std::printf("%s %zu jobs %u hits\n", c.c_str(), jobs, out.back().hits);
+  const Job& job = sc.jobs.at(name);
+  runner.run_into(std::vector<Job>(jobs, job), out, false);
+  std::printf("%s %zu jobs %llu points %u hits\n", c.c_str(), jobs,
+              (unsigned long long)(runner.job_points(job) * jobs), out.back().hits);
   return 0;
 }
 

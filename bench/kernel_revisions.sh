@@ -32,7 +32,10 @@ for rev in "$@"; do
   fi
   ln -s "$dir/ref" "$dir/include/voxcd/ref"
   objs=()
-  for src in "$dir"/ref/{config,types,fixed,pipeline,float_model,timing,banks}.cpp "$dir"/ref/fast/*.cpp; do
+  # ref/sparse.cpp from the revision that brought sparse maps (pipeline.cpp reads their layout) on.
+  sparse=()
+  [[ -f "$dir/ref/sparse.cpp" ]] && sparse=("$dir/ref/sparse.cpp")
+  for src in "$dir"/ref/{config,types,fixed,pipeline,float_model,timing,banks}.cpp "${sparse[@]}" "$dir"/ref/fast/*.cpp; do
     extra=()
     [[ "$(basename "$src")" == fast.cpp ]] && extra=(-fno-trapping-math -ffp-contract=fast)
     obj="$dir/$(basename "$(dirname "$src")")_$(basename "$src" .cpp).o"

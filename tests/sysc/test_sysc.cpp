@@ -223,7 +223,9 @@ TEST(SyscTlm, SparseDevicesWithCycles) {
     if (c.config.banked())
       for (uint64_t n : bank_conflicts(c.config, c.memory, c.jobs, c.expected)) want += n;
     EXPECT_EQ(conflicts, want) << c.name << ": the CONFLICTS register";
-    if (c.config.banked()) EXPECT_GT(want, 0u) << c.name;
+    if (c.config.banked()) {
+      EXPECT_GT(want, 0u) << c.name;
+    }
   }
 }
 
