@@ -179,6 +179,53 @@ TEST(FastSparse, LargeSparseJobsSplitIntoPiecesInsideWords) {
   }
 }
 
+// Origins at the top of PW - 1 bits and steps that carry the points past PW bits: the generated points wrap as the
+// registers do (ref/sparse.h, shell_points), on every arithmetic path's coordinates; the wrapped points land in the
+// map.
+TEST(FastSparse, ShellPointsWrapAtPWBits) {
+  struct Widths {
+    int pw, pf, mw, mf, tw;
+    FastRunner::Path path;
+  };
+  for (const Widths& w : {Widths{24, 8, 18, 16, 48, FastRunner::Path::Double},
+                          Widths{28, 10, 24, 20, 56, FastRunner::Path::Int64},
+                          Widths{32, 16, 26, 24, 64, FastRunner::Path::Wide}}) {
+    DeviceConfig cfg = sparse_config(2);
+    const int pw = w.pw;
+    cfg.PW = w.pw, cfg.PF = w.pf, cfg.MW = w.mw, cfg.MF = w.mf, cfg.TW = w.tw;
+    const int64_t top = (int64_t{1} << (pw - 2)) - 1, u = int64_t{1} << cfg.PF;
+    const int up[3] = {1, 1, 1}, down[3] = {-2, -2, -2};
+    DeviceMemory mem;
+    const int none[3] = {0, 0, 0};
+    mem.shell = {origin_word(cfg, (int64_t{1} << (pw - 1)) - 2 * u, -(int64_t{1} << (pw - 1)), top - u),
+                 brick_word(cfg, ~uint64_t{0}, none), brick_word(cfg, ~uint64_t{0}, up),
+                 brick_word(cfg, 0x8000000000000001ull, down), brick_word(cfg, 0x00ff00ff00ff00ffull, down)};
+    mem.map.assign(1 << 13, 0x6666666666666666ull);  // states 2 and 1
+    Job j;
+    j.sparse = kSparseShell;
+    j.shell_count = uint32_t(mem.shell.size());
+    j.nx = j.ny = j.nz = 64;
+    j.hit_mask = 0b0110;
+    j.M[0][0] = j.M[1][1] = j.M[2][2] = int64_t{1} << cfg.MF;
+    // The first brick's points of x offset 2 and 3 are carried past PW bits (the sum wraps), and the second brick's
+    // origin too (the step wraps): a translation that brings the first wrapped point 8 voxels into the map takes
+    // those with it.
+    const std::vector<ShellWord> pts = job_points(cfg, mem.shell, j);
+    ASSERT_EQ(pts.size(), 64u + 64 + 2 + 32);
+    ASSERT_GT(pts[1].x, 0);
+    ASSERT_LT(pts[2].x, 0) << "x wrapped";
+    for (int i = 0; i < 3; ++i) j.t[i] = -(pts[2][i] << cfg.MF) + (int64_t{8} << cfg.TF());
+    const std::vector<Record> want = reference(cfg, mem, {j});
+    EXPECT_GE(want.size(), 64u) << "PW " << pw << ": the wrapped points must land in the map";
+    for (unsigned threads : {1u, 2u}) {
+      FastRunner fr(cfg, threads);
+      ASSERT_EQ(fr.path(), w.path) << "PW " << pw;
+      fr.load(mem);
+      expect_same(want, fr.run({j}), "PW " + std::to_string(pw) + " " + FastRunner::path_name(fr.path()));
+    }
+  }
+}
+
 // run_hits and run_piece: the hits of the stream, and a piece anywhere in a sparse shell gives the stream's hits of
 // its points.
 TEST(FastSparse, RunHitsAndPiecesOfSparseShells) {
