@@ -19,12 +19,15 @@
 //  - a sparse shell's points are generated from its words a block at a time (fast/sparse_shell.cpp) into the arrays
 //    the kernels read; its pieces and chunks are runs of points (a job's point k is its k-th generated point) and its
 //    slots, for the cycles, follow its words.
-//  - a 2-bit sparse map is read as the contract lays it out, the table word (its code and rank) and then the brick
-//    word, both by gathers on the double path (fast/sparse_kernel.cpp); one point at a time elsewhere.
-//  - a sparse distance map (SB <= 8, the double path) is read from a copy built at the first job on it, the table
-//    resolved and every brick in node quads (fast/detail/sparse_copy.h): one gather for the cell's entry, one for the
-//    sub-cell's eight nodes. It counts against node_copy_limit() with the dense maps' copies and is dropped like them;
-//    without it (the limit, SB = 16, other widths) the map is read one point at a time.
+//  - a sparse map on the double path is read from a copy built at the first job on it (fast/detail/sparse_copy.h): its
+//    table resolved, one 32-bit entry a cell (a 2-bit map's: the brick's first word, or the uniform state; a distance
+//    map's: the brick's level and its first node quad, every brick laid out in node quads). A lookup is two gathers:
+//    the cell's entry, then the brick word (2-bit, sixteen points a step) or the sub-cell's eight nodes (distance),
+//    software-pipelined so that a group's second read overlaps the next group's first (fast/sparse_kernel.cpp,
+//    fast/sparse_distance_kernel.cpp). The copies count against node_copy_limit() with the dense maps' and are
+//    dropped like them; without one (the limit; a distance map at SB = 16 or IW > 51) a 2-bit map is read as the
+//    contract lays it out (the table word, its code and rank, then the brick word, by gathers) and a distance map one
+//    point at a time, as every sparse map is on the int64 and wide paths (fast/sparse_reader.cpp).
 // Jobs are split into chunks of points spread over a thread pool; chunk results are merged in order, so the
 // stream is the same for any thread count. A batch of fewer than kParallelMinPoints points runs on the calling
 // thread.
@@ -90,9 +93,9 @@ class FastRunner {
   uint64_t map_words() const { return map_.size(); }
   const std::vector<ShellWord>& shell() const { return shell_; }
   const std::vector<uint64_t>& map() const { return map_; }
-  // The bytes the copies of distance maps in cell order may take together (default kNodeCopyLimit; 0: none, every
-  // map read from its parity banks), and the bytes they take now. Results never depend on either. Setting the
-  // limit drops the copies.
+  // The bytes the copies of maps may take together, dense distance maps' in cell order and sparse maps' with their
+  // tables resolved (default kNodeCopyLimit; 0: none, every map read as the contract lays it out), and the bytes they
+  // take now. Results never depend on either. Setting the limit drops the copies.
   static constexpr uint64_t kNodeCopyLimit = uint64_t{1} << 30;
   void set_node_copy_limit(uint64_t bytes);
   uint64_t node_copy_limit() const { return copy_limit_; }
