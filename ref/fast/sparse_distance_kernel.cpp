@@ -95,8 +95,8 @@ constexpr int kFloor = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
 // 3)) and voxels, and their cells' entries.
 struct Group {
   __mmask8 live, in;
-  __m512d a[3], s[3], v[3];  // acc * 2^-(TF - WB); its floor (level 0's steps); the voxel
-  __m256i iv[3], e;          // the voxel (int32; outside lanes 0); the entry
+  __m512d a[3];      // acc * 2^-(TF - WB)
+  __m256i iv[3], e;  // the voxel (int32; outside lanes 0); the entry
 };
 
 // The first half of a group: the transform, the voxels and the bounds, the cells and their entries by one gather.
@@ -108,19 +108,19 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline))
                         _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(g.live, y + k)),
                         _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(g.live, z + k))};
   const __m512d iW = _mm512_set1_pd(J.inv_weight), zero = _mm512_setzero_pd();
+  __m512d v[3];
   g.in = g.live;
   for (int i = 0; i < 3; ++i) {
     g.a[i] =
         _mm512_fmadd_pd(m[3 * i], p[0], _mm512_fmadd_pd(m[3 * i + 1], p[1], _mm512_fmadd_pd(m[3 * i + 2], p[2], t[i])));
-    g.s[i] = _mm512_roundscale_pd(g.a[i], kFloor);
-    g.v[i] = _mm512_roundscale_pd(_mm512_mul_pd(g.s[i], iW), kFloor);
-    g.in = _mm512_mask_cmp_pd_mask(g.in, g.v[i], zero, _CMP_GE_OQ);
-    g.in = _mm512_mask_cmp_pd_mask(g.in, g.v[i], nn[i], _CMP_LT_OQ);
+    v[i] = _mm512_roundscale_pd(_mm512_mul_pd(_mm512_roundscale_pd(g.a[i], kFloor), iW), kFloor);
+    g.in = _mm512_mask_cmp_pd_mask(g.in, v[i], zero, _CMP_GE_OQ);
+    g.in = _mm512_mask_cmp_pd_mask(g.in, v[i], nn[i], _CMP_LT_OQ);
   }
   const __m128i bl = _mm_cvtsi32_si128(J.bl);
   __m256i c[3];
   for (int i = 0; i < 3; ++i) {
-    g.iv[i] = _mm512_maskz_cvttpd_epi32(g.in, g.v[i]);
+    g.iv[i] = _mm512_maskz_cvttpd_epi32(g.in, v[i]);
     c[i] = _mm256_srl_epi32(g.iv[i], bl);
   }
   const __m256i cell = _mm256_add_epi32(
@@ -145,8 +145,8 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline))
   if (_mm256_testz_si256(level, level)) {  // every brick of level 0: the steps and voxels of the first half
     n = _mm256_set1_epi32(J.edge[0]);
     const __m256i mask = _mm256_set1_epi32(J.edge[0] - 1);
-    for (int i = 0; i < 3; ++i) {
-      f[i] = _mm512_fnmadd_pd(gr.v[i], W, gr.s[i]);
+    for (int i = 0; i < 3; ++i) {  // f = floor(a) - 2^WB voxel
+      f[i] = _mm512_fnmadd_pd(_mm512_cvtepi32_pd(gr.iv[i]), W, _mm512_roundscale_pd(gr.a[i], kFloor));
       g[i] = _mm512_sub_pd(W, f[i]);
       sub[i] = _mm256_and_si256(gr.iv[i], mask);
     }
@@ -172,9 +172,9 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline))
   const __mmask8 h = _mm512_mask_cmp_pd_mask(gr.in, d, _mm512_set1_pd(J.biased_threshold), _CMP_LE_OQ);
   _mm_mask_storeu_epi8(hit, gr.live, _mm512_cvtepi64_epi8(_mm512_maskz_set1_epi64(h, 1)));
   if (h == 0) return 0;
-  _mm256_mask_storeu_epi32(cx, h, _mm512_cvttpd_epi32(gr.v[0]));
-  _mm256_mask_storeu_epi32(cy, h, _mm512_cvttpd_epi32(gr.v[1]));
-  _mm256_mask_storeu_epi32(cz, h, _mm512_cvttpd_epi32(gr.v[2]));
+  _mm256_mask_storeu_epi32(cx, h, gr.iv[0]);
+  _mm256_mask_storeu_epi32(cy, h, gr.iv[1]);
+  _mm256_mask_storeu_epi32(cz, h, gr.iv[2]);
   _mm512_mask_storeu_pd(dist, h, _mm512_sub_pd(d, _mm512_set1_pd(J.bias)));
   return uint32_t(__builtin_popcount(h));
 }
