@@ -73,7 +73,7 @@ int64_t SparseReader::distance(const int64_t idx[3], const uint64_t frac[3]) con
   const int level = cell(idx, code, first);
   if (level < 0) {
     const int64_t q = code == kCodeDeep ? -(int64_t{1} << (sb_ - 1)) : (int64_t{1} << (sb_ - 1)) - 1;
-    return int64_t(__int128(q) << (3 * wb_));  // fits IW <= 64 bits
+    return int64_t(__int128(q) * (__int128(1) << (3 * wb_)));  // fits IW <= 64 bits
   }
   // The sub-cell: the voxel within the cell, then the fraction's top `level` bits; the weights the next WB bits.
   const uint64_t m = (uint64_t{1} << bl_) - 1, wmask = (uint64_t{1} << wb_) - 1;

@@ -214,7 +214,7 @@ TEST(FastSparse, ShellPointsWrapAtPWBits) {
     ASSERT_EQ(pts.size(), 64u + 64 + 2 + 32);
     ASSERT_GT(pts[1].x, 0);
     ASSERT_LT(pts[2].x, 0) << "x wrapped";
-    for (int i = 0; i < 3; ++i) j.t[i] = -(pts[2][i] << cfg.MF) + (int64_t{8} << cfg.TF());
+    for (int i = 0; i < 3; ++i) j.t[i] = -pts[2][i] * (int64_t{1} << cfg.MF) + (int64_t{8} << cfg.TF());
     const std::vector<Record> want = reference(cfg, mem, {j});
     EXPECT_GE(want.size(), 64u) << "PW " << pw << ": the wrapped points must land in the map";
     for (unsigned threads : {1u, 2u}) {
@@ -304,7 +304,7 @@ TEST(FastSparse, DistanceCopyCodesRewritesAndLimit) {
     pose.t[0] = 16 - 16 * (c - s), pose.t[1] = 16 - 16 * (s + c), pose.t[2] = 0.1 * k;
     quantize_pose(cfg, pose, j);
     j.tag = uint32_t(k);
-    j.threshold = (int64_t(k) * 20 - 60) << (3 * cfg.WB);
+    j.threshold = (int64_t(k) * 20 - 60) * (int64_t{1} << (3 * cfg.WB));
     j.brick_units = k == 7 ? p.brick_units / 2 : p.brick_units;  // the later bricks past the units: code 0
     j.mode = k % 3 == 1 ? Mode::First : k % 3 == 2 ? Mode::Count : Mode::All;
     jobs.push_back(j);

@@ -53,7 +53,7 @@ std::vector<ShellWord> cloud(const DeviceConfig& cfg, std::mt19937_64& rng, uint
   for (size_t k = 0; k < count; ++k) {
     ShellWord w{int64_t(std::ldexp(u(rng), cfg.PF)), int64_t(std::ldexp(u(rng), cfg.PF)),
                 int64_t(std::ldexp(u(rng), cfg.PF))};
-    if (k % 7 == 0) w.x = int64_t(std::lround(u(rng))) << cfg.PF;  // on a voxel face
+    if (k % 7 == 0) w.x = int64_t(std::lround(u(rng))) * (int64_t{1} << cfg.PF);  // on a voxel face
     out.push_back(w);
   }
   return out;
