@@ -154,11 +154,18 @@ void FastRunner::run_distance_vector(const Job& j, const detail::NodeQuads* quad
   int32_t cx[kDistanceBlock], cy[kDistanceBlock], cz[kDistanceBlock];
   double dist[kDistanceBlock];
   const detail::DistanceBlockFn kernel = quads ? detail::distance_quad_block() : detail::distance_block();
-  detail::for_blocks(cfg_, shell_arrays(), j, begin, end, at, detail::PointBlocks::kInt32, kDistanceBlock,
-                     [&](uint32_t b, size_t n, const detail::BlockCoords& c) {
-                       const uint32_t count = kernel(c.x, c.y, c.z, n, J, hit, cx, cy, cz, dist);
-                       return detail::emit_distances(j, b, n, count, hit, cx, cy, cz, dist, hits, hit_count);
-                     });
+  if (j.sparse_shell())
+    return detail::sparse_shell_blocks(cfg_, shell_arrays(), j, begin, end, at, detail::PointBlocks::kInt32,
+                                       kDistanceBlock, [&](uint32_t b, size_t n, const detail::BlockCoords& c) {
+                                         const uint32_t count = kernel(c.x, c.y, c.z, n, J, hit, cx, cy, cz, dist);
+                                         return detail::emit_distances(j, b, n, count, hit, cx, cy, cz, dist, hits,
+                                                                       hit_count);
+                                       });
+  for (uint32_t b = begin; b < end; b += uint32_t(kDistanceBlock)) {  // a dense shell's words as they are
+    const size_t n = std::min<size_t>(kDistanceBlock, end - b), base = size_t(j.shell_base) + b;
+    const uint32_t count = kernel(&sx_[base], &sy_[base], &sz_[base], n, J, hit, cx, cy, cz, dist);
+    if (detail::emit_distances(j, b, n, count, hit, cx, cy, cz, dist, hits, hit_count)) return;
+  }
 }
 
 void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,

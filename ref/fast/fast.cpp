@@ -338,6 +338,10 @@ uint64_t FastRunner::walk_sparse_shell(const Job& j, std::vector<detail::ShellCu
   return walk.points;
 }
 
+const detail::ShellCursor* FastRunner::cursor_of(const Piece& p) const {
+  return p.at == SIZE_MAX ? nullptr : piece_at_.data() + p.at;
+}
+
 uint64_t FastRunner::job_points(const Job& job) const {
   return job.sparse_shell() ? walk_sparse_shell(job, nullptr, nullptr) : job.shell_count;
 }
@@ -394,19 +398,25 @@ size_t FastRunner::make_pieces(const std::vector<Job>& jobs) {
   for (size_t j = 0; j < jobs.size(); ++j) {
     first_piece_[j] = pieces_.size();
     const Job& job = jobs[j];
-    cursors.clear();
-    if (job.sparse_shell() && uint64_t(job.shell_base) + job.shell_count <= shell_.size())
-      walk_sparse_shell(job, &cursors, &batch_slots_[j]);
-    else
-      batch_slots_[j] = job.sparse_shell() ? JobSlots{} : voxcd::job_slots(cfg_, job);
-    const uint32_t n = uint32_t(batch_slots_[j].points);
+    JobSlots& slots = batch_slots_[j];
+    if (!job.sparse_shell()) {  // job_slots(cfg, job), in place: a batch may hold many small jobs
+      slots.lanes = uint64_t(cfg_.LANES), slots.points = job.shell_count;
+      slots.groups = job.shell_count == 0 ? 1 : (slots.points + slots.lanes - 1) / slots.lanes;
+      slots.starts.clear();
+    } else if (uint64_t(job.shell_base) + job.shell_count <= shell_.size()) {
+      cursors.clear();
+      walk_sparse_shell(job, &cursors, &slots);
+    } else {
+      slots = JobSlots{};
+    }
+    const uint32_t n = uint32_t(slots.points);
     points += n;
     for (uint32_t b = 0; b < n; b += uint32_t(kChunk)) {
       Piece& p = pieces_.emplace_back();
       p.job = j;
       p.begin = b;
       p.end = uint32_t(std::min<size_t>(n, b + kChunk));
-      piece_at_.push_back(job.sparse_shell() ? cursors[b / kChunk] : detail::ShellCursor{});
+      if (job.sparse_shell()) p.at = piece_at_.size(), piece_at_.push_back(cursors[b / kChunk]);
     }
   }
   first_piece_[jobs.size()] = pieces_.size();
@@ -424,7 +434,7 @@ void FastRunner::run_serial(const std::vector<Job>& jobs, std::vector<Record>& o
     uint32_t hits = 0;
     for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
       serial_hits_.clear();
-      run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, serial_hits_, hits, &piece_at_[i]);
+      run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, serial_hits_, hits, cursor_of(pieces_[i]));
       append_records(serial_hits_, 0, jobs[j].tag, out);
       if (jobs[j].mode == Mode::First && hits) break;
     }
@@ -486,7 +496,7 @@ void FastRunner::run_tasks(const std::vector<Job>& jobs, bool cycles, bool valid
       p.first = hits.size();
       p.count = 0;
       cols.clear();
-      run_chunk(j, p.begin, p.end, cols, p.count, &piece_at_[i]);
+      run_chunk(j, p.begin, p.end, cols, p.count, cursor_of(p));
       append_records(cols, 0, j.tag, hits);
       p.records = hits.size() - p.first;
       if (cycles) p.sum = job_hits(batch_slots_[p.job], j, p.job, hits.data() + p.first, p.records);
@@ -619,52 +629,91 @@ detail::ShellArrays FastRunner::shell_arrays() const {
   return a;
 }
 
-void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& hit_count,
-                           const detail::ShellCursor* at) const {
-  if (j.sparse_map()) return run_sparse_chunk(j, begin, end, hits, hit_count, at);
-  if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count, at);
+namespace {
+
+// The 2-bit lookups of a block of a job's points on a dense map, on every path: the fused kernel (transform to state in
+// one loop) where the doubles are exact and the map below 2^31 voxels, else the linear indices (int64 or ref/'s
+// 128-bit stages) and then the fetch. Returns true when FIRST has its hit.
+struct TwoBitBlocks {
+  const DeviceConfig& cfg;
+  const Job& j;
+  FastRunner::Path path;
+  bool fused;
+  int slot_bits;
+  const uint64_t* map;
+  HitColumns& hits;
+  uint32_t& hit_count;
+  double ms[9], ts[3], dims[3];
   int64_t lin[kBlock];
   int32_t cx[kBlock], cy[kBlock], cz[kBlock];
   uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit
-  const bool fused = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
-  // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is every
-  // product and sum after it (multiples of 2^-TF below 2^(53-TF)).
-  double ms[9], ts[3];
-  const double dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
-  if (fused) {
-    const double scale = tf_scale_;
-    for (int i = 0; i < 9; ++i) ms[i] = double(j.M[i / 3][i % 3]) * scale;
-    for (int i = 0; i < 3; ++i) ts[i] = double(j.t[i]) * scale;
+
+  TwoBitBlocks(const DeviceConfig& c, const Job& job, FastRunner::Path p, double tf_scale, int bits,
+               const uint64_t* memory, HitColumns& h, uint32_t& count)
+      : cfg(c), j(job), path(p), fused(p == FastRunner::Path::Double && job.voxels() < (uint64_t{1} << 31)),
+        slot_bits(bits), map(memory + job.map_base), hits(h), hit_count(count),
+        dims{double(job.nx), double(job.ny), double(job.nz)} {
+    // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is every
+    // product and sum after it (multiples of 2^-TF below 2^(53-TF)).
+    if (!fused) return;
+    for (int i = 0; i < 9; ++i) ms[i] = double(job.M[i / 3][i % 3]) * tf_scale;
+    for (int i = 0; i < 3; ++i) ts[i] = double(job.t[i]) * tf_scale;
   }
-  const uint64_t* map = map_.data() + j.map_base;
-  // Points [b, b + n), true when FIRST has its hit.
-  auto block = [&](uint32_t b, size_t n, const detail::BlockCoords& c) {
+  // The forms of the points the path reads (detail::PointBlocks::Need).
+  unsigned need() const {
+    return fused ? detail::PointBlocks::kInt32
+                 : path == FastRunner::Path::Wide ? detail::PointBlocks::kWords : detail::PointBlocks::kInt64;
+  }
+
+  bool operator()(uint32_t b, size_t n, const detail::BlockCoords& c) {
     if (fused) {
-      const uint32_t count =
-          block_fetch.fn(c.x, c.y, c.z, n, ms, ts, dims, map, slot_bits_, j.hit_mask, cx, cy, cz, state);
+      const uint32_t count = block_fetch.fn(c.x, c.y, c.z, n, ms, ts, dims, map, slot_bits, j.hit_mask, cx, cy, cz,
+                                            state);
       if (count == 0) return false;
       if (j.mode == Mode::Count) return hit_count += count, false;
       return emit_cells(j, b, n, cx, cy, cz, state, count, hits, hit_count);
     }
-    switch (path_) {
-      case Path::Double:  // a map of 2^31 voxels or more: the accumulator fits 53 bits, so int64 is exact
-      case Path::Int64: block_int64(c.ix, c.iy, c.iz, n, j, cfg_.TF(), lin); break;
-      case Path::Wide:
-        for (size_t k = 0; k < n; ++k) {
-          const Located l = locate(cfg_, j, transform(cfg_, j, c.w[k]));
-          lin[k] = l.inside ? int64_t(l.linear) : -1;
-        }
-        break;
+    if (path == FastRunner::Path::Wide) {
+      for (size_t k = 0; k < n; ++k) {
+        const Located l = locate(cfg, j, transform(cfg, j, c.w[k]));
+        lin[k] = l.inside ? int64_t(l.linear) : -1;
+      }
+    } else {  // int64, or the double path's maps of 2^31 voxels or more (the accumulator fits 53 bits)
+      block_int64(c.ix, c.iy, c.iz, n, j, cfg.TF(), lin);
     }
     // Then walk only the hits.
-    const uint32_t count = fetch_states(map, slot_bits_, j.hit_mask, lin, n, state);
+    const uint32_t count = fetch_states(map, slot_bits, j.hit_mask, lin, n, state);
     if (count == 0) return false;
     if (j.mode == Mode::Count) return hit_count += count, false;
     return emit_hits(j, b, n, lin, state, count, hits, hit_count);
-  };
-  const unsigned need = fused ? detail::PointBlocks::kInt32
-                              : path_ == Path::Wide ? detail::PointBlocks::kWords : detail::PointBlocks::kInt64;
-  detail::for_blocks(cfg_, shell_arrays(), j, begin, end, at, need, kBlock, block);
+  }
+};
+
+}  // namespace
+
+void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& hit_count,
+                           const detail::ShellCursor* at) const {
+  if (j.sparse_map()) return run_sparse_chunk(j, begin, end, hits, hit_count, at);
+  if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count, at);
+  if (j.sparse_shell()) return run_sparse_shell_chunk(j, begin, end, hits, hit_count, at);
+  TwoBitBlocks block(cfg_, j, path_, tf_scale_, slot_bits_, map_.data(), hits, hit_count);
+  // A dense shell's words where the path keeps them (a batch may hold many small jobs: nothing more per block).
+  detail::BlockCoords c;
+  size_t n = 0;
+  for (uint32_t b = begin; b < end; b += uint32_t(n)) {
+    n = std::min<size_t>(kBlock, end - b);
+    const size_t base = size_t(j.shell_base) + b;
+    if (block.fused) c.x = &sx_[base], c.y = &sy_[base], c.z = &sz_[base];
+    else if (path_ == Path::Wide) c.w = &shell_[base];
+    else c.ix = &ix_[base], c.iy = &iy_[base], c.iz = &iz_[base];
+    if (block(b, n, c)) return;
+  }
+}
+
+void FastRunner::run_sparse_shell_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,
+                                        uint32_t& hit_count, const detail::ShellCursor* at) const {
+  TwoBitBlocks block(cfg_, j, path_, tf_scale_, slot_bits_, map_.data(), hits, hit_count);
+  detail::sparse_shell_blocks(cfg_, shell_arrays(), j, begin, end, at, block.need(), kBlock, block);
 }
 
 }  // namespace voxcd

@@ -138,7 +138,9 @@ class FastRunner {
     size_t first = 0, records = 0;
     size_t out = 0;        // where its records go in the stream (those the stream keeps)
     JobHits sum;           // of its records, for the timing
+    size_t at = SIZE_MAX;  // a sparse shell's: its cursor in piece_at_
   };
+  const detail::ShellCursor* cursor_of(const Piece& p) const;
   struct alignas(64) TaskResult {
     std::vector<Record> hits;  // the hit records of its pieces, in order
     HitColumns columns;        // a piece's hits as the kernels write them
@@ -166,6 +168,9 @@ class FastRunner {
   // its first word.
   void run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
                  const detail::ShellCursor* at = nullptr) const;
+  // run_chunk of a sparse shell on a dense 2-bit map (its points generated a block at a time).
+  void run_sparse_shell_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                              const detail::ShellCursor* at) const;
   // run_chunk on a distance voxmap (SB > 2), in fast/distance.cpp: the vector kernel where distance_vector(j), else
   // one point at a time.
   void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
@@ -203,8 +208,8 @@ class FastRunner {
   std::vector<int32_t> sx_, sy_, sz_;
   std::vector<int64_t> ix_, iy_, iz_;
   std::vector<Piece> pieces_;
-  // Per piece, where a sparse shell's points begin (fast/detail/sparse_shell.h); per job of the batch, its slots (a
-  // sparse shell's from its words) and its points.
+  // Where the pieces of sparse shells begin (fast/detail/sparse_shell.h; Piece::at); per job of the batch, its slots
+  // (a sparse shell's from its words) and its points.
   std::vector<detail::ShellCursor> piece_at_;
   std::vector<JobSlots> batch_slots_;
   std::vector<size_t> first_piece_;  // per job, and one past the last
