@@ -18,7 +18,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 count() {  # CASE JOBS -> "instructions points"
   valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" "$bin" --count "$1" "$2" >"$tmp/out" 2>"$tmp/err"
-  echo "$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/err") $(awk '{ print $5 }' "$tmp/out")"
+  echo "$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/err") $(awk '{ print $4 }' "$tmp/out")"
 }
 for kind in 2bit distance; do
   for name in lookup-surface-dense lookup-surface-sparse lookup-box-dense lookup-box-sparse \
@@ -31,4 +31,6 @@ for kind in 2bit distance; do
       'BEGIN { printf "%s %.2f\n", c, (b - a) / (pb - pa) }' >>"$tmp/ir"
   done
 done
-"$bin" --repeats "$repeats" --ir "$tmp/ir" 2>"$tmp/progress"
+# The table's first line names this script's command (bench_sparse's own names a temporary file).
+"$bin" --repeats "$repeats" --ir "$tmp/ir" 2>"$tmp/progress" |
+  sed "1s|\`build/bench_sparse --repeats $repeats --ir [^\`]*\`|\`bash bench/sparse.sh $build $repeats\`|"

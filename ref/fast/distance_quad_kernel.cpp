@@ -116,22 +116,6 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t quad_
   return count;
 }
 
-// The hits of mask h among four points: their cells (c) and distances (d less the bias); returns their number.
-__attribute__((target("avx2,fma"))) inline uint32_t put_hits4(int h, __m256d d, const __m256d* c, double bias,
-                                                               int32_t* cx, int32_t* cy, int32_t* cz, double* dist) {
-  alignas(32) double dd[4];
-  alignas(16) int32_t xs[3][4];
-  _mm256_store_pd(dd, d);
-  for (int i = 0; i < 3; ++i) _mm_store_si128(reinterpret_cast<__m128i*>(xs[i]), _mm256_cvttpd_epi32(c[i]));
-  uint32_t count = 0;
-  for (int i = 0; i < 4; ++i) {
-    if (!(h >> i & 1)) continue;
-    cx[i] = xs[0][i], cy[i] = xs[1][i], cz[i] = xs[2][i], dist[i] = dd[i] - bias;
-    ++count;
-  }
-  return count;
-}
-
 // Four points a step, the node words by four scalar loads (AVX2's gather is no faster here and slower on some
 // processors); a byte in a 64-bit lane becomes a double as the bits of 2^52 + byte, less 2^52. The tail (fewer than
 // four) one at a time.

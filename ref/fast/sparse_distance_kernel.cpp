@@ -73,23 +73,108 @@ uint32_t brick_base(const int32_t* x, const int32_t* y, const int32_t* z, size_t
 }
 
 #ifdef VOXCD_BRICK_X86
-__attribute__((target("arch=haswell"), always_inline)) inline uint32_t point_avx2(VOXCD_BRICK_POINT_ARGS)
-    VOXCD_BRICK_POINT_BODY
-
-__attribute__((target("arch=haswell"))) uint32_t brick_avx2(const int32_t* x, const int32_t* y, const int32_t* z,
-                                                             size_t n, const BrickQuadJob& J, uint8_t* hit,
-                                                             int32_t* cx, int32_t* cy, int32_t* cz, double* dist) {
-  uint32_t count = 0;
-  for (size_t k = 0; k < n; ++k) count += point_avx2(x, y, z, k, J, hit, cx, cy, cz, dist);
-  return count;
-}
-
 // GCC 12's intrinsics fill unused lanes from a self-initialised "undefined" vector, which -Wmaybe-uninitialized
 // reports once inlined here.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 constexpr int kFloor = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+
+// Four points' quad indices and weights (f, g = 2^WB - f) from their entries (AVX2; their cells' voxels c and the
+// accumulators a = acc * 2^-(TF - WB)): every brick of level 0 without the level arithmetic, else per lane.
+__attribute__((target("avx2,fma"), always_inline)) inline __m128i quads4(const BrickQuadJob& J, const uint32_t (&e)[4],
+                                                                         const __m256d (&a)[3], const __m256d (&c)[3],
+                                                                         __m128i (&iv)[3], __m256d (&f)[3],
+                                                                         __m256d (&g)[3]) {
+  const __m256d W = _mm256_set1_pd(J.weight), iW = _mm256_set1_pd(J.inv_weight);
+  const __m128i level = _mm_srli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(e)), 30);
+  __m128i n = _mm_set1_epi32(J.edge[0]), sub[3];
+  if (_mm_testz_si128(level, level)) {
+    for (int i = 0; i < 3; ++i) {
+      f[i] = _mm256_fnmadd_pd(c[i], W, _mm256_floor_pd(a[i]));
+      sub[i] = _mm_and_si128(iv[i], _mm_set1_epi32(J.edge[0] - 1));
+    }
+  } else {
+    const uint32_t l[4] = {e[0] >> 30, e[1] >> 30, e[2] >> 30, e[3] >> 30};
+    const __m256d scale = _mm256_setr_pd(J.level_scale[l[0]], J.level_scale[l[1]], J.level_scale[l[2]],
+                                         J.level_scale[l[3]]);
+    n = _mm_setr_epi32(J.edge[l[0]], J.edge[l[1]], J.edge[l[2]], J.edge[l[3]]);
+    for (int i = 0; i < 3; ++i) {
+      const __m256d sl = _mm256_floor_pd(_mm256_mul_pd(a[i], scale)), cl = _mm256_floor_pd(_mm256_mul_pd(sl, iW));
+      f[i] = _mm256_fnmadd_pd(cl, W, sl);
+      sub[i] = _mm_and_si128(_mm256_cvttpd_epi32(cl), _mm_sub_epi32(n, _mm_set1_epi32(1)));
+    }
+  }
+  for (int i = 0; i < 3; ++i) g[i] = _mm256_sub_pd(W, f[i]);
+  const __m128i off = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(e)), _mm_set1_epi32(0x3fffffff));
+  return _mm_add_epi32(_mm_add_epi32(off, sub[0]),
+                       _mm_mullo_epi32(_mm_add_epi32(n, _mm_set1_epi32(1)),
+                                       _mm_add_epi32(sub[1], _mm_mullo_epi32(n, sub[2]))));
+}
+
+// Four points a step, both reads by scalar loads (AVX2's gather is no faster here and slower on some processors);
+// the tail (fewer than four) one at a time.
+__attribute__((target("avx2,fma"))) uint32_t brick_avx2(const int32_t* x, const int32_t* y, const int32_t* z, size_t n,
+                                                        const BrickQuadJob& J, uint8_t* hit, int32_t* cx, int32_t* cy,
+                                                        int32_t* cz, double* dist) {
+  const __m256d iW = _mm256_set1_pd(J.inv_weight), zero = _mm256_setzero_pd(), thr = _mm256_set1_pd(J.biased_threshold);
+  const __m256i magic = _mm256_set1_epi64x(0x4330000000000000ll);  // the bits of 2^52
+  const __m128i bl = _mm_cvtsi32_si128(J.bl);
+  __m256i sel[8];
+  for (int b = 0; b < 8; ++b) sel[b] = _mm256_set_epi64x(shuffle_hi(b), shuffle_lo(b), shuffle_hi(b), shuffle_lo(b));
+  const char* quads = reinterpret_cast<const char*>(J.quads);
+  uint32_t count = 0;
+  size_t k = 0;
+  for (; k + 4 <= n; k += 4) {
+    __m256d a[3], c[3], in = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    const __m256d p[3] = {_mm256_cvtepi32_pd(_mm_loadu_si128(reinterpret_cast<const __m128i*>(x + k))),
+                          _mm256_cvtepi32_pd(_mm_loadu_si128(reinterpret_cast<const __m128i*>(y + k))),
+                          _mm256_cvtepi32_pd(_mm_loadu_si128(reinterpret_cast<const __m128i*>(z + k)))};
+    for (int i = 0; i < 3; ++i) {
+      a[i] = _mm256_fmadd_pd(_mm256_set1_pd(J.m[3 * i]), p[0],
+                             _mm256_fmadd_pd(_mm256_set1_pd(J.m[3 * i + 1]), p[1],
+                                             _mm256_fmadd_pd(_mm256_set1_pd(J.m[3 * i + 2]), p[2],
+                                                             _mm256_set1_pd(J.t[i]))));
+      c[i] = _mm256_floor_pd(_mm256_mul_pd(_mm256_floor_pd(a[i]), iW));
+      in = _mm256_and_pd(in, _mm256_and_pd(_mm256_cmp_pd(c[i], zero, _CMP_GE_OQ),
+                                           _mm256_cmp_pd(c[i], _mm256_set1_pd(J.n[i]), _CMP_LT_OQ)));
+    }
+    if (_mm256_movemask_pd(in) == 0) {
+      std::memset(hit + k, 0, 4);
+      continue;
+    }
+    __m128i iv[3];
+    for (int i = 0; i < 3; ++i) c[i] = _mm256_and_pd(c[i], in), iv[i] = _mm256_cvttpd_epi32(c[i]);  // outside: 0
+    alignas(16) int32_t cell[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(cell),
+                    _mm_add_epi32(_mm_srl_epi32(iv[0], bl),
+                                  _mm_mullo_epi32(_mm_set1_epi32(J.cx),
+                                                  _mm_add_epi32(_mm_srl_epi32(iv[1], bl),
+                                                                _mm_mullo_epi32(_mm_set1_epi32(J.cy),
+                                                                                _mm_srl_epi32(iv[2], bl))))));
+    const uint32_t e[4] = {J.entries[cell[0]], J.entries[cell[1]], J.entries[cell[2]], J.entries[cell[3]]};
+    __m256d f[3], g[3];
+    alignas(16) int32_t q[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(q), quads4(J, e, a, c, iv, f, g));
+    int64_t wv[4];
+    for (int i = 0; i < 4; ++i) std::memcpy(&wv[i], quads + 4 * size_t(uint32_t(q[i])), 8);
+    const __m256i w = _mm256_set_epi64x(wv[3], wv[2], wv[1], wv[0]);
+    __m256d u[8];
+#pragma GCC unroll 8
+    for (int b = 0; b < 8; ++b)
+      u[b] = _mm256_sub_pd(_mm256_castsi256_pd(_mm256_or_si256(_mm256_shuffle_epi8(w, sel[b]), magic)),
+                           _mm256_castsi256_pd(magic));
+    const __m256d a0 = step256(u[0], u[4], f[0], g[0]), a1 = step256(u[1], u[5], f[0], g[0]);
+    const __m256d a2 = step256(u[2], u[6], f[0], g[0]), a3 = step256(u[3], u[7], f[0], g[0]);
+    const __m256d d = step256(step256(a0, a1, f[1], g[1]), step256(a2, a3, f[1], g[1]), f[2], g[2]);
+    const int h = _mm256_movemask_pd(_mm256_and_pd(in, _mm256_cmp_pd(d, thr, _CMP_LE_OQ)));
+    for (int i = 0; i < 4; ++i) hit[k + size_t(i)] = uint8_t(h >> i & 1);
+    if (h) count += put_hits4(h, d, c, J.bias, cx + k, cy + k, cz + k, dist + k);
+  }
+  for (; k < n; ++k) count += point_base(x, y, z, k, J, hit, cx, cy, cz, dist);
+  return count;
+}
+
 
 // One group of eight points between the two reads: which are live and inside, their finest steps (acc >> (TF - WB -
 // 3)) and voxels, and their cells' entries.

@@ -1,4 +1,5 @@
-// The 2-bit sparse map's block kernel (detail/sparse_kernel.h): transform, floor and bounds as the dense kernel does,
+// The 2-bit sparse map's block kernel on the table itself (detail/sparse_kernel.h; without the map's copy, whose
+// kernels are fast/sparse_entry_kernel.cpp's): transform, floor and bounds as the dense kernel does,
 // then the table read and the brick read of docs/contract.md, "Sparse voxmaps and shells": the cell's table word, its
 // code, its brick's unit (the word's rank plus the bricks among the codes before the cell: code 3 is the one code whose
 // two bits are both set, so those are counted by a popcount of w & w >> 1 below the cell), a reference past the job's
@@ -7,7 +8,6 @@
 #include <cmath>
 
 #include "voxcd/ref/fast/detail/distance_kernel.h"
-#include "voxcd/ref/fast/detail/sparse_copy.h"
 #include "voxcd/ref/fast/detail/sparse_kernel.h"
 #include "voxcd/ref/sparse.h"
 
@@ -53,11 +53,6 @@ inline uint32_t sparse_state_of(const SparseJob& S, int32_t x, int32_t y, int32_
   const int32_t t = (x >> S.bl) + S.cx * ((y >> S.bl) + S.cy * (z >> S.bl));
   const int32_t b = (1 << S.bl) - 1;
   const uint32_t i = uint32_t((x & b) | (y & b) << S.bl | (z & b) << (2 * S.bl));
-  if (S.entries) {
-    const uint32_t e = S.entries[t];
-    if (e & kUniformCell) return e & 3u;
-    return uint32_t(S.map[e + (i >> S.spw_bits)] >> (2 * (i & ((1u << S.spw_bits) - 1)))) & 3u;
-  }
   const uint64_t w = S.map[S.table + uint32_t(t >> S.cpw_bits)];
   const int s = 2 * (t & ((1 << S.cpw_bits) - 1));
   const uint32_t code = uint32_t(w >> s) & 3u;
@@ -196,130 +191,21 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t spars
   }
   return count;
 }
-// The entry kernel's constants: shifts and masks of the layout. A state is read from the 32-bit half of its word:
-// half 2 w + (i >> 4) of a 64-bit word w (i the voxel's index in its brick, 16 states a half), or the low half 2 w of a
-// narrower word (MEMW / 2 <= 16 states).
-struct EntryConsts {
-  __m128i bl, bl2, word_shift, half_shift;
-  __m512i cx, cy, brick_mask, slot_mask, three, hit_mask, one, four;
-};
-
-EntryConsts entry_consts(const SparseJob& S) __attribute__((target("avx512f")));
-EntryConsts entry_consts(const SparseJob& S) {
-  const bool halves = S.spw_bits == 5;  // a 64-bit word holds 32 states: two halves of 16
-  return {_mm_cvtsi32_si128(S.bl),
-          _mm_cvtsi32_si128(2 * S.bl),
-          _mm_cvtsi32_si128(halves ? 4 : S.spw_bits),
-          _mm_cvtsi32_si128(halves ? 0 : 1),
-          _mm512_set1_epi32(S.cx),
-          _mm512_set1_epi32(S.cy),
-          _mm512_set1_epi32((1 << S.bl) - 1),
-          _mm512_set1_epi32(halves ? 15 : (1 << S.spw_bits) - 1),
-          _mm512_set1_epi32(3),
-          _mm512_set1_epi32(int32_t(S.hit_mask)),
-          _mm512_set1_epi32(1),
-          _mm512_set1_epi32(4)};
-}
-
-// One group of sixteen points between the two reads: which are live and inside, their voxels and their cells' entries.
-struct Group {
-  __mmask16 live, in;
-  __m512i v[3], e;
-};
-
-// The first half of a group: the transform and the bounds in two halves of eight doubles (as the dense kernel,
-// ref/fast/fast.cpp's block_avx512), the voxels and the cells in 32-bit lanes, the entries by one gather.
-__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline)) inline void group_entries(
-    const SparseJob& S, const EntryConsts& K, const __m512d (&m)[9], const __m512d (&t)[3], const __m512d (&nn)[3],
-    const int32_t* x, const int32_t* y, const int32_t* z, size_t k, size_t n, Group& g) {
-  g.live = n - k >= 16 ? __mmask16(0xffff) : __mmask16((1u << (n - k)) - 1);
-  g.in = 0;
-  const __m512d zero = _mm512_setzero_pd();
-  for (int h = 0; h < 2; ++h) {
-    const __mmask8 lh = __mmask8(g.live >> (8 * h));
-    const __m512d px = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(lh, x + k + 8 * h));
-    const __m512d py = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(lh, y + k + 8 * h));
-    const __m512d pz = _mm512_cvtepi32_pd(_mm256_maskz_loadu_epi32(lh, z + k + 8 * h));
-    __m512d a[3];
-    __mmask8 ih = lh;
-    for (int i = 0; i < 3; ++i) {
-      a[i] = _mm512_fmadd_pd(m[3 * i], px, _mm512_fmadd_pd(m[3 * i + 1], py, _mm512_fmadd_pd(m[3 * i + 2], pz, t[i])));
-      ih = _mm512_mask_cmp_pd_mask(ih, a[i], zero, _CMP_GE_OQ);
-      ih = _mm512_mask_cmp_pd_mask(ih, a[i], nn[i], _CMP_LT_OQ);
-    }
-    g.in |= __mmask16(ih) << (8 * h);
-    for (int i = 0; i < 3; ++i)  // inside lanes: truncation is the floor; the others voxel 0
-      g.v[i] = h == 0 ? _mm512_castsi256_si512(_mm512_maskz_cvttpd_epi32(ih, a[i]))
-                      : _mm512_inserti64x4(g.v[i], _mm512_maskz_cvttpd_epi32(ih, a[i]), 1);
-  }
-  const __m512i c = _mm512_add_epi32(
-      _mm512_srl_epi32(g.v[0], K.bl),
-      _mm512_mullo_epi32(K.cx, _mm512_add_epi32(_mm512_srl_epi32(g.v[1], K.bl),
-                                                _mm512_mullo_epi32(K.cy, _mm512_srl_epi32(g.v[2], K.bl)))));
-  g.e = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), g.in, c, S.entries, 4);
-}
-
-// The second half: the 32-bit halves of the brick words of the lanes whose cell is a brick (an entry without
-// kUniformCell is its brick's first word) by a second gather, the states, the hit test and the outputs.
-__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw"), always_inline)) inline uint32_t group_states(
-    const SparseJob& S, const EntryConsts& K, const Group& g, uint8_t* state, int32_t* cx, int32_t* cy, int32_t* cz) {
-  if (g.in == 0) {
-    _mm_mask_storeu_epi8(state, g.live, _mm_setzero_si128());
-    return 0;
-  }
-  const __mmask16 brick = g.in & ~_mm512_movepi32_mask(g.e);
-  __m512i st = g.e;
-  if (brick) {
-    const __m512i i = _mm512_ternarylogic_epi32(
-        _mm512_and_si512(g.v[0], K.brick_mask), _mm512_sll_epi32(_mm512_and_si512(g.v[1], K.brick_mask), K.bl),
-        _mm512_sll_epi32(_mm512_and_si512(g.v[2], K.brick_mask), K.bl2), 0xfe);
-    const __m512i half = _mm512_add_epi32(_mm512_slli_epi32(g.e, 1),
-                                          _mm512_sll_epi32(_mm512_srl_epi32(i, K.word_shift), K.half_shift));
-    const __m512i w = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), brick, half, S.map, 4);
-    st = _mm512_mask_srlv_epi32(st, brick, w, _mm512_slli_epi32(_mm512_and_si512(i, K.slot_mask), 1));
-  }
-  st = _mm512_and_si512(st, K.three);
-  const __mmask16 hit = _mm512_mask_test_epi32_mask(g.in, _mm512_srlv_epi32(K.hit_mask, st), K.one);
-  _mm_mask_storeu_epi8(state, g.live, _mm512_cvtepi32_epi8(_mm512_maskz_or_epi32(hit, st, K.four)));
-  _mm512_mask_storeu_epi32(cx, hit, g.v[0]);
-  _mm512_mask_storeu_epi32(cy, hit, g.v[1]);
-  _mm512_mask_storeu_epi32(cz, hit, g.v[2]);
-  return uint32_t(__builtin_popcount(hit));
-}
-
-// Sixteen points a step, software-pipelined: the next group's entries are gathered before this group's brick words,
-// so that the two dependent reads of a group overlap the other group's work.
-__attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"))) uint32_t entry_avx512(VOXCD_SPARSE_BLOCK_ARGS) {
-  __m512d m[9], t[3], nn[3];
-  for (int i = 0; i < 9; ++i) m[i] = _mm512_set1_pd(S.m[i]);
-  for (int i = 0; i < 3; ++i) t[i] = _mm512_set1_pd(S.t[i]), nn[i] = _mm512_set1_pd(S.n[i]);
-  const EntryConsts K = entry_consts(S);
-  uint32_t count = 0;
-  if (n == 0) return 0;
-  Group cur, next;
-  group_entries(S, K, m, t, nn, x, y, z, 0, n, cur);
-  for (size_t k = 0; k < n; k += 16) {
-    if (k + 16 < n) group_entries(S, K, m, t, nn, x, y, z, k + 16, n, next);
-    count += group_states(S, K, cur, state + k, cx + k, cy + k, cz + k);
-    cur = next;
-  }
-  return count;
-}
 #pragma GCC diagnostic pop
 #endif
 
 struct Choice {
-  SparseBlockFn table, entries;  // the kernel on the table, on the copy
+  SparseBlockFn fn;
   const char* name;
 };
 
 Choice choose() {
   switch (widest_kernel()) {
 #ifdef VOXCD_SPARSE_X86
-    case KernelWidth::Avx512: return {sparse_avx512, entry_avx512, "avx512"};
-    case KernelWidth::Avx2: return {sparse_avx2, sparse_avx2, "avx2"};
+    case KernelWidth::Avx512: return {sparse_avx512, "avx512"};
+    case KernelWidth::Avx2: return {sparse_avx2, "avx2"};
 #endif
-    default: return {sparse_base, sparse_base, "baseline"};
+    default: return {sparse_base, "baseline"};
   }
 }
 
@@ -327,8 +213,7 @@ const Choice kChoice = choose();
 
 }  // namespace
 
-SparseBlockFn sparse_block() { return kChoice.table; }
-SparseBlockFn sparse_entry_block() { return kChoice.entries; }
+SparseBlockFn sparse_block() { return kChoice.fn; }
 const char* sparse_block_name() { return kChoice.name; }
 
 }  // namespace voxcd::detail

@@ -36,5 +36,21 @@ __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,fma"), always_inline))
   return step512(step512(a0, a1, f[1], g[1]), step512(a2, a3, f[1], g[1]), f[2], g[2]);
 }
 
+// The hits of mask h among four points: their cells (c) and distances (d less the bias); returns their number.
+__attribute__((target("avx2,fma"))) inline uint32_t put_hits4(int h, __m256d d, const __m256d* c, double bias,
+                                                               int32_t* cx, int32_t* cy, int32_t* cz, double* dist) {
+  alignas(32) double dd[4];
+  alignas(16) int32_t xs[3][4];
+  _mm256_store_pd(dd, d);
+  for (int i = 0; i < 3; ++i) _mm_store_si128(reinterpret_cast<__m128i*>(xs[i]), _mm256_cvttpd_epi32(c[i]));
+  uint32_t count = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (!(h >> i & 1)) continue;
+    cx[i] = xs[0][i], cy[i] = xs[1][i], cz[i] = xs[2][i], dist[i] = dd[i] - bias;
+    ++count;
+  }
+  return count;
+}
+
 }  // namespace voxcd::detail
 #endif
