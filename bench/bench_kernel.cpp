@@ -1,7 +1,8 @@
 // The cpu backend's lookup kernels alone (ref/fast: FastRunner), as bench/kernel_revisions.sh builds them at several
 // git revisions beside this same program: nanoseconds per point per core of COUNT jobs, 2-bit and distance (SB 8)
-// voxmaps, in cache (32^3 voxels) and not (1024 x 1024 x 64), on one thread (its CPU time) and two (wall time, per
-// core: times two). It uses only FastRunner's
+// voxmaps, in cache (32^3 voxels) and not (1024 x 1024 x 64), and batches of many 24-point jobs timed with their
+// cycles (what a simulation frame's small jobs cost around the lookups), on one thread (its CPU time) and two (wall
+// time, per core: times two). It uses only FastRunner's
 // constructor, load and run_into and ref/'s pose quantisation, which every revision has, so the same source measures
 // each revision's kernels.
 //   bench_kernel [--repeats N]                  one line per case: "case threads ns_per_point hits", and per case
@@ -32,14 +33,17 @@ struct Case {
   const char* name;
   uint32_t nx, ny, nz;
   size_t points, jobs;
-  int sb;  // 0: 2-bit states; else a distance voxmap of SB bits
+  int sb;       // 0: 2-bit states; else a distance voxmap of SB bits
+  bool cycles;  // the completion records timed too (a batch of many small jobs: the cost around the lookups)
 };
 
 const Case kCases[] = {
-    {"2bit-in-cache", 32, 32, 32, 4096, 256, 0},
-    {"2bit-out-of-cache", 1024, 1024, 64, 65536, 16, 0},
-    {"distance-in-cache", 32, 32, 32, 4096, 256, 8},
-    {"distance-out-of-cache", 1024, 1024, 64, 65536, 16, 8},
+    {"2bit-in-cache", 32, 32, 32, 4096, 256, 0, false},
+    {"2bit-out-of-cache", 1024, 1024, 64, 65536, 16, 0, false},
+    {"distance-in-cache", 32, 32, 32, 4096, 256, 8, false},
+    {"distance-out-of-cache", 1024, 1024, 64, 65536, 16, 8, false},
+    {"2bit-small-jobs", 32, 32, 32, 24, 16384, 0, true},
+    {"distance-small-jobs", 32, 32, 32, 24, 16384, 8, true},
 };
 
 DeviceConfig config_of(const Case& c) {
@@ -85,7 +89,7 @@ int main(int argc, char** argv) {
     if (!count_case.empty()) {
       FastRunner runner(cfg, 1);
       runner.load(mem);
-      runner.run_into(std::vector<Job>(count_jobs, job), out, false);
+      runner.run_into(std::vector<Job>(count_jobs, job), out, c.cycles);
       std::printf("%s %zu jobs %u hits\n", c.name, count_jobs, out.empty() ? 0u : out.back().hits);
       return 0;
     }
@@ -95,7 +99,7 @@ int main(int argc, char** argv) {
       FastRunner runner(cfg, threads);
       runner.load(mem);
       const double w0 = cpu_now();
-      runner.run_into(batch, out, false);  // warm-up: the first batch on a freshly loaded runner
+      runner.run_into(batch, out, c.cycles);  // warm-up: the first batch on a freshly loaded runner
       if (threads == 1)  // what the first batch costs above the others (a distance map's copy in cell order, built
                          // at its first job: ref/fast/detail/node_quads.h), per point of the batch
         first_ns = (cpu_now() - w0) * 1e9 / double(c.points * c.jobs);
@@ -104,7 +108,7 @@ int main(int argc, char** argv) {
         // One thread: its CPU time. Two: the wall time (the pool's workers spin between batches, so their CPU time
         // is no measure), which the machine's other load inflates.
         const double t0 = threads == 1 ? cpu_now() : now();
-        runner.run_into(batch, out, false);
+        runner.run_into(batch, out, c.cycles);
         t.push_back((threads == 1 ? cpu_now() : now()) - t0);
       }
       std::sort(t.begin(), t.end());

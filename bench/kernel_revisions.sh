@@ -11,8 +11,10 @@
 # each with its ratio to the first revision. Every revision must count the same hits; the script stops if not.
 #
 # Needs g++, valgrind, git. Usage: bash bench/kernel_revisions.sh REV [REV...]   e.g. 8bfb371 worktree
+# CASES (default the four lookup cases) picks bench_kernel's cases, e.g. CASES="2bit-in-cache 2bit-small-jobs".
 set -euo pipefail
 ROUNDS="${ROUNDS:-5}"
+read -r -a cases <<<"${CASES:-2bit-in-cache 2bit-out-of-cache distance-in-cache distance-out-of-cache}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 (($# >= 1)) || { echo "usage: bash bench/kernel_revisions.sh REV [REV...]" >&2; exit 2; }
 for tool in valgrind g++ git; do
@@ -32,7 +34,10 @@ for rev in "$@"; do
   fi
   ln -s "$dir/ref" "$dir/include/voxcd/ref"
   objs=()
-  for src in "$dir"/ref/{config,types,fixed,pipeline,float_model,timing,banks}.cpp "$dir"/ref/fast/*.cpp; do
+  # ref/sparse.cpp from the revision that brought sparse maps (pipeline.cpp reads their layout) on.
+  sparse=()
+  [[ -f "$dir/ref/sparse.cpp" ]] && sparse=("$dir/ref/sparse.cpp")
+  for src in "$dir"/ref/{config,types,fixed,pipeline,float_model,timing,banks}.cpp "${sparse[@]}" "$dir"/ref/fast/*.cpp; do
     extra=()
     [[ "$(basename "$src")" == fast.cpp ]] && extra=(-fno-trapping-math -ffp-contract=fast)
     obj="$dir/$(basename "$(dirname "$src")")_$(basename "$src" .cpp).o"
@@ -54,10 +59,12 @@ ir_of() {  # BINARY CASE JOBS
   valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" "$1" --count "$2" "$3" 2>"$tmp/cg.err" >/dev/null
   sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/cg.err"
 }
-declare -A jobs=([2bit-in-cache]=64 [2bit-out-of-cache]=2 [distance-in-cache]=64 [distance-out-of-cache]=2)
-declare -A points=([2bit-in-cache]=4096 [2bit-out-of-cache]=65536 [distance-in-cache]=4096 [distance-out-of-cache]=65536)
+declare -A jobs=([2bit-in-cache]=64 [2bit-out-of-cache]=2 [distance-in-cache]=64 [distance-out-of-cache]=2
+                 [2bit-small-jobs]=2048 [distance-small-jobs]=2048)
+declare -A points=([2bit-in-cache]=4096 [2bit-out-of-cache]=65536 [distance-in-cache]=4096 [distance-out-of-cache]=65536
+                   [2bit-small-jobs]=24 [distance-small-jobs]=24)
 for i in "${!bins[@]}"; do
-  for c in 2bit-in-cache 2bit-out-of-cache distance-in-cache distance-out-of-cache; do
+  for c in "${cases[@]}"; do
     a="$(ir_of "${bins[$i]}" "$c" "${jobs[$c]}")"
     b="$(ir_of "${bins[$i]}" "$c" "$((2 * ${jobs[$c]}))")"
     echo "$c $(awk -v a="$a" -v b="$b" -v n="$((${jobs[$c]} * ${points[$c]}))" 'BEGIN { printf "%.2f", (b - a) / n }')" \
@@ -71,7 +78,7 @@ median_of() {  # FILE CASE THREADS -> median ns, hits
 }
 echo "| case | threads | revision | ns per point per core (median of $ROUNDS rounds) | speed-up | instructions per point (callgrind, AVX2 kernels) | fewer |"
 echo "|---|--:|---|--:|--:|--:|--:|"
-for c in 2bit-in-cache 2bit-out-of-cache distance-in-cache distance-out-of-cache; do
+for c in "${cases[@]}"; do
   for t in 1 2; do
     first_ns="" first_ir="" first_hits=""
     for i in "${!bins[@]}"; do
@@ -92,4 +99,4 @@ for c in 2bit-in-cache 2bit-out-of-cache distance-in-cache distance-out-of-cache
   done
 done
 echo
-echo "COUNT jobs (in cache: 256 of 4096 points on a 32^3 voxmap; out of cache: 16 of 65536 on 1024 x 1024 x 64), the same hits at every revision; speed-ups and instruction ratios against the first revision. $(lscpu | sed -n 's/^Model name: *//p' | head -n 1), $(nproc) hardware threads."
+echo "COUNT jobs (in cache: 256 of 4096 points on a 32^3 voxmap; out of cache: 16 of 65536 on 1024 x 1024 x 64; small jobs: 16384 of 24 points on the 32^3 voxmap, with their cycles), the same hits at every revision; speed-ups and instruction ratios against the first revision. $(lscpu | sed -n 's/^Model name: *//p' | head -n 1), $(nproc) hardware threads."

@@ -1,10 +1,11 @@
 // Conformance vector files (docs/conformance.md is the normative description):
-//   voxcd-vectors 1 | 2
+//   voxcd-vectors 1 | 2 | 3
 //   config PW 24 PF 8 MW 18 MF 16 TW 48 DW 10 MEMW 64 [LANES 4] [SAW 16] [MAW 18] [TAGW 16] [BANKS 4] [DEPTH 2]
-//          [SB 8 WB 8 (v2)]
+//          [SB 8 WB 8 (v2)] [BL 3 (v3)]
 //   shell N      then N lines "x y z"
 //   map N        then N lines of one hex word
 //   job TAG MODE MASK SHELL_BASE SHELL_COUNT MAP_BASE NX NY NZ M00 .. M22 T0 T1 T2 [THRESHOLD (v2)]
+//       [SPARSE BRICK_BASE BRICK_UNITS (v3)]
 //   hit TAG POINT X Y Z STATE [DIST (v2)]
 //   done TAG HITS [CYCLES]
 #pragma once
@@ -51,7 +52,7 @@ VectorFile read_vectors(const std::string& path);
 DeviceConfig parse_config_pairs(const std::string& pairs, const std::string& what);
 
 // The format version a file of cfg is written in: 1 for a 2-bit device (the files of version 1 stay byte for
-// byte what they were), 2 for a distance device.
+// byte what they were), 2 for a distance device, 3 for a sparse device (BL > 0).
 int vector_version(const DeviceConfig& cfg);
 
 // Writes config, memories, then each job followed by its records from `records` (a stream as run_stream gives;

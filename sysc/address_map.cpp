@@ -19,19 +19,20 @@ void encode_job(const Job& job, uint8_t* out) {
     for (int j = 0; j < 3; ++j) put_le(out + 0x20 + 4 * (3 * i + j), uint64_t(job.M[i][j]), 4);
   for (int i = 0; i < 3; ++i) put_le(out + 0x48 + 8 * i, uint64_t(job.t[i]), 8);
   put_le(out + 0x60, uint64_t(job.threshold), 8);
+  out[0x06] = job.sparse;
+  put_le(out + 0x44, job.brick_units, 4);
+  put_le(out + 0x68, job.brick_base, 4);
 }
 
 bool decode_job(const uint8_t* in, Job& job, std::string& why) {
   // The reserved bytes as whole words first; the loops below name the first one that is set.
-  const uint64_t reserved = get_le(in + 0x06, 2) | get_le(in + 0x44, 4) | get_le(in + 0x68, 8) |
-                            get_le(in + 0x70, 8) | get_le(in + 0x78, 8);
+  const uint64_t reserved = uint64_t(in[0x07]) | get_le(in + 0x6c, 4) | get_le(in + 0x70, 8) | get_le(in + 0x78, 8);
   if (reserved != 0) {
-    for (size_t b : {size_t{0x06}, size_t{0x07}, size_t{0x44}, size_t{0x45}, size_t{0x46}, size_t{0x47}})
-      if (in[b] != 0) {
-        why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
-        return false;
-      }
-    for (size_t b = 0x68; b < kJobBytes; ++b)
+    if (in[0x07] != 0) {
+      why = "reserved descriptor byte 7 is not zero";
+      return false;
+    }
+    for (size_t b = 0x6c; b < kJobBytes; ++b)
       if (in[b] != 0) {
         why = "reserved descriptor byte " + std::to_string(b) + " is not zero";
         return false;
@@ -55,6 +56,9 @@ bool decode_job(const uint8_t* in, Job& job, std::string& why) {
     for (int j = 0; j < 3; ++j) job.M[i][j] = int32_t(uint32_t(get_le(in + 0x20 + 4 * (3 * i + j), 4)));
   for (int i = 0; i < 3; ++i) job.t[i] = int64_t(get_le(in + 0x48 + 8 * i, 8));
   job.threshold = int64_t(get_le(in + 0x60, 8));
+  job.sparse = in[0x06];
+  job.brick_units = uint32_t(get_le(in + 0x44, 4));
+  job.brick_base = uint32_t(get_le(in + 0x68, 4));
   return true;
 }
 
@@ -121,7 +125,7 @@ uint64_t config_word0(const DeviceConfig& c) {
 
 uint64_t config_word1(const DeviceConfig& c) {
   return uint64_t(c.SAW) | uint64_t(c.MAW) << 8 | uint64_t(c.TAGW) << 16 | uint64_t(c.SB) << 24 | uint64_t(c.WB) << 32 |
-         uint64_t(c.BANKS) << 40 | uint64_t(c.depth) << 48;
+         uint64_t(c.BANKS) << 40 | uint64_t(c.depth) << 48 | uint64_t(c.BL) << 56;
 }
 
 }  // namespace voxcd::sysc

@@ -29,7 +29,7 @@ constexpr uint64_t kMapStride = 8;
 enum Reg : uint64_t {
   kRegId = 0x00,           // RO: kDeviceId
   kRegConfig0 = 0x08,      // RO: PW | PF<<8 | MW<<16 | MF<<24 | TW<<32 | DW<<40 | MEMW<<48 | LANES<<56
-  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16 | SB<<24 | WB<<32 | BANKS<<40 | DEPTH<<48
+  kRegConfig1 = 0x10,      // RO: SAW | MAW<<8 | TAGW<<16 | SB<<24 | WB<<32 | BANKS<<40 | DEPTH<<48 | BL<<56
   kRegClockPs = 0x18,      // RO: clock period in picoseconds
   kRegStatus = 0x20,       // RO: kStatus* bits
   kRegStaged = 0x28,       // RO: jobs staged and not yet launched
@@ -55,10 +55,14 @@ constexpr uint64_t kStatusStaged = 4;   // jobs are staged
 constexpr uint64_t kStatusFault = 8;    // the RTL failed an assertion (RTL target only; other accesses then fail)
 
 // Job descriptor: kJobBytes bytes.
-//   0x00 u32 tag      0x04 u8 mode (0 ALL, 1 FIRST, 2 COUNT)   0x05 u8 hit mask   0x06 u16 zero
-//   0x08 u32 shell_base   0x0c u32 shell_count   0x10 u32 map_base   0x14 u32 nx   0x18 u32 ny   0x1c u32 nz
-//   0x20 i32 M[3][3], row-major   0x44 u32 zero   0x48 i64 t[3]   0x60 i64 threshold (0 on a 2-bit device)
-//   0x68 .. 0x7f zero
+//   0x00 u32 tag      0x04 u8 mode (0 ALL, 1 FIRST, 2 COUNT)   0x05 u8 hit mask
+//   0x06 u8 sparse (bit 0: the map is sparse, bit 1: the shell is sparse; bits 2..7 set: a refused job, as
+//        validate_job refuses it, the AXI top's error record bit 1)   0x07 u8 zero
+//   0x08 u32 shell_base   0x0c u32 shell_count (a sparse shell: its words)   0x10 u32 map_base   0x14 u32 nx
+//   0x18 u32 ny   0x1c u32 nz   0x20 i32 M[3][3], row-major   0x44 u32 brick_units   0x48 i64 t[3]
+//   0x60 i64 threshold (0 on a 2-bit device)   0x68 u32 brick_base   0x6c .. 0x7f zero
+// (docs/contract.md, "Sparse voxmaps and shells": sparse, brick_base and brick_units are 0 for a dense job, so a dense
+// job's descriptor is what it was before sparse devices.)
 constexpr size_t kJobBytes = 128;
 // Result record: kRecordBytes bytes.
 //   0x00 u8 kind (0 none, 1 hit, 2 done, 3 error)   0x01 u8 state (hit)   0x02 u16 zero   0x04 u32 tag
@@ -74,7 +78,8 @@ constexpr uint32_t kFaultDescriptor = 1;
 bool decode_error_record(const uint8_t* in, uint32_t& tag, uint32_t& faults);
 
 void encode_job(const Job& job, uint8_t* out);
-// Decodes a descriptor; false (and `why`) when a reserved byte is not zero or the mode is not 0..2.
+// Decodes a descriptor; false (and `why`) when a reserved byte is not zero or the mode is not 0..2. The sparse byte is
+// decoded whole: bits 2..7 are refused by validate_job.
 bool decode_job(const uint8_t* in, Job& job, std::string& why);
 void encode_record(const Record& rec, uint8_t* out);
 // Decodes one record slot; false for an empty slot (kind 0) or an error record (kind 3: decode_error_record).

@@ -34,12 +34,16 @@ sc_time TlmTarget::write_map(uint64_t first, const std::vector<uint64_t>& words,
 void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   // Memory writes wait for every launched batch, so the memory seen now is the memory the batch reads. Every job
   // was validated when it was staged, and the loaded memories only grow: no need to check again.
-  runner_.run_validated_into(jobs, batch_, /*cycles=*/false);
-  // The completion records get ref/timing.h's cycles as annotate_cycles gives them (cycles, points, no stalls),
-  // in the same pass that encodes the batch's records into the result queue, where they wait for their edge.
-  const std::vector<BankCycles> bank = cfg_.banked() ? bank_cycles(cfg_, runner_.shell(), runner_.map(), jobs, batch_)
-                                                      : std::vector<BankCycles>(jobs.size());
-  const std::vector<JobTiming> timing = job_timing(cfg_, jobs, batch_, bank);
+  // The completion records get ref/timing.h's cycles as annotate_cycles gives them (cycles, points, no stalls): from
+  // the runner, or on a banked device from the bank cycles, which the conflict counter needs too. A sparse shell's
+  // slots follow its words (the shell memory).
+  const bool banked = cfg_.banked();
+  runner_.run_validated_into(jobs, batch_, /*cycles=*/!banked);
+  std::vector<BankCycles> bank(jobs.size());
+  if (banked) {
+    bank = bank_cycles(cfg_, runner_.shell(), runner_.map(), jobs, batch_);
+    annotate_cycles(cfg_, runner_.shell(), jobs, batch_, bank);
+  }
   future_.erase(future_.begin(), future_.begin() + std::ptrdiff_t(future_head_));  // the jobs already readable
   future_head_ = 0;
   uint8_t* out = queue_records(batch_.size());
@@ -51,14 +55,11 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   for (size_t j = 0; j < jobs.size(); ++j) {
     last_first = r;
     for (; batch_[r].kind == Record::Hit; ++r) encode_record(batch_[r], out + r * kRecordBytes);
-    Record& done = batch_[r];
-    done.cycles = timing[j].cycles;
-    done.points = timing[j].points;
-    done.stalls = 0;
+    const Record& done = batch_[r];
     encode_record(done, out + r * kRecordBytes);
     ++r;
-    edge += timing[j].cycles;
-    future_.push_back({edge, r - last_first, {done.hits, timing[j].points, timing[j].cycles, 0, bank[j].conflicts}});
+    edge += *done.cycles;
+    future_.push_back({edge, r - last_first, {done.hits, *done.points, *done.cycles, 0, bank[j].conflicts}});
   }
   batch_free_ = edge;
   // The device is idle one edge after the last completion record is taken, or later when slots issued behind a
@@ -68,10 +69,9 @@ void TlmTarget::launch(std::vector<Job>& jobs, sc_time t) {
   const Job& last = jobs.back();
   uint64_t drain = 0;
   if (last.mode == Mode::First && future_.back().records == 2) {
-    const uint64_t lanes = uint64_t(cfg_.LANES);
-    const uint64_t groups = last.shell_count == 0 ? 1 : (last.shell_count + lanes - 1) / lanes;
-    const uint64_t f = batch_[last_first].point / lanes;
-    const uint64_t behind = std::min(groups - 1 - f + bank.back().window, uint64_t(pipeline_slots(cfg_)) - 1);
+    const JobSlots slots = runner_.job_slots(last);
+    const uint64_t f = slots.slot_of(batch_[last_first].point);
+    const uint64_t behind = std::min(slots.groups - 1 - f + bank.back().window, uint64_t(pipeline_slots(cfg_)) - 1);
     drain = behind > 0 ? behind - 1 : 0;
   }
   idle_ = edge + 1 + drain;

@@ -110,7 +110,7 @@ std::string generated_vectors_text(const GenerateOptions& g, const std::string& 
     info->jobs = v.jobs.size();
     info->shell_words = v.memory.shell.size();
     info->map_words = v.memory.map.size();
-    for (const Job& j : v.jobs) info->lookups += j.shell_count;
+    for (const Job& j : v.jobs) info->lookups += job_points(v.config, v.memory.shell, j).size();  // a sparse shell's points
     info->config = v.config;
   }
   return out.str();

@@ -16,6 +16,7 @@
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/sparse.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/types.h"
 #include "voxcd/ref/vector_gen.h"
@@ -203,11 +204,11 @@ int voxcd_dpi_param(void* h, const char* name) {
                                                   {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW},
                                                   {"MAW", c.MAW},   {"TAGW", c.TAGW},   {"SB", c.SB},
                                                   {"WB", c.WB},     {"BANKS", c.BANKS}, {"DEPTH", c.depth},
-                                                  {"IW", c.IW()}};
+                                                  {"BL", c.BL},     {"IW", c.IW()}};
     for (const auto& p : params)
       if (n == p.first) return p.second;
     throw DpiError("voxcd_dpi_param: no parameter named '" + n +
-                   "' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, BANKS, DEPTH, IW)");
+                   "' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, BANKS, DEPTH, BL, IW)");
   });
 }
 
@@ -248,66 +249,109 @@ int voxcd_dpi_write_map(void* h, int addr, long long word) {
   });
 }
 
+}  // extern "C"
+
+namespace {
+
+// The words job j reads that were never written: the first of them named, or nothing.
+void require_written(const Device& d, const char* fn, const Job& j) {
+  const DeviceConfig& c = d.cfg;
+  const uint64_t map_end = uint64_t(j.map_base) + map_words(c, j);
+  if (auto gap = d.shell_written.first_gap(j.shell_base, uint64_t(j.shell_base) + j.shell_count))
+    throw DpiError(std::string(fn) + ": " + job_name(j) + " reads shell words [" + std::to_string(j.shell_base) +
+                   ", " + std::to_string(uint64_t(j.shell_base) + j.shell_count) + "), and word " +
+                   std::to_string(*gap) + " was never written (voxcd_dpi_write_shell)");
+  if (auto gap = d.map_written.first_gap(j.map_base, map_end))
+    throw DpiError(std::string(fn) + ": " + job_name(j) + " reads voxmap words [" + std::to_string(j.map_base) +
+                   ", " + std::to_string(map_end) + "), and word " + std::to_string(*gap) +
+                   " was never written (voxcd_dpi_write_map)");
+  if (!j.sparse_map()) return;
+  const uint64_t bricks_end = uint64_t(j.brick_base) + brick_words(c, j);
+  if (auto gap = d.map_written.first_gap(j.brick_base, bricks_end))
+    throw DpiError(std::string(fn) + ": " + job_name(j) + " reads brick words [" + std::to_string(j.brick_base) +
+                   ", " + std::to_string(bricks_end) + "), and word " + std::to_string(*gap) +
+                   " was never written (voxcd_dpi_write_map)");
+}
+
+// The job of a submit call's fields (mode and mask checked here; the rest by validate_job).
+struct JobFields {
+  int tag, mode, mask, shell_base, shell_count, map_base, nx, ny, nz;
+  long long m[3][3], t[3], threshold;
+  int sparse, brick_base, brick_units;
+};
+Job job_of(const char* fn, const JobFields& f) {
+  Job j;
+  j.tag = uint32_t(f.tag);
+  if (f.mode < 0 || f.mode > 2)
+    throw DpiError(std::string(fn) + ": " + job_name(j) + ": mode " + std::to_string(f.mode) +
+                   " is not 0 (ALL), 1 (FIRST) or 2 (COUNT)");
+  if (f.mask < 0 || f.mask > 15)
+    throw DpiError(std::string(fn) + ": " + job_name(j) + ": hit mask " + std::to_string(f.mask) + " is outside 0..15");
+  if (f.sparse < 0 || f.sparse > 3)
+    throw DpiError(std::string(fn) + ": " + job_name(j) + ": sparse " + std::to_string(f.sparse) +
+                   " is outside 0..3 (1: the map, 2: the shell)");
+  j.mode = Mode(f.mode);
+  j.hit_mask = uint8_t(f.mask);
+  j.shell_base = uint32_t(f.shell_base), j.shell_count = uint32_t(f.shell_count), j.map_base = uint32_t(f.map_base);
+  j.nx = uint32_t(f.nx), j.ny = uint32_t(f.ny), j.nz = uint32_t(f.nz);
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) j.M[r][k] = f.m[r][k];
+  for (int i = 0; i < 3; ++i) j.t[i] = f.t[i];
+  j.threshold = f.threshold;
+  j.sparse = uint8_t(f.sparse);
+  j.brick_base = uint32_t(f.brick_base), j.brick_units = uint32_t(f.brick_units);
+  return j;
+}
+
+// The job of the fields, validated against the whole memories and the words written, run, and its records queued
+// with their cycles; returns their number.
+int submit_job(Device& d, const char* fn, const JobFields& f) {
+  const DeviceConfig& c = d.cfg;
+  const Job j = job_of(fn, f);
+  try {
+    validate_job(c, j, c.shell_depth(), c.map_depth());
+  } catch (const std::exception& e) {
+    throw DpiError(std::string(fn) + ": " + e.what());
+  }
+  require_written(d, fn, j);
+  std::vector<Record> recs;
+  run_job(c, d.mem, j, recs);
+  const JobTiming t = next_timing(d, j, recs);
+  Record& done = recs.back();
+  done.cycles = t.cycles;
+  done.points = t.points;
+  done.stalls = 0;
+  d.expected.insert(d.expected.end(), recs.begin(), recs.end());
+  d.prev_job = j;
+  d.prev_records = std::move(recs);
+  ++d.jobs;
+  return int(d.prev_records.size());
+}
+
+}  // namespace
+
+extern "C" {
+
 int voxcd_dpi_submit(void* h, int tag, int mode, int mask, int shell_base, int shell_count, int map_base, int nx,
                      int ny, int nz, long long m00, long long m01, long long m02, long long m10, long long m11,
                      long long m12, long long m20, long long m21, long long m22, long long t0, long long t1,
                      long long t2, long long threshold) {
-  return guarded(h, -1, [&] {
-    const char* fn = "voxcd_dpi_submit";
-    Device* d = device(h, fn);
-    const DeviceConfig& c = d->cfg;
-    Job j;
-    j.tag = uint32_t(tag);
-    if (mode < 0 || mode > 2)
-      throw DpiError(std::string(fn) + ": " + job_name(j) + ": mode " + std::to_string(mode) +
-                     " is not 0 (ALL), 1 (FIRST) or 2 (COUNT)");
-    if (mask < 0 || mask > 15)
-      throw DpiError(std::string(fn) + ": " + job_name(j) + ": hit mask " + std::to_string(mask) +
-                     " is outside 0..15");
-    j.mode = Mode(mode);
-    j.hit_mask = uint8_t(mask);
-    j.shell_base = uint32_t(shell_base);
-    j.shell_count = uint32_t(shell_count);
-    j.map_base = uint32_t(map_base);
-    j.nx = uint32_t(nx);
-    j.ny = uint32_t(ny);
-    j.nz = uint32_t(nz);
-    const long long m[3][3] = {{m00, m01, m02}, {m10, m11, m12}, {m20, m21, m22}};
-    for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 3; ++k) j.M[r][k] = m[r][k];
-    j.t[0] = t0;
-    j.t[1] = t1;
-    j.t[2] = t2;
-    j.threshold = threshold;
-    // Field formats and ranges against the whole memories, then the words the job reads against those written.
-    try {
-      validate_job(c, j, c.shell_depth(), c.map_depth());
-    } catch (const std::exception& e) {
-      throw DpiError(std::string(fn) + ": " + e.what());
-    }
-    const uint64_t map_end = uint64_t(j.map_base) + map_words(c, j);
-    if (auto gap = d->shell_written.first_gap(j.shell_base, uint64_t(j.shell_base) + j.shell_count))
-      throw DpiError(std::string(fn) + ": " + job_name(j) + " reads shell words [" + std::to_string(j.shell_base) +
-                     ", " + std::to_string(uint64_t(j.shell_base) + j.shell_count) + "), and word " +
-                     std::to_string(*gap) + " was never written (voxcd_dpi_write_shell)");
-    if (auto gap = d->map_written.first_gap(j.map_base, map_end))
-      throw DpiError(std::string(fn) + ": " + job_name(j) + " reads voxmap words [" + std::to_string(j.map_base) +
-                     ", " + std::to_string(map_end) + "), and word " + std::to_string(*gap) +
-                     " was never written (voxcd_dpi_write_map)");
+  const JobFields f{tag,  mode, mask, shell_base, shell_count, map_base, nx, ny, nz,
+                    {{m00, m01, m02}, {m10, m11, m12}, {m20, m21, m22}},
+                    {t0, t1, t2}, threshold, 0, 0, 0};
+  return guarded(h, -1, [&] { return submit_job(*device(h, "voxcd_dpi_submit"), "voxcd_dpi_submit", f); });
+}
 
-    std::vector<Record> recs;
-    run_job(c, d->mem, j, recs);
-    const JobTiming t = next_timing(*d, j, recs);
-    Record& done = recs.back();
-    done.cycles = t.cycles;
-    done.points = t.points;
-    done.stalls = 0;
-    d->expected.insert(d->expected.end(), recs.begin(), recs.end());
-    d->prev_job = j;
-    d->prev_records = std::move(recs);
-    ++d->jobs;
-    return int(d->prev_records.size());
-  });
+int voxcd_dpi_submit_sparse(void* h, int tag, int mode, int mask, int shell_base, int shell_count, int map_base,
+                            int nx, int ny, int nz, long long m00, long long m01, long long m02, long long m10,
+                            long long m11, long long m12, long long m20, long long m21, long long m22, long long t0,
+                            long long t1, long long t2, long long threshold, int sparse, int brick_base,
+                            int brick_units) {
+  const JobFields f{tag,  mode, mask, shell_base, shell_count, map_base, nx, ny, nz,
+                    {{m00, m01, m02}, {m10, m11, m12}, {m20, m21, m22}},
+                    {t0, t1, t2}, threshold, sparse, brick_base, brick_units};
+  const char* fn = "voxcd_dpi_submit_sparse";
+  return guarded(h, -1, [&] { return submit_job(*device(h, fn), fn, f); });
 }
 
 int voxcd_dpi_pop(void* h, int* tag, int* point, int* x, int* y, int* z, int* state, int* hits, long long* cycles,
@@ -427,6 +471,16 @@ int voxcd_dpi_gen_job(void* h, int index, int* tag, int* mode, int* mask, int* s
     set_outs({{m00, j.M[0][0]}, {m01, j.M[0][1]}, {m02, j.M[0][2]}, {m10, j.M[1][0]}, {m11, j.M[1][1]},
               {m12, j.M[1][2]}, {m20, j.M[2][0]}, {m21, j.M[2][1]}, {m22, j.M[2][2]}});
     set_outs({{t0, j.t[0]}, {t1, j.t[1]}, {t2, j.t[2]}, {threshold, j.threshold}});
+    return 0;
+  });
+}
+
+int voxcd_dpi_gen_job_sparse(void* h, int index, int* sparse, int* brick_base, int* brick_units) {
+  return guarded(h, -1, [&] {
+    const char* fn = "voxcd_dpi_gen_job_sparse";
+    const GeneratedVectors& g = generated(device(h, fn), fn);
+    const Job& j = g.jobs[index_in(fn, "job", index, g.jobs.size())];
+    set_outs({{sparse, j.sparse}, {brick_base, j.brick_base}, {brick_units, j.brick_units}});
     return 0;
   });
 }

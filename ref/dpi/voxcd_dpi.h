@@ -41,10 +41,10 @@ void voxcd_dpi_free(void* h);
  * or of the last call that was given a handle of 0. Valid until the next failing call on the same handle. */
 const char* voxcd_dpi_error(void* h);
 /* The value of one parameter of the device's configuration by name ("PW" .. "TAGW", "SB", "WB", "BANKS", "DEPTH",
- * and the derived "IW" = SB + 3*WB), or -1 for another name. */
+ * "BL", and the derived "IW" = SB + 3*WB), or -1 for another name. */
 int voxcd_dpi_param(void* h, const char* name);
 /* The whole configuration, every parameter named: "PW 24 PF 8 ... TAGW 16", then "SB 8 WB 8" on a distance
- * device ("" for h = 0). */
+ * device, "BANKS B", "DEPTH D" and "BL B" where they are not 0 ("" for h = 0). */
 const char* voxcd_dpi_config(void* h);
 
 /* ---- Memories, as the write ports load them ---- */
@@ -66,6 +66,15 @@ int voxcd_dpi_submit(void* h, int tag, int mode, int mask, int shell_base, int s
                      int ny, int nz, long long m00, long long m01, long long m02, long long m10, long long m11,
                      long long m12, long long m20, long long m21, long long m22, long long t0, long long t1,
                      long long t2, long long threshold);
+/* voxcd_dpi_submit with a sparse device's fields (docs/contract.md, "Sparse voxmaps and shells"): sparse (bit 0: the
+ * map is sparse, a table at map_base and bricks at brick_base; bit 1: the shell is sparse, shell_count words of shell
+ * bricks), brick_base and brick_units (0, 0 for a dense map). A sparse map's brick words [brick_base, brick_base +
+ * brick_units * UW) must have been written too. With sparse, brick_base and brick_units 0 it is voxcd_dpi_submit. */
+int voxcd_dpi_submit_sparse(void* h, int tag, int mode, int mask, int shell_base, int shell_count, int map_base,
+                            int nx, int ny, int nz, long long m00, long long m01, long long m02, long long m10,
+                            long long m11, long long m12, long long m20, long long m21, long long m22, long long t0,
+                            long long t1, long long t2, long long threshold, int sparse, int brick_base,
+                            int brick_units);
 /* Pops the next expected record in stream order: each job's hit records in ascending point order, then its
  * completion record; jobs in submission order. Returns VOXCD_DPI_HIT (tag, point, x, y, z, state and distance are set:
  * distance is the interpolated distance D on a distance device, 0 on a 2-bit one),
@@ -102,6 +111,9 @@ int voxcd_dpi_gen_job(void* h, int index, int* tag, int* mode, int* mask, int* s
                       int* map_base, int* nx, int* ny, int* nz, long long* m00, long long* m01, long long* m02,
                       long long* m10, long long* m11, long long* m12, long long* m20, long long* m21,
                       long long* m22, long long* t0, long long* t1, long long* t2, long long* threshold);
+/* Generated job `index`'s sparse device fields, as voxcd_dpi_submit_sparse takes them (all 0 on a dense device).
+ * Returns 0 or -1. */
+int voxcd_dpi_gen_job_sparse(void* h, int index, int* sparse, int* brick_base, int* brick_units);
 
 #ifdef __cplusplus
 }

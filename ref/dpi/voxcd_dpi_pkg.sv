@@ -21,6 +21,10 @@ package voxcd_dpi_pkg;
   localparam int ModeAll   = 0;
   localparam int ModeFirst = 1;
   localparam int ModeCount = 2;
+
+  // A job's sparse bits (voxcd_dpi_submit_sparse).
+  localparam int SparseMap   = 1;
+  localparam int SparseShell = 2;
   /* verilator lint_on UNUSEDPARAM */
 
   // ---- The reference device ----
@@ -44,6 +48,17 @@ package voxcd_dpi_pkg;
                                                input longint m20, input longint m21, input longint m22,
                                                input longint t0, input longint t1, input longint t2,
                                                input longint threshold);
+  // A sparse device's job (BL > 0): the fields of voxcd_dpi_submit, then sparse (bit 0 map, bit 1 shell), brick_base
+  // and brick_units. Dense jobs may keep voxcd_dpi_submit.
+  import "DPI-C" function int voxcd_dpi_submit_sparse(input chandle h, input int tag, input int mode, input int mask,
+                                                      input int shell_base, input int shell_count,
+                                                      input int map_base, input int nx, input int ny, input int nz,
+                                                      input longint m00, input longint m01, input longint m02,
+                                                      input longint m10, input longint m11, input longint m12,
+                                                      input longint m20, input longint m21, input longint m22,
+                                                      input longint t0, input longint t1, input longint t2,
+                                                      input longint threshold, input int sparse,
+                                                      input int brick_base, input int brick_units);
   import "DPI-C" function int voxcd_dpi_pop(input chandle h, output int tag, output int point,
                                             output int x, output int y, output int z, output int state,
                                             output int hits, output longint cycles, output longint points,
@@ -70,5 +85,7 @@ package voxcd_dpi_pkg;
                                                 output longint m20, output longint m21, output longint m22,
                                                 output longint t0, output longint t1, output longint t2,
                                                 output longint threshold);
+  import "DPI-C" function int voxcd_dpi_gen_job_sparse(input chandle h, input int index, output int sparse,
+                                                       output int brick_base, output int brick_units);
 
 endpackage

@@ -14,8 +14,11 @@
 #include <cmath>
 #include <cstdint>
 
+#include "voxcd/ref/fast/detail/sparse_copy.h"
 #include "voxcd/ref/fast/detail/distance_kernel.h"
+#include "voxcd/ref/fast/detail/emit.h"
 #include "voxcd/ref/fast/detail/node_quads.h"
+#include "voxcd/ref/fast/detail/point_blocks.h"
 #include "voxcd/ref/fast/fast.h"
 #include "voxcd/ref/pipeline.h"
 
@@ -30,6 +33,39 @@ inline T lerp(T a, T b, int64_t f, int wb) {
 }
 
 constexpr size_t kDistanceBlock = 256;
+
+// A dense distance map read one point at a time: its 8 node values from the parity banks and the interpolation as three
+// exact linear interpolations, x, then y, then z, in 64-bit integers (128 bits for the last where IW > 62).
+struct DenseNodes {
+  const uint64_t* map;
+  uint64_t hx, hy, vmask, sign, slot_mask;
+  int npw_bits = 0, sb, wb;
+  bool wide_d;
+
+  DenseNodes(const DeviceConfig& cfg, const Job& j, const uint64_t* memory)
+      : map(memory + j.map_base), hx((uint64_t{j.nx} >> 1) + 1), hy((uint64_t{j.ny} >> 1) + 1),
+        vmask((uint64_t{1} << cfg.SB) - 1), sign(uint64_t{1} << (cfg.SB - 1)), sb(cfg.SB), wb(cfg.WB),
+        wide_d(cfg.IW() > 62) {
+    while ((1 << npw_bits) < cfg.nodes_per_word()) ++npw_bits;
+    slot_mask = (uint64_t{1} << npw_bits) - 1;
+  }
+  // D at an inside point of cell idx with weights f.
+  int64_t distance(const int64_t idx[3], const int64_t f[3]) const {
+    int64_t q[8];  // q[dx | dy << 1 | dz << 2] for node (x + dx, y + dy, z + dz)
+    for (int c = 0; c < 8; ++c) {
+      const uint64_t X = uint64_t(idx[0]) + (c & 1), Y = uint64_t(idx[1]) + (c >> 1 & 1),
+                     Z = uint64_t(idx[2]) + (c >> 2 & 1);
+      const uint64_t h = (X >> 1) + hx * ((Y >> 1) + hy * (Z >> 1));
+      const uint64_t bank = (X & 1) | (Y & 1) << 1 | (Z & 1) << 2;
+      const uint64_t raw = (map[8 * (h >> npw_bits) + bank] >> (uint64_t(sb) * (h & slot_mask))) & vmask;
+      q[c] = int64_t(raw ^ sign) - int64_t(sign);
+    }
+    const int64_t a0 = lerp<int64_t>(q[0], q[1], f[0], wb), a1 = lerp<int64_t>(q[2], q[3], f[0], wb);
+    const int64_t a2 = lerp<int64_t>(q[4], q[5], f[0], wb), a3 = lerp<int64_t>(q[6], q[7], f[0], wb);
+    const int64_t b0 = lerp<int64_t>(a0, a1, f[1], wb), b1 = lerp<int64_t>(a2, a3, f[1], wb);
+    return wide_d ? int64_t(lerp<__int128>(b0, b1, f[2], wb)) : lerp<int64_t>(b0, b1, f[2], wb);
+  }
+};
 
 // What the kernels need of job j (detail::DistanceJob); with `quads`, of that copy.
 detail::DistanceJob distance_job(const DeviceConfig& cfg, const Job& j, const uint64_t* map,
@@ -94,6 +130,11 @@ void FastRunner::drop_node_quads(uint64_t first, uint64_t end) {
     copy_bytes_ -= copies_[i]->bytes();
     copies_.erase(copies_.begin() + std::ptrdiff_t(i));
   }
+  for (size_t i = sparse_copies_.size(); i-- > 0;) {
+    if (!sparse_copies_[i]->overlaps(first, end)) continue;
+    copy_bytes_ -= sparse_copies_[i]->bytes();
+    sparse_copies_.erase(sparse_copies_.begin() + std::ptrdiff_t(i));
+  }
 }
 
 void FastRunner::set_node_copy_limit(uint64_t bytes) {
@@ -107,47 +148,36 @@ uint64_t FastRunner::node_copy_bytes() const {
 }
 
 void FastRunner::run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
-                                     HitColumns& hits, uint32_t& hit_count) const {
+                                     HitColumns& hits, uint32_t& hit_count, const detail::ShellCursor* at) const {
   const detail::DistanceJob J = distance_job(cfg_, j, map_.data(), quads);
   uint8_t hit[kDistanceBlock];
   int32_t cx[kDistanceBlock], cy[kDistanceBlock], cz[kDistanceBlock];
   double dist[kDistanceBlock];
-  const detail::DistanceBlockFn block = quads ? detail::distance_quad_block() : detail::distance_block();
-  for (uint32_t b = begin; b < end; b += uint32_t(kDistanceBlock)) {
-    const size_t n = std::min<size_t>(kDistanceBlock, end - b);
-    const size_t base = size_t(j.shell_base) + b;
-    const uint32_t count = block(&sx_[base], &sy_[base], &sz_[base], n, J, hit, cx, cy, cz, dist);
-    if (count == 0) continue;
-    if (j.mode == Mode::Count) {
-      hit_count += count;
-      continue;
-    }
-    hits.reserve_more(count);
-    for (size_t k = 0; k < n; ++k) {
-      if (!hit[k]) continue;
-      ++hit_count;
-      hits.put(b + uint32_t(k), uint32_t(cx[k]), uint32_t(cy[k]), uint32_t(cz[k]), 0, int64_t(dist[k]));
-      if (j.mode == Mode::First) return;
-    }
+  const detail::DistanceBlockFn kernel = quads ? detail::distance_quad_block() : detail::distance_block();
+  if (j.sparse_shell())
+    return detail::sparse_shell_blocks(cfg_, shell_arrays(), j, begin, end, at, detail::PointBlocks::kInt32,
+                                       kDistanceBlock, [&](uint32_t b, size_t n, const detail::BlockCoords& c) {
+                                         const uint32_t count = kernel(c.x, c.y, c.z, n, J, hit, cx, cy, cz, dist);
+                                         return detail::emit_distances(j, b, n, count, hit, cx, cy, cz, dist, hits,
+                                                                       hit_count);
+                                       });
+  for (uint32_t b = begin; b < end; b += uint32_t(kDistanceBlock)) {  // a dense shell's words as they are
+    const size_t n = std::min<size_t>(kDistanceBlock, end - b), base = size_t(j.shell_base) + b;
+    const uint32_t count = kernel(&sx_[base], &sy_[base], &sz_[base], n, J, hit, cx, cy, cz, dist);
+    if (detail::emit_distances(j, b, n, count, hit, cx, cy, cz, dist, hits, hit_count)) return;
   }
 }
 
 void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,
-                                    uint32_t& hit_count) const {
-  if (const detail::NodeQuads* q = node_quads(j)) return run_distance_vector(j, q, begin, end, hits, hit_count);
-  if (distance_vector(j)) return run_distance_vector(j, nullptr, begin, end, hits, hit_count);
-  const int tf = cfg_.TF(), wb = cfg_.WB, sb = cfg_.SB;
+                                    uint32_t& hit_count, const detail::ShellCursor* at) const {
+  if (const detail::NodeQuads* q = node_quads(j)) return run_distance_vector(j, q, begin, end, hits, hit_count, at);
+  if (distance_vector(j)) return run_distance_vector(j, nullptr, begin, end, hits, hit_count, at);
+  const int tf = cfg_.TF(), wb = cfg_.WB;
   const int64_t fmask = (int64_t{1} << wb) - 1;
-  const uint64_t vmask = (uint64_t{1} << sb) - 1, sign = uint64_t{1} << (sb - 1);
-  int npw_bits = 0;
-  while ((1 << npw_bits) < cfg_.nodes_per_word()) ++npw_bits;
-  const uint64_t slot_mask = (uint64_t{1} << npw_bits) - 1;
   const int64_t n[3] = {int64_t(j.nx), int64_t(j.ny), int64_t(j.nz)};
-  const uint64_t hx = (uint64_t{j.nx} >> 1) + 1, hy = (uint64_t{j.ny} >> 1) + 1;
-  const uint64_t* map = map_.data() + j.map_base;
-  const bool wide_d = cfg_.IW() > 62;
-  for (uint32_t k = begin; k < end; ++k) {
-    const ShellWord& p = shell_[size_t(j.shell_base) + k];
+  const DenseNodes nodes(cfg_, j, map_.data());
+  // One point at a time: true when FIRST has its hit.
+  auto point = [&](uint32_t k, const ShellWord& p) {
     int64_t idx[3], f[3];
     bool inside = true;
     if (path_ == Path::Wide) {
@@ -166,28 +196,21 @@ void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, 
         f[i] = (a >> (tf - wb)) & fmask;
       }
     }
-    if (!inside) continue;
-    // q[dx | dy << 1 | dz << 2] for node (x + dx, y + dy, z + dz).
-    int64_t q[8];
-    for (int c = 0; c < 8; ++c) {
-      const uint64_t X = uint64_t(idx[0]) + (c & 1), Y = uint64_t(idx[1]) + (c >> 1 & 1),
-                     Z = uint64_t(idx[2]) + (c >> 2 & 1);
-      const uint64_t h = (X >> 1) + hx * ((Y >> 1) + hy * (Z >> 1));
-      const uint64_t bank = (X & 1) | (Y & 1) << 1 | (Z & 1) << 2;
-      const uint64_t raw = (map[8 * (h >> npw_bits) + bank] >> (uint64_t(sb) * (h & slot_mask))) & vmask;
-      q[c] = int64_t(raw ^ sign) - int64_t(sign);
-    }
-    const int64_t a0 = lerp<int64_t>(q[0], q[1], f[0], wb), a1 = lerp<int64_t>(q[2], q[3], f[0], wb);
-    const int64_t a2 = lerp<int64_t>(q[4], q[5], f[0], wb), a3 = lerp<int64_t>(q[6], q[7], f[0], wb);
-    const int64_t b0 = lerp<int64_t>(a0, a1, f[1], wb), b1 = lerp<int64_t>(a2, a3, f[1], wb);
-    const int64_t d = wide_d ? int64_t(lerp<__int128>(b0, b1, f[2], wb)) : lerp<int64_t>(b0, b1, f[2], wb);
-    if (d > j.threshold) continue;
+    if (!inside) return false;
+    const int64_t d = nodes.distance(idx, f);
+    if (d > j.threshold) return false;
     ++hit_count;
-    if (j.mode == Mode::Count) continue;
+    if (j.mode == Mode::Count) return false;
     hits.reserve_more(1);
     hits.put(k, uint32_t(idx[0]), uint32_t(idx[1]), uint32_t(idx[2]), 0, d);
-    if (j.mode == Mode::First) return;
-  }
+    return j.mode == Mode::First;
+  };
+  detail::for_blocks(cfg_, shell_arrays(), j, begin, end, at, detail::PointBlocks::kWords, kDistanceBlock,
+                     [&](uint32_t b, size_t count, const detail::BlockCoords& c) {
+                       for (size_t k = 0; k < count; ++k)
+                         if (point(b + uint32_t(k), c.w[k])) return true;
+                       return false;
+                     });
 }
 
 }  // namespace voxcd

@@ -13,6 +13,10 @@
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/fast/detail/distance_kernel.h"
+#include "voxcd/ref/fast/detail/emit.h"
+#include "voxcd/ref/fast/detail/point_blocks.h"
+#include "voxcd/ref/fast/detail/sparse_shell.h"
+#include "voxcd/ref/fast/detail/sparse_copy.h"
 #include "voxcd/ref/fast/detail/node_quads.h"
 #include "voxcd/ref/fast/thread_pool.h"
 #include "voxcd/ref/timing.h"
@@ -191,52 +195,15 @@ struct Dividers {
   explicit Dividers(const Job& j) : x(j.nx), y(j.ny) {}
 };
 
+using detail::emit;
+using detail::emit_cells;
+
 // A record appended in place: a Record returned by value and then copied costs a store-forwarding stall per hit.
 Record& push_record(std::vector<Record>& out, Record::Kind kind, uint32_t tag) {
   Record& r = out.emplace_back();
   r.kind = kind;
   r.tag = tag;
   return r;
-}
-
-// Appends the block's `found` hits, voxel(k, v) setting point k's voxel in v; true when FIRST has its answer. Walks
-// the states eight at a time: most of a block's points are no hit.
-template <class Voxel>
-bool emit(const Job& j, uint32_t b, size_t n, const uint8_t* state, uint32_t found, HitColumns& hits, uint32_t& count,
-          const Voxel& voxel) {
-  hits.reserve_more(found);
-  const HitColumns::Rows out = hits.rows();
-  size_t w = 0;
-  for (size_t k0 = 0; k0 < n; k0 += 8) {
-    uint64_t word = 0;  // state k0 + i in byte i, so the lowest set bit is the next hit in point order
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-    if (n - k0 >= 8)
-      std::memcpy(&word, state + k0, 8);
-    else
-#endif
-      for (size_t i = 0; i < std::min<size_t>(8, n - k0); ++i) word |= uint64_t(state[k0 + i]) << (8 * i);
-    for (uint64_t flags = word & 0x0404040404040404ull; flags; flags &= flags - 1) {
-      const size_t k = k0 + size_t(__builtin_ctzll(flags) / 8);
-      uint32_t v[3];
-      voxel(k, v);
-      out.point[w] = b + uint32_t(k), out.x[w] = v[0], out.y[w] = v[1], out.z[w] = v[2];
-      out.state[w] = uint8_t(state[k] & 3u), out.dist[w] = 0;
-      ++w;
-      if (j.mode == Mode::First) break;
-    }
-    if (w && j.mode == Mode::First) break;
-  }
-  hits.commit(w);
-  count += uint32_t(w);
-  return w && j.mode == Mode::First;
-}
-
-// The voxels given by the kernel.
-bool emit_cells(const Job& j, uint32_t b, size_t n, const int32_t* cx, const int32_t* cy, const int32_t* cz,
-                const uint8_t* state, uint32_t found, HitColumns& hits, uint32_t& count) {
-  return emit(j, b, n, state, found, hits, count, [&](size_t k, uint32_t* v) {
-    v[0] = uint32_t(cx[k]), v[1] = uint32_t(cy[k]), v[2] = uint32_t(cz[k]);
-  });
 }
 
 // The voxels from their linear indices.
@@ -363,32 +330,49 @@ void FastRunner::run_validated_into(const std::vector<Job>& jobs, std::vector<Re
   run_jobs(jobs, out, cycles, false);
 }
 
-namespace {
-// Sparse maps and shells run on ref/'s stage functions until this engine takes them.
-void require_dense(const Job& j) {
-  if (j.sparse)
-    throw JobError("job tag " + std::to_string(j.tag) + ": a sparse " + (j.sparse_map() ? "map" : "shell") +
-                   " is not run by the fast engine yet (use the ref backend)");
+uint64_t FastRunner::walk_sparse_shell(const Job& j, std::vector<detail::ShellCursor>* cursors, JobSlots* slots) const {
+  const detail::ShellBricks bricks(cfg_, shell_.data() + j.shell_base, j.shell_count);
+  detail::ShellWalk walk;
+  detail::walk_shell(cfg_, bricks, kChunk, walk, slots);
+  if (cursors) cursors->swap(walk.cursors);
+  return walk.points;
 }
-}  // namespace
+
+const detail::ShellCursor* FastRunner::cursor_of(const Piece& p) const {
+  return p.at == SIZE_MAX ? nullptr : piece_at_.data() + p.at;
+}
+
+uint64_t FastRunner::job_points(const Job& job) const {
+  return job.sparse_shell() ? walk_sparse_shell(job, nullptr, nullptr) : job.shell_count;
+}
+
+JobSlots FastRunner::job_slots(const Job& job) const {
+  if (!job.sparse_shell()) return voxcd::job_slots(cfg_, job);
+  JobSlots s;
+  walk_sparse_shell(job, nullptr, &s);
+  return s;
+}
 
 void FastRunner::run_hits(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out,
                           bool cycles) const {
-  for (size_t j = 0; j < n; ++j) validate_job(cfg_, jobs[j], shell_.size(), map_.size()), require_dense(jobs[j]);
+  for (size_t j = 0; j < n; ++j) validate_job(cfg_, jobs[j], shell_.size(), map_.size());
   hits.clear();
   out.resize(n);
   JobSpan prev;
+  JobSlots slots;
   for (size_t j = 0; j < n; ++j) {
     const Job& job = jobs[j];
     JobOutcome& o = out[j];
     o = JobOutcome();
     o.first = hits.size();
-    run_chunk(job, 0, job.shell_count, hits, o.hits);  // FIRST stops at its hit
+    if (job.sparse_shell()) walk_sparse_shell(job, nullptr, &slots);
+    else slots = voxcd::job_slots(cfg_, job);
+    run_chunk(job, 0, uint32_t(slots.points), hits, o.hits);  // FIRST stops at its hit
     o.records = hits.size() - o.first;
     if (!cycles) continue;
     // The timing model's cycles from the hits' summary, as annotate_cycles gives them for this run as a stream.
-    const JobHits sum = job_hits(cfg_, job, hits.point.data() + o.first, o.records);
-    o.span = job_span(cfg_, job, j, sum, o.hits,
+    const JobHits sum = job_hits(slots, hits.point.data() + o.first, o.records);
+    o.span = job_span(cfg_, job, slots, j, sum, o.hits,
                       cfg_.banked() ? job_bank_cycles(cfg_, shell_, map_, job, sum, o.hits) : BankCycles{});
     o.cycles = span_cycles(cfg_, j ? &prev : nullptr, o.span);
     prev = o.span;
@@ -398,25 +382,41 @@ void FastRunner::run_hits(const Job* jobs, size_t n, HitColumns& hits, std::vect
 void FastRunner::run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, HitColumns& hits,
                            uint32_t& count) const {
   if (validate) validate_job(cfg_, job, shell_.size(), map_.size());
-  require_dense(job);
   run_chunk(job, begin, end, hits, count);
 }
 
 size_t FastRunner::make_pieces(const std::vector<Job>& jobs) {
   // Pieces: (job, first point, end point), at most kChunk points each.
+  // A sparse shell's words are walked once: its points, where each piece's begin and its slots. The jobs are not
+  // validated yet: a job whose shell is not loaded is left with no points (validation refuses it before it runs).
   pieces_.clear();
+  piece_at_.clear();
   first_piece_.assign(jobs.size() + 1, 0);
+  batch_slots_.resize(jobs.size());
+  std::vector<detail::ShellCursor> cursors;
   size_t points = 0;
   for (size_t j = 0; j < jobs.size(); ++j) {
-    require_dense(jobs[j]);
     first_piece_[j] = pieces_.size();
-    const uint32_t n = jobs[j].shell_count;
+    const Job& job = jobs[j];
+    JobSlots& slots = batch_slots_[j];
+    if (!job.sparse_shell()) {  // job_slots(cfg, job), in place: a batch may hold many small jobs
+      slots.lanes = uint64_t(cfg_.LANES), slots.points = job.shell_count;
+      slots.groups = job.shell_count == 0 ? 1 : (slots.points + slots.lanes - 1) / slots.lanes;
+      slots.starts.clear();
+    } else if (uint64_t(job.shell_base) + job.shell_count <= shell_.size()) {
+      cursors.clear();
+      walk_sparse_shell(job, &cursors, &slots);
+    } else {
+      slots = JobSlots{};
+    }
+    const uint32_t n = uint32_t(slots.points);
     points += n;
     for (uint32_t b = 0; b < n; b += uint32_t(kChunk)) {
       Piece& p = pieces_.emplace_back();
       p.job = j;
       p.begin = b;
       p.end = uint32_t(std::min<size_t>(n, b + kChunk));
+      if (job.sparse_shell()) p.at = piece_at_.size(), piece_at_.push_back(cursors[b / kChunk]);
     }
   }
   first_piece_[jobs.size()] = pieces_.size();
@@ -434,14 +434,33 @@ void FastRunner::run_serial(const std::vector<Job>& jobs, std::vector<Record>& o
     uint32_t hits = 0;
     for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
       serial_hits_.clear();
-      run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, serial_hits_, hits);
+      run_chunk(jobs[j], pieces_[i].begin, pieces_[i].end, serial_hits_, hits, cursor_of(pieces_[i]));
       append_records(serial_hits_, 0, jobs[j].tag, out);
       if (jobs[j].mode == Mode::First && hits) break;
     }
     push_record(out, Record::Done, jobs[j].tag).hits = hits;
   }
-  if (cycles && cfg_.banked()) annotate_cycles(cfg_, jobs, out, voxcd::bank_cycles(cfg_, shell_, map_, jobs, out));
-  else if (cycles) annotate_cycles(cfg_, jobs, out);
+  if (cycles) annotate(jobs, out);
+}
+
+void FastRunner::annotate(const std::vector<Job>& jobs, std::vector<Record>& out) const {
+  // annotate_cycles with the batch's slots (a sparse shell's from make_pieces' walk of its words) and, on a banked
+  // device, each job's bank cycles.
+  JobSpan prev;
+  size_t r = 0;
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    const size_t first = r;
+    while (out[r].kind == Record::Hit) ++r;
+    const JobHits h = job_hits(batch_slots_[j], jobs[j], j, out.data() + first, r - first, first);
+    Record& done = out[r++];
+    const BankCycles bank =
+        cfg_.banked() ? job_bank_cycles(cfg_, shell_, map_, jobs[j], h, done.hits) : BankCycles{};
+    const JobSpan span = job_span(cfg_, jobs[j], batch_slots_[j], j, h, done.hits, bank);
+    done.cycles = span_cycles(cfg_, j ? &prev : nullptr, span);
+    done.points = span.points;
+    done.stalls = 0;
+    prev = span;
+  }
 }
 
 void FastRunner::run_tasks(const std::vector<Job>& jobs, bool cycles, bool validate) {
@@ -455,27 +474,35 @@ void FastRunner::run_tasks(const std::vector<Job>& jobs, bool cycles, bool valid
   const size_t tasks = task_first_.size() - 1;
   if (results_.size() < tasks) results_.resize(tasks);
   // Each task validates a job before its first piece of it (the task holding a job's first piece validates it
-  // before any piece of a later job), so the lowest task that throws, whose exception the pool rethrows, names the
-  // first invalid job, as run_serial would. The lookups only read the memories, and `out` is not touched before
-  // every task has finished.
+  // before any piece of a later job), and the jobs of no points before it (the first task also those before its
+  // first job, the last those after its last), so the lowest task that throws, whose exception the pool rethrows,
+  // names the first invalid job, as run_serial would. The lookups only read the memories, and `out` is not touched
+  // before every task has finished.
   pool_->parallel_for(tasks, [&](size_t t) {
     std::vector<Record>& hits = results_[t].hits;
     HitColumns& cols = results_[t].columns;
     hits.clear();
-    size_t validated = SIZE_MAX;
+    size_t validated = SIZE_MAX, next = t == 0 ? 0 : pieces_[task_first_[t] - 1].job + 1;
+    auto check = [&](size_t j) { validate_job(cfg_, jobs[j], shell_.size(), map_.size()); };
     for (size_t i = task_first_[t]; i < task_first_[t + 1]; ++i) {
       Piece& p = pieces_[i];
       const Job& j = jobs[p.job];
-      if (validate && validated != p.job) validate_job(cfg_, j, shell_.size(), map_.size()), validated = p.job;
+      if (validate) {
+        for (; next < p.job; ++next) check(next);
+        if (validated != p.job) check(p.job), validated = p.job;
+        next = std::max(next, p.job + 1);
+      }
       p.task = t;
       p.first = hits.size();
       p.count = 0;
       cols.clear();
-      run_chunk(j, p.begin, p.end, cols, p.count);
+      run_chunk(j, p.begin, p.end, cols, p.count, cursor_of(p));
       append_records(cols, 0, j.tag, hits);
       p.records = hits.size() - p.first;
-      if (cycles) p.sum = job_hits(cfg_, j, p.job, hits.data() + p.first, p.records);
+      if (cycles) p.sum = job_hits(batch_slots_[p.job], j, p.job, hits.data() + p.first, p.records);
     }
+    if (validate && t + 1 == tasks)
+      for (; next < jobs.size(); ++next) check(next);
   });
 }
 
@@ -503,7 +530,7 @@ size_t FastRunner::place_records(const std::vector<Job>& jobs) {
 void FastRunner::job_result(const std::vector<Job>& jobs, size_t j, bool cycles, uint32_t& hits, JobHits& sum) const {
   hits = 0;
   sum = JobHits();  // none yet: the group sentinels of job_hits
-  sum.first_group = sum.last_group = job_groups(cfg_, jobs[j]);
+  sum.first_group = sum.last_group = batch_slots_[j].groups;
   for (size_t i = first_piece_[j]; i < first_piece_[j + 1]; ++i) {
     const Piece& p = pieces_[i];
     if (jobs[j].mode == Mode::First) {
@@ -547,9 +574,9 @@ void FastRunner::finish_task(size_t t, const std::vector<Job>& jobs, std::vector
       uint32_t pn = 0;
       JobHits psum;
       job_result(jobs, j - 1, cycles, pn, psum);
-      prev = job_span(cfg_, jobs[j - 1], j - 1, psum, pn, conflicts(jobs[j - 1], psum, pn));
+      prev = job_span(cfg_, jobs[j - 1], batch_slots_[j - 1], j - 1, psum, pn, conflicts(jobs[j - 1], psum, pn));
     }
-    const JobSpan span = job_span(cfg_, jobs[j], j, sum, n, conflicts(jobs[j], sum, n));
+    const JobSpan span = job_span(cfg_, jobs[j], batch_slots_[j], j, sum, n, conflicts(jobs[j], sum, n));
     done.cycles = span_cycles(cfg_, j > 0 ? &prev : nullptr, span);
     done.points = span.points;
     done.stalls = 0;
@@ -595,57 +622,98 @@ inline uint32_t fetch_states(const uint64_t* map, int slot_bits, uint32_t hit_ma
 }
 }  // namespace
 
-void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,
-                           uint32_t& hit_count) const {
-  if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count);
+detail::ShellArrays FastRunner::shell_arrays() const {
+  detail::ShellArrays a{shell_.data(), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+  if (path_ == Path::Double) a.sx = sx_.data(), a.sy = sy_.data(), a.sz = sz_.data();
+  if (keep_int64_) a.ix = ix_.data(), a.iy = iy_.data(), a.iz = iz_.data();
+  return a;
+}
+
+namespace {
+
+// The 2-bit lookups of a block of a job's points on a dense map, on every path: the fused kernel (transform to state in
+// one loop) where the doubles are exact and the map below 2^31 voxels, else the linear indices (int64 or ref/'s
+// 128-bit stages) and then the fetch. Returns true when FIRST has its hit.
+struct TwoBitBlocks {
+  const DeviceConfig& cfg;
+  const Job& j;
+  FastRunner::Path path;
+  bool fused;
+  int slot_bits;
+  const uint64_t* map;
+  HitColumns& hits;
+  uint32_t& hit_count;
+  double ms[9], ts[3], dims[3];
   int64_t lin[kBlock];
   int32_t cx[kBlock], cy[kBlock], cz[kBlock];
   uint8_t state[kBlock];  // bits 1:0 the state, bit 2 the hit
-  const bool fused = path_ == Path::Double && j.voxels() < (uint64_t{1} << 31);
-  // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is every
-  // product and sum after it (multiples of 2^-TF below 2^(53-TF)).
-  double ms[9], ts[3];
-  const double dims[3] = {double(j.nx), double(j.ny), double(j.nz)};
-  if (fused) {
-    const double scale = tf_scale_;
-    for (int i = 0; i < 9; ++i) ms[i] = double(j.M[i / 3][i % 3]) * scale;
-    for (int i = 0; i < 3; ++i) ts[i] = double(j.t[i]) * scale;
+
+  TwoBitBlocks(const DeviceConfig& c, const Job& job, FastRunner::Path p, double tf_scale, int bits,
+               const uint64_t* memory, HitColumns& h, uint32_t& count)
+      : cfg(c), j(job), path(p), fused(p == FastRunner::Path::Double && job.voxels() < (uint64_t{1} << 31)),
+        slot_bits(bits), map(memory + job.map_base), hits(h), hit_count(count),
+        dims{double(job.nx), double(job.ny), double(job.nz)} {
+    // The fused kernel takes M and t already scaled by 2^-TF: scaling by a power of two is exact, and so is every
+    // product and sum after it (multiples of 2^-TF below 2^(53-TF)).
+    if (!fused) return;
+    for (int i = 0; i < 9; ++i) ms[i] = double(job.M[i / 3][i % 3]) * tf_scale;
+    for (int i = 0; i < 3; ++i) ts[i] = double(job.t[i]) * tf_scale;
   }
-  const uint64_t* map = map_.data() + j.map_base;
+  // The forms of the points the path reads (detail::PointBlocks::Need).
+  unsigned need() const {
+    return fused ? detail::PointBlocks::kInt32
+                 : path == FastRunner::Path::Wide ? detail::PointBlocks::kWords : detail::PointBlocks::kInt64;
+  }
+
+  bool operator()(uint32_t b, size_t n, const detail::BlockCoords& c) {
+    if (fused) {
+      const uint32_t count = block_fetch.fn(c.x, c.y, c.z, n, ms, ts, dims, map, slot_bits, j.hit_mask, cx, cy, cz,
+                                            state);
+      if (count == 0) return false;
+      if (j.mode == Mode::Count) return hit_count += count, false;
+      return emit_cells(j, b, n, cx, cy, cz, state, count, hits, hit_count);
+    }
+    if (path == FastRunner::Path::Wide) {
+      for (size_t k = 0; k < n; ++k) {
+        const Located l = locate(cfg, j, transform(cfg, j, c.w[k]));
+        lin[k] = l.inside ? int64_t(l.linear) : -1;
+      }
+    } else {  // int64, or the double path's maps of 2^31 voxels or more (the accumulator fits 53 bits)
+      block_int64(c.ix, c.iy, c.iz, n, j, cfg.TF(), lin);
+    }
+    // Then walk only the hits.
+    const uint32_t count = fetch_states(map, slot_bits, j.hit_mask, lin, n, state);
+    if (count == 0) return false;
+    if (j.mode == Mode::Count) return hit_count += count, false;
+    return emit_hits(j, b, n, lin, state, count, hits, hit_count);
+  }
+};
+
+}  // namespace
+
+void FastRunner::run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& hit_count,
+                           const detail::ShellCursor* at) const {
+  if (j.sparse_map()) return run_sparse_chunk(j, begin, end, hits, hit_count, at);
+  if (cfg_.distance()) return run_distance_chunk(j, begin, end, hits, hit_count, at);
+  if (j.sparse_shell()) return run_sparse_shell_chunk(j, begin, end, hits, hit_count, at);
+  TwoBitBlocks block(cfg_, j, path_, tf_scale_, slot_bits_, map_.data(), hits, hit_count);
+  // A dense shell's words where the path keeps them (a batch may hold many small jobs: nothing more per block).
+  detail::BlockCoords c;
   size_t n = 0;
   for (uint32_t b = begin; b < end; b += uint32_t(n)) {
     n = std::min<size_t>(kBlock, end - b);
     const size_t base = size_t(j.shell_base) + b;
-    if (fused) {
-      const uint32_t count = block_fetch.fn(&sx_[base], &sy_[base], &sz_[base], n, ms, ts, dims, map, slot_bits_,
-                                            j.hit_mask, cx, cy, cz, state);
-      if (count == 0) continue;
-      if (j.mode == Mode::Count) {
-        hit_count += count;
-        continue;
-      }
-      if (emit_cells(j, b, n, cx, cy, cz, state, count, hits, hit_count)) return;
-      continue;
-    }
-    switch (path_) {
-      case Path::Double:  // a map of 2^31 voxels or more: the accumulator fits 53 bits, so int64 is exact
-      case Path::Int64: block_int64(&ix_[base], &iy_[base], &iz_[base], n, j, cfg_.TF(), lin); break;
-      case Path::Wide:
-        for (size_t k = 0; k < n; ++k) {
-          const Located l = locate(cfg_, j, transform(cfg_, j, shell_[base + k]));
-          lin[k] = l.inside ? int64_t(l.linear) : -1;
-        }
-        break;
-    }
-    // Then walk only the hits.
-    const uint32_t count = fetch_states(map, slot_bits_, j.hit_mask, lin, n, state);
-    if (count == 0) continue;
-    if (j.mode == Mode::Count) {
-      hit_count += count;
-      continue;
-    }
-    if (emit_hits(j, b, n, lin, state, count, hits, hit_count)) return;
+    if (block.fused) c.x = &sx_[base], c.y = &sy_[base], c.z = &sz_[base];
+    else if (path_ == Path::Wide) c.w = &shell_[base];
+    else c.ix = &ix_[base], c.iy = &iy_[base], c.iz = &iz_[base];
+    if (block(b, n, c)) return;
   }
+}
+
+void FastRunner::run_sparse_shell_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,
+                                        uint32_t& hit_count, const detail::ShellCursor* at) const {
+  TwoBitBlocks block(cfg_, j, path_, tf_scale_, slot_bits_, map_.data(), hits, hit_count);
+  detail::sparse_shell_blocks(cfg_, shell_arrays(), j, begin, end, at, block.need(), kBlock, block);
 }
 
 }  // namespace voxcd

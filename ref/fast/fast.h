@@ -15,6 +15,19 @@
 //    run time).
 //  - int64: when the accumulator fits 63 bits.
 //  - wide: otherwise, ref/'s own stage functions on 128-bit integers.
+// Sparse maps and shells (docs/contract.md, "Sparse voxmaps and shells"; sparse devices, BL > 0) take the same paths:
+//  - a sparse shell's points are generated from its words a block at a time (fast/sparse_shell.cpp) into the arrays
+//    the kernels read; its pieces and chunks are runs of points (a job's point k is its k-th generated point) and its
+//    slots, for the cycles, follow its words.
+//  - a sparse map on the double path is read from a copy built at the first job on it (fast/detail/sparse_copy.h): its
+//    table resolved, one 32-bit entry a cell (a 2-bit map's: the brick's first word, or the uniform state; a distance
+//    map's: the brick's level and its first node quad, every brick laid out in node quads). A lookup is two gathers:
+//    the cell's entry, then the brick word (2-bit, sixteen points a step) or the sub-cell's eight nodes (distance),
+//    software-pipelined so that a group's second read overlaps the next group's first (fast/sparse_kernel.cpp,
+//    fast/sparse_distance_kernel.cpp). The copies count against node_copy_limit() with the dense maps' and are
+//    dropped like them; without one (the limit; a distance map at SB = 16 or IW > 51) a 2-bit map is read as the
+//    contract lays it out (the table word, its code and rank, then the brick word, by gathers) and a distance map one
+//    point at a time, as every sparse map is on the int64 and wide paths (fast/sparse_reader.cpp).
 // Jobs are split into chunks of points spread over a thread pool; chunk results are merged in order, so the
 // stream is the same for any thread count. A batch of fewer than kParallelMinPoints points runs on the calling
 // thread.
@@ -36,6 +49,9 @@ namespace voxcd {
 class ThreadPool;
 namespace detail {
 struct NodeQuads;
+struct SparseCopy;
+struct ShellCursor;
+struct ShellArrays;
 }
 
 class FastRunner {
@@ -57,6 +73,9 @@ class FastRunner {
   // The double path's kernel on this processor: "avx512", "avx2" or "baseline"; and the distance path's.
   static const char* double_kernel();
   static const char* distance_kernel();
+  // The sparse maps' kernels on this processor (2-bit; distance on the copy): "avx512", "avx2" or "baseline".
+  static const char* sparse_kernel();
+  static const char* sparse_distance_kernel();
   unsigned threads() const;
   // The pool the batches run on (null without one).
   const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
@@ -74,15 +93,19 @@ class FastRunner {
   uint64_t map_words() const { return map_.size(); }
   const std::vector<ShellWord>& shell() const { return shell_; }
   const std::vector<uint64_t>& map() const { return map_; }
-  // The bytes the copies of distance maps in cell order may take together (default kNodeCopyLimit; 0: none, every
-  // map read from its parity banks), and the bytes they take now. Results never depend on either. Setting the
-  // limit drops the copies.
+  // The bytes the copies of maps may take together, dense distance maps' in cell order and sparse maps' with their
+  // tables resolved (default kNodeCopyLimit; 0: none, every map read as the contract lays it out), and the bytes they
+  // take now. Results never depend on either. Setting the limit drops the copies.
   static constexpr uint64_t kNodeCopyLimit = uint64_t{1} << 30;
   void set_node_copy_limit(uint64_t bytes);
   uint64_t node_copy_limit() const { return copy_limit_; }
   uint64_t node_copy_bytes() const;
   // On a banked device, the job's bank cycles given its hits' summary and its completion's hits (ref/banks.h).
   BankCycles bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const;
+  // The points of a job valid for the loaded shell memory: shell_count for a dense shell, the points its words
+  // generate for a sparse one (the range of run_piece's begin and end). And its slots (ref/timing.h, job_slots).
+  uint64_t job_points(const Job& job) const;
+  JobSlots job_slots(const Job& job) const;
 
   // Validates every job against the loaded memories (throws JobError before running any), runs them in order
   // and replaces `out` (reusing its capacity) with the stream run_stream gives. With `cycles`, every completion
@@ -101,7 +124,8 @@ class FastRunner {
   void run_hits(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out, bool cycles = true) const;
   // Points [begin, end) of one job on the calling thread: their hits appended to `hits` (FIRST: up to the first),
   // their number added to `count`; the job validated first when `validate` (JobError). For a caller that splits the
-  // jobs of a batch itself; calls may run at once.
+  // jobs of a batch itself; calls may run at once. A sparse shell's points are its generated points
+  // (job_points): a piece of one walks its words from the first to `begin`.
   void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, HitColumns& hits, uint32_t& count) const;
 
  private:
@@ -114,13 +138,17 @@ class FastRunner {
     size_t first = 0, records = 0;
     size_t out = 0;        // where its records go in the stream (those the stream keeps)
     JobHits sum;           // of its records, for the timing
+    size_t at = SIZE_MAX;  // a sparse shell's: its cursor in piece_at_
   };
+  const detail::ShellCursor* cursor_of(const Piece& p) const;
   struct alignas(64) TaskResult {
     std::vector<Record> hits;  // the hit records of its pieces, in order
     HitColumns columns;        // a piece's hits as the kernels write them
   };
 
   void set_shell_word(size_t k, const ShellWord& w);
+  // The shell memory's copies the kernels read (fast/detail/point_blocks.h).
+  detail::ShellArrays shell_arrays() const;
   // run_into (validate: every job first) and run_validated_into.
   void run_jobs(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate);
   // The parts of run_jobs: the jobs cut into pieces (returns their points); on one thread; on the pool, the tasks'
@@ -128,26 +156,44 @@ class FastRunner {
   // task t's records and completions.
   size_t make_pieces(const std::vector<Job>& jobs);
   void run_serial(const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles, bool validate);
+  // run_serial's cycles: every completion record of `out` (the batch's stream) timed (ref/timing.h).
+  void annotate(const std::vector<Job>& jobs, std::vector<Record>& out) const;
   void run_tasks(const std::vector<Job>& jobs, bool cycles, bool validate);
   size_t place_records(const std::vector<Job>& jobs);
   void finish_task(size_t t, const std::vector<Job>& jobs, std::vector<Record>& out, bool cycles) const;
   // Job j's hits and the summary of its kept records, from its pieces (all done).
   void job_result(const std::vector<Job>& jobs, size_t j, bool cycles, uint32_t& hits, JobHits& sum) const;
   // Looks up points [begin, end) of job j: appends their hit records (ALL: every one; FIRST: the first, then stops)
-  // to `hits` and adds their number to `count`.
-  void run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count) const;
+  // to `hits` and adds their number to `count`. A sparse shell's points from the cursor `at` (at `begin`), or from
+  // its first word.
+  void run_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                 const detail::ShellCursor* at = nullptr) const;
+  // run_chunk of a sparse shell on a dense 2-bit map (its points generated a block at a time).
+  void run_sparse_shell_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                              const detail::ShellCursor* at) const;
   // run_chunk on a distance voxmap (SB > 2), in fast/distance.cpp: the vector kernel where distance_vector(j), else
   // one point at a time.
-  void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count) const;
+  void run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                          const detail::ShellCursor* at) const;
   bool distance_vector(const Job& j) const;
+  // run_chunk on a sparse map, in fast/sparse_map.cpp: the 2-bit kernel, the distance copy's kernel, or one point at
+  // a time; and the copy of a sparse distance map (built at the first call; null where none serves).
+  void run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                        const detail::ShellCursor* at) const;
+  const detail::SparseCopy* sparse_copy(const Job& j) const;
+  void run_sparse_points(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& count,
+                         const detail::ShellCursor* at) const;
+  // The walk over a sparse-shell job's words (fast/detail/sparse_shell.h): its points, the cursors at every kChunk
+  // points, its slots where `slots`.
+  uint64_t walk_sparse_shell(const Job& j, std::vector<detail::ShellCursor>* cursors, JobSlots* slots) const;
   // The node-quad copy of job j's map, built at the first call (thread-safe); null where the kernel cannot take it
   // (widths, SB > 8) or it would pass the limit.
   const detail::NodeQuads* node_quads(const Job& j) const;
-  // Drops the copies of maps that overlap voxmap words [first, end).
+  // Drops the copies of maps (dense and sparse) made from any of voxmap words [first, end).
   void drop_node_quads(uint64_t first, uint64_t end);
   // The vector kernel on the parity banks, or with `quads` on that copy.
   void run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
-                           HitColumns& hits, uint32_t& count) const;
+                           HitColumns& hits, uint32_t& count, const detail::ShellCursor* at) const;
 
   DeviceConfig cfg_;
   Path path_ = Path::Double;
@@ -162,6 +208,10 @@ class FastRunner {
   std::vector<int32_t> sx_, sy_, sz_;
   std::vector<int64_t> ix_, iy_, iz_;
   std::vector<Piece> pieces_;
+  // Where the pieces of sparse shells begin (fast/detail/sparse_shell.h; Piece::at); per job of the batch, its slots
+  // (a sparse shell's from its words) and its points.
+  std::vector<detail::ShellCursor> piece_at_;
+  std::vector<JobSlots> batch_slots_;
   std::vector<size_t> first_piece_;  // per job, and one past the last
   std::vector<size_t> task_first_;   // per task its first piece, and one past the last
   std::vector<size_t> done_at_;      // per job, where its completion record goes in the stream
@@ -170,6 +220,7 @@ class FastRunner {
   uint64_t copy_limit_ = kNodeCopyLimit;
   mutable std::mutex copies_mutex_;
   mutable std::vector<std::unique_ptr<detail::NodeQuads>> copies_;
+  mutable std::vector<std::unique_ptr<detail::SparseCopy>> sparse_copies_;  // sparse distance maps' (fast/sparse_map.cpp)
   mutable uint64_t copy_bytes_ = 0;
   HitColumns serial_hits_;  // run_serial's hits of a piece
 };

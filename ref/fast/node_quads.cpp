@@ -39,8 +39,9 @@ struct PlaneDecoder {
   }
 };
 
-// Room for n entries, on 2 MiB pages when n takes at least one.
-uint32_t* allocate_entries(size_t n) {
+}  // namespace
+
+uint32_t* allocate_quads(size_t n) {
   constexpr size_t kHuge = size_t{1} << 21;
   const size_t bytes = n * sizeof(uint32_t);
   void* p = nullptr;
@@ -56,8 +57,6 @@ uint32_t* allocate_entries(size_t n) {
   return static_cast<uint32_t*>(p);
 }
 
-}  // namespace
-
 uint64_t node_quad_bytes(uint32_t nx, uint32_t ny, uint32_t nz) {
   return (uint64_t{nx} + 1) * ny * nz * sizeof(uint32_t);
 }
@@ -69,12 +68,17 @@ NodeQuads build_node_quads(const uint64_t* map, uint64_t map_base, uint64_t map_
   q.map_end = map_base + map_words;
   q.nx = nx, q.ny = ny, q.nz = nz;
   q.count = size_t(node_quad_bytes(nx, ny, nz) / sizeof(uint32_t));
-  q.entries.reset(allocate_entries(q.count));
+  q.entries.reset(allocate_quads(q.count));
+  fill_node_quads(map, nx, ny, nz, sb, nodes_per_word, q.entries.get());
+  return q;
+}
+
+void fill_node_quads(const uint64_t* map, uint32_t nx, uint32_t ny, uint32_t nz, int sb, int nodes_per_word,
+                     uint32_t* out) {
   const PlaneDecoder decode{map, uint64_t{nx >> 1} + 1, uint64_t{ny >> 1} + 1, nx, ny, sb, uint64_t(nodes_per_word)};
   const size_t row = size_t(nx) + 1, plane_nodes = row * (size_t(ny) + 1);
   std::vector<uint8_t> lo(plane_nodes), hi(plane_nodes);
   if (nz > 0) decode(0, lo);
-  uint32_t* out = q.entries.get();
   for (uint32_t Z = 0; Z < nz; ++Z) {
     decode(Z + 1, hi);
     for (uint32_t Y = 0; Y < ny; ++Y) {
@@ -84,7 +88,6 @@ NodeQuads build_node_quads(const uint64_t* map, uint64_t map_base, uint64_t map_
     }
     lo.swap(hi);
   }
-  return q;
 }
 
 }  // namespace voxcd::detail

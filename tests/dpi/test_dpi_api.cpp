@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/sparse.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/vectors.h"
@@ -232,7 +233,7 @@ TEST(DpiApi, ConfigurationAndParameters) {
   EXPECT_EQ(voxcd_dpi_param(d.h, "pw"), -1);
   EXPECT_STREQ(voxcd_dpi_error(d.h),
                "voxcd_dpi_param: no parameter named 'pw' (PW, PF, MW, MF, TW, DW, MEMW, LANES, SAW, MAW, TAGW, SB, WB, "
-               "BANKS, DEPTH, IW)");
+               "BANKS, DEPTH, BL, IW)");
   EXPECT_EQ(voxcd_dpi_param(d.h, "SB"), 2);
   EXPECT_EQ(voxcd_dpi_param(d.h, "DEPTH"), 0);
   Handle deep("LANES 4 DEPTH 3 BANKS 2");
@@ -365,6 +366,81 @@ TEST(DpiApi, DistanceJobsTakeAThresholdAndGiveTheirDistance) {
   EXPECT_EQ(submit(two.h, j), -1);
   EXPECT_NE(std::string(voxcd_dpi_error(two.h)).find("threshold 5 on a 2-bit voxmap"), std::string::npos)
       << voxcd_dpi_error(two.h);
+}
+
+int submit_sparse(void* h, const Job& j) {
+  return voxcd_dpi_submit_sparse(h, int(j.tag), int(j.mode), j.hit_mask, int(j.shell_base), int(j.shell_count),
+                                 int(j.map_base), int(j.nx), int(j.ny), int(j.nz), j.M[0][0], j.M[0][1], j.M[0][2],
+                                 j.M[1][0], j.M[1][1], j.M[1][2], j.M[2][0], j.M[2][1], j.M[2][2], j.t[0], j.t[1],
+                                 j.t[2], j.threshold, j.sparse, int(j.brick_base), int(j.brick_units));
+}
+
+// A sparse device (BL 3): generated version-3 jobs (sparse maps and shells among dense ones), their sparse fields read
+// back with voxcd_dpi_gen_job_sparse and submitted with voxcd_dpi_submit_sparse, give ref/'s stream with the cycles
+// of annotate_cycles over the memory (a sparse shell's slots follow its words; shared banks count conflicts).
+TEST(DpiApi, SparseJobsStreamAndCyclesEqualRef) {
+  for (const char* cfg_text : {"BL 3", "BL 3 SB 8 WB 8 BANKS 2", "BL 3 LANES 2 DEPTH 3"}) {
+    Handle d(cfg_text);
+    ASSERT_EQ(voxcd_dpi_param(d.h, "BL"), 3);
+    ASSERT_EQ(voxcd_dpi_generate(d.h, 31, 200, 400), 0) << voxcd_dpi_error(d.h);
+    GenerateOptions g;
+    g.seed = 31, g.jobs = 200, g.cloud_points = 400;
+    g.config = parse_config_pairs(cfg_text, "test");
+    const GeneratedVectors v = generate_vectors(g);
+    write_memory(d.h, v.memory);
+    size_t sparse = 0;
+    for (size_t k = 0; k < v.jobs.size(); ++k) {
+      int s = -1, base = -1, units = -1;
+      ASSERT_EQ(voxcd_dpi_gen_job_sparse(d.h, int(k), &s, &base, &units), 0) << voxcd_dpi_error(d.h);
+      ASSERT_EQ(s, v.jobs[k].sparse) << k;
+      ASSERT_EQ(uint32_t(base), v.jobs[k].brick_base) << k;
+      ASSERT_EQ(uint32_t(units), v.jobs[k].brick_units) << k;
+      sparse += s != 0;
+      ASSERT_GT(submit_sparse(d.h, v.jobs[k]), 0) << voxcd_dpi_error(d.h);
+    }
+    EXPECT_GT(sparse, 40u) << cfg_text;
+    std::vector<Record> want = run_stream(v.config, v.memory, v.jobs);
+    annotate_cycles(v.config, v.memory, v.jobs, want);
+    expect_same_stream(want, pop_all(d.h), cfg_text);
+  }
+}
+
+// A sparse job reads its brick words too; a sparse job on a dense device, and sparse bits outside 0..3, are refused.
+TEST(DpiApi, SparseJobsReadingUnwrittenBricksOrOnADenseDeviceAreRefused) {
+  Handle d("BL 3");
+  ASSERT_EQ(voxcd_dpi_write_shell(d.h, 0, 256, 256, 256), 0);
+  // A 16 x 8 x 8 map: two cells, the first uniform surface, the second a brick (unit 0: words 2..17 of 16).
+  ASSERT_EQ(voxcd_dpi_write_map(d.h, 0, (1ll << 32) | 1 | 3 << 2), 0);  // rank 1: the brick is unit 1, words 17..32
+  Job j;
+  j.tag = 4;
+  j.sparse = kSparseMap;
+  j.shell_count = 1;
+  j.nx = 16, j.ny = 8, j.nz = 8;
+  j.brick_base = 1;
+  j.brick_units = 2;
+  j.M[0][0] = j.M[1][1] = j.M[2][2] = 1 << 16;
+  EXPECT_EQ(submit_sparse(d.h, j), -1);
+  EXPECT_STREQ(voxcd_dpi_error(d.h),
+               "voxcd_dpi_submit_sparse: job tag 4 reads brick words [1, 33), and word 1 was never written "
+               "(voxcd_dpi_write_map)");
+  for (int k = 1; k < 33; ++k) ASSERT_EQ(voxcd_dpi_write_map(d.h, k, 0), 0);
+  EXPECT_EQ(submit_sparse(d.h, j), 2) << voxcd_dpi_error(d.h);  // (1, 1, 1) in the uniform surface cell: a hit
+  const std::vector<Record> got = pop_all(d.h);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0].to_string(), "hit 4 0 1 1 1 1");
+  j.sparse = 4;
+  EXPECT_EQ(submit_sparse(d.h, j), -1);
+  EXPECT_STREQ(voxcd_dpi_error(d.h), "voxcd_dpi_submit_sparse: job tag 4: sparse 4 is outside 0..3 (1: the map, 2: the shell)");
+  Handle dense("");
+  ASSERT_EQ(voxcd_dpi_write_shell(dense.h, 0, 0, 0, 0), 0);
+  ASSERT_EQ(voxcd_dpi_write_map(dense.h, 0, 0), 0);
+  j.sparse = kSparseShell;
+  j.brick_base = j.brick_units = 0;
+  EXPECT_EQ(submit_sparse(dense.h, j), -1);
+  EXPECT_NE(std::string(voxcd_dpi_error(dense.h)).find("a sparse shell on a device without sparse maps and shells"),
+            std::string::npos)
+      << voxcd_dpi_error(dense.h);
+  EXPECT_EQ(voxcd_dpi_param(dense.h, "BL"), 0);
 }
 
 TEST(DpiApi, PopOnAnEmptyQueueReturnsNone) {

@@ -128,8 +128,10 @@ TEST(SyscErrors, HostCpuHelpersRaiseBusErrorsNamingTheAccess) {
   }
 }
 
-// A shell word's bytes 12..15 and a descriptor's bytes 6, 7, 0x44..0x47 and 0x68..0x7f are reserved: a non-zero one
-// refuses the whole write, names the word or descriptor and the byte, and stages or writes nothing of it.
+// A shell word's bytes 12..15 and a descriptor's byte 7 and bytes 0x6c..0x7f are reserved: a non-zero one refuses the
+// whole write, names the word or descriptor and the byte, and stages or writes nothing of it. The sparse byte (6) and
+// the brick fields (0x44, 0x68) are refused as validate_job refuses them: sparse bits 2..7, a sparse map on a dense
+// device, brick fields on a dense map.
 TEST(SyscErrors, NonZeroReservedBytesAreRefusedWhole) {
   DeviceConfig cfg;
   cfg.LANES = built_lanes(cfg.LANES);
@@ -147,16 +149,29 @@ TEST(SyscErrors, NonZeroReservedBytesAreRefusedWhole) {
       EXPECT_EQ(p->target().last_error(), who + ".device: shell word 1: reserved bytes not zero");
       EXPECT_EQ(cpu.read_reg(kRegShellWords), 64u) << who << ": nothing of the refused write is loaded";
       // Two descriptors, the second with one reserved byte set: neither is staged.
-      for (size_t byte : {size_t{0x06}, size_t{0x07}, size_t{0x44}, size_t{0x47}, size_t{0x68}, size_t{0x7f}}) {
+      const std::pair<size_t, std::string> refusals[] = {
+          {0x07, "reserved descriptor byte 7 is not zero"},
+          {0x6c, "reserved descriptor byte 108 is not zero"},
+          {0x7f, "reserved descriptor byte 127 is not zero"},
+          {0x06, "job tag 2: sparse = 128 has bits other than 1 (map) and 2 (shell)"},
+          {0x44, "job tag 2: brick_base 0 and brick_units 128 of a dense map: both must be 0"},
+          {0x68, "job tag 2: brick_base 128 and brick_units 0 of a dense map: both must be 0"}};
+      for (const auto& [byte, why] : refusals) {
         uint8_t d[2 * kJobBytes];
         encode_job(origin_job(1, Mode::All, 64), d);
         encode_job(origin_job(2, Mode::All, 64), d + kJobBytes);
         d[kJobBytes + byte] = 0x80;
         EXPECT_EQ(cpu.access(true, kJobBase, d, sizeof d), TLM_GENERIC_ERROR_RESPONSE) << who << " byte " << byte;
-        EXPECT_EQ(p->target().last_error(),
-                  who + ".device: descriptor 1: reserved descriptor byte " + std::to_string(byte) + " is not zero");
+        EXPECT_EQ(p->target().last_error(), who + ".device: descriptor 1: " + why);
         EXPECT_EQ(cpu.read_reg(kRegStaged), 0u) << who << " byte " << byte;
       }
+      // A sparse map on this device (BL 0).
+      uint8_t d[kJobBytes];
+      encode_job(origin_job(1, Mode::All, 64), d);
+      d[0x06] = kSparseMap;
+      EXPECT_EQ(cpu.access(true, kJobBase, d, sizeof d), TLM_GENERIC_ERROR_RESPONSE) << who;
+      EXPECT_EQ(p->target().last_error(), who + ".device: descriptor 0: job tag 1: a sparse map on a device without "
+                                                "sparse maps and shells (BL = 0)");
       const std::vector<Job> jobs = {origin_job(3, Mode::All, 64)};
       expect_stream(run_stream(cfg, mem, jobs), cpu.run(jobs), who + " after the refused writes");
     });

@@ -33,6 +33,15 @@ struct NodeQuads {
 // The copy's size in bytes for a map of nx x ny x nz cells (no allocation).
 uint64_t node_quad_bytes(uint32_t nx, uint32_t ny, uint32_t nz);
 
+// Room for n entries (freed by NodeQuads::Free), on 2 MiB pages when they take at least one.
+uint32_t* allocate_quads(size_t n);
+
+// Writes the copy of the map of nx x ny x nz cells at `map` (its first word) with SB-bit nodes, nodes_per_word of
+// them in a word, into out[0, (nx + 1) ny nz): the layout above. A sparse map's distance brick of level l is laid out as
+// such a map of B 2^l cells per axis (docs/contract.md), so its copy is this too (detail/sparse_copy.h).
+void fill_node_quads(const uint64_t* map, uint32_t nx, uint32_t ny, uint32_t nz, int sb, int nodes_per_word,
+                     uint32_t* out);
+
 // Builds the copy of the map of nx x ny x nz cells at `map` (its first word, the voxmap memory's map_base) with SB-bit
 // nodes (SB <= 8), nodes_per_word of them in a word; map_words is the map's length in words (map_words of ref/).
 NodeQuads build_node_quads(const uint64_t* map, uint64_t map_base, uint64_t map_words, uint32_t nx, uint32_t ny,
