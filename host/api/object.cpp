@@ -17,6 +17,7 @@ Object build(const Mesh& mesh, const std::string& source, uint64_t hash, const M
   o.distance_bits = def.distance_bits;
   o.band = def.band;
   o.threads = def.threads;
+  set_storage(o, def.storage);
   return Object(std::make_shared<const ObjectType>(make_object_type(make_object(mesh, source, hash, o, &report), name)));
 }
 
@@ -81,7 +82,7 @@ const std::string& Object::name() const { return type_->name; }
 double Object::voxel() const { return type_->voxmap().voxel(); }
 std::array<uint32_t, 3> Object::dims() const { return type_->voxmap().dims(); }
 size_t Object::shell_points() const { return type_->shell().size(); }
-int Object::distance_bits() const { return type_->object.distance.bits; }
+int Object::distance_bits() const { return type_->object.distance_bits(); }
 const MeshReport& Object::report() const { return type_->object.mesh_report; }
 void Object::save(const std::string& path) const { write_object(path, type_->object); }
 

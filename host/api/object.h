@@ -9,6 +9,7 @@
 #include <string>
 
 #include "voxcd/host/object/mesh.h"
+#include "voxcd/host/object/storage.h"
 
 namespace voxcd {
 
@@ -20,6 +21,9 @@ struct ObjectDef {
   uint32_t resolution = 32;  // voxels along the longest side, when `voxel` is 0
   int distance_bits = 0;     // 4, 8 or 16: a distance field too (sub-voxel contacts, docs/pairs.md); 0: none
   double band = 4;           // the distance field's band, voxels
+  // How a mesh's voxmap, shell and field are kept (docs/objects.md, "Sparse objects"): dense (the default), sparse,
+  // or auto (each in whichever form takes less device memory). A sparse object runs on a sparse device.
+  ObjectStorage storage = ObjectStorage::kDense;
   bool strict = false;       // refuse a mesh that is not a closed manifold instead of repairing it
   unsigned threads = 0;      // 0: every hardware thread; never changes the object
   std::string name;          // for messages and reports; by default the file, the shape or "arrays"

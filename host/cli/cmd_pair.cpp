@@ -28,6 +28,7 @@ struct PairArgs {
   std::string backend = "cpu";
   int lanes = 4;
   std::string mode = "ALL";
+  std::string storage = "dense";  // meshes' and shapes' forms (object files keep theirs)
   bool json = false;
   size_t show = 10;
 };
@@ -124,9 +125,11 @@ std::string pair_json(const PairArgs& a, const ObjectType& ta, const ObjectType&
             {"lookups", run.lookups},
             {"seconds", rounded(run.secs, 6)}};
   if (run.has_cycles) j["device_cycles"] = run.cycles;
+  j["lanes"] = cfg.LANES;
+  j["bl"] = cfg.BL;  // a sparse device's brick size (0: dense maps and shells only)
   if (cfg.distance()) {
     j["distance_bits"] = cfg.SB;
-    j["band"] = {rounded(ta.object.distance.band() * va, 6), rounded(tb.object.distance.band() * vb, 6)};
+    j["band"] = {rounded(ta.object.distance_band() * va, 6), rounded(tb.object.distance_band() * vb, 6)};
     j["margin"] = rounded(a.opt.margin, 6);
   }
   Json results = Json::array();
@@ -148,7 +151,8 @@ void print_pair_text(const PairArgs& a, const ObjectType& ta, const ObjectType& 
               (unsigned long long)run.contacts, (unsigned long long)run.lookups, run.secs * 1e3,
               run.lookups ? run.secs * 1e9 / double(run.lookups) : 0.0);
   if (run.has_cycles)
-    std::printf("device cycles: %llu at %d lanes (%s)\n", (unsigned long long)run.cycles, cfg.LANES,
+    std::printf("device cycles: %llu at %d lanes%s (%s)\n", (unsigned long long)run.cycles, cfg.LANES,
+                cfg.sparse() ? (", sparse device BL " + std::to_string(cfg.BL)).c_str() : "",
                 a.backend == "rtl" ? "measured on the RTL" : "the exact timing model of ref/");
   size_t shown = 0;
   for (const PairResult& r : run.res)
@@ -166,8 +170,10 @@ int pair_cmd(const PairArgs& a) {
   // Without --voxel: the longest side of the larger mesh / --resolution (32 by default), shared by both objects.
   const ObjectDef& o = a.object;
   const double voxel = o.voxel > 0 ? o.voxel : shared_voxel({a.a, a.b}, o.resolution);
-  auto ta = std::make_shared<ObjectType>(load_object_type(a.a, voxel, o.distance_bits, o.band));
-  auto tb = std::make_shared<ObjectType>(load_object_type(a.b, voxel, o.distance_bits, o.band));
+  const std::optional<ObjectStorage> storage = parse_storage(a.storage);
+  if (!storage) throw CLI::ValidationError("--storage", "'" + a.storage + "' is not auto, dense or sparse");
+  auto ta = std::make_shared<ObjectType>(load_object_type(a.a, voxel, o.distance_bits, o.band, *storage));
+  auto tb = std::make_shared<ObjectType>(load_object_type(a.b, voxel, o.distance_bits, o.band, *storage));
   const DeviceConfig cfg = device_config_for(a.backend, a.lanes, {ta.get(), tb.get()}, o.distance_bits);
   PairCollider collider(make_device(a.backend, cfg), {ta, tb});
   PairOptions opt = a.opt;
@@ -218,6 +224,11 @@ void add_pair(CLI::App& app) {
       ->check(CLI::IsMember(kDistanceBits));
   c->add_option("--band", a->object.band, "Band of the distance fields, voxels (with --distance-bits)")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  c->add_option("--storage", a->storage,
+                "Meshes and shapes: dense, sparse (on a sparse device) or auto, whichever takes less device memory "
+                "(docs/objects.md, \"Sparse objects\"); object files keep the forms they were saved in")
+      ->check(CLI::IsMember({"auto", "dense", "sparse"}))
       ->capture_default_str();
   c->add_option("--margin", a->opt.margin,
                 "Distance device: contacts where the other object's distance is at most this, world units")

@@ -27,6 +27,7 @@ struct SimulateArgs {
   RunConfig options;
   std::string config;  // a whole device configuration, "NAME VALUE" pairs
   std::string mode = "ALL";
+  std::string storage = "dense";  // --storage, parsed into options.storage when given
   double clock_mhz = 0;  // --clock; unset: the scene file's "clock" or default_device_clock()
   bool json = false;
   bool progress = true;
@@ -50,6 +51,7 @@ constexpr RunOption kRunOptions[] = {
     {"--clock", "clock", "clock"},              {"--lanes", "lanes", "lanes"},
     {"--distance-bits", "distance_bits", "distance_bits"}, {"--band", "band", "band"},
     {"--margin", "margin", "margin"},           {"--ccd", "ccd", "ccd"},
+    {"--storage", "storage", "storage"},
 };
 
 // The options given, as the settings they override (the others take the scene file's values or the defaults).
@@ -58,6 +60,7 @@ RunConfig options_given(const SimulateArgs& a) {
   for (const RunOption& r : kRunOptions)
     if (a.app->count(r.option) > 0) o.given[r.field] = SettingSource{"", r.name};
   if (o.given.count("mode")) o.mode = mode_option(a.mode);
+  if (o.given.count("storage")) o.storage = *parse_storage(a.storage);
   if (o.given.count("clock")) o.clock = clock_option(a.clock_mhz, "--clock");
   if (!a.config.empty()) {
     o.device = parse_config_pairs(a.config, "--config");
@@ -84,6 +87,7 @@ Json settings_json(const SimulationSummary& s) {
             {"backend", c.backend}, {"mode", mode_name(c.mode)}, {"both_directions", c.both_directions}});
   if (s.distance_bits())
     j.update({{"distance_bits", s.distance_bits()}, {"band", c.band}, {"margin", c.margin}, {"ccd", c.ccd}});
+  if (c.storage != ObjectStorage::kDense) j.update({{"storage", storage_name(c.storage)}, {"bl", s.device.BL}});
   j.update({{"frames", c.frames}, {"seed", c.seed}});
   return j;
 }
@@ -166,6 +170,10 @@ void print_text(const SimulationSummary& s, double exchanged) {
   if (s.distance_bits())
     std::printf("distance        %d-bit fields over +-%g voxels, margin %g%s\n", s.distance_bits(), c.band, c.margin,
                 c.ccd ? ", continuous collision" : "");
+  if (c.storage != ObjectStorage::kDense)
+    std::printf("storage         %s: %s\n", storage_name(c.storage),
+                s.device.sparse() ? ("a sparse device, bricks of 2^" + std::to_string(s.device.BL) + " voxels").c_str()
+                                  : "every type dense, a dense device");
   if (s.ranks > 1)
     std::printf("frame rate      %.1f Hz (%.3f ms per frame on rank 0 of %d)\n", rate, 1e3 * tot.seconds() / F, s.ranks);
   else
@@ -284,6 +292,10 @@ void add_device_options(CLI::App* c, SimulateArgs& args) {
                 "Distance voxmaps of B bits (4, 8 or 16): objects carry signed distance fields, contacts the "
                 "interpolated depth and the field's gradient")
       ->check(CLI::IsMember(kDistanceBits));
+  c->add_option("--storage", a->storage,
+                "How the types are kept: dense, sparse (on a sparse device: memory in proportion to the surface) or "
+                "auto (docs/objects.md, \"Sparse objects\")")
+      ->check(CLI::IsMember({"auto", "dense", "sparse"}));
   c->add_option("--band", a->options.band, "Band of the distance fields, voxels")->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--margin", a->options.margin, "Distance voxmaps: contacts within this distance, world units")->capture_default_str();
   c->add_flag("--ccd", a->options.ccd, "Continuous collision: no body passes through another or a wall between frames "

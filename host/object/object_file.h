@@ -13,6 +13,7 @@
 #include "voxcd/host/object/sparse_field.h"
 #include "voxcd/host/object/sparse_shell.h"
 #include "voxcd/host/object/sparse_voxmap.h"
+#include "voxcd/host/object/storage.h"
 #include "voxcd/host/object/voxelize.h"
 
 namespace voxcd {
@@ -67,12 +68,6 @@ struct ObjectFile {
   size_t shell_points() const { return shell_sparse() ? sparse_shell.size() : shell.size(); }
 };
 
-// Which forms make_object builds. kDense: the dense voxmap and shell, as before sparse forms existed (the library's
-// default). kSparse: the sparse voxmap and shell. kAuto: each of the two in whichever form takes fewer bytes of device
-// memory with the default widths (a dense voxmap only while it fits kMaxDenseDim per axis, a dense shell while its
-// grid fits 4096). An object with a distance field keeps its voxmap and its shell on the surface dense (up to
-// kMaxDenseDim per axis); kSparse stores its field sparse with refined bricks, kAuto in the smaller form.
-enum class ObjectStorage { kDense, kSparse, kAuto };
 
 // The largest dense voxmap an object holds, per axis (the default device's 2^DW): larger grids are sparse only.
 constexpr uint32_t kMaxDenseDim = 1024;

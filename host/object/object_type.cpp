@@ -131,15 +131,16 @@ bool is_object_file(const std::string& path) {
 }
 
 void require_distance_bits(const ObjectFile& obj, int distance_bits, const std::string& name) {
-  if (distance_bits > 0 && obj.distance.bits != distance_bits)
+  if (distance_bits > 0 && obj.distance_bits() != distance_bits)
     throw MeshError(name + ": the object has " +
-                    (obj.distance.empty() ? std::string("no distance field")
-                                          : "a distance field of " + std::to_string(obj.distance.bits) + " bits") +
+                    (!obj.has_distance() ? std::string("no distance field")
+                                         : "a distance field of " + std::to_string(obj.distance_bits()) + " bits") +
                     "; " + std::to_string(distance_bits) + " bits were asked for (voxcd voxelize --distance-bits " +
                     std::to_string(distance_bits) + ")");
 }
 
-ObjectType load_object_type(const std::string& file_or_shape, double voxel, int distance_bits, double band) {
+ObjectType load_object_type(const std::string& file_or_shape, double voxel, int distance_bits, double band,
+                            ObjectStorage storage) {
   if (is_object_file(file_or_shape)) {
     ObjectFile obj = read_object(file_or_shape);
     require_distance_bits(obj, distance_bits, file_or_shape);
@@ -154,6 +155,7 @@ ObjectType load_object_type(const std::string& file_or_shape, double voxel, int 
   opt.voxel = voxel;
   opt.distance_bits = distance_bits;
   opt.band = band;
+  set_storage(opt, storage);
   ObjectType t = make_object_type(make_object(mesh, source, hash, opt), file_or_shape);
   t.mesh = std::make_shared<const Mesh>(mesh);
   return t;

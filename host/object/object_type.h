@@ -36,10 +36,10 @@ ObjectType make_object_type(ObjectFile obj, const std::string& name);
 
 // An object type from an object file (recognised by its magic, whatever its name), a mesh file or a built-in
 // shape name; meshes and shapes are voxelised at `voxel` (which must then be > 0), with a distance field of
-// `distance_bits` (4, 8, 16; 0: none) over `band` voxels. An object file must have a field of distance_bits when
-// distance_bits > 0. Errors name the argument.
+// `distance_bits` (4, 8, 16; 0: none) over `band` voxels, in the forms `storage` asks for. An object file must have a
+// field of distance_bits when distance_bits > 0, and is taken in the forms it was saved in. Errors name the argument.
 ObjectType load_object_type(const std::string& file_or_shape, double voxel, int distance_bits = 0,
-                            double band = 4.0);
+                            double band = 4.0, ObjectStorage storage = ObjectStorage::kDense);
 
 // An object used as it is where distance voxmaps of `distance_bits` (4, 8, 16) are asked for must carry a field of
 // exactly that many bits: MeshError "NAME: the object has no distance field; 8 bits were asked for ..." otherwise.

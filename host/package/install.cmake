@@ -18,7 +18,7 @@ include(CMakePackageConfigHelpers)
 # installed header includes only installed headers and compiles on its own.
 set(VOXCD_PUBLIC_HEADERS
   host/api/object.h host/api/collide.h host/api/world.h host/api/devices.h
-  host/object/mesh.h host/object/frame.h host/pairs/contact.h host/scene/body.h
+  host/object/mesh.h host/object/storage.h host/object/frame.h host/pairs/contact.h host/scene/body.h
   host/device/device.h host/device/conform.h host/device/clock.h
   ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
   ref/float_model.h ref/fast/fast.h ref/fast/hits.h)

@@ -13,18 +13,33 @@
 
 namespace voxcd {
 
+namespace {
+
+// What the culling knows of a type's voxmap (or field) on cfg's device.
+detail::EmptySpace empty_space(const DeviceConfig& cfg, const ObjectType& t) {
+  if (!cfg.distance()) return t.voxmap().words().empty() ? detail::EmptySpace() : detail::EmptySpace::of_states(t.voxmap());
+  return t.object.distance_sparse() ? detail::EmptySpace::of_sparse_field(t.object.sparse_distance)
+                                    : detail::EmptySpace::of_field(t.object.distance);
+}
+
+}  // namespace
+
 PairCollider::Clusters PairCollider::clusters_of(const std::vector<std::array<uint32_t, 3>>& cells,
-                                                 const std::vector<uint32_t>& order,
-                                                 const std::vector<uint32_t>& block_first) {
+                                                 const detail::ShellOrder& order) {
   Clusters cl;
+  const std::vector<uint32_t>& slots = order.point;
+  const std::vector<uint32_t>& block_first = order.block_first;
+  // A sparse shell's job starts at a block's origin word: a cluster is a whole block.
+  const uint64_t size = order.sparse() ? uint64_t{1} << 40 : kClusterPoints;
   for (uint32_t b = 0; b + 1 < block_first.size(); ++b)
-    for (uint32_t k = block_first[b]; k < block_first[b + 1]; k += kClusterPoints) {
-      const uint32_t end = std::min(block_first[b + 1], k + kClusterPoints);
-      std::array<uint32_t, 3> lo = cells[order[k]], hi = lo;
-      for (uint32_t s = k + 1; s < end; ++s)
-        for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], cells[order[s]][i]), hi[i] = std::max(hi[i], cells[order[s]][i]);
-      cl.first.push_back(k);
+    for (uint64_t k = block_first[b]; k < block_first[b + 1]; k += size) {
+      const uint32_t end = uint32_t(std::min<uint64_t>(block_first[b + 1], k + size));
+      std::array<uint32_t, 3> lo = cells[slots[k]], hi = lo;
+      for (uint64_t s = k + 1; s < end; ++s)
+        for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], cells[slots[s]][i]), hi[i] = std::max(hi[i], cells[slots[s]][i]);
+      cl.first.push_back(uint32_t(k));
       cl.block.push_back(b);
+      if (order.sparse()) cl.word.push_back(order.block_word[b]);
       for (int i = 0; i < 3; ++i) {
         // Point k is at cells[k] + 0.5 exactly (within half a cell more when PF = 0: the margin of 0.5).
         cl.centre[i].push_back(0.5 * (double(lo[i]) + double(hi[i])) + 0.5);
@@ -32,6 +47,7 @@ PairCollider::Clusters PairCollider::clusters_of(const std::vector<std::array<ui
       }
     }
   cl.first.push_back(uint32_t(cells.size()));
+  if (order.sparse()) cl.word.push_back(uint32_t(order.words.size()));
   return cl;
 }
 
@@ -40,15 +56,15 @@ PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shar
     : device_(std::move(device)), types_(std::move(types)), pool_(std::move(pool)), image_(device_->config()) {
   if (!pool_) pool_ = device_->pool();
   if (pool_ && pool_->size() <= 1) pool_ = nullptr;
+  const DeviceConfig& cfg = device_->config();
   for (const auto& t : types_) {
-    detail::ShellOrder o = detail::block_order(t->shell().cells);
-    image_.add(*t, o.point);
-    clusters_.push_back(clusters_of(t->shell().cells, o.point, o.block_first));
+    detail::ShellOrder o = shell_order(cfg, *t);
+    image_.add(*t, o);
+    clusters_.push_back(clusters_of(t->shell().cells, o));
     order_.push_back(std::move(o.point));
     block_first_.push_back(std::move(o.block_first));
-    space_.push_back(std::make_shared<const detail::EmptySpace>(
-        device_->config().distance() ? detail::EmptySpace::of_field(t->object.distance)
-                                     : detail::EmptySpace::of_states(t->voxmap())));
+    block_word_.push_back(std::move(o.block_word));
+    space_.push_back(std::make_shared<const detail::EmptySpace>(empty_space(cfg, *t)));
   }
   device_->load(image_.memory());
 }
@@ -59,21 +75,21 @@ void PairCollider::runs_of(const Clusters& cl, const std::vector<uint64_t>& bits
   // pattern is hard to predict, so a branch per cluster costs more than the whole cull); runs closer than kMergeGap
   // points apart are one job (a job costs more on the host than a few extra lookups), which also joins the two
   // halves of a run split by a word boundary.
-  uint32_t run_first = 0, run_end = 0;
+  size_t run_first = 0, run_end = 0;  // clusters
   bool open = false;
   if (first_mode) {
-    // FIRST: runs within one block, whose slots are in ascending point order, so that each job's first hit is the
-    // lowest point among its hits (the pair keeps the lowest over its jobs).
+    // FIRST: runs within one block, whose slots are in ascending point order (a sparse shell's: brick by brick), so
+    // that each job's first hit is the lowest point among its hits (the pair keeps the lowest over its jobs).
     uint32_t block = 0;
     for (size_t w = 0; w < bits_.size(); ++w)
       for (uint64_t x = bits_[w]; x; x &= x - 1) {
         const size_t c = w * 64 + size_t(__builtin_ctzll(x));
-        if (open && cl.block[c] == block && cl.first[c] == run_end) {
-          run_end = cl.first[c + 1];
+        if (open && cl.block[c] == block && c == run_end) {
+          run_end = c + 1;
           continue;
         }
         if (open) emit(run_first, run_end);
-        run_first = cl.first[c], run_end = cl.first[c + 1], block = cl.block[c], open = true;
+        run_first = c, run_end = c + 1, block = cl.block[c], open = true;
       }
     if (open) emit(run_first, run_end);
     return;
@@ -84,8 +100,8 @@ void PairCollider::runs_of(const Clusters& cl, const std::vector<uint64_t>& bits
       const uint64_t zeros = ~(x >> s);  // 0 only when the run fills the word from bit 0 up
       const unsigned len = zeros ? unsigned(__builtin_ctzll(zeros)) : 64u;
       x = s + len >= 64 ? 0 : x & (~uint64_t(0) << (s + len));
-      const uint32_t first = cl.first[w * 64 + s], end = cl.first[w * 64 + s + len];
-      if (open && first - run_end <= kMergeGap) {
+      const size_t first = w * 64 + s, end = first + len;
+      if (open && cl.first[first] - cl.first[run_end] <= kMergeGap) {
         run_end = end;
       } else {
         if (open) emit(run_first, run_end);
@@ -102,12 +118,16 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, uint32_t map_
                             std::vector<Job>& out, std::vector<JobSource>& sources,
                             std::vector<uint64_t>& bits_) const {
   const DeviceConfig& cfg = device_->config();
-  auto emit = [&](uint32_t first, uint32_t end) {
+  const Clusters& cl = clusters_[shell_type];
+  auto emit = [&](size_t c0, size_t c1) {
+    const uint32_t first = cl.first[c0], end = cl.first[c1];
     Job& j = out.emplace_back(whole);
-    j.shell_base = whole.shell_base + first;
-    j.shell_count = end - first;
+    // A sparse shell's run is the words of its clusters (each a block, from its origin word).
+    const bool words = !cl.word.empty();
+    j.shell_base = whole.shell_base + (words ? cl.word[c0] : first);
+    j.shell_count = words ? cl.word[c1] - cl.word[c0] : end - first;
     j.tag = uint32_t((out.size() - 1) & cfg.max_tag());
-    sources.push_back({src.pair, src.a_in_b, first});
+    sources.push_back({src.pair, src.a_in_b, first, end - first});
   };
   // A cluster's box (centre c, half-extent h, in the shell's grid) lands in the voxmap grid inside the box of
   // centre Mq c + tq and half-extent |Mq| h, exactly; the cluster is kept when that box meets [0, n) on every
@@ -119,7 +139,6 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, uint32_t map_
     t[i] = double(whole.t[i]) * tscale;
   }
   const double n[3] = {double(whole.nx), double(whole.ny), double(whole.nz)};
-  const Clusters& cl = clusters_[shell_type];
   const size_t nc = cl.first.size() - 1;
   bits_.resize((nc + 63) / 64);
   const detail::ClusterBoxes boxes{{cl.centre[0].data(), cl.centre[1].data(), cl.centre[2].data()},
@@ -180,33 +199,37 @@ void PairCollider::pair_jobs(size_t i, const PairRequest& r, const PairOptions& 
     j.hit_mask = opt.hit_mask;
     j.shell_base = sp.shell_base;
     j.shell_count = sp.shell_count;
+    j.sparse = uint8_t((sp.sparse & kSparseShell) | (mp.sparse & kSparseMap));
     j.map_base = mp.map_base;
+    j.brick_base = mp.brick_base;
+    j.brick_units = mp.brick_units;
     j.nx = mp.dims[0];
     j.ny = mp.dims[1];
     j.nz = mp.dims[2];
     try {
       pose_job(cfg, ps, types_[s]->shell().frame(), pm, types_[m]->voxmap().grid().frame(), j);
       if (cfg.distance())
-        j.threshold = distance_threshold(cfg, opt.margin, types_[m]->voxmap().voxel(), types_[m]->object.distance.step);
+        j.threshold = distance_threshold(cfg, opt.margin, types_[m]->voxmap().voxel(), types_[m]->object.distance_step());
     } catch (const RangeError& e) {
       throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
                        "): " + e.what());
     }
-    const JobSource src{uint32_t(i), dir == 0, 0};
+    const JobSource src{uint32_t(i), dir == 0, 0, sp.points};
     if (opt.cull) {
       add_runs(j, s, m, src, out, sources, bits);
     } else if (opt.mode != Mode::First) {
       out.push_back(j);
       sources.push_back(src);
     } else {
-      // FIRST: a job per block (see add_runs).
+      // FIRST: a job per block (see add_runs); a sparse shell's block is its words.
       const std::vector<uint32_t>& blocks = block_first_[s];
+      const std::vector<uint32_t>& words = block_word_[s];
       for (size_t b = 0; b + 1 < blocks.size(); ++b) {
         Job& jb = out.emplace_back(j);
-        jb.shell_base = j.shell_base + blocks[b];
-        jb.shell_count = blocks[b + 1] - blocks[b];
+        jb.shell_base = j.shell_base + (words.empty() ? blocks[b] : words[b]);
+        jb.shell_count = words.empty() ? blocks[b + 1] - blocks[b] : words[b + 1] - words[b];
         jb.tag = uint32_t((out.size() - 1) & cfg.max_tag());
-        sources.push_back({src.pair, src.a_in_b, blocks[b]});
+        sources.push_back({src.pair, src.a_in_b, blocks[b], blocks[b + 1] - blocks[b]});
       }
     }
   }

@@ -103,7 +103,7 @@ void PairCollider::run_groups(const std::vector<PairRequest>& pairs, const PairO
     size_t p1 = p0, j1 = j0, points = 0;
     while (p1 < pairs.size()) {
       size_t jk = j1, more = 0;
-      for (; jk < all_jobs_.size() && all_sources_[jk].pair == p1; ++jk) more += all_jobs_[jk].shell_count;
+      for (; jk < all_jobs_.size() && all_sources_[jk].pair == p1; ++jk) more += all_sources_[jk].points;
       if (p1 > p0 && points + more > kGroupPoints) break;
       points += more, j1 = jk, ++p1;
     }
@@ -164,9 +164,10 @@ void PairCollider::run_records(const std::vector<Job>& js) {
     o.hits = rec.hits;
     o.cycles = rec.cycles.value_or(0);
     if (cycles) {
-      const JobHits h = job_hits(cfg, js[job], job, records_.data() + first, r - first, first);
+      const JobSlots slots = slots_of(js[job]);
+      const JobHits h = job_hits(slots, js[job], job, records_.data() + first, r - first, first);
       // A banked device's conflicts from the shell the device holds (the image's), as ref/banks.h counts them.
-      o.span = job_span(cfg, js[job], job, h, rec.hits,
+      o.span = job_span(cfg, js[job], slots, job, h, rec.hits,
                         cfg.banked() ? job_bank_cycles(cfg, image_.memory().shell, image_.memory().map, js[job], h, rec.hits)
                                      : BankCycles{});
     }
@@ -197,7 +198,7 @@ void PairCollider::run_stream(const std::vector<PairRequest>& pairs, size_t p0, 
   if (kept_parts_.size() < parts.parts) kept_parts_.resize(parts.parts);
   if (scratch_.size() < parts.parts) scratch_.resize(parts.parts);
   for_ranges(pool_.get(), parts, [&](size_t part, size_t q0, size_t q1) {
-    kept_parts_[part].value = tally(pairs.data(), p0 + q0, p0 + q1, opt, js.data(), sources_.data(),
+    kept_parts_[part].value = tally(pairs.data(), p0 + q0, p0 + q1, opt, sources_.data(),
                                     first_job_.data(), outcomes_.data(), hits_, tally_.data(), rot_a_.data(),
                                     rot_b_.data(), scratch(scratch_[part]));
   });
@@ -209,6 +210,10 @@ void PairCollider::run_stream(const std::vector<PairRequest>& pairs, size_t p0, 
   if (device_->models_cycles() && !js.empty()) first_span_ = outcomes_.front().span, last_span_ = outcomes_.back().span;
 }
 
+JobSlots PairCollider::slots_of(const Job& j) const {
+  return job_slots(device_->config(), image_.memory().shell, j);
+}
+
 void PairCollider::plan_pieces() {
   // Pieces of at most kPiecePoints points; tasks: runs of consecutive pieces of at least kTaskPoints points.
   const std::vector<Job>& js = jobs_;
@@ -216,11 +221,12 @@ void PairCollider::plan_pieces() {
   job_first_piece_.resize(js.size() + 1);
   for (size_t j = 0; j < js.size(); ++j) {
     job_first_piece_[j] = pieces_.size();
-    for (uint32_t b = 0; b < js[j].shell_count; b += uint32_t(kPiecePoints)) {
+    const uint32_t points = sources_[j].points;
+    for (uint32_t b = 0; b < points; b += uint32_t(kPiecePoints)) {
       Piece& p = pieces_.emplace_back();
       p.job = j;
       p.begin = b;
-      p.end = uint32_t(std::min<size_t>(js[j].shell_count, b + kPiecePoints));
+      p.end = uint32_t(std::min<size_t>(points, b + kPiecePoints));
     }
   }
   job_first_piece_[js.size()] = pieces_.size();
@@ -237,6 +243,10 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
   const DeviceConfig& cfg = device_->config();
   const bool cycles = device_->models_cycles();
   plan_pieces();
+  if (cycles) {
+    piece_slots_.resize(js.size());
+    for (size_t j = 0; j < js.size(); ++j) piece_slots_[j] = slots_of(js[j]);
+  }
   const size_t tasks = task_first_piece_.size() - 1;
   if (piece_hits_.size() < tasks) piece_hits_.resize(tasks);
   // The lookups. A task validates a job before its first piece of it, so the lowest task that throws names the first
@@ -254,7 +264,7 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
       device_->run_piece(j, p.begin, p.end, validated != p.job, hits, p.count);
       validated = p.job;
       p.records = hits.size() - p.first;
-      if (cycles) p.sum = job_hits(cfg, j, hits.point.data() + p.first, p.records);
+      if (cycles) p.sum = job_hits(piece_slots_[p.job], hits.point.data() + p.first, p.records);
     }
   });
   // Job by job, in order: its hits and summary as the device's stream would have them (FIRST: the first piece with a
@@ -265,7 +275,7 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
     PairTally& res = tally_[sources_[j].pair];
     uint32_t hits = 0;
     JobHits sum;
-    sum.first_group = sum.last_group = job_groups(cfg, js[j]);
+    sum.first_group = sum.last_group = cycles ? piece_slots_[j].groups : 0;
     for (size_t i = job_first_piece_[j]; i < job_first_piece_[j + 1]; ++i) {
       const Piece& p = pieces_[i];
       if (opt.mode != Mode::First) {
@@ -276,10 +286,10 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
       }
     }
     res.hits += hits;  // FIRST: made 0 or 1 per direction below
-    res.lookups += js[j].shell_count;
+    res.lookups += sources_[j].points;
     if (cycles) {
       const BankCycles bank = cfg.banked() ? device_->bank_cycles(js[j], sum, hits) : BankCycles{};
-      const JobSpan span = job_span(cfg, js[j], j, sum, hits, bank);
+      const JobSpan span = job_span(cfg, js[j], piece_slots_[j], j, sum, hits, bank);
       res.cycles += span_cycles(cfg, j ? &prev : nullptr, span);
       if (j == 0) first_span_ = span;
       prev = span;
@@ -343,7 +353,7 @@ void PairCollider::keep_pieces(const std::vector<PairRequest>& pairs, size_t p0,
   sc.runs_into(runs_, kContactPiece, &hits_);
 }
 
-size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
+size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt,
                            const JobSource* sources, const size_t* first_job, const JobOutcome* outs,
                            const HitColumns& hits, PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b,
                            Scratch& sc) const {
@@ -362,7 +372,7 @@ size_t PairCollider::tally(const PairRequest* pairs, size_t p0, size_t p1, const
         sc.spans.push_back({hits.point.data() + o.first, o.records, sources[j1].first, o.first});
         any |= o.hits > 0;
         if (!first_only) res.hits += o.hits;
-        res.lookups += js[j1].shell_count;
+        res.lookups += sources[j1].points;
         res.cycles += o.cycles;
       }
       if (first_only) res.hits += any;
@@ -400,7 +410,7 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
   part.rot_b.resize(n);
   part.tally.resize(n);
   Scratch& sc = scratch(part.scratch);
-  tally(pairs, 0, n, opt, js.data(), part.sources.data(), part.first_job.data(), part.outcomes.data(), part.hits,
+  tally(pairs, 0, n, opt, part.sources.data(), part.first_job.data(), part.outcomes.data(), part.hits,
         part.tally.data(), part.rot_a.data(), part.rot_b.data(), sc);
   for (size_t i = 0; i < n; ++i) {
     const PairTally& t = part.tally[i];

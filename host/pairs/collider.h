@@ -14,6 +14,7 @@
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/contact.h"
 #include "voxcd/host/pairs/contacts.h"
+#include "voxcd/host/pairs/detail/shell_order.h"
 #include "voxcd/host/pairs/image.h"
 #include "voxcd/host/pairs/pose.h"
 #include "voxcd/ref/fast/thread_pool.h"
@@ -47,12 +48,14 @@ struct PairOptions {
   double margin = 0;
 };
 
-// Where a job came from: its pair, its direction, and the slot of its first point in the type's shell as the device
-// holds it (a hit's point index is relative to that; PairCollider::shell_point gives the shell's point of a slot).
+// Where a job came from: its pair, its direction, the slot of its first point in the type's shell as the device
+// holds it (a hit's point index is relative to that; PairCollider::shell_point gives the shell's point of a slot), and
+// its points (its shell_count, but for a sparse shell, whose shell_count counts words).
 struct JobSource {
   uint32_t pair = 0;
   bool a_in_b = true;
   uint32_t first = 0;
+  uint32_t points = 0;
 };
 
 class PairCollider {
@@ -163,6 +166,8 @@ class PairCollider {
   // A device that runs no parts: the group's jobs as one stream of records, turned into hits_ and outcomes_
   // (DeviceError when the completions do not match the jobs).
   void run_records(const std::vector<Job>& js);
+  // A job's slots on the device (ref/timing.h): a sparse shell's from the words the image holds.
+  JobSlots slots_of(const Job& j) const;
   // The pieces and tasks of run_pieces.
   void plan_pieces();
   // run_pieces' records that make contacts, their places, the pairs' contacts and hits (FIRST), and the runs.
@@ -174,8 +179,8 @@ class PairCollider {
   // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), what each gave `outs[j]`, their
   // hits in `hits`): which hits make contacts, in contact order into the scratch's runs, its hits, lookups, cycles
   // and contacts; the rotations of the pairs with contacts. Returns the contacts.
-  size_t tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const Job* js,
-               const JobSource* sources, const size_t* first_job, const JobOutcome* outs, const HitColumns& hits,
+  size_t tally(const PairRequest* pairs, size_t p0, size_t p1, const PairOptions& opt, const JobSource* sources,
+               const size_t* first_job, const JobOutcome* outs, const HitColumns& hits,
                PairTally* out, Eigen::Matrix3d* rot_a, Eigen::Matrix3d* rot_b, Scratch& scratch) const;
   // The jobs of pair i, appended to out and sources (tags: their index in `out`); bits: add_runs' scratch.
   void pair_jobs(size_t i, const PairRequest& r, const PairOptions& opt, std::vector<Job>& out,
@@ -192,26 +197,27 @@ class PairCollider {
                      const Out& to) const;
 
   // Per type, its shell as the device holds it (in blocks: detail::block_order) in clusters of up to
-  // kClusterPoints consecutive slots of one block: the first slot of each (one past the end last), its block, and
-  // its box in the shell's grid (centre and half-extent per axis).
+  // kClusterPoints consecutive slots of one block (a sparse shell: whole blocks, each from its origin word): the first
+  // slot of each (one past the end last), its block, its first word (a sparse shell; then the words), and its box in
+  // the shell's grid (centre and half-extent per axis).
   struct Clusters {
-    std::vector<uint32_t> first, block;
+    std::vector<uint32_t> first, block, word;
     std::vector<double> centre[3], half[3];
   };
   static constexpr uint32_t kClusterPoints = 32;
-  static Clusters clusters_of(const std::vector<std::array<uint32_t, 3>>& cells, const std::vector<uint32_t>& order,
-                              const std::vector<uint32_t>& block_first);
+  static Clusters clusters_of(const std::vector<std::array<uint32_t, 3>>& cells, const detail::ShellOrder& order);
   static constexpr uint32_t kMergeGap = 32;
-  // The runs of kept clusters (bit k of bits: cluster k kept) as emit(first slot, end slot) calls, in order; runs
-  // closer than kMergeGap points merged, or with first_mode (FIRST) runs within one block.
+  // The runs of kept clusters (bit k of bits: cluster k kept) as emit(first cluster, end cluster) calls, in order;
+  // runs closer than kMergeGap points merged, or with first_mode (FIRST) runs within one block.
   template <class Emit>
   static void runs_of(const Clusters& cl, const std::vector<uint64_t>& bits, bool first_mode, const Emit& emit);
 
   DeviceImage image_;
   std::vector<Clusters> clusters_;
   std::vector<std::shared_ptr<const detail::EmptySpace>> space_;  // per type, its voxmap's empty space
-  // Per type, the shell's point in each slot of the device's copy, and the first slot of each block (then the size).
-  std::vector<std::vector<uint32_t>> order_, block_first_;
+  // Per type, the shell's point in each slot of the device's copy, the first slot of each block (then the size), and
+  // for a sparse shell the first word of each block (then the words).
+  std::vector<std::vector<uint32_t>> order_, block_first_, block_word_;
   // Scratch of jobs() (per task of the pool: its jobs, their sources and add_runs' bits of which clusters
   // survive), kept to avoid allocations per pair: jobs() is const but, like collide(), not to be called on one
   // collider from two threads at once.
@@ -244,6 +250,7 @@ class PairCollider {
     JobHits sum;
   };
   std::vector<Piece> pieces_;
+  std::vector<JobSlots> piece_slots_;  // run_pieces: each job's slots
   std::vector<size_t> job_first_piece_, task_first_piece_, contact_count_;
   std::vector<PartSlot<HitColumns>> piece_hits_;
 };

@@ -75,8 +75,8 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
     }
     return;
   }
-  const DistanceField& field = map_t.object.distance;
-  const double dist_unit = voxel * field.step / std::ldexp(1.0, 3 * device_->config().WB);
+  const ObjectFile& field = map_t.object;  // its distance field, dense or sparse
+  const double dist_unit = voxel * field.distance_step() / std::ldexp(1.0, 3 * device_->config().WB);
   const RigidPose& map_pose = a_in_b ? req.pose_b : req.pose_a;
   const Eigen::Matrix3d& Rm = a_in_b ? Rb : Ra;
   for (size_t k = 0; k < n; ++k) {
@@ -87,7 +87,7 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
     // object's outward normal does at a contact.
     const Eigen::Vector3d g = (Rm.transpose() * (position - map_pose.translation) - vm.origin()) / voxel;
     Eigen::Vector3d grad;
-    field.sample(g, &grad);
+    field.distance_at(g, &grad);
     const Eigen::Vector3d nrm = -(Rm * grad);
     if (nrm.squaredNorm() > 1e-24) normal = nrm.normalized();
     to.put(k, point, position, normal, cx[h], cy[h], cz[h], cols.state[h], -double(cols.dist[h]) * dist_unit);

@@ -322,7 +322,7 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
           "band",
           [](const Pair& p) -> py::object {
             if (!p.distance_bits) return py::none();
-            auto world = [](const ObjectType& t) { return t.object.distance.band() * t.voxmap().voxel(); };
+            auto world = [](const ObjectType& t) { return t.object.distance_band() * t.voxmap().voxel(); };
             return py::make_tuple(world(*p.a), world(*p.b));
           },
           "The bands of A's and B's distance fields in world units (`voxcd pair --json`'s band), or None on a "

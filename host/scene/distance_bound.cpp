@@ -21,28 +21,28 @@ DistanceBound::DistanceBound(const std::vector<std::shared_ptr<const ObjectType>
   margin_ = std::numeric_limits<double>::infinity();
   for (const auto& tp : types) {
     const ObjectType& t = *tp;
-    const DistanceField& f = t.object.distance;
-    if (f.empty() || f.bits > cfg.SB)
+    const ObjectFile& f = t.object;  // its distance field, dense or sparse
+    if (!f.has_distance() || f.distance_bits() > cfg.SB)
       throw std::invalid_argument("continuous collision: object '" + t.name + "' has no distance field of at most " +
                                   std::to_string(cfg.SB) + " bits");
-    const double s = f.step;
+    const double s = f.distance_step();
     // A field that is clamped within the interpolation's error of the surface cannot tell a far point from a near one.
-    if (!(f.band() > s + kSqrt3 + kTolerance))
+    if (!(f.distance_band() > s + kSqrt3 + kTolerance))
       throw std::invalid_argument("continuous collision: object '" + t.name + "' has a distance band of " +
-                                  std::to_string(f.band()) + " voxels; at least " +
+                                  std::to_string(f.distance_band()) + " voxels; at least " +
                                   std::to_string(s + kSqrt3 + kTolerance) + " are needed");
-    margin_ = std::min(margin_, double(f.qmax()) * s * t.voxmap().voxel());
+    margin_ = std::min(margin_, double(f.distance_qmax()) * s * t.voxmap().voxel());
   }
   // Per axis, in voxels of the map, per unit of the shell's largest coordinate (the matrix term) and the translation's.
   fixed_unit_ = 3 * std::ldexp(1.0, -(cfg.MF + 1));
   const double t_err = std::ldexp(1.0, -(cfg.TF() + 1));
   for (const auto& tp : types) {
     const ObjectType& t = *tp;
-    const DistanceField& f = t.object.distance;
+    const ObjectFile& f = t.object;
     const Voxmap& vm = t.voxmap();
     Type y;
     y.voxel = vm.voxel();
-    y.field_error = y.voxel * (f.step / 2 + kSqrt3 / 2 + kSqrt3 * wb);
+    y.field_error = y.voxel * (f.distance_step() / 2 + kSqrt3 / 2 + kSqrt3 * wb);
     y.fixed_error = kSqrt3 * t_err * y.voxel;
     // Every surface point lies in a surface voxel of the shell grid (spacing h), within sqrt(3)/2 h of its centre;
     // a shell on the surface moves that centre to its closest surface point (no farther than the surface point)
@@ -57,8 +57,8 @@ DistanceBound::DistanceBound(const std::vector<std::shared_ptr<const ObjectType>
     const Eigen::Vector3d lo = vm.origin();
     const Eigen::Vector3d hi = lo + y.voxel * Eigen::Vector3d(vm.dims()[0], vm.dims()[1], vm.dims()[2]);
     y.pad = std::min((t.lo - lo).minCoeff(), (hi - t.hi).minCoeff());
-    const int64_t thr = distance_threshold(cfg, margin_, y.voxel, f.step);
-    y.none = y.voxel * f.step * double(thr + 1) / scale - y.field_error;
+    const int64_t thr = distance_threshold(cfg, margin_, y.voxel, f.distance_step());
+    y.none = y.voxel * f.distance_step() * double(thr + 1) / scale - y.field_error;
     for (size_t k = 0; k < sh.size(); ++k) y.pmax = std::max(y.pmax, sh.grid_point(k).cwiseAbs().maxCoeff());
     y.half = 0.5 * (t.hi - t.lo);
     y.mid = 0.5 * (t.hi + t.lo);

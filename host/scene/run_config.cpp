@@ -220,6 +220,7 @@ const std::map<std::string, Copy>& option_copies() {
       {"device", [](RunConfig& c, const RunConfig& o) { c.device = o.device; }},
       {"distance_bits", [](RunConfig& c, const RunConfig& o) { c.distance_bits = o.distance_bits; }},
       {"band", [](RunConfig& c, const RunConfig& o) { c.band = o.band; }},
+      {"storage", [](RunConfig& c, const RunConfig& o) { c.storage = o.storage; }},
       {"margin", [](RunConfig& c, const RunConfig& o) { c.margin = o.margin; }},
       {"ccd", [](RunConfig& c, const RunConfig& o) { c.ccd = o.ccd; }},
   };

@@ -17,6 +17,7 @@
 
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/object/distance_field.h"
+#include "voxcd/host/object/storage.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/host/scene/body.h"
 #include "voxcd/ref/config.h"
@@ -92,6 +93,9 @@ struct RunConfig : WorldDef {
   double spin = 0.02;      // largest initial spin, radians per frame
   uint64_t seed = 1;
   double band = 4.0;       // the distance fields' band, voxels (with distance_bits)
+  // How the types' voxmaps, shells and fields are kept (docs/objects.md, "Sparse objects"); sparse types run on a
+  // sparse device (device_config_for). Contacts do not depend on it for 2-bit voxmaps; device cycles do.
+  ObjectStorage storage = ObjectStorage::kDense;
   // What is asked of the device (voxcd size).
   double accuracy = 0;          // world units; 0: not given (accuracy_or_default)
   double contact_accuracy = 0;  // world units: how far outside the other surface a contact may lie; 0: not given

@@ -181,6 +181,7 @@ Scene make_builtin_scene(const RunConfig& c) {
   oo.voxel = voxel;
   oo.distance_bits = c.distance_bits;
   oo.band = c.band;
+  set_storage(oo, c.storage);
   Scene scene;
   scene.side = c.side;
   auto type = std::make_shared<ObjectType>(

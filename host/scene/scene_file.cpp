@@ -214,6 +214,11 @@ void parse_run(const Reader& top, const std::string& where, RunConfig& f) {
   top.integer("distance_bits", f.distance_bits, uint64_t(kDistanceBits.front()), uint64_t(kDistanceBits.back()));
   top.number("band", f.band);
   top.boolean("ccd", f.ccd);
+  std::string storage;
+  if (top.string("storage", storage)) {
+    top.one_of("storage", storage, {"auto", "dense", "sparse"});
+    f.storage = *parse_storage(storage);
+  }
 }
 
 }  // namespace
@@ -234,7 +239,7 @@ RunConfig parse_scene_file(std::string_view text, const std::string& where) {
   f.frames = 100;
   const Reader top(j, "", where, f);
   top.only({"types", "environment", "accuracy", "contact_accuracy", "rate", "clock", "frames", "broadphase",
-            "backend", "mode", "both_directions", "distance_bits", "band", "ccd"});
+            "backend", "mode", "both_directions", "distance_bits", "band", "ccd", "storage"});
   parse_types(top, where, f);
   if (top.has("environment")) {
     const Reader e(top.at("environment"), "environment", where, f);
@@ -410,6 +415,7 @@ Scene make_file_scene(const RunConfig& f) {
     oo.shell_ratio = std::sqrt(2.0) * (voxel[i] / vmin);
     oo.distance_bits = f.distance_bits;
     oo.band = f.band;
+    set_storage(oo, f.storage);
     try {
       auto type = std::make_shared<ObjectType>(make_object_type(make_object(l.mesh, l.source, l.hash, oo), t.name));
       type->mesh = std::make_shared<const Mesh>(l.mesh);

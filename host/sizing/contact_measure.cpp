@@ -39,7 +39,7 @@ void check_contacts(const Scene& scene, const std::vector<PairRequest>& reqs, co
       const double d = detail::signed_mesh_distance(meshes.at(other), local);
       const ObjectType& t = *scene.types.at(other);
       const auto& v = ct.voxel;
-      if (!t.object.distance.empty() && t.object.distance.near_conservative(t.voxmap(), v[0], v[1], v[2])) {
+      if (t.object.distance_near_conservative(Eigen::Vector3d(v[0] + 0.5, v[1] + 0.5, v[2] + 0.5))) {
         m.worst_outside_conservative = std::max(m.worst_outside_conservative, d);
         ++m.conservative;
         continue;

@@ -1,9 +1,11 @@
 #include "voxcd/host/pairs/detail/empty_space.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "voxcd/host/object/distance_field.h"
+#include "voxcd/host/object/sparse_field.h"
 #include "voxcd/host/object/voxelize.h"
 
 namespace voxcd::detail {
@@ -116,6 +118,62 @@ EmptySpace EmptySpace::of_field(const DistanceField& f) {
               v = std::min(v, q);
             }
       }
+  e.levels_.push_back(std::move(l));
+  e.build_coarser();
+  return e;
+}
+
+namespace {
+
+// The voxels [lo, hi] per axis a node at `pos` (voxel units) is a corner of, within [0, n) and the cell [c0, c0 + B).
+void node_voxels(double pos, uint32_t c0, uint32_t n, uint32_t& lo, uint32_t& hi) {
+  const double f = std::floor(pos);
+  const int64_t a = f == pos ? int64_t(f) - 1 : int64_t(f), b = int64_t(f);
+  lo = uint32_t(std::max<int64_t>({a, 0, c0}));
+  hi = uint32_t(std::min<int64_t>({b, int64_t(n) - 1, int64_t(c0) + SparseDistanceField::kEdge - 1}));
+}
+
+}  // namespace
+
+EmptySpace EmptySpace::of_sparse_field(const SparseDistanceField& f) {
+  EmptySpace e;
+  e.n_ = f.dims();
+  e.min_ = true;
+  if (f.empty() || uint64_t(e.n_[0]) * e.n_[1] * e.n_[2] == 0) return e;
+  e.base_ = base_level(e.n_);
+  Level l{blocks(e.n_, e.base_), {}};
+  l.v.assign(uint64_t(l.dims[0]) * l.dims[1] * l.dims[2], std::numeric_limits<int16_t>::max());
+  auto lower = [&](uint32_t x, uint32_t y, uint32_t z, int16_t q) {
+    int16_t& v = l.v[(x >> e.base_) + uint64_t(l.dims[0]) * ((y >> e.base_) + uint64_t(l.dims[1]) * (z >> e.base_))];
+    v = std::min(v, q);
+  };
+  const uint32_t B = SparseDistanceField::kEdge;
+  const auto& cells = f.cells();
+  for (uint64_t t = 0; t < f.codes().size(); ++t) {
+    const uint32_t c[3] = {uint32_t(t % cells[0]) * B, uint32_t(t / cells[0] % cells[1]) * B,
+                           uint32_t(t / (uint64_t(cells[0]) * cells[1])) * B};
+    const int level = f.level(t);
+    if (level < 0) {  // a uniform cell: its value in every voxel
+      const int16_t q = int16_t(f.at(t, 0, 0, 0));
+      for (uint32_t z = c[2]; z < std::min(c[2] + B, e.n_[2]); ++z)
+        for (uint32_t y = c[1]; y < std::min(c[1] + B, e.n_[1]); ++y)
+          for (uint32_t x = c[0]; x < std::min(c[0] + B, e.n_[0]); ++x) lower(x, y, z, q);
+      continue;
+    }
+    const uint64_t side = brick_side(level);
+    const double unit = std::ldexp(1.0, -level);
+    for (uint64_t Z = 0; Z < side; ++Z)
+      for (uint64_t Y = 0; Y < side; ++Y)
+        for (uint64_t X = 0; X < side; ++X) {
+          const int16_t q = int16_t(f.at(t, X, Y, Z));
+          uint32_t lo[3], hi[3];
+          const uint64_t N[3] = {X, Y, Z};
+          for (int i = 0; i < 3; ++i) node_voxels(c[i] + double(N[i]) * unit, c[i], e.n_[i], lo[i], hi[i]);
+          for (uint32_t z = lo[2]; z <= hi[2]; ++z)
+            for (uint32_t y = lo[1]; y <= hi[1]; ++y)
+              for (uint32_t x = lo[0]; x <= hi[0]; ++x) lower(x, y, z, q);
+        }
+  }
   e.levels_.push_back(std::move(l));
   e.build_coarser();
   return e;

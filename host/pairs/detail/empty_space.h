@@ -12,6 +12,7 @@
 namespace voxcd {
 class Voxmap;
 struct DistanceField;
+class SparseDistanceField;
 }  // namespace voxcd
 
 namespace voxcd::detail {
@@ -30,6 +31,9 @@ class EmptySpace {
   // From a distance field: a cell's entry is the least of its 8 nodes (the interpolant is a weighted mean of them,
   // so no point of the cell interpolates below it), a block's the least of its cells'.
   static EmptySpace of_field(const DistanceField& f);
+  // From a sparse distance field: a voxel's entry is the least of the nodes of its sub-cells in its cell's brick (its
+  // uniform cell's value), so that no point of the voxel interpolates below it at any level.
+  static EmptySpace of_sparse_field(const SparseDistanceField& f);
 
   bool empty() const { return levels_.empty(); }
   // Whether voxels [lo, hi] (inclusive, clamped to the grid; none when lo > hi on an axis) hold one whose state is in

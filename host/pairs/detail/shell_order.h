@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "voxcd/ref/config.h"
 #include "voxcd/ref/types.h"
 
 namespace voxcd::detail {
@@ -17,11 +18,23 @@ struct ShellOrder {
   static constexpr uint32_t kBlock = 8;
   std::vector<uint32_t> point;        // slot k of the device's copy holds shell point point[k]
   std::vector<uint32_t> block_first;  // per non-empty block its first slot, then the number of points
+  // A sparse shell's device words (docs/contract.md, "Shell bricks": each block an origin word, then its shell bricks),
+  // and per block its first word, then the number of words; both empty for a dense shell (a point a word).
+  std::vector<ShellWord> words;
+  std::vector<uint32_t> block_word;
+  bool sparse() const { return !words.empty(); }
 };
 
 // The block order of a shell whose point k lies in cell cells[k] (cells in ascending linear order, as a PointShell
 // keeps them): blocks in linear order of the block grid, each block's points in ascending point order.
 ShellOrder block_order(const std::vector<std::array<uint32_t, 3>>& cells);
+
+// The same blocks as a sparse shell of cfg's device (cell centres only): each block an origin word and the 2 x 2 x 2
+// shell bricks of 4^3 cells it holds, in z, y, x order, each a brick word (its mask, its step from the one before);
+// slots (the points the words generate) in that order, each brick's cells in ascending bit order, so a block's points
+// are no longer in ascending point order. std::invalid_argument when cfg cannot hold sparse shells, or a cell's origin
+// does not fit an origin word.
+ShellOrder sparse_block_order(const std::vector<std::array<uint32_t, 3>>& cells, const DeviceConfig& cfg);
 
 // The hits of one job of a direction, held in columns (ref/fast/hits.h) from index `at`: their points point[0, n)
 // (relative to the job), their slots first + point[r].

@@ -369,6 +369,30 @@ TEST(Cli, PairJsonGivesTheObjectFilesVoxel) {
   std::remove(b.c_str());
 }
 
+// voxcd pair --storage sparse: shapes stored sparse run on a sparse device (BL 3) and find the hits of their dense
+// forms, on ref and cpu with the same cycles; sparse object files need no option; a bad storage is refused.
+TEST(Cli, PairOfSparseObjects) {
+  const std::string args = "pair torus polytope36 --voxel 0.08 --random 12 --both --json";
+  const CliRun dense = run(args), sparse = run(args + " --storage sparse"), ref = run(args + " --storage sparse --backend ref");
+  ASSERT_EQ(dense.rc, 0) << dense.out;
+  ASSERT_EQ(sparse.rc, 0) << sparse.out;
+  ASSERT_EQ(ref.rc, 0) << ref.out;
+  EXPECT_EQ(json_number(dense.out, "bl"), 0);
+  EXPECT_EQ(json_number(sparse.out, "bl"), 3);
+  EXPECT_GT(json_number(dense.out, "hits"), 0);
+  EXPECT_EQ(json_number(sparse.out, "hits"), json_number(dense.out, "hits"));
+  EXPECT_EQ(json_number(sparse.out, "device_cycles"), json_number(ref.out, "device_cycles"));
+  const std::string a = test::tmp_path("pair_sparse.vxo");
+  ASSERT_EQ(run("voxelize torus --voxel 0.08 --storage sparse -o " + a).rc, 0);
+  const CliRun file = run("pair " + a + " polytope36 --voxel 0.08 --random 12 --both --json");
+  ASSERT_EQ(file.rc, 0) << file.out;
+  EXPECT_EQ(json_number(file.out, "bl"), 3);
+  const CliRun bad = run(args + " --storage sparce");
+  EXPECT_NE(bad.rc, 0);
+  EXPECT_NE(bad.out.find("--storage"), std::string::npos) << bad.out;
+  std::remove(a.c_str());
+}
+
 // simulate --json prints its summary as it always did: keys in their order, on one line, every floating-point
 // number with at most 6 significant digits as a C++ stream prints it, the state hash in hex.
 TEST(Cli, SimulateJsonNumbersAsAStreamPrintsThem) {
