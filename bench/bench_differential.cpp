@@ -1,7 +1,7 @@
 // The differential check against exact geometry on the whole corpus (tests/differential.h; the test
 // tests/host/pairs/test_differential.cpp runs a sample of it): every pair of the corpus's neighbours and the robot in the
 // room, at random poses half of them near contact, FCL's exact collide against voxcd's 2-bit and distance (SB 8)
-// voxmaps, both directions, margin 0, and sparse distance voxmaps with refined bricks on ref's sparse device
+// voxmaps, both directions, margin 0, and sparse distance voxmaps with refined bricks through the pair collider
 // (tests/sparse_differential.h). Prints, as Markdown (also to --out FILE), the confusion matrix of each mode,
 // the collisions missed deeper than the documented depth and the contacts farther apart than the documented
 // separation (both must be 0), and the worst case of each; for the sparse mode every contact against the other

@@ -89,7 +89,9 @@ inline void measure_contacts(const std::vector<Contact>& cs, const ExactPair& x,
     e.worst = std::max(e.worst, d);
     e.beyond += d > kContactBoundSparse;
     e.outside.push_back(std::max(0.0, d));
-    if (band > 0 && -d <= band - 2) {
+    // A speculative contact (depth below 0 at margin 0) lies on the other surface and carries the separation at its
+    // shell point: its position is measured, its depth not.
+    if (band > 0 && -d <= band - 2 && c.depth >= 0) {
       const double err = std::abs(c.depth / voxel + d);
       e.depth_error.push_back(err);
       e.worst_depth_error = std::max(e.worst_depth_error, err);

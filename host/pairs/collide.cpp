@@ -174,6 +174,11 @@ void PairCollider::add_runs(const Job& whole, uint32_t shell_type, uint32_t map_
   runs_of(cl, bits_, whole.mode == Mode::First, emit);
 }
 
+double PairCollider::speculative_reach(uint32_t s, uint32_t m, const PairOptions& opt) const {
+  if (!opt.speculative || !device_->config().distance() || !(image_.placement(m).sparse & kSparseMap)) return 0;
+  return std::sqrt(3.0) * types_[s]->shell().grid.voxel + 0.25 * types_[m]->voxmap().voxel();
+}
+
 std::vector<Job> PairCollider::jobs(const std::vector<PairRequest>& pairs, const PairOptions& opt) const {
   std::vector<Job> out;
   std::vector<JobSource> sources;
@@ -209,7 +214,8 @@ void PairCollider::pair_jobs(size_t i, const PairRequest& r, const PairOptions& 
     try {
       pose_job(cfg, ps, types_[s]->shell().frame(), pm, types_[m]->voxmap().grid().frame(), j);
       if (cfg.distance())
-        j.threshold = distance_threshold(cfg, opt.margin, types_[m]->voxmap().voxel(), types_[m]->object.distance_step());
+        j.threshold = distance_threshold(cfg, opt.margin + speculative_reach(s, m, opt), types_[m]->voxmap().voxel(),
+                                         types_[m]->object.distance_step());
     } catch (const RangeError& e) {
       throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
                        "): " + e.what());

@@ -63,7 +63,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
       out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].cycles = t.cycles;
       out[i].contacts.resize(t.contacts);
     }
-    write_contacts(pairs, [&](uint32_t pair) { return detail::ToContacts{out[pair].contacts.data()}; });
+    write_contacts(pairs, opt, [&](uint32_t pair) { return detail::ToContacts{out[pair].contacts.data()}; });
   });
   if (pairs.empty()) out.clear();
 }
@@ -81,7 +81,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
       row += t.contacts;
     }
     out.first[p1] = row;
-    write_contacts(pairs, [&](uint32_t pair) { return detail::ToArrays(out, size_t(out.first[pair])); });
+    write_contacts(pairs, opt, [&](uint32_t pair) { return detail::ToArrays(out, size_t(out.first[pair])); });
   });
   out.resize(pairs.size(), size_t(row));
   if (pairs.empty()) out.first[0] = 0;
@@ -123,9 +123,9 @@ void PairCollider::run_groups(const std::vector<PairRequest>& pairs, const PairO
 }
 
 template <class Out>
-void PairCollider::write_contacts(const std::vector<PairRequest>& pairs, const Out& out) {
+void PairCollider::write_contacts(const std::vector<PairRequest>& pairs, const PairOptions& opt, const Out& out) {
   auto write = [&](const ContactRun& r) {
-    make_contacts(pairs[r.pair], r.pair, r.a_in_b, *r.cols, r.hits, r.n, rot_a_[r.pair], rot_b_[r.pair],
+    make_contacts(pairs[r.pair], r.pair, r.a_in_b, *r.cols, r.hits, r.n, rot_a_[r.pair], rot_b_[r.pair], opt,
                   out(r.pair).shifted(r.at));
   };
   if (!pool_ || kept_total_ < kParallelContacts) {
@@ -419,7 +419,7 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
   }
   for (const Scratch::Run& r : sc.runs)
     make_contacts(pairs[r.pair], uint32_t(base + r.pair), r.a_in_b, part.hits, sc.sorted.data() + r.off, r.n,
-                  part.rot_a[r.pair], part.rot_b[r.pair], detail::ToContacts{out[r.pair].contacts.data() + r.at});
+                  part.rot_a[r.pair], part.rot_b[r.pair], opt, detail::ToContacts{out[r.pair].contacts.data() + r.at});
   if (part.any) part.first_result = out + part.sources[0].pair;
 }
 

@@ -46,6 +46,12 @@ struct PairOptions {
   // Distance device: a point is a contact where the other object's interpolated distance is at most `margin`
   // world units (0: touching or inside). RangeError when it does not fit the job's threshold (beyond the band).
   double margin = 0;
+  // A sparse distance field (refined bricks): also detect where the other object's distance is at most `margin` plus
+  // the shell's covering reach (sqrt(3) shell spacings, the farthest a surface point lies from its shell point, plus
+  // 1/4 of the field's voxel), so that no collision falls between the shell's points; such a hit beyond the margin is
+  // a speculative contact, placed on the other object's surface (the field's zero, by Newton steps along its
+  // gradient) with depth -D (the separation, negative). docs/pairs.md, "Sparse distance voxmaps".
+  bool speculative = true;
 };
 
 // Where a job came from: its pair, its direction, the slot of its first point in the type's shell as the device
@@ -175,7 +181,7 @@ class PairCollider {
   static Scratch& scratch(std::shared_ptr<Scratch>& s);
   // The contacts of runs_ through `out(pair)`, the writer of a pair's contacts (on the pool when they are many).
   template <class Out>
-  void write_contacts(const std::vector<PairRequest>& pairs, const Out& out);
+  void write_contacts(const std::vector<PairRequest>& pairs, const PairOptions& opt, const Out& out);
   // Per pair of [p0, p1) of a stream (its jobs [first_job[i], first_job[i + 1]), what each gave `outs[j]`, their
   // hits in `hits`): which hits make contacts, in contact order into the scratch's runs, its hits, lookups, cycles
   // and contacts; the rotations of the pairs with contacts. Returns the contacts.
@@ -190,11 +196,14 @@ class PairCollider {
                 std::vector<JobSource>& sources, std::vector<uint64_t>& bits) const;
   // The contacts of hits [hits, hits + n) (held in `cols`) of one direction (a_in_b) of the pair `req` (its
   // rotations Ra, Rb; its index `pair`), hit k written through `to` as contact k (host/pairs/detail/contact_out.h;
-  // instantiated in contacts.cpp).
+  // instantiated in contacts.cpp); speculative ones (opt.speculative) projected onto the other surface.
   template <class Out>
   void make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const HitColumns& cols,
                      const detail::SortedHit* hits, size_t n, const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb,
-                     const Out& to) const;
+                     const PairOptions& opt, const Out& to) const;
+  // The world distance beyond opt.margin to which a job of type s's shell in type m's field detects (0 but for
+  // speculative contacts on a sparse distance field).
+  double speculative_reach(uint32_t s, uint32_t m, const PairOptions& opt) const;
 
   // Per type, its shell as the device holds it (in blocks: detail::block_order) in clusters of up to
   // kClusterPoints consecutive slots of one block (a sparse shell: whole blocks, each from its origin word): the first

@@ -3,6 +3,8 @@
 // into a PairResult's Contacts or into ContactArrays (host/pairs/detail/contact_out.h).
 #include "voxcd/host/pairs/contacts.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "voxcd/host/pairs/collider.h"
@@ -39,10 +41,50 @@ void ContactArrays::resize(size_t pairs, size_t rows) {
   depth.resize(rows);
 }
 
+namespace {
+
+// The field's slope at g over a span of h voxels (central differences): a direction where the interpolant is flat
+// (a plateau between two surfaces, whose nodes are equal).
+Eigen::Vector3d wide_gradient(const ObjectFile& f, const Eigen::Vector3d& g, double h) {
+  Eigen::Vector3d s;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d e = Eigen::Vector3d::Unit(i) * h;
+    s[i] = (f.distance_at(g + e) - f.distance_at(g - e)) / (2 * h);
+  }
+  return s;
+}
+
+// A grid point g (voxels) moved onto the field's zero by steps of the distance along the gradient's direction (sphere
+// tracing: the field is about 1-Lipschitz, so a step from outside does not pass the surface), at most 8, until within
+// 1/64 voxel; where the interpolant is flat, along its slope over the step's span; where that vanishes too it stays.
+// The result's gradient in *grad.
+Eigen::Vector3d onto_surface(const ObjectFile& f, Eigen::Vector3d g, Eigen::Vector3d* grad) {
+  for (int k = 0; k < 8; ++k) {
+    const double d = f.distance_at(g, grad);
+    if (std::abs(d) < 1.0 / 64) break;
+    Eigen::Vector3d dir = *grad;
+    if (dir.norm() < 1e-6) dir = wide_gradient(f, g, std::max(std::abs(d), 0.25));
+    const double len = dir.norm();
+    if (len < 1e-6) break;
+    g -= (d / std::max(len, 1.0)) * (dir / len);
+  }
+  f.distance_at(g, grad);
+  return g;
+}
+
+// The voxel of grid point g, within the grid of dims n.
+std::array<uint32_t, 3> voxel_of(const Eigen::Vector3d& g, const std::array<uint32_t, 3>& n) {
+  std::array<uint32_t, 3> v;
+  for (int i = 0; i < 3; ++i) v[i] = uint32_t(std::clamp(std::floor(g[i]), 0.0, double(n[i] - 1)));
+  return v;
+}
+
+}  // namespace
+
 template <class Out>
 void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_in_b, const HitColumns& cols,
                                  const detail::SortedHit* hits, size_t n, const Eigen::Matrix3d& Ra,
-                                 const Eigen::Matrix3d& Rb, const Out& to) const {
+                                 const Eigen::Matrix3d& Rb, const PairOptions& opt, const Out& to) const {
   // The depth lookups land all over B's depth field (4 bytes per voxel, often larger than the cache), so the loop
   // prefetches the depth of the hit a few hits ahead.
   constexpr size_t kAhead = 16;
@@ -79,27 +121,38 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
   const double dist_unit = voxel * field.distance_step() / std::ldexp(1.0, 3 * device_->config().WB);
   const RigidPose& map_pose = a_in_b ? req.pose_b : req.pose_a;
   const Eigen::Matrix3d& Rm = a_in_b ? Rb : Ra;
+  // Hits beyond the margin (speculative: PairOptions::speculative) are placed on the other surface.
+  const bool speculative = speculative_reach(a_in_b ? req.a : req.b, a_in_b ? req.b : req.a, opt) > 0;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t h = hits[k].hit, point = hits[k].point;
-    const Eigen::Vector3d position = R * points[point] + t;
+    Eigen::Vector3d position = R * points[point] + t;
     Eigen::Vector3d normal = R * normals[point];
+    const double d = -double(cols.dist[h]) * dist_unit;
     // The field's gradient at the point, in the map's grid, to the world; negated, it points the way the shell
     // object's outward normal does at a contact.
-    const Eigen::Vector3d g = (Rm.transpose() * (position - map_pose.translation) - vm.origin()) / voxel;
+    Eigen::Vector3d g = (Rm.transpose() * (position - map_pose.translation) - vm.origin()) / voxel;
     Eigen::Vector3d grad;
-    field.distance_at(g, &grad);
+    std::array<uint32_t, 3> v = {cx[h], cy[h], cz[h]};
+    if (speculative && -d > opt.margin) {
+      g = onto_surface(field, g, &grad);
+      position = Rm * (vm.origin() + g * voxel) + map_pose.translation;
+      v = voxel_of(g, vm.dims());
+    } else {
+      field.distance_at(g, &grad);
+    }
     const Eigen::Vector3d nrm = -(Rm * grad);
     if (nrm.squaredNorm() > 1e-24) normal = nrm.normalized();
-    to.put(k, point, position, normal, cx[h], cy[h], cz[h], cols.state[h], -double(cols.dist[h]) * dist_unit);
+    to.put(k, point, position, normal, v[0], v[1], v[2], cols.state[h], d);
   }
 }
 
 template void PairCollider::make_contacts<detail::ToContacts>(const PairRequest&, uint32_t, bool,
                                                               const HitColumns&, const detail::SortedHit*, size_t,
                                                               const Eigen::Matrix3d&, const Eigen::Matrix3d&,
-                                                              const detail::ToContacts&) const;
+                                                              const PairOptions&, const detail::ToContacts&) const;
 template void PairCollider::make_contacts<detail::ToArrays>(const PairRequest&, uint32_t, bool, const HitColumns&,
                                                             const detail::SortedHit*, size_t, const Eigen::Matrix3d&,
-                                                            const Eigen::Matrix3d&, const detail::ToArrays&) const;
+                                                            const Eigen::Matrix3d&, const PairOptions&,
+                                                            const detail::ToArrays&) const;
 
 }  // namespace voxcd
