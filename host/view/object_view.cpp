@@ -94,10 +94,11 @@ json shell_json(const ObjectFile& o, size_t limit, json& notes) {
   if (sh.size() < o.shell_points())
     notes.push_back("the shell is stored sparse on a grid too large for its dense form: no shell points");
   else if (stride > 1)
-    notes.push_back("every " + std::to_string(stride) + "th shell point is drawn (at most " + std::to_string(limit) +
+    notes.push_back("one shell point in " + std::to_string(stride) + " is drawn (at most " + std::to_string(limit) +
                     " are sent)");
   return {{"count", o.shell_points()}, {"sent", (sh.size() + stride - 1) / stride}, {"stride", stride},
-          {"on_surface", sh.on_surface}, {"points", floats(sh.points, stride)}, {"normals", floats(sh.normals, stride)}};
+          {"on_surface", sh.on_surface}, {"points", floats(sh.points, stride)},
+          {"normals", floats(sh.normals, stride)}};
 }
 
 // The field's values for the slices: the dense field's nodes, or a sparse field's level-0 nodes (dense_from_sparse),

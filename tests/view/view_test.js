@@ -237,12 +237,14 @@ async function sparseCase(browser) {
   const obj = path.join(WORK, 'rod.obj'), rod = path.join(WORK, 'rod.vox');
   fs.writeFileSync(obj, 'v 0 0 0\nv 100 0 0\nv 0 1 0\nv 100 1 0\nv 0 0 1\nv 100 0 1\nv 0 1 1\nv 100 1 1\n' +
     'f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n');
-  const rodInfo = JSON.parse(voxcd('voxelize', obj, '--resolution', '1030', '--storage', 'sparse', '-o', rod, '--json'));
+  const rodInfo = JSON.parse(voxcd('voxelize', obj, '--resolution', '1030', '--storage', 'sparse', '-o', rod,
+    '--json'));
   ({ proc, url } = await serve([rod]));
   try {
     const { page, errors } = await open(browser, url);
     const v = (f) => page.evaluate(f);
-    const drawn = await v(() => [window.voxcdView.view.drawnVoxmapBricks(), window.voxcdView.view.drawnSurfaceVoxels()]);
+    const drawn = await v(() => [window.voxcdView.view.drawnVoxmapBricks(),
+      window.voxcdView.view.drawnSurfaceVoxels()]);
     check(rodInfo.dims[0] > 1024 && drawn[0] === rodInfo.storage.sparse.cells.brick && drawn[1] === 0,
       'a voxmap too large for its dense form: its bricks drawn, no voxels (' + drawn + ')');
     check(errors.length === 0, 'no console error (' + errors.join('; ') + ')');

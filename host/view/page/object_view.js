@@ -272,7 +272,8 @@ class VoxcdObjectView {
     const b = this.d.bricks, f = b.distance, sw = (c) => '<span style="color:#' + c.toString(16).padStart(6, '0') +
       '">&#9632;</span> ';
     let h = '<b>bricks</b><table><tr><td class="key">' + sw(0x4dd0e1) + 'voxmap</td><td>' + b.voxmap.sent + ' of ' +
-      b.voxmap.count + ' (' + b.voxmap.edge + '^3 voxels' + (b.voxmap.stored ? ')' : ', were it sparse)') + '</td></tr>';
+      b.voxmap.count + ' (' + b.voxmap.edge + '^3 voxels' + (b.voxmap.stored ? ')' : ', were it sparse)') +
+      '</td></tr>';
     if (f) for (let l = 0; l < 4; ++l)
       h += '<tr><td class="key">' + sw(VOXCD_LEVEL_COLOURS[l]) + 'distance level ' + l + '</td><td>' + f.sent[l] +
         ' of ' + f.count[l] + (l ? ' (' + (1 << l) + 'x finer)' : '') + '</td></tr>';

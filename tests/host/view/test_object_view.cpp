@@ -181,7 +181,7 @@ TEST(ObjectView, LimitsBoundWhatThePageIsSent) {
   EXPECT_EQ(decode<float>(j["shell"]["points"]).size(), 3 * j["shell"]["sent"].get<size_t>());
   EXPECT_EQ(j["limits"], json({{"boxes", 40}, {"shell_points", 100}, {"array_bytes", 1000}}));
   const std::string notes = j["notes"].dump();
-  for (const char* said : {"voxmap's states take", "distance field's", "shell point is drawn", "of the voxmap's",
+  for (const char* said : {"voxmap's states take", "distance field's", "shell point in", "of the voxmap's",
                            "of the distance field's"})
     EXPECT_NE(notes.find(said), std::string::npos) << said << " in " << notes;
 }
