@@ -121,9 +121,9 @@ int view_object(const ViewArgs& a, const std::string& file) {
   const uint32_t res = a.app->count("--resolution") ? a.pair.resolution : 64;
   const view::ObjectView v = view::make_object_view(file, a.pair.voxel, res, a.pair.distance_bits, a.pair.band);
   const std::string data = view::object_view_json(v);
-  const auto& d = v.object.voxmap.dims();
+  const auto& d = v.object.voxmap_grid().dims;
   const std::string what = "object " + file + " (voxmap " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
-                           std::to_string(d[2]) + ", " + std::to_string(v.object.shell.size()) + " shell points)";
+                           std::to_string(d[2]) + ", " + std::to_string(v.object.shell_points()) + " shell points)";
   if (!v.note.empty()) std::fprintf(stderr, "voxcd view: %s\n", v.note.c_str());
   return show(a, what, [&] { return data; },
               [&](const view::HttpRequest& r) -> std::optional<view::HttpResponse> {

@@ -13,54 +13,8 @@
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/png.h"
 #include "voxcd/ref/config.h"
-#include "voxcd/ref/pipeline.h"
 
 namespace voxcd::cli {
-
-// Device memory an object takes with the default DeviceConfig: the voxmap image (MEMW-bit words) and the shell
-// words (three PW-bit coordinates per point), in bytes rounded up to whole words and whole bytes; of the forms it is
-// stored in (a sparse voxmap: its table and bricks; a sparse shell: its shell words).
-struct ObjectMemory {
-  uint64_t voxmap_bytes = 0, shell_bytes = 0;
-};
-
-// The dense forms' bytes, whichever form is stored.
-inline ObjectMemory dense_memory(const ObjectFile& obj, const DeviceConfig& cfg = DeviceConfig{}) {
-  ObjectMemory m;
-  const uint64_t per = uint64_t(cfg.states_per_word());
-  m.voxmap_bytes = (obj.voxmap_grid().size() + per - 1) / per * uint64_t(cfg.MEMW) / 8;
-  m.shell_bytes = (uint64_t(obj.shell_points()) * 3 * uint64_t(cfg.PW) + 7) / 8;
-  return m;
-}
-
-inline ObjectMemory object_memory(const ObjectFile& obj, const DeviceConfig& cfg = DeviceConfig{}) {
-  ObjectMemory m = dense_memory(obj, cfg);
-  if (obj.voxmap_sparse()) m.voxmap_bytes = obj.sparse_voxmap.bytes(cfg.MEMW);
-  if (obj.shell_sparse()) m.shell_bytes = obj.sparse_shell.bytes(cfg);
-  return m;
-}
-
-// The device memory of an object's distance field with the default widths and SB = its bits: words of the 8 parity
-// banks (map_words), and the same in bytes.
-struct DistanceMemory {
-  DeviceConfig cfg;
-  uint64_t words = 0, bytes = 0, nodes = 0;
-};
-
-inline DistanceMemory distance_memory(const ObjectFile& obj) {
-  DistanceMemory m;
-  const DistanceField& f = obj.distance;
-  if (f.empty()) return m;
-  m.cfg.SB = f.bits;
-  Job j;
-  j.nx = f.dims[0];
-  j.ny = f.dims[1];
-  j.nz = f.dims[2];
-  m.words = map_words(m.cfg, j);
-  m.bytes = m.words * uint64_t(m.cfg.MEMW) / 8;
-  m.nodes = f.q.size();
-  return m;
-}
 
 inline std::string hex64(uint64_t v) {
   char b[24];
@@ -123,32 +77,21 @@ inline std::string repair_text(const ObjectFile& obj) {
   return t.str();
 }
 
-// A sparse distance field's device memory with the default widths, SB = its bits and BL = 3: the table and brick
-// words of its image.
-inline DistanceMemory sparse_distance_memory(const ObjectFile& obj) {
-  DistanceMemory m;
-  const SparseDistanceField& f = obj.sparse_distance;
-  m.cfg.SB = f.bits();
-  m.cfg.BL = SparseDistanceField::kBrickLog;
-  const SparseImage img = f.device_image(m.cfg);
-  m.words = img.table.size() + img.bricks.size();
-  m.bytes = m.words * uint64_t(m.cfg.MEMW) / 8;
-  m.nodes = f.counts().nodes;
-  return m;
-}
-
-// A sparse field's keys: its cells per kind, its bricks per level and the conservative sub-cells left.
+// A sparse field's keys: its cells per kind, its bricks per level, the conservative sub-cells left, and its device
+// memory beside a dense map's.
 inline Json sparse_distance_json(const ObjectFile& obj) {
   const SparseDistanceField& f = obj.sparse_distance;
   const SparseFieldCounts c = f.counts();
   const DistanceMemory dm = sparse_distance_memory(obj);
+  const DistanceMemory dense = dense_distance_memory(f.bits(), f.dims());
   const auto [lo, hi] = std::minmax_element(f.nodes().begin(), f.nodes().end());
   return Json{{"storage", "sparse"}, {"bits", f.bits()}, {"step", f.step()}, {"band", f.band()},
               {"nodes", dm.nodes}, {"cells", {f.cells()[0], f.cells()[1], f.cells()[2]}},
               {"far_cells", c.far}, {"deep_cells", c.deep}, {"bricks_per_level", c.bricks},
               {"conservative_subcells", c.conservative},
               {"min", f.nodes().empty() ? f.qmax() : *lo}, {"max", f.nodes().empty() ? f.qmax() : *hi},
-              {"memory_words", dm.words}, {"memory_bytes", dm.bytes}, {"memory_config", dm.cfg.to_string()}};
+              {"memory_words", dm.words}, {"memory_bytes", dm.bytes}, {"memory_config", dm.cfg.to_string()},
+              {"dense_memory_words", dense.words}, {"dense_memory_bytes", dense.bytes}};
 }
 
 // The distance field's keys of object_json (objects of file version 3): null when the object has none.
@@ -157,7 +100,7 @@ inline Json distance_json(const ObjectFile& obj) {
   if (obj.distance.empty()) return nullptr;
   const DistanceField& f = obj.distance;
   const DistanceMemory dm = distance_memory(obj);
-  return Json{{"bits", f.bits}, {"step", f.step}, {"band", f.band()}, {"nodes", dm.nodes},
+  return Json{{"storage", "dense"}, {"bits", f.bits}, {"step", f.step}, {"band", f.band()}, {"nodes", dm.nodes},
               {"node_dims", {f.dims[0] + 1, f.dims[1] + 1, f.dims[2] + 1}},
               {"min", *std::min_element(f.q.begin(), f.q.end())}, {"max", *std::max_element(f.q.begin(), f.q.end())},
               {"memory_words", dm.words}, {"memory_bytes", dm.bytes}, {"memory_config", dm.cfg.to_string()}};
@@ -192,17 +135,13 @@ inline std::string sparse_distance_text(const ObjectFile& obj) {
   const SparseDistanceField& f = obj.sparse_distance;
   const SparseFieldCounts c = f.counts();
   const DistanceMemory dm = sparse_distance_memory(obj);
-  DeviceConfig dense;
-  dense.SB = f.bits();
-  Job j;
-  j.nx = f.dims()[0], j.ny = f.dims()[1], j.nz = f.dims()[2];
   std::ostringstream t;
   t << "  distance " << f.bits() << "-bit node values, step " << f.step() << " voxels, band +-" << f.band()
     << " voxels, stored sparse: " << f.cells()[0] << " x " << f.cells()[1] << " x " << f.cells()[2] << " cells of 8^3, "
     << c.far << " far outside, " << c.deep << " far inside, bricks of level 0/1/2/3: " << c.bricks[0] << "/"
     << c.bricks[1] << "/" << c.bricks[2] << "/" << c.bricks[3] << " (" << c.nodes << " nodes); device memory "
     << dm.words << " words (" << dm.bytes << " bytes, " << dm.cfg.to_string().substr(dm.cfg.to_string().find("SB"))
-    << "), dense " << map_words(dense, j) << " words\n";
+    << "), dense " << dense_distance_memory(f.bits(), f.dims()).words << " words\n";
   return t.str();
 }
 

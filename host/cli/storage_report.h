@@ -1,5 +1,6 @@
 // Shared by `voxcd voxelize` and `voxcd info` (object_report.h): how an object is stored, dense or sparse, and what
-// each form takes in device memory with the default widths (docs/objects.md, "Sparse objects").
+// each form takes in device memory with the default widths (docs/objects.md, "Sparse objects"), as JSON and text of
+// the library's figures (host/object/storage_figures.h).
 #pragma once
 
 #include <array>
@@ -7,57 +8,9 @@
 #include <string>
 
 #include "voxcd/host/cli/json_text.h"
-#include "voxcd/host/object/object_file.h"
-#include "voxcd/ref/config.h"
+#include "voxcd/host/object/storage_figures.h"
 
 namespace voxcd::cli {
-
-// The bytes of both forms of the voxmap and the shell (a shell on the surface has no sparse form), and the sparse
-// forms' make-up, as stored or as they would be.
-struct StorageFigures {
-  bool voxmap_sparse = false, shell_sparse = false, shell_has_sparse = false;
-  uint64_t dense_voxmap = 0, dense_shell = 0;
-  int bl = 0;
-  std::array<uint64_t, 3> coarse{};
-  std::array<uint64_t, 4> cells{};  // per code
-  uint64_t table_bytes = 0, brick_bytes = 0;
-  uint64_t shell_words = 0, shell_bricks = 0, origin_words = 0, sparse_shell = 0;
-  uint64_t sparse_voxmap() const { return table_bytes + brick_bytes; }
-  uint64_t sparse_shell_bytes() const { return shell_has_sparse ? sparse_shell : dense_shell; }
-};
-
-inline void sparse_voxmap_figures(const SparseVoxmap& sm, StorageFigures& f) {
-  f.bl = sm.bl();
-  f.coarse = sm.coarse();
-  f.cells = sm.code_counts();
-  f.table_bytes = sm.table_bytes();
-  f.brick_bytes = sm.brick_bytes();
-}
-
-inline void sparse_shell_figures(const SparseShell& s, StorageFigures& f) {
-  f.shell_words = s.words();
-  f.shell_bricks = s.bricks.size();
-  f.origin_words = s.origin_words();
-  f.sparse_shell = s.bytes();
-}
-
-inline StorageFigures storage_figures(const ObjectFile& obj) {
-  const DeviceConfig cfg;
-  StorageFigures f;
-  f.voxmap_sparse = obj.voxmap_sparse();
-  f.shell_sparse = obj.shell_sparse();
-  const uint64_t per = uint64_t(cfg.states_per_word());
-  f.dense_voxmap = (obj.voxmap_grid().size() + per - 1) / per * uint64_t(cfg.MEMW) / 8;
-  f.dense_shell = (uint64_t(obj.shell_points()) * 3 * uint64_t(cfg.PW) + 7) / 8;
-  if (f.voxmap_sparse)  // (not a ?: which would copy the stored map)
-    sparse_voxmap_figures(obj.sparse_voxmap, f);
-  else
-    sparse_voxmap_figures(SparseVoxmap::from_dense(obj.voxmap), f);
-  f.shell_has_sparse = f.shell_sparse || !obj.shell.on_surface;
-  if (f.shell_sparse) sparse_shell_figures(obj.sparse_shell, f);
-  else if (f.shell_has_sparse) sparse_shell_figures(SparseShell::from_point_shell(obj.shell), f);
-  return f;
-}
 
 // info --json's "storage" object.
 inline Json storage_json(const StorageFigures& f) {

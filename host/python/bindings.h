@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <exception>
+#include <memory>
 #include <optional>
 #include <tuple>
 #include <filesystem>
@@ -16,6 +17,7 @@
 
 namespace voxcd {
 struct FrameStats;
+struct ObjectFile;
 struct PairResult;
 struct RunConfig;
 }  // namespace voxcd
@@ -38,6 +40,11 @@ void check_distance_args(int distance_bits, double band);
 
 // objects.cpp: voxcd.voxelize, voxcd.read_object and voxcd.Object.
 void bind_objects(py::module_& m);
+
+// object_storage.cpp: Object.storage, Object.memory and Object.bricks (which parts are sparse, their device memory
+// in both forms, the sparse forms' bricks).
+using ObjectClass = py::class_<ObjectFile, std::shared_ptr<ObjectFile>>;
+void bind_object_storage(ObjectClass& cls);
 
 // pairs.cpp: voxcd.Pair and voxcd.pair.
 void bind_pairs(py::module_& m);

@@ -46,13 +46,25 @@ py::array_t<uint8_t> states(const Voxmap& vm) {
   return a;
 }
 
-// The distance field's node values indexed [X, Y, Z] (Fortran order, as `states`), or None without a field.
-py::object distance(const DistanceField& f) {
-  if (f.empty()) return py::none();
+// The distance field's node values indexed [X, Y, Z] (Fortran order, as `states`).
+py::array_t<int16_t, py::array::f_style> node_array(const DistanceField& f) {
   const py::ssize_t nx = f.dims[0] + 1, ny = f.dims[1] + 1, nz = f.dims[2] + 1;
   py::array_t<int16_t, py::array::f_style> a({nx, ny, nz});
   std::copy(f.q.begin(), f.q.end(), a.mutable_data());
-  return std::move(a);
+  return a;
+}
+
+// The field as a dense array: the dense field, or a sparse one's level-0 nodes where its grid fits a dense field
+// (ValueError saying why not); None without a field.
+py::object distance(const ObjectFile& o) {
+  if (!o.has_distance()) return py::none();
+  if (!o.distance_sparse()) return node_array(o.distance);
+  const auto& d = o.sparse_distance.dims();
+  if (std::max({d[0], d[1], d[2]}) > kMaxDenseDim)
+    value_error("the object's distance field is stored sparse on a grid of " + std::to_string(d[0]) + "x" +
+                std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels, larger than a dense field's " +
+                std::to_string(kMaxDenseDim) + " per axis: it has no dense array (memory and bricks describe it)");
+  return node_array(dense_from_sparse(o.sparse_distance));
 }
 
 // What loading, repair and voxelising found: `voxcd info --json`'s "repair", made by the same function (None for an
@@ -151,8 +163,6 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
 
 namespace {
 
-using ObjectClass = py::class_<ObjectFile, ObjectPtr>;
-
 // The dense forms the arrays read; ValueError for a sparse object too large for them.
 const Voxmap& dense_voxmap(const ObjectFile& o) {
   if (!o.has_dense_voxmap())
@@ -215,14 +225,34 @@ void bind_shell(ObjectClass& cls) {
 
 // Object's distance field.
 void bind_distance(ObjectClass& cls) {
-  cls.def_property_readonly("distance_bits", [](const ObjectFile& o) { return o.distance.bits; },
+  cls.def_property_readonly("distance_bits", [](const ObjectFile& o) { return o.distance_bits(); },
                              "Bits of the distance field's node values (4, 8 or 16); 0 for an object without one.")
-      .def_property_readonly("distance_step", [](const ObjectFile& o) { return o.distance.step; },
+      .def_property_readonly("distance_step", [](const ObjectFile& o) { return o.distance_step(); },
                              "Voxels per unit of a node value (band / 2^(bits-1)); 0 without a field.")
-      .def_property_readonly("distance", [](const ObjectFile& o) { return distance(o.distance); },
+      .def_property_readonly("distance", &distance,
                              "The signed distance field's node values as a new int16 array of shape (nx+1, ny+1, "
                              "nz+1), indexed [X, Y, Z] (node X, Y, Z at origin + voxel * (X, Y, Z)), negative "
-                             "inside; times distance_step it is voxels, clamped to the band. None without a field.");
+                             "inside; times distance_step it is voxels, clamped to the band. A field stored sparse "
+                             "gives its level-0 nodes (a refined brick's nodes at those places; ValueError for a "
+                             "grid larger than 1024 voxels per axis). None without a field.");
+}
+
+// ", 8-bit distance field" for an object with one; "; sparse: voxmap, shell, distance" naming the parts stored
+// sparse, "" when none is.
+std::string repr_storage(const ObjectFile& o) {
+  std::string t = o.has_distance() ? ", " + std::to_string(o.distance_bits()) + "-bit distance field" : "";
+  std::string sparse;
+  for (const auto& [is, name] : {std::pair{o.voxmap_sparse(), "voxmap"}, std::pair{o.shell_sparse(), "shell"},
+                                 std::pair{o.distance_sparse(), "distance"}})
+    if (is) sparse += (sparse.empty() ? "; sparse: " : ", ") + std::string(name);
+  return t + sparse;
+}
+
+std::string object_repr(const ObjectFile& o) {
+  const auto& d = o.voxmap_grid().dims;
+  return "<voxcd.Object " + o.source + ": " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
+         std::to_string(d[2]) + " voxels of " + py::repr(py::float_(o.voxmap_grid().voxel)).cast<std::string>() +
+         ", " + std::to_string(o.shell_points()) + " shell points" + repr_storage(o) + ">";
 }
 
 // Object's shell grid, report, save() and repr.
@@ -250,12 +280,7 @@ void bind_rest(ObjectClass& cls) {
             }
           },
           py::arg("path"), "Writes the object file (as `voxcd voxelize -o`), atomically. OSError when it cannot.")
-      .def("__repr__", [](const ObjectFile& o) {
-        const auto& d = o.voxmap_grid().dims;
-        return "<voxcd.Object " + o.source + ": " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
-               std::to_string(d[2]) + " voxels of " + py::repr(py::float_(o.voxmap_grid().voxel)).cast<std::string>() +
-               ", " + std::to_string(o.shell_points()) + " shell points>";
-      });
+      .def("__repr__", &object_repr);
 }
 
 }  // namespace
@@ -266,6 +291,7 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
   bind_voxmap(c);
   bind_shell(c);
   bind_distance(c);
+  bind_object_storage(c);
   bind_rest(c);
 
   m.def("voxelize", &voxelize_source, py::arg("source"), py::kw_only(), py::arg("voxel") = py::none(),

@@ -2,6 +2,8 @@
 // shell, distance field and repair report, as the JSON the page reads (docs/view.md).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -25,7 +27,16 @@ struct ObjectView {
 ObjectView make_object_view(const std::string& file_or_shape, double voxel, uint32_t resolution, int distance_bits,
                             double band);
 
+// What the page is sent of a large object at most (docs/view.md, "An object"): boxes of the voxmap's bricks and of
+// the distance field's bricks (each), shell points (every k-th beyond), and bytes of the voxmap's states and of the
+// field's node values (each; neither is sent beyond).
+struct ViewLimits {
+  size_t boxes = size_t{1} << 16;
+  size_t shell_points = size_t{1} << 18;
+  uint64_t array_bytes = uint64_t{1} << 25;
+};
+
 // The page's data: {"kind": "object", ...} (docs/view.md lists the keys).
-std::string object_view_json(const ObjectView& v);
+std::string object_view_json(const ObjectView& v, const ViewLimits& limits = {});
 
 }  // namespace voxcd::view

@@ -1,7 +1,7 @@
 // The browser tests of `voxcd view` (tests/view/CMakeLists.txt): Debian's chromium, headless with software WebGL,
 // driven through the DevTools protocol by puppeteer-core, loads the page the tool serves (or writes with --html) and
 // checks what it draws against the tool's own output. Usage:
-//   node view_test.js CASE VOXCD WORK SHOTS    CASE: recording, live, object, pair or html
+//   node view_test.js CASE VOXCD WORK SHOTS    CASE: recording, live, object, sparse, pair or html
 // Prints "N passed, M failed" and exits non-zero on any failure.
 'use strict';
 
@@ -212,6 +212,47 @@ async function objectCase(browser) {
   }
 }
 
+// A cube stored with a sparse distance field (its edges refined to level 1), then a rod longer than a dense voxmap
+// (its voxmap and shell sparse, no states sent): the bricks drawn equal voxcd info's, per level.
+async function sparseCase(browser) {
+  const cube = path.join(WORK, 'cube.vox');
+  voxcd('voxelize', 'cube', '--resolution', '24', '--storage', 'sparse', '--distance-bits', '8', '-o', cube);
+  const info = JSON.parse(voxcd('info', cube, '--json'));
+  let { proc, url } = await serve([cube]);
+  try {
+    const { page, errors } = await open(browser, url);
+    const v = (f) => page.evaluate(f);
+    const levels = await v(() => window.voxcdView.view.drawnDistanceBricks());
+    check(JSON.stringify(levels) === JSON.stringify(info.distance.bricks_per_level) && levels[1] > 0,
+      'distance bricks drawn per level = the file\'s (' + levels + ' vs ' + info.distance.bricks_per_level + ')');
+    check(await v(() => window.voxcdView.view.drawnVoxmapBricks()) === 0, 'a dense voxmap\'s bricks start hidden');
+    const side = await v(() => document.getElementById('side').textContent);
+    check(side.includes('device memory') && side.includes('distance level 1'), 'the side panel shows the storage and '
+      + 'the levels\' legend');
+    await shot(page, 'view_object_sparse.png');
+    check(errors.length === 0, 'no console error (' + errors.join('; ') + ')');
+  } finally {
+    proc.kill();
+  }
+  const obj = path.join(WORK, 'rod.obj'), rod = path.join(WORK, 'rod.vox');
+  fs.writeFileSync(obj, 'v 0 0 0\nv 100 0 0\nv 0 1 0\nv 100 1 0\nv 0 0 1\nv 100 0 1\nv 0 1 1\nv 100 1 1\n' +
+    'f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n');
+  const rodInfo = JSON.parse(voxcd('voxelize', obj, '--resolution', '1030', '--storage', 'sparse', '-o', rod,
+    '--json'));
+  ({ proc, url } = await serve([rod]));
+  try {
+    const { page, errors } = await open(browser, url);
+    const v = (f) => page.evaluate(f);
+    const drawn = await v(() => [window.voxcdView.view.drawnVoxmapBricks(),
+      window.voxcdView.view.drawnSurfaceVoxels()]);
+    check(rodInfo.dims[0] > 1024 && drawn[0] === rodInfo.storage.sparse.cells.brick && drawn[1] === 0,
+      'a voxmap too large for its dense form: its bricks drawn, no voxels (' + drawn + ')');
+    check(errors.length === 0, 'no console error (' + errors.join('; ') + ')');
+  } finally {
+    proc.kill();
+  }
+}
+
 async function pairCase(browser) {
   const pose = (p) => JSON.parse(voxcd('pair', 'polytope36', 'stellated', '--pose', p, '--json')).results[0].contacts.length;
   const { proc, url } = await serve(['polytope36', 'stellated', '--pose', '0.6,0.2,0,0,0,30']);
@@ -261,7 +302,8 @@ async function htmlCase(browser) {
   fs.mkdirSync(SHOTS, { recursive: true });
   const browser = await lib.launch(puppeteer, fs.mkdtempSync(path.join(WORK, 'profile-')));
   try {
-    const cases = { recording: recordingCase, live: liveCase, object: objectCase, pair: pairCase, html: htmlCase };
+    const cases = { recording: recordingCase, live: liveCase, object: objectCase, sparse: sparseCase, pair: pairCase,
+      html: htmlCase };
     if (!cases[CASE]) throw new Error('no case ' + CASE);
     await cases[CASE](browser);
   } catch (e) {

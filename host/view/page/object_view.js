@@ -1,18 +1,25 @@
 // One object: its mesh (or its voxmap's surface), surface and interior voxels, slices of the voxmap or of the
-// distance field along each axis, the point shell with its normals, and the repair report with its places marked.
+// distance field along each axis, the point shell with its normals, the sparse structure (the voxmap's bricks, the
+// distance field's bricks coloured by level) with what each part takes in device memory, and the repair report with
+// its places marked.
 'use strict';
+
+// Distance bricks by level 0..3: the finer, the hotter.
+const VOXCD_LEVEL_COLOURS = [0x66bb6a, 0xffd54f, 0xff7043, 0xd500f9];
 
 class VoxcdObjectView {
   constructor(stage, d) {
     this.stage = stage;
     this.d = d;
-    this.words = VoxcdUtil.u32(d.voxmap);  // 2-bit states, 16 per 32-bit word (docs/objects.md)
-    this.q = d.distance ? new Int16Array(VoxcdUtil.bytes(d.distance.q)) : null;
+    // 2-bit states, 16 per 32-bit word (docs/objects.md); null when not sent (docs/view.md, "An object").
+    this.words = d.voxmap ? VoxcdUtil.u32(d.voxmap) : null;
+    this.q = d.distance && d.distance.q ? new Int16Array(VoxcdUtil.bytes(d.distance.q)) : null;
     const lo = new THREE.Vector3(...d.origin);
     const hi = lo.clone().add(new THREE.Vector3(...d.dims).multiplyScalar(d.voxel));
     this.makeMesh();
     this.makeVoxels();
     this.makeShell();
+    this.makeBricks();
     this.makePlaces();
     this.makeControls();
     this.showSide();
@@ -37,7 +44,7 @@ class VoxcdObjectView {
   // Instanced cubes at the centres of the voxels in `wanted` state.
   voxelCubes(wanted, color) {
     const d = this.d, v = d.voxel, m = new THREE.Matrix4(), at = [];
-    for (let z = 0; z < d.dims[2]; ++z)
+    for (let z = 0; this.words && z < d.dims[2]; ++z)
       for (let y = 0; y < d.dims[1]; ++y)
         for (let x = 0; x < d.dims[0]; ++x)
           if (this.state(x, y, z) === wanted) at.push(x, y, z);
@@ -58,7 +65,37 @@ class VoxcdObjectView {
   makeVoxels() {
     this.surfaceVoxels = this.voxelCubes(1, 0xe8984a);
     this.interiorVoxels = this.voxelCubes(2, 0x4a78e8);
-    this.slices = [0, 1, 2].map((a) => this.makeSlice(a));
+    this.slices = this.words || this.q ? [0, 1, 2].map((a) => this.makeSlice(a)) : [];
+  }
+
+  // Translucent boxes of the coarse cells at `cells` ((cx, cy, cz) triples), `edge` voxels a side, one draw call.
+  boxes(cells, edge, color) {
+    const d = this.d, s = edge * d.voxel, n = cells.length / 3, m = new THREE.Matrix4();
+    const mesh = new THREE.InstancedMesh(new THREE.BoxBufferGeometry(0.94 * s, 0.94 * s, 0.94 * s),
+      new THREE.MeshLambertMaterial({ color, transparent: true, opacity: 0.22, depthWrite: false }), Math.max(1, n));
+    for (let i = 0; i < n; ++i) {
+      m.makeTranslation(d.origin[0] + (cells[3 * i] + 0.5) * s, d.origin[1] + (cells[3 * i + 1] + 0.5) * s,
+        d.origin[2] + (cells[3 * i + 2] + 0.5) * s);
+      mesh.setMatrixAt(i, m);
+    }
+    mesh.count = n;
+    mesh.frustumCulled = false;
+    this.stage.scene.add(mesh);
+    return mesh;
+  }
+
+  // The voxmap's bricks (cells not all in one state), and the distance field's bricks, one mesh per level.
+  makeBricks() {
+    const b = this.d.bricks, f = b.distance;
+    this.voxmapBricks = this.boxes(VoxcdUtil.u32(b.voxmap.cells), b.voxmap.edge, 0x4dd0e1);
+    this.distanceBricks = [];
+    if (!f) return;
+    const cells = VoxcdUtil.u32(f.cells), levels = new Uint8Array(VoxcdUtil.bytes(f.levels));
+    for (let l = 0; l < 4; ++l) {
+      const at = [];
+      levels.forEach((level, i) => { if (level === l) at.push(cells[3 * i], cells[3 * i + 1], cells[3 * i + 2]); });
+      this.distanceBricks.push(this.boxes(at, f.edge, VOXCD_LEVEL_COLOURS[l]));
+    }
   }
 
   makeShell() {
@@ -78,7 +115,7 @@ class VoxcdObjectView {
     mesh.frustumCulled = false;
     mesh.visible = false;
     this.stage.scene.add(mesh);
-    return { axis: a, mesh, k: Math.floor(this.d.dims[a] / 2), mode: 'states' };
+    return { axis: a, mesh, k: Math.floor(this.d.dims[a] / 2), mode: this.words ? 'states' : 'distance' };
   }
 
   placeSlice(s) {
@@ -168,8 +205,12 @@ class VoxcdObjectView {
     T(c, 'shell', true, (on) => { this.shell.visible = on; });
     T(c, 'normals', false, (on) => { this.shellNormals.visible = on; });
     T(c, 'repairs', true, (on) => { this.places.visible = on; });
+    T(c, 'voxmap bricks', this.d.storage.voxmap === 'sparse', (on) => { this.voxmapBricks.visible = on; });
+    if (this.distanceBricks.length)
+      T(c, 'distance bricks', true, (on) => this.distanceBricks.forEach((m) => { m.visible = on; }));
+    if (!this.slices.length) return;
     const mode = VoxcdUtil.el('select', {}, c);
-    VoxcdUtil.el('option', { value: 'states', textContent: 'slices: voxel states' }, mode);
+    if (this.words) VoxcdUtil.el('option', { value: 'states', textContent: 'slices: voxel states' }, mode);
     if (this.q) VoxcdUtil.el('option', { value: 'distance', textContent: 'slices: distance field' }, mode);
     mode.addEventListener('change', () => this.slices.forEach((s) => { s.mode = mode.value; this.placeSlice(s); }));
     for (const s of this.slices) this.sliceControl(c, s);
@@ -195,8 +236,11 @@ class VoxcdObjectView {
     row('voxels', d.counts.surface + ' surface, ' + d.counts.interior + ' interior');
     row('shell', d.shell.count + ' points' + (d.shell.on_surface ? ' on the surface' : ''));
     if (d.distance) row('distance', d.distance.bits + ' bits over +-' + +d.distance.band.toPrecision(3) + ' voxels');
-    row('drawn', d.surface.from_mesh ? 'the mesh (' + d.surface.triangle_count + ' triangles)' : 'the voxmap surface');
-    h += '</table><b>repair report</b>';
+    row('drawn', d.surface.from_mesh ? 'the mesh (' + d.surface.triangle_count + ' triangles)' :
+      d.surface.triangle_count ? 'the voxmap surface' : 'no surface');
+    h += '</table>' + this.storageHtml() + this.bricksHtml();
+    if (d.notes.length) h += '<p class="key">' + d.notes.join('<br>') + '</p>';
+    h += '<b>repair report</b>';
     if (!d.report) h += '<p>none (an object file of version 1)</p>';
     else {
       h += '<table>';
@@ -209,6 +253,35 @@ class VoxcdObjectView {
     document.getElementById('side').innerHTML = h;
   }
 
+  // What each part takes in device memory, stored and in both forms (voxcd info's figures).
+  storageHtml() {
+    const st = this.d.storage, kb = (b) => b === null ? '-' : b < 1024 ? b + ' B' : b < 1048576 ?
+      (b / 1024).toFixed(1) + ' KiB' : (b / 1048576).toFixed(1) + ' MiB';
+    let h = '<b>device memory</b><table><tr><td></td><td class="key">stored</td><td class="key">dense</td>' +
+      '<td class="key">sparse</td></tr>';
+    for (const part of ['voxmap', 'shell', 'distance']) {
+      const m = st.memory[part];
+      if (m) h += '<tr><td class="key">' + part + '</td><td>' + st[part] + '</td><td>' + kb(m.dense) + '</td><td>' +
+        kb(m.sparse) + '</td></tr>';
+    }
+    return h + '</table>';
+  }
+
+  // The bricks drawn of each structure, with the distance levels' colours as the legend.
+  bricksHtml() {
+    const b = this.d.bricks, f = b.distance, sw = (c) => '<span style="color:#' + c.toString(16).padStart(6, '0') +
+      '">&#9632;</span> ';
+    let h = '<b>bricks</b><table><tr><td class="key">' + sw(0x4dd0e1) + 'voxmap</td><td>' + b.voxmap.sent + ' of ' +
+      b.voxmap.count + ' (' + b.voxmap.edge + '^3 voxels' + (b.voxmap.stored ? ')' : ', were it sparse)') +
+      '</td></tr>';
+    if (f) for (let l = 0; l < 4; ++l)
+      h += '<tr><td class="key">' + sw(VOXCD_LEVEL_COLOURS[l]) + 'distance level ' + l + '</td><td>' + f.sent[l] +
+        ' of ' + f.count[l] + (l ? ' (' + (1 << l) + 'x finer)' : '') + '</td></tr>';
+    return h + '</table>';
+  }
+
+  drawnVoxmapBricks() { return this.voxmapBricks.visible ? this.voxmapBricks.count : 0; }
+  drawnDistanceBricks() { return this.distanceBricks.map((m) => (m.visible ? m.count : 0)); }
   drawnShellPoints() { return this.shell.visible ? this.shell.geometry.attributes.position.count : 0; }
   drawnSurfaceVoxels() { return this.surfaceVoxels.count; }
   drawnInteriorVoxels() { return this.interiorVoxels.count; }
