@@ -248,7 +248,8 @@ int main(int argc, char** argv) {
   md << "Truth: FCL 0.7's exact collide (surfaces crossing) or one model inside the other's solid. Voxel: the larger "
         "model's longest side / "
      << resolution << " (the room and robot: / " << 2 * resolution
-     << "). voxcd: cpu backend, both directions, margin 0; the sparse mode on ref's sparse device (BL 3).\n\n";
+     << "). voxcd: cpu backend, both directions, margin 0; the sparse mode through the pair collider on a sparse "
+        "device (BL 3), speculative contacts on.\n\n";
   mode_table(md, run);
   md << tail.str();
   std::cout << md.str();

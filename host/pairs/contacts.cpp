@@ -54,14 +54,19 @@ Eigen::Vector3d wide_gradient(const ObjectFile& f, const Eigen::Vector3d& g, dou
   return s;
 }
 
-// A grid point g (voxels) moved onto the field's zero by steps of the distance along the gradient's direction (sphere
-// tracing: the field is about 1-Lipschitz, so a step from outside does not pass the surface), at most 8, until within
-// 1/64 voxel; where the interpolant is flat, along its slope over the step's span; where that vanishes too it stays.
-// The result's gradient in *grad.
-Eigen::Vector3d onto_surface(const ObjectFile& f, Eigen::Vector3d g, Eigen::Vector3d* grad) {
-  for (int k = 0; k < 8; ++k) {
-    const double d = f.distance_at(g, grad);
-    if (std::abs(d) < 1.0 / 64) break;
+// Where a speculative contact is placed: where the field reads 1/16 voxel inside the other object. The field's zero
+// lies within 1/4 voxel of the surface where the resolution test samples a sub-cell (docs/objects.md), up to 0.27 voxel
+// between those samples on the corpus; 1/16 inside keeps every placed contact within 1/4 voxel of the surface.
+constexpr double kSpeculativeLevel = -1.0 / 16;
+
+// A grid point g (voxels) moved onto the field's `level` by steps of the distance along the gradient's direction
+// (sphere tracing: the field is about 1-Lipschitz, so a step from outside does not pass the level), at most 16, until
+// within 1/256 voxel; where the interpolant is flat, along its slope over the step's span; where that vanishes too it
+// stays. The result's gradient in *grad.
+Eigen::Vector3d onto_level(const ObjectFile& f, Eigen::Vector3d g, double level, Eigen::Vector3d* grad) {
+  for (int k = 0; k < 16; ++k) {
+    const double d = f.distance_at(g, grad) - level;
+    if (std::abs(d) < 1.0 / 256) break;
     Eigen::Vector3d dir = *grad;
     if (dir.norm() < 1e-6) dir = wide_gradient(f, g, std::max(std::abs(d), 0.25));
     const double len = dir.norm();
@@ -134,7 +139,7 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
     Eigen::Vector3d grad;
     std::array<uint32_t, 3> v = {cx[h], cy[h], cz[h]};
     if (speculative && -d > opt.margin) {
-      g = onto_surface(field, g, &grad);
+      g = onto_level(field, g, kSpeculativeLevel, &grad);
       position = Rm * (vm.origin() + g * voxel) + map_pose.translation;
       v = voxel_of(g, vm.dims());
     } else {
