@@ -60,6 +60,7 @@ def lists(c):
         ("VOXCD_SYSC_DIST_MODELS", [prefix("Vvoxcd_sc", p) for p in split("VOXCD_SYSC_DIST_MODELS")]),
         ("VOXCD_SYSC_BANKED_MODELS", [prefix("Vvoxcd_sc", p) for p in split("VOXCD_SYSC_BANKED_MODELS")]),
         ("VOXCD_SYSC_DEPTH_MODELS", [prefix("Vvoxcd_sc", p) for p in split("VOXCD_SYSC_DEPTH_MODELS")]),
+        ("VOXCD_SYSC_SPARSE_MODELS", [prefix("Vvoxcd_sc", p) for p in split("VOXCD_SYSC_SPARSE_MODELS")]),
         ("VOXCD_SYSC_AXI_PAIRS (" + sysc_axi + ")", ["Vvoxcd_sc_axi"]),
         ("bench/cosim.cmake (fixed)", ["Vcosim_base", "Vcosim_notrace", "Vcosim_sized", "Vcosim_noassert"]),
     ]

@@ -23,7 +23,8 @@ std::vector<DeviceConfig> rtl_target_configs() {
 }
 
 // The pins with a signal of their own, named as the model's ports and typed as Verilator types the ports of the
-// default-width device: X(type, name), stream by stream (write ports, job, hit, completion, status).
+// default-width device: X(type, name), stream by stream (write ports, job, hit, completion, status). A sparse
+// device's ports have the same types: its point index (SAW + 6 bits) and counts (SAW + 7) stay within 32 bits.
 #define VOXCD_RTL_PINS(X)                                                                                          \
   X(bool, shell_we_i) X(uint32_t, shell_waddr_i) X(sc_dt::sc_bv<72>, shell_wdata_i)                               \
   X(bool, map_we_i) X(uint32_t, map_waddr_i) X(uint64_t, map_wdata_i)                                             \
@@ -123,7 +124,7 @@ RtlTarget::RtlTarget(sc_module_name name, const DeviceConfig& cfg, sc_time clock
     for (const DeviceConfig& c : rtl_target_configs()) built += (built.empty() ? "" : "; ") + c.to_string();
     throw std::invalid_argument(std::string(this->name()) +
                                 ": the RTL models are built for the default widths with the lane counts, and for "
-                                "the distance, shared-bank and deeper-pipeline devices listed here (" +
+                                "the distance, shared-bank, deeper-pipeline and sparse devices listed here (" +
                                 built + "), not for " + cfg.to_string());
   }
   start_clocked_method();

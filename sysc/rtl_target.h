@@ -23,8 +23,9 @@ struct RtlModel;  // the Verilated model of one lane count
 // Lane counts this build has SystemC RTL models of the 2-bit device (default widths) for.
 std::vector<int> rtl_target_lanes();
 // Every configuration this build has a SystemC RTL model for: the 2-bit device's lane counts, then the distance
-// devices, the devices with shared voxmap banks and those with a deeper pipeline (sysc/CMakeLists.txt,
-// VOXCD_SYSC_DIST_MODELS, VOXCD_SYSC_BANKED_MODELS, VOXCD_SYSC_DEPTH_MODELS).
+// devices, the devices with shared voxmap banks, those with a deeper pipeline and the sparse devices
+// (sysc/CMakeLists.txt, VOXCD_SYSC_DIST_MODELS, VOXCD_SYSC_BANKED_MODELS, VOXCD_SYSC_DEPTH_MODELS,
+// VOXCD_SYSC_SPARSE_MODELS).
 std::vector<DeviceConfig> rtl_target_configs();
 
 class RtlTarget final : public ClockedTarget {

@@ -2,7 +2,7 @@
 # 2-bit, distance with shared banks, a deeper pipeline) are version 3 with BL on their config line and the sparse
 # fields on every job line, and pass on every backend named in BACKENDS with their cycles; a cycle count one off
 # fails; a sparse job in a file whose config has no BL is refused naming it; selftest runs sparse devices on ref and
-# cpu.
+# cpu, and on the Verilated backends of SELFTEST_RTL ("|"-separated: those with models of both its sparse devices).
 file(MAKE_DIRECTORY ${WORK})
 include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
 
@@ -30,7 +30,8 @@ run(1 out ${VOXCD} conform ${WORK}/no_bl.vec --backend ref)
 expect("${out}" "FAIL ${WORK}/no_bl.vec:[0-9]+: .*a sparse (map|shell) on a device without sparse maps and shells")
 
 run(0 out ${VOXCD} selftest --jobs 60)
-foreach(backend ref cpu)
+string(REPLACE "|" ";" selftest_rtl "${SELFTEST_RTL}")
+foreach(backend ref cpu ${selftest_rtl})
   expect("${out}" "\n${backend} +BL 3 +60 +[0-9]+ +[0-9]+ +[0-9.]+ +ok\n")
   expect("${out}" "\n${backend} +BL 3 SB 8 +60 +[0-9]+ +[0-9]+ +[0-9.]+ +ok\n")
 endforeach()
