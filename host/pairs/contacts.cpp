@@ -84,6 +84,16 @@ std::array<uint32_t, 3> voxel_of(const Eigen::Vector3d& g, const std::array<uint
   return v;
 }
 
+// A speculative contact moved onto the other object's surface: its grid point g (voxels) to where the field reads
+// kSpeculativeLevel, its world position (the map's grid at rotation Rm, translation tm) and its voxel with it; the
+// field's gradient there in *grad.
+void place_on_surface(const ObjectFile& f, const Voxmap& vm, const Eigen::Matrix3d& Rm, const Eigen::Vector3d& tm,
+                      Eigen::Vector3d& g, Eigen::Vector3d& position, std::array<uint32_t, 3>& v, Eigen::Vector3d* grad) {
+  g = onto_level(f, g, kSpeculativeLevel, grad);
+  position = Rm * (vm.origin() + g * vm.voxel()) + tm;
+  v = voxel_of(g, vm.dims());
+}
+
 }  // namespace
 
 template <class Out>
@@ -138,13 +148,10 @@ void PairCollider::make_contacts(const PairRequest& req, uint32_t pair, bool a_i
     Eigen::Vector3d g = (Rm.transpose() * (position - map_pose.translation) - vm.origin()) / voxel;
     Eigen::Vector3d grad;
     std::array<uint32_t, 3> v = {cx[h], cy[h], cz[h]};
-    if (speculative && -d > opt.margin) {
-      g = onto_level(field, g, kSpeculativeLevel, &grad);
-      position = Rm * (vm.origin() + g * voxel) + map_pose.translation;
-      v = voxel_of(g, vm.dims());
-    } else {
+    if (speculative && -d > opt.margin)
+      place_on_surface(field, vm, Rm, map_pose.translation, g, position, v, &grad);
+    else
       field.distance_at(g, &grad);
-    }
     const Eigen::Vector3d nrm = -(Rm * grad);
     if (nrm.squaredNorm() > 1e-24) normal = nrm.normalized();
     to.put(k, point, position, normal, v[0], v[1], v[2], cols.state[h], d);
