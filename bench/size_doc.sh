@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # bench/size_doc.sh: regenerates the worked example, the accuracy sweep, the contact-accuracy sweep and the depth
 # choices of docs/size.md by running voxcd size on tests/scenes/mixed.json (the example at 10,000 frames/s with --cost:
-# two yosys runs, about 30 s; the depth choice with --cost maps onto the OSU 0.18 um cells, about a minute).
+# two yosys runs, about a minute; the depth choice with --cost maps onto the OSU 0.18 um cells, about a minute), and
+# the choice of dense or sparse storage on tests/scenes/large.json and paper.json.
 # Usage: bash bench/size_doc.sh [BUILD_DIR]   (default build/)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -43,7 +44,20 @@ trap 'rm -rf "$tmp"' EXIT
   done
   echo '```'
 } >"$tmp/target.md"
+{
+  echo '```'
+  echo "\$ build/voxcd size tests/scenes/large.json"
+  "$voxcd" size tests/scenes/large.json
+  for a in "tests/scenes/large.json --storage dense" "tests/scenes/paper.json" \
+           "tests/scenes/paper.json --contact-accuracy 1"; do
+    echo "\$ build/voxcd size $a | grep -E '^(configuration|storage) '"
+    # shellcheck disable=SC2086
+    "$voxcd" size $a | grep -E '^(configuration|storage) '
+  done
+  echo '```'
+} >"$tmp/storage.md"
 bash bench/splice.sh docs/size.md size-example "$tmp/example.md"
+bash bench/splice.sh docs/size.md size-storage "$tmp/storage.md"
 bash bench/splice.sh docs/size.md size-target "$tmp/target.md"
 bash bench/splice.sh docs/size.md size-contact "$tmp/contact.md"
 bash bench/splice.sh docs/size.md size-accuracy "$tmp/accuracy.md"

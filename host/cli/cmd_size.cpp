@@ -14,6 +14,7 @@ struct SizeArgs {
   std::string file;
   SizeRequest req;
   std::string timing_table;  // --timing-table when given
+  std::string storage;       // --storage when given
   bool json = false;
 };
 
@@ -22,6 +23,10 @@ int size_cmd(const SizeArgs& a, const CLI::App& cmd) {
   const Scene scene = make_scene(f);
   SizeRequest req = a.req;
   if (cmd.count("--clock")) req.clock = clock_option(req.clock_mhz, "--clock");
+  if (cmd.count("--storage")) {
+    req.storage = parse_storage(a.storage);
+    req.storage_source = "--storage";
+  }
   if (!a.timing_table.empty()) {
     if (req.target.empty()) throw CLI::ValidationError("--timing-table", "needs --target (the table chooses a depth for it)");
     req.timing = read_timing_table(a.timing_table);
@@ -63,6 +68,11 @@ void add_size(CLI::App& app) {
   c->add_option("--timing-table", a->timing_table,
                 "The timing table to choose the depth from (default: the one built in, host/sizing/timing.tsv)")
       ->check(CLI::ExistingFile);
+  c->add_option("--storage", a->storage,
+                "dense or sparse: size the device for the types stored so; auto: size both and take the one of less "
+                "device memory, each part of a sparse type in its smaller form (default: the scene file's "
+                "\"storage\", else both with the types stored sparse; docs/size.md, \"Sparse or dense\")")
+      ->check(CLI::IsMember({"auto", "dense", "sparse"}));
   c->add_option("--frames", a->req.frames, "Frames simulated to measure cycles (default: the scene file's)")
       ->check(CLI::Range(uint64_t{1}, kMaxFrames));
   c->add_flag("--cost", a->req.cost,

@@ -76,8 +76,8 @@ AsicCost asic_cost(const DeviceConfig& cfg, double clock_mhz, const std::string&
   const std::string lib = kOsu018Liberty;
   std::ostringstream script;
   script << detail::chparam_device(cfg) << "; hierarchy -top voxcd_device; proc; rename -top voxcd_device; "
-         << "blackbox $paramod*voxcd_ram; " << asic_synth_commands() << "; dfflibmap -liberty " << lib
-         << "; abc -liberty " << lib << " -D " << std::lround(1e6 / clock_mhz) << " -script \"" << kAbcScript
+         << "blackbox $paramod*voxcd_ram $paramod*voxcd_ram2; " << asic_synth_commands()
+         << "; dfflibmap -liberty " << lib << "; abc -liberty " << lib << " -D " << std::lround(1e6 / clock_mhz) << " -script \"" << kAbcScript
          << "\"; opt_clean -purge; tee -q -o area.txt stat -liberty " << lib;
   const detail::YosysRun run = detail::run_yosys(dir.empty() ? rtl_dir() : dir, script.str(), "area.txt",
                                                  {{"kogge_stone.v", kogge_stone_map()}});

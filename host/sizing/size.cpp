@@ -8,6 +8,7 @@
 
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/detail/storage_report.h"
 #include "voxcd/host/sizing/detail/yosys_run.h"
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fixed.h"
@@ -124,6 +125,7 @@ DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig 
   // Shell words are voxel centres, half-integers of the shell spacing: PF 1 holds them exactly.
   cfg.PF = 1;
   cfg.PW = width_for(e.max_point, cfg.PF);
+  if (cfg.sparse()) cfg.PW = std::max(cfg.PW, 24);  // a shell word holds a shell brick: 3 PW >= 72
   if (cfg.PW > 32)
     throw SizeError("extent", e.max_point / std::ldexp(1.0, 30),
                     "shell coordinates up to " + fmt(e.max_point) + " spacings need PW " + std::to_string(cfg.PW) +
@@ -156,7 +158,7 @@ DeviceConfig derive_memory(DeviceConfig cfg, const Scene& scene) {
   // Count what the host's packing needs (DeviceImage places types back to back), then check it with the packing.
   uint64_t shell = 0, words = 0;
   for (const auto& t : scene.types) {
-    shell += t->shell().size();
+    shell += type_shell_words(cfg, *t);
     words += type_map_words(cfg, *t) + (cfg.distance() ? 7 : 0);  // a distance map starts on a bank boundary
   }
   cfg.SAW = 1;
@@ -174,7 +176,8 @@ DeviceConfig derive_memory(DeviceConfig cfg, const Scene& scene) {
                     "(MAW 28) holds " + std::to_string(cfg.map_depth()) + ", " +
                         fmt(double(words) / double(cfg.map_depth())) + " times too few");
   DeviceImage image(cfg);
-  for (const auto& t : scene.types) image.add(*t);  // CapacityError here would be a bug in the counts above
+  // CapacityError here would be a bug in the counts above.
+  for (const auto& t : scene.types) image.add(*t, shell_order(cfg, *t));
   return cfg;
 }
 
@@ -250,9 +253,9 @@ double SizeReport::modelled_rate() const {
   return clock.rate(double(chosen().max_cycles));
 }
 DeviceConfig SizeReport::default_widths() const {
-  DeviceConfig d;  // the default widths, with the configuration's lanes, memories and voxmap values
+  DeviceConfig d;  // the default widths, with the configuration's lanes, memories, voxmap values and bricks
   for (int DeviceConfig::*kept : {&DeviceConfig::LANES, &DeviceConfig::SAW, &DeviceConfig::MAW, &DeviceConfig::SB,
-                                  &DeviceConfig::WB})
+                                  &DeviceConfig::WB, &DeviceConfig::BL})
     d.*kept = config.*kept;
   return d;
 }
@@ -355,38 +358,162 @@ void add_costs(SizeReport& r, const SizeRequest& req) {
 
 }  // namespace
 
-SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
-  SizeReport r;
-  take_request(r, f, input_scene, req);
-  const RunConfig sized = choose_kind(r, f, input_scene);
-  const Scene& scene = r.scene;
-  r.objects = scene.bodies.size();
-  r.extents = scene_extents(scene);
+namespace {
+
+// The BL of the scene's bricks (make_scene stores every type with the host's one), or the host's choice when no type
+// is stored sparse.
+int scene_bl(const Scene& scene, bool distance) {
+  for (const auto& t : scene.types) {
+    const ObjectFile& o = t->object;
+    if (distance && o.distance_sparse()) return SparseDistanceField::kBrickLog;
+    if (!distance && o.voxmap_sparse()) return o.sparse_voxmap.bl();
+  }
+  return kDefaultBrickLog;
+}
+
+// The head (what is asked, the voxmap kind, the scene as `run` stores it) sized in one storage: the scene stored as
+// `stored_as`, on a sparse device when `sparse`; its widths, lanes (its own frames) and memories.
+SizeReport derive_layout(SizeReport r, RunConfig run, ObjectStorage stored_as, bool sparse, const SizeRequest& req) {
+  if (run.storage != stored_as) {
+    run.storage = stored_as;
+    r.scene = make_scene(run);
+  }
+  r.objects = r.scene.bodies.size();
+  r.extents = scene_extents(r.scene);
   DeviceConfig base;
   base.SB = r.kind.SB;
   base.WB = r.kind.WB;
+  if (sparse) base.BL = scene_bl(r.scene, r.kind.distance());
   if (!req.target.empty()) base = choose_target_depth(r, req, base);
-  const DeviceConfig widths = derive_widths(r.extents, r.accuracy, base, r.kind.distance() ? r.kind.WB : 0);
+  // A distance device's weights fit TF (WB <= TF), a sparse one's a level-3 brick's too (WB + 3 <= TF).
+  const int min_tf = r.kind.distance() ? r.kind.WB + (sparse ? 3 : 0) : 0;
+  const DeviceConfig widths = derive_widths(r.extents, r.accuracy, base, min_tf);
   r.error = size_error_bound(widths, r.extents, &r.worst_pair);
-  r.config = choose_lanes(r, scene, sized, widths);
+  r.config = choose_lanes(r, r.scene, run, widths);
   r.config.validate();
-  for (const auto& t : scene.types) {
-    r.shell_words += t->shell().size();
-    r.map_words += type_map_words(r.config, *t);
-  }
+  std::vector<const ObjectType*> types;
+  for (const auto& t : r.scene.types) types.push_back(t.get());
+  StorageLayout& l = sparse ? r.storage.sparse : r.storage.dense;
+  l.storage = stored_as;
+  l.config = r.config;
+  l.measure = r.chosen();
+  l.words = layout_words(r.config, types);
+  r.shell_words = l.words.shell;
+  r.map_words = l.words.map();
   bound_contacts(r);
-  measure_banked(r, scene, sized);
+  return r;
+}
+
+// Which storage is fixed and by what (SizeRequest::storage, else the scene file's "storage"; "auto" fixes none), and
+// how the sparse layout stores the types: sparse, or each part in its smaller form when "auto" was asked for.
+struct StoragePlan {
+  std::optional<ObjectStorage> fixed;
+  std::string fixed_by;
+  ObjectStorage sparse = ObjectStorage::kSparse;
+};
+
+StoragePlan storage_plan(const RunConfig& f, const SizeRequest& req) {
+  StoragePlan p;
+  std::optional<ObjectStorage> asked;
+  std::string by;
+  if (req.storage) {
+    asked = req.storage;
+    by = req.storage_source;
+  } else if (f.given.count("storage")) {
+    asked = f.storage;
+    by = f.where + "'s \"storage\"";
+  }
+  if (asked == ObjectStorage::kAuto) {
+    p.sparse = ObjectStorage::kAuto;
+  } else if (asked) {
+    p.fixed = asked;
+    p.fixed_by = by;
+  }
+  return p;
+}
+
+// One layout's derivation: its report, or why it cannot be met.
+struct Attempt {
+  std::optional<SizeReport> report;
+  std::optional<SizeError> error;
+  StorageLayout layout(bool sparse, ObjectStorage storage) const {
+    if (report) return sparse ? report->storage.sparse : report->storage.dense;
+    StorageLayout l;
+    l.storage = storage;
+    l.failed = error->what();
+    return l;
+  }
+};
+
+Attempt attempt_layout(const SizeReport& head, const RunConfig& run, ObjectStorage stored_as, bool sparse,
+                       const SizeRequest& req) {
+  Attempt a;
+  try {
+    a.report = derive_layout(head, run, stored_as, sparse, req);
+  } catch (const SizeError& e) {
+    a.error = e;
+  }
+  return a;
+}
+
+// Neither layout can be met: the dense one's error, with the sparse one's reason when it differs.
+SizeError neither_met(const SizeError& dense, const SizeError& sparse) {
+  const std::string what = std::string(dense.what()).substr(dense.constraint.size() + 2);
+  if (std::string(dense.what()) == sparse.what()) return dense;
+  return SizeError(dense.constraint, dense.factor, what + "; stored sparse on a sparse device: " + sparse.what());
+}
+
+// The report of the layout taken (the fixed one, else the one met, else the one of less device memory; dense on a
+// tie: it has fewer pipeline registers) with both layouts in r.storage.
+SizeReport choose_storage(const StoragePlan& plan, const Attempt& dense, const Attempt& sparse) {
+  bool take_sparse = false;
+  if (plan.fixed) {
+    const Attempt& a = *plan.fixed == ObjectStorage::kSparse ? sparse : dense;
+    if (a.error) throw *a.error;
+    take_sparse = *plan.fixed == ObjectStorage::kSparse;
+  } else if (!dense.report && !sparse.report) {
+    throw neither_met(*dense.error, *sparse.error);
+  } else {
+    take_sparse = !dense.report || (sparse.report && sparse.report->storage.sparse.memory_bits() <
+                                                         dense.report->storage.dense.memory_bits());
+  }
+  SizeReport r = take_sparse ? *sparse.report : *dense.report;
+  r.storage.dense = dense.layout(false, ObjectStorage::kDense);
+  r.storage.sparse = sparse.layout(true, plan.sparse);
+  r.storage.chose_sparse = take_sparse;
+  r.storage.fixed_by = plan.fixed_by;
+  return r;
+}
+
+}  // namespace
+
+std::string StorageChoice::why() const {
+  const StorageLayout &c = chosen(), &o = other();
+  const std::string other_name = chose_sparse ? "dense" : "sparse";
+  const std::string against =
+      std::to_string(c.memory_bytes()) + " bytes of device memory" +
+      (o.met() ? " against " + std::to_string(o.memory_bytes()) + " stored " + other_name
+               : "; stored " + other_name + " it cannot be met (" + o.failed + ")");
+  if (!fixed_by.empty()) return "fixed by " + fixed_by + ": " + against;
+  if (!o.met()) return "the only storage that can be met: " + against;
+  if (c.memory_bytes() == o.memory_bytes()) return "equal memory, so the dense device (fewer registers): " + against;
+  return "the smaller device memory: " + against;
+}
+
+SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeRequest& req) {
+  SizeReport head;
+  take_request(head, f, input_scene, req);
+  const RunConfig sized = choose_kind(head, f, input_scene);
+  const StoragePlan plan = storage_plan(f, req);
+  const Attempt dense = attempt_layout(head, sized, ObjectStorage::kDense, false, req);
+  const Attempt sparse = attempt_layout(head, sized, plan.sparse, true, req);
+  SizeReport r = choose_storage(plan, dense, sparse);
+  measure_banked(r, r.scene, sized);
   add_costs(r, req);
   return r;
 }
 
-namespace {
-std::string bits_text(uint64_t b) {
-  if (b >= (uint64_t{1} << 20)) return fmt(double(b) / double(uint64_t{1} << 20), 4) + " Mbit";
-  if (b >= (uint64_t{1} << 10)) return fmt(double(b) / 1024.0, 4) + " kbit";
-  return std::to_string(b) + " bit";
-}
-}  // namespace
+using detail::bits_text;
 
 namespace {
 // "0.5 * (0.01562 quantisation + 0.01172 weights + 0.385 interpolation) + 0.007629 fixed-point"
@@ -410,7 +537,7 @@ std::string rams_text(const SizeReport& r) {
   std::string shapes;
   for (const MemoryShape& m : memory_shapes(r.config))
     shapes += (shapes.empty() ? "" : ", ") + std::to_string(m.count) + " x " + m.what + " " + std::to_string(m.words) +
-              " x " + std::to_string(m.width) + " bit";
+              " x " + std::to_string(m.width) + " bit" + (m.read_ports > 1 ? " (2 read ports)" : "");
   std::string s = fmt(r.rams->count) + " " + r.rams->unit + " on " + r.target + " (" + shapes + ")";
   if (r.rams->available > 0)
     s += r.rams->count <= r.rams->available ? "; the part has " + std::to_string(r.rams->available)
@@ -461,7 +588,8 @@ void width_lines(std::ostream& o, const SizeReport& r) {
   const auto& wp = r.extents.pairs.at(r.worst_pair);
   o << "configuration   " << c.to_string() << "\n";
   o << "widths          PW " << c.PW << " PF " << c.PF << ": shell coordinates up to " << fmt(r.extents.max_point)
-    << " spacings, exact (half-integers); MW " << c.MW << " MF " << c.MF << ": matrix entries up to "
+    << " spacings, exact (half-integers)" << (c.sparse() ? ", and at least 24 for a shell brick a word" : "")
+    << "; MW " << c.MW << " MF " << c.MF << ": matrix entries up to "
     << fmt(r.extents.max_ratio) << "; TW " << c.TW << ": translations up to " << fmt(r.extents.max_translation)
     << " voxels; DW " << c.DW << ": voxmaps up to " << r.extents.max_dim << " voxels\n";
   o << "error           " << fmt(r.error) << " world units at most (" << fmt(r.accuracy) << " requested; worst pair "
@@ -495,7 +623,8 @@ void frame_lines(std::ostream& o, const SizeReport& r) {
     << " ns) from a job's acceptance to its first record on the pins, at depth " << depth_of(c) << "\n";
   o << "memory          shell 2^" << c.SAW << " x " << 3 * c.PW << " bit = " << bits_text(r.shell_bits())
     << " (" << r.shell_words << " words used), voxmap 2^" << c.MAW << " x " << c.MEMW << " bit x " << c.voxmap_copies()
-    << (c.banked() ? " (shared banks)" : " lane copies") << " = " << bits_text(r.map_bits()) << " (" << r.map_words << " words used); total "
+    << (c.banked() ? " (shared banks)" : " lane copies") << " = " << bits_text(r.map_bits()) << " (" << r.map_words
+    << " words used" << (c.sparse() ? ", two read ports: table and bricks" : "") << "); total "
     << bits_text(r.shell_bits() + r.map_bits()) << "\n";
 }
 
@@ -543,6 +672,7 @@ std::string size_text(const SizeReport& r) {
   scene_lines(o, r);
   width_lines(o, r);
   frame_lines(o, r);
+  detail::storage_lines(o, r);
   if (r.depth) o << depth_lines(r);
   cost_lines(o, r);
   return o.str();
@@ -597,7 +727,7 @@ void add_widths_json(json& j, const SizeReport& r) {
   const DeviceConfig& c = r.config;
   j["config"] = {{"PW", c.PW}, {"PF", c.PF},     {"MW", c.MW},   {"MF", c.MF},   {"TW", c.TW},    {"DW", c.DW},
                  {"MEMW", c.MEMW}, {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW},
-                 {"SB", c.SB},     {"WB", c.WB},   {"BANKS", c.BANKS}};
+                 {"SB", c.SB},     {"WB", c.WB},   {"BANKS", c.BANKS}, {"DEPTH", c.depth}, {"BL", c.BL}};
   j["config_text"] = c.to_string();
   j["extents"] = {{"max_point", r.extents.max_point},
                   {"max_ratio", r.extents.max_ratio},
@@ -635,6 +765,7 @@ void add_frames_json(json& j, const SizeReport& r) {
   j["target"] = r.target.empty() ? json(nullptr) : json(r.target);
   j["depth_choice"] = r.depth ? depth_json(r) : json(nullptr);
   j["words_used"] = {{"shell", r.shell_words}, {"voxmap", r.map_words}};
+  j["storage"] = detail::storage_json(r);
 }
 
 // The yosys cost, the banks against copies, and the default widths' cost (null where not measured).

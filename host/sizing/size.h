@@ -19,6 +19,7 @@
 #include "voxcd/host/sizing/block_rams.h"
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/depth.h"
+#include "voxcd/host/sizing/storage_layout.h"
 #include "voxcd/host/sizing/timing_table.h"
 #include "voxcd/ref/config.h"
 
@@ -69,13 +70,15 @@ uint64_t shell_memory_bits(const DeviceConfig& cfg);
 uint64_t map_memory_bits(const DeviceConfig& cfg);
 
 // The smallest PW, PF, MW, MF, TW, DW for the extents and accuracy (world units), with at least min_tf translation
-// fraction bits (a distance device's WB <= TF); MEMW, TAGW, LANES, SAW, MAW, SB and WB as in `base`. SizeError
+// fraction bits (a distance device's WB <= TF), and on a sparse device (base.BL > 0) PW at least 24 (its shell word
+// holds a shell brick: 3 PW >= 72); MEMW, TAGW, LANES, SAW, MAW, SB, WB and BL as in `base`. SizeError
 // "accuracy" when even the widest formats (MW 32, TW 64) cannot meet it, "extent" when the scene's coordinates need
 // more than PW 32 or TW 64.
 DeviceConfig derive_widths(const SceneExtents& e, double accuracy, DeviceConfig base = {}, int min_tf = 0);
 
-// cfg with the smallest SAW and MAW into which DeviceImage packs the types (SAW at least log2(LANES), one row per
-// shell bank); SizeError "memory" naming the amount when the largest memories (SAW 24, MAW 28) are too small.
+// cfg with the smallest SAW and MAW into which DeviceImage packs the types (type_shell_words, type_map_words: on a
+// sparse device a type stored sparse as its sparse words; SAW at least log2(LANES), one row per shell bank);
+// SizeError "memory" naming the amount when the largest memories (SAW 24, MAW 28) are too small.
 DeviceConfig derive_memory(DeviceConfig cfg, const Scene& scene);
 
 // The scene's frames measured on the cpu backend at one lane count (ref/'s cycle model).
@@ -112,11 +115,39 @@ struct SizeRequest : SizeOptions {
   // scene file's "clock", or default_device_clock().
   std::optional<DeviceClock> clock;
   std::string rtl_dir;  // the RTL for cost ("" = the package's)
+  // How the types are stored (docs/size.md, "Sparse or dense"): kDense or kSparse fixes it; kAuto, or unset with no
+  // "storage" in the scene file (or its "auto"), sizes both and takes the one of less device memory.
+  std::optional<ObjectStorage> storage;
+  std::string storage_source = "SizeRequest::storage";  // how reports name it ("--storage")
   // The implementation target (timing_targets(): "asic-osu018", "ice40-hx8k", "ice40-up5k", "xilinx-7") whose
   // measured clocks choose the pipeline depth: the shallowest that meets the clock (choose_depth). "": the default
   // depth, no choice. With cost, the configuration's standard-cell area at 0.18 um is synthesised too (asic_cost).
   std::string target;
   std::optional<TimingTable> timing;  // the table to choose from; unset: builtin_timing_table()
+};
+
+// The scene's types in one storage, sized whole (docs/size.md, "Sparse or dense"): stored dense on a dense device, or
+// stored sparse (each part in its smaller form with "auto") on a sparse device (BL > 0) with its own widths (PW >= 24),
+// memories and lanes measured on its own frames.
+struct StorageLayout {
+  ObjectStorage storage = ObjectStorage::kDense;  // how the scene's types were stored (make_scene)
+  std::string failed;     // not empty: this storage cannot be met, and why (the SizeError's text)
+  DeviceConfig config;    // the derived configuration
+  LaneMeasure measure;    // its largest and mean frame at config.LANES
+  LayoutWords words;      // DeviceImage's words of the types on config
+  bool met() const { return failed.empty(); }
+  uint64_t memory_bits() const { return shell_memory_bits(config) + map_memory_bits(config); }
+  uint64_t memory_bytes() const { return memory_bits() / 8; }
+};
+
+// Dense or sparse: both layouts and which one the report is of.
+struct StorageChoice {
+  StorageLayout dense, sparse;
+  bool chose_sparse = false;
+  std::string fixed_by;  // "--storage" or the scene file's "storage" when they fixed it; "": the smaller memory chose
+  const StorageLayout& chosen() const { return chose_sparse ? sparse : dense; }
+  const StorageLayout& other() const { return chose_sparse ? dense : sparse; }
+  std::string why() const;  // "the smaller device memory: 26624 bytes against 57344 stored dense", ...
 };
 
 struct SizeReport {
@@ -137,7 +168,8 @@ struct SizeReport {
   SceneExtents extents;
   double error = 0;          // predicted worst-case error, world units (size_error_bound)
   size_t worst_pair = 0;     // index into extents.pairs
-  uint64_t shell_words = 0, map_words = 0;  // the packed image
+  uint64_t shell_words = 0, map_words = 0;  // the packed image (storage.chosen().words)
+  StorageChoice storage;     // dense or sparse; config, lanes and memory above are those of storage.chosen()
   uint64_t budget = 0;       // cycles per frame the rate allows at the clock
   std::vector<LaneMeasure> lanes;  // every lane count measured, ascending; the last is config.LANES
   const LaneMeasure& chosen() const { return lanes.back(); }
@@ -156,7 +188,7 @@ struct SizeReport {
     bool meets(uint64_t budget) const { return measure.max_cycles <= budget; }
   };
   std::optional<Banked> banked;
-  // The same LANES, SAW and MAW at the default widths, synthesised the same way (the peer for the cost).
+  // The same LANES, SAW, MAW, SB, WB and BL at the default widths, synthesised the same way (the peer for the cost).
   std::optional<YosysCost> default_cost;
   DeviceConfig default_widths() const;
   // With a target: the chosen depth and why, the timing table's asic-osu018 measurement at that depth (the area of
@@ -173,7 +205,8 @@ struct SizeReport {
 };
 
 // The whole derivation (with the costs when req.cost) for the scene made from f (make_scene(f)); with a contact
-// accuracy the scene is made again with the chosen voxmap kind. SizeError when a constraint cannot be met;
+// accuracy the scene is made again with the chosen voxmap kind, and in each storage it is not stored in (both
+// layouts are sized, StorageChoice). SizeError when a constraint cannot be met (in the storage fixed, or in neither);
 // SceneFileError from the scene; MeshError from a type's mesh (its convexity).
 SizeReport derive_size(const RunConfig& f, const Scene& scene, const SizeRequest& req);
 

@@ -95,6 +95,7 @@ std::string chparam_device(const DeviceConfig& cfg) {
     << " -set SAW " << cfg.SAW << " -set MAW " << cfg.MAW << " -set TAGW " << cfg.TAGW << " -set SB " << cfg.SB
     << " -set WB " << cfg.WB << " -set BANKS " << cfg.BANKS;
   if (cfg.depth > 0) c << " -set Depth " << cfg.depth;
+  if (cfg.sparse()) c << " -set BL " << cfg.BL;
   c << " voxcd_device";
   return c.str();
 }

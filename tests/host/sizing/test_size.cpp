@@ -10,11 +10,14 @@
 #include <random>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/sizing/size.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/sparse.h"
 
 namespace voxcd {
 namespace {
@@ -64,6 +67,9 @@ TEST(RunConfig, ErrorsNameTheFileAndTheKey) {
       {R"({"types": [[{"a": 1}], {"count": 2, "count": 3}]})", "s.json: types[1].count: appears twice in one object"},
       {R"({"types": [{"shape": "cube"}], "environment": {"side": 50, "seed": 2, "side": 60}})",
        "s.json: environment.side: appears twice in one object"},
+      {R"({"types": [{"shape": "cube"}], "storage": "thin"})",
+       "s.json: storage: 'thin' is not one of auto, dense, sparse"},
+      {R"({"types": [{"shape": "cube"}], "storage": 3})", "s.json: storage: must be a string"},
   };
   for (const auto& [text, want] : cases) {
     const std::string got = error_of(text);
@@ -160,8 +166,8 @@ TEST(Size, CopiesAreWeighedAgainstBanks) {
   for (const auto& l : listed_configs()) {
     SCOPED_TRACE(l.scene);
     const RunConfig f = read_scene_file(kScenes + "/" + l.scene);
-    const Scene scene = make_scene(f);
-    const SizeReport r = derive_size(f, scene, {});
+    const SizeReport r = derive_size(f, make_scene(f), {});
+    const Scene& scene = r.scene;  // the types stored as sized (sparse on a sparse device)
     const std::string json = size_json(r);
     if (r.config.LANES == 1) {
       EXPECT_FALSE(r.banked.has_value());
@@ -190,13 +196,13 @@ TEST(Size, DerivedConfigurationsFitAndAreMinimal) {
   for (const auto& l : listed_configs()) {
     SCOPED_TRACE(l.scene);
     const RunConfig f = read_scene_file(kScenes + "/" + l.scene);
-    const Scene scene = make_scene(f);
-    const SizeReport r = derive_size(f, scene, {});
+    const SizeReport r = derive_size(f, make_scene(f), {});
+    const Scene& scene = r.scene;  // the types stored as sized (sparse on a sparse device)
     const DeviceConfig cfg = r.config;
     // It fits: every type loads, the bound meets the accuracy, the largest frame meets the budget.
     {
       DeviceImage image(cfg);
-      for (const auto& t : scene.types) EXPECT_NO_THROW(image.add(*t));
+      for (const auto& t : scene.types) EXPECT_NO_THROW(image.add(*t, shell_order(cfg, *t)));
     }
     EXPECT_LE(size_error_bound(cfg, r.extents), r.accuracy);
     EXPECT_LE(r.chosen().max_cycles, r.budget);
@@ -204,7 +210,7 @@ TEST(Size, DerivedConfigurationsFitAndAreMinimal) {
       try {
         c.validate();
         DeviceImage image(c);
-        for (const auto& t : scene.types) image.add(*t);
+        for (const auto& t : scene.types) image.add(*t, shell_order(c, *t));
         return true;
       } catch (const std::exception&) {
         return false;
@@ -305,7 +311,7 @@ Agreement check_against_exact(const DeviceConfig& cfg, const Scene& scene, uint6
   std::uniform_real_distribution<double> u(-1, 1);
   Agreement g;
   DeviceImage image(cfg);
-  for (const auto& t : scene.types) image.add(*t);
+  for (const auto& t : scene.types) image.add(*t, shell_order(cfg, *t));
   for (int k = 0; k < poses; ++k) {
     const uint32_t a = uint32_t(rng() % scene.types.size()), b = uint32_t(rng() % scene.types.size());
     const ObjectType &ta = *scene.types[a], &tb = *scene.types[b];
@@ -348,8 +354,8 @@ TEST(Size, DerivedConfigurationsMeetTheirAccuracyOnRandomPoses) {
   for (const auto& l : listed_configs()) {
     SCOPED_TRACE(l.scene + ", seed " + std::to_string(seed));
     const RunConfig f = read_scene_file(kScenes + "/" + l.scene);
-    const Scene scene = make_scene(f);
-    const SizeReport r = derive_size(f, scene, {});
+    const SizeReport r = derive_size(f, make_scene(f), {});
+    const Scene& scene = r.scene;
     const Agreement g = check_against_exact(r.config, scene, seed, 300);
     EXPECT_LE(g.worst, r.accuracy + 1e-9) << g.differ << " of " << g.lookups << " coordinates differ";
     EXPECT_GT(g.lookups, 100000u);
@@ -392,6 +398,9 @@ TEST(Size, ImpossibleRequestsNameTheConstraintAndTheAmount) {
   EXPECT_GT(e.factor, 1);
   EXPECT_NE(std::string(e.what()).find("64 lanes take"), std::string::npos) << e.what();
   EXPECT_NE(std::string(e.what()).find("times faster"), std::string::npos) << e.what();
+  // Neither storage meets it: the dense device's reason, then the sparse one's.
+  EXPECT_NE(std::string(e.what()).find("; stored sparse on a sparse device: rate: 64 lanes take"), std::string::npos)
+      << e.what();
 
   // The rate 64 lanes reach, asked for exactly, is met; a little more is not.
   req.rate = 0.999e9 / e.factor;
@@ -416,6 +425,209 @@ TEST(Size, ImpossibleRequestsNameTheConstraintAndTheAmount) {
     EXPECT_NE(std::string(x.what()).find("need " + std::to_string(need) + " shell words"), std::string::npos)
         << x.what();
   }
+}
+
+// The scene file's types stored as `storage` (make_scene), whatever the file says.
+Scene scene_stored(RunConfig f, ObjectStorage storage) {
+  f.storage = storage;
+  return make_scene(f);
+}
+
+// A scene of large objects (tests/scenes/large.json, tori and spheres about 90 voxels across): stored sparse, its
+// device needs less memory (a shell word a brick of points instead of a point; bricks only near the surface), so
+// voxcd size takes a sparse device (BL 3) for the types stored sparse and sizes it on that device's own frames.
+TEST(SizeStorage, SparseWinsForLargeObjects) {
+  const RunConfig f = read_scene_file(kScenes + "/large.json");
+  const SizeReport r = derive_size(f, make_scene(f), {});
+  const StorageChoice& s = r.storage;
+  ASSERT_TRUE(s.dense.met()) << s.dense.failed;
+  ASSERT_TRUE(s.sparse.met()) << s.sparse.failed;
+  EXPECT_TRUE(s.chose_sparse);
+  EXPECT_EQ(s.fixed_by, "");
+  EXPECT_LT(s.sparse.memory_bits(), s.dense.memory_bits());
+  EXPECT_EQ(s.sparse.storage, ObjectStorage::kSparse);
+  EXPECT_EQ(r.config, s.sparse.config);
+  EXPECT_EQ(r.config.BL, 3);
+  EXPECT_EQ(r.config.PW, 24) << "a shell brick in a shell word, and no wider";
+  EXPECT_EQ(s.dense.config.BL, 0);
+  EXPECT_EQ(r.shell_bits() + r.map_bits(), s.sparse.memory_bits());
+  EXPECT_EQ(s.why(), "the smaller device memory: " + std::to_string(s.sparse.memory_bytes()) +
+                         " bytes of device memory against " + std::to_string(s.dense.memory_bytes()) +
+                         " stored dense");
+  for (const auto& t : r.scene.types) {
+    EXPECT_TRUE(map_is_sparse(r.config, *t)) << t->name;
+    EXPECT_TRUE(shell_is_sparse(r.config, *t)) << t->name;
+  }
+  // The lanes were chosen on the sparse device's cycles: its frames again give the same largest frame, which is not
+  // the dense device's (a sparse shell's words take a slot per LANES points of a brick, and origin words a slot).
+  const LaneMeasure again = measure_frames(r.scene, f, r.config, r.frames);
+  EXPECT_GT(again.max_cycles, 0u);
+  EXPECT_EQ(again.max_cycles, r.chosen().max_cycles);
+  EXPECT_EQ(again.max_cycles, s.sparse.measure.max_cycles);
+  EXPECT_NE(again.max_cycles, s.dense.measure.max_cycles);
+  EXPECT_LE(again.max_cycles, r.budget);
+  // Its memories hold the types only stored sparse (voxcd simulate --storage sparse): stored dense they do not load.
+  const Scene dense = scene_stored(f, ObjectStorage::kDense);
+  DeviceImage image(r.config);
+  EXPECT_THROW(for (const auto& t : dense.types) image.add(*t, shell_order(r.config, *t)), CapacityError);
+}
+
+// Each layout's words are those of DeviceImage on its configuration: per type the placement's table, bricks (units
+// of UW words) and shell words, type_map_words and type_shell_words, and in all the image's memory; the derived
+// memories are the smallest that hold them.
+void expect_words_of_the_image(const StorageLayout& l, const Scene& scene) {
+  SCOPED_TRACE(l.config.to_string());
+  ASSERT_EQ(l.words.types.size(), scene.types.size());
+  DeviceImage image(l.config);
+  for (size_t i = 0; i < scene.types.size(); ++i) {
+    const ObjectType& t = *scene.types[i];
+    const DeviceImage::Placement p = image.placement(image.add(t, shell_order(l.config, t)));
+    const TypeWords& w = l.words.types[i];
+    EXPECT_EQ(w.name, t.name);
+    EXPECT_EQ(w.table, p.map_words) << t.name;
+    EXPECT_EQ(w.bricks, uint64_t(p.brick_units) * unit_words(l.config)) << t.name;
+    EXPECT_EQ(w.shell, p.shell_count) << t.name;
+    EXPECT_EQ(w.map(), type_map_words(l.config, t)) << t.name;
+    EXPECT_EQ(w.shell, type_shell_words(l.config, t)) << t.name;
+    EXPECT_EQ(w.map_sparse, map_is_sparse(l.config, t)) << t.name;
+    EXPECT_EQ(w.shell_sparse, shell_is_sparse(l.config, t)) << t.name;
+  }
+  EXPECT_EQ(l.words.map(), image.memory().map.size());
+  EXPECT_EQ(l.words.shell, image.memory().shell.size());
+  EXPECT_GT(2 * l.words.map(), l.config.map_depth()) << "MAW one smaller holds the words";
+  EXPECT_GT(2 * l.words.shell, l.config.shell_depth()) << "SAW one smaller holds the words";
+}
+
+TEST(SizeStorage, FiguresAreTheDeviceImagesOfTheTypesStoredEachWay) {
+  const RunConfig f = read_scene_file(kScenes + "/large.json");
+  const SizeReport r = derive_size(f, make_scene(f), {});
+  const Scene dense = scene_stored(f, ObjectStorage::kDense), sparse = scene_stored(f, ObjectStorage::kSparse);
+  expect_words_of_the_image(r.storage.dense, dense);
+  expect_words_of_the_image(r.storage.sparse, sparse);
+  const LayoutWords &d = r.storage.dense.words, &p = r.storage.sparse.words;
+  EXPECT_EQ(d.bricks, 0u);
+  EXPECT_GT(p.bricks, 0u);
+  EXPECT_LT(p.table + p.bricks, d.table) << "large objects' bricks and table take fewer words than their dense maps";
+  EXPECT_LT(p.shell, d.shell);
+  // The memories: as built, the block_rams of the configuration; split, a table and a brick memory that hold them.
+  for (const StorageLayout* l : {&r.storage.dense, &r.storage.sparse}) {
+    double ramb36 = 0, ebr = 0;
+    for (const LayoutMemory& m : built_memories(l->config)) ramb36 += m.ramb36, ebr += m.ebr;
+    EXPECT_EQ(ramb36, block_rams(l->config, "xilinx-7").count);
+    EXPECT_EQ(ebr, block_rams(l->config, "ice40-hx8k").count);
+    const std::vector<LayoutMemory> split = split_memories(l->config, l->words);
+    ASSERT_EQ(split.size(), l->words.bricks ? 3u : 2u);
+    EXPECT_EQ(split[1].what, "table memory");
+    EXPECT_GE(split[1].shape.words, l->words.table);
+    EXPECT_LT(split[1].shape.words, 2 * l->words.table);
+    EXPECT_EQ(split[1].shape.read_ports, 1);
+    if (l->words.bricks) {
+      EXPECT_EQ(split[2].what, "brick memory");
+      EXPECT_GE(split[2].shape.words, l->words.bricks);
+      EXPECT_LT(split[2].shape.words, 2 * l->words.bricks);
+    }
+  }
+  EXPECT_EQ(built_memories(r.storage.sparse.config).back().shape.read_ports, 2);
+  EXPECT_EQ(built_memories(r.storage.dense.config).back().shape.read_ports, 1);
+}
+
+// The storage fixed: by the scene file's "storage" (small.json says dense although sparse takes less memory), by the
+// request over the file, and "auto", which fixes nothing.
+TEST(SizeStorage, TheFilesOrTheRequestsStorageFixesIt) {
+  const RunConfig small = read_scene_file(kScenes + "/small.json");
+  SizeReport r = derive_size(small, make_scene(small), {});
+  EXPECT_FALSE(r.storage.chose_sparse);
+  EXPECT_EQ(r.config.BL, 0);
+  EXPECT_EQ(r.storage.fixed_by, kScenes + "/small.json's \"storage\"");
+  ASSERT_TRUE(r.storage.sparse.met()) << "the other layout is sized too";
+  EXPECT_LT(r.storage.sparse.memory_bits(), r.storage.dense.memory_bits());
+  EXPECT_EQ(r.storage.why().rfind("fixed by " + r.storage.fixed_by + ": ", 0), 0u) << r.storage.why();
+  for (const auto& t : r.scene.types) EXPECT_FALSE(t->object.voxmap_sparse()) << t->name;
+
+  SizeRequest req;
+  req.storage = ObjectStorage::kSparse;
+  req.storage_source = "--storage";
+  r = derive_size(small, make_scene(small), req);
+  EXPECT_TRUE(r.storage.chose_sparse);
+  EXPECT_EQ(r.config.BL, 3);
+  EXPECT_EQ(r.storage.fixed_by, "--storage");
+
+  const RunConfig large = read_scene_file(kScenes + "/large.json");
+  req.storage = ObjectStorage::kDense;
+  r = derive_size(large, make_scene(large), req);
+  EXPECT_FALSE(r.storage.chose_sparse);
+  EXPECT_EQ(r.config, r.storage.dense.config);
+  EXPECT_EQ(r.config.BL, 0);
+  EXPECT_GT(r.shell_bits() + r.map_bits(), r.storage.sparse.memory_bits());
+
+  // "auto": the smaller memory chooses, the sparse layout's types each part in its smaller form.
+  req.storage = ObjectStorage::kAuto;
+  r = derive_size(small, make_scene(small), req);
+  EXPECT_EQ(r.storage.fixed_by, "");
+  EXPECT_EQ(r.storage.sparse.storage, ObjectStorage::kAuto);
+  EXPECT_EQ(r.storage.chose_sparse, r.storage.sparse.memory_bits() < r.storage.dense.memory_bits());
+}
+
+// Dense wins where its memory is smaller: distance voxmaps of a small convex object (a sparse distance field's
+// bricks are refined far beyond the dense field's nodes), and on a tie (the paper's scene: 3200 bytes either way).
+TEST(SizeStorage, DenseWinsWhereItsMemoryIsNotLarger) {
+  const RunConfig paper = read_scene_file(kScenes + "/paper.json");
+  SizeRequest req;
+  req.contact_accuracy = 1;
+  req.frames = 20;
+  SizeReport r = derive_size(paper, make_scene(paper), req);
+  ASSERT_TRUE(r.kind.distance());
+  ASSERT_TRUE(r.storage.sparse.met()) << r.storage.sparse.failed;
+  EXPECT_FALSE(r.storage.chose_sparse);
+  EXPECT_LT(r.storage.dense.memory_bits(), r.storage.sparse.memory_bits());
+  EXPECT_EQ(r.config.BL, 0);
+  EXPECT_GE(r.storage.sparse.config.TF(), r.storage.sparse.config.WB + 3) << "a sparse distance device's weights";
+  EXPECT_EQ(r.storage.why().rfind("the smaller device memory: ", 0), 0u) << r.storage.why();
+
+  r = derive_size(paper, make_scene(paper), {});
+  EXPECT_EQ(r.storage.dense.memory_bits(), r.storage.sparse.memory_bits());
+  EXPECT_FALSE(r.storage.chose_sparse);
+  EXPECT_EQ(r.storage.why().rfind("equal memory, so the dense device", 0), 0u) << r.storage.why();
+}
+
+TEST(SizeStorage, JsonGivesBothLayoutsAndTheChoice) {
+  const RunConfig f = read_scene_file(kScenes + "/large.json");
+  const SizeReport r = derive_size(f, make_scene(f), {});
+  const nlohmann::json j = nlohmann::json::parse(size_json(r));
+  const nlohmann::json& s = j.at("storage");
+  EXPECT_EQ(s.at("chosen"), "sparse");
+  EXPECT_EQ(s.at("bl"), 3);
+  EXPECT_EQ(j.at("config").at("BL"), 3);
+  EXPECT_EQ(s.at("types_stored"), "sparse");
+  EXPECT_TRUE(s.at("fixed_by").is_null());
+  EXPECT_EQ(s.at("why"), r.storage.why());
+  EXPECT_EQ(s.at("block_rams_estimate").get<std::string>().rfind("estimate: ", 0), 0u);
+  for (const char* name : {"dense", "sparse"}) {
+    SCOPED_TRACE(name);
+    const StorageLayout& l = std::string(name) == "dense" ? r.storage.dense : r.storage.sparse;
+    const nlohmann::json& x = s.at(name);
+    EXPECT_EQ(x.at("met"), true);
+    EXPECT_TRUE(x.at("failed").is_null());
+    EXPECT_EQ(x.at("config_text"), l.config.to_string());
+    EXPECT_EQ(x.at("memory_bytes"), l.memory_bytes());
+    EXPECT_EQ(x.at("memory_bits").at("total"), l.memory_bits());
+    EXPECT_EQ(x.at("max_cycles"), l.measure.max_cycles);
+    EXPECT_EQ(x.at("words").at("table"), l.words.table);
+    EXPECT_EQ(x.at("words").at("bricks"), l.words.bricks);
+    EXPECT_EQ(x.at("words").at("shell"), l.words.shell);
+    EXPECT_EQ(x.at("types").size(), r.scene.types.size());
+    EXPECT_EQ(x.at("types")[0].at("table_words"), l.words.types[0].table);
+    EXPECT_EQ(x.at("memories_split")[1].at("what"), "table memory");
+    EXPECT_EQ(x.at("memories_built").back().at("read_ports"), l.config.sparse() ? 2 : 1);
+    EXPECT_EQ(x.at("memories_built").back().at("ramb36"), built_memories(l.config).back().ramb36);
+  }
+  EXPECT_EQ(s.at("sparse").at("memories_split")[2].at("what"), "brick memory");
+  EXPECT_EQ(s.at("dense").at("memories_split").size(), 2u);
+  const std::string text = size_text(r);
+  EXPECT_NE(text.find("\nstorage         sparse (BL 3), the types stored sparse (voxcd simulate --storage sparse): "),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("\n  sparse split  table memory "), std::string::npos) << text;
 }
 
 int run(const std::string& cmd) {

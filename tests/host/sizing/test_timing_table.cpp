@@ -13,6 +13,7 @@
 
 #include "voxcd/host/sizing/asic_cost.h"
 #include "voxcd/host/sizing/block_rams.h"
+#include "voxcd/host/sizing/detail/yosys_run.h"
 #include "voxcd/host/sizing/depth.h"
 #include "voxcd/host/sizing/size.h"
 #include "voxcd/host/sizing/timing_table.h"
@@ -225,6 +226,36 @@ TEST(BlockRams, CountsMatchWhatSynthesisBuilt) {
   EXPECT_THROW(block_rams(lanes(1), "xilinx-9"), std::invalid_argument);
 }
 
+// A sparse device's voxmap memory has two read ports (voxcd_ram2): yosys builds it as true dual-port RAMB36 (ports at
+// most 36 bits wide) and, on an iCE40, as a copy per read port. The counts are what yosys 0.23 built for these
+// configurations (synth_xilinx; synth_ice40, before place and route), and each differs from the one-port count.
+TEST(BlockRams, ASparseDevicesVoxmapHasTwoReadPorts) {
+  DeviceConfig c = lanes(1, 10, 9);
+  c.PW = 24, c.PF = 1, c.MW = 14, c.MF = 13, c.TW = 24, c.DW = 5;
+  EXPECT_EQ(block_rams(c, "xilinx-7").count, 3) << "yosys: 3";
+  c.BL = 3;
+  EXPECT_EQ(memory_shapes(c).back().read_ports, 2);
+  EXPECT_EQ(block_rams(c, "xilinx-7").count, 4) << "yosys: 4 (the voxmap 512 x 64 in 36-bit ports: 2)";
+  c.MAW = 11;
+  EXPECT_EQ(block_rams(c, "xilinx-7").count, 6) << "yosys: 6";
+  c = lanes(1, 8, 9);
+  c.PW = 24, c.PF = 1, c.MW = 14, c.MF = 13, c.TW = 24, c.DW = 5, c.BL = 3;
+  EXPECT_EQ(block_rams(c, "ice40-hx8k").count, 21) << "yosys: 21 (the shell 5, the voxmap 8 a copy, 2 copies)";
+  c.MAW = 10;
+  EXPECT_EQ(block_rams(c, "ice40-hx8k").count, 37) << "yosys: 37";
+  // One read port: the voxmap once (yosys: 10 and 18 blocks for MAW 9 and 10, 8 more).
+  c.BL = 0;
+  const double maw10 = block_rams(c, "ice40-hx8k").count;
+  c.MAW = 9;
+  EXPECT_EQ(maw10 - block_rams(c, "ice40-hx8k").count, 8);
+  EXPECT_EQ(block_rams(c, "asic-osu018").count, 2);
+  // yosys_cost sets BL like every other parameter (without it a sparse configuration synthesised as a dense one).
+  EXPECT_EQ(detail::chparam_device(c).find(" -set BL "), std::string::npos);
+  c.BL = 3;
+  EXPECT_EQ(block_rams(c, "asic-osu018").count, 2) << "one SRAM macro a memory, whatever its read ports";
+  EXPECT_NE(detail::chparam_device(c).find(" -set BL 3 "), std::string::npos) << detail::chparam_device(c);
+}
+
 TEST(AsicCost, ASmallConfigurationMapsOntoTheCellLibrary) {
   EXPECT_THROW(asic_cost(DeviceConfig{}, 0, VOXCD_SOURCE_DIR "/rtl"), std::invalid_argument);
   DeviceConfig small = lanes(1, 8, 9);
@@ -236,6 +267,12 @@ TEST(AsicCost, ASmallConfigurationMapsOntoTheCellLibrary) {
   EXPECT_GE(c.area_mm2 * 1e6, 16.0 * double(c.cells));
   EXPECT_LE(c.area_mm2 * 1e6, 176.0 * double(c.cells));
   EXPECT_NE(c.command.find("-D 10000"), std::string::npos) << "mapped for 100 MHz: " << c.command;
+  // A sparse device's memories (voxcd_ram2, two read ports) are SRAM macros too: their bits are not cells.
+  DeviceConfig sparse = small;
+  sparse.PW = 24, sparse.MEMW = 64, sparse.BL = 3;
+  const AsicCost s = asic_cost(sparse, 100, VOXCD_SOURCE_DIR "/rtl");
+  EXPECT_LT(s.flip_flops, uint64_t{1} << 14) << "fewer than the voxmap's 2^9 x 64 bits";
+  EXPECT_GT(s.flip_flops, c.flip_flops) << "a sparse device's registers";
 }
 
 std::string file_text(const std::string& path) {
