@@ -68,7 +68,8 @@ TEST(RtlFaults, FailedAssertionIsADeviceErrorOfTheDeviceThatFailed) {
 }
 
 TEST(RtlFaults, NoProgressIsADeviceErrorAfterTheBackendsPatience) {
-  // The smallest shell memory this build has a model for: the patience is 1000 + 64 * 2^SAW cycles.
+  // The smallest shell memory this build has a model for: the patience is 1000 + 64 * 2^SAW cycles, 64 times the
+  // second term on a sparse device (a shell word there makes up to 64 points).
   DeviceConfig cfg;
   for (const DeviceConfig& c : rtl_configs())
     if (c.SAW < cfg.SAW) cfg = c;
@@ -81,7 +82,7 @@ TEST(RtlFaults, NoProgressIsADeviceErrorAfterTheBackendsPatience) {
   const std::vector<Job> jobs = {origin_job(1, Mode::All, 16), origin_job(2, Mode::Count, 16),
                                  origin_job(3, Mode::First, 16)};
   std::vector<Record> out = kEarlier;
-  const uint64_t idle = 1000 + 64 * (uint64_t{1} << cfg.SAW) + 1;
+  const uint64_t idle = 1000 + 64 * (uint64_t{1} << cfg.SAW) * (cfg.sparse() ? 64 : 1) + 1;
   EXPECT_EQ(device_error([&] { dev->run_into(jobs, out); }),
             "rtl: no record for " + std::to_string(idle) + " cycles after 0 of 3 jobs completed");
   expect_untouched(out);
