@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -31,6 +32,12 @@ inline void write_file(const std::string& path, const std::string& text) {
 }
 
 // Wavefront OBJ, indexed.
+// A file's bytes ("" when it cannot be read).
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 inline void write_obj(const Mesh& m, const std::string& path) {
   std::ofstream o(path);
   o.precision(17);

@@ -525,11 +525,6 @@ TEST(SurfaceShell, FieldIsNearZeroAtShellPoints) {
 
 // ---- Object files ----
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 uint32_t version_of(const std::string& bytes) {
   uint32_t v;
   std::memcpy(&v, bytes.data() + 8, 4);
@@ -549,7 +544,7 @@ TEST(DistanceObjectFile, Version3RoundTrip) {
     ASSERT_TRUE(a.shell.on_surface);
     const std::string path = test::tmp_path("distance_" + std::to_string(bits) + ".vxo");
     write_object(path, a);
-    const std::string bytes = read_bytes(path);
+    const std::string bytes = test::read_file(path);
     EXPECT_EQ(version_of(bytes), 3u);
     const ObjectFile b = read_object(path);
     EXPECT_EQ(b.distance.bits, bits);
@@ -564,7 +559,7 @@ TEST(DistanceObjectFile, Version3RoundTrip) {
     EXPECT_EQ(b.voxmap.words(), a.voxmap.words());
     // Written again, the same bytes.
     write_object(path + "2", b);
-    EXPECT_EQ(read_bytes(path + "2"), bytes);
+    EXPECT_EQ(test::read_file(path + "2"), bytes);
     std::remove(path.c_str());
     std::remove((path + "2").c_str());
   }
@@ -585,7 +580,7 @@ TEST(DistanceObjectFile, Version2ObjectsAreWrittenAsBefore) {
   EXPECT_FALSE(plain.shell.on_surface);
   const std::string path = test::tmp_path("plain.vxo");
   write_object(path, plain);
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = test::read_file(path);
   EXPECT_EQ(version_of(bytes), 2u);
   // The version 2 layout: nothing after the report section but the checksum.
   const size_t L = plain.source.size(), W = plain.voxmap.words().size(), N = plain.shell.size();
@@ -603,7 +598,7 @@ TEST(DistanceObjectFile, DamagedVersion3FilesNameTheOffset) {
   ASSERT_EQ(a.distance.q.size() % 2, 1u);  // an odd count of 4-bit values: half of the last byte is padding
   const std::string path = test::tmp_path("damaged.vxo");
   write_object(path, a);
-  const std::string good = read_bytes(path);
+  const std::string good = test::read_file(path);
   const size_t section = good.size() - 4 - (a.distance.q.size() * 4 + 7) / 8 - 20;
   // Every truncation inside the distance section, and changed bytes there.
   for (size_t len = section; len < good.size(); ++len) {

@@ -17,13 +17,6 @@
 namespace voxcd {
 namespace {
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 ObjectFile small_object(const std::string& shape, double voxel) {
   ObjectOptions o;
   o.voxel = voxel;
@@ -102,7 +95,7 @@ TEST(ObjectFile, ByteLayoutIsTheDocumentedOne) {
   const ObjectFile a = small_object("icosahedron", 0.15);
   const std::string p = test::tmp_path("layout.vox");
   write_object(p, a);
-  const std::string b = read_bytes(p);
+  const std::string b = test::read_file(p);
   std::remove(p.c_str());
   LayoutReader r{b};
   EXPECT_EQ(b.substr(0, 8), "VOXCDOBJ");
@@ -174,7 +167,7 @@ TEST(ObjectFile, Version4KeepsTheSecondReportSection) {
   ASSERT_GT(a.voxelize_report.conservative, 0u);
   const std::string p = test::tmp_path("v4.vox");
   write_object(p, a);
-  const std::string b = read_bytes(p);
+  const std::string b = test::read_file(p);
   uint32_t version = 0;
   std::memcpy(&version, b.data() + 8, 4);
   EXPECT_EQ(version, 4u);
@@ -205,7 +198,7 @@ TEST(ObjectFile, Version4KeepsTheSecondReportSection) {
   // An object without either keeps its version: a closed shape without a field is version 2.
   const ObjectFile plain = small_object("icosahedron", 0.15);
   write_object(p, plain);
-  std::memcpy(&version, read_bytes(p).data() + 8, 4);
+  std::memcpy(&version, test::read_file(p).data() + 8, 4);
   EXPECT_EQ(version, 2u);
   std::remove(p.c_str());
 }
@@ -217,7 +210,7 @@ TEST(ObjectFile, DamagedFilesNameTheFileAndTheByte) {
   const ObjectFile a = small_object("stellated", 0.2);
   const std::string good = test::tmp_path("good.vox"), bad = test::tmp_path("bad.vox");
   write_object(good, a);
-  const std::string b = read_bytes(good);
+  const std::string b = test::read_file(good);
   const std::string where = bad + ": ";
   auto expect_error = [&](const std::string& bytes, const std::string& what, const std::string& why) {
     test::write_file(bad, bytes);

@@ -19,13 +19,6 @@
 namespace voxcd {
 namespace {
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 ObjectFile object_of(const std::string& shape, double voxel, ObjectStorage storage) {
   ObjectOptions o;
   o.voxel = voxel;
@@ -40,7 +33,7 @@ ObjectFile object_of(const std::string& shape, double voxel, ObjectStorage stora
 
 uint32_t version_of(const std::string& path) {
   uint32_t v = 0;
-  std::memcpy(&v, read_bytes(path).data() + 8, 4);
+  std::memcpy(&v, test::read_file(path).data() + 8, 4);
   return v;
 }
 
@@ -69,7 +62,7 @@ TEST(SparseObjectFile, RoundTripKeepsTheSparseFormsAndTheDenseStates) {
     // Written again as read, the file is the same.
     const std::string again = test::tmp_path("sparse_again.vox");
     write_object(again, with);
-    EXPECT_TRUE(read_bytes(again) == read_bytes(p)) << shape;
+    EXPECT_TRUE(test::read_file(again) == test::read_file(p)) << shape;
     std::remove(again.c_str());
   }
   std::remove(p.c_str());
@@ -124,7 +117,7 @@ class DamagedSparseFile : public ::testing::Test {
  protected:
   void SetUp() override {
     write_object(good_, object_of("torus", 0.08, ObjectStorage::kSparse));
-    bytes_ = read_bytes(good_);
+    bytes_ = test::read_file(good_);
   }
   void TearDown() override {
     std::remove(good_.c_str());
