@@ -67,10 +67,30 @@ needs_models() {
   return 1
 }
 
+# A wide device (more than 8 lanes: --lanes, or LANES in --config): its full-size model is built on demand
+# (-DVOXCD_RTL_WIDE=ON, docs/build.md "Options").
+needs_wide() {
+  local prev=""
+  for a in "$@"; do
+    case "$prev" in
+      --lanes) [ "$a" -gt 8 ] 2>/dev/null && return 0 ;;
+      --config) [[ "$a" =~ LANES\ +([0-9]+) ]] && [ "${BASH_REMATCH[1]}" -gt 8 ] && return 0 ;;
+    esac
+    case "$a" in
+      --lanes=*) [ "${a#--lanes=}" -gt 8 ] 2>/dev/null && return 0 ;;
+    esac
+    prev=$a
+  done
+  return 1
+}
+
 case "$mode" in
   run)
     targets=(voxcd)
     if needs_models "$@"; then targets+=(voxcd_models); fi
+    if needs_models "$@" && needs_wide "$@"; then
+      cmake -S . -B build -DVOXCD_RTL_WIDE=ON >/dev/null
+    fi
     cmake --build build -j2 --target "${targets[@]}"
     phase "building ${targets[*]}"
     exec build/voxcd simulate "$@"

@@ -865,7 +865,9 @@ module voxcd_device #(
       `VOXCD_ASSERT(BrickReadsOnlyBricks, !(|brick_want) || stage_bricks[BrickW-1])
     end else begin : g_table_port
       assign brick_wait = 1'b0;
-      assign lane_bword = '0;
+      for (genvar l = 0; l < LANES; l++) begin : g_no_bword  // lane by lane: a wide device's is over 8k bits
+        assign lane_bword[NPar*MEMW*l +: NPar*MEMW] = '0;
+      end
       for (genvar b = 0; b < NumB; b++) begin : g_bank
         voxcd_ram #(
           .Width(MEMW),
@@ -892,8 +894,10 @@ module voxcd_device #(
     assign table_wait  = 1'b0;
     assign brick_wait  = 1'b0;
     assign conflicts_q = '0;
-    assign lane_word   = '0;
-    assign lane_bword  = '0;
+    for (genvar l = 0; l < LANES; l++) begin : g_no_word  // lane by lane: a wide device's are over 8k bits
+      assign lane_word[NPar*MEMW*l +: NPar*MEMW]  = '0;
+      assign lane_bword[NPar*MEMW*l +: NPar*MEMW] = '0;
+    end
     logic unused_banks;  // each lane reads its own copy
     assign unused_banks = ^{lane_read, lane_addr, lane_bread, lane_baddr, lane_inside_pre, lane_state_pre};
   end

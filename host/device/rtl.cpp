@@ -25,6 +25,14 @@ struct Loaded {
   std::string why_not;
 };
 
+// For a wide configuration (more than 8 lanes) without a model: how wide models are built.
+std::string wide_hint(const DeviceConfig& cfg) {
+  if (cfg.LANES <= 8) return "";
+  return "; wide devices (16 to 64 lanes) are built on demand: add the configuration to VOXCD_RTL_WIDE_FULL_MODELS "
+         "(it has LANES 16, 32, 64, LANES 32 BANKS 8 BL 3, LANES 64 BANKS 16 BL 3 and LANES 32 DEPTH 5), configure "
+         "with -DVOXCD_RTL_WIDE=ON and build voxcd_models (docs/build.md, \"Options\")";
+}
+
 // What to run to (re)build the models, for the end of a message.
 std::string rebuild_hint() {
   const std::string cmd = models_build_command();
@@ -105,6 +113,7 @@ std::vector<DeviceConfig> rtl_distance_configs() { return family("distance"); }
 std::vector<DeviceConfig> rtl_banked_configs() { return family("banked"); }
 std::vector<DeviceConfig> rtl_depth_configs() { return family("depth"); }
 std::vector<DeviceConfig> rtl_sparse_configs() { return family("sparse"); }
+std::vector<DeviceConfig> rtl_wide_configs() { return family("wide"); }
 
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt) {
   return make_rtl_device(cfg, opt, RtlFaults{});
@@ -127,9 +136,9 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
   built.LANES = cfg.LANES;
   if (cfg.same_widths(built) && cfg.BANKS == built.BANKS && cfg.depth == built.depth)
     throw DeviceError("rtl: this build has models for LANES " + lanes + " at the default widths, not LANES " +
-                      std::to_string(cfg.LANES) + " (the list VOXCD_RTL_LANES, docs/build.md)");
+                      std::to_string(cfg.LANES) + " (the list VOXCD_RTL_LANES, docs/build.md)" + wide_hint(cfg));
   throw DeviceError("rtl: this build has models for the default widths (" + DeviceConfig{}.to_string() +
-                    " with LANES " + lanes + ")" + extra + ", not for " + cfg.to_string());
+                    " with LANES " + lanes + ")" + extra + ", not for " + cfg.to_string() + wide_hint(cfg));
 }
 
 }  // namespace voxcd

@@ -25,6 +25,9 @@ std::vector<DeviceConfig> rtl_banked_configs();
 std::vector<DeviceConfig> rtl_depth_configs();
 // Sparse devices (BL > 0) this build has RTL models for (VOXCD_RTL_SPARSE_MODELS).
 std::vector<DeviceConfig> rtl_sparse_configs();
+// Wide devices (16 to 64 lanes) this build has RTL models for (VOXCD_RTL_WIDE_MODELS; with VOXCD_RTL_WIDE on, the
+// full-size ones of VOXCD_RTL_WIDE_FULL_MODELS too).
+std::vector<DeviceConfig> rtl_wide_configs();
 // Throws DeviceError when the models cannot be loaded (rtl_unavailable()) or have none for cfg (its lane count or
 // widths), naming what there is.
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt);
