@@ -3,14 +3,14 @@
 # directory each, build-options/<name>/, ccache sharing what they compile alike. CI builds the defaults (setup.sh
 # test), the smallest configuration (minimal.sh) and the sanitizer build (sanitize.sh); this covers the rest. Slow
 # (each configuration is a build of its own): run it after changing an option or a list of models.
-#   bash .ci/options.sh [NAME...]     NAME: models, run, nomodels, nowerror, fuzz (default: all)
+#   bash .ci/options.sh [NAME...]     NAME: models, run, wide, nomodels, nowerror, fuzz (default: all)
 # Prints one line per configuration, "options: NAME passed" or "options: NAME FAILED (...)", and exits non-zero
 # when one failed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 CCACHE_BASEDIR="$PWD"
 names=("$@")
-((${#names[@]})) || names=(models run nomodels nowerror fuzz)
+((${#names[@]})) || names=(models run wide nomodels nowerror fuzz)
 
 configure() {  # configure NAME CMAKE-ARGS...
   local dir=build-options/$1
@@ -58,6 +58,16 @@ for name in "${names[@]}"; do
        "$dir/voxcd" simulate --frames 20 --objects 16 --backend rtl | grep "state hash" &&
        cmake --build "$dir" -j2)
       ;;
+    wide)
+      # The full-size wide devices (VOXCD_RTL_WIDE, docs/hardware.md "Wide devices"): their tests, and the main job
+      # on the 32-lane device against the cpu backend's state hash and device cycles.
+      (configure wide -DVOXCD_RTL_WIDE=ON -DVOXCD_BENCH=OFF -DVOXCD_PYTHON=OFF &&
+       cmake --build "$dir" -j2 --target voxcd voxcd_models test_rtl test_backends &&
+       (cd "$dir" && ctest -j2 --output-on-failure -R "RtlWide|conform_wide|Simulate.Wide") &&
+       a=$("$dir/voxcd" simulate --objects 1024 --frames 100 --lanes 32 --backend cpu --no-progress | grep -E "^(device|state hash)" | sed 's/(.*)//') &&
+       b=$("$dir/voxcd" simulate --objects 1024 --frames 100 --lanes 32 --backend rtl --no-progress | grep -E "^(device|state hash)" | sed 's/(.*)//') &&
+       [ "$a" = "$b" ])
+      ;;
     nomodels)
       # No device models, with the tests (the sanitizer build has this too, under ASan): every test it has.
       (configure nomodels -DVOXCD_DEVICE_MODELS=OFF && cmake --build "$dir" -j2 &&
@@ -71,7 +81,7 @@ for name in "${names[@]}"; do
       # The libFuzzer build (clang), both sanitizer sets, a thousand executions of every target.
       (bash tests/fuzz/run.sh 1000 && FUZZ_SANITIZERS=leak,undefined bash tests/fuzz/run.sh 1000)
       ;;
-    *) echo "options.sh: unknown configuration $name (models, run, nomodels, nowerror, fuzz)" >&2; exit 2 ;;
+    *) echo "options.sh: unknown configuration $name (models, run, wide, nomodels, nowerror, fuzz)" >&2; exit 2 ;;
   esac
   status=$?
   set -e

@@ -68,6 +68,9 @@ void DeviceConfig::validate() const {
       require(TF() >= WB + 3, "TF = " + std::to_string(TF()) + " leaves no room for the weights of a level-3 brick (" +
                                   "a sparse distance device needs TF >= WB + 3 = " + std::to_string(WB + 3) + ")");
   }
+  require(TX == 0 || TX == 1, "TX = " + std::to_string(TX) + " is not 0 (lanes that multiply) or 1 (brick lanes)");
+  require(TX == 0 || sparse(), "TX = 1 (brick lanes) needs a sparse device (BL > 0): its lanes transform the points "
+                               "of shell bricks");
   // An index must be able to hold every in-grid value 0 .. 2^DW - 1 plus a sign.
   require(index_width() >= DW + 1, "the accumulator's integer part (" + std::to_string(index_width()) +
                                        " bits) cannot hold DW = " + std::to_string(DW));
@@ -81,6 +84,7 @@ std::string DeviceConfig::to_string() const {
   if (banked()) s << " BANKS " << BANKS;
   if (depth != 0) s << " DEPTH " << depth;
   if (sparse()) s << " BL " << BL;
+  if (brick_lanes()) s << " TX " << TX;
   return s.str();
 }
 

@@ -46,6 +46,10 @@ struct DeviceConfig {
   int BL = 0;     // 0: dense maps and point shells only; 2..4: a sparse device, which also takes sparse maps (a table
                   // of cells of 2^BL voxels per axis, uniform or a brick) and sparse shells (shell bricks of 4^3
                   // points); docs/contract.md, "Sparse voxmaps and shells". More slot registers, never other results
+  int TX = 0;     // the lanes' transform: 0, each lane multiplies (M p + t, nine products a lane); 1 (a sparse device
+                  // only), brick lanes: no lane multiplies, each adds shifted columns of M for its point's offset in
+                  // its shell brick to the slot's base M o + t, which one transform unit of the device computes; a
+                  // dense-shell slot then holds one point (docs/contract.md, "Brick lanes"). Timing only
 
   int TF() const { return MF + PF; }
   int states_per_word() const { return MEMW / 2; }
@@ -56,6 +60,10 @@ struct DeviceConfig {
   bool banked() const { return BANKS > 0; }
   // A sparse device (BL > 0) takes sparse maps and shells besides dense ones (ref/sparse.h).
   bool sparse() const { return BL > 0; }
+  // Brick lanes (TX 1): the lanes add shifted matrix columns; one transform unit multiplies (docs/contract.md).
+  bool brick_lanes() const { return TX == 1; }
+  // Points in one slot of a dense-shell job: LANES, or one on brick lanes (the device's one transform unit).
+  int dense_slot_points() const { return brick_lanes() ? 1 : LANES; }
   // Voxmap copies the device holds: LANES, or one when banked.
   int voxmap_copies() const { return banked() ? 1 : LANES; }
   // Width of an interpolated distance, a job's threshold and a hit record's distance: SB + 3*WB.
@@ -75,11 +83,11 @@ struct DeviceConfig {
   // distance device, "BANKS B" on a banked one, "DEPTH D" on a deeper pipeline and "BL B" on a sparse one (a 2-bit
   // device's text is the paper device's, unchanged).
   std::string to_string() const;
-  // Same widths (BL among them: it decides which jobs a device takes); LANES, BANKS and depth may differ (they
+  // Same widths (BL among them: it decides which jobs a device takes); LANES, BANKS, depth and TX may differ (they
   // change timing, never results).
   bool same_widths(const DeviceConfig& o) const;
   bool operator==(const DeviceConfig& o) const {
-    return same_widths(o) && LANES == o.LANES && BANKS == o.BANKS && depth == o.depth;
+    return same_widths(o) && LANES == o.LANES && BANKS == o.BANKS && depth == o.depth && TX == o.TX;
   }
   bool operator!=(const DeviceConfig& o) const { return !(*this == o); }
 };

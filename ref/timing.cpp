@@ -40,7 +40,7 @@ JobSlots job_slots(const DeviceConfig& cfg, const Job& job) {
     throw std::invalid_argument("timing: job tag " + std::to_string(job.tag) +
                                 " has a sparse shell, whose slots follow its words: time it with the shell memory");
   JobSlots s;
-  s.lanes = uint64_t(cfg.LANES);
+  s.lanes = uint64_t(cfg.dense_slot_points());
   s.points = job.shell_count;
   s.groups = s.points == 0 ? 1 : ceil_div(s.points, s.lanes);
   return s;

@@ -195,15 +195,15 @@ class Parser {
                                         {"SAW", &c.SAW},   {"MAW", &c.MAW}, {"TAGW", &c.TAGW}, {"BANKS", &c.BANKS},
                                         {"DEPTH", &c.depth}};
     if (version_ >= 2) keys.insert({{"SB", &c.SB}, {"WB", &c.WB}});
-    if (version_ >= 3) keys.insert({"BL", &c.BL});
+    if (version_ >= 3) keys.insert({{"BL", &c.BL}, {"TX", &c.TX}});
     std::map<std::string, bool> seen;
     for (size_t i = 1; i + 1 < tok_.size(); i += 2) {
       const std::string k(tok_[i]);
       auto it = keys.find(k);
       if (it == keys.end() && version_ == 1 && (k == "SB" || k == "WB"))
         fail("config parameter " + k + " needs format version 2 ('voxcd-vectors 2')");
-      if (it == keys.end() && version_ < 3 && k == "BL")
-        fail("config parameter BL needs format version 3 ('voxcd-vectors 3')");
+      if (it == keys.end() && version_ < 3 && (k == "BL" || k == "TX"))
+        fail("config parameter " + k + " needs format version 3 ('voxcd-vectors 3')");
       if (it == keys.end()) fail("unknown config parameter '" + k + "'");
       if (seen[k]) fail("config parameter " + k + " given twice");
       seen[k] = true;
@@ -361,6 +361,7 @@ void write_vectors(std::ostream& os, const DeviceConfig& cfg, bool write_lanes, 
   if (cfg.banked()) os << " BANKS " << cfg.BANKS;
   if (cfg.depth != 0) os << " DEPTH " << cfg.depth;
   if (cfg.sparse()) os << " BL " << cfg.BL;
+  if (cfg.brick_lanes()) os << " TX " << cfg.TX;
   os << '\n';
   std::string buf;
   os << "shell " << mem.shell.size() << '\n';

@@ -26,6 +26,7 @@ package voxcd_arch_pkg;
   localparam int unsigned BANKS = 0;   // 0: a voxmap copy per lane; B: one voxmap in B shared banks (2-bit devices)
   localparam int unsigned Depth = 0;   // register stages added to every lane, 0 .. MaxDepth (DeviceConfig::depth)
   localparam int unsigned BL    = 0;   // 0: dense maps and shells only; 2..4: a sparse device (cells of 2^BL voxels)
+  localparam int unsigned TX    = 0;   // 0: lanes that multiply; 1: brick lanes (sparse devices; docs/contract.md)
 
   // ---- Counters in completion records ----
   localparam int unsigned CW = 32;  // cycles and stall counters
@@ -88,9 +89,10 @@ endpackage
   parameter int unsigned SB    = voxcd_arch_pkg::SB, \
   parameter int unsigned WB    = voxcd_arch_pkg::WB, \
   parameter int unsigned Depth = voxcd_arch_pkg::Depth, \
-  parameter int unsigned BL    = voxcd_arch_pkg::BL
+  parameter int unsigned BL    = voxcd_arch_pkg::BL, \
+  parameter int unsigned TX    = voxcd_arch_pkg::TX
 // BANKS 0: a voxmap copy per lane; B: one voxmap in B shared banks. Depth: register stages added to every lane. BL:
-// a sparse device's coarse cells (0: a dense device).
+// a sparse device's coarse cells (0: a dense device). TX: the lanes' transform (1: brick lanes, no lane multiplies).
 `define VOXCD_DEVICE_PARAMS \
   `VOXCD_LANE_PARAMS, \
   parameter int unsigned LANES = voxcd_arch_pkg::LANES, \
@@ -99,6 +101,6 @@ endpackage
   parameter int unsigned BANKS = voxcd_arch_pkg::BANKS
 `define VOXCD_LANE_PARAM_MAP \
   .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB), .Depth(Depth), \
-  .BL(BL)
+  .BL(BL), .TX(TX)
 `define VOXCD_DEVICE_PARAM_MAP \
   `VOXCD_LANE_PARAM_MAP, .LANES(LANES), .SAW(SAW), .TAGW(TAGW), .BANKS(BANKS)

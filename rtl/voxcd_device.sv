@@ -145,6 +145,8 @@ module voxcd_device #(
   localparam int unsigned BuW   = Sparse ? MAW + 1 : 1;
   localparam int unsigned CxW   = Sparse ? DW + 1 : 1;
   localparam int unsigned BLW   = Sparse ? BL : 1;
+  localparam int unsigned SlotPts = TX == 1 ? 1 : LANES;          // a dense-shell slot's points (brick lanes: 1)
+  localparam int unsigned AccW  = ((MW + PW + 2 > TW) ? MW + PW + 2 : TW) + 1;  // DeviceConfig::acc_width()
   localparam int unsigned LgL   = $clog2(LANES);
   localparam int unsigned RotW  = LgL > 0 ? LgL : 1;
   localparam int unsigned RowW  = SAW - LgL;                      // rows of one shell bank
@@ -305,7 +307,7 @@ module voxcd_device #(
   assign head_sparse_shell = Sparse && head_job.sparse[SpW-1];
   assign head_remaining    = head_job.shell_count - next_point_q;
   assign head_last_slot    = head_sparse_shell ? head_remaining <= (SAW + 1)'(1)
-                                               : head_remaining <= (SAW + 1)'(LANES);
+                                               : head_remaining <= (SAW + 1)'(SlotPts);
   assign head_stopped      = first_stop && (first_stop_seq == head_seq_q);
   assign head_pop          = head_valid && (head_stopped ? advance : (issue_taken && head_last_slot));
   assign first_addr        = (SAW + 1)'(head_job.shell_base) + next_point_q;
@@ -318,7 +320,7 @@ module voxcd_device #(
       next_point_d = '0;
       head_seq_d   = head_seq_q + 1'b1;
     end else if (issue_taken && head_valid) begin
-      next_point_d = next_point_q + (head_sparse_shell ? (SAW + 1)'(1) : (SAW + 1)'(LANES));
+      next_point_d = next_point_q + (head_sparse_shell ? (SAW + 1)'(1) : (SAW + 1)'(SlotPts));
     end
   end
 
@@ -334,7 +336,8 @@ module voxcd_device #(
     issue.last  = head_last_slot;
     issue.k     = (PtW + 1)'(next_point_q);
     issue.rot   = rot;
-    for (int i = 0; i < LANES; i++) issue.lanes[i] = (next_point_q + (SAW + 1)'(i)) < head_job.shell_count;
+    for (int i = 0; i < LANES; i++)
+      issue.lanes[i] = i < SlotPts && (next_point_q + (SAW + 1)'(i)) < head_job.shell_count;
     if (head_sparse_shell) issue.lanes = '0;
   end
 
@@ -398,6 +401,7 @@ module voxcd_device #(
   meta_t           w_meta;     // sparse devices: W's slot register (g_slot[0]); declared here: yosys resolves struct
   job_t            r0_job_q;   // members only of module-level variables. R0's job register (sparse devices)
   logic [LANES*3*PW-1:0] lane_point;  // lane l's point at [l*3*PW +: 3*PW]
+  logic [3*AccW-1:0] lane_base;       // brick lanes (TX = 1): the slot's base M o' + t in PROD, {z, y, x}
   logic            w_stop;  // sparse devices: FIRST stops W's job, W takes an empty slot
   always_ff @(posedge clk_i) begin
     if (issue_taken) reg0_job_q <= head_job;
@@ -499,22 +503,76 @@ module voxcd_device #(
       end
     end
 
-    // ---- R0: the slot's points (a dense slot's from the shell banks in lane order, or the word's) ----
+    // ---- R0: the slot's points (a dense slot's from the shell banks in lane order, or the word's); brick lanes
+    // take {k, d} instead: the point's offset in the brick and the axes whose sum wrapped (a dense slot's one point
+    // goes to the transform unit, lane 0 adding nothing to its base) ----
     for (genvar l = 0; l < LANES; l++) begin : g_point
       logic [3*PW-1:0] gen;
+      logic [2:0]      wrapped;  // axis i's sum wrapped at PW bits (a non-negative origin, a negative point)
       for (genvar i = 0; i < 3; i++) begin : g_axis
         // Offset (b & 3, (b >> 2) & 3, b >> 4) of bit b in the shell brick, at the centre of its shell voxel.
         logic [1:0] d;
         assign d = exp_bit[6*l + 2*i +: 2];
         assign gen[i*PW +: PW] = org_eff[i*PW +: PW] + (PW'(d) << PF) + PW'(PF > 0 ? (1 << Half) : 0);
+        assign wrapped[i] = !org_eff[i*PW + PW - 1] && gen[i*PW + PW - 1];
       end
       logic [3*PW-1:0] p_r0_q;  // a register of its own per lane (no array written from several processes)
-      logic [RotW-1:0] src;     // the shell bank of lane l's point in a dense slot
-      assign src = RotW'(32'(word_bank) + l);
-      always_ff @(posedge clk_i) begin
-        if (advance) p_r0_q <= w_word_q ? gen : bank_rdata[src];
+      if (TX == 1) begin : g_brick_point
+        always_ff @(posedge clk_i) begin
+          if (advance) p_r0_q <= w_word_q ? (3*PW)'({wrapped, exp_bit[6*l +: 6]}) : '0;
+        end
+      end else begin : g_mul_point
+        logic [RotW-1:0] src;  // the shell bank of lane l's point in a dense slot
+        assign src = RotW'(32'(word_bank) + l);
+        always_ff @(posedge clk_i) begin
+          if (advance) p_r0_q <= w_word_q ? gen : bank_rdata[src];
+        end
+        logic unused_wrapped;  // lanes that multiply take the wrapped point itself
+        assign unused_wrapped = ^wrapped;
       end
       assign lane_point[l*3*PW +: 3*PW] = p_r0_q;
+    end
+
+    // ---- The transform unit (brick lanes): the slot's base M o' + t, o' the word's origin plus the half voxel h
+    // (PW + 1 bits: exact), or a dense slot's point; its products one register before PROD (R0, or IN), the base in
+    // PROD, where the lanes add it to their terms ----
+    if (TX == 1) begin : g_base
+      localparam int unsigned OW = PW + 1;
+      localparam int unsigned BpW = MW + OW;
+      logic [3*OW-1:0] o_w;  // o' of W's slot
+      for (genvar i = 0; i < 3; i++) begin : g_o
+        assign o_w[i*OW +: OW] = w_word_q ? OW'($signed(org_eff[i*PW +: PW])) + OW'(PF > 0 ? (1 << Half) : 0)
+                                          : OW'($signed(bank_rdata[word_bank][i*PW +: PW]));
+      end
+      logic [3*OW-1:0] o_p;  // o' where the products read it: W's, or R0's with IN
+      logic [9*MW-1:0] m_p;  // and that slot's matrix
+      if (HasIn) begin : g_o_r0
+        logic [3*OW-1:0] o_r0_q;
+        always_ff @(posedge clk_i) begin
+          if (advance) o_r0_q <= o_w;
+        end
+        assign o_p = o_r0_q;
+        assign m_p = r0_job.m;
+      end else begin : g_o_w
+        assign o_p = o_w;
+        assign m_p = reg0_job_q.m;
+      end
+      for (genvar i = 0; i < 3; i++) begin : g_row
+        logic [BpW-1:0]  bx_q, by_q, bz_q;  // the device's nine multipliers, three a coordinate
+        logic [AccW-1:0] base_q;
+        always_ff @(posedge clk_i) begin
+          if (advance) begin
+            bx_q <= BpW'($signed(m_p[(3*i+0)*MW +: MW])) * BpW'($signed(o_p[0*OW +: OW]));
+            by_q <= BpW'($signed(m_p[(3*i+1)*MW +: MW])) * BpW'($signed(o_p[1*OW +: OW]));
+            bz_q <= BpW'($signed(m_p[(3*i+2)*MW +: MW])) * BpW'($signed(o_p[2*OW +: OW]));
+            base_q <= AccW'($signed(t_r[(ProdR-1)*3*TW + i*TW +: TW])) + AccW'($signed(bx_q)) +
+                      AccW'($signed(by_q)) + AccW'($signed(bz_q));
+          end
+        end
+        assign lane_base[i*AccW +: AccW] = base_q;
+      end
+    end else begin : g_no_base
+      assign lane_base = '0;
     end
     always_ff @(posedge clk_i) begin
       if (advance) r0_job_q <= reg0_job_q;
@@ -533,6 +591,7 @@ module voxcd_device #(
     assign r0_job      = reg0_job_q;
     assign w_meta      = '0;
     assign r0_job_q    = '0;
+    assign lane_base   = '0;
     for (genvar l = 0; l < LANES; l++) begin : g_point
       logic [RotW-1:0] src;  // the shell bank of lane l's point
       assign src = RotW'(32'(g_slot[0].meta_q[RotW-1:0]) + l);
@@ -657,6 +716,7 @@ module voxcd_device #(
       .point_i      (lane_point[l*3*PW +: 3*PW]),
       .m_i          (prod_m),
       .t_i          (t_r[ProdR*3*TW +: 3*TW]),
+      .base_i       (lane_base),
       .n_i          (acc_map.n),
       .ny_i         (yz_map.n[DW+1 +: DW+1]),
       .sparse_yz_i  (yz_map.coarse),
@@ -1001,6 +1061,7 @@ module voxcd_device #(
   `VOXCD_ASSERT_INIT(WeightBitsFit, !Dist || (WB >= 1 && WB <= MF + PF && WB <= 16))
   `VOXCD_ASSERT_INIT(BanksPowerOfTwo, (BANKS & (BANKS - 1)) == 0 && BANKS <= 64 && LgB <= MAW)
   `VOXCD_ASSERT_INIT(DepthInRange, Depth <= voxcd_arch_pkg::MaxDepth)
+  `VOXCD_ASSERT_INIT(BrickLanesOnASparseDevice, TX == 0 || (TX == 1 && BL > 0))
   `VOXCD_ASSERT_INIT(BrickLevelsKnown, BL == 0 || (BL >= 2 && BL <= 4))
   `VOXCD_ASSERT_INIT(SparseWidthsFit, !Sparse || (3 * PW >= 72 && MEMW >= 8 && (!Dist || MF + PF >= WB + 3)))
   `VOXCD_ASSERT_INIT(SlotsMatchTheTimingModel,

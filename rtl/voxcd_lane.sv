@@ -77,8 +77,11 @@ module voxcd_lane #(
   // R0: the point; the register before PROD (R0, or IN): the matrix of its job
   input  logic [3*PW-1:0]       point_i,
   input  logic [9*MW-1:0]       m_i,
-  // PROD: the translation of the job in the products' register
+  // PROD: the translation of the job in the products' register; brick lanes (TX = 1): instead the slot's base
+  // M o' + t (AccW bits a coordinate, {z, y, x}) from the device's transform unit, and point_i is {k, d}: the point's
+  // offset d in its shell brick (2 bits an axis) and the axes k whose coordinate wrapped at PW bits (3 bits)
   input  logic [3*TW-1:0]       t_i,
+  input  logic [3*(((MW+PW+2 > TW) ? MW+PW+2 : TW)+1)-1:0] base_i,
   // ACC: the map dimensions of the job in the accumulator's register (the bounds)
   input  logic [3*(DW+1)-1:0]   n_i,
   // the register the y + ny*z product reads (FLOOR, or ACC without it): that job's ny (Cy and whether its map is
@@ -143,38 +146,70 @@ module voxcd_lane #(
   assign m_in = m_i;
   voxcd_stage #(.Width(3*PW), .Enable(HasIn)) u_in (.clk_i(clk_i), .en_i(en_i), .d_i(point_i), .q_o(p_in));
 
+  // A brick lane's term for matrix entry m and axis j of its point: (d_j * m) << PF, less m << PW where the
+  // coordinate wrapped (k_j): d_j * m is 0, m, 2m or 2m + m, so no multiplier (docs/contract.md, "Brick lanes").
+  // Modulo 2^AccW: the accumulator's exact value fits it, so its sum wraps to the exact value.
+  function automatic logic [AccW-1:0] brick_term(input logic [MW-1:0] m, input logic [1:0] d, input logic k);
+    logic [AccW-1:0] m1, sel;
+    m1  = AccW'($signed(m));
+    sel = (d[1] ? m1 << 1 : '0) + (d[0] ? m1 : '0);
+    brick_term = (sel << PF) - (k ? m1 << PW : '0);
+  endfunction
+
   // ---- PROD: products, [SUM], ACC: accumulator ----
   // One block per output coordinate i: its three products and their sum with t_i, each in a register of its own
-  // width (no wider vector to slice: simulators keep each in a native word).
+  // width (no wider vector to slice: simulators keep each in a native word). Brick lanes: the three brick terms and
+  // their sum with the slot's base (base_i in place of t_i).
+  localparam int unsigned TermW = TX == 1 ? AccW : ProdW;
   logic [AccW-1:0] acc_q [3];
   for (genvar i = 0; i < 3; i++) begin : g_row
-    logic [ProdW-1:0] px_q, py_q, pz_q;  // M[i][0]*x, M[i][1]*y, M[i][2]*z
+    logic [TermW-1:0] px_q, py_q, pz_q;  // M[i][0]*x, M[i][1]*y, M[i][2]*z
     logic [AccW-1:0]  sum_q;
-    always_ff @(posedge clk_i) begin
-      if (en_i) begin
-        // Signed MW x PW multipliers: the ProdW-bit products are exact.
-        px_q <= ProdW'($signed(m_in[(3*i+0)*MW +: MW])) * ProdW'($signed(p_in[0*PW +: PW]));
-        py_q <= ProdW'($signed(m_in[(3*i+1)*MW +: MW])) * ProdW'($signed(p_in[1*PW +: PW]));
-        pz_q <= ProdW'($signed(m_in[(3*i+2)*MW +: MW])) * ProdW'($signed(p_in[2*PW +: PW]));
+    logic [AccW-1:0]  t_acc;             // t_i, or the slot's base on brick lanes
+    if (TX == 1) begin : g_brick
+      always_ff @(posedge clk_i) begin
+        if (en_i) begin
+          px_q <= brick_term(m_in[(3*i+0)*MW +: MW], p_in[0 +: 2], p_in[6]);
+          py_q <= brick_term(m_in[(3*i+1)*MW +: MW], p_in[2 +: 2], p_in[7]);
+          pz_q <= brick_term(m_in[(3*i+2)*MW +: MW], p_in[4 +: 2], p_in[8]);
+        end
       end
+      assign t_acc = base_i[i*AccW +: AccW];
+    end else begin : g_mul
+      always_ff @(posedge clk_i) begin
+        if (en_i) begin
+          // Signed MW x PW multipliers: the ProdW-bit products are exact.
+          px_q <= ProdW'($signed(m_in[(3*i+0)*MW +: MW])) * ProdW'($signed(p_in[0*PW +: PW]));
+          py_q <= ProdW'($signed(m_in[(3*i+1)*MW +: MW])) * ProdW'($signed(p_in[1*PW +: PW]));
+          pz_q <= ProdW'($signed(m_in[(3*i+2)*MW +: MW])) * ProdW'($signed(p_in[2*PW +: PW]));
+        end
+      end
+      assign t_acc = AccW'($signed(t_i[i*TW +: TW]));
     end
     if (HasSum) begin : g_sum
       // The sum tree's first level: each partial sum fits AccW bits (|t| < 2^(TW-1), |product| < 2^(ProdW-1)).
       logic [AccW-1:0] a_q, b_q;
       always_ff @(posedge clk_i) begin
         if (en_i) begin
-          a_q   <= AccW'($signed(t_i[i*TW +: TW])) + AccW'($signed(px_q));
+          a_q   <= t_acc + AccW'($signed(px_q));
           b_q   <= AccW'($signed(py_q)) + AccW'($signed(pz_q));
           sum_q <= a_q + b_q;
         end
       end
     end else begin : g_no_sum
       always_ff @(posedge clk_i) begin
-        if (en_i) sum_q <= AccW'($signed(t_i[i*TW +: TW])) + AccW'($signed(px_q)) + AccW'($signed(py_q)) +
-                           AccW'($signed(pz_q));
+        if (en_i) sum_q <= t_acc + AccW'($signed(px_q)) + AccW'($signed(py_q)) + AccW'($signed(pz_q));
       end
     end
     assign acc_q[i] = sum_q;
+  end
+
+  if (TX == 1) begin : g_brick_unused
+    logic unused_t;  // brick lanes add the slot's base, not t, and read only {k, d} of the point
+    assign unused_t = ^{t_i, p_in[3*PW-1:9]};
+  end else begin : g_mul_unused
+    logic unused_base;  // lanes that multiply add t
+    assign unused_base = ^base_i;
   end
 
   // The floor drops each coordinate's TF fraction bits (a distance lane keeps the top of them as its weights).

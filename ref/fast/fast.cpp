@@ -400,7 +400,7 @@ size_t FastRunner::make_pieces(const std::vector<Job>& jobs) {
     const Job& job = jobs[j];
     JobSlots& slots = batch_slots_[j];
     if (!job.sparse_shell()) {  // job_slots(cfg, job), in place: a batch may hold many small jobs
-      slots.lanes = uint64_t(cfg_.LANES), slots.points = job.shell_count;
+      slots.lanes = uint64_t(cfg_.dense_slot_points()), slots.points = job.shell_count;
       slots.groups = job.shell_count == 0 ? 1 : (slots.points + slots.lanes - 1) / slots.lanes;
       slots.starts.clear();
     } else if (uint64_t(job.shell_base) + job.shell_count <= shell_.size()) {

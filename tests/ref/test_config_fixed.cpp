@@ -47,6 +47,22 @@ TEST(Config, RejectsImpossibleWidths) {
   bad([](DeviceConfig& c) { c.LANES = 0; }, "LANES");
   bad([](DeviceConfig& c) { c.DW = 0; }, "DW");
   bad([](DeviceConfig& c) { c.MW = 40; }, "MW");
+  bad([](DeviceConfig& c) { c.TX = 1; }, "TX = 1 (brick lanes) needs a sparse device (BL > 0)");
+  bad([](DeviceConfig& c) { c.TX = 2; c.BL = 3; }, "TX = 2 is not 0");
+}
+
+// Brick lanes (TX 1) change timing, never results: the same widths, another configuration, its own text.
+TEST(Config, BrickLanesAreATimingParameter) {
+  DeviceConfig c;
+  c.BL = 3;
+  DeviceConfig b = c;
+  b.TX = 1;
+  b.validate();
+  EXPECT_TRUE(b.same_widths(c));
+  EXPECT_NE(b, c);
+  EXPECT_EQ(b.to_string(), c.to_string() + " TX 1");
+  EXPECT_EQ(b.dense_slot_points(), 1);
+  EXPECT_EQ(c.dense_slot_points(), c.LANES);
 }
 
 TEST(Quantize, RoundsHalfAwayFromZero) {

@@ -45,6 +45,27 @@ TEST(Timing, HandWorkedStream) {
   EXPECT_EQ(stream_cycles(t), 7u + 1 + 2 + 4 + 3 + 4 + 1);
 }
 
+// Brick lanes (TX 1): a dense-shell slot holds one point, so a dense job of c points takes c slots (an empty one,
+// one); the lanes that multiply take ceil(c / LANES).
+TEST(Timing, BrickLanesTakeOneDenseShellPointASlot) {
+  DeviceConfig cfg;
+  cfg.LANES = 4;
+  cfg.BL = 3;
+  DeviceConfig brick = cfg;
+  brick.TX = 1;
+  for (uint32_t c : {0u, 1u, 4u, 9u}) {
+    EXPECT_EQ(job_slots(cfg, job(0, Mode::All, c)).groups, c == 0 ? 1u : (c + 3) / 4) << c;
+    const JobSlots s = job_slots(brick, job(0, Mode::All, c));
+    EXPECT_EQ(s.groups, c == 0 ? 1u : c) << c;
+    for (uint64_t g = 0; g < c; ++g) EXPECT_EQ(s.end(g) - s.begin(g), 1u) << c << " slot " << g;
+  }
+  // Nine points, no hits: nine slots a cycle each behind the first slot's latency.
+  const std::vector<Job> jobs = {job(0, Mode::Count, 9)};
+  const std::vector<JobTiming> t = job_timing(brick, jobs, {Record::done(0, 0)});
+  EXPECT_EQ(t[0].slots, 9u);
+  EXPECT_EQ(t[0].cycles, uint64_t(kFirstSlotLatency + pipeline_slots(brick) - kPipelineSlots) + 9 - 1);
+}
+
 TEST(Timing, FirstStopsEarlyAndSquashesWhatIsInFlight) {
   DeviceConfig cfg;
   cfg.LANES = 1;

@@ -12,7 +12,7 @@ foreach(cfg IN LISTS configs)
   string(REPLACE " " "_" name "${cfg}")
   run(0 out ${VOXCD} conform --generate --seed ${seed} --jobs ${JOBS} --config "${cfg}" -o ${WORK}/${name}.vec)
   file(READ ${WORK}/${name}.vec text)
-  expect("${text}" "^[^\n]*\nvoxcd-vectors 3\nconfig [^\n]* BL [2-4]\n")
+  expect("${text}" "^[^\n]*\nvoxcd-vectors 3\nconfig [^\n]* BL [2-4]( TX 1)?\n")
   expect("${text}" "\njob [^\n]* [123] [0-9]+ [0-9]+\n")  # a sparse job: its sparse, brick_base, brick_units
   expect_conform_cycles(${VOXCD} ${WORK}/${name}.vec "${backends}")
   math(EXPR seed "${seed} + 1")

@@ -35,7 +35,8 @@ TEST(RtlPackage, WidthsMatchDeviceConfig) {
   const std::pair<const char*, int> want[] = {{"PW", c.PW},   {"PF", c.PF},       {"MW", c.MW},   {"MF", c.MF},
                                               {"TW", c.TW},   {"DW", c.DW},       {"MEMW", c.MEMW},
                                               {"LANES", c.LANES}, {"SAW", c.SAW}, {"MAW", c.MAW}, {"TAGW", c.TAGW},
-                                              {"SB", c.SB},   {"WB", c.WB},       {"BL", c.BL}};
+                                              {"SB", c.SB},   {"WB", c.WB},       {"BL", c.BL},
+                                              {"TX", c.TX}};
   for (const auto& [name, value] : want) {
     ASSERT_TRUE(p.count(name)) << "voxcd_arch_pkg.sv has no " << name;
     EXPECT_EQ(p.at(name), value) << name << ": voxcd_arch_pkg.sv and DeviceConfig disagree";

@@ -37,7 +37,7 @@ TEST(RtlSparse, BuildHasSparseModelsOfEveryKind) {
   bool distance = false, banked = false, deep = false;
   for (const DeviceConfig& c : rtl_sparse_configs()) {
     EXPECT_TRUE(c.sparse()) << c.to_string();
-    if (!c.distance() && !c.banked() && c.depth == 0) lanes.push_back(c.LANES);
+    if (!c.distance() && !c.banked() && c.depth == 0 && !c.brick_lanes()) lanes.push_back(c.LANES);
     distance = distance || c.distance();
     banked = banked || c.banked();
     deep = deep || c.depth == kMaxDepth;
@@ -45,6 +45,16 @@ TEST(RtlSparse, BuildHasSparseModelsOfEveryKind) {
   std::sort(lanes.begin(), lanes.end());
   EXPECT_EQ(lanes, (std::vector<int>{1, 2, 4, 8}));
   EXPECT_TRUE(distance && banked && deep) << "a distance, a banked and a deepest sparse model";
+  bool brick = false, brick_distance = false, brick_banked = false, brick_deep = false;
+  for (const DeviceConfig& c : rtl_sparse_configs()) {
+    if (!c.brick_lanes()) continue;
+    brick = brick || (!c.distance() && !c.banked() && c.depth == 0);
+    brick_distance = brick_distance || c.distance();
+    brick_banked = brick_banked || c.banked();
+    brick_deep = brick_deep || c.depth == kMaxDepth;
+  }
+  EXPECT_TRUE(brick && brick_distance && brick_banked && brick_deep)
+      << "brick lanes (TX 1): a 2-bit, a distance, a banked and a deepest sparse model";
 }
 
 // Case 1: a 3B x B x B map (B = 2^BL) of three coarse cells: uniform surface, a brick of states (x + y + z) % 3, and

@@ -52,8 +52,11 @@ TEST(RtlWide, RandomJobsBitExactAndCycleExact) {
     std::printf("%s: %zu jobs, %llu hit records, %llu bank conflict cycles\n", cfg.to_string().c_str(),
                 v.jobs.size(), (unsigned long long)hits, (unsigned long long)conflicts);
     EXPECT_GT(hits, v.jobs.size()) << what << ": the jobs must hit";
+    // Brick lanes take a dense-shell slot's one point alone, which never conflicts: their conflicts are the sparse
+    // shells'.
     if (cfg.banked()) {
-      EXPECT_GT(conflicts, v.jobs.size()) << what << ": the jobs must make the banks conflict";
+      EXPECT_GT(conflicts, cfg.brick_lanes() ? v.jobs.size() / 4 : v.jobs.size())
+          << what << ": the jobs must make the banks conflict";
     }
     ++models;
   }

@@ -96,6 +96,7 @@ std::string chparam_device(const DeviceConfig& cfg) {
     << " -set WB " << cfg.WB << " -set BANKS " << cfg.BANKS;
   if (cfg.depth > 0) c << " -set Depth " << cfg.depth;
   if (cfg.sparse()) c << " -set BL " << cfg.BL;
+  if (cfg.brick_lanes()) c << " -set TX " << cfg.TX;
   c << " voxcd_device";
   return c.str();
 }
