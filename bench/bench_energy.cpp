@@ -11,7 +11,8 @@
 // are written in the configuration of the RTL model the rtl backend has (--model: the measured configuration's
 // widths with the model's SAW and MAW; the contents are the same, the upper address bits stay 0). Each stream stops
 // at --max-lookups shell points looked up (whole frames, whole poses).
-// Prints one line per scene: "scene FILE jobs N lookups L pairs P voxel V shell_words S map_words M".
+// Prints one line per scene: "scene NAME file FILE jobs N lookups L pairs P voxel V shell_words S map_words M frames F"
+// (F: the simulate scene's frames, 0 for the others).
 // Usage: bench_energy --out DIR [--config "PW 24 ... SAW 12 MAW 12 ..."] [--model "LANES 4 SAW 16 MAW 18"]
 //                     [--objects 1024] [--frames 3] [--poses 400] [--max-lookups 200000] [--scenes simulate,room,tori]
 #include <cmath>
@@ -46,6 +47,7 @@ struct Stream {
   DeviceMemory memory;
   uint64_t lookups = 0;
   uint64_t pairs = 0;
+  uint64_t frames = 0;  // simulate: the frames whose jobs the stream holds (0: a scene of poses)
   double voxel = 0;
 };
 
@@ -126,6 +128,7 @@ Stream simulate_stream(const DeviceConfig& measured, const DeviceConfig& model, 
         requests.push_back(r);
       }
       add_jobs(*col, requests, po, s, max_lookups);
+      ++s.frames;
     }
     return s;
   }
@@ -221,9 +224,11 @@ int main(int argc, char** argv) {
       }
       const std::string path = out + "/" + name + ".vec";
       write(path, model, s);
-      std::printf("scene %s file %s jobs %zu lookups %llu pairs %llu voxel %.6g shell_words %zu map_words %zu\n",
+      std::printf("scene %s file %s jobs %zu lookups %llu pairs %llu voxel %.6g shell_words %zu map_words %zu "
+                  "frames %llu\n",
                   name.c_str(), path.c_str(), s.jobs.size(), (unsigned long long)s.lookups,
-                  (unsigned long long)s.pairs, s.voxel, s.memory.shell.size(), s.memory.map.size());
+                  (unsigned long long)s.pairs, s.voxel, s.memory.shell.size(), s.memory.map.size(),
+                  (unsigned long long)s.frames);
       std::fflush(stdout);
     }
   } catch (const std::exception& e) {
