@@ -3,7 +3,7 @@
 # <!-- bench:against_cpu:end -->. For every lane count and depth: `voxcd simulate --json` on its built-in scene
 # (lookups, device cycles, the clock and its source), build/bench_against_cpu on the room and the tori (device cycles
 # of the timing model) and the cpu backend's own lookups per second on the same jobs, one core and every core; then
-# bench/against_cpu.py makes the table with the area of host/sizing/timing.tsv and the energy of
+# bench/against_cpu.py makes the table with the area of host/device/timing.tsv and the energy of
 # host/sizing/energy.tsv (when it exists).
 # Usage: bash bench/against_cpu.sh [--quick] [--lanes 4,8,16,32,64] [--depths 0,4] [--build DIR] [--out FILE]
 #   --quick: a smoke run of about a minute (50 frames, 200 room poses, 10 torus poses) instead of the default
@@ -63,7 +63,7 @@ simulate_all >"$tmp/simulate.jsonl"
 "$build/bench_against_cpu" --lanes "$lanes" --depths "$depths" --frames "$frames" --room-poses "$room" \
   --torus-poses "$tori" --repeats 5 | tee "$tmp/bench.jsonl" >&2
 "$python" bench/against_cpu.py table --simulate "$tmp/simulate.jsonl" --bench "$tmp/bench.jsonl" \
-  --timing host/sizing/timing.tsv --energy host/sizing/energy.tsv --command "$command" \
+  --timing host/device/timing.tsv --energy host/sizing/energy.tsv --command "$command" \
   --seconds $(($(date +%s) - start)) --revision "$rev" --machine "$(machine)" --load "$load" >"$tmp/block.md"
 if [ -n "$out" ]; then
   cp "$tmp/block.md" "$out"

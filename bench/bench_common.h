@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -100,8 +101,8 @@ inline std::string fmt(const char* format, double v) {
   return b;
 }
 
-// The clock of a benchmark's device rates: default_device_clock(), or the figure of its --clock (`text`), named as
-// given; std::invalid_argument "--clock: ..." for text that is no positive number of MHz.
+// The figure of a benchmark's --clock (`text`), named as given; std::invalid_argument "--clock: ..." for text that is
+// no positive number of MHz. Without --clock a benchmark's rates are at each device's own clock (RowClocks).
 inline DeviceClock clock_arg(const char* text) {
   char* end = nullptr;
   const double mhz = std::strtod(text, &end);
@@ -116,6 +117,38 @@ inline std::string clock_csv_lines(const DeviceClock& c) {
   std::snprintf(mhz, sizeof mhz, "%g", c.mhz);
   return std::string("# clock_mhz: ") + mhz + "\n# clock_source: " + c.source + "\n";
 }
+
+// The clocks of a table's device rates: the one --clock gave, else each row's device configuration's (clock_for:
+// measured for it, or an estimate that says so). The table's heading names the clock of `heading` (the
+// configuration the benchmark models); a row at another clock gets a mark (" [1]", " [2]", ...) and the table a note
+// naming that clock, so that no rate is at a clock not measured for its device without saying so.
+class RowClocks {
+ public:
+  RowClocks(std::optional<DeviceClock> given, const DeviceConfig& heading)
+      : given_(std::move(given)), heading_(of(heading)) {}
+  const DeviceClock& heading() const { return heading_; }
+  DeviceClock of(const DeviceConfig& cfg) const { return given_ ? *given_ : clock_for(cfg); }
+  // "" for a rate at the heading's clock, else the mark of c (noted once): " [1]".
+  std::string mark(const DeviceClock& c) {
+    if (c.text() == heading_.text()) return "";
+    size_t i = 0;
+    while (i < others_.size() && others_[i].text() != c.text()) ++i;
+    if (i == others_.size()) others_.push_back(c);
+    return " [" + std::to_string(i + 1) + "]";
+  }
+  // One line per marked clock: "\n[1] at 100.4 MHz (estimate: ...).\n"; "" when every row was at the heading's.
+  std::string notes() const {
+    std::string s;
+    for (size_t i = 0; i < others_.size(); ++i)
+      s += (i ? "" : "\n") + ("[" + std::to_string(i + 1) + "] at ") + others_[i].text() + ".\n";
+    return s;
+  }
+
+ private:
+  std::optional<DeviceClock> given_;
+  DeviceClock heading_;
+  std::vector<DeviceClock> others_;
+};
 
 // Keeps a value alive so the optimiser cannot drop the work that made it.
 template <class T>

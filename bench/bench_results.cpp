@@ -4,8 +4,8 @@
 //   pairs  Table 1 and Figs. 11-13: update rate and time per lookup of one pair of the paper's 36-face polytopes
 //          against the number of shell points (voxmap fixed at about 12,672 voxels) and against the number of
 //          voxmap voxels (shell at the matching density), on the cpu backend with one thread, with the modelled
-//          device's rate from its cycles at the device clock (default_device_clock(), or --clock), named with its
-//          source; the paper's Table 1 beside ours.
+//          device's rate from its cycles at the device clock (its configuration's, measured or an estimate that says
+//          so; or --clock), named with its source; the paper's Table 1 beside ours.
 //   error  For each voxel size, the pair's update rate and lookups per second beside its error against exact
 //          geometry on the same poses (FCL's GJK/EPA on the convex polytope: penetration depth of the contacts
 //          voxcd misses, separation of the ones it reports falsely), and the narrow phases of FCL and Bullet
@@ -42,7 +42,7 @@ struct Args {
   std::string part, out_path, csv_path;
   int repeats = 5;
   size_t poses = 64;
-  DeviceClock clock = default_device_clock();  // of the device rates; --clock MHZ gives another
+  std::optional<DeviceClock> clock;  // of the device rates when --clock MHZ gives one (else each device's own)
   std::vector<double> voxels = {0.4, 0.2, 0.1, 0.05, 0.025};
   std::vector<size_t> shells = {25, 92, 219, 384, 606, 840, 1150, 1509, 1909, 2314, 5321, 9337};
   std::vector<size_t> maps = {20, 50, 120, 300, 700, 1500, 3500, 8000, 16000, 35000, 80000, 200000};
@@ -135,6 +135,7 @@ std::vector<PairRequest> random_poses(size_t n, double min_dist, double max_dist
 struct PairTiming {
   double seconds = 0;  // per query, median over repeats of the mean over the poses
   double lookups = 0, cycles = 0, hits = 0;  // per query
+  DeviceConfig config;  // the device's
 };
 
 // One query at a time on the cpu backend with one thread, as an application asks them (buffers reused).
@@ -151,6 +152,7 @@ PairTiming time_pairs(std::shared_ptr<ObjectType> ta, std::shared_ptr<ObjectType
   dopt.threads = 1;
   PairCollider col(make_device("cpu", cfg, dopt), {ta, tb});
   PairTiming out;
+  out.config = cfg;
   const std::vector<PairResult> all = col.collide(reqs, opt);
   for (const auto& r : all) out.lookups += double(r.lookups), out.cycles += double(r.cycles), out.hits += r.hits;
   out.lookups /= double(reqs.size()), out.cycles /= double(reqs.size()), out.hits /= double(reqs.size());
@@ -173,58 +175,65 @@ std::string hz_text(double hz) { return bench::fmt(hz >= 100 ? "%.0f" : "%.1f", 
 void part_pairs(const Args& a, std::ostream& md, std::ostream& csv) {
   const Mesh m = make_shape("polytope36");
   const auto reqs = random_poses(a.poses, 0.5, 1.6, 11);
-  csv << bench::clock_csv_lines(a.clock) << "series,target,shell_points,map_voxels,voxel_a,voxel_b,us_per_query,hz,ns_per_lookup,device_cycles,"
-         "device_hz,paper_points,paper_hz,paper_ms,lookups\n";
+  // The default widths (memories grown to fit); a row whose shell needs a wider MW is marked with its own clock.
+  bench::RowClocks clocks(a.clock, DeviceConfig{});
+  csv << bench::clock_csv_lines(clocks.heading()) << "series,target,shell_points,map_voxels,voxel_a,voxel_b,us_per_query,hz,ns_per_lookup,device_cycles,"
+         "device_hz,paper_points,paper_hz,paper_ms,lookups,device_clock_estimate\n";
   const auto [vb, tb] = voxel_for(m, a.map_voxels, [](const ObjectType& t) { return t.voxmap().size(); });
   md << "Pair: two of the paper's 36-face polytopes (about 2 units across), " << a.poses
      << " random poses with B's centre 0.5 to 1.6 from A's (most interpenetrate), A's shell in B's voxmap, ALL "
         "contacts; one query at a time on the cpu backend with one thread (as the paper's single CPU), median of "
      << a.repeats << " runs over all poses. Update rate = 1 / time per query; time per lookup = time per query / "
         "lookups (the shell points the query submits to the device). Device: the modelled device's cycles for the same jobs (exact timing model, 4 lanes) at "
-     << a.clock.text() << ".\n\n";
+     << clocks.heading().text() << " (a row marked [n]: at the clock noted below the tables).\n\n";
   md << "**Fixed voxmap (Table 1, Fig. 12)**: B voxelised at " << bench::fmt("%.4f", vb) << " units: "
      << tb->voxmap().dims()[0] << " x " << tb->voxmap().dims()[1] << " x " << tb->voxmap().dims()[2] << " = "
      << tb->voxmap().size() << " voxels (the paper's: 12,672); A's shell at the voxel size whose shell has the "
         "number of points nearest the paper's row. Ratio = ours / the paper's (rate), the paper's / ours (time per "
         "lookup): how many times faster.\n\n"
      << "| paper: shell points | paper: Hz | paper: ms per lookup | ours: shell points | ours: Hz | ours: us per "
-        "lookup | rate ratio | per-lookup ratio | device Hz (" << a.clock.mhz << " MHz) | device / paper |\n"
+        "lookup | rate ratio | per-lookup ratio | device Hz (" << clocks.heading().mhz << " MHz) | device / paper |\n"
      << "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (size_t target : a.shells) {
     const auto [va, ta] = voxel_for(m, target, [](const ObjectType& t) { return t.shell().size(); });
     const PairTiming t = time_pairs(ta, tb, reqs, PairOptions{}, a.repeats);
     const double hz = 1 / t.seconds, ns = t.seconds * 1e9 / t.lookups;
-    const double dev_hz = a.clock.rate(t.cycles);
+    const DeviceClock clock = clocks.of(t.config);
+    const double dev_hz = clock.rate(t.cycles);
     const PaperRow* p = nullptr;
     for (const auto& row : kTable1)
       if (row.points == target) p = &row;
     md << "| " << (p ? std::to_string(p->points) : "-") << " | " << (p ? bench::fmt("%.1f", p->hz) : "-") << " | "
        << (p ? bench::fmt("%.3f", p->ms) : "-") << " | " << ta->shell().size() << " | " << hz_text(hz) << " | "
        << bench::fmt("%.3f", ns / 1e3) << " | " << (p ? bench::fmt("%.0f", hz / p->hz) : "-") << " | "
-       << (p ? bench::fmt("%.0f", p->ms * 1e6 / ns) : "-") << " | " << hz_text(dev_hz) << " | "
+       << (p ? bench::fmt("%.0f", p->ms * 1e6 / ns) : "-") << " | " << hz_text(dev_hz) << clocks.mark(clock) << " | "
        << (p ? bench::fmt("%.0f", dev_hz / p->hz) : "-") << " |\n";
     csv << "shell," << target << "," << ta->shell().size() << "," << tb->voxmap().size() << "," << va << "," << vb
         << "," << t.seconds * 1e6 << "," << hz << "," << ns << "," << t.cycles << "," << dev_hz << ","
         << (p ? std::to_string(p->points) : "") << "," << (p ? bench::fmt("%g", p->hz) : "") << ","
-        << (p ? bench::fmt("%g", p->ms) : "") << "," << t.lookups << "\n";
+        << (p ? bench::fmt("%g", p->ms) : "") << "," << t.lookups << "," << clock.estimate << "\n";
     std::fprintf(stderr, "pairs shell %zu (voxel %.4f): %.1f Hz, %.1f ns/lookup\n", ta->shell().size(), va, hz, ns);
   }
   md << "\n**Voxmap resolution (Fig. 11)**: A and B at the same voxel size (shell at the matching density, the "
         "paper's sqrt(2) rule), chosen so that B's voxmap has the number of voxels nearest each target. The paper "
         "gives Fig. 11's values only as points on a plot: none are quoted, so no ratio is possible.\n\n"
-     << "| voxmap voxels | voxel (units) | shell points | Hz | us per lookup | device Hz (" << a.clock.mhz
+     << "| voxmap voxels | voxel (units) | shell points | Hz | us per lookup | device Hz (" << clocks.heading().mhz
      << " MHz) |\n|--:|--:|--:|--:|--:|--:|\n";
   for (size_t target : a.maps) {
     const auto [v, tv] = voxel_for(m, target, [](const ObjectType& t) { return t.voxmap().size(); });
     const PairTiming t = time_pairs(tv, tv, reqs, PairOptions{}, a.repeats);
     const double hz = 1 / t.seconds, ns = t.seconds * 1e9 / t.lookups;
-    const double dev_hz = a.clock.rate(t.cycles);
+    const DeviceClock clock = clocks.of(t.config);
+    const double dev_hz = clock.rate(t.cycles);
     md << "| " << tv->voxmap().size() << " | " << bench::fmt("%.4f", v) << " | " << tv->shell().size() << " | "
-       << hz_text(hz) << " | " << bench::fmt("%.3f", ns / 1e3) << " | " << hz_text(dev_hz) << " |\n";
+       << hz_text(hz) << " | " << bench::fmt("%.3f", ns / 1e3) << " | " << hz_text(dev_hz) << clocks.mark(clock)
+       << " |\n";
     csv << "map," << target << "," << tv->shell().size() << "," << tv->voxmap().size() << "," << v << "," << v << ","
-        << t.seconds * 1e6 << "," << hz << "," << ns << "," << t.cycles << "," << dev_hz << ",,,," << t.lookups << "\n";
+        << t.seconds * 1e6 << "," << hz << "," << ns << "," << t.cycles << "," << dev_hz << ",,,," << t.lookups << ","
+        << clock.estimate << "\n";
     std::fprintf(stderr, "pairs map %llu (voxel %.4f): %.1f Hz\n", (unsigned long long)tv->voxmap().size(), v, hz);
   }
+  md << clocks.notes();
 }
 
 // ---- error: speed against error per voxel size, and the narrow-phase peers ----
@@ -354,6 +363,7 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
   for (const auto& v : m.vertices) radius = std::max(radius, v.norm());
   const double kNear = 3;  // voxels either side of first contact: past every bound of docs/pairs.md
   ConvexPeers peers(m);
+  bench::RowClocks clocks(a.clock, DeviceConfig{});  // as part_pairs
 
   md << "Pair: two of the paper's 36-face polytopes (convex, radius " << bench::fmt("%.2f", radius) << "). For each "
      << "voxel size, " << a.poses << " random poses near first contact: random orientations and direction, B's "
@@ -371,12 +381,12 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
      << " `btGjkPairDetector` with EPA on `btConvexHullShape` (single precision, margin 0); ratio = the peer's "
         "time per query over voxcd's. Device Hz: the modelled device's cycles for the same jobs (exact timing model, 4 "
         "lanes) at "
-     << a.clock.text() << ".\n\n"
+     << clocks.heading().text() << " (a row marked [n]: at the clock noted below the table).\n\n"
      << "| voxel (units) | direction | shell points | voxmap voxels | us per query | update rate (Hz) | lookups / s "
-        "| device Hz (" << a.clock.mhz << " MHz) | touching poses | missed | missed depth, voxels (50/90/max) | "
+        "| device Hz (" << clocks.heading().mhz << " MHz) | touching poses | missed | missed depth, voxels (50/90/max) | "
         "false | false separation, voxels (50/90/max) | FCL / voxcd time | Bullet / voxcd time |\n"
      << "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
-  csv << bench::clock_csv_lines(a.clock) << "kind,voxel,both,value_voxels\n";
+  csv << bench::clock_csv_lines(clocks.heading()) << "kind,voxel,both,value_voxels\n";
   std::ostringstream summary, peer_note;
   uint64_t seed = 12;
   for (double voxel : a.voxels) {
@@ -391,6 +401,7 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
       opt.both_directions = both;
       std::vector<PairResult> res;
       const PairTiming tm = time_pairs(t, t, e.reqs, opt, a.repeats, &res);
+      const DeviceClock clock = clocks.of(tm.config);
       std::vector<double> missed, falses;
       for (size_t k = 0; k < n; ++k) {
         const bool hit = res[k].hits > 0;
@@ -407,12 +418,12 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
       md << "| " << voxel << " | " << (both ? "both" : "A in B") << " | " << t->shell().size() << " | "
          << t->voxmap().size() << " | " << bench::fmt("%.2f", tm.seconds * 1e6) << " | "
          << hz_text(1 / tm.seconds) << " | " << bench::fmt("%.3g", tm.lookups / tm.seconds) << " | "
-         << hz_text(a.clock.rate(tm.cycles)) << " | " << e.n_touching << " of " << n << " | "
+         << hz_text(clock.rate(tm.cycles)) << clocks.mark(clock) << " | " << e.n_touching << " of " << n << " | "
          << missed.size() << " | " << q3(missed) << " | " << falses.size() << " of " << n - e.n_touching << " | "
          << q3(falses) << " | " << bench::fmt("%.2f", e.fcl_seconds / tm.seconds) << " | "
          << bench::fmt("%.2f", e.bullet_seconds / tm.seconds) << " |\n";
       summary << "summary," << voxel << "," << both << "," << tm.seconds * 1e6 << "," << 1 / tm.seconds << ","
-              << tm.lookups / tm.seconds << "," << a.clock.rate(tm.cycles) << "," << missed.size() << ","
+              << tm.lookups / tm.seconds << "," << clock.rate(tm.cycles) << "," << missed.size() << ","
               << falses.size() << "," << quantile(missed, 1.0) << "," << quantile(falses, 1.0) << ","
               << quantile(missed, 0.9) << "," << quantile(falses, 0.9) << "," << e.fcl_seconds * 1e6 << ","
               << e.bullet_seconds * 1e6 << "\n";
@@ -423,7 +434,7 @@ void part_error(const Args& a, std::ostream& md, std::ostream& csv) {
   csv << "# summary: voxel,both,us_per_query,hz,lookups_per_s,device_hz,missed,false,missed_max,false_max,"
          "missed_q90,false_q90,fcl_us,bullet_us\n"
       << summary.str();
-  md << "\nPeers per query, by voxel size's pose set: " << peer_note.str()
+  md << clocks.notes() << "\nPeers per query, by voxel size's pose set: " << peer_note.str()
      << ". Both peers are exact narrow phases for convex shapes only and return one contact; voxcd returns "
         "every contact and treats concave shapes the same (the concave case, against FCL's mesh hierarchies, is "
         "the bench_pair table below). Quantiles are of the missed or false poses only; the bounds they meet are "

@@ -1,7 +1,8 @@
 // The paper's N-body environment as a whole: frames per second on one core for each broadphase, with the paper's
 // shape and accuracy (the 36-face polytope, voxel of one world unit, density 2.5%, momentum up to 10% of the radius
 // per frame), against the number of objects; and the modelled device's frame rate from its cycles at the device
-// clock (default_device_clock(), or --clock MHZ), which the table and the CSV name with its source. Writes Markdown
+// clock (the clock of its configuration, measured or an estimate that says so; or --clock MHZ), which the table and
+// the CSV name with its source. Writes Markdown
 // to stdout (and to --out FILE).
 #include <algorithm>
 #include <cmath>
@@ -22,7 +23,7 @@ int main(int argc, char** argv) {
   std::string out_path;
   int repeats = 3;
   uint64_t frames = 300;
-  DeviceClock clock = default_device_clock();
+  std::optional<DeviceClock> given_clock;  // --clock
   std::vector<size_t> counts = {2, 8, 32, 64, 128, 256, 1024, 4096};
   std::vector<std::string> prunings = broadphase_names();
   double fixed_voxel = 0;  // 0: voxel (64/N)^(1/3)
@@ -80,7 +81,7 @@ int main(int argc, char** argv) {
       }
     } else if (!std::strcmp(argv[i], "--clock") && i + 1 < argc) {
       try {
-        clock = bench::clock_arg(argv[++i]);
+        given_clock = bench::clock_arg(argv[++i]);
       } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_simulate: %s\n", e.what());
         return 2;
@@ -99,6 +100,10 @@ int main(int argc, char** argv) {
   // The pruning whose pairs and device cycles the table reports (the same stream for every broadphase).
   const std::string dev_pruning =
       std::find(prunings.begin(), prunings.end(), "sap") != prunings.end() ? "sap" : prunings.front();
+  // The device: 4 lanes at the default widths, its memories grown to fit the objects (the clock does not depend on
+  // them); a row whose device is another configuration is marked with its own clock.
+  bench::RowClocks clocks(given_clock, DeviceConfig{});
+  const DeviceClock& clock = clocks.heading();
   std::ostringstream csv;
   csv << bench::clock_csv_lines(clock) << "objects,pruning,hz,pairs_tested,device_cycles,device_hz\n";
   std::ostringstream md;
@@ -119,6 +124,7 @@ int main(int argc, char** argv) {
   for (size_t n : counts) {
     md << "| " << n << " |";
     double pairs = 0, cycles = 0;
+    DeviceConfig dev_config;  // the device of dev_pruning's run
     // The quadratic broadphases are measured up to 1024 objects.
     auto runs = [&](const std::string& p) { return !((p == "all" || p == "sphere") && n > 1024); };
     RunConfig spec;
@@ -147,8 +153,10 @@ int main(int argc, char** argv) {
           cy += st.device_cycles;
         }
         rates[k].push_back(double(frames) / t);
-        if (p == dev_pruning) pairs = double(pr) / double(frames), cycles = double(cy) / double(frames);
+        if (p == dev_pruning)
+          pairs = double(pr) / double(frames), cycles = double(cy) / double(frames), dev_config = sim.device_config();
       }
+    const DeviceClock row_clock = clocks.of(dev_config);
     for (size_t k = 0; k < prunings.size(); ++k) {
       const std::string& p = prunings[k];
       if (!runs(p)) {
@@ -162,14 +170,15 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%zu objects, %s: %.0f Hz\n", n, p.c_str(), hz);
       csv << n << "," << p << "," << hz << "," << (p == dev_pruning ? bench::fmt("%g", pairs) : "") << ","
           << (p == dev_pruning ? bench::fmt("%g", cycles) : "") << ","
-          << (p == dev_pruning && cycles > 0 ? bench::fmt("%g", clock.rate(cycles)) : "") << "\n";
+          << (p == dev_pruning && cycles > 0 ? bench::fmt("%g", row_clock.rate(cycles)) : "") << "\n";
     }
     // Frames without device cycles have no device rate ("-"), not a rate of frames that took no time.
     char b[160];
     std::snprintf(b, sizeof b, " %.1f | %.0f | %s |\n", pairs, cycles,
-                  cycles > 0 ? bench::fmt("%.0f", clock.rate(cycles)).c_str() : "-");
+                  cycles > 0 ? (bench::fmt("%.0f", row_clock.rate(cycles)) + clocks.mark(row_clock)).c_str() : "-");
     md << b;
   }
+  md << clocks.notes();
   md << "\nMachine: " << bench::machine_description() << ". The frame time is the sum of the stages (integration, "
         "bounds, broadphase, pair tests, response), as `voxcd simulate` reports it.\n";
   std::cout << md.str();

@@ -13,7 +13,7 @@
 #   3. Activity: `voxcd conform FILE --backend rtl --trace F.fst`, fst2vcd, and bench/energy/toggles.py counts each
 #      signal bit's toggles and high cycles over the run (first job to last completion); bench/energy/activity.py
 #      turns the registers', input ports' and SRAM read data's rates into set_power_activity commands.
-#   4. Power: OpenSTA at the configuration's measured clock (host/sizing/timing.tsv, or --clock) with the flow's
+#   4. Power: OpenSTA at the configuration's measured clock (host/device/timing.tsv, or --clock) with the flow's
 #      wire load model; bench/energy/report.py adds the SRAM macros' access energy (an estimate: its model is stated
 #      there and in the block) and writes the block and the table, with a projection to 45, 16 and 7 nm (Stillmaker
 #      and Baas 2017), labelled as one.
@@ -28,7 +28,7 @@
 #   --config  the configuration, as DeviceConfig::to_string writes it (default: bench/timing.sh's, SAW = MAW = 12)
 #   --depth   the pipeline depth (default 0, or the config's DEPTH)
 #   --frames  frames of the simulate scene (default 20)
-#   --clock   the clock in MHz (default: host/sizing/timing.tsv's asic-osu018 row of the configuration and depth)
+#   --clock   the clock in MHz (default: host/device/timing.tsv's asic-osu018 row of the configuration and depth)
 #   --out     write the Markdown block and the table into DIR instead of docs/hardware.md and host/sizing/energy.tsv
 set -euo pipefail
 
@@ -94,10 +94,10 @@ if ((depth > 0)); then model_pairs+=" DEPTH $depth"; fi
 clock_source="--clock"
 if [ -z "$clock" ]; then
   clock=$(awk -F'\t' -v d="$depth" -v c="$base_pairs" '$1 == "asic-osu018" && $2 == d && $12 == c { print $3 }' \
-          "$root/host/sizing/timing.tsv" | head -n 1)
-  [ -n "$clock" ] || { echo "energy.sh: host/sizing/timing.tsv has no asic-osu018 row of depth $depth and config" \
+          "$root/host/device/timing.tsv" | head -n 1)
+  [ -n "$clock" ] || { echo "energy.sh: host/device/timing.tsv has no asic-osu018 row of depth $depth and config" \
                             "'$base_pairs': give --clock MHZ" >&2; exit 1; }
-  clock_source="OpenSTA's largest clock of the configuration at depth $depth, host/sizing/timing.tsv"
+  clock_source="OpenSTA's largest clock of the configuration at depth $depth, host/device/timing.tsv"
 fi
 
 start=$SECONDS

@@ -14,7 +14,7 @@ struct World::Impl {
   bool stale = true;                 // bodies were added since the simulation was made
   uint64_t frames = 0;
   FrameStats last;
-  std::string settings = "{}";       // a recording's run settings
+  bool from_scene = false;           // made from a scene: a recording's run settings are the run's (else "{}")
   std::unique_ptr<RecordWriter> rec;
 
   // The simulation of the bodies now, made anew when bodies were added (their states carry over).
@@ -41,7 +41,7 @@ World detail::world_of(const RunConfig& config) {
   impl->scene = make_scene(config);
   for (const auto& t : impl->scene.types) impl->objects.emplace_back(t);
   impl->options = config;
-  impl->settings = record_settings(summary_of(config, impl->scene));
+  impl->from_scene = true;
   return World(std::move(impl));
 }
 
@@ -114,7 +114,10 @@ uint64_t World::state_hash() const {
 
 void World::record(const std::string& path) {
   stop_recording();
-  impl_->rec = std::make_unique<RecordWriter>(path, impl_->simulation(), impl_->settings);
+  const Simulation& sim = impl_->simulation();
+  // The settings of the run as it is now: its device configuration and that device's clock among them.
+  const std::string settings = impl_->from_scene ? record_settings(summary_of(impl_->options, sim)) : "{}";
+  impl_->rec = std::make_unique<RecordWriter>(path, sim, settings);
 }
 
 void World::stop_recording() {

@@ -28,7 +28,7 @@ struct SimulateArgs {
   std::string config;  // a whole device configuration, "NAME VALUE" pairs
   std::string mode = "ALL";
   std::string storage = "dense";  // --storage, parsed into options.storage when given
-  double clock_mhz = 0;  // --clock; unset: the scene file's "clock" or default_device_clock()
+  double clock_mhz = 0;  // --clock; unset: the scene file's "clock", or the run's device configuration's (run_clock)
   bool json = false;
   bool progress = true;
   double mpi_timeout = 300;  // seconds a rank waits for a frame's messages
@@ -116,7 +116,7 @@ void add_device_json(Json& j, const SimulationSummary& s) {
   const SimulationTotals& tot = s.totals;
   j.update({{"lanes", c.lanes}, {"device_cycles", tot.cycles}, {"device_cycles_per_frame", s.cycles_per_frame()},
             {"device_cycles_max_frame", tot.max_cycles}, {"device_idle_frames", tot.idle_frames},
-            {"clock_mhz", c.clock.mhz}, {"clock_source", c.clock.source}, {"clock_estimate", c.clock.estimate},
+            {"clock_mhz", s.clock.mhz}, {"clock_source", s.clock.source}, {"clock_estimate", s.clock.estimate},
             {"device_frame_rate_hz", tot.cycles ? Json(s.device_rate()) : Json(nullptr)}});
   if (!c.record.empty()) j.update({{"record", c.record}, {"record_bytes", std::filesystem::file_size(c.record)}});
   std::ostringstream hash;
@@ -308,8 +308,7 @@ void add_run_options(CLI::App* c, SimulateArgs& args) {
   c->add_option("--frames", a->options.frames, "Frames to simulate")->capture_default_str();
   c->add_option("--seed", a->options.seed, "Seed of the scene")->capture_default_str();
   c->add_option("--clock", a->clock_mhz,
-                "Device clock in MHz for the modelled frame rate (default: the scene file's \"clock\", or " +
-                    default_device_clock().text() + ")");
+                "Device clock in MHz for the modelled frame rate (default: " + default_clock_help("the run's device") + ")");
   c->add_option("--threads", a->options.threads, "threads of every stage of a frame and the cpu backend (0: all)")
       ->capture_default_str();
   c->add_option("--mpi-timeout", a->mpi_timeout,

@@ -60,13 +60,13 @@ void add_size(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   c->add_option("--rate", a->req.rate, "Frames per second (default: the scene file's)")->check(CLI::PositiveNumber);
   c->add_option("--clock", a->req.clock_mhz,
-                "Device clock, MHz (default: the scene file's \"clock\", or " + default_device_clock().text() + ")");
+                "Device clock, MHz (default: " + default_clock_help("the derived configuration") + ")");
   c->add_option("--target", a->req.target,
                 "Choose the pipeline depth for the clock on this target: the shallowest whose measured clock meets it "
                 "(the timing table of bench/timing.sh, docs/size.md); reports its latency, area at 0.18 um and block RAMs")
       ->check(CLI::IsMember(timing_targets()));
   c->add_option("--timing-table", a->timing_table,
-                "The timing table to choose the depth from (default: the one built in, host/sizing/timing.tsv)")
+                "The timing table to choose the depth from (default: the one built in, host/device/timing.tsv)")
       ->check(CLI::ExistingFile);
   c->add_option("--storage", a->storage,
                 "dense or sparse: size the device for the types stored so; auto: size both and take the one of less "

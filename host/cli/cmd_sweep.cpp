@@ -70,7 +70,8 @@ SweepSpec make_spec(const SweepArgs& a, const CLI::App& cmd) {
   if (s.distance_bits.empty()) s.distance_bits = {f.distance_bits};
   if (s.accuracies.empty()) s.accuracies = {f.accuracy > 0 ? f.accuracy : accuracy_or_default(f, make_scene(f))};
   if (s.frames == 0) s.frames = f.frames;
-  if (!(s.clock > 0)) s.clock = f.clock.mhz, s.clock_source = f.clock.source;
+  // No clock given: each point's rate at its own configuration's clock (SweepRunner).
+  if (!(s.clock > 0) && f.clock) s.clock = f.clock->mhz, s.clock_source = f.clock->source;
   check_sweep(s, a.sweep_file.empty() ? std::string("the sweep options") : a.sweep_file + " with the options");
   return s;
 }
@@ -179,8 +180,7 @@ void add_sweep(CLI::App& app) {
   c->add_option("--sample-frames", a->sample_frames,
                 "Frames per point whose contacts are checked against the meshes (default 4)");
   c->add_option("--clock", a->clock,
-                "Device clock, MHz, for the frame rate (default: the scene file's \"clock\", or " +
-                    default_device_clock().text() + ")");
+                "Device clock, MHz, for the frame rate (default: " + default_clock_help("each point's configuration") + ")");
   c->add_flag("--cost", a->cost, "Also synthesise every point with yosys (synth_xilinx; 10 to 60 s a point)");
   c->add_option("--rtl", a->rtl_dir, "The directory of the RTL file list voxcd.f for --cost")->capture_default_str();
   c->add_option("--csv", a->csv, "Write the table as CSV to FILE");

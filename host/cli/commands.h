@@ -17,6 +17,16 @@ inline DeviceClock clock_option(double mhz, const std::string& option) {
   return given_clock(mhz, option);
 }
 
+// What --clock's help says the default is: "the scene file's \"clock\", or the clock OpenSTA measured for the
+// device's configuration (100.4 MHz for the default one), else an estimate from the nearest one measured, named as
+// such (docs/hardware.md, \"The default clock\")".
+inline std::string default_clock_help(const std::string& device = "the device's configuration") {
+  return "the scene file's \"clock\", or the clock OpenSTA measured for " + device + " (" +
+         mhz_text(default_device_clock().mhz) +
+         " MHz for the default one), else an estimate from the nearest one measured, named as such (docs/hardware.md, "
+         "\"The default clock\")";
+}
+
 // Names as a help text lists them: "cpu, ref, rtl".
 inline std::string comma_list(const std::vector<std::string>& names) {
   std::string s;

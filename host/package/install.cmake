@@ -103,4 +103,4 @@ endif()
 # The RTL with its file list (and the DPI package, ref/dpi/CMakeLists.txt adds it).
 install(FILES ${PROJECT_SOURCE_DIR}/rtl/voxcd.f ${VOXCD_RTL_SOURCES} DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd/rtl)
 # The timing table `voxcd size --target` chooses a depth from (compiled in; here for reading and for --timing-table).
-install(FILES ${PROJECT_SOURCE_DIR}/host/sizing/timing.tsv DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd)
+install(FILES ${PROJECT_SOURCE_DIR}/host/device/timing.tsv DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd)

@@ -109,8 +109,8 @@ py::dict summary_dict(const SimulationSummary& s) {
   // No device cycles: no device rate (None), as `voxcd simulate --json` gives null.
   put(r, py::arg("lanes") = c.lanes, py::arg("device_cycles") = t.cycles,
       py::arg("device_cycles_per_frame") = s.cycles_per_frame(), py::arg("device_cycles_max_frame") = t.max_cycles,
-      py::arg("device_idle_frames") = t.idle_frames, py::arg("clock_mhz") = c.clock.mhz,
-      py::arg("clock_source") = c.clock.source, py::arg("clock_estimate") = c.clock.estimate,
+      py::arg("device_idle_frames") = t.idle_frames, py::arg("clock_mhz") = s.clock.mhz,
+      py::arg("clock_source") = s.clock.source, py::arg("clock_estimate") = s.clock.estimate,
       py::arg("device_frame_rate_hz") = t.cycles ? py::object(py::float_(s.device_rate())) : py::object(py::none()),
       py::arg("state_hash") = std::string(hash));
   return r;
@@ -222,8 +222,9 @@ tool's option of the same name does; config is a whole device configuration as N
 (4, 8 or 16), band (voxels), margin (world units) and ccd (continuous collision, which needs distance voxmaps) are
 --distance-bits, --band, --margin and --ccd (ccd=False also turns off a scene file's "ccd"); with distance voxmaps
 the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling. clock (MHz) is the
-device clock of device_frame_rate_hz (default: the scene file's "clock", or the OpenSTA clock of the default
-configuration at 0.18 um, docs/hardware.md); clock_mhz, clock_source and clock_estimate say which, and
+device clock of device_frame_rate_hz (default: the scene file's "clock", or the clock OpenSTA measured at 0.18 um for
+the run's device configuration, else an estimate from the nearest configuration measured, with clock_estimate True:
+docs/hardware.md, "The default clock"); clock_mhz, clock_source and clock_estimate say which, and
 device_frame_rate_hz is None when no frame needed device cycles. record (a path) records the run as it goes
 (docs/view.md; read_recording reads it, `voxcd view` replays it).)";
 
@@ -237,7 +238,8 @@ void bind_scenes(py::module_& m) {
         py::arg("cost") = false, py::arg("rtl") = py::none(), py::arg("target") = py::none(),
         R"(The smallest device for a scene file (or a dict with a scene file's keys), as `voxcd size --json` reports
 it, as a dict. The options override the file's accuracy (world units), contact_accuracy (world units: chooses the
-voxmaps, docs/size.md), rate (Hz), clock (MHz; clock_source in the dict says where it comes from) and frames; cost
+voxmaps, docs/size.md), rate (Hz), clock (MHz; default: the scene file's "clock", or the derived configuration's,
+measured or an estimate: clock_source and clock_estimate in the dict say which) and frames; cost
 also synthesises the configuration with yosys (about 10 s each; rtl: the directory of the RTL's voxcd.f). target
 ("asic-osu018", "ice40-hx8k", "ice40-up5k" or "xilinx-7") chooses the pipeline depth for the clock from the measured
 timing table, as --target does (depth_choice in the dict). ValueError '<scene>: cannot be met: ...' when no device

@@ -128,8 +128,9 @@ std::string record_settings(const SimulationSummary& s) {
   j["ccd"] = c.ccd;
   j["lanes"] = c.lanes;
   j["device"] = s.device.to_string();
-  j["clock_mhz"] = c.clock.mhz;
-  j["clock_source"] = c.clock.source;
+  j["clock_mhz"] = s.clock.mhz;
+  j["clock_source"] = s.clock.source;
+  j["clock_estimate"] = s.clock.estimate;
   return j.dump();
 }
 

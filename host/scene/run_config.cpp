@@ -95,7 +95,7 @@ void check_device(const Checker& k, const RunConfig& c) {
   if (k.given("accuracy")) k.number("accuracy", c.accuracy, 0, kMaxLength, true);
   if (k.given("contact_accuracy")) k.number("contact_accuracy", c.contact_accuracy, 0, kMaxLength, true);
   k.number("rate", c.rate, 0, kMaxLength, true);
-  if (k.given("clock")) k.number("clock", c.clock.mhz, 0, kMaxClockMhz, true);
+  if (c.clock) k.number("clock", c.clock->mhz, 0, kMaxClockMhz, true);
   k.integer("frames", c.frames, 1, kMaxFrames);
   if (c.device) c.device->validate();
 }
@@ -176,6 +176,8 @@ int RunConfig::device_distance_bits() const {
   if (device) return device->distance() ? device->SB : 0;
   return distance_bits;
 }
+
+DeviceClock run_clock(const RunConfig& c, const DeviceConfig& device) { return c.clock ? *c.clock : clock_for(device); }
 
 void check(const RunConfig& c) {
   const Checker k(c);

@@ -100,8 +100,9 @@ struct RunConfig : WorldDef {
   double accuracy = 0;          // world units; 0: not given (accuracy_or_default)
   double contact_accuracy = 0;  // world units: how far outside the other surface a contact may lie; 0: not given
   double rate = 1000;           // frames per second
-  // The device clock of the modelled frame rates, and where it was given (default_device_clock() otherwise).
-  DeviceClock clock = default_device_clock();
+  // The device clock of the modelled frame rates when one is given (--clock, the scene file's "clock", Python's
+  // clock=), with where; unset: the clock of the run's device configuration, once it is known (run_clock).
+  std::optional<DeviceClock> clock;
   uint64_t frames = 1000;  // frames simulated (a scene file's default: 100)
   // How it runs, besides WorldDef.
   // The device's whole configuration (e.g. one `voxcd size` derived); it replaces `lanes` and the memories grown to
@@ -140,6 +141,10 @@ struct RunConfig : WorldDef {
 // other (voxel and resolution, size and scale) or need another (band and ccd need distance bits; record is not for
 // a distributed run), and a whole device configuration (DeviceConfig::validate).
 void check(const RunConfig& c);
+
+// The clock of a run on `device` (its whole configuration, as the run makes it): c.clock when given, else
+// clock_for(device), the clock measured for that configuration or an estimate that says so (device/clock.h).
+DeviceClock run_clock(const RunConfig& c, const DeviceConfig& device);
 
 // `base` with every setting `options` gives (options.given) in its place: the options override the scene file.
 // objects, shape, voxel and resolution apply to the only type (SimulateOptionError for a scene file of several);

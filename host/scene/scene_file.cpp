@@ -201,7 +201,8 @@ void parse_run(const Reader& top, const std::string& where, RunConfig& f) {
   top.number("accuracy", f.accuracy);
   top.number("contact_accuracy", f.contact_accuracy);
   top.number("rate", f.rate);
-  if (top.number("clock", f.clock.mhz)) f.clock = DeviceClock{f.clock.mhz, "given by " + where + "'s \"clock\"", false};
+  double mhz = 0;
+  if (top.number("clock", mhz)) f.clock = DeviceClock{mhz, "given by " + where + "'s \"clock\"", false};
   top.integer("frames", f.frames, 1, kMaxFrames);
   if (top.string("broadphase", f.broadphase)) top.one_of("broadphase", f.broadphase, broadphase_names());
   if (top.string("backend", f.backend)) top.one_of("backend", f.backend, backend_names());

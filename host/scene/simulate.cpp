@@ -28,13 +28,13 @@ double SimulationSummary::frame_rate() const {
 
 double SimulationSummary::cycles_per_frame() const { return double(totals.cycles) / double(config.frames); }
 
-double SimulationSummary::device_rate() const { return config.clock.rate(cycles_per_frame()); }
+double SimulationSummary::device_rate() const { return clock.rate(cycles_per_frame()); }
 
 std::string SimulationSummary::device_rate_text() const {
   if (totals.cycles == 0) return "none: the frames needed no device cycles";
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.0f Hz at ", device_rate());
-  std::string t = buf + config.clock.text();
+  std::string t = buf + clock.text();
   if (totals.idle_frames)
     t += "; " + std::to_string(totals.idle_frames) + " of " + std::to_string(config.frames) +
          " frames needed no device cycles";
@@ -55,20 +55,20 @@ RunConfig run_config(const RunConfig& options, const std::optional<std::string>&
   return apply_options(std::move(file), options);
 }
 
-SimulationSummary summary_of(const RunConfig& config, const Scene& scene) {
+SimulationSummary summary_of(const RunConfig& config, const Simulation& run) {
   SimulationSummary s;
   s.config = config;
-  s.types = scene.types;
+  s.types = run.scene().types;
+  s.device = run.device_config();
+  s.clock = run_clock(config, s.device);
   s.ranks = config.exchange ? config.exchange->ranks() : 1;
   return s;
 }
 
 SimulationSummary simulate(const RunConfig& config, const std::function<void(uint64_t, uint64_t)>& progress) {
-  Scene scene = make_scene(config);
-  SimulationSummary s = summary_of(config, scene);
   const uint64_t frames = config.frames;
-  Simulation run(std::move(scene), config);
-  s.device = run.device_config();
+  Simulation run(make_scene(config), config);
+  SimulationSummary s = summary_of(config, run);
   std::unique_ptr<RecordWriter> rec;
   if (!config.record.empty()) rec = std::make_unique<RecordWriter>(config.record, run, record_settings(s));
   for (uint64_t f = 0; f < frames; ++f) {

@@ -43,6 +43,7 @@ struct SimulationSummary {
   RunConfig config;
   std::vector<std::shared_ptr<const ObjectType>> types;
   DeviceConfig device;  // the device configuration the run used
+  DeviceClock clock;    // the clock of its rates: config.clock when given, else the device's (run_clock)
   int ranks = 1;        // processes of a distributed run
   SimulationTotals totals;
   uint64_t state_hash = 0;  // Simulation::state_hash after the last frame
@@ -54,13 +55,15 @@ struct SimulationSummary {
   double frame_rate() const;        // frames per second of the host (0 when no time was measured)
   double cycles_per_frame() const;  // mean device cycles
   double device_rate() const;       // frames per second the device's mean cycles allow at `clock` (0 without cycles)
-  // The device's frame rate as printed: "4485 Hz at 100.4 MHz (OpenSTA, ...)", with "; 3 of 10 frames needed no device
+  // The device's frame rate as printed: "4485 Hz at 100.4 MHz (OpenSTA, ...)" (its source says "estimate" when the
+  // clock was not measured for the device), with "; 3 of 10 frames needed no device
   // cycles" when some did not, or "none: the frames needed no device cycles" when none did.
   std::string device_rate_text() const;
 };
 
-// A run's summary before it runs: the configuration and the scene's types (the device, totals and hash still to come).
-SimulationSummary summary_of(const RunConfig& config, const Scene& scene);
+// A run's summary before it runs: the configuration, the scene's types, the device configuration `run` uses and the
+// clock of its rates (run_clock); the totals and hash still to come.
+SimulationSummary summary_of(const RunConfig& config, const Simulation& run);
 
 // Makes the configuration's scene (make_scene) and runs it for config.frames frames, recording it to config.record
 // when given, calling progress(done, frames) after each frame when given. check()'s errors; SceneFileError,

@@ -29,7 +29,7 @@ struct BlockRams {
   std::string unit;   // "RAMB36", "SB_RAM40_4K (4 kbit)", "SRAM macros"
   int available = 0;  // what the target's part has (iCE40 HX8K 32, UP5K 30); 0: no fixed part
 };
-// For one of timing_targets() (timing_table.h); std::invalid_argument for another.
+// For one of timing_targets() (device/timing_table.h); std::invalid_argument for another.
 BlockRams block_rams(const DeviceConfig& cfg, const std::string& target);
 // The blocks one memory of that shape takes (m.count of them take count times as many), on "xilinx-7" or an iCE40
 // target; std::invalid_argument for another.

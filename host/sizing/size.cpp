@@ -288,14 +288,22 @@ void bound_contacts(SizeReport& r) {
   r.contact_error = contact_error_bound(r.config, r.extents, r.kind, r.convex, &r.contact_type, &r.contact_terms);
 }
 
-// The depth for the clock on req.target (r.target, r.depth, r.asic_row), and base at that depth.
+// The clock of cfg: the one given, else the configuration's own (measured, or an estimate that says so).
+DeviceClock clock_at(const SizeReport& r, const DeviceConfig& cfg) {
+  return r.clock_given ? *r.clock_given : clock_for(cfg);
+}
+
+// The depth for the clock on req.target (r.target, r.depth, r.asic_row) among the rows of base's lanes, and base at
+// that depth. Without a clock given, the clock to meet is the default depth's.
 DeviceConfig choose_target_depth(SizeReport& r, const SizeRequest& req, const DeviceConfig& base) {
   const TimingTable& table = req.timing ? *req.timing : builtin_timing_table();
   r.target = req.target;
-  r.depth = choose_depth(table, req.target, r.clock.mhz, base);
-  for (const TimingRow& row : table.target_rows("asic-osu018"))
-    if (row.depth == r.depth->depth() && row.area_mm2) r.asic_row = row;
-  return at_depth(base, r.depth->depth());
+  r.depth = choose_depth(table, req.target, clock_at(r, at_depth(base, 0)).mhz, base);
+  const DeviceConfig cfg = at_depth(base, r.depth->depth());
+  r.asic_row.reset();
+  const TimingRow* row = nearest_row(table, "asic-osu018", cfg);
+  if (row && row->depth == cfg.depth && row->area_mm2) r.asic_row = *row;
+  return cfg;
 }
 
 }  // namespace
@@ -308,20 +316,29 @@ void take_request(SizeReport& r, const RunConfig& f, const Scene& input_scene, c
   r.accuracy = req.accuracy > 0 ? req.accuracy : accuracy_or_default(f, input_scene);
   r.contact_accuracy = req.contact_accuracy > 0 ? req.contact_accuracy : f.contact_accuracy;
   r.rate = req.rate > 0 ? req.rate : f.rate;
-  r.clock = req.clock                ? *req.clock
-            : req.clock_mhz != 0 ? given_clock(req.clock_mhz, "SizeOptions::clock_mhz")
-                                 : f.clock;
+  r.clock_given = req.clock                ? req.clock
+                  : req.clock_mhz != 0 ? given_clock(req.clock_mhz, "SizeOptions::clock_mhz")
+                                       : f.clock;
   r.frames = req.frames > 0 ? req.frames : f.frames;
 }
 
-// The fewest lanes (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget, each
-// count measured into r.lanes with its memories; cfg at that count. SizeError "rate" when 64 lanes do not.
-DeviceConfig choose_lanes(SizeReport& r, const Scene& scene, const RunConfig& sized, DeviceConfig cfg) {
-  const double budget = r.clock.mhz * 1e6 / r.rate;
-  r.budget = uint64_t(std::floor(budget));
+// cfg at `lanes`: with a target at the depth for the clock (choose_target_depth), its memories grown to fit.
+DeviceConfig at_lanes(SizeReport& r, const Scene& scene, const SizeRequest& req, DeviceConfig cfg, int lanes) {
+  cfg.LANES = lanes;
+  if (!req.target.empty()) cfg = choose_target_depth(r, req, cfg);
+  return derive_memory(cfg, scene);
+}
+
+// The fewest lanes (a power of two, as the RTL is built) whose largest measured frame fits the cycle budget at that
+// configuration's clock (r.clock, r.budget), each count measured into r.lanes with its memories; cfg at that count.
+// SizeError "rate" when 64 lanes do not.
+DeviceConfig choose_lanes(SizeReport& r, const Scene& scene, const RunConfig& sized, DeviceConfig cfg,
+                          const SizeRequest& req) {
   for (int lanes = 1; lanes <= 64; lanes *= 2) {
-    cfg.LANES = lanes;
-    cfg = derive_memory(cfg, scene);
+    cfg = at_lanes(r, scene, req, cfg, lanes);
+    r.clock = clock_at(r, cfg);
+    const double budget = r.clock.mhz * 1e6 / r.rate;
+    r.budget = uint64_t(std::floor(budget));
     r.lanes.push_back(measure_frames(scene, sized, cfg, r.frames));
     if (double(r.lanes.back().max_cycles) <= budget) return cfg;
   }
@@ -343,13 +360,15 @@ void measure_banked(SizeReport& r, const Scene& scene, const RunConfig& sized) {
   SizeReport::Banked b;
   b.config = shared;
   b.measure = measure_frames(scene, sized, b.config, r.frames);
+  b.clock = clock_at(r, b.config);
+  b.budget = uint64_t(std::floor(b.clock.mhz * 1e6 / r.rate));
   r.banked = b;
 }
 
 // The block RAMs on the target, and with req.cost the syntheses (the standard-cell area with a target).
 void add_costs(SizeReport& r, const SizeRequest& req) {
   if (r.depth) r.rams = block_rams(r.config, r.target);
-  if (req.cost && r.depth) r.asic = asic_cost(r.config, r.clock.mhz, req.rtl_dir);
+  if (req.cost && r.depth) r.asic = asic_cost(r.config, r.depth->clock_mhz, req.rtl_dir);
   if (!req.cost) return;
   r.cost = yosys_cost(r.config, req.rtl_dir);
   r.default_cost = yosys_cost(r.default_widths(), req.rtl_dir);
@@ -384,12 +403,11 @@ SizeReport derive_layout(SizeReport r, RunConfig run, ObjectStorage stored_as, b
   base.SB = r.kind.SB;
   base.WB = r.kind.WB;
   if (sparse) base.BL = scene_bl(r.scene, r.kind.distance());
-  if (!req.target.empty()) base = choose_target_depth(r, req, base);
   // A distance device's weights fit TF (WB <= TF), a sparse one's a level-3 brick's too (WB + 3 <= TF).
   const int min_tf = r.kind.distance() ? r.kind.WB + (sparse ? 3 : 0) : 0;
   const DeviceConfig widths = derive_widths(r.extents, r.accuracy, base, min_tf);
   r.error = size_error_bound(widths, r.extents, &r.worst_pair);
-  r.config = choose_lanes(r, r.scene, run, widths);
+  r.config = choose_lanes(r, r.scene, run, widths, req);
   r.config.validate();
   std::vector<const ObjectType*> types;
   for (const auto& t : r.scene.types) types.push_back(t.get());
@@ -639,7 +657,8 @@ void banked_lines(std::ostream& o, const SizeReport& r) {
     << bits_text(copies) << " (saves " << bits_text(copies - shared) << "); largest frame " << b.measure.max_cycles
     << " cycles instead of " << m.max_cycles << " (" << (more >= 0 ? "+" : "") << fmt(100 * more, 3)
     << "%, bank conflicts), mean " << fmt(b.measure.mean_cycles, 6) << "; "
-    << (b.meets(r.budget) ? "meets" : "misses") << " the budget of " << r.budget << " cycles\n";
+    << (b.meets() ? "meets" : "misses") << " the budget of " << b.budget << " cycles"
+    << (b.clock.text() == r.clock.text() ? "" : " at " + b.clock.text()) << "\n";
   if (b.cost)
     o << "banks cost      " << b.cost->luts << " LUTs, " << b.cost->ffs << " FFs, " << b.cost->dsps << " DSPs, "
       << fmt(b.cost->brams) << " block RAMs (RAMB36) with BANKS " << b.config.BANKS << ", against "
@@ -687,6 +706,8 @@ nlohmann::ordered_json depth_json(const SizeReport& r) {
   j["source"] = d.row.source;
   j["estimate"] = d.row.estimate();
   j["why"] = d.why();
+  j["measured_config"] = d.row.config;
+  j["stand_in"] = d.stand_in.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(d.stand_in);
   j["table"] = d.table;
   j["shallower"] = nlohmann::ordered_json::array();
   for (const TimingRow& row : d.shallower) j["shallower"].push_back({{"depth", row.depth}, {"mhz", row.mhz}});
@@ -784,7 +805,11 @@ void add_costs_json(json& j, const SizeReport& r) {
                    {"voxmap_bits", b.map_bits()},
                    {"voxmap_bits_saved", r.map_bits() - b.map_bits()},
                    {"cycles_per_frame", {{"max", b.measure.max_cycles}, {"mean", b.measure.mean_cycles}}},
-                   {"meets_budget", b.meets(r.budget)}};
+                   {"meets_budget", b.meets()},
+                   {"cycle_budget", b.budget},
+                   {"clock_mhz", b.clock.mhz},
+                   {"clock_source", b.clock.source},
+                   {"clock_estimate", b.clock.estimate}};
     if (b.cost)
       j["banked"]["cost"] = {{"luts", b.cost->luts}, {"ffs", b.cost->ffs}, {"dsps", b.cost->dsps},
                              {"brams", b.cost->brams}};

@@ -20,7 +20,7 @@
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/depth.h"
 #include "voxcd/host/sizing/storage_layout.h"
-#include "voxcd/host/sizing/timing_table.h"
+#include "voxcd/host/device/timing_table.h"
 #include "voxcd/ref/config.h"
 
 namespace voxcd {
@@ -112,7 +112,7 @@ std::string default_rtl_dir();
 // configuration and its default widths are synthesised too (SizeReport::cost, default_cost; yosys_cost's errors).
 struct SizeRequest : SizeOptions {
   // The clock with where it was given; unset: clock_mhz when not 0 ("given by SizeOptions::clock_mhz"), else the
-  // scene file's "clock", or default_device_clock().
+  // scene file's "clock", else each candidate configuration's own (clock_for: measured, or an estimate that says so).
   std::optional<DeviceClock> clock;
   std::string rtl_dir;  // the RTL for cost ("" = the package's)
   // How the types are stored (docs/size.md, "Sparse or dense"): kDense or kSparse fixes it; kAuto, or unset with no
@@ -120,8 +120,9 @@ struct SizeRequest : SizeOptions {
   std::optional<ObjectStorage> storage;
   std::string storage_source = "SizeRequest::storage";  // how reports name it ("--storage")
   // The implementation target (timing_targets(): "asic-osu018", "ice40-hx8k", "ice40-up5k", "xilinx-7") whose
-  // measured clocks choose the pipeline depth: the shallowest that meets the clock (choose_depth). "": the default
-  // depth, no choice. With cost, the configuration's standard-cell area at 0.18 um is synthesised too (asic_cost).
+  // measured clocks choose the pipeline depth: the shallowest that meets the clock (choose_depth, for each lane count
+  // tried from the rows measured at it when the table has some; without a clock given, the default depth's).
+  // "": the default depth, no choice. With cost, the configuration's standard-cell area at 0.18 um is synthesised too (asic_cost).
   std::string target;
   std::optional<TimingTable> timing;  // the table to choose from; unset: builtin_timing_table()
 };
@@ -154,7 +155,10 @@ struct SizeReport {
   std::string file;
   Scene scene;  // as sized: the scene file's, or remade with the voxmap kind chosen for contact_accuracy
   double accuracy = 0, rate = 0;
-  DeviceClock clock;  // the clock of the budget and the modelled rate, with its source
+  // The clock of the budget and the modelled rate, with its source: the given one (clock_given), else the
+  // configuration's (clock_for).
+  DeviceClock clock;
+  std::optional<DeviceClock> clock_given;  // the request's clock, or the scene file's "clock"
   // The voxmap kind and how far outside the other surface a contact can lie with it, world units (the largest over
   // the types as B of voxel_B * terms + the fixed-point bound of the worst pair into B).
   double contact_accuracy = 0;  // requested (0: not requested; the scene file's kind is reported)
@@ -170,7 +174,7 @@ struct SizeReport {
   size_t worst_pair = 0;     // index into extents.pairs
   uint64_t shell_words = 0, map_words = 0;  // the packed image (storage.chosen().words)
   StorageChoice storage;     // dense or sparse; config, lanes and memory above are those of storage.chosen()
-  uint64_t budget = 0;       // cycles per frame the rate allows at the clock
+  uint64_t budget = 0;       // cycles per frame the rate allows at the clock (of config)
   std::vector<LaneMeasure> lanes;  // every lane count measured, ascending; the last is config.LANES
   const LaneMeasure& chosen() const { return lanes.back(); }
   double modelled_rate() const;   // clock / largest frame's cycles (0 when the frames needed no device cycles)
@@ -183,16 +187,18 @@ struct SizeReport {
   struct Banked {
     DeviceConfig config;
     LaneMeasure measure;
+    DeviceClock clock;    // its own clock (the given one, else clock_for(config))
+    uint64_t budget = 0;  // cycles per frame the rate allows at that clock
     std::optional<YosysCost> cost;
     uint64_t map_bits() const { return map_memory_bits(config); }
-    bool meets(uint64_t budget) const { return measure.max_cycles <= budget; }
+    bool meets() const { return measure.max_cycles <= budget; }
   };
   std::optional<Banked> banked;
   // The same LANES, SAW, MAW, SB, WB and BL at the default widths, synthesised the same way (the peer for the cost).
   std::optional<YosysCost> default_cost;
   DeviceConfig default_widths() const;
-  // With a target: the chosen depth and why, the timing table's asic-osu018 measurement at that depth (the area of
-  // the table's configuration, when the table has one), the block RAMs the configuration takes on the target, and
+  // With a target: the chosen depth and why, the timing table's asic-osu018 measurement nearest the configuration at
+  // that depth (nearest_row: the area of the table's configuration, when the table has one), the block RAMs the configuration takes on the target, and
   // with cost the configuration's own standard-cell area.
   std::string target;
   std::optional<DepthChoice> depth;

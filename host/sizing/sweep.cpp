@@ -244,6 +244,8 @@ constexpr auto kRowFields = std::make_tuple(
     field("contact_bound_conservative", &SweepRow::contact_bound_conservative, true),
     field("latency", &SweepRow::latency, true), field("max_cycles", &SweepRow::max_cycles),
     field("mean_cycles", &SweepRow::mean_cycles), field("rate", &SweepRow::rate),
+    field("clock_mhz", &SweepRow::clock_mhz, true), field("clock_source", &SweepRow::clock_source, true),
+    field("clock_estimate", &SweepRow::clock_estimate, true),
     field("shell_bits", &SweepRow::shell_bits), field("map_bits", &SweepRow::map_bits),
     field("cost", &SweepRow::cost), field("rank", &SweepRow::rank), field("seconds", &SweepRow::seconds));
 
@@ -308,8 +310,12 @@ SweepRunner::SweepRunner(const SweepSpec& s) : spec_(s) {
   for (const auto& t : base.types) voxels_.push_back(t->voxmap().voxel());
   convex_ = types_convex(file_);
   meshes_ = scene_meshes(file_);
-  clock_ = s.clock > 0 ? s.clock : file_.clock.mhz;
+  if (!(spec_.clock > 0) && file_.clock) spec_.clock = file_.clock->mhz, spec_.clock_source = file_.clock->source;
   frames_ = s.frames > 0 ? s.frames : file_.frames;
+}
+
+DeviceClock SweepRunner::clock_of(const DeviceConfig& cfg) const {
+  return spec_.clock > 0 ? DeviceClock{spec_.clock, spec_.clock_source, false} : clock_for(cfg);
 }
 
 const Scene& SweepRunner::scene_for(const RunConfig& f, double scale, int bits) {
@@ -360,7 +366,9 @@ SweepRow SweepRunner::run(uint64_t index) {
     const LaneMeasure m = measure_frames(scene, f, cfg, frames_);
     r.max_cycles = m.max_cycles;
     r.mean_cycles = m.mean_cycles;
-    r.rate = m.max_cycles ? clock_ * 1e6 / double(m.max_cycles) : 0;
+    const DeviceClock clock = clock_of(cfg);
+    r.clock_mhz = clock.mhz, r.clock_source = clock.source, r.clock_estimate = clock.estimate;
+    r.rate = clock.rate(double(m.max_cycles));
     const ContactMeasure c = measure_contacts(scene, f, cfg, meshes_, frames_, spec_.sample_frames);
     r.contact_measured = c.worst_outside;
     r.contacts_checked = c.contacts;

@@ -33,9 +33,11 @@ struct SweepSpec {
   std::vector<double> accuracies;     // the fixed-point path's accuracy, world units, > 0
   uint64_t frames = 0;                // frames measured per point (0: the scene file's)
   uint64_t sample_frames = 4;         // of those, frames whose contacts are checked against the meshes
-  double clock = 0;                   // MHz (0: the scene file's)
-  // Where clock comes from (DeviceClock::source): "given by --clock", "given by <sweep file>'s \"clock\"", or the
-  // scene file's clock's source (its "clock", or the default clock of docs/hardware.md).
+  // MHz, given by --clock, the sweep file's "clock" or the scene file's; 0: each point at its own configuration's
+  // clock (clock_for: measured for it, or an estimate that says so; SweepRow::clock_*).
+  double clock = 0;
+  // Where clock comes from (DeviceClock::source): "given by --clock", "given by <sweep file>'s \"clock\"" or
+  // "given by <scene file>'s \"clock\""; "" with clock 0.
   std::string clock_source;
   bool cost = false;                  // yosys per point
   std::string rtl_dir;                // the RTL for cost ("" = the package's)
@@ -90,7 +92,12 @@ struct SweepRow {
   int latency = 0;            // cycles from a job's acceptance to its first record (latency_cycles, depth.h)
   uint64_t max_cycles = 0;    // device cycles of the largest frame
   double mean_cycles = 0;
-  double rate = 0;            // frames per second at the sweep's clock for the largest frame
+  double rate = 0;            // frames per second at the row's clock for the largest frame
+  // The row's clock: the sweep's when it gives one, else its configuration's (clock_for). Rows of results files made
+  // before rows had their own clock have none (clock_mhz 0): the sweep's clock is theirs.
+  double clock_mhz = 0;
+  std::string clock_source;
+  bool clock_estimate = false;
   uint64_t shell_bits = 0, map_bits = 0;
   std::optional<YosysCost> cost;
   bool pareto = false;        // set by the table (sweep_table.h)
@@ -114,17 +121,16 @@ class SweepRunner {
   // The point's row. A point no device meets (SizeError) or whose voxels the scene file cannot take
   // (SceneFileError) is a row with an "infeasible: ..." status; anything else throws.
   SweepRow run(uint64_t index);
-  double clock() const { return clock_; }
   uint64_t frames() const { return frames_; }
 
  private:
   const Scene& scene_for(const RunConfig& f, double scale, int bits);
+  DeviceClock clock_of(const DeviceConfig& cfg) const;  // the sweep's clock, else cfg's (clock_for)
   SweepSpec spec_;
   RunConfig file_;
   std::vector<double> voxels_;  // each type's voxel in the scene file's own scene
   std::vector<bool> convex_;
   std::vector<Mesh> meshes_;
-  double clock_ = 0;
   uint64_t frames_ = 0;
   std::map<std::pair<double, int>, std::shared_ptr<const Scene>> scenes_;
 };

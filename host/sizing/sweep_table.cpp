@@ -24,6 +24,17 @@ std::string csv_field(const std::string& s) {
 
 std::string kbit(uint64_t bits) { return g(double(bits) / 1024.0, 5); }
 
+// A row's clock: its own, or the sweep's for a row of a results file made before rows had one.
+DeviceClock row_clock(const SweepTable& t, const SweepRow& r) {
+  if (r.clock_mhz > 0) return DeviceClock{r.clock_mhz, r.clock_source, r.clock_estimate};
+  return DeviceClock{t.clock, t.spec.clock_source, false};
+}
+
+// Where the sweep's rates' clock comes from: the sweep's clock's source, or each point's configuration.
+constexpr const char* kOwnClocks =
+    "each point's own clock (measured for its configuration, or an estimate: docs/hardware.md, \"The default clock\")";
+std::string clock_source(const SweepTable& t) { return t.clock > 0 ? t.spec.clock_source : kOwnClocks; }
+
 }  // namespace
 
 std::vector<bool> pareto_front(const std::vector<std::array<double, 3>>& pts) {
@@ -60,7 +71,7 @@ std::string sweep_csv(const SweepTable& t) {
   std::ostringstream o;
   o << "point,lanes,depth,voxel_scale,distance_bits,accuracy,status,config,error_bound,contact_bound,"
        "contact_measured,contacts_checked,latency_cycles,max_cycles,mean_cycles,rate_fps,shell_bits,map_bits,memory_bits,luts,ffs,dsps,brams,"
-       "pareto,clock_mhz,clock_source\n";
+       "pareto,clock_mhz,clock_source,clock_estimate\n";
   for (const SweepRow& r : t.rows) {
     o << r.point.index << ',' << r.point.lanes << ',' << r.point.depth << ',' << g(r.point.voxel_scale) << ',' << r.point.distance_bits
       << ',' << g(r.point.accuracy) << ',' << csv_field(r.status) << ',' << csv_field(r.config) << ',';
@@ -74,7 +85,11 @@ std::string sweep_csv(const SweepTable& t) {
       o << r.cost->luts << ',' << r.cost->ffs << ',' << r.cost->dsps << ',' << g(r.cost->brams) << ',';
     else
       o << ",,,,";
-    o << (r.pareto ? 1 : 0) << ',' << g(t.clock) << ',' << csv_field(t.spec.clock_source) << '\n';
+    const DeviceClock c = row_clock(t, r);
+    o << (r.pareto ? 1 : 0) << ',';
+    if (r.ok()) o << g(c.mhz) << ',' << csv_field(c.source) << ',' << (c.estimate ? 1 : 0);
+    else o << ",,";
+    o << '\n';
   }
   return o.str();
 }
@@ -87,15 +102,20 @@ std::string sweep_table_json(const SweepTable& t) {
                 {"distance_bits", t.spec.distance_bits}, {"accuracy", t.spec.accuracies}};
   j["frames"] = t.frames;
   j["sample_frames"] = t.spec.sample_frames;
-  j["clock_mhz"] = t.clock;
-  j["clock_from"] = t.spec.clock_source;  // the name before clock_source; the same text
-  j["clock_source"] = t.spec.clock_source;
+  // The sweep's clock when it gives one; null: each row's own (its clock_mhz, clock_source and clock_estimate).
+  j["clock_mhz"] = t.clock > 0 ? nlohmann::ordered_json(t.clock) : nlohmann::ordered_json(nullptr);
+  j["clock_from"] = clock_source(t);  // the name before clock_source; the same text
+  j["clock_source"] = clock_source(t);
   j["pareto_axes"] = {"contact_bound", "max_cycles", "memory_bits"};
   for (const SweepRow& r : t.rows) {
     nlohmann::ordered_json row = nlohmann::ordered_json::parse(sweep_row_line(r));
     row.erase("rank");
     row.erase("seconds");
     if (row["cost"].is_object()) row["cost"].erase("seconds");
+    if (r.ok()) {
+      const DeviceClock c = row_clock(t, r);
+      row["clock_mhz"] = c.mhz, row["clock_source"] = c.source, row["clock_estimate"] = c.estimate;
+    }
     row["memory_bits"] = r.memory_bits();
     row["point_text"] = r.point.text();
     row["pareto"] = r.pareto;
@@ -114,7 +134,10 @@ std::string sweep_text(const SweepTable& t) {
   o << "voxcd sweep: " << s.scene << ": " << s.points() << " points (" << s.lanes.size() << " lanes x "
     << s.depths.size() << " depths x " << s.voxel_scales.size() << " voxel scales x " << s.distance_bits.size() << " distance bits x "
     << s.accuracies.size() << " accuracies), " << t.frames << " frames each (" << s.sample_frames
-    << " checked against the meshes); frames/s at clock " << g(t.clock) << " MHz (" << s.clock_source << ")\n";
+    << " checked against the meshes); frames/s at "
+    << (t.clock > 0 ? "clock " + g(t.clock) + " MHz (" + s.clock_source + ")"
+                    : "each point's own clock (listed with its configuration)")
+    << "\n";
   char line[512];
   std::snprintf(line, sizeof line, "%5s %5s %5s %6s %4s %9s %10s %10s %10s %9s %10s %10s %10s %s\n", "point", "lanes",
                 "depth", "voxel", "dist", "accuracy", "error", "contact", "measured", "cycles", "mean", "frames/s", "kbit",
@@ -141,7 +164,9 @@ std::string sweep_text(const SweepTable& t) {
   }
   o << "configurations:\n";
   for (const SweepRow& r : t.rows)
-    if (r.ok()) o << "  " << r.point.index << ": " << r.config << "\n";
+    if (r.ok())
+      o << "  " << r.point.index << ": " << r.config
+        << (t.clock > 0 ? std::string() : "; clock " + row_clock(t, r).text()) << "\n";
   std::string front;
   for (const SweepRow& r : t.rows)
     if (r.pareto) front += (front.empty() ? "" : ", ") + std::to_string(r.point.index);

@@ -8,8 +8,10 @@ import voxcd
 
 # Host times differ from run to run; everything else is deterministic.
 TIMES = {"seconds", "frame_rate_hz", "stage_seconds"}
-# The source of the clock every rate uses when no clock is given (docs/hardware.md, "The default clock").
-DEFAULT_SOURCE = "OpenSTA, OSU 0.18 um, docs/hardware.md"
+# The source of the clock of the default configuration's rates when no clock is given (docs/hardware.md, "The default
+# clock"), and of a configuration it was not measured for: an estimate from it.
+DEFAULT_SOURCE = "OpenSTA, OSU 0.18 um, measured for LANES 4 DEPTH 0, docs/hardware.md"
+ESTIMATE_SOURCE = "estimate: the clock of LANES 4 DEPTH 0 (OpenSTA, OSU 0.18 um), not measured for"
 
 
 def assert_same_summary(got, want):
@@ -69,6 +71,10 @@ def test_every_rate_names_its_clock(cli_json, scenes):
     assert default["device_frame_rate_hz"] == pytest.approx(mhz * 1e6 / default["device_cycles_per_frame"])
     given = voxcd.simulate(scenes / "small.json", frames=5)
     assert given["clock_mhz"] == 100 and given["clock_source"] == f"given by {scenes / 'small.json'}'s \"clock\""
+    wide = voxcd.simulate(objects=8, frames=2, lanes=32)
+    assert (wide["clock_mhz"], wide["clock_source"], wide["clock_estimate"]) == (
+        mhz, f"{ESTIMATE_SOURCE} LANES 32, docs/hardware.md", True)
+    assert voxcd.simulate(objects=8, frames=2, lanes=32, clock=90)["clock_source"] == "given by the clock argument"
     sized = voxcd.size(scenes / "small.json", frames=5, clock=80)
     assert (sized["clock_mhz"], sized["clock_source"], sized["clock_estimate"]) == (80, "given by the clock argument",
                                                                                      False)

@@ -12,6 +12,7 @@
 #include "voxcd/host/sizing/sweep.h"
 #include "voxcd/host/sizing/sweep_results.h"
 #include "voxcd/host/sizing/sweep_table.h"
+#include "voxcd/ref/vectors.h"
 
 namespace voxcd {
 namespace {
@@ -246,6 +247,62 @@ TEST(SweepResults, RowsRoundTripAndAnotherSweepIsRefused) {
     EXPECT_NE(std::string(e.what()).find("holds the results of another sweep"), std::string::npos) << e.what();
   }
   std::filesystem::remove_all(dir);
+}
+
+// A scene file without "clock" (every scene of tests/scenes gives one), written to a directory of its own.
+std::string scene_without_clock() {
+  const auto dir = std::filesystem::temp_directory_path() / "voxcd_test_sweep_clock";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "cubes.json").string();
+  std::ofstream(path) << R"({"types": [{"shape": "cube", "count": 8, "size": 3, "voxel": 0.25}],
+ "environment": {"side": 12, "seed": 2}, "accuracy": 0.02, "rate": 1000, "frames": 3})";
+  return path;
+}
+
+// Without a clock, each row's rate is at its own configuration's clock, which says whether it was measured for it;
+// a clock given is every row's.
+TEST(SweepRows, EachRowAtItsOwnConfigurationsClockUnlessOneIsGiven) {
+  SweepSpec s;
+  s.scene = scene_without_clock();
+  s.lanes = {1, 4};
+  s.voxel_scales = {1};
+  s.distance_bits = {0};
+  s.accuracies = {0.02};
+  s.frames = 3;
+  s.sample_frames = 1;
+  check_sweep(s, "test");
+  SweepTable t;
+  t.spec = s;
+  t.frames = s.frames;
+  SweepRunner runner(s);
+  for (uint64_t i = 0; i < s.points(); ++i) t.rows.push_back(runner.run(i));
+  finish_table(t);
+  ASSERT_TRUE(t.rows[0].ok() && t.rows[1].ok()) << t.rows[0].status << t.rows[1].status;
+  for (const SweepRow& r : t.rows) {
+    const DeviceClock want = clock_for(parse_config_pairs(r.config, "row"));
+    EXPECT_EQ(r.clock_mhz, want.mhz) << r.config;
+    EXPECT_EQ(r.clock_source, want.source) << r.config;
+    EXPECT_EQ(r.clock_estimate, want.estimate) << r.config;
+    EXPECT_DOUBLE_EQ(r.rate, want.rate(double(r.max_cycles)));
+    EXPECT_EQ(parse_sweep_row(sweep_row_line(r), "x").clock_source, r.clock_source) << "the results file keeps it";
+  }
+  // The sized widths are not the measured configuration's: each row an estimate naming its own lanes.
+  EXPECT_TRUE(t.rows[0].clock_estimate);
+  EXPECT_NE(t.rows[0].clock_source.find("not measured for LANES 1 "), std::string::npos) << t.rows[0].clock_source;
+  EXPECT_EQ(t.rows[1].clock_source.find("LANES 1"), std::string::npos) << t.rows[1].clock_source;
+  const std::string text = sweep_text(t);
+  EXPECT_NE(text.find("frames/s at each point's own clock"), std::string::npos) << text;
+  EXPECT_NE(text.find("; clock 100.4 MHz (estimate: the clock of LANES 4 DEPTH 0"), std::string::npos) << text;
+  const std::string csv = sweep_csv(t);
+  EXPECT_NE(csv.find(",pareto,clock_mhz,clock_source,clock_estimate\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",1\n"), std::string::npos) << csv;
+  // A clock given: every row's, as given.
+  s.clock = 75;
+  s.clock_source = "given by --clock";
+  const SweepRow given = SweepRunner(s).run(0);
+  EXPECT_EQ(given.clock_mhz, 75);
+  EXPECT_EQ(given.clock_source, "given by --clock");
+  EXPECT_FALSE(given.clock_estimate);
 }
 
 // Every feasible row of a small sweep: contacts were checked, and the farthest lies within the predicted bound.

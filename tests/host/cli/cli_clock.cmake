@@ -1,13 +1,16 @@
-# Every frame rate voxcd prints names its clock and where the clock comes from: the default (OpenSTA's clock of the
-# default configuration, docs/hardware.md; DEFAULT_MHZ, host/device/clock.h's kDefaultClockMhz), a scene file's
-# "clock" or --clock; JSON gives clock_mhz, clock_source and clock_estimate next to
-# the rates; frames without device cycles get no device rate; a clock that is no frequency is refused naming
-# --clock.
+# Every frame rate voxcd prints names its clock and where the clock comes from: by default the clock OpenSTA measured
+# for the device's configuration (the default configuration's: DEFAULT_MHZ, host/device/clock.h's kDefaultClockMhz;
+# a deeper pipeline's its own, docs/hardware.md), else an estimate from the nearest configuration measured that says
+# so (clock_estimate true: 32 lanes, a derived configuration, each sweep point's); a scene file's "clock" or --clock
+# is never replaced; JSON gives clock_mhz, clock_source and clock_estimate next to the rates; frames without device
+# cycles get no device rate; a clock that is no frequency is refused naming --clock.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
 
-set(default_source "OpenSTA, OSU 0\\.18 um, docs/hardware\\.md")
+set(default_source "OpenSTA, OSU 0\\.18 um, measured for LANES 4 DEPTH 0, docs/hardware\\.md")
+# An estimate from the default configuration's clock, not measured for what follows.
+set(estimate_source "estimate: the clock of LANES 4 DEPTH 0 \\(OpenSTA, OSU 0\\.18 um\\), not measured for")
 string(REPLACE "." "\\." default_mhz "${DEFAULT_MHZ}")
 function(no_unexplained_200 text)
   if(text MATCHES "200 MHz")
@@ -57,6 +60,25 @@ json_mhz("${out}" 250)
 json_is("${out}" clock_source "given by --clock")
 json_is("${out}" clock_estimate OFF)
 
+# simulate on a device the default clock was not measured for: an estimate, and what from; a measured depth: its own.
+run(0 out ${VOXCD} simulate --objects 8 --frames 2 --lanes 32 --json)
+json_mhz("${out}" ${default_mhz})
+json_is("${out}" clock_estimate ON)
+json_is("${out}" clock_source
+        "estimate: the clock of LANES 4 DEPTH 0 (OpenSTA, OSU 0.18 um), not measured for LANES 32, docs/hardware.md")
+run(0 out ${VOXCD} simulate --objects 8 --frames 2 --json)
+json_is("${out}" clock_estimate OFF)
+run(0 out ${VOXCD} simulate --frames 10 --lanes 32 --no-progress)
+expect("${out}" "device frame rate [0-9]+ Hz at ${default_mhz} MHz \\(${estimate_source} LANES 32, docs/hardware\\.md\\)")
+run(0 out ${VOXCD} simulate --frames 10 --config "LANES 4 DEPTH 3" --no-progress)
+expect("${out}" "device frame rate [0-9]+ Hz at [0-9.]+ MHz \\(OpenSTA, OSU 0\\.18 um, measured for LANES 4 DEPTH 3, docs/hardware\\.md\\)")
+if(out MATCHES " at ${default_mhz} MHz")
+  message(FATAL_ERROR "depth 3 at depth 0's clock:\n${out}")
+endif()
+run(0 out ${VOXCD} simulate --frames 10 --lanes 32 --clock 150 --json)
+json_is("${out}" clock_source "given by --clock")
+json_is("${out}" clock_estimate OFF)
+
 # Frames without device cycles (two objects far apart): no rate, and no rate of frames that took no time.
 run(0 out ${VOXCD} simulate --objects 2 --density 0.00001 --frames 3 --no-progress)
 expect("${out}" "device frame rate none: the frames needed no device cycles")
@@ -71,33 +93,49 @@ if(NOT type STREQUAL "NULL")
   message(FATAL_ERROR "device_frame_rate_hz of frames without device cycles is ${type}, expected null:\n${out}")
 endif()
 
-# size: the request's rate and the modelled rate, in text and JSON.
+# size: the request's rate and the modelled rate, in text and JSON, at the derived configuration's clock (its widths
+# are not the measured configuration's: an estimate).
 run(0 out ${VOXCD} size ${scene})
-expect("${out}" "1000 frames/s at ${default_mhz} MHz \\(${default_source}\\)\n")
-expect("${out}" "frame rate      [0-9.e+]+ frames/s with LANES [0-9]+ \\(largest frame [0-9]+ cycles, mean [0-9.e+]+\\) at ${default_mhz} MHz \\(${default_source}\\)")
+expect("${out}" "1000 frames/s at ${default_mhz} MHz \\(${estimate_source} LANES [0-9]+ [^\n]*, docs/hardware\\.md\\)\n")
+expect("${out}" "frame rate      [0-9.e+]+ frames/s with LANES [0-9]+ \\(largest frame [0-9]+ cycles, mean [0-9.e+]+\\) at ${default_mhz} MHz \\(${estimate_source} ")
 no_unexplained_200("${out}")
 run(0 out ${VOXCD} size ${scene} --clock 50)
 expect("${out}" "frames/s with LANES [0-9]+ [^\n]* at 50 MHz \\(given by --clock\\)")
 run(0 out ${VOXCD} size ${scene} --json)
 json_mhz("${out}" ${default_mhz})
-json_is("${out}" clock_estimate OFF)
+json_is("${out}" clock_estimate ON)
 string(JSON source GET "${out}" clock_source)
-expect("${source}" "^${default_source}$")
+string(JSON config GET "${out}" config_text)
+expect("${source}" "^${estimate_source} LANES [0-9]+ ")
+if(config MATCHES "LANES 4 " AND NOT source MATCHES "LANES 4")
+  message(FATAL_ERROR "the clock of ${config}: ${source}")
+endif()
 run(0 out ${VOXCD} size ${SCENES}/small.json --frames 5 --json)
 json_mhz("${out}" 100)
 string(JSON source GET "${out}" clock_source)
 expect("${source}" "^given by [^\n]*small\\.json's \"clock\"$")
 
-# sweep: the table's first line, the JSON and the CSV's last columns.
+# sweep: the table's first line, each configuration's clock, the JSON and the CSV's last columns; each point at its
+# own configuration's clock.
 set(sweep_args --lanes 1 --frames 3 --sample-frames 1)
 run(0 out ${VOXCD} sweep ${scene} ${sweep_args} --csv ${WORK}/sweep.csv)
-expect("${out}" "frames/s at clock ${default_mhz} MHz \\(${default_source}\\)")
+expect("${out}" "frames/s at each point's own clock")
+expect("${out}" "\n  0: PW [^\n]*LANES 1 [^\n]*; clock ${default_mhz} MHz \\(${estimate_source} LANES 1 ")
 no_unexplained_200("${out}")
 file(STRINGS ${WORK}/sweep.csv rows)
 list(GET rows 0 header)
 list(GET rows 1 row)
-expect("${header}" ",pareto,clock_mhz,clock_source$")
-expect("${row}" ",${default_mhz},\"?${default_source}\"?$")
+expect("${header}" ",pareto,clock_mhz,clock_source,clock_estimate$")
+expect("${row}" ",${default_mhz},\"${estimate_source} LANES 1 [^\"]*\",1$")
+run(0 out ${VOXCD} sweep ${scene} --lanes 1,4 --frames 3 --sample-frames 1 --json)
+string(JSON top TYPE "${out}" clock_mhz)
+string(JSON estimate1 GET "${out}" rows 0 clock_estimate)
+string(JSON source1 GET "${out}" rows 0 clock_source)
+string(JSON source4 GET "${out}" rows 1 clock_source)
+if(NOT top STREQUAL "NULL" OR NOT estimate1 STREQUAL "ON" OR NOT source1 MATCHES "not measured for LANES 1 "
+   OR source4 MATCHES "LANES 1")
+  message(FATAL_ERROR "each row its own clock: ${top}, ${estimate1}, '${source1}', '${source4}':\n${out}")
+endif()
 run(0 out ${VOXCD} sweep ${scene} ${sweep_args} --json --clock 75)
 json_mhz("${out}" 75)
 json_is("${out}" clock_source "given by --clock")

@@ -1,5 +1,5 @@
-# voxcd size --target chooses the pipeline depth for the clock from the timing table and says why, with the latency,
-# the area and the block RAMs; a clock no depth meets is refused naming the fastest depth (exit 3); a timing table
+# voxcd size --target chooses the pipeline depth for the clock from the timing table and says why (from the rows of
+# the configuration's lanes, or those that stand in for them, saying so), with the latency, the area and the block RAMs; a clock no depth meets is refused naming the fastest depth (exit 3); a timing table
 # that cannot be used is refused naming the file, the line and the column; voxcd sweep takes the depth as an axis.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
@@ -9,7 +9,7 @@ set(fast --frames 3)
 
 # A clock the iCE40 HX8K's depth 0 meets: depth 0, and why.
 run(0 out ${VOXCD} size ${scene} ${fast} --clock 20 --target ice40-hx8k)
-expect("${out}" "\ndepth           0 on ice40-hx8k for 20 MHz \\(depth 0: [0-9.]+ MHz >= 20; nextpnr-ice40, median of 3 seeds, host/sizing/timing\\.tsv \\(built in\\)\\)\n")
+expect("${out}" "\ndepth           0 on ice40-hx8k for 20 MHz \\(depth 0: [0-9.]+ MHz >= 20; nextpnr-ice40, median of 3 seeds, host/device/timing\\.tsv \\(built in\\)\\)\n")
 expect("${out}" "\nlatency         8 cycles \\(400 ns\\) from a job's acceptance to its first record on the pins, at depth 0\n")
 expect("${out}" "\narea            [0-9.e+-]+ mm\\^2 of standard cells at 0\\.18 um at depth 0 for the timing table's configuration \\(PW 24 [^\n]*LANES 4[^\n]*; RAMs not included\\); --cost synthesises this one\n")
 expect("${out}" "\nblock RAMs      [0-9]+ SB_RAM40_4K \\(4 kbit\\) on ice40-hx8k \\([0-9]+ x shell bank [0-9]+ x [0-9]+ bit, [0-9]+ x voxmap copy [0-9]+ x 64 bit\\); (the part has|more than the part's) 32\n")
@@ -23,6 +23,12 @@ if(NOT depth EQUAL 0 OR NOT target STREQUAL "xilinx-7" OR NOT estimate STREQUAL 
    OR NOT latency EQUAL 8)
   message(FATAL_ERROR "depth ${depth}, target ${target}, estimate ${estimate}, unit ${unit}, latency ${latency}:\n${out}")
 endif()
+# LANES 1 on the ASIC: the LANES 4 rows stand in, and the choice says so.
+run(0 out ${VOXCD} size ${scene} ${fast} --clock 20 --target asic-osu018)
+expect("${out}" "\ndepth           0 on asic-osu018 for 20 MHz \\(depth 0: [0-9.]+ MHz >= 20; the clocks of LANES 4, none measured at LANES 1; OpenSTA, OSU 0\\.18 um, host/device/timing\\.tsv \\(built in\\)\\)\n")
+run(0 out ${VOXCD} size ${scene} ${fast} --clock 20 --target asic-osu018 --json)
+string(JSON stand_in GET "${out}" depth_choice stand_in)
+expect("${stand_in}" "^the clocks of LANES 4, none measured at LANES 1$")
 # Without a target: the default depth's latency, no choice.
 run(0 out ${VOXCD} size ${scene} ${fast} --json)
 string(JSON type TYPE "${out}" depth_choice)
@@ -32,13 +38,13 @@ endif()
 
 # A clock no depth meets: exit 3, the fastest depth named.
 run(3 out ${VOXCD} size ${scene} ${fast} --clock 100000 --target asic-osu018)
-expect("${out}" "cannot be met: clock: no depth meets 100000 MHz on asic-osu018 \\(host/sizing/timing\\.tsv \\(built in\\)\\): the fastest is depth [0-9]+ at [0-9.]+ MHz \\(OpenSTA, OSU 0\\.18 um\\); 100000 MHz is [0-9.e+]+ times faster")
+expect("${out}" "cannot be met: clock: no depth meets 100000 MHz on asic-osu018 \\(host/device/timing\\.tsv \\(built in\\)\\): the fastest is depth [0-9]+ at [0-9.]+ MHz \\(OpenSTA, OSU 0\\.18 um; the clocks of LANES 4, none measured at LANES 1\\); 100000 MHz is [0-9.e+]+ times faster")
 
 # A table of one's own: chosen from, and named.
 set(header "target\tdepth\tmhz\tsource\tlanes\tarea_mm2\tluts\tffs\tdsps\tbrams\tlut_levels\tconfig\n")
 file(WRITE ${WORK}/mine.tsv "${header}asic-osu018\t0\t30\tOpenSTA, my run\t4\t2.5\t-\t-\t-\t8\t-\tPW 24\n")
 run(0 out ${VOXCD} size ${scene} ${fast} --clock 25 --target asic-osu018 --timing-table ${WORK}/mine.tsv)
-expect("${out}" "depth           0 on asic-osu018 for 25 MHz \\(depth 0: 30 MHz >= 25; OpenSTA, my run, [^\n]*mine\\.tsv\\)")
+expect("${out}" "depth           0 on asic-osu018 for 25 MHz \\(depth 0: 30 MHz >= 25; the clocks of LANES 4, none measured at LANES 1; OpenSTA, my run, [^\n]*mine\\.tsv\\)")
 expect("${out}" "area            2\\.5 mm\\^2 of standard cells")
 # Tables that cannot be used, and options that do not go together.
 file(WRITE ${WORK}/bad.tsv "${header}asic-osu018\t0\tfast\tOpenSTA\t4\t-\t-\t-\t-\t-\t-\tPW 24\n")

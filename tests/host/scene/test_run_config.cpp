@@ -214,8 +214,9 @@ TEST(RunConfig, ASceneFileRunsAndItsSummaryReportsItsConfiguration) {
   EXPECT_EQ(s.device.SB, 8);
   EXPECT_EQ(s.config.band, 3.0);
   EXPECT_EQ(s.config.margin, 0.25);
-  EXPECT_EQ(s.config.clock.mhz, 120.0);
-  EXPECT_EQ(s.config.clock.source, "given by round.json's \"clock\"");
+  ASSERT_TRUE(s.config.clock.has_value());
+  EXPECT_EQ(s.config.clock->mhz, 120.0);
+  EXPECT_EQ(s.clock.text(), "120 MHz (given by round.json's \"clock\")") << "a given clock is never replaced";
   EXPECT_EQ(s.shape(), "cube");
   EXPECT_EQ(s.types.size(), 1u);
   // What a recording says of the run comes from the same value.
@@ -229,6 +230,7 @@ TEST(RunConfig, ASceneFileRunsAndItsSummaryReportsItsConfiguration) {
   EXPECT_EQ(j["distance_bits"], 8);
   EXPECT_EQ(j["margin"], 0.25);
   EXPECT_EQ(j["clock_mhz"], 120.0);
+  EXPECT_EQ(j["clock_estimate"], false);
   // The same configuration runs the same: equal state hashes.
   EXPECT_EQ(simulate(c).state_hash, s.state_hash);
 }

@@ -1,7 +1,8 @@
-// The timing table (host/sizing/timing_table.h) and the depth chosen from it (depth.h): the built-in table is the
-// source tree's host/sizing/timing.tsv and names every target; a table that cannot be used is refused naming the
-// file, the line and the column; the shallowest depth that meets the clock is chosen and the choice says why; a clock
-// no depth meets names the fastest depth. Also the block RAMs a configuration takes per target (block_rams.h), the
+// The timing table (host/device/timing_table.h) and the depth chosen from it (depth.h): the built-in table is the
+// source tree's host/device/timing.tsv and names every target; a target may have rows of several configurations; a
+// table that cannot be used is refused naming the file, the line and the column; the shallowest depth that meets the
+// clock is chosen among the rows of the device's lanes (or those that stand in for them, saying so) and the choice
+// says why; a clock no depth meets names the fastest depth. Also the block RAMs a configuration takes per target (block_rams.h), the
 // latency a depth costs, and the standard-cell area at 0.18 um (asic_cost.h).
 #include <gtest/gtest.h>
 
@@ -16,7 +17,7 @@
 #include "voxcd/host/sizing/detail/yosys_run.h"
 #include "voxcd/host/sizing/depth.h"
 #include "voxcd/host/sizing/size.h"
-#include "voxcd/host/sizing/timing_table.h"
+#include "voxcd/host/device/timing_table.h"
 
 namespace voxcd {
 namespace {
@@ -49,16 +50,19 @@ std::string table_error(const std::string& text) {
 
 TEST(TimingTable, TheBuiltInTableIsTheSourceTreesAndNamesEveryTarget) {
   const TimingTable& t = builtin_timing_table();
-  std::ifstream in(std::string(VOXCD_SOURCE_DIR) + "/host/sizing/timing.tsv");
-  ASSERT_TRUE(in) << "host/sizing/timing.tsv is missing";
+  std::ifstream in(std::string(VOXCD_SOURCE_DIR) + "/host/device/timing.tsv");
+  ASSERT_TRUE(in) << "host/device/timing.tsv is missing";
   std::stringstream s;
   s << in.rdbuf();
-  const TimingTable source = parse_timing_table(s.str(), "host/sizing/timing.tsv");
+  const TimingTable source = parse_timing_table(s.str(), "host/device/timing.tsv");
   ASSERT_EQ(t.rows.size(), source.rows.size()) << "the build's table is not the source tree's: reconfigure";
   for (size_t i = 0; i < t.rows.size(); ++i) {
     EXPECT_EQ(t.rows[i].target, source.rows[i].target);
     EXPECT_EQ(t.rows[i].depth, source.rows[i].depth);
     EXPECT_EQ(t.rows[i].mhz, source.rows[i].mhz);
+    EXPECT_EQ(t.rows[i].config, source.rows[i].config);
+    EXPECT_EQ(t.rows[i].device.LANES, t.rows[i].lanes) << "the lanes column is the config's LANES";
+    EXPECT_EQ(t.rows[i].device.depth, t.rows[i].depth);
   }
   for (const std::string& target : timing_targets()) {
     const auto rows = t.target_rows(target);
@@ -85,6 +89,9 @@ TEST(TimingTable, ParsesRowsFiguresAndDashes) {
   EXPECT_FALSE(asic[1].luts.has_value());
   EXPECT_FALSE(asic[1].lut_levels.has_value());
   EXPECT_EQ(asic[1].config, "PW 24 PF 8");
+  EXPECT_EQ(asic[1].device.PW, 24);
+  EXPECT_EQ(asic[1].device.LANES, 4) << "the defaults for the names the config leaves out";
+  EXPECT_EQ(asic[1].device.depth, 1) << "the row's depth";
   EXPECT_FALSE(t.target_rows("ice40-hx8k").front().area_mm2.has_value());
   EXPECT_TRUE(t.target_rows("xilinx-7").empty());
 }
@@ -111,6 +118,15 @@ TEST(TimingTable, ATableThatCannotBeUsedIsRefusedNamingTheLineAndColumn) {
       {kHeader + ok + ok, "t.tsv:3: asic-osu018 at depth 0 is given twice"},
       {kHeader + "asic-osu018\t0\t80\t\t4\t-\t-\t-\t-\t-\t-\tc\n", "t.tsv:2: source: '' is empty"},
       {kHeader + "asic-osu018\t0\t80\tx\t0\t-\t-\t-\t-\t-\t-\tc\n", "t.tsv:2: lanes: '0' is not a whole number from 1"},
+      {kHeader + "asic-osu018\t0\t80\tx\t4\t-\t-\t-\t-\t-\t-\tc\n", "t.tsv:2: config: 'c' is not a configuration: "},
+      {kHeader + "asic-osu018\t0\t80\tx\t4\t-\t-\t-\t-\t-\t-\tLANES 0\n",
+       "t.tsv:2: config: 'LANES 0' is not a configuration: invalid device configuration: LANES = 0"},
+      {kHeader + "asic-osu018\t0\t80\tx\t4\t-\t-\t-\t-\t-\t-\tLANES 16\n",
+       "t.tsv:2: lanes: '4' is not the config's LANES 16 (LANES 16)"},
+      {kHeader + "asic-osu018\t0\t80\tx\t4\t-\t-\t-\t-\t-\t-\tPW 24 DEPTH 2\n",
+       "t.tsv:2: config: 'PW 24 DEPTH 2' names DEPTH 2, but the row is of depth 0"},
+      {kHeader + ok + "asic-osu018\t0\t90\tx\t4\t-\t-\t-\t-\t-\t-\tPF 8 PW 24 LANES 4\n",
+       "t.tsv:3: asic-osu018 at depth 0 is given twice for one configuration (PF 8 PW 24 LANES 4)"},
   };
   for (const Case& c : cases) {
     const std::string got = table_error(c.text);
@@ -118,6 +134,28 @@ TEST(TimingTable, ATableThatCannotBeUsedIsRefusedNamingTheLineAndColumn) {
   }
   EXPECT_EQ(table_error(kHeader + ok), "") << "a good table parses";
   EXPECT_EQ(table_error("\r\n" + kHeader.substr(0, kHeader.size() - 1) + "\r\n" + ok), "") << "CRLF line ends";
+}
+
+TEST(TimingTable, ATargetMayHaveRowsOfSeveralConfigurations) {
+  const TimingTable t = parse_timing_table(
+      kHeader + row("asic-osu018", 0, "80") + "asic-osu018\t0\t70\tOpenSTA\t16\t2\t-\t-\t-\t8\t-\tLANES 16 BANKS 4\n" +
+          "asic-osu018\t2\t120\tOpenSTA\t4\t2\t-\t-\t-\t8\t-\tPW 24 PF 8 DEPTH 2\n",
+      "t.tsv");
+  const auto asic = t.target_rows("asic-osu018");
+  ASSERT_EQ(asic.size(), 3u);
+  EXPECT_EQ(asic[0].mhz, 80) << "table order within a depth";
+  EXPECT_EQ(asic[1].device.BANKS, 4);
+  EXPECT_EQ(asic[1].lanes, 16);
+  EXPECT_EQ(asic[2].device.depth, 2) << "a config may name the row's own depth";
+  EXPECT_TRUE(same_logic(asic[0].device, DeviceConfig{}));
+  DeviceConfig other_memories;
+  other_memories.SAW = 10, other_memories.MAW = 20;
+  EXPECT_TRUE(same_logic(asic[0].device, other_memories)) << "SAW and MAW change no logic the flows measure";
+  EXPECT_FALSE(same_logic(asic[1].device, DeviceConfig{}));
+  EXPECT_EQ(logic_text(asic[1].device), "LANES 16 DEPTH 0 BANKS 4");
+  EXPECT_EQ(logic_difference(DeviceConfig{}, asic[1].device), "LANES 4 BANKS 0");
+  EXPECT_EQ(nearest_row(t, "asic-osu018", asic[1].device)->mhz, 70);
+  EXPECT_EQ(nearest_row(t, "xilinx-7", DeviceConfig{}), nullptr);
 }
 
 TEST(TimingTable, AFileThatCannotBeReadIsNamed) {
@@ -173,7 +211,65 @@ TEST(DepthChoice, TheDeviceOffersDepthZeroAndTheBuiltInTableChoosesFromIt) {
   const TimingRow zero = builtin_timing_table().target_rows("asic-osu018").front();
   const DepthChoice c = choose_depth(builtin_timing_table(), "asic-osu018", zero.mhz / 2);
   EXPECT_EQ(c.depth(), 0);
-  EXPECT_EQ(c.table, "host/sizing/timing.tsv (built in)");
+  EXPECT_EQ(c.table, "host/device/timing.tsv (built in)");
+  EXPECT_EQ(c.stand_in, "") << "the built-in asic rows are of the default configuration's LANES 4";
+}
+
+// The rows of LANES 4 (80, 201, 263 MHz at depths 0, 1, 2) and of LANES 16 BANKS 4 (60 and 150 MHz at depths 0, 2).
+TimingTable two_configurations() {
+  std::string text = kHeader + row("asic-osu018", 0, "80") + row("asic-osu018", 1, "201") + row("asic-osu018", 2, "263");
+  for (const auto& [depth, mhz] : {std::pair{0, "60"}, {2, "150"}})
+    text += "asic-osu018\t" + std::to_string(depth) + "\t" + mhz + "\tOpenSTA\t16\t2\t-\t-\t-\t8\t-\tLANES 16 BANKS 4\n";
+  return parse_timing_table(text, "t.tsv");
+}
+
+DeviceConfig lanes_banks(int lanes, int banks) {
+  DeviceConfig c;
+  c.LANES = lanes;
+  c.BANKS = banks;
+  return c;
+}
+
+TEST(DepthChoice, TheRowsOfTheDevicesLanesAndBanks) {
+  const TimingTable t = two_configurations();
+  const DepthChoice banked = choose_depth(t, "asic-osu018", 100, lanes_banks(16, 4));
+  EXPECT_EQ(banked.depth(), 2);
+  EXPECT_EQ(banked.why(), "depth 2: 150 MHz >= 100; depth 0: 60 MHz < 100") << "its own rows: no depth 1";
+  EXPECT_EQ(banked.stand_in, "");
+  EXPECT_EQ(banked.row.config, "LANES 16 BANKS 4");
+  const DepthChoice lanes4 = choose_depth(t, "asic-osu018", 100, lanes_banks(4, 0));
+  EXPECT_EQ(lanes4.depth(), 1);
+  EXPECT_EQ(lanes4.stand_in, "");
+  try {
+    choose_depth(t, "asic-osu018", 200, lanes_banks(16, 4));
+    FAIL() << "200 MHz was met by LANES 16 BANKS 4";
+  } catch (const SizeError& e) {
+    EXPECT_NE(std::string(e.what()).find("the fastest is depth 2 at 150 MHz (OpenSTA); "), std::string::npos) << e.what();
+  }
+}
+
+TEST(DepthChoice, LanesNotMeasuredTakeTheLanes4RowsAndSaySo) {
+  const TimingTable t = two_configurations();
+  const DepthChoice c = choose_depth(t, "asic-osu018", 100, lanes_banks(32, 0));
+  EXPECT_EQ(c.depth(), 1);
+  EXPECT_EQ(c.stand_in, "the clocks of LANES 4, none measured at LANES 32");
+  EXPECT_EQ(c.why(), "depth 1: 201 MHz >= 100; depth 0: 80 MHz < 100; the clocks of LANES 4, none measured at LANES 32");
+  EXPECT_EQ(choose_depth(t, "asic-osu018", 100, lanes_banks(16, 0)).stand_in,
+            "the clocks of LANES 4, none measured at LANES 16") << "LANES 16 was measured with banks only";
+  try {
+    choose_depth(t, "asic-osu018", 300, lanes_banks(32, 0));
+    FAIL() << "300 MHz was met";
+  } catch (const SizeError& e) {
+    EXPECT_NE(std::string(e.what()).find("(OpenSTA, OSU 0.18 um; the clocks of LANES 4, none measured at LANES 32)"),
+              std::string::npos) << e.what();
+  }
+  // A target measured at another lane count only (the iCE40's LANES 1): its rows, said to stand in.
+  const TimingTable ice = parse_timing_table(
+      kHeader + "ice40-hx8k\t0\t60\tnextpnr\t1\t-\t1\t-\t0\t4\t-\tLANES 1\n", "i.tsv");
+  const DepthChoice i = choose_depth(ice, "ice40-hx8k", 20, DeviceConfig{});
+  EXPECT_EQ(i.depth(), 0);
+  EXPECT_EQ(i.stand_in, "the clocks of LANES 1, none measured at LANES 4");
+  EXPECT_EQ(choose_depth(ice, "ice40-hx8k", 20, lanes_banks(1, 0)).stand_in, "");
 }
 
 TEST(DepthChoice, LatencyIsTheQueueTheSlotsAndTheOutputRegister) {
