@@ -118,7 +118,7 @@ std::vector<std::pair<const char*, int>> logic_params(const DeviceConfig& c) {
   return {{"LANES", c.LANES}, {"DEPTH", c.depth}, {"PW", c.PW},     {"PF", c.PF},     {"MW", c.MW},
           {"MF", c.MF},       {"TW", c.TW},       {"DW", c.DW},     {"MEMW", c.MEMW}, {"TAGW", c.TAGW},
           {"SB", c.SB},       {"WB", c.distance() ? c.WB : DeviceConfig{}.WB},          {"BANKS", c.BANKS},
-          {"BL", c.BL}};
+          {"BL", c.BL},       {"TX", c.TX}};
 }
 
 // "NAME VALUE" of each of cfg's parameters that differs from `from`'s, but those named in `skip`.

@@ -164,6 +164,7 @@ TEST(DeviceClock, EveryParameterThatChangesLogicMakesAnEstimate) {
       {[](DeviceConfig& c) { c.SB = 8, c.WB = 6; }, "SB 8 WB 6"},
       {[](DeviceConfig& c) { c.BANKS = 4; }, "BANKS 4"},
       {[](DeviceConfig& c) { c.BL = 3; }, "BL 3"},
+      {[](DeviceConfig& c) { c.BL = 3, c.TX = 1; }, "BL 3 TX 1"},
       {[](DeviceConfig& c) { c.MW = 20; }, "MW 20"},
       {[](DeviceConfig& c) { c.PW = 16, c.PF = 4; }, "PW 16 PF 4"},
       {[](DeviceConfig& c) { c.TAGW = 8; }, "TAGW 8"},
