@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "voxcd/host/detail/text_file.h"
+#include "voxcd/host/detail/tsv.h"
 #include "voxcd/ref/vectors.h"
 
 namespace voxcd {
@@ -21,30 +22,9 @@ namespace {
 const std::vector<std::string> kColumns = {"target", "depth", "mhz",   "source", "lanes",      "area_mm2",
                                            "luts",   "ffs",   "dsps",  "brams",  "lut_levels", "config"};
 
-std::vector<std::string> split_tabs(const std::string& line) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  for (;;) {
-    const size_t tab = line.find('\t', start);
-    out.push_back(line.substr(start, tab == std::string::npos ? std::string::npos : tab - start));
-    if (tab == std::string::npos) return out;
-    start = tab + 1;
-  }
-}
-
-std::string joined(const std::vector<std::string>& v) {
-  std::string s;
-  for (const std::string& x : v) s += (s.empty() ? "" : " ") + x;
-  return s;
-}
-
-// A number that parses whole; false otherwise.
-bool to_number(const std::string& text, double* v) {
-  if (text.empty()) return false;
-  std::istringstream in(text);
-  in >> *v;
-  return in && in.peek() == std::char_traits<char>::eof() && std::isfinite(*v);
-}
+using detail::joined;
+using detail::split_tabs;
+using detail::to_number;
 
 struct RowReader {
   const std::string& where;
@@ -204,10 +184,14 @@ bool same_logic(const DeviceConfig& measured, const DeviceConfig& cfg) {
   return logic_params(measured) == logic_params(cfg);
 }
 
+bool nearer(const DeviceConfig& a, const DeviceConfig& b, const DeviceConfig& cfg) {
+  return remoteness(a, cfg) < remoteness(b, cfg);
+}
+
 const TimingRow* nearest_row(const TimingTable& table, const std::string& target, const DeviceConfig& cfg) {
   const TimingRow* best = nullptr;
   for (const TimingRow& r : table.rows)
-    if (r.target == target && (!best || remoteness(r.device, cfg) < remoteness(best->device, cfg))) best = &r;
+    if (r.target == target && (!best || nearer(r.device, best->device, cfg))) best = &r;
   return best;
 }
 

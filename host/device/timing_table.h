@@ -69,6 +69,9 @@ bool same_logic(const DeviceConfig& measured, const DeviceConfig& cfg);
 // then at cfg's LANES, then at its BANKS, then at its other parameters, then the default configuration's; table order
 // on a tie. nullptr when the table has no row of the target.
 const TimingRow* nearest_row(const TimingTable& table, const std::string& target, const DeviceConfig& cfg);
+// Whether a configuration measured as `a` is nearer cfg than one measured as `b`, as nearest_row weighs them (the
+// energy table's rows are chosen the same way, sizing/energy_table.h).
+bool nearer(const DeviceConfig& a, const DeviceConfig& b, const DeviceConfig& cfg);
 
 // A configuration's logic in brief, as the clocks' sources name it: "LANES 4 DEPTH 0", then each other parameter in
 // which cfg differs from the default configuration, in DeviceConfig::to_string's order, SAW and MAW never ("LANES 32

@@ -8,6 +8,7 @@
 #   P/bin/voxcd            the tool; P/libexec/voxcd/voxcd_sysc_server, the sysc backends' platform
 #   P/share/voxcd/rtl/     the RTL, its file list voxcd.f and the DPI package voxcd_dpi_pkg.sv
 #   P/share/voxcd/timing.tsv  the timing table of bench/timing.sh (the library has it compiled in)
+#   P/share/voxcd/energy.tsv  the energy table of bench/energy.sh (the library has it compiled in)
 #   P/lib/python3/dist-packages/  the Python module (import voxcd)
 # Included last by the top-level CMakeLists.txt, when every target exists.
 include(CMakePackageConfigHelpers)
@@ -104,3 +105,5 @@ endif()
 install(FILES ${PROJECT_SOURCE_DIR}/rtl/voxcd.f ${VOXCD_RTL_SOURCES} DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd/rtl)
 # The timing table `voxcd size --target` chooses a depth from (compiled in; here for reading and for --timing-table).
 install(FILES ${PROJECT_SOURCE_DIR}/host/device/timing.tsv DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd)
+# The energy per lookup `voxcd size` reports a frame's energy from (compiled in; here for reading).
+install(FILES ${PROJECT_SOURCE_DIR}/host/sizing/energy.tsv DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd)

@@ -8,6 +8,7 @@
 
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/detail/energy_report.h"
 #include "voxcd/host/sizing/detail/storage_report.h"
 #include "voxcd/host/sizing/detail/yosys_run.h"
 #include "voxcd/ref/banks.h"
@@ -526,6 +527,7 @@ SizeReport derive_size(const RunConfig& f, const Scene& input_scene, const SizeR
   const Attempt dense = attempt_layout(head, sized, ObjectStorage::kDense, false, req);
   const Attempt sparse = attempt_layout(head, sized, plan.sparse, true, req);
   SizeReport r = choose_storage(plan, dense, sparse);
+  r.energy = lookup_energy(r.config, req.energy ? *req.energy : builtin_energy_table());
   measure_banked(r, r.scene, sized);
   add_costs(r, req);
   return r;
@@ -691,6 +693,7 @@ std::string size_text(const SizeReport& r) {
   scene_lines(o, r);
   width_lines(o, r);
   frame_lines(o, r);
+  detail::energy_lines(o, r);
   detail::storage_lines(o, r);
   if (r.depth) o << depth_lines(r);
   cost_lines(o, r);
@@ -786,6 +789,7 @@ void add_frames_json(json& j, const SizeReport& r) {
   j["target"] = r.target.empty() ? json(nullptr) : json(r.target);
   j["depth_choice"] = r.depth ? depth_json(r) : json(nullptr);
   j["words_used"] = {{"shell", r.shell_words}, {"voxmap", r.map_words}};
+  detail::add_energy_json(j, r);
   j["storage"] = detail::storage_json(r);
 }
 

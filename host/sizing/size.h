@@ -19,6 +19,7 @@
 #include "voxcd/host/sizing/block_rams.h"
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/depth.h"
+#include "voxcd/host/sizing/energy_table.h"
 #include "voxcd/host/sizing/storage_layout.h"
 #include "voxcd/host/device/timing_table.h"
 #include "voxcd/ref/config.h"
@@ -125,6 +126,7 @@ struct SizeRequest : SizeOptions {
   // "": the default depth, no choice. With cost, the configuration's standard-cell area at 0.18 um is synthesised too (asic_cost).
   std::string target;
   std::optional<TimingTable> timing;  // the table to choose from; unset: builtin_timing_table()
+  std::optional<EnergyTable> energy;  // the energy per lookup (SizeReport::energy); unset: builtin_energy_table()
 };
 
 // The scene's types in one storage, sized whole (docs/size.md, "Sparse or dense"): stored dense on a dense device, or
@@ -205,6 +207,14 @@ struct SizeReport {
   std::optional<TimingRow> asic_row;
   std::optional<BlockRams> rams;
   std::optional<AsicCost> asic;
+  // The energy of a frame and the power at the requested rate (docs/size.md, "Energy and power"): the mean frame's
+  // lookups (chosen().lookups, the average power's) x the energy per lookup of config (lookup_energy: measured for
+  // the same logic on the simulate scene's stimulus, else an estimate from the nearest row that says so).
+  LookupEnergy energy;
+  double frame_energy_j() const { return chosen().lookups * energy.pj * 1e-12; }
+  double frame_energy_7nm_j() const { return chosen().lookups * energy.pj_7nm * 1e-12; }  // a projection
+  double power_w() const { return frame_energy_j() * rate; }                               // at the requested rate
+  double power_7nm_w() const { return frame_energy_7nm_j() * rate; }
   // Cycles from a job's acceptance to its first record on the pins (latency_cycles) and that time at the clock, ns.
   int latency() const { return latency_cycles(config); }
   double latency_ns() const { return latency() * 1e3 / clock.mhz; }
