@@ -57,16 +57,20 @@ def timing_row(rows, device, lanes, depth):
     return None
 
 
-def energy_cell(rows, lanes, depth):
-    """pJ per lookup from the energy table's row for (lanes, depth): the first column whose name has 'pj' in it."""
-    if not rows:
-        return "not measured"
+def energy_cell(rows, device, lanes, depth):
+    """pJ per lookup at 0.18 um from host/sizing/energy.tsv: the built-in scene's ('simulate') asic-osu018 row of this
+    configuration (its widths and lanes, memories aside, as the timing row) and depth, with the tori's and the room's
+    beside it in brackets; "not measured" where the table has no such row."""
+    by_scene = {}
     for r in rows:
-        if r.get("lanes") == str(lanes) and r.get("depth") == str(depth):
-            for k, v in r.items():
-                if "pj" in k.lower() and v not in ("", "-"):
-                    return v
-    return "not measured"
+        if (r.get("target") == "asic-osu018" and int(r.get("depth", -1)) == depth
+                and config_pairs(r.get("config", "")).get("LANES") == str(lanes)
+                and widths(r.get("config", "")) == widths(device)):
+            by_scene[r.get("scene")] = r.get("pj_per_lookup")
+    if "simulate" not in by_scene:
+        return "not measured"
+    others = ", ".join("%s %s" % (k, v) for k, v in sorted(by_scene.items()) if k != "simulate")
+    return by_scene["simulate"] + (" (%s)" % others if others else "")
 
 
 def si(v):
@@ -122,7 +126,7 @@ def device_row(run, timing, energy, lanes, depth):
     per_mm2 = si(rate / float(row["area_mm2"])) if row else "-"
     one, every = run.cpu_rate("builtin", "one_core_s"), run.cpu_rate("builtin", "all_cores_s")
     cells = [str(lanes), str(depth)] + ["%.2f" % p for p in ppc] + [
-        clock, source, area, si(rate), per_mm2, energy_cell(energy, lanes, depth),
+        clock, source, area, si(rate), per_mm2, energy_cell(energy, s["device"], lanes, depth),
         "%.1f" % (rate / one), "%.1f" % (rate / every)]
     return "| " + " | ".join(cells) + " |"
 
