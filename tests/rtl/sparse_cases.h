@@ -13,6 +13,7 @@
 #include "voxcd/host/device/device.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
+#include "voxcd/ref/vector_gen.h"
 
 namespace voxcd::test {
 
@@ -22,6 +23,16 @@ inline std::vector<DeviceConfig> sparse_models(bool distance) {
   for (const DeviceConfig& c : rtl_sparse_configs())
     if (c.distance() == distance) out.push_back(c);
   return out;
+}
+
+// `jobs` generated vectors (ref/vector_gen.h) for cfg, the generator's seed drawn from `seed` and the configuration so
+// that each model of a run gets its own stream.
+inline GeneratedVectors generated(const DeviceConfig& cfg, uint64_t seed, size_t jobs) {
+  GenerateOptions g;
+  g.seed = seed * 64 + uint64_t(cfg.LANES * 8 + cfg.BANKS + cfg.SB * 100 + cfg.depth * 1000);
+  g.jobs = jobs;
+  g.config = cfg;
+  return generate_vectors(g);
 }
 
 // ref/'s stream with the timing model's cycles.

@@ -15,14 +15,6 @@ namespace {
 
 uint64_t test_seed() { return test::seed_from_env(20261128); }
 
-GeneratedVectors generated(const DeviceConfig& cfg, uint64_t seed, size_t jobs) {
-  GenerateOptions g;
-  g.seed = seed * 64 + uint64_t(cfg.LANES * 8 + cfg.BANKS + cfg.SB * 100 + cfg.depth * 1000);
-  g.jobs = jobs;
-  g.config = cfg;
-  return generate_vectors(g);
-}
-
 // What a stream exercises: jobs with a sparse map, a sparse shell, both, neither; hit records; bank conflict cycles
 // and FIRST windows.
 struct Coverage {
@@ -50,7 +42,7 @@ TEST(RtlSparse, RandomJobsBitExactAndCycleExact) {
   const uint64_t seed = test_seed();
   size_t models = 0;
   for (const DeviceConfig& cfg : rtl_sparse_configs()) {
-    const GeneratedVectors v = generated(cfg, seed, 3000);
+    const GeneratedVectors v = test::generated(cfg, seed, 3000);
     const std::string what = cfg.to_string() + " seed " + std::to_string(seed);
     const std::vector<Record> want = test::exact_stream(v.config, v.memory, v.jobs);
     auto dev = make_device("rtl", v.config);
@@ -79,7 +71,7 @@ TEST(RtlSparse, RandomJobsBitExactAndCycleExact) {
 TEST(RtlSparse, BackPressureLosesNothingAndCyclesAreAccountedFor) {
   const uint64_t seed = test_seed();
   for (const DeviceConfig& cfg : rtl_sparse_configs()) {
-    const GeneratedVectors v = generated(cfg, seed + 1, 300);
+    const GeneratedVectors v = test::generated(cfg, seed + 1, 300);
     const std::vector<Record> want = test::exact_stream(v.config, v.memory, v.jobs);
     for (double p : {0.2, 0.5, 0.8}) {
       DeviceOptions opt;

@@ -16,14 +16,6 @@ namespace {
 
 uint64_t test_seed() { return test::seed_from_env(20261128); }
 
-GeneratedVectors generated(const DeviceConfig& cfg, uint64_t seed, size_t jobs) {
-  GenerateOptions g;
-  g.seed = seed * 64 + uint64_t(cfg.LANES * 8 + cfg.BANKS + cfg.SB * 100 + cfg.depth * 1000 + cfg.BL * 10000);
-  g.jobs = jobs;
-  g.config = cfg;
-  return generate_vectors(g);
-}
-
 TEST(RtlWide, BuildHasASixteenLaneDeviceWithCopiesAndOneWithSparseBanks) {
   bool copies = false, sparse_banks = false;
   for (const DeviceConfig& c : rtl_wide_configs()) {
@@ -39,7 +31,7 @@ TEST(RtlWide, RandomJobsBitExactAndCycleExact) {
   const uint64_t seed = test_seed();
   size_t models = 0;
   for (const DeviceConfig& cfg : rtl_wide_configs()) {
-    const GeneratedVectors v = generated(cfg, seed, 2000);
+    const GeneratedVectors v = test::generated(cfg, seed, 2000);
     const std::string what = cfg.to_string() + " seed " + std::to_string(seed);
     const std::vector<Record> want = test::exact_stream(v.config, v.memory, v.jobs);
     auto dev = make_device("rtl", v.config);
@@ -98,7 +90,7 @@ TEST(RtlWide, FirstStopsAtEveryLaneOfAWideSlot) {
 TEST(RtlWide, BackPressureLosesNothingAndCyclesAreAccountedFor) {
   const uint64_t seed = test_seed();
   for (const DeviceConfig& cfg : rtl_wide_configs()) {
-    const GeneratedVectors v = generated(cfg, seed + 1, 300);
+    const GeneratedVectors v = test::generated(cfg, seed + 1, 300);
     const std::vector<Record> want = test::exact_stream(v.config, v.memory, v.jobs);
     for (double p : {0.2, 0.6}) {
       DeviceOptions opt;
