@@ -21,7 +21,7 @@ esac
 # What the tool and the device models need; the tests, benchmarks and the Python module need the rest.
 run_pkgs=(cmake ninja-build g++ pkg-config ccache libeigen3-dev libcli11-dev zlib1g-dev libassimp-dev
           nlohmann-json3-dev libopenmpi-dev openmpi-bin verilator libsystemc-dev libjs-three)
-test_pkgs=(libgtest-dev libfcl-dev libbullet-dev libopenvdb-dev libboost-iostreams-dev assimp-testmodels yosys
+test_pkgs=(libgtest-dev lcov libfcl-dev libbullet-dev libopenvdb-dev libboost-iostreams-dev assimp-testmodels yosys
            qflow-tech-osu018 pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dev chromium nodejs npm)
 pkgs=("${run_pkgs[@]}")
 [ "$mode" = test ] && pkgs+=("${test_pkgs[@]}")

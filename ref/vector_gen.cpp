@@ -40,7 +40,11 @@ class Generator {
     if (cfg_.sparse()) make_sparse_maps(g.memory);
     make_shell(g.memory);
     if (cfg_.sparse()) make_sparse_shell(g.memory);
-    for (size_t k = 0; k < opt_.jobs; ++k) g.jobs.push_back(make_job(uint32_t(k)));
+    mem_ = &g.memory;
+    for (size_t k = 0; k < opt_.jobs; ++k) {
+      const bool aimed = !opt_.aim.empty() && k % 2 == 1;
+      g.jobs.push_back(aimed ? aimed_job(uint32_t(k), opt_.aim[(k / 2) % opt_.aim.size()]) : make_job(uint32_t(k)));
+    }
     return g;
   }
 
@@ -467,15 +471,130 @@ class Generator {
     return j;
   }
 
+  // ---- Coverage-directed jobs (GenerateOptions::aim) ----
+
+  // Every point of j at one voxel: M = 0 and t its place, voxel `index` on `axis` and the map's middle on the others
+  // (a fraction below that voxel's floor when `fraction` is set); false when t does not fit TW.
+  bool pin_points(Job& j, int axis, int64_t index, bool fraction) {
+    const int64_t n[3] = {int64_t(j.nx), int64_t(j.ny), int64_t(j.nz)};
+    for (auto& row : j.M)
+      for (auto& e : row) e = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Acc v = (Acc(i == axis ? index : n[i] / 2) << cfg_.TF()) + (i == axis && fraction ? Acc(1) : Acc(0));
+      if (v < Acc(translation_format(cfg_).min_raw()) || v > Acc(translation_format(cfg_).max_raw())) return false;
+      j.t[i] = int64_t(v);
+    }
+    if (j.shell_count == 0) j.shell_count = 1;
+    return true;
+  }
+
+  // The points of j as ref/ looks them up.
+  std::vector<Lookup> lookups(const Job& j) const {
+    std::vector<Lookup> out;
+    for (const ShellWord& p : job_points(cfg_, mem_->shell, j)) out.push_back(look_up(cfg_, mem_->map, j, p));
+    return out;
+  }
+
+  // A FIRST job over a dense block whose first hit is its point `pos`: the window starts pos points before the
+  // block's first hit under a random pose (with every_state, every inside point is a hit).
+  bool first_at(Job& j, uint32_t pos, bool every_state) {
+    const Block& b = blocks_[uni(0, blocks_.size() - 1)];
+    if (b.sparse || pos >= uint32_t(cfg_.dense_slot_points())) return false;
+    j.mode = Mode::First;
+    if (every_state) {  // every inside point a hit: any state, any distance
+      j.hit_mask = 0xF;
+      j.threshold = cfg_.IW() >= 64 ? INT64_MAX : (int64_t{1} << (cfg_.IW() - 1)) - 1;
+    }
+    j.sparse &= uint8_t(~kSparseShell);
+    j.shell_base = b.base;
+    j.shell_count = b.count;
+    const std::vector<Lookup> all = lookups(j);
+    const auto hit = std::find_if(all.begin(), all.end(), [](const Lookup& l) { return l.hit; });
+    const uint32_t h = uint32_t(hit - all.begin());  // the block's first hit
+    if (hit == all.end() || h < pos) return false;
+    j.shell_base = b.base + h - pos;
+    j.shell_count = b.count - (h - pos);
+    return true;
+  }
+
+  // A distance job's threshold below, at or above the D of its inside points (at: the first inside point's D).
+  bool threshold_for(Job& j, const std::string& where) {
+    if (!cfg_.distance()) return false;
+    const int iw = cfg_.IW();
+    const int64_t tmax = iw >= 64 ? INT64_MAX : (int64_t{1} << (iw - 1)) - 1;
+    if (where == "below") j.threshold = tmax;   // D <= tmax: every inside point below or at
+    if (where == "above") j.threshold = -tmax - 1;
+    if (where != "at") return true;
+    for (const Lookup& l : lookups(j))
+      if (l.loc.inside) {
+        j.threshold = l.dist;
+        return true;
+      }
+    return false;
+  }
+
+  // A job for stimulus bin `bin`: the first of a few random jobs the bin's template can turn into one that hits it;
+  // a random job when none can.
+  Job aimed_job(uint32_t index, const std::string& bin) {
+    const size_t dot = bin.find('.'), dot2 = bin.find('.', dot + 1);
+    const std::string kind = bin.substr(0, dot), what = bin.substr(dot + 1, dot2 - dot - 1);
+    const std::string rest = dot2 == std::string::npos ? "" : bin.substr(dot2 + 1);
+    const int axis = what == "x" ? 0 : what == "y" ? 1 : what == "z" ? 2 : -1;
+    for (int attempt = 0; attempt < 20; ++attempt) {
+      Job j = make_job(index);
+      const int64_t n = axis == 0 ? j.nx : axis == 1 ? j.ny : j.nz;
+      bool ok = false;
+      if (kind == "face") {
+        const int64_t k = rest == "-1" ? -1 : rest == "0" ? 0 : rest == "n-1" ? n - 1 : n;
+        ok = pin_points(j, axis, k, false);
+      } else if (kind == "far") {
+        const int64_t span = int64_t{1} << cfg_.DW;  // n <= span: index span + 1 reads voxel 1 if truncated
+        ok = n > 1 && (pin_points(j, axis, span + 1, false) || pin_points(j, axis, 1 - span, false));
+      } else if (kind == "floor") {
+        ok = cfg_.TF() >= 1 && pin_points(j, axis, -1, true);  // -1 + one ulp: a negative coordinate's floor
+      } else if (kind == "first") {
+        ok = first_at(j, uint32_t(std::stoul(rest)), attempt >= 10);
+      } else if (kind == "distance") {
+        ok = threshold_for(j, what);
+      } else if (kind == "job") {
+        ok = (what == "map" ? j.sparse_map() : j.sparse_shell()) == (rest == "sparse");
+      }
+      if (ok) return j;
+    }
+    return make_job(index);
+  }
+
   GenerateOptions opt_;
   DeviceConfig cfg_;
   std::mt19937_64 rng_;
+  const DeviceMemory* mem_ = nullptr;
   std::vector<MapDesc> maps_;
   std::vector<Block> blocks_;
 };
 
 }  // namespace
 
-GeneratedVectors generate_vectors(const GenerateOptions& opt) { return Generator(opt).run(); }
+bool aimable_bin(const std::string& name) {
+  static const char* const kFixed[] = {"distance.below", "distance.at", "distance.above", "job.map.dense",
+                                       "job.map.sparse", "job.shell.dense", "job.shell.sparse"};
+  for (const char* f : kFixed)
+    if (name == f) return true;
+  for (const char* a : {"x", "y", "z"}) {
+    const std::string axis = a;
+    for (const char* k : {"-1", "0", "n-1", "n"})
+      if (name == "face." + axis + "." + k) return true;
+    if (name == "far." + axis + ".wraps" || name == "floor." + axis + ".negative") return true;
+  }
+  const std::string first = "first.position.";
+  return name.size() > first.size() && name.compare(0, first.size(), first) == 0 && name.size() <= first.size() + 2 &&
+         name.find_first_not_of("0123456789", first.size()) == std::string::npos;
+}
+
+GeneratedVectors generate_vectors(const GenerateOptions& opt) {
+  for (const std::string& a : opt.aim)
+    if (!aimable_bin(a))
+      throw std::invalid_argument("no template aims at the stimulus bin '" + a + "' (docs/verification.md)");
+  return Generator(opt).run();
+}
 
 }  // namespace voxcd

@@ -90,12 +90,13 @@ function(voxcd_model library prefix)
 endfunction()
 set(VOXCD_MODEL_UNITS ${CMAKE_CURRENT_LIST_DIR}/model_units.cmake)
 
-# voxcd_model_library(NAME [STATIC] [SYSTEMC] [TRACE_FST] [DPI]): an empty library for models (SHARED unless
-# STATIC), with Verilator's runtime for them (tracing to FST when one of its models traces, DPI-C when its models
-# import functions), Verilator's headers as system headers (our targets compile with -Werror) and what the runtime
-# links.
+# voxcd_model_library(NAME [STATIC] [SYSTEMC] [TRACE_FST] [DPI] [COVERAGE]): an empty library for models (SHARED
+# unless STATIC), with Verilator's runtime for them (tracing to FST when one of its models traces, DPI-C when its
+# models import functions, coverage counts when its models are Verilated with --coverage-*: then VM_COVERAGE is 1 for
+# the library and for what links it), Verilator's headers as system headers (our targets compile with -Werror) and
+# what the runtime links.
 function(voxcd_model_library name)
-  cmake_parse_arguments(L "SYSTEMC;STATIC;TRACE_FST;DPI" "" "" ${ARGN})
+  cmake_parse_arguments(L "SYSTEMC;STATIC;TRACE_FST;DPI;COVERAGE" "" "" ${ARGN})
   if(L_STATIC)
     add_library(${name} STATIC)
   else()
@@ -112,7 +113,11 @@ function(voxcd_model_library name)
   if(L_DPI)
     target_sources(${name} PRIVATE ${inc}/verilated_dpi.cpp)
   endif()
-  target_compile_definitions(${name} PRIVATE VM_COVERAGE=0 VM_TRACE_VCD=0 VM_SC=$<BOOL:${L_SYSTEMC}>
+  if(L_COVERAGE)
+    target_sources(${name} PRIVATE ${inc}/verilated_cov.cpp)
+  endif()
+  target_compile_definitions(${name} PUBLIC VM_COVERAGE=$<BOOL:${L_COVERAGE}>)
+  target_compile_definitions(${name} PRIVATE VM_TRACE_VCD=0 VM_SC=$<BOOL:${L_SYSTEMC}>
                                              VM_TRACE=$<BOOL:${L_TRACE_FST}> VM_TRACE_FST=$<BOOL:${L_TRACE_FST}>)
   target_include_directories(${name} SYSTEM PUBLIC ${inc} ${inc}/vltstd)
   target_link_libraries(${name} PUBLIC ZLIB::ZLIB Threads::Threads)

@@ -4,11 +4,15 @@
 //   `VOXCD_FF(q, d, reset)          q takes d at every rising edge of clk_i, and reset while rst_ni is low
 //   `VOXCD_ASSERT(Name, prop)       prop holds at every rising edge of clk_i while rst_ni is high
 //   `VOXCD_ASSERT_INIT(Name, prop)  prop holds at elaboration (parameter sanity)
+//   `VOXCD_COVER(Name, prop)        a functional coverage bin: the cycles (clk_i rising, rst_ni high) in which prop
+//                                   holds are counted (docs/verification.md, "Functional coverage")
 //
 // The module that uses them has clk_i and rst_ni. Three readings of one macro:
-//   - simulation (Verilator with --assert): a concurrent assertion that names itself when it fires;
+//   - simulation (Verilator with --assert): a concurrent assertion that names itself when it fires; a cover property
+//     whose count Verilator keeps in models built with --coverage-user (the coverage models, rtl/CMakeLists.txt) and
+//     ignores in the others;
 //   - formal (yosys read_verilog -formal, which defines FORMAL): an immediate assert in a clocked process, which
-//     `sat -prove-asserts` proves (tests/formal);
+//     `sat -prove-asserts` proves (tests/formal); covers are left out;
 //   - synthesis (SYNTHESIS defined, yosys's default): nothing.
 // A tool reads this file before the modules, with no `include: rtl/voxcd.f lists it before them, and its name
 // (like the package's, voxcd_arch_pkg.sv) sorts before every module's, so `verilator --lint-only -Wall rtl/*.sv`
@@ -19,9 +23,11 @@
     always @(posedge clk_i) if (rst_ni) __name: assert (__prop);
   `define VOXCD_ASSERT_INIT(__name, __prop) \
     initial __name: assert (__prop);
+  `define VOXCD_COVER(__name, __prop)
 `elsif SYNTHESIS
   `define VOXCD_ASSERT(__name, __prop)
   `define VOXCD_ASSERT_INIT(__name, __prop)
+  `define VOXCD_COVER(__name, __prop)
 `else
   `define VOXCD_ASSERT(__name, __prop) \
     __name: assert property (@(posedge clk_i) disable iff (!rst_ni) (__prop)) \
@@ -30,6 +36,8 @@
     if (!(__prop)) begin : __name \
       $error("elaboration check %s failed", `"__name`"); \
     end
+  `define VOXCD_COVER(__name, __prop) \
+    __name: cover property (@(posedge clk_i) disable iff (!rst_ni) (__prop));
 `endif
 
 `define VOXCD_FF(__q, __d, __reset) \

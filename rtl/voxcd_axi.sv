@@ -745,4 +745,21 @@ module voxcd_axi #(
   `VOXCD_ASSERT(JobClosedBeforeRun, run_q || !s_axis_job_tready_o)
 `endif
 
+
+  // Functional coverage (docs/verification.md): a refused descriptor breaking each rule, a job frame of the wrong
+  // length, and each error response of the AXI4-Lite port.
+  `VOXCD_COVER(CoverFaultReserved, err_emit && chk_faults_q[FaultReserved])
+  `VOXCD_COVER(CoverFaultMode, err_emit && chk_faults_q[FaultMode])
+  `VOXCD_COVER(CoverFaultTag, err_emit && chk_faults_q[FaultTag])
+  `VOXCD_COVER(CoverFaultShell, err_emit && chk_faults_q[FaultShell])
+  `VOXCD_COVER(CoverFaultDims, err_emit && chk_faults_q[FaultDims])
+  `VOXCD_COVER(CoverFaultMap, err_emit && chk_faults_q[FaultMap])
+  `VOXCD_COVER(CoverFaultPose, err_emit && chk_faults_q[FaultPose])
+  `VOXCD_COVER(CoverFaultThreshold, err_emit && chk_faults_q[FaultThreshold])
+  `VOXCD_COVER(CoverJobFrameOfTheWrongLength, jframe_bad)
+  `VOXCD_COVER(CoverWriteRefused, s_axil_bvalid_o && s_axil_bresp_o == RespSlverr)
+  `VOXCD_COVER(CoverWriteToNoRegister, s_axil_bvalid_o && s_axil_bresp_o == RespDecerr)
+  `VOXCD_COVER(CoverReadRefused, s_axil_rvalid_o && s_axil_rresp_o == RespSlverr)
+  `VOXCD_COVER(CoverReadOfNoRegister, s_axil_rvalid_o && s_axil_rresp_o == RespDecerr)
+
 endmodule

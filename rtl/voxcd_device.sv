@@ -583,6 +583,9 @@ module voxcd_device #(
     `VOXCD_ASSERT(ShellSlotWithinAWord, !(w_word_q && w_meta.valid && !word_done) || (&exp_lanes))
     // FIRST stops W's job only where nothing waits for a bank: the job's slots up to the hit read nothing then.
     `VOXCD_ASSERT(StopWhenIssuing, !w_stop || advance)
+    // Coverage: a sparse shell's word that takes more than one slot, and FIRST stopping a job in the middle of one.
+    `VOXCD_COVER(CoverShellWordOfSeveralSlots, advance && w_word_q && w_meta.valid && !word_done)
+    `VOXCD_COVER(CoverFirstStopsAShellWord, w_stop && w_word_q && !word_done)
   end else begin : g_no_w
     assign issue_taken = advance;
     assign w_stop      = 1'b0;
@@ -923,6 +926,7 @@ module voxcd_device #(
       // The brick port reads only for a brick cell of a sparse map: a slot at the brick stage whose job's map is
       // sparse, and a lane whose cell is a brick (a uniform cell and a dense map read nothing there).
       `VOXCD_ASSERT(BrickReadsOnlyBricks, !(|brick_want) || stage_bricks[BrickW-1])
+      `VOXCD_COVER(CoverBrickPortWaits, brick_wait)
     end else begin : g_table_port
       assign brick_wait = 1'b0;
       for (genvar l = 0; l < LANES; l++) begin : g_no_bword  // lane by lane: a wide device's is over 8k bits
@@ -945,6 +949,9 @@ module voxcd_device #(
       logic unused_brick;  // a dense device has no brick port
       assign unused_brick = ^{lane_baddr, lane_bread};
     end
+
+    `VOXCD_COVER(CoverTablePortWaits, table_wait)
+    `VOXCD_COVER(CoverSquashedSlotAtTheTableStage, r4_slot.valid && r4_squashed)
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) conflicts_q <= '0;
@@ -1095,5 +1102,67 @@ module voxcd_device #(
                  job_ny_i <= (DW + 1)'(1 << DW) && job_nz_i <= (DW + 1)'(1 << DW)))
   `VOXCD_ASSERT(JobSparseOnlyOnASparseDevice, !(job_valid_i && job_ready_o) || Sparse ||
                 (job_sparse_i == '0 && job_brick_base_i == '0 && job_brick_units_i == '0))
+
+  // ---- Functional coverage (docs/verification.md, "Functional coverage"): counted in the coverage models ----
+  // Each mode's completion records, with and without hits.
+  logic is_count;
+  assign is_count = last_test.mode == voxcd_arch_pkg::ModeCount;
+  `VOXCD_COVER(CoverAllJobWithHits, emit_done && !is_first && !is_count && emit_record.hits != '0)
+  `VOXCD_COVER(CoverAllJobWithoutHits, emit_done && !is_first && !is_count && emit_record.hits == '0)
+  `VOXCD_COVER(CoverFirstJobWithAHit, emit_done && is_first && emit_record.hits != '0)
+  `VOXCD_COVER(CoverFirstJobWithoutHits, emit_done && is_first && emit_record.hits == '0)
+  `VOXCD_COVER(CoverCountJobWithHits, emit_done && is_count && emit_record.hits != '0)
+  `VOXCD_COVER(CoverCountJobWithoutHits, emit_done && is_count && emit_record.hits == '0)
+  `VOXCD_COVER(CoverJobWithoutPoints, emit_done && emit_record.points == '0)
+  // FIRST: its stop with slots of the job behind it, and those slots squashed at the hit test.
+  `VOXCD_COVER(CoverFirstStopsBeforeTheLastSlot, first_stop && !last_slot.last)
+  `VOXCD_COVER(CoverFirstSquashedSlot, squash)
+  // A slot with every lane, one with some, and one with several records to emit (the pipeline holds for it).
+  `VOXCD_COVER(CoverFullSlot, last_slot.valid && (&last_slot.lanes))
+  `VOXCD_COVER(CoverPartSlot, last_slot.valid && !(&last_slot.lanes))
+  `VOXCD_COVER(CoverSlotOfSeveralRecords, slot_busy)
+  // Back-pressure on each stream, a stall while a completion record waits with a later job's slots in the
+  // registers, and stalls with the job queue full.
+  `VOXCD_COVER(CoverHitStreamHeld, hit_valid_o && !hit_ready_i)
+  `VOXCD_COVER(CoverDoneStreamHeld, done_valid_o && !done_ready_i)
+  `VOXCD_COVER(CoverStallAcrossAJobBoundary, stall && done_valid_o && !done_ready_i && (|slot_valid))
+  `VOXCD_COVER(CoverStallWithTheQueueFull, stall && !job_ready_o)
+  // Jobs back to back: the issue stage takes the next job's first slot in the cycle after the last one's.
+  logic head_popped_q;
+  `VOXCD_FF(head_popped_q, head_pop, 1'b0)
+  `VOXCD_COVER(CoverJobsBackToBack, head_popped_q && head_valid && issue_taken)
+  `VOXCD_COVER(CoverTwoJobsQueued, !job_ready_o)
+  // Memories written between jobs (the device idle after records have left).
+  `VOXCD_COVER(CoverMapWrite, map_we_i)
+  `VOXCD_COVER(CoverShellWrite, shell_we_i)
+  // A distance device's hit test: D below, at and above the threshold, for a point inside the map.
+  if (Dist) begin : g_cover_dist
+    logic [LANES-1:0] below, at, above;
+    always_comb begin
+      for (int i = 0; i < LANES; i++) begin
+        below[i] = last_slot.lanes[i] && lane_inside[i] &&
+                   ($signed(lane_dist[IW*i +: IW]) < $signed(IW'(last_test.thr)));
+        at[i]    = last_slot.lanes[i] && lane_inside[i] && (lane_dist[IW*i +: IW] == IW'(last_test.thr));
+        above[i] = last_slot.lanes[i] && lane_inside[i] &&
+                   ($signed(lane_dist[IW*i +: IW]) > $signed(IW'(last_test.thr)));
+      end
+    end
+    `VOXCD_COVER(CoverDistanceBelowThreshold, last_slot.valid && (|below))
+    `VOXCD_COVER(CoverDistanceAtThreshold, last_slot.valid && (|at))
+    `VOXCD_COVER(CoverDistanceAboveThreshold, last_slot.valid && (|above))
+  end
+  // A sparse device's brick stage: a slot of a sparse map whose lanes' cells are all bricks, all uniform, or both.
+  if (Sparse) begin : g_cover_sparse
+    logic [LANES-1:0] brick_cells;
+    logic             sparse_map_slot;
+    for (genvar l = 0; l < LANES; l++) begin : g_cell
+      assign brick_cells[l] = brick_slot.lanes[l] && lane_bread[NPar*l];
+    end
+    assign sparse_map_slot = brick_slot.valid && stage_bricks[BrickW-1] && (|brick_slot.lanes);
+    `VOXCD_COVER(CoverSparseMapSlotOfBricks, sparse_map_slot && brick_cells == brick_slot.lanes)
+    `VOXCD_COVER(CoverSparseMapSlotOfUniformCells, sparse_map_slot && brick_cells == '0)
+    `VOXCD_COVER(CoverSparseMapSlotOfBoth, sparse_map_slot && brick_cells != '0 && brick_cells != brick_slot.lanes)
+    `VOXCD_COVER(CoverDenseMapSlot, brick_slot.valid && !stage_bricks[BrickW-1])
+  end
 
 endmodule

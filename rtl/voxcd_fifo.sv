@@ -65,4 +65,8 @@ module voxcd_fifo #(
                 CountW'((32'(write_ptr_q) + Depth - 32'(read_ptr_q)) % Depth) == count_q % CountW'(Depth))
   `VOXCD_ASSERT(PointersInRange, 32'(read_ptr_q) < Depth && 32'(write_ptr_q) < Depth)
 
+  // Functional coverage: the queue full, and a beat in and one out in the same cycle.
+  `VOXCD_COVER(CoverFull, count_q == CountW'(Depth))
+  `VOXCD_COVER(CoverPushAndPop, push && pop)
+
 endmodule

@@ -72,4 +72,7 @@ module voxcd_skid #(
   `VOXCD_ASSERT(OutputHeldWhileStalled,
                 !$past(out_valid_q && !ready_i) || (out_valid_q && out_data_q == $past(out_data_q)))
 
+  // Functional coverage: a beat held in the skid register.
+  `VOXCD_COVER(CoverSkidHolds, skid_valid_q)
+
 endmodule

@@ -23,6 +23,7 @@ struct ConformArgs {
   size_t cloud = 2000;
   std::string output;
   std::string config;
+  std::string aim;  // stimulus bins separated by ','
 };
 
 int generate(const ConformArgs& a) {
@@ -31,6 +32,14 @@ int generate(const ConformArgs& a) {
   g.seed = a.seed;
   g.jobs = a.jobs;
   g.cloud_points = a.cloud;
+  for (size_t b = 0; b < a.aim.size();) {
+    const size_t e = std::min(a.aim.find(',', b), a.aim.size());
+    if (e > b) g.aim.push_back(a.aim.substr(b, e - b));
+    b = e + 1;
+  }
+  for (const std::string& bin : g.aim)
+    if (!aimable_bin(bin))
+      throw CLI::ValidationError("--aim: no template aims at the stimulus bin '" + bin + "' (docs/verification.md)");
   if (!a.config.empty()) g.config = parse_config_pairs(a.config, "--config");
   if (a.run.lanes) g.config.LANES = *a.run.lanes;
   if (a.run.banks) g.config.BANKS = *a.run.banks;
@@ -93,12 +102,20 @@ void add_conform(CLI::App& app) {
   c->add_flag("--cycles", a->run.cycles, "Also compare the cycles of every completion record");
   c->add_flag("--print", a->print, "Print the backend's own output stream instead of comparing");
   c->add_option("--trace", a->run.trace, "rtl: write an FST waveform to this file");
+  c->add_option("--stall", a->run.stall, "rtl: probability that each output stream's consumer is not ready in a "
+                                         "cycle (random back-pressure; --cycles then compares cycles net of stalls)")
+      ->check(CLI::Range(0.0, 0.99));
+  c->add_option("--stall-seed", a->run.stall_seed, "rtl: seed of the back-pressure")->capture_default_str();
+  c->add_option("--coverage", a->run.coverage, "rtl: run on the coverage models and write their counts to this "
+                                               "file (docs/verification.md)");
   c->add_flag("--generate", a->generate, "Generate random vectors with expectations from ref (needs -o)");
   c->add_option("--seed", a->seed, "Random seed for --generate")->capture_default_str();
   c->add_option("--jobs", a->jobs, "Number of jobs for --generate")->capture_default_str();
   c->add_option("--cloud-points", a->cloud, "Points in the random cloud block of the shell for --generate")
       ->capture_default_str();
   c->add_option("-o,--output", a->output, "Output file for --generate");
+  c->add_option("--aim", a->aim, "Stimulus bins for --generate to aim every second job at, separated by ',' "
+                                 "(coverage-directed stimulus, docs/verification.md)");
   c->add_option("--config", a->config,
                 "Device configuration for --generate as NAME VALUE pairs, e.g. \"PW 20 PF 6 MW 16 MF 14\" "
                 "(others default)");

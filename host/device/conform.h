@@ -22,6 +22,12 @@ struct ConformOptions {
   bool cycles = false;       // also compare the cycles of every completion record
   std::string trace;         // rtl: write an FST waveform here ("" = none)
   unsigned threads = 0;      // cpu: worker threads (0 = one per hardware thread)
+  // rtl: the probability that each output stream's consumer is not ready in a cycle (random back-pressure, seeded
+  // by stall_seed); completion records then carry cycles = the file's cycles + their stalls (docs/contract.md),
+  // which is what --cycles compares.
+  double stall = 0.0;
+  uint64_t stall_seed = 1;
+  std::string coverage;      // rtl: run on the coverage models and write their counts here (docs/verification.md)
 };
 
 struct ConformResult {

@@ -26,6 +26,9 @@ struct DeviceOptions {
   double hit_stall_prob = 0.0;  // rtl: probability that the hit stream's consumer is not ready in a cycle
   double done_stall_prob = 0.0; // rtl: the same for the completion stream
   uint64_t stall_seed = 1;      // rtl: seed of the back-pressure pattern
+  // rtl: run on the coverage models and write their counts (Verilator's coverage data) to this file when the device
+  // is destroyed ("" = the ordinary models; docs/verification.md, "Coverage").
+  std::string coverage_path;
   unsigned threads = 0;         // cpu: worker threads (0 = one per hardware thread); results never depend on it
   // cpu: run on this pool (shared with the caller's own loops) instead of one of `threads`.
   std::shared_ptr<ThreadPool> pool;

@@ -65,18 +65,20 @@ Loaded load_from(const std::string& path) {
   return l;
 }
 
-Loaded load() {
+// The module of the ordinary models, or with `coverage` the coverage models' (docs/verification.md).
+Loaded load(bool coverage = false) {
 #if !VOXCD_DEVICE_MODELS
-  if (!std::getenv("VOXCD_RTL_MODULE"))
+  if (!std::getenv(coverage ? "VOXCD_RTL_COV_MODULE" : "VOXCD_RTL_MODULE"))
     return {nullptr, "this build was configured without the device models (-DVOXCD_DEVICE_MODELS=OFF)"};
 #endif
   std::string path;
   try {
-    path = rtl_module_path();
+    path = rtl_module_path(coverage);
   } catch (const std::runtime_error&) {
     const bool installed = models_build_command().empty();
-    return {nullptr, std::string(installed ? "this installation has no RTL models" : "the RTL models are not built") +
-                         " (" + rebuild_hint() + ")"};
+    return {nullptr, std::string(installed ? "this installation has no RTL " : "the RTL ") +
+                         (coverage ? "coverage models" : "models") + (installed ? "" : " are not built") + " (" +
+                         rebuild_hint() + ")"};
   }
   // One load per path; a failure is tried again next time (the models may have been built meanwhile).
   static std::mutex mutex;
@@ -121,9 +123,16 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
 
 std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOptions& opt, const RtlFaults& faults) {
   cfg.validate();
-  const Loaded l = load();
+  const bool coverage = !opt.coverage_path.empty();
+  const Loaded l = load(coverage);
   if (!l.module) throw DeviceError("rtl: " + l.why_not);
   if (std::unique_ptr<Device> d = l.module->make(cfg, opt, faults)) return d;
+  if (coverage) {
+    std::string built;
+    for (const RtlModelInfo& m : l.module->models()) built += (built.empty() ? "" : "; ") + m.config.to_string();
+    throw DeviceError("rtl: this build has coverage models for " + built + ", not " + cfg.to_string() +
+                      " (the list VOXCD_RTL_COVERAGE_MODELS, docs/verification.md)");
+  }
   // No model of exactly this configuration: name the ones there are.
   std::string lanes, extra;
   for (const RtlModelInfo& m : l.module->models()) {

@@ -13,8 +13,19 @@
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vectors.h"
-#include "voxcd_rtl_abi.h"     // VOXCD_RTL_MODULE_ABI (host/device/rtl_abi.cmake)
-#include "voxcd_rtl_models.h"  // every model with its family and configuration (rtl/CMakeLists.txt)
+#include "voxcd_rtl_abi.h"  // VOXCD_RTL_MODULE_ABI (host/device/rtl_abi.cmake)
+// Every model with its family and configuration (rtl/CMakeLists.txt): voxcd_rtl_models.h, or the coverage models'
+// header for the coverage module (voxcd_rtl_cov_backend, whose models count coverage: VM_COVERAGE).
+#ifdef VOXCD_RTL_MODELS_HEADER
+#include VOXCD_RTL_MODELS_HEADER
+#else
+#include "voxcd_rtl_models.h"
+#endif
+#if VM_COVERAGE
+#include <verilated_cov.h>
+
+#include <fstream>
+#endif
 
 namespace voxcd {
 namespace {
@@ -66,6 +77,7 @@ class RtlDevice final : public Device {
       trace_->open(opt_.trace_path.c_str());
       if (!trace_->isOpen()) throw DeviceError("rtl: cannot open trace file " + opt_.trace_path);
     }
+    open_coverage();
     reset();
   }
   ~RtlDevice() override {
@@ -74,6 +86,9 @@ class RtlDevice final : public Device {
     Verilated::threadContextp(ctx_.get());
     model_->final();
     if (trace_) trace_->close();
+#if VM_COVERAGE
+    if (!opt_.coverage_path.empty()) ctx_->coveragep()->write(opt_.coverage_path.c_str());
+#endif
     model_.reset();
   }
 
@@ -239,6 +254,19 @@ class RtlDevice final : public Device {
   void dump() {
     if (trace_) trace_->dump(ctx_->time());
     ctx_->timeInc(1);
+  }
+
+  // The coverage file, checked writable now: it is written when the device is destroyed (its counts over the
+  // device's life), where no error can be reported.
+  void open_coverage() {
+    if (opt_.coverage_path.empty()) return;
+#if VM_COVERAGE
+    if (!std::ofstream(opt_.coverage_path))
+      throw DeviceError("rtl: cannot write the coverage file " + opt_.coverage_path);
+#else
+    throw DeviceError("rtl: these models count no coverage (the coverage models are voxcd_rtl_cov_backend's: "
+                      "docs/verification.md)");
+#endif
   }
 
   DeviceConfig cfg_;

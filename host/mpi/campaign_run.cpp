@@ -19,10 +19,10 @@ std::string shard_text(const Campaign& c, uint64_t s) {
 }
 
 // Runs shards of c on this rank, keeping the last vectors it generated for the next shard.
-RunItem shard_runner(const Campaign& c, unsigned threads, int rank) {
+RunItem shard_runner(const Campaign& c, const ShardOptions& opt, int rank) {
   auto cache = std::make_shared<ShardVectors>();
-  return [&c, cache, threads, rank](uint64_t s) {
-    ShardResult r = run_shard(c, shard_at(c, s), *cache, threads);
+  return [&c, cache, opt, rank](uint64_t s) {
+    ShardResult r = run_shard(c, shard_at(c, s), *cache, opt);
     r.rank = rank;
     return shard_result_line(r, shard_at(c, s));
   };
@@ -60,7 +60,7 @@ Report coordinate(World& w, const Campaign& c, const RunOptions& opt) {
   if (results)
     for (const ShardResult& r : results->finished()) report.add(r, true);
   const WorkPlan plan = campaign_plan(c, report, opt);
-  coordinate_work(w, plan, shard_runner(c, opt.threads, 0), [&](uint64_t item, const std::string& line, int rank) {
+  coordinate_work(w, plan, shard_runner(c, opt.shard(), 0), [&](uint64_t item, const std::string& line, int rank) {
     const ShardResult r = parse_shard_result(line, c, "the result of rank " + std::to_string(rank));
     if (r.shard != item) throw std::runtime_error("it is the result of shard " + std::to_string(r.shard));
     if (results) results->append(r, shard_at(c, r.shard));
@@ -74,11 +74,11 @@ Report coordinate(World& w, const Campaign& c, const RunOptions& opt) {
   return report;
 }
 
-void serve(World& w, unsigned threads) {
+void serve(World& w, const ShardOptions& opt) {
   std::unique_ptr<Campaign> c;
   serve_work(w, [&](const std::string& setup) {
     c = std::make_unique<Campaign>(campaign_from_json(setup, "the campaign from rank 0"));
-    return shard_runner(*c, threads, w.rank());
+    return shard_runner(*c, opt, w.rank());
   });
 }
 

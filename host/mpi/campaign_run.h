@@ -7,6 +7,7 @@
 #include <string>
 
 #include "voxcd/host/mpi/world.h"
+#include "voxcd/host/regress/shard.h"
 #include "voxcd/host/regress/campaign.h"
 #include "voxcd/host/regress/report.h"
 
@@ -17,6 +18,8 @@ struct RunOptions {
   double timeout = 600;    // seconds a rank may take over one shard before the run ends with an error
   uint64_t stop_after = 0; // run at most this many shards now (0 = all)
   unsigned threads = 1;    // cpu backend threads per rank
+  std::string coverage;    // rtl: the coverage models, each shard's counts into this directory (ShardOptions)
+  ShardOptions shard() const { return {threads, coverage}; }
 };
 
 // Rank 0: runs campaign c (the shards the results file does not hold yet) and returns the merged report. A rank
@@ -27,6 +30,6 @@ Report coordinate(World& w, const Campaign& c, const RunOptions& opt);
 // Rank 0, when it has no campaign to give (a bad campaign): tells the other ranks to end.
 void release_workers(World& w);
 // Ranks other than 0: runs the shards rank 0 sends until it says stop.
-void serve(World& w, unsigned threads);
+void serve(World& w, const ShardOptions& opt);
 
 }  // namespace voxcd::mpi

@@ -102,7 +102,7 @@ if(TARGET voxcd_sysc_server)
 endif()
 
 # The RTL with its file list (and the DPI package, ref/dpi/CMakeLists.txt adds it).
-install(FILES ${PROJECT_SOURCE_DIR}/rtl/voxcd.f ${VOXCD_RTL_SOURCES} DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd/rtl)
+install(FILES ${PROJECT_SOURCE_DIR}/rtl/voxcd.f ${PROJECT_SOURCE_DIR}/rtl/coverage.waivers ${VOXCD_RTL_SOURCES} DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd/rtl)
 # The timing table `voxcd size --target` chooses a depth from (compiled in; here for reading and for --timing-table).
 install(FILES ${PROJECT_SOURCE_DIR}/host/device/timing.tsv DESTINATION ${CMAKE_INSTALL_DATADIR}/voxcd)
 # The energy per lookup `voxcd size` reports a frame's energy from (compiled in; here for reading).

@@ -61,10 +61,10 @@ std::string sysc_server_path() {
                   [](const fs::path& p) { return ::access(p.c_str(), X_OK) == 0; });
 }
 
-std::string rtl_module_path() {
-  if (const char* e = std::getenv("VOXCD_RTL_MODULE")) return e;
+std::string rtl_module_path(bool coverage) {
+  if (const char* e = std::getenv(coverage ? "VOXCD_RTL_COV_MODULE" : "VOXCD_RTL_MODULE")) return e;
   const fs::path lib = library_dir();
-  const char* name = "voxcd_rtl_backend.so";
+  const char* name = coverage ? "voxcd_rtl_cov_backend.so" : "voxcd_rtl_backend.so";
   return first_of({lib / VOXCD_REL_MODULES / name, lib / name}, std::string("the RTL models' module ") + name,
                   [](const fs::path& p) { return fs::is_regular_file(p); });
 }

@@ -17,9 +17,10 @@ std::string rtl_dir();
 std::string sysc_server_path();
 
 // The rtl backend's module, which drives the Verilated models (voxcd_rtl_backend.so): $VOXCD_RTL_MODULE, else
-// P/lib/voxcd/voxcd_rtl_backend.so, else next to the library (the build tree). Throws std::runtime_error naming the
-// places it looked.
-std::string rtl_module_path();
+// P/lib/voxcd/voxcd_rtl_backend.so, else next to the library (the build tree). With `coverage`, the module of the
+// coverage models (voxcd_rtl_cov_backend.so, $VOXCD_RTL_COV_MODULE). Throws std::runtime_error naming the places it
+// looked.
+std::string rtl_module_path(bool coverage = false);
 
 // The command that builds the device models (the rtl module, the SystemC models and server) for the library in use:
 // `cmake --build DIR --target voxcd_models` when the library is in a build tree DIR; "" for an installed package.

@@ -10,6 +10,7 @@
 #include "voxcd/host/detail/cross_product.h"
 #include "voxcd/host/detail/text_file.h"
 #include "voxcd/host/device/device.h"
+#include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/vectors.h"
 
 namespace voxcd {
@@ -166,6 +167,13 @@ void validate_campaign(const Campaign& c, const std::string& where) {
   if (c.jobs_per_shard < 1 || c.jobs_per_shard > 10000000)
     throw CampaignError(where_key(where, "jobs_per_shard") + ": " + std::to_string(c.jobs_per_shard) +
                         " is not 1..10000000");
+  if (!(c.stall >= 0 && c.stall < 1))
+    throw CampaignError(where_key(where, "stall") + ": " + std::to_string(c.stall) + " is not in [0, 1)");
+  if (!c.aim.empty()) no_repeats(c.aim, "aim");  // none: a campaign that aims at nothing
+  for (const std::string& a : c.aim)
+    if (!aimable_bin(a))
+      throw CampaignError(where_key(where, "aim") + ": no template aims at the stimulus bin '" + a +
+                          "' (docs/verification.md, \"Coverage-directed stimulus\")");
 }
 
 Campaign campaign_from_lists(const std::string& seeds, const std::string& configs, const std::string& lanes,
@@ -191,6 +199,8 @@ std::string campaign_json(const Campaign& c) {
   j["backends"] = c.backends;
   j["jobs_per_shard"] = c.jobs_per_shard;
   j["cycles"] = c.cycles;
+  if (!c.aim.empty()) j["aim"] = c.aim;  // only when used: other campaigns keep their text (results files)
+  if (c.stall > 0) j["stall"] = c.stall;
   return j.dump();
 }
 
@@ -256,11 +266,12 @@ Campaign campaign_from_json(const std::string& text, const std::string& where) {
     throw CampaignError(where + ": not JSON: " + e.what());
   }
   if (!j.is_object()) throw CampaignError(where + ": not a JSON object");
-  static const std::set<std::string> known = {"seeds", "configs", "lanes", "backends", "jobs_per_shard", "cycles"};
+  static const std::set<std::string> known = {"seeds",          "configs", "lanes", "backends",
+                                              "jobs_per_shard", "cycles",  "aim",   "stall"};
   for (const auto& [key, value] : j.items())
     if (!known.count(key))
       throw CampaignError(where + ": unknown key \"" + key +
-                          "\" (the keys: seeds, configs, lanes, backends, jobs_per_shard, cycles)");
+                          "\" (the keys: seeds, configs, lanes, backends, jobs_per_shard, cycles, aim, stall)");
   if (!j.contains("seeds")) throw CampaignError(where + ": the key \"seeds\" is missing");
   Campaign c;
   c.seeds = json_seeds(j["seeds"], where);
@@ -268,6 +279,11 @@ Campaign campaign_from_json(const std::string& text, const std::string& where) {
   for (std::string& cfg : c.configs) cfg = canonical_config(cfg, where_key(where, "configs"));
   json_strings(j, "backends", where, c.backends);
   json_counts(j, where, c);
+  json_strings(j, "aim", where, c.aim);
+  if (j.contains("stall")) {
+    if (!j["stall"].is_number()) throw CampaignError(where_key(where, "stall") + ": expected a number in [0, 1)");
+    c.stall = j["stall"].get<double>();
+  }
   validate_campaign(c, where);
   return c;
 }

@@ -21,6 +21,12 @@ struct Campaign {
   std::vector<std::string> backends = {"cpu"};
   uint64_t jobs_per_shard = 200;
   bool cycles = false;  // also compare the cycles of every completion record
+  // Stimulus bins the shards' vectors aim at (GenerateOptions::aim; coverage-directed stimulus, docs/verification.md);
+  // none: the random vectors of before.
+  std::vector<std::string> aim;
+  // rtl: random back-pressure, the probability that each output stream's consumer is not ready in a cycle (seeded by
+  // the shard's seed; cycles are then compared net of stalls); 0: none.
+  double stall = 0.0;
 
   uint64_t shards() const;
 };
@@ -55,7 +61,8 @@ Campaign campaign_from_lists(const std::string& seeds, const std::string& config
                              const std::string& backends, uint64_t jobs_per_shard, bool cycles);
 // A campaign file (docs/regress.md, "Campaign file"); CampaignError naming the file, the key and the problem.
 Campaign read_campaign_file(const std::string& path);
-// The campaign as one line of JSON, every key present (the results file's header, the message to other ranks).
+// The campaign as one line of JSON, every key present but "aim" and "stall", which only a campaign that uses them has
+// (the results file's header, the message to other ranks).
 std::string campaign_json(const Campaign& c);
 // Parses campaign_json's form, or a campaign file's text; CampaignError starting with `where`.
 Campaign campaign_from_json(const std::string& text, const std::string& where);

@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <functional>
 #include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "voxcd/host/device/conform.h"
+#include "voxcd/host/regress/stimulus_bins.h"
 #include "voxcd/host/regress/testing_fault.h"
 #include "voxcd/ref/vectors.h"
 
@@ -39,7 +43,7 @@ struct ShardVectors::Cached {
 ShardVectors::ShardVectors() = default;
 ShardVectors::~ShardVectors() = default;
 
-ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, unsigned threads) {
+ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, const ShardOptions& so) {
   const auto start = std::chrono::steady_clock::now();
   testing_fault("VOXCD_TESTING_FAULT", "SHARD", s.index);
   auto& k = cache.cached_;
@@ -48,6 +52,7 @@ ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, un
     GenerateOptions g;
     g.seed = s.seed;
     g.jobs = c.jobs_per_shard;
+    g.aim = c.aim;
     if (!s.config.empty()) g.config = parse_config_pairs(s.config, "configuration");
     g.config.LANES = s.lanes;
     GeneratedFile info;
@@ -65,7 +70,20 @@ ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, un
   opt.backend = s.backend;
   opt.lanes = s.lanes;
   opt.cycles = c.cycles;
-  opt.threads = threads;
+  opt.threads = so.threads;
+  if (s.backend == "rtl") {
+    opt.stall = c.stall;
+    opt.stall_seed = s.seed;
+    if (!so.coverage.empty()) {
+      // Campaigns may share the directory: the file names say the campaign (a digest of it) and the shard.
+      char digest[17];
+      std::snprintf(digest, sizeof digest, "%016llx",
+                    static_cast<unsigned long long>(std::hash<std::string>{}(campaign_json(c))));
+      const std::string stem = so.coverage + "/" + digest + "-shard-" + std::to_string(s.index);
+      opt.coverage = stem + ".dat";
+      write_stimulus_bins(stem + ".bins", k->file);
+    }
+  }
   const ConformResult r = run_vector_file(k->file, opt);
   ShardResult out;
   out.shard = s.index;
@@ -92,9 +110,19 @@ std::string reproduce_command(const Campaign& c, const Shard& s, const std::stri
   std::string cmd = p + " conform --generate --seed " + std::to_string(s.seed) + " --jobs " +
                     std::to_string(c.jobs_per_shard) + " --lanes " + std::to_string(s.lanes);
   if (!s.config.empty()) cmd += " --config " + shell_word(s.config);
+  if (!c.aim.empty()) {
+    std::string aim;
+    for (const std::string& a : c.aim) aim += (aim.empty() ? "" : ",") + a;
+    cmd += " --aim " + shell_word(aim);
+  }
   cmd += " -o " + f + " && " + p + " conform " + f + " --backend " + s.backend + " --lanes " +
          std::to_string(s.lanes);
   if (c.cycles) cmd += " --cycles";
+  if (c.stall > 0 && s.backend == "rtl") {
+    std::ostringstream stall;
+    stall << c.stall;
+    cmd += " --stall " + stall.str() + " --stall-seed " + std::to_string(s.seed);
+  }
   return cmd;
 }
 

@@ -24,6 +24,14 @@ struct ShardResult {
   bool ok() const { return error.empty(); }
 };
 
+// How a rank runs its shards: the cpu backend's threads (0 = one per hardware thread); and, when coverage is a directory,
+// the rtl backend on the coverage models, each shard writing its counts there (<campaign digest>-shard-<index>.dat)
+// beside the stimulus bins of its vectors (the same name, .bins; docs/verification.md).
+struct ShardOptions {
+  unsigned threads = 1;
+  std::string coverage;
+};
+
 // The vectors of the last (seed, configuration, lanes) a rank generated, kept for the next shard on another backend.
 class ShardVectors {
  public:
@@ -34,14 +42,14 @@ class ShardVectors {
   struct Cached;
 
  private:
-  friend ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, unsigned threads);
+  friend ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, const ShardOptions& opt);
   std::unique_ptr<Cached> cached_;
 };
 
-// Runs shard s of c (the cpu backend on `threads` threads, 0 = one per hardware thread). Never throws for what the
-// backend does (its error is the result's); std::exception for what should not happen, and for the testing faults
-// of VOXCD_TESTING_FAULT (docs/regress.md, "Testing aids").
-ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, unsigned threads);
+
+// Runs shard s of c. Never throws for what the backend does (its error is the result's); std::exception for what
+// should not happen, and for the testing faults of VOXCD_TESTING_FAULT (docs/regress.md, "Testing aids").
+ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, const ShardOptions& opt);
 
 // The one-line shell command that reproduces shard s on one machine with `program` (the voxcd tool's path):
 // generate its vectors into `vec_file`, then run them on its backend and lanes (with --cycles if c has it).

@@ -593,7 +593,7 @@ TEST_P(AxiTest, RunOpensTheStreamAndBusyRefusesWrites) {
 // descriptor beat (docs/hardware.md), and cycles is the timing model's at the model's depth.
 TEST_P(AxiTest, AddedLatencyIsExact) {
   Axi& a = *axi_;
-  const GeneratedVectors g = generate_vectors({seed_, 40, 500, a.cfg});
+  const GeneratedVectors g = generate_vectors({seed_, 40, 500, a.cfg, {}});
   a.load(g.memory);
   ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
   for (size_t i = 0; i < g.jobs.size(); ++i) {
@@ -620,7 +620,7 @@ TEST_P(AxiTest, GeneratedVectorsUnderRandomHandshakes) {
   for (double p : {1.0, 0.7, 0.3}) {
     Axi b(models()[GetParam()], seed_ + uint64_t(p * 100));
     b.p_lite = p;
-    const GeneratedVectors g = generate_vectors({seed_ + 17, 150, 1500, b.cfg});
+    const GeneratedVectors g = generate_vectors({seed_ + 17, 150, 1500, b.cfg, {}});
     b.load(g.memory);
     ASSERT_EQ(b.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
     b.p_job_valid = b.job_beats == 1 ? 1.0 : p;
@@ -683,7 +683,7 @@ TEST_P(AxiTest, VectorFiles) {
 TEST_P(AxiTest, MalformedDescriptorsAreRefused) {
   Axi& a = *axi_;
   a.p_job_valid = a.p_rec_ready = 0.7;
-  const GeneratedVectors g = generate_vectors({seed_ + 5, 12, 300, a.cfg});
+  const GeneratedVectors g = generate_vectors({seed_ + 5, 12, 300, a.cfg, {}});
   a.load(g.memory);
   ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
   std::vector<uint8_t> good(kJobBytes);
@@ -814,7 +814,7 @@ TEST_P(AxiTest, RandomDescriptorsAreRefusedAsTheReferenceRefusesThem) {
   Axi& a = *axi_;
   a.p_lite = 0.8;
   a.p_rec_ready = 0.7;
-  const GeneratedVectors g = generate_vectors({seed_ + 23, 300, 600, a.cfg});
+  const GeneratedVectors g = generate_vectors({seed_ + 23, 300, 600, a.cfg, {}});
   a.load(g.memory);
   ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
   std::mt19937_64 rng(seed_ * 7 + 1);

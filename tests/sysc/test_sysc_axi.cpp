@@ -30,7 +30,7 @@ TEST(SyscAxi, GeneratedVectorsThroughThePlatform) {
   // Two batches, each after loading its own memories: the second load happens between batches, while idle.
   uint64_t jobs_total = 0, writes = 1;  // RUN once
   for (int round = 0; round < 2; ++round) {
-    const GeneratedVectors g = generate_vectors({seed + uint64_t(round), 80, 600, opt.config});
+    const GeneratedVectors g = generate_vectors({seed + uint64_t(round), 80, 600, opt.config, {}});
     std::vector<Record> got;
     p.execute([&](HostCpu& cpu) {
       cpu.load(g.memory);

@@ -1,0 +1,100 @@
+#include "voxcd/host/regress/stimulus_bins.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "voxcd/ref/pipeline.h"
+
+namespace voxcd {
+
+namespace {
+
+const char* const kAxis[3] = {"x", "y", "z"};
+
+// The bins of the configuration itself.
+void count_config(const DeviceConfig& c, std::map<std::string, uint64_t>& bins) {
+  ++bins["config.lanes." + std::to_string(c.LANES)];
+  ++bins["config.depth." + std::to_string(c.depth)];
+  ++bins["config.sb." + std::to_string(c.SB)];
+  if (c.BANKS > 0) ++bins["config.banks.shared"];
+  if (c.BL > 0) ++bins["config.sparse"];
+  if (c.brick_lanes()) ++bins["config.brick_lanes"];
+}
+
+// Where a point's index lies against the bounds on each axis, and the floor of a negative coordinate.
+void count_point(const DeviceConfig& c, const Job& j, const Transformed& t, const Located& l,
+                 std::map<std::string, uint64_t>& bins) {
+  const int64_t n[3] = {int64_t(j.nx), int64_t(j.ny), int64_t(j.nz)};
+  const int64_t span = int64_t{1} << c.DW;
+  for (int a = 0; a < 3; ++a) {
+    const std::string axis = kAxis[a];
+    const int64_t i = l.index[a];
+    if (i == -1) ++bins["face." + axis + ".-1"];
+    if (i == 0) ++bins["face." + axis + ".0"];
+    if (i == n[a] - 1) ++bins["face." + axis + ".n-1"];
+    if (i == n[a]) ++bins["face." + axis + ".n"];
+    if ((i < -1 || i > n[a]) && (((i % span) + span) % span) < n[a]) ++bins["far." + axis + ".wraps"];
+    const Acc frac = t.acc[a] & ((Acc{1} << c.TF()) - 1);
+    if (t.acc[a] < 0 && frac != 0) ++bins["floor." + axis + ".negative"];
+  }
+}
+
+// Every bin the configuration can have, at 0: an empty bin is reported, not missing.
+void declare(const DeviceConfig& c, std::map<std::string, uint64_t>& bins) {
+  for (const char* a : kAxis) {
+    const std::string axis = a;
+    for (const char* f : {".-1", ".0", ".n-1", ".n"}) bins["face." + axis + f];
+    bins["far." + axis + ".wraps"];
+    bins["floor." + axis + ".negative"];
+  }
+  for (int p = 0; p < c.dense_slot_points(); ++p) bins["first.position." + std::to_string(p)];
+  if (c.SB > 2)
+    for (const char* d : {"below", "at", "above"}) bins[std::string("distance.") + d];
+  bins["job.map.dense"];
+  bins["job.shell.dense"];
+  if (c.BL > 0) {
+    bins["job.map.sparse"];
+    bins["job.shell.sparse"];
+  }
+}
+
+}  // namespace
+
+std::map<std::string, uint64_t> stimulus_bins(const VectorFile& f) {
+  const DeviceConfig& c = f.config;
+  std::map<std::string, uint64_t> bins;
+  declare(c, bins);
+  count_config(c, bins);
+  for (const Job& j : f.jobs) {
+    ++bins[std::string("job.map.") + (j.sparse_map() ? "sparse" : "dense")];
+    ++bins[std::string("job.shell.") + (j.sparse_shell() ? "sparse" : "dense")];
+    for (const ShellWord& p : job_points(c, f.memory.shell, j)) {
+      const Transformed t = transform(c, j, p);
+      const Located l = locate(c, j, t);
+      count_point(c, j, t, l, bins);
+      if (c.SB > 2 && l.inside) {
+        const int64_t d = look_up(c, f.memory.map, j, p).dist;
+        ++bins[d < j.threshold ? "distance.below" : d == j.threshold ? "distance.at" : "distance.above"];
+      }
+    }
+  }
+  // FIRST's hit: its position in the slot (a dense shell's slots start at multiples of the slot's points).
+  // The expected stream holds each job's hits, then its completion record, job after job.
+  size_t job = 0;
+  for (const Record& r : f.expected) {
+    if (r.kind == Record::Done) {
+      ++job;
+    } else if (job < f.jobs.size() && f.jobs[job].mode == Mode::First && !f.jobs[job].sparse_shell()) {
+      ++bins["first.position." + std::to_string(r.point % uint32_t(c.dense_slot_points()))];
+    }
+  }
+  return bins;
+}
+
+void write_stimulus_bins(const std::string& path, const VectorFile& f) {
+  std::ofstream out(path);
+  for (const auto& [name, count] : stimulus_bins(f)) out << name << ' ' << count << '\n';
+  if (!out) throw std::runtime_error("cannot write the stimulus bins " + path);
+}
+
+}  // namespace voxcd
