@@ -97,6 +97,12 @@ int regress(const RegressArgs& a, const CLI::App& cmd) {
     mpi::serve(world, a.run.shard());
     return 0;
   }
+  // --coverage DIR alone: merge and report what DIR holds (the counts of earlier campaigns, the AXI tests', a team's).
+  if (!a.run.coverage.empty() && a.campaign.empty() && a.seeds.empty()) {
+    mpi::release_workers(world);
+    report_coverage(a);
+    return 0;
+  }
   Campaign c;
   try {
     if (!(a.run.timeout > 0)) throw CLI::ValidationError("--timeout must be more than 0 seconds");
