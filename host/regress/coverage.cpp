@@ -283,7 +283,7 @@ std::string CoverageReport::text() const {
   }
   o << "by file (line / branch / toggle / functional, %):\n";
   for (const auto& [file, ks] : files) {
-    std::snprintf(buf, sizeof buf, "  %-22s", file.c_str());
+    std::snprintf(buf, sizeof buf, "  %-26s", file.c_str());
     o << buf;
     for (const char* kind : {"line", "branch", "toggle", "functional"}) {
       const auto it = ks.find(kind);

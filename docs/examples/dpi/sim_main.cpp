@@ -1,6 +1,11 @@
 // Runs the Verilated testbench tb_voxcd_dpi: drives its clock until it finishes and exits with 1 when it failed
 // ($fatal, a failed assertion in the device) and 0 when it passed. Plusargs go to the testbench (+seed=S ...).
+// Verilated with --coverage, it writes the design's coverage counts to +coverage=FILE (default coverage.dat), which
+// `voxcd regress --coverage DIR` merges and reports (docs/verification.md, "Your own RTL").
 #include <verilated.h>
+#if VM_COVERAGE
+#include <verilated_cov.h>
+#endif
 
 #include <memory>
 
@@ -23,5 +28,9 @@ int main(int argc, char** argv) {
     tb->eval();
   }
   tb->final();
+#if VM_COVERAGE
+  const char* file = ctx->commandArgsPlusMatch("coverage=");
+  ctx->coveragep()->write(*file ? file + 10 : "coverage.dat");  // the match is "+coverage=FILE"
+#endif
   return ctx->gotError() ? 1 : 0;
 }
