@@ -69,3 +69,13 @@ file(STRINGS ${aimed}/bins.txt face REGEX "^face.x.n ")
 if(NOT face MATCHES "^face.x.n [1-9][0-9]*$")
   message(FATAL_ERROR "the aimed campaign did not hit face.x.n: '${face}'")
 endif()
+
+# Two MPI ranks write into one directory; rank 0 merges every shard's counts.
+set(ranks ${WORK}/ranks)
+execute_process(COMMAND ${MPIEXEC} -np 2 ${VOXCD} regress --seeds 1-3 --configs "default;BL 3" --lanes 4 --backends rtl
+                        --jobs-per-shard 30 --cycles --coverage ${ranks}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "run now on 2 ranks" OR NOT out MATCHES "6 coverage data files merged")
+  message(FATAL_ERROR "two ranks did not write and merge the 6 shards' coverage (exit ${rc})")
+endif()
