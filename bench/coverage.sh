@@ -4,7 +4,7 @@
 #   1. the AXI tests on the AXI tops' coverage models (test_axi_cov);
 #   2. bench/coverage/lanes4.json: every kind of device at LANES 4 (each depth, distance, banks, sparse, brick lanes),
 #      6 seeds of 400 jobs, random back-pressure 0.3, cycles compared;
-#   3. bench/coverage/lanes.json: LANES 1, 2 and 8;
+#   3. bench/coverage/lanes.json: LANES 1, 2 and 8; bench/coverage/widths.json: narrow and wide widths at LANES 2;
 #   4. the same LANES 4 campaign with other seeds aimed at the stimulus bins still empty (--aim-at-holes).
 # Prints the merged report and writes it to docs/results/coverage.txt. Usage: bash bench/coverage.sh [BUILD_DIR]
 set -euo pipefail
@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 build=${1:-build-cov}
 export CCACHE_BASEDIR="$PWD"
 start=$SECONDS
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXCD_RTL_COVERAGE_TOGGLE=ON >/dev/null
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXCD_RTL_COVERAGE_TOGGLE=ON -UVOXCD_RTL_COVERAGE_MODELS >/dev/null
 cmake --build "$build" -j2 --target voxcd voxcd_rtl_cov_backend test_axi_cov
 echo "coverage: built in $((SECONDS - start)) s" >&2
 dir="$build/coverage"
@@ -21,13 +21,14 @@ mkdir -p "$dir"
 VOXCD_COVERAGE_DIR="$dir" "$build/test_axi_cov" --gtest_brief=1
 "$build/voxcd" regress --campaign bench/coverage/lanes4.json --coverage "$dir" >"$dir/lanes4.txt"
 "$build/voxcd" regress --campaign bench/coverage/lanes.json --coverage "$dir" >"$dir/lanes.txt"
+"$build/voxcd" regress --campaign bench/coverage/widths.json --coverage "$dir" >"$dir/widths.txt"
 "$build/voxcd" regress --seeds 101-103 --configs "default;SB 8 WB 8;BL 3;SB 8 WB 8 BANKS 2 BL 3;BL 3 TX 1" \
   --lanes 4 --backends rtl --jobs-per-shard 200 --cycles --stall 0.3 --coverage "$dir" --aim-at-holes \
   >"$dir/aimed.txt"
 mkdir -p docs/results
 {
   echo "# bash bench/coverage.sh ($(date -u +%Y-%m-%d), $((SECONDS - start)) s on $(nproc) cores)"
-  grep -h "^campaign:\|^shards:\|^failures:\|^aiming" "$dir/lanes4.txt" "$dir/lanes.txt" "$dir/aimed.txt" || true
+  grep -h "^campaign:\|^shards:\|^failures:\|^aiming" "$dir/lanes4.txt" "$dir/lanes.txt" "$dir/widths.txt" "$dir/aimed.txt" || true
   cat "$dir/summary.txt"
 } | tee docs/results/coverage.txt
 echo "coverage: done in $((SECONDS - start)) s" >&2

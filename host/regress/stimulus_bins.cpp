@@ -19,6 +19,17 @@ void count_config(const DeviceConfig& c, std::map<std::string, uint64_t>& bins) 
   if (c.BANKS > 0) ++bins["config.banks.shared"];
   if (c.BL > 0) ++bins["config.sparse"];
   if (c.brick_lanes()) ++bins["config.brick_lanes"];
+  // Widths narrower and wider than the defaults (DeviceConfig{}).
+  const DeviceConfig d;
+  const int have[] = {c.PW, c.MW, c.TW, c.DW, c.MEMW, c.SAW, c.MAW, c.TAGW};
+  const int dflt[] = {d.PW, d.MW, d.TW, d.DW, d.MEMW, d.SAW, d.MAW, d.TAGW};
+  bool narrower = false, wider = false;
+  for (int i = 0; i < 8; ++i) {
+    narrower = narrower || have[i] < dflt[i];
+    wider = wider || have[i] > dflt[i];
+  }
+  if (narrower) ++bins["config.widths.narrower"];
+  if (wider) ++bins["config.widths.wider"];
 }
 
 // Where a point's index lies against the bounds on each axis, and the floor of a negative coordinate.
@@ -39,8 +50,15 @@ void count_point(const DeviceConfig& c, const Job& j, const Transformed& t, cons
   }
 }
 
-// Every bin the configuration can have, at 0: an empty bin is reported, not missing.
+// Every bin the configuration can have, at 0: an empty bin is reported, not missing. The configuration bins are
+// declared by every configuration: a campaign that leaves out a depth or a kind of device shows it empty.
 void declare(const DeviceConfig& c, std::map<std::string, uint64_t>& bins) {
+  for (int l : {1, 2, 4, 8}) bins["config.lanes." + std::to_string(l)];
+  for (int d = 0; d <= kMaxDepth; ++d) bins["config.depth." + std::to_string(d)];
+  for (int s : {2, 4, 8, 16}) bins["config.sb." + std::to_string(s)];
+  for (const char* k : {"config.banks.shared", "config.sparse", "config.brick_lanes", "config.widths.narrower",
+                        "config.widths.wider"})
+    bins[k];
   for (const char* a : kAxis) {
     const std::string axis = a;
     for (const char* f : {".-1", ".0", ".n-1", ".n"}) bins["face." + axis + f];

@@ -11,7 +11,7 @@
 namespace voxcd {
 
 // Name -> count: the configuration (config.lanes.N, config.depth.D, config.sb.S, config.banks.shared,
-// config.sparse, config.brick_lanes); every point's index at each face of the bounds on each axis (face.x.-1,
+// config.sparse, config.brick_lanes, config.widths.narrower / .wider than the defaults); every point's index at each face of the bounds on each axis (face.x.-1,
 // face.x.0, face.x.n-1, face.x.n), far outside where its low DW bits would fall inside (far.x.wraps), and the floor of
 // a negative coordinate with a fraction (floor.x.negative); FIRST's hit at each position of its slot
 // (first.position.P); a distance job's inside points below, at and above its threshold (distance.below, .at,
