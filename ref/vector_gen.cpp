@@ -40,6 +40,8 @@ class Generator {
     if (cfg_.sparse()) make_sparse_maps(g.memory);
     make_shell(g.memory);
     if (cfg_.sparse()) make_sparse_shell(g.memory);
+    if (aims_at("job.map.top")) add_top_map(g.memory);
+    if (aims_at("job.shell.top") || aims_at("job.points.max")) add_top_block(g.memory);
     mem_ = &g.memory;
     for (size_t k = 0; k < opt_.jobs; ++k) {
       const bool aimed = !opt_.aim.empty() && k % 2 == 1;
@@ -473,6 +475,59 @@ class Generator {
 
   // ---- Coverage-directed jobs (GenerateOptions::aim) ----
 
+  bool aims_at(const std::string& bin) const {
+    return std::find(opt_.aim.begin(), opt_.aim.end(), bin) != opt_.aim.end();
+  }
+
+  // A copy of the first dense map of more than one word at the top of the voxmap memory (on a bank boundary for a
+  // distance map), the words between garbage: its addresses' upper bits (job.map.top).
+  void add_top_map(DeviceMemory& mem) {
+    const uint64_t word_mask = cfg_.MEMW >= 64 ? ~uint64_t{0} : (uint64_t{1} << cfg_.MEMW) - 1;
+    for (const MapDesc& m : maps_) {
+      const uint64_t words = words_of(m);
+      if (m.sparse || words < 2 || m.base + words > mem.map.size()) continue;
+      uint64_t base = cfg_.map_depth() - words;
+      if (cfg_.distance()) base &= ~uint64_t{7};
+      if (base < mem.map.size()) return;  // the memory is full already
+      const size_t old = mem.map.size();
+      mem.map.resize(base + words);
+      for (size_t w = old; w < base; ++w) mem.map[w] = rng_() & word_mask;
+      std::copy(mem.map.begin() + m.base, mem.map.begin() + m.base + words, mem.map.begin() + base);
+      MapDesc top = m;
+      top.base = uint32_t(base);
+      top_map_ = maps_.size();
+      maps_.push_back(top);
+      return;
+    }
+  }
+
+  // A dense job of every shell word, each point a hit at one voxel (ALL or COUNT): its counts' and point indices' top
+  // bits (job.points.max); false when the shell memory is not full (add_top_block fills it).
+  bool every_point_hits(Job& j, uint32_t index) {
+    if (mem_->shell.size() != cfg_.shell_depth()) return false;
+    j.sparse &= uint8_t(~kSparseShell);
+    j.mode = index % 4 == 1 ? Mode::All : Mode::Count;
+    j.shell_base = 0;
+    j.shell_count = uint32_t(cfg_.shell_depth());
+    j.hit_mask = 0xF;
+    j.threshold = cfg_.IW() >= 64 ? INT64_MAX : (int64_t{1} << (cfg_.IW() - 1)) - 1;
+    return pin_points(j, 0, 0, false);
+  }
+
+  // A copy of the faces block at the top of the shell memory, zero words between (job.shell.top).
+  void add_top_block(DeviceMemory& mem) {
+    for (const Block& b : blocks_) {
+      if (b.sparse || b.count < 2) continue;
+      const uint64_t base = cfg_.shell_depth() - b.count;
+      if (base < mem.shell.size()) return;
+      const std::vector<ShellWord> pts(mem.shell.begin() + b.base, mem.shell.begin() + b.base + b.count);
+      mem.shell.resize(base, ShellWord{0, 0, 0});
+      top_block_ = blocks_.size();
+      add_block(mem, pts);
+      return;
+    }
+  }
+
   // Every point of j at one voxel: M = 0 and t its place, voxel `index` on `axis` and the map's middle on the others
   // (a fraction below that voxel's floor when `fraction` is set); false when t does not fit TW.
   bool pin_points(Job& j, int axis, int64_t index, bool fraction) {
@@ -540,7 +595,7 @@ class Generator {
     const std::string kind = bin.substr(0, dot), what = bin.substr(dot + 1, dot2 - dot - 1);
     const std::string rest = dot2 == std::string::npos ? "" : bin.substr(dot2 + 1);
     const int axis = what == "x" ? 0 : what == "y" ? 1 : what == "z" ? 2 : -1;
-    for (int attempt = 0; attempt < 20; ++attempt) {
+    for (int attempt = 0; attempt < 40; ++attempt) {
       Job j = make_job(index);
       const int64_t n = axis == 0 ? j.nx : axis == 1 ? j.ny : j.nz;
       bool ok = false;
@@ -556,6 +611,17 @@ class Generator {
         ok = first_at(j, uint32_t(std::stoul(rest)), attempt >= 10);
       } else if (kind == "distance") {
         ok = threshold_for(j, what);
+      } else if (kind == "job" && what == "points") {
+        ok = every_point_hits(j, index);
+      } else if (kind == "job" && rest == "top") {
+        if (what == "tag") {
+          j.tag = uint32_t(cfg_.max_tag() - (index & (cfg_.max_tag() >> 1)));  // in the upper half
+          ok = true;
+        } else if (what == "map") {
+          ok = top_map_ < maps_.size() && j.map_base == maps_[top_map_].base;
+        } else {
+          ok = top_block_ < blocks_.size() && j.shell_base >= blocks_[top_block_].base;
+        }
       } else if (kind == "job") {
         ok = (what == "map" ? j.sparse_map() : j.sparse_shell()) == (rest == "sparse");
       }
@@ -568,6 +634,7 @@ class Generator {
   DeviceConfig cfg_;
   std::mt19937_64 rng_;
   const DeviceMemory* mem_ = nullptr;
+  size_t top_map_ = SIZE_MAX, top_block_ = SIZE_MAX;  // the copies at the top of the memories (aimed), if any
   std::vector<MapDesc> maps_;
   std::vector<Block> blocks_;
 };
@@ -575,8 +642,9 @@ class Generator {
 }  // namespace
 
 bool aimable_bin(const std::string& name) {
-  static const char* const kFixed[] = {"distance.below", "distance.at", "distance.above", "job.map.dense",
-                                       "job.map.sparse", "job.shell.dense", "job.shell.sparse"};
+  static const char* const kFixed[] = {"distance.below", "distance.at",     "distance.above", "job.map.dense",
+                                       "job.map.sparse", "job.shell.dense", "job.shell.sparse", "job.map.top",
+                                       "job.shell.top",  "job.tag.top",     "job.points.max"};
   for (const char* f : kFixed)
     if (name == f) return true;
   for (const char* a : {"x", "y", "z"}) {

@@ -25,7 +25,9 @@ struct GenerateOptions {
 
 // True for the stimulus bins a template can aim at (host/regress/stimulus_bins.h's names): face.A.K, far.A.wraps,
 // floor.A.negative (A x, y or z; K -1, 0, n-1 or n), first.position.P, distance.below/at/above, job.map.dense/sparse,
-// job.shell.dense/sparse. A configuration that cannot reach a bin (a distance bin on a 2-bit device, a position past
+// job.shell.dense/sparse, job.map.top and job.shell.top (a copy of a map or a shell block at the top of its memory,
+// made when aimed at), job.tag.top (a tag with its top bit set), job.points.max (a job of every shell word, each a
+// hit). A configuration that cannot reach a bin (a distance bin on a 2-bit device, a position past
 // the slot) gets random jobs in its place.
 bool aimable_bin(const std::string& name);
 

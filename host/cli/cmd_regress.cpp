@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -91,7 +92,19 @@ void report_coverage(const RegressArgs& a) {
   std::cout << cov.text() << std::flush;
 }
 
+// A coverage campaign runs every rtl shard on the coverage models: the rtl backend is ready when their module is
+// (a build may have them without the ordinary models, as bench/coverage.sh's does).
+void use_coverage_module(const RegressArgs& a) {
+  if (a.run.coverage.empty()) return;
+  try {
+    ::setenv("VOXCD_RTL_MODULE", rtl_module_path(true).c_str(), 1);
+  } catch (const std::runtime_error&) {
+    // No coverage module: the first shard says so, with how to build it.
+  }
+}
+
 int regress(const RegressArgs& a, const CLI::App& cmd) {
+  use_coverage_module(a);
   mpi::World world;
   if (world.rank() != 0) {
     mpi::serve(world, a.run.shard());

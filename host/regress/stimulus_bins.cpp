@@ -70,6 +70,7 @@ void declare(const DeviceConfig& c, std::map<std::string, uint64_t>& bins) {
     for (const char* d : {"below", "at", "above"}) bins[std::string("distance.") + d];
   bins["job.map.dense"];
   bins["job.shell.dense"];
+  for (const char* k : {"job.map.top", "job.shell.top", "job.tag.top", "job.points.max"}) bins[k];
   if (c.BL > 0) {
     bins["job.map.sparse"];
     bins["job.shell.sparse"];
@@ -86,6 +87,11 @@ std::map<std::string, uint64_t> stimulus_bins(const VectorFile& f) {
   for (const Job& j : f.jobs) {
     ++bins[std::string("job.map.") + (j.sparse_map() ? "sparse" : "dense")];
     ++bins[std::string("job.shell.") + (j.sparse_shell() ? "sparse" : "dense")];
+    // The upper half of each memory and of the tags: their addresses' and tags' top bits.
+    if (!j.sparse_map() && j.map_base >= c.map_depth() / 2) ++bins["job.map.top"];
+    if (!j.sparse_shell() && uint64_t(j.shell_base) + j.shell_count > c.shell_depth() / 2) ++bins["job.shell.top"];
+    if (j.tag > c.max_tag() / 2) ++bins["job.tag.top"];
+    if (!j.sparse_shell() && j.shell_count == c.shell_depth()) ++bins["job.points.max"];
     for (const ShellWord& p : job_points(c, f.memory.shell, j)) {
       const Transformed t = transform(c, j, p);
       const Located l = locate(c, j, t);
