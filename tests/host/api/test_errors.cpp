@@ -73,8 +73,8 @@ TEST(Errors, TheApisErrorsByName) {
   std::ofstream(scene) << R"({"types": [{"shape": "cube", "voxel": -1}]})";
   EXPECT_EQ(caught<SceneFileError>([&] { World::scene(scene); }).where(), scene + ": types[0].voxel");
   WorldDef def;
-  def.lanes = 1000;
-  EXPECT_EQ(caught<OptionError>([&] { World w(def); }).where(), "lanes");
+  def.side = -1;
+  EXPECT_EQ(caught<OptionError>([&] { World w(def); }).where(), "side");
   const Object cube = Object::load("cube");
   Pose nan;
   nan.translation = {std::nan(""), 0, 0};
