@@ -23,7 +23,8 @@ struct Collider::Impl {
     collider.reset();
     a.reset(), b.reset();
     const int bits = oa.distance_bits() && ob.distance_bits() ? std::max(oa.distance_bits(), ob.distance_bits()) : 0;
-    const DeviceConfig cfg = device_config_for(options.backend, options.lanes, {oa.type().get(), ob.type().get()}, bits);
+    const DeviceConfig cfg =
+        device_config_for(options.backend, options.lanes, {oa.type().get(), ob.type().get()}, bits);
     DeviceOptions dopt;
     dopt.threads = options.threads;
     dopt.pool = pool;

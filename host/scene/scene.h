@@ -159,8 +159,8 @@ class Simulation {
 // if a body finds no place, or the tries of all bodies pass 10^6 + 4 per body, again from the start on a
 // lattice: the densest of a face-centred cubic and a simple cubic lattice in the cube, spread as wide as the
 // count allows, N of its sites taken at random and each body jittered within the spacing's slack. The lattice
-// treats every sphere as the largest. PlacementError (errors.h) when even the lattice at the closest spacing has too few
-// sites (`capacity` of them).
+// treats every sphere as the largest. PlacementError (errors.h) when even the lattice at the closest spacing has too
+// few sites (`capacity` of them).
 void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed);
 
 // The scenes' random draws (a uniform rotation; a uniform unit direction), one definition so that scene files
