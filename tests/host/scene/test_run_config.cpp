@@ -132,13 +132,13 @@ TEST(RunConfig, EachLimitOfAnOptionNamesTheOption) {
 TEST(RunConfig, AValueSetInCodeNamesTheField) {
   RunConfig c;
   c.types[0].resolution = 2;
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { check(c); }), "types[0].resolution: 2 is outside [4, 1020]");
+  EXPECT_EQ(error_text<OptionError>([&] { check(c); }), "types[0].resolution: 2 is outside [4, 1020]");
   c = RunConfig{};
   c.distance_bits = 7;
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { check(c); }), "distance_bits: 7 is not 4, 8 or 16");
+  EXPECT_EQ(error_text<OptionError>([&] { check(c); }), "distance_bits: 7 is not 4, 8 or 16");
   c = RunConfig{};
   c.margin = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { check(c); }), "margin: must be a finite number");
+  EXPECT_EQ(error_text<OptionError>([&] { check(c); }), "margin: must be a finite number");
 }
 
 TEST(RunConfig, OptionsOverrideTheFileInOrder) {
