@@ -51,7 +51,7 @@ class Collider {
   // Worker threads it holds now, besides the calling thread (0 before its first query, on one thread, or off cpu).
   unsigned worker_threads() const;
 
-  struct Impl;
+  struct Impl;  // internal (host/api/collide.cpp)
 
  private:
   std::unique_ptr<Impl> impl_;
