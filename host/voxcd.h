@@ -11,6 +11,9 @@
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/types.h"
 
+// Errors: voxcd::Error and every error the API throws, by name.
+#include "voxcd/host/api/errors.h"
+
 // Objects: from a mesh file, arrays, a built-in shape or an object file.
 #include "voxcd/host/api/object.h"
 

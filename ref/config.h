@@ -5,12 +5,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace voxcd {
+#include "voxcd/ref/error.h"
 
-// Thrown for a configuration that no device can have (a width out of range, MEMW not a power of two, ...).
-struct ConfigError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+namespace voxcd {
 
 // The deepest pipeline (voxcd_arch_pkg::MaxDepth): DeviceConfig::depth runs from 0 (the datapath of the paper's
 // device: transform, floor, bounds and address between five slot registers) to kMaxDepth, where every lane also has

@@ -8,12 +8,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace voxcd {
+#include "voxcd/ref/error.h"
 
-// Thrown when a value does not fit its fixed-point format (or is not a finite number).
-struct RangeError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+namespace voxcd {
 
 // A signed two's complement format of `width` bits, `frac` of them below the binary point.
 struct FixedFormat {

@@ -7,16 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/ref/error.h"
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/types.h"
 
 namespace voxcd {
-
-// Thrown for a job the device cannot run: a field too wide for its format, a shell or map outside the loaded
-// memory, a map dimension of 0 or above 2^DW. The message names the job's tag and the field.
-struct JobError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 using Acc = __int128;  // wide enough for any valid DeviceConfig (acc_width() <= 67)
 

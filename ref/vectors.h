@@ -17,15 +17,11 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/ref/error.h"
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/types.h"
 
 namespace voxcd {
-
-// A malformed vector file; the message starts with "FILE:LINE: ".
-struct VectorError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 struct VectorFile {
   std::string path;

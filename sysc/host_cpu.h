@@ -15,13 +15,14 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/ref/error.h"
 #include "voxcd/ref/types.h"
 
 namespace voxcd::sysc {
 
 // An access that got an error response; the message names it and the response.
-struct BusError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct BusError : Error {
+  using Error::Error;
 };
 
 struct Transaction {

@@ -6,43 +6,79 @@
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
+#include "voxcd/ref/fast/thread_pool.h"
 
 namespace voxcd {
 
-namespace {
-
-// The collider of the last query on this thread, kept while the next asks for the same objects and device: a
-// collider loads the objects into the device's memories once.
-struct Cached {
+// The device of the last query, kept while the next asks for the same two objects: a collider loads the objects
+// into the device's memories once.
+struct Collider::Impl {
+  CollideOptions options;
+  std::shared_ptr<ThreadPool> pool;  // given (the free collide()'s shared pool), else the device's own
   std::shared_ptr<const ObjectType> a, b;
-  std::string backend;
-  int lanes = 0;
-  unsigned threads = 0;
   std::unique_ptr<PairCollider> collider;
+
+  PairCollider& collider_for(const Object& oa, const Object& ob) {
+    if (collider && a == oa.type() && b == ob.type()) return *collider;
+    collider.reset();
+    a.reset(), b.reset();
+    const int bits = oa.distance_bits() && ob.distance_bits() ? std::max(oa.distance_bits(), ob.distance_bits()) : 0;
+    const DeviceConfig cfg =
+        device_config_for(options.backend, options.lanes, {oa.type().get(), ob.type().get()}, bits);
+    DeviceOptions dopt;
+    dopt.threads = options.threads;
+    dopt.pool = pool;
+    collider = std::make_unique<PairCollider>(make_device(options.backend, cfg, dopt),
+                                              std::vector<std::shared_ptr<const ObjectType>>{oa.type(), ob.type()});
+    a = oa.type(), b = ob.type();
+    return *collider;
+  }
+
+  std::vector<Contacts> collide(const Object& oa, const Object& ob, const std::vector<std::pair<Pose, Pose>>& poses) {
+    std::vector<PairRequest> reqs(poses.size());
+    for (size_t i = 0; i < poses.size(); ++i) {
+      reqs[i].a = 0;
+      reqs[i].b = 1;
+      reqs[i].pose_a = poses[i].first;
+      reqs[i].pose_b = poses[i].second;
+    }
+    PairOptions p;
+    p.mode = options.mode;
+    p.both_directions = options.both_directions;
+    p.margin = options.margin;
+    return collider_for(oa, ob).collide(reqs, p);
+  }
 };
 
-PairCollider& collider_for(const Object& a, const Object& b, const CollideOptions& o) {
-  thread_local Cached c;
-  if (c.collider && c.a == a.type() && c.b == b.type() && c.backend == o.backend && c.lanes == o.lanes &&
-      c.threads == o.threads)
-    return *c.collider;
-  c.collider.reset();
-  const int bits = a.distance_bits() && b.distance_bits() ? std::max(a.distance_bits(), b.distance_bits()) : 0;
-  const DeviceConfig cfg = device_config_for(o.backend, o.lanes, {a.type().get(), b.type().get()}, bits);
-  DeviceOptions dopt;
-  dopt.threads = o.threads;
-  c.collider = std::make_unique<PairCollider>(make_device(o.backend, cfg, dopt),
-                                              std::vector<std::shared_ptr<const ObjectType>>{a.type(), b.type()});
-  c.a = a.type(), c.b = b.type(), c.backend = o.backend, c.lanes = o.lanes, c.threads = o.threads;
-  return *c.collider;
+Collider::Collider(const CollideOptions& options) : impl_(std::make_unique<Impl>()) { impl_->options = options; }
+Collider::~Collider() = default;
+Collider::Collider(Collider&&) noexcept = default;
+Collider& Collider::operator=(Collider&&) noexcept = default;
+
+Contacts Collider::collide(const Object& a, const Pose& pose_a, const Object& b, const Pose& pose_b) {
+  return impl_->collide(a, b, {{pose_a, pose_b}}).at(0);
 }
 
-PairOptions pair_options(const CollideOptions& o) {
-  PairOptions p;
-  p.mode = o.mode;
-  p.both_directions = o.both_directions;
-  p.margin = o.margin;
-  return p;
+std::vector<Contacts> Collider::collide(const Object& a, const Object& b,
+                                        const std::vector<std::pair<Pose, Pose>>& poses) {
+  return impl_->collide(a, b, poses);
+}
+
+const CollideOptions& Collider::options() const { return impl_->options; }
+
+unsigned Collider::worker_threads() const {
+  if (!impl_->collider) return 0;
+  const std::shared_ptr<ThreadPool>& pool = impl_->collider->pool();
+  return pool ? pool->size() - 1 : 0;
+}
+
+namespace {
+
+// The free collide()'s pool for threads 0 (every hardware thread), shared by every caller: one pool, whatever the
+// number of threads that query.
+std::shared_ptr<ThreadPool> shared_pool() {
+  static const std::shared_ptr<ThreadPool> pool = std::make_shared<ThreadPool>(0);
+  return pool;
 }
 
 }  // namespace
@@ -54,14 +90,10 @@ Contacts collide(const Object& a, const Pose& pose_a, const Object& b, const Pos
 
 std::vector<Contacts> collide(const Object& a, const Object& b, const std::vector<std::pair<Pose, Pose>>& poses,
                               const CollideOptions& options) {
-  std::vector<PairRequest> reqs(poses.size());
-  for (size_t i = 0; i < poses.size(); ++i) {
-    reqs[i].a = 0;
-    reqs[i].b = 1;
-    reqs[i].pose_a = poses[i].first;
-    reqs[i].pose_b = poses[i].second;
-  }
-  return collider_for(a, b, options).collide(reqs, pair_options(options));
+  Collider::Impl once;
+  once.options = options;
+  if (options.threads == 0 && options.backend == "cpu") once.pool = shared_pool();
+  return once.collide(a, b, poses);
 }
 
 }  // namespace voxcd

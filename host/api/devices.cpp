@@ -9,7 +9,7 @@ namespace voxcd {
 
 DeviceSize size_device(const std::string& scene_file, const SizeOptions& options) {
   const std::string problem = options.clock_mhz != 0 ? clock_problem(options.clock_mhz) : "";
-  if (!problem.empty()) throw std::invalid_argument("clock_mhz: " + problem);
+  if (!problem.empty()) throw OptionError({"clock_mhz"}, problem);
   SizeRequest req;
   static_cast<SizeOptions&>(req) = options;
   const RunConfig f = read_scene_file(scene_file);

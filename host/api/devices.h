@@ -32,8 +32,8 @@ struct DeviceSize {
 };
 
 // The smallest device for the scene file `scene_file` (docs/scenes.md). SizeError when the request cannot be met,
-// SceneFileError for the file, MeshError for a type's mesh; std::invalid_argument for a clock that is not a positive
-// number.
+// SceneFileError for the file, MeshError for a type's mesh; OptionError "clock_mhz: ..." for a clock that is not a
+// positive number.
 DeviceSize size_device(const std::string& scene_file, const SizeOptions& options = {});
 
 }  // namespace voxcd

@@ -229,7 +229,7 @@ SimulationSummary run_rank(const SimulateArgs& a, mpi::World& world,
     RunConfig options = options_given(a);
     options.exchange = exchange;
     return simulate(run_config(options), progress_bar(progress));
-  } catch (const SimulateOptionError& e) {
+  } catch (const OptionError& e) {
     std::string names;
     for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
     if (exchange)

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/host/device/errors.h"
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/fast/hits.h"
 #include "voxcd/ref/timing.h"
@@ -15,11 +16,6 @@
 namespace voxcd {
 
 class ThreadPool;  // ref/fast/thread_pool.h
-
-// Thrown when a backend cannot be made or cannot run what it was given; the message says why.
-struct DeviceError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 struct DeviceOptions {
   std::string trace_path;       // rtl: write an FST waveform here ("" = none)

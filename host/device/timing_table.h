@@ -11,12 +11,13 @@
 #include <vector>
 
 #include "voxcd/ref/config.h"
+#include "voxcd/ref/error.h"
 
 namespace voxcd {
 
 // A timing table that cannot be used; the message starts with "FILE:LINE: " (or "FILE: ") and names the column.
-struct TimingTableError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct TimingTableError : Error {
+  using Error::Error;
 };
 
 // The targets a table may name, in the order reports list them: "asic-osu018", "ice40-hx8k", "ice40-up5k",

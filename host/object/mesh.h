@@ -12,12 +12,9 @@
 #include <string>
 #include <vector>
 
-namespace voxcd {
+#include "voxcd/host/object/errors.h"
 
-// Bad mesh input: says what is wrong and where (file and line, triangle or edge index).
-struct MeshError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+namespace voxcd {
 
 struct Mesh {
   std::vector<Eigen::Vector3d> vertices;

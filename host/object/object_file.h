@@ -9,6 +9,7 @@
 #include <string>
 
 #include "voxcd/host/object/distance_field.h"
+#include "voxcd/host/object/errors.h"
 #include "voxcd/host/object/point_shell.h"
 #include "voxcd/host/object/sparse_field.h"
 #include "voxcd/host/object/sparse_shell.h"
@@ -17,11 +18,6 @@
 #include "voxcd/host/object/voxelize.h"
 
 namespace voxcd {
-
-// A file that is not a valid object file: says which file, what is wrong and at which byte offset.
-struct ObjectFileError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 struct ObjectFile {
   std::string source;            // mesh path as given, or "shape:NAME" for a built-in shape

@@ -135,8 +135,9 @@ void require_distance_bits(const ObjectFile& obj, int distance_bits, const std::
     throw MeshError(name + ": the object has " +
                     (!obj.has_distance() ? std::string("no distance field")
                                          : "a distance field of " + std::to_string(obj.distance_bits()) + " bits") +
-                    "; " + std::to_string(distance_bits) + " bits were asked for (voxcd voxelize --distance-bits " +
-                    std::to_string(distance_bits) + ")");
+                    "; " + std::to_string(distance_bits) +
+                    " bits were asked for (an object voxelised with distance_bits = " + std::to_string(distance_bits) +
+                    ")");
 }
 
 ObjectType load_object_type(const std::string& file_or_shape, double voxel, int distance_bits, double band,

@@ -18,10 +18,11 @@ include(CMakePackageConfigHelpers)
 # models' (the sysc door). Every other header is internal: not installed. tests/install/consumers.sh checks that each
 # installed header includes only installed headers and compiles on its own.
 set(VOXCD_PUBLIC_HEADERS
-  host/api/object.h host/api/collide.h host/api/world.h host/api/devices.h
+  host/api/object.h host/api/collide.h host/api/world.h host/api/devices.h host/api/errors.h
+  host/object/errors.h host/pairs/errors.h host/device/errors.h host/scene/errors.h host/sizing/errors.h
   host/object/mesh.h host/object/storage.h host/object/frame.h host/pairs/contact.h host/scene/body.h
   host/device/device.h host/device/conform.h host/device/clock.h
-  ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
+  ref/error.h ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
   ref/float_model.h ref/fast/fast.h ref/fast/hits.h)
 if(TARGET voxcd_sysc)
   list(APPEND VOXCD_PUBLIC_HEADERS sysc/address_map.h sysc/axi_target.h sysc/clocked_target.h sysc/host_cpu.h

@@ -217,8 +217,9 @@ void PairCollider::pair_jobs(size_t i, const PairRequest& r, const PairOptions& 
         j.threshold = distance_threshold(cfg, opt.margin + speculative_reach(s, m, opt), types_[m]->voxmap().voxel(),
                                          types_[m]->object.distance_step());
     } catch (const RangeError& e) {
-      throw RangeError("pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name +
-                       "): " + e.what());
+      const std::string pair =
+          "pair " + std::to_string(i) + " (" + types_[r.a]->name + ", " + types_[r.b]->name + ")";
+      throw RangeError(pair + ": " + e.what(), pair);
     }
     const JobSource src{uint32_t(i), dir == 0, 0, sp.points};
     if (opt.cull) {

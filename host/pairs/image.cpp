@@ -16,7 +16,7 @@ void check_distance(const DeviceConfig& cfg, const ObjectType& t) {
   const ObjectFile& o = t.object;
   if (!o.has_distance())
     throw CapacityError("object '" + t.name + "' has no distance field, and the device holds distance voxmaps (SB = " +
-                        std::to_string(cfg.SB) + "): voxelise it with --distance-bits " + std::to_string(cfg.SB));
+                        std::to_string(cfg.SB) + "): voxelise it with distance_bits = " + std::to_string(cfg.SB));
   if (o.distance_bits() > cfg.SB)
     throw CapacityError("object '" + t.name + "' has a distance field of " + std::to_string(o.distance_bits()) +
                         " bits, wider than the device's SB = " + std::to_string(cfg.SB));

@@ -11,13 +11,9 @@
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/detail/shell_order.h"
+#include "voxcd/host/pairs/errors.h"
 
 namespace voxcd {
-
-// Object types that do not fit the device's memories or formats; names the type and the sizes.
-struct CapacityError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // The memory image of a set of object types, each type's shell words and voxmap words placed after the previous
 // type's. Only the types added are loaded. On a distance device (cfg.distance()) a type's map is its distance field

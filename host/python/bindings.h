@@ -15,6 +15,8 @@
 #include <system_error>
 #include <utility>
 
+#include "voxcd/ref/error.h"
+
 namespace voxcd {
 struct FrameStats;
 struct ObjectFile;
@@ -31,7 +33,12 @@ namespace py = pybind11;
 // A path argument: a str or an os.PathLike giving one. TypeError naming `what` for anything else.
 std::string path_arg(const py::handle& h, const char* what);
 
-// Raises ValueError with the message: an argument the module refuses before calling the library.
+// A keyword argument the module refuses before calling the library: raised as voxcd.OptionError (a ValueError),
+// `where` the message's leading place (the keyword).
+struct ArgumentError : Error {
+  using Error::Error;
+};
+// Throws ArgumentError with the message.
 [[noreturn]] void value_error(const std::string& message);
 
 // The distance fields asked for (voxelize, Pair): ValueError naming the keyword for distance_bits other than 0 (no

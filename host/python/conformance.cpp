@@ -26,8 +26,8 @@ py::dict generate(const py::object& path, uint64_t seed, int64_t jobs, int64_t c
   try {
     py::gil_scoped_release unlocked;
     w = write_generated_vectors(out, g, config.value_or(""));
-  } catch (const VectorError&) {
-    throw;
+  } catch (const Error&) {
+    throw;  // the library's own (a configuration, a vector): not the file system's
   } catch (const std::runtime_error& e) {
     PyErr_SetString(PyExc_OSError, e.what());  // the file could not be written whole
     throw py::error_already_set();

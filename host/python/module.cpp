@@ -1,10 +1,12 @@
 // import voxcd: the module, its version, the library's lists (backends, shapes, broadphases) and how the library's
 // errors reach Python (docs/python.md, "Errors").
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/device/device.h"
+#include "voxcd/host/device/timing_table.h"
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
@@ -13,6 +15,7 @@
 #include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
+#include "voxcd/host/sizing/energy_table.h"
 #include "voxcd/host/sizing/size.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/vectors.h"
@@ -31,7 +34,7 @@ std::string path_arg(const py::handle& h, const char* what) {
                        py::str(py::type::handle_of(h).attr("__name__")).cast<std::string>());
 }
 
-void value_error(const std::string& message) { throw py::value_error(message); }
+void value_error(const std::string& message) { throw ArgumentError(message); }
 
 void check_distance_args(int distance_bits, double band) {
   if (distance_bits != 0 && !valid_distance_bits(distance_bits))
@@ -43,25 +46,74 @@ void check_distance_args(int distance_bits, double band) {
 
 namespace {
 
-// True when e is one of the exception types Bad.
-template <class... Bad>
-bool is_one_of(const std::exception& e) {
-  return (... || (dynamic_cast<const Bad*>(&e) != nullptr));
+// The Python class of each library error: voxcd.Error (a RuntimeError) and one subclass of the same name per type,
+// also a ValueError where it is bad input (the class such errors had before: `except ValueError` still works).
+struct ErrorClass {
+  const char* name;
+  bool value_error;
+  bool (*matches)(const Error&);
+  PyObject* type = nullptr;
+};
+
+template <class T>
+bool is(const Error& e) {
+  return dynamic_cast<const T*>(&e) != nullptr;
 }
 
-// A backend that cannot run is a RuntimeError; bad input (the values given, or the files they name) a ValueError;
-// anything else goes on to pybind11's own translation (a RuntimeError). The message is the library's.
+// A setting the library refuses (OptionError) or a keyword argument the module refuses before calling it.
+bool is_option(const Error& e) { return is<OptionError>(e) || is<ArgumentError>(e); }
+
+// Most derived first: the first match names the class (every type derives from Error directly).
+ErrorClass error_classes[] = {
+    {"RangeError", true, is<RangeError>},         {"ConfigError", true, is<ConfigError>},
+    {"JobError", false, is<JobError>},            {"VectorError", true, is<VectorError>},
+    {"MeshError", true, is<MeshError>},           {"ObjectFileError", true, is<ObjectFileError>},
+    {"CapacityError", true, is<CapacityError>},   {"DeviceError", false, is<DeviceError>},
+    {"SceneFileError", true, is<SceneFileError>}, {"OptionError", true, is_option},
+    {"PlacementError", true, is<PlacementError>}, {"RecordError", true, is<RecordError>},
+    {"SizeError", true, is<SizeError>},           {"TimingTableError", false, is<TimingTableError>},
+    {"EnergyTableError", false, is<EnergyTableError>},
+    {"Error", false, [](const Error&) { return true; }},
+};
+
+// The exception raised for e: its class's instance with the message as its argument, and `where` (and the fields
+// some types carry: OptionError's options, SizeError's constraint and factor).
+void raise_as(const ErrorClass& c, const Error& e) {
+  py::object exc = py::reinterpret_borrow<py::object>(c.type)(py::str(e.what()));
+  exc.attr("where") = e.where();
+  if (const auto* o = dynamic_cast<const OptionError*>(&e)) exc.attr("options") = o->options;
+  if (is<ArgumentError>(e)) exc.attr("options") = e.where().empty() ? py::list() : py::list(py::make_tuple(e.where()));
+  if (const auto* z = dynamic_cast<const SizeError*>(&e)) {
+    exc.attr("constraint") = z->constraint;
+    exc.attr("factor") = z->factor;
+  }
+  PyErr_SetObject(c.type, exc.ptr());
+}
+
+// The library's errors as their classes above; anything else goes on to pybind11's own translation (std::
+// invalid_argument a ValueError, the rest a RuntimeError). The message is the library's.
 void translate_error(std::exception_ptr p) {
   try {
     if (p) std::rethrow_exception(p);
-  } catch (const DeviceError& e) {
-    PyErr_SetString(PyExc_RuntimeError, e.what());
-  } catch (const std::exception& e) {
-    if (!is_one_of<MeshError, ObjectFileError, SceneFileError, VectorError, RangeError, CapacityError,
-                   PlacementError, RecordError>(e))
-      throw;
-    PyErr_SetString(PyExc_ValueError, e.what());
+  } catch (const Error& e) {
+    for (const ErrorClass& c : error_classes)
+      if (c.matches(e)) return raise_as(c, e);
   }
+}
+
+void bind_errors(py::module_& m) {
+  PyObject* base = nullptr;
+  for (auto it = std::rbegin(error_classes); it != std::rend(error_classes); ++it) {
+    const std::string qualified = std::string("voxcd.") + it->name;
+    py::tuple bases = !base            ? py::make_tuple(py::handle(PyExc_RuntimeError))
+                      : it->value_error ? py::make_tuple(py::handle(base), py::handle(PyExc_ValueError))
+                                        : py::make_tuple(py::handle(base));
+    it->type = PyErr_NewException(qualified.c_str(), bases.ptr(), nullptr);
+    if (!it->type) throw py::error_already_set();
+    m.add_object(it->name, py::handle(it->type));
+    if (!base) base = it->type;
+  }
+  py::register_exception_translator(&translate_error);
 }
 
 }  // namespace
@@ -74,7 +126,7 @@ PYBIND11_MODULE(voxcd, m) {
   m.doc() = "voxcd: voxel collision detection on a modelled point-lookup accelerator (docs/python.md)";
   m.attr("__version__") = VOXCD_VERSION;
 
-  py::register_exception_translator(&voxcd::python::translate_error);
+  voxcd::python::bind_errors(m);
 
   m.def("backends", &device_backends, "The device backends that can run here, by name (for backend=...).");
   m.def(

@@ -207,7 +207,7 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
     try {
       json = size_json(derive_size(f, sc, req));
     } catch (const SizeError& e) {
-      throw std::invalid_argument(file + ": cannot be met: " + e.what());
+      throw e.prefixed(file + ": cannot be met: ");
     }
   });
   return py::module_::import("json").attr("loads")(json);

@@ -7,11 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/ref/error.h"
+
 namespace voxcd {
 
 // A campaign that cannot be run as given; the message names the option or file, the key and the problem.
-struct CampaignError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct CampaignError : Error {
+  using Error::Error;
 };
 
 struct Campaign {

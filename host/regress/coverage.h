@@ -9,10 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/ref/error.h"
+
 namespace voxcd {
 
-struct CoverageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+// Coverage data that cannot be read or merged; the message names the file.
+struct CoverageError : Error {
+  using Error::Error;
 };
 
 // Points of one kind: hit, not hit but waived (rtl/coverage.waivers gives each its reason), and missed.

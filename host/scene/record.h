@@ -11,17 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/host/scene/errors.h"
 #include "voxcd/host/scene/scene.h"
 
 namespace voxcd {
 
 // The format version this library writes and reads; a file of another version is refused.
 constexpr uint32_t kRecordVersion = 1;
-
-// A recording that cannot be written or read: says which file, what is wrong and at which byte.
-struct RecordError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // An object type as recorded: bounds and grid in its own frame, the surface it is drawn with and its point shell.
 struct RecordedType {

@@ -29,15 +29,14 @@ class Checker {
     const auto it = c_.given.find(field);
     return it != c_.given.end() && !it->second.file.empty();
   }
-  // Throws for `field`: "<file>: <JSON path>: <file_text>" for a scene file's key, SimulateOptionError with
-  // option_text (file_text when empty) for an option, std::invalid_argument "<field>: <file_text>" for a value set
-  // in code.
+  // Throws for `field`: "<file>: <JSON path>: <file_text>" for a scene file's key, OptionError with
+  // option_text (file_text when empty) for an option, OptionError "<field>: <file_text>" for a value set in code.
   [[noreturn]] void fail(const std::string& field, const std::string& file_text,
                          const std::string& option_text = "") const {
     const auto it = c_.given.find(field);
-    if (it == c_.given.end()) throw std::invalid_argument(field + ": " + file_text);
+    if (it == c_.given.end()) throw OptionError({field}, file_text);
     if (!it->second.file.empty()) throw SceneFileError(it->second.file + ": " + it->second.name + ": " + file_text);
-    throw SimulateOptionError({it->second.name}, option_text.empty() ? file_text : option_text);
+    throw OptionError({it->second.name}, option_text.empty() ? file_text : option_text);
   }
   // A number in [lo, hi] (or (lo, hi] when lo_open).
   void number(const std::string& field, double v, double lo, double hi, bool lo_open,
@@ -69,7 +68,7 @@ void check_type(const Checker& k, const SceneTypeSpec& t) {
   if (set("size", t.size) && set("scale", t.scale)) k.fail(t.key, "give \"size\" or \"scale\", not both");
   if (set("voxel", t.voxel) && set("resolution", t.resolution)) {
     if (k.given(p + "voxel") && !k.from_file(p + "voxel"))
-      throw SimulateOptionError({"voxel", "resolution"},
+      throw OptionError({"voxel", "resolution"},
                                 "give the voxel size in world units (--voxel) or the voxels along an object's longest "
                                 "side (--resolution), not both");
     k.fail(t.key, "give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), not both");
@@ -126,8 +125,8 @@ void check_run(const Checker& k, const RunConfig& c) {
 
 }  // namespace
 
-SimulateOptionError::SimulateOptionError(std::vector<std::string> options_, const std::string& message_)
-    : std::invalid_argument(joined(options_) + ": " + message_), options(std::move(options_)), message(message_) {}
+OptionError::OptionError(std::vector<std::string> options_, const std::string& message_)
+    : Error(joined(options_) + ": " + message_, joined(options_)), options(std::move(options_)), message(message_) {}
 
 const std::vector<std::string>& mode_names() {
   static const std::vector<std::string> names = {"ALL", "FIRST", "COUNT"};
@@ -138,7 +137,7 @@ Mode mode_option(const std::string& text) {
   const auto m = parse_mode(text);
   if (!m) {
     const auto& n = mode_names();
-    throw SimulateOptionError({"mode"},
+    throw OptionError({"mode"},
                               "'" + text + "' is not " + joined({n.begin(), n.end() - 1}) + " or " + n.back());
   }
   return *m;
@@ -236,7 +235,7 @@ RunConfig apply_options(RunConfig c, const RunConfig& o) {
                            o.given.count("types[0].voxel") || o.given.count("types[0].resolution");
   if (o.given.count("types[0].voxel") && o.given.count("types[0].resolution")) check(o);  // names the conflict
   if (type_option && c.types.size() != 1)
-    throw SimulateOptionError({"objects", "shape", "voxel", "resolution"},
+    throw OptionError({"objects", "shape", "voxel", "resolution"},
                               "apply only to a scene file with one object type; " + c.where + " has " +
                                   std::to_string(c.types.size()));
   for (const auto& [field, source] : o.given) {

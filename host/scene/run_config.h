@@ -20,6 +20,7 @@
 #include "voxcd/host/object/storage.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/host/scene/body.h"
+#include "voxcd/host/scene/errors.h"
 #include "voxcd/ref/config.h"
 
 namespace voxcd {
@@ -38,26 +39,12 @@ constexpr double kMaxClockMhz = 1e6;                 // the device clock
 // The device's job modes by name (ref/types.h parse_mode); broadphases: broadphase_names(); backends:
 // backend_names().
 const std::vector<std::string>& mode_names();  // ALL, FIRST, COUNT
-// The mode of an option's text; SimulateOptionError "mode: 'X' is not ALL, FIRST or COUNT" for another.
+// The mode of an option's text; OptionError "mode: 'X' is not ALL, FIRST or COUNT" for another.
 Mode mode_option(const std::string& text);
 // "3 is outside [4, 1020]": an integer setting out of its range, as every layer says it.
 std::string outside(uint64_t v, uint64_t lo, uint64_t hi);
 // A number as the messages about settings print it (up to 10 significant digits: "1e+12", "0.025").
 std::string number_text(double v);
-
-// A run setting or option that cannot be used: the message starts with where it was given. From a scene file:
-// "mixed.json: types[1].voxel: -1 is outside (0, 1e+12]" (the file, then the JSON path of the key).
-struct SceneFileError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-// From an option: `options` names it (or the options in conflict) as Python's keywords do ("mode"; "voxel",
-// "resolution"; the tool prefixes "--"), `message` says what is wrong, and what() is "mode: 'X' is not ALL, FIRST or
-// COUNT" (the options joined by ", ", a colon, the message).
-struct SimulateOptionError : std::invalid_argument {
-  SimulateOptionError(std::vector<std::string> options_, const std::string& message_);
-  std::vector<std::string> options;
-  std::string message;
-};
 
 // One object type of a scene and its instance count.
 struct SceneTypeSpec {
@@ -74,7 +61,7 @@ struct SceneTypeSpec {
 };
 
 // Where a setting was given: a scene file's key (`file` the file, `name` the JSON path: "types[0].voxel",
-// "environment.density") or an option (`file` empty, `name` the option as SimulateOptionError names it: "voxel").
+// "environment.density") or an option (`file` empty, `name` the option as OptionError names it: "voxel").
 struct SettingSource {
   std::string file;
   std::string name;
@@ -136,7 +123,7 @@ struct RunConfig : WorldDef {
 };
 
 // Throws for the first setting that cannot be used, naming it where it was given (SceneFileError for a scene file's
-// key, SimulateOptionError for an option, std::invalid_argument "<field>: ..." for a value set in code): each limit
+// key, OptionError for an option or for a value set in code, "<field>: ..."): each limit
 // above and in host/object, the allowed names (mode, broadphase, backend), settings given together that exclude each
 // other (voxel and resolution, size and scale) or need another (band and ccd need distance bits; record is not for
 // a distributed run), and a whole device configuration (DeviceConfig::validate).
@@ -147,7 +134,7 @@ void check(const RunConfig& c);
 DeviceClock run_clock(const RunConfig& c, const DeviceConfig& device);
 
 // `base` with every setting `options` gives (options.given) in its place: the options override the scene file.
-// objects, shape, voxel and resolution apply to the only type (SimulateOptionError for a scene file of several);
+// objects, shape, voxel and resolution apply to the only type (OptionError for a scene file of several);
 // voxel replaces resolution and the other way round; a whole device configuration brings its SB as distance_bits
 // unless distance_bits is given, and lanes overrides its LANES; threads, midphase, cull, exchange and record always
 // come from `options`. The result is checked (check).

@@ -18,6 +18,7 @@
 #include "voxcd/host/pairs/collider.h"
 #include "voxcd/host/scene/body.h"
 #include "voxcd/host/scene/ccd.h"
+#include "voxcd/host/scene/errors.h"
 #include "voxcd/host/scene/exchange.h"
 #include "voxcd/host/scene/partition.h"
 #include "voxcd/host/scene/run_config.h"
@@ -158,19 +159,8 @@ class Simulation {
 // if a body finds no place, or the tries of all bodies pass 10^6 + 4 per body, again from the start on a
 // lattice: the densest of a face-centred cubic and a simple cubic lattice in the cube, spread as wide as the
 // count allows, N of its sites taken at random and each body jittered within the spacing's slack. The lattice
-// treats every sphere as the largest. PlacementError when even the lattice at the closest spacing has too few
-// sites (`capacity` of them).
-struct PlacementError : std::runtime_error {
-  PlacementError(uint32_t t, uint64_t k, uint64_t cap, double r)
-      : std::runtime_error("could not place instance " + std::to_string(k) + " of type " + std::to_string(t) +
-                           ": bounding spheres of radius " + std::to_string(r) + " fit at most " +
-                           std::to_string(cap) + " in the cube"),
-        type(t), instance(k), capacity(cap), radius(r) {}
-  uint32_t type;
-  uint64_t instance;   // the first body the lattice has no site for
-  uint64_t capacity;   // sites of the densest lattice for spheres of `radius`
-  double radius;       // the largest bounding radius
-};
+// treats every sphere as the largest. PlacementError (errors.h) when even the lattice at the closest spacing has too
+// few sites (`capacity` of them).
 void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed);
 
 // The scenes' random draws (a uniform rotation; a uniform unit direction), one definition so that scene files

@@ -21,7 +21,7 @@ namespace voxcd {
 
 // The configuration of a run: the scene file `options.where` (its text `text` when given, `options.where` then only
 // naming it in messages and resolving relative mesh paths: "scene" when empty), or the built-in scene when neither,
-// with the settings `options` gives overriding it (apply_options). SceneFileError for the file, SimulateOptionError
+// with the settings `options` gives overriding it (apply_options). SceneFileError for the file, OptionError
 // for an option that cannot be used.
 RunConfig run_config(const RunConfig& options, const std::optional<std::string>& text = std::nullopt);
 

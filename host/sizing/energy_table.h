@@ -11,12 +11,13 @@
 #include <vector>
 
 #include "voxcd/ref/config.h"
+#include "voxcd/ref/error.h"
 
 namespace voxcd {
 
 // An energy table that cannot be used; the message starts with "FILE:LINE: " (or "FILE: ") and names the column.
-struct EnergyTableError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct EnergyTableError : Error {
+  using Error::Error;
 };
 
 // One measured (target, configuration, depth, scene): the figures `voxcd size` uses (the table has more columns).

@@ -20,21 +20,12 @@
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/depth.h"
 #include "voxcd/host/sizing/energy_table.h"
+#include "voxcd/host/sizing/errors.h"
 #include "voxcd/host/sizing/storage_layout.h"
 #include "voxcd/host/device/timing_table.h"
 #include "voxcd/ref/config.h"
 
 namespace voxcd {
-
-// A request no device can meet. `constraint` is "accuracy", "contact", "rate", "memory", "extent" or "clock" (no
-// pipeline depth meets the clock on the target, depth.h); the message
-// says by how much it fails (`factor`: how many times finer, faster or larger than the best device allows).
-struct SizeError : std::runtime_error {
-  SizeError(const std::string& constraint_, double factor_, const std::string& what)
-      : std::runtime_error(constraint_ + ": " + what), constraint(constraint_), factor(factor_) {}
-  std::string constraint;
-  double factor = 0;
-};
 
 // What the widths must hold, measured from the scene's object types.
 struct SceneExtents {

@@ -16,12 +16,13 @@
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/sizing/size.h"
+#include "voxcd/ref/error.h"
 
 namespace voxcd {
 
 // A sweep that cannot be used: the message starts with where (the sweep file or the option) and the key at fault.
-struct SweepError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct SweepError : Error {
+  using Error::Error;
 };
 
 struct SweepSpec {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "voxcd/ref/config.h"
+#include "voxcd/ref/error.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/sparse.h"
@@ -27,8 +28,8 @@ namespace {
 using namespace voxcd;
 
 // An argument or a call that the reference refuses; the message is the whole text voxcd_dpi_error returns.
-struct DpiError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct DpiError : Error {
+  using Error::Error;
 };
 
 // Addresses written so far, as disjoint half-open intervals [first, second), merged when they touch.

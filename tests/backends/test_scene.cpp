@@ -90,7 +90,7 @@ TEST(Scene, ThePapersEnvironment) {
   }
   RunConfig bad = spec;
   bad.density = 0;
-  EXPECT_THROW(make_scene(bad), std::invalid_argument);
+  EXPECT_THROW(make_scene(bad), OptionError);
   bad = spec;
   bad.types[0].voxel = 1e-4;
   EXPECT_THROW(make_scene(bad), std::invalid_argument);

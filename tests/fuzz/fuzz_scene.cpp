@@ -76,13 +76,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (!(c[i] >= t.radius * (1 - 1e-9) && c[i] <= s.side - t.radius * (1 - 1e-9)))
           fuzz::finding("make_scene: a body's bounding sphere leaves the cube");
     }
-  } catch (const std::invalid_argument& e) {
-    // check()'s errors name the field; make_scene's own start with "scene: ".
-    const std::string what = e.what();
+  } catch (const OptionError& e) {
+    // check()'s errors name the field.
     bool named = false;
-    for (const char* field : {"scene: ", "types[0].", "side: ", "density: ", "speed: ", "spin: "})
-      named = named || what.rfind(field, 0) == 0;
-    if (!named) fuzz::finding("std::invalid_argument names no field: " + what);
+    for (const char* field : {"types[0].", "side", "density", "speed", "spin"})
+      named = named || e.where().rfind(field, 0) == 0;
+    if (!named) fuzz::finding("OptionError names no field: " + std::string(e.what()));
+  } catch (const std::invalid_argument& e) {
+    // make_scene's own start with "scene: ".
+    const std::string what = e.what();
+    if (what.rfind("scene: ", 0) != 0) fuzz::finding("std::invalid_argument names no field: " + what);
   } catch (const MeshError& e) {
     fuzz::expect_prefix(e.what(), s.types[0].shape + ":", "MeshError");
   }

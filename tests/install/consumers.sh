@@ -75,6 +75,8 @@ cmake -S "$src/docs/examples/cpp" -B "$work/cpp" -G Ninja -DCMAKE_PREFIX_PATH="$
 cmake --build "$work/cpp" >/dev/null
 "$work/cpp/contacts" >/dev/null
 "$work/cpp/world"
+(cd "$work" && "$work/cpp/errors" >/dev/null) ||
+  fail "docs/examples/cpp/errors.cpp: an error was not caught by its name"
 
 step "C++ example with pkg-config"
 export PKG_CONFIG_PATH="$P/lib/pkgconfig"

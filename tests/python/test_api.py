@@ -74,3 +74,31 @@ def test_a_world_of_ones_own():
     assert touching > 0
     assert w.positions[0, 0] > 40
     assert w.pairs.shape[1] == 2
+
+
+def test_collide_holds_no_pool_per_thread_and_pair_is_the_reusable_query():
+    """voxcd.collide keeps nothing per calling thread (one shared pool for threads=0); a Pair keeps its device."""
+    import os
+    import threading
+
+    def threads_now():
+        return len(os.listdir("/proc/self/task"))
+
+    a, b = voxcd.voxelize("torus", resolution=32), voxcd.voxelize("cube", resolution=32)
+    want = voxcd.collide(a, None, b, [1.2, 0, 0])      # the shared pool exists from here on
+    before = threads_now()
+    during = []
+
+    def query():
+        voxcd.collide(a, None, b, [1.2, 0, 0])
+        voxcd.collide(a, None, b, [1.2, 0, 0], threads=3)   # a pool for the call alone
+        during.append(threads_now())
+
+    for _ in range(3):
+        t = threading.Thread(target=query)
+        t.start()
+        t.join()
+    assert during == [before + 1] * 3 and threads_now() == before
+    got = voxcd.Pair(a, b).query([1.2, 0, 0], both=True)
+    assert got["hits"] == want["hits"]
+    np.testing.assert_array_equal(got["positions"], want["positions"])

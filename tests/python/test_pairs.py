@@ -170,8 +170,8 @@ def test_distance_object_files_and_objects_are_used_as_they_are(cli, cli_json, c
     # same naming the argument for an Object.
     cli("voxelize", "stellated", "--voxel", "0.1", "-o", tmp_path / "s.vxo")
     message = cli_error("pair", tmp_path / "s.vxo", mesh, *args, expect=2)
-    assert message == f"{tmp_path / 's.vxo'}: the object has no distance field; 8 bits were asked for (voxcd " \
-                      "voxelize --distance-bits 8)"
+    assert message == f"{tmp_path / 's.vxo'}: the object has no distance field; 8 bits were asked for (an " \
+                      "object voxelised with distance_bits = 8)"
     with pytest.raises(ValueError) as e:
         voxcd.pair(tmp_path / "s.vxo", mesh, pose, voxel=0.1, distance_bits=8)
     assert str(e.value) == message

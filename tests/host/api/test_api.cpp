@@ -219,7 +219,7 @@ TEST(Api, DevicesBackendsAndSizing) {
   EXPECT_NE(at40.text.find("at 40 MHz (given by SizeOptions::clock_mhz)"), std::string::npos) << at40.text;
   EXPECT_NE(at40.json.find("\"clock_mhz\": 40"), std::string::npos) << at40.json;
   o.clock_mhz = -1;
-  EXPECT_THROW(size_device(VOXCD_SCENES_DIR "/small.json", o), std::invalid_argument);
+  EXPECT_THROW(size_device(VOXCD_SCENES_DIR "/small.json", o), OptionError);
 }
 
 }  // namespace

@@ -32,7 +32,7 @@ std::string file_error(const std::string& text) {
 std::string option_error(const RunConfig& options) {
   try {
     run_config(options);
-  } catch (const SimulateOptionError& e) {
+  } catch (const OptionError& e) {
     std::string names;
     for (const auto& o : e.options) names += (names.empty() ? "" : ", ") + o;
     EXPECT_EQ(std::string(e.what()), names + ": " + e.message);
@@ -126,19 +126,19 @@ TEST(RunConfig, EachLimitOfAnOptionNamesTheOption) {
   EXPECT_EQ(option_error(given(o, "ccd", "ccd")),
             "ccd: continuous collision bounds each step by the distance fields: it needs distance voxmaps "
             "(--distance-bits 4, 8 or 16)");
-  EXPECT_EQ(error_text<SimulateOptionError>([] { mode_option("SOME"); }), "mode: 'SOME' is not ALL, FIRST or COUNT");
+  EXPECT_EQ(error_text<OptionError>([] { mode_option("SOME"); }), "mode: 'SOME' is not ALL, FIRST or COUNT");
 }
 
 TEST(RunConfig, AValueSetInCodeNamesTheField) {
   RunConfig c;
   c.types[0].resolution = 2;
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { check(c); }), "types[0].resolution: 2 is outside [4, 1020]");
+  EXPECT_EQ(error_text<OptionError>([&] { check(c); }), "types[0].resolution: 2 is outside [4, 1020]");
   c = RunConfig{};
   c.distance_bits = 7;
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { check(c); }), "distance_bits: 7 is not 4, 8 or 16");
+  EXPECT_EQ(error_text<OptionError>([&] { check(c); }), "distance_bits: 7 is not 4, 8 or 16");
   c = RunConfig{};
   c.margin = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { check(c); }), "margin: must be a finite number");
+  EXPECT_EQ(error_text<OptionError>([&] { check(c); }), "margin: must be a finite number");
 }
 
 TEST(RunConfig, OptionsOverrideTheFileInOrder) {
@@ -170,7 +170,7 @@ TEST(RunConfig, OptionsOverrideTheFileInOrder) {
   // The options of the one type refuse a file of two.
   o = given(RunConfig{}, "types[0].count", "objects");
   o.where = "two.json";
-  EXPECT_EQ(error_text<SimulateOptionError>(
+  EXPECT_EQ(error_text<OptionError>(
                 [&] { run_config(o, R"({"types": [{"shape": "cube"}, {"shape": "sphere"}]})"); }),
             "objects, shape, voxel, resolution: apply only to a scene file with one object type; two.json has 2");
   // An option turns the file's distance fields off, its band with them.

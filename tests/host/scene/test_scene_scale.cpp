@@ -117,14 +117,14 @@ TEST(SceneScale, VoxelAndResolutionAreExclusiveAndResolutionIsAtLeastFour) {
   RunConfig s;
   s.types[0].voxel = 1;
   s.types[0].resolution = 10;
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { make_scene(s); }),
+  EXPECT_EQ(error_text<OptionError>([&] { make_scene(s); }),
             "types[0]: give \"voxel\" (world units) or \"resolution\" (voxels along the longest side), not both");
   s = RunConfig{};
   s.types[0].resolution = 3;
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { make_scene(s); }),
+  EXPECT_EQ(error_text<OptionError>([&] { make_scene(s); }),
             "types[0].resolution: 3 is outside [4, 1020]");
   s.types[0].resolution = 1021;
-  EXPECT_EQ(error_text<std::invalid_argument>([&] { make_scene(s); }),
+  EXPECT_EQ(error_text<OptionError>([&] { make_scene(s); }),
             "types[0].resolution: 1021 is outside [4, 1020]");
   // A voxel of fewer than 4 across (but more than 2) names the size that gives 4.
   s = RunConfig{};

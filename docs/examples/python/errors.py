@@ -1,0 +1,41 @@
+#!/usr/bin/env python3
+"""Every error the API documents, caught by its class (docs/python.md, "Errors"); each is also a voxcd.Error.
+
+    PYTHONPATH=build/python python3 docs/examples/python/errors.py
+"""
+import json
+import math
+import os
+import tempfile
+
+import voxcd
+
+
+def expect(cls, f, *args, **kwargs):
+    try:
+        f(*args, **kwargs)
+    except cls as e:
+        assert isinstance(e, voxcd.Error) and isinstance(e, RuntimeError), type(e)
+        print(f"{cls.__name__:16} {e} (where: {e.where})")
+        return
+    raise AssertionError(f"{cls.__name__} was not raised")
+
+
+torus = voxcd.voxelize("torus", resolution=32)
+sphere = voxcd.voxelize("sphere", voxel=torus.voxel / 40)   # 40 times finer: beyond the rtl models' widths
+with tempfile.TemporaryDirectory() as d:
+    bad_object = os.path.join(d, "bad.vxo")
+    with open(bad_object, "wb") as f:
+        f.write(b"VOXCDOBJ but nothing else")
+    bad_scene = os.path.join(d, "bad.json")
+    with open(bad_scene, "w") as f:
+        json.dump({"types": [{"shape": "cube", "voxel": -1}]}, f)
+    expect(voxcd.MeshError, voxcd.voxelize, "no-such-file-or-shape", resolution=32)
+    expect(voxcd.ObjectFileError, voxcd.read_object, bad_object)
+    expect(voxcd.RangeError, voxcd.collide, torus, None, torus, [math.nan, 0, 0])
+    expect(voxcd.CapacityError, voxcd.collide, torus, None, sphere, None, backend="rtl")
+    expect(voxcd.DeviceError, voxcd.collide, torus, None, torus, None, backend="no-such-backend")
+    expect(voxcd.SceneFileError, voxcd.World.scene, bad_scene)
+    expect(voxcd.OptionError, voxcd.World, side=-1.0)
+    expect(voxcd.SizeError, voxcd.size, {"types": [{"shape": "cube", "count": 8, "voxel": 0.1}]}, accuracy=1e-12)
+    expect(voxcd.Error, voxcd.voxelize, "no-such-file-or-shape", resolution=32)
