@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench/coverage.sh: the full coverage campaign of rtl/ (docs/verification.md, "Coverage"). In its own build
-# directory (default build-cov) with toggle coverage on (-DVOXCD_RTL_COVERAGE_TOGGLE=ON), into one coverage directory:
+# directory (default build-cov) with every coverage model and toggle coverage (-DVOXCD_RTL_COVERAGE_FULL=ON), into one coverage directory:
 #   1. the AXI tests on the AXI tops' coverage models (test_axi_cov);
 #   2. bench/coverage/lanes4.json: every kind of device at LANES 4 (each depth, distance, banks, sparse, brick lanes),
 #      6 seeds of 400 jobs, random back-pressure 0.3, cycles compared;
@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 build=${1:-build-cov}
 export CCACHE_BASEDIR="$PWD"
 start=$SECONDS
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXCD_RTL_COVERAGE_TOGGLE=ON -UVOXCD_RTL_COVERAGE_MODELS >/dev/null
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXCD_RTL_COVERAGE_FULL=ON -UVOXCD_RTL_COVERAGE_MODELS -UVOXCD_RTL_COVERAGE_FULL_MODELS >/dev/null
 cmake --build "$build" -j2 --target voxcd voxcd_rtl_cov_backend test_axi_cov
 echo "coverage: built in $((SECONDS - start)) s" >&2
 dir="$build/coverage"

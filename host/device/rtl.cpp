@@ -131,7 +131,7 @@ std::unique_ptr<Device> make_rtl_device(const DeviceConfig& cfg, const DeviceOpt
     std::string built;
     for (const RtlModelInfo& m : l.module->models()) built += (built.empty() ? "" : "; ") + m.config.to_string();
     throw DeviceError("rtl: this build has coverage models for " + built + ", not " + cfg.to_string() +
-                      " (the list VOXCD_RTL_COVERAGE_MODELS, docs/verification.md)");
+                      " (the lists VOXCD_RTL_COVERAGE_MODELS and, with -DVOXCD_RTL_COVERAGE_FULL=ON, VOXCD_RTL_COVERAGE_FULL_MODELS; docs/verification.md)");
   }
   // No model of exactly this configuration: name the ones there are.
   std::string lanes, extra;

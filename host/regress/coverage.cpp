@@ -273,7 +273,7 @@ std::string CoverageReport::text() const {
     const auto it = kinds.find(kind);
     if (it == kinds.end()) {
       o << "  " << kind << ": not counted by these models"
-        << (std::string(kind) == "toggle" ? " (build them with -DVOXCD_RTL_COVERAGE_TOGGLE=ON)" : "") << "\n";
+        << (std::string(kind) == "toggle" ? " (build them with -DVOXCD_RTL_COVERAGE_FULL=ON)" : "") << "\n";
       continue;
     }
     const CoverageCount& c = it->second;
