@@ -535,7 +535,9 @@ class Generator {
     for (auto& row : j.M)
       for (auto& e : row) e = 0;
     for (int i = 0; i < 3; ++i) {
-      const Acc v = (Acc(i == axis ? index : n[i] / 2) << cfg_.TF()) + (i == axis && fraction ? Acc(1) : Acc(0));
+      // A product, not a shift: the index may be negative.
+      const Acc corner = Acc(i == axis ? index : n[i] / 2) * (Acc(1) << cfg_.TF());
+      const Acc v = corner + (i == axis && fraction ? Acc(1) : Acc(0));
       if (v < Acc(translation_format(cfg_).min_raw()) || v > Acc(translation_format(cfg_).max_raw())) return false;
       j.t[i] = int64_t(v);
     }
