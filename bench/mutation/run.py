@@ -92,7 +92,7 @@ def main():
 
     # The module offers exactly the list's device configurations, family by family.
     want = sorted(f"{f}|{p}" for f, p in cfgs if f != "axi")
-    got = subprocess.run([a.models_check], env=env0, capture_output=True, text=True)
+    got = subprocess.run([a.models_check, a.configs], env=env0, capture_output=True, text=True)
     have = sorted(l.strip() for l in got.stdout.splitlines() if l.strip())
     if got.returncode != 0 or have != want:
         sys.exit(f"mutation: the module offers {have}, not the configurations {want} ({got.stderr.strip()})")
