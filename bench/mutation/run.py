@@ -118,25 +118,25 @@ def main():
         keep = {int(x) for x in a.only.split(",")}
         ms = [m for m in ms if m.id in keep]
     rows = {}
+    out = open(a.out, "w")  # rows as mutants finish, so that a stopped run keeps what it ran
+    out.write("id\tfile\tline\twhat\toriginal\tmutated\tresult\tstage\tcommand\tdetail\tseconds\n")
 
     def one(m):
         if m.status:
-            rows[m.id] = ("stillborn", "", "", m.status[len("stillborn: "):], 0.0)
+            r = ("stillborn", "", "", m.status[len("stillborn: "):], 0.0)
         elif m.id not in reached:
-            rows[m.id] = ("unreached", "", "", "no configuration of the list evaluates its site", 0.0)
+            r = ("unreached", "", "", "no configuration of the list evaluates its site", 0.0)
         else:
-            rows[m.id] = run_mutant(m.id, plan, env0, limits)
-        r = rows[m.id]
+            r = run_mutant(m.id, plan, env0, limits)
+        rows[m.id] = r
+        out.write("\t".join([str(m.id), m.file, str(m.line), m.what, m.original, m.mutated, r[0], r[1], r[2],
+                             r[3].replace("\t", " "), f"{r[4]:.1f}"]) + "\n")
+        out.flush()
         print(f"mutant {m.id} ({m.file}:{m.line} {m.what}): {r[0]} {r[1]} {r[2]} {r[4]:.1f} s", flush=True)
 
     with ThreadPoolExecutor(a.jobs) as pool:
         list(pool.map(one, ms))
-    with open(a.out, "w") as f:
-        f.write("id\tfile\tline\twhat\toriginal\tmutated\tresult\tstage\tcommand\tdetail\tseconds\n")
-        for m in ms:
-            r = rows[m.id]
-            f.write("\t".join([str(m.id), m.file, str(m.line), m.what, m.original, m.mutated, r[0], r[1], r[2],
-                               r[3].replace("\t", " "), f"{r[4]:.1f}"]) + "\n")
+    out.close()
     print(f"mutation: {len(ms)} mutants run in {time.time() - t_start:.0f} s; rows in {a.out}")
     if a.quick:
         missed = [k for k, r in rows.items() if r[0] != "killed"]

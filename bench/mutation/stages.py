@@ -7,15 +7,16 @@
 # Each stage is a list of commands; a command that fails (or runs past its time) kills the mutant.
 import os
 
-# test_rtl's tests of each family of models (they iterate the family's models the module offers).
-DIRECTED_RTL = {"lanes": ["Rtl.DirectedCasesOnEveryLaneCount"],
-                "depth": ["RtlDepth.DirectedCasesAtEveryDepth", "RtlDepth.LatencyAndSquashGrowByOneCyclePerDepth"],
-                "distance": ["RtlDistance.DirectedCasesOnEveryDistanceModel"],
-                "banked": ["RtlBanks.DistanceFirstKeepsReadingBehindItsHit"],
+# test_rtl's tests of each family of models (they iterate the family's models the module offers). Left out: the
+# tests that count the build's own model lists (RtlDistance.DirectedCasesOnEveryDistanceModel,
+# RtlBanks.DistanceFirstKeepsReadingBehindItsHit, RtlDepth.LatencyAndSquashGrowByOneCyclePerDepth,
+# RtlDistance.RandomJobs*, RtlDepth.RandomJobs*), which fail on a module of fewer models (run.py's check of mutant 0).
+DIRECTED_RTL = {"lanes": ["Rtl.DirectedCasesOnEveryLaneCount"], "depth": ["RtlDepth.DirectedCasesAtEveryDepth"],
                 "sparse": ["RtlSparse.Case*"]}
-SCOREBOARD_RTL = {f: [s + ".BackPressure*", s + ".RandomJobs*"] for f, s in
-                  (("lanes", "Rtl"), ("depth", "RtlDepth"), ("distance", "RtlDistance"), ("banked", "RtlBanks"),
-                   ("sparse", "RtlSparse"))}
+SCOREBOARD_RTL = {"lanes": ["Rtl.BackPressure*", "Rtl.RandomJobs*"], "depth": ["RtlDepth.BackPressure*"],
+                  "distance": ["RtlDistance.BackPressure*"],
+                  "banked": ["RtlBanks.BackPressure*", "RtlBanks.RandomJobs*"],
+                  "sparse": ["RtlSparse.BackPressure*", "RtlSparse.RandomJobs*"]}
 DIRECTED_AXI = ":".join(["*RegistersAfterReset*", "*ErrorResponses*", "*RunOpensTheStream*",
                          "*AddedLatencyIsExact*", "*VectorFiles*", "*MalformedDescriptorsAreRefused*"])
 SCOREBOARD_AXI = "*GeneratedVectorsUnderRandomHandshakes*:*RandomDescriptors*"
