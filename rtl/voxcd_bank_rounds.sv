@@ -99,16 +99,16 @@ module voxcd_bank_rounds #(
 
   // Functional coverage: slots read in 1, 2, 3 and 4 or more rounds (bank conflicts of each multiplicity), and a
   // round in which one bank's read serves several requests (the same word).
-  logic [2:0] rounds_q;  // rounds the stage's slot has taken before this one (saturating at 7)
+  logic [2:0] cov_rounds_q;  // rounds the stage's slot has taken before this one (saturating at 7; covers only)
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni)                            rounds_q <= '0;
-    else if (leave_i)                       rounds_q <= '0;
-    else if (round_i && rounds_q != 3'd7)   rounds_q <= rounds_q + 3'd1;
+    if (!rst_ni)                            cov_rounds_q <= '0;
+    else if (leave_i)                       cov_rounds_q <= '0;
+    else if (round_i && cov_rounds_q != 3'd7)   cov_rounds_q <= cov_rounds_q + 3'd1;
   end
-  `VOXCD_COVER(CoverSlotReadInOneRound, leave_i && (|want_i) && rounds_q == 3'd0)
-  `VOXCD_COVER(CoverSlotReadInTwoRounds, leave_i && rounds_q == 3'd1)
-  `VOXCD_COVER(CoverSlotReadInThreeRounds, leave_i && rounds_q == 3'd2)
-  `VOXCD_COVER(CoverSlotReadInFourOrMoreRounds, leave_i && rounds_q >= 3'd3)
+  `VOXCD_COVER(CoverSlotReadInOneRound, leave_i && (|want_i) && cov_rounds_q == 3'd0)
+  `VOXCD_COVER(CoverSlotReadInTwoRounds, leave_i && cov_rounds_q == 3'd1)
+  `VOXCD_COVER(CoverSlotReadInThreeRounds, leave_i && cov_rounds_q == 3'd2)
+  `VOXCD_COVER(CoverSlotReadInFourOrMoreRounds, leave_i && cov_rounds_q >= 3'd3)
   `VOXCD_COVER(CoverOneReadServesSeveral, round_i && $countones(granted) > $countones(map_re))
 
 endmodule

@@ -1104,15 +1104,16 @@ module voxcd_device #(
                 (job_sparse_i == '0 && job_brick_base_i == '0 && job_brick_units_i == '0))
 
   // ---- Functional coverage (docs/verification.md, "Functional coverage"): counted in the coverage models ----
+  // Signals named cov_* are read by cover properties only (bench/mutation leaves them out: no output can change).
   // Each mode's completion records, with and without hits.
-  logic is_count;
-  assign is_count = last_test.mode == voxcd_arch_pkg::ModeCount;
-  `VOXCD_COVER(CoverAllJobWithHits, emit_done && !is_first && !is_count && emit_record.hits != '0)
-  `VOXCD_COVER(CoverAllJobWithoutHits, emit_done && !is_first && !is_count && emit_record.hits == '0)
+  logic cov_is_count;
+  assign cov_is_count = last_test.mode == voxcd_arch_pkg::ModeCount;
+  `VOXCD_COVER(CoverAllJobWithHits, emit_done && !is_first && !cov_is_count && emit_record.hits != '0)
+  `VOXCD_COVER(CoverAllJobWithoutHits, emit_done && !is_first && !cov_is_count && emit_record.hits == '0)
   `VOXCD_COVER(CoverFirstJobWithAHit, emit_done && is_first && emit_record.hits != '0)
   `VOXCD_COVER(CoverFirstJobWithoutHits, emit_done && is_first && emit_record.hits == '0)
-  `VOXCD_COVER(CoverCountJobWithHits, emit_done && is_count && emit_record.hits != '0)
-  `VOXCD_COVER(CoverCountJobWithoutHits, emit_done && is_count && emit_record.hits == '0)
+  `VOXCD_COVER(CoverCountJobWithHits, emit_done && cov_is_count && emit_record.hits != '0)
+  `VOXCD_COVER(CoverCountJobWithoutHits, emit_done && cov_is_count && emit_record.hits == '0)
   `VOXCD_COVER(CoverJobWithoutPoints, emit_done && emit_record.points == '0)
   // FIRST: its stop with slots of the job behind it, and those slots squashed at the hit test.
   `VOXCD_COVER(CoverFirstStopsBeforeTheLastSlot, first_stop && !last_slot.last)
@@ -1128,40 +1129,40 @@ module voxcd_device #(
   `VOXCD_COVER(CoverStallAcrossAJobBoundary, stall && done_valid_o && !done_ready_i && (|slot_valid))
   `VOXCD_COVER(CoverStallWithTheQueueFull, stall && !job_ready_o)
   // Jobs back to back: the issue stage takes the next job's first slot in the cycle after the last one's.
-  logic head_popped_q;
-  `VOXCD_FF(head_popped_q, head_pop, 1'b0)
-  `VOXCD_COVER(CoverJobsBackToBack, head_popped_q && head_valid && issue_taken)
+  logic cov_head_popped_q;
+  `VOXCD_FF(cov_head_popped_q, head_pop, 1'b0)
+  `VOXCD_COVER(CoverJobsBackToBack, cov_head_popped_q && head_valid && issue_taken)
   `VOXCD_COVER(CoverTwoJobsQueued, !job_ready_o)
   // Memories written between jobs (the device idle after records have left).
   `VOXCD_COVER(CoverMapWrite, map_we_i)
   `VOXCD_COVER(CoverShellWrite, shell_we_i)
   // A distance device's hit test: D below, at and above the threshold, for a point inside the map.
   if (Dist) begin : g_cover_dist
-    logic [LANES-1:0] below, at, above;
+    logic [LANES-1:0] cov_below, cov_at, cov_above;
     always_comb begin
       for (int i = 0; i < LANES; i++) begin
-        below[i] = last_slot.lanes[i] && lane_inside[i] &&
+        cov_below[i] = last_slot.lanes[i] && lane_inside[i] &&
                    ($signed(lane_dist[IW*i +: IW]) < $signed(IW'(last_test.thr)));
-        at[i]    = last_slot.lanes[i] && lane_inside[i] && (lane_dist[IW*i +: IW] == IW'(last_test.thr));
-        above[i] = last_slot.lanes[i] && lane_inside[i] &&
+        cov_at[i]    = last_slot.lanes[i] && lane_inside[i] && (lane_dist[IW*i +: IW] == IW'(last_test.thr));
+        cov_above[i] = last_slot.lanes[i] && lane_inside[i] &&
                    ($signed(lane_dist[IW*i +: IW]) > $signed(IW'(last_test.thr)));
       end
     end
-    `VOXCD_COVER(CoverDistanceBelowThreshold, last_slot.valid && (|below))
-    `VOXCD_COVER(CoverDistanceAtThreshold, last_slot.valid && (|at))
-    `VOXCD_COVER(CoverDistanceAboveThreshold, last_slot.valid && (|above))
+    `VOXCD_COVER(CoverDistanceBelowThreshold, last_slot.valid && (|cov_below))
+    `VOXCD_COVER(CoverDistanceAtThreshold, last_slot.valid && (|cov_at))
+    `VOXCD_COVER(CoverDistanceAboveThreshold, last_slot.valid && (|cov_above))
   end
   // A sparse device's brick stage: a slot of a sparse map whose lanes' cells are all bricks, all uniform, or both.
   if (Sparse) begin : g_cover_sparse
-    logic [LANES-1:0] brick_cells;
-    logic             sparse_map_slot;
+    logic [LANES-1:0] cov_brick_cells;
+    logic             cov_sparse_map_slot;
     for (genvar l = 0; l < LANES; l++) begin : g_cell
-      assign brick_cells[l] = brick_slot.lanes[l] && lane_bread[NPar*l];
+      assign cov_brick_cells[l] = brick_slot.lanes[l] && lane_bread[NPar*l];
     end
-    assign sparse_map_slot = brick_slot.valid && stage_bricks[BrickW-1] && (|brick_slot.lanes);
-    `VOXCD_COVER(CoverSparseMapSlotOfBricks, sparse_map_slot && brick_cells == brick_slot.lanes)
-    `VOXCD_COVER(CoverSparseMapSlotOfUniformCells, sparse_map_slot && brick_cells == '0)
-    `VOXCD_COVER(CoverSparseMapSlotOfBoth, sparse_map_slot && brick_cells != '0 && brick_cells != brick_slot.lanes)
+    assign cov_sparse_map_slot = brick_slot.valid && stage_bricks[BrickW-1] && (|brick_slot.lanes);
+    `VOXCD_COVER(CoverSparseMapSlotOfBricks, cov_sparse_map_slot && cov_brick_cells == brick_slot.lanes)
+    `VOXCD_COVER(CoverSparseMapSlotOfUniformCells, cov_sparse_map_slot && cov_brick_cells == '0)
+    `VOXCD_COVER(CoverSparseMapSlotOfBoth, cov_sparse_map_slot && cov_brick_cells != '0 && cov_brick_cells != brick_slot.lanes)
     `VOXCD_COVER(CoverDenseMapSlot, brick_slot.valid && !stage_bricks[BrickW-1])
   end
 

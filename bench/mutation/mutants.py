@@ -53,7 +53,7 @@ def candidates(rtl_dir):
             expr = lines[site.line - 1][site.start:site.end]
             for what, mutated in operators.site_mutants(site, expr):
                 out.append(Mutant(0, name, site.line, site.start, site.end, site.kind, what, expr, mutated,
-                                  lhs_unused=site.lhs.startswith("unused")))
+                                  lhs_unused=site.lhs.startswith(("unused", "cov_"))))
     return out
 
 

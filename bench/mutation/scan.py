@@ -127,7 +127,10 @@ def scan(fname, text):
         if re.match(r"(function|task)\b", stripped):
             skip_until = r"\bend(function|task)\b"
             continue
-        if re.match(r"initial\b", stripped) or "VOXCD_ASSERT" in stripped or "$" in stripped:
+        # Not functional: elaboration-time code, assertions, system tasks, and the cov_* signals only cover
+        # properties read (docs/verification.md, "Coverage").
+        if (re.match(r"initial\b", stripped) or "VOXCD_ASSERT" in stripped or "VOXCD_COVER" in stripped
+                or "$" in stripped or re.search(r"\bcov_", stripped)):
             prev_end_ok = stripped.endswith(";") or not stripped
             continue
         if not stripped:
