@@ -80,9 +80,18 @@ def test_collide_holds_no_pool_per_thread_and_pair_is_the_reusable_query():
     """voxcd.collide keeps nothing per calling thread (one shared pool for threads=0); a Pair keeps its device."""
     import os
     import threading
+    import time
 
     def threads_now():
         return len(os.listdir("/proc/self/task"))
+
+    def settled(want):
+        """The thread count once it is `want`, or after 10 s: an ended thread leaves /proc/self/task a little after
+        its join returns (later under the sanitizers); a pool that stayed never does."""
+        deadline = time.monotonic() + 10
+        while threads_now() != want and time.monotonic() < deadline:
+            time.sleep(0.01)
+        return threads_now()
 
     a, b = voxcd.voxelize("torus", resolution=32), voxcd.voxelize("cube", resolution=32)
     want = voxcd.collide(a, None, b, [1.2, 0, 0])      # the shared pool exists from here on
@@ -92,13 +101,13 @@ def test_collide_holds_no_pool_per_thread_and_pair_is_the_reusable_query():
     def query():
         voxcd.collide(a, None, b, [1.2, 0, 0])
         voxcd.collide(a, None, b, [1.2, 0, 0], threads=3)   # a pool for the call alone
-        during.append(threads_now())
+        during.append(settled(before + 1))
 
     for _ in range(3):
         t = threading.Thread(target=query)
         t.start()
         t.join()
-    assert during == [before + 1] * 3 and threads_now() == before
+    assert during == [before + 1] * 3 and settled(before) == before
     got = voxcd.Pair(a, b).query([1.2, 0, 0], both=True)
     assert got["hits"] == want["hits"]
     np.testing.assert_array_equal(got["positions"], want["positions"])
