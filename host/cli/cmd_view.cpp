@@ -16,7 +16,7 @@
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/simulate.h"
-#include "voxcd/host/view/detail/base64.h"
+#include "voxcd/host/detail/base64.h"
 #include "voxcd/host/view/object_view.h"
 #include "voxcd/host/view/page.h"
 #include "voxcd/host/view/pair_view.h"

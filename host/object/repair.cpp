@@ -13,7 +13,7 @@
 #include "voxcd/host/object/detail/cells.h"
 #include "voxcd/host/object/detail/edge_uses.h"
 #include "voxcd/host/object/detail/point_hash.h"
-#include "voxcd/host/object/detail/ray_crossing.h"
+#include "voxcd/host/object/ray_crossing.h"
 #include "voxcd/host/object/detail/union_find.h"
 
 #include "voxcd/host/object/mesh.h"

@@ -6,7 +6,7 @@
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxmap_surface.h"
-#include "voxcd/host/view/detail/base64.h"
+#include "voxcd/host/detail/base64.h"
 #include "voxcd/host/view/detail/sparse_view.h"
 
 namespace voxcd::view {

@@ -6,7 +6,7 @@
 
 #include "voxcd/host/object/voxmap_surface.h"
 #include "voxcd/host/pairs/pose.h"
-#include "voxcd/host/view/detail/base64.h"
+#include "voxcd/host/detail/base64.h"
 
 namespace voxcd::view {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "voxcd/host/object/storage_figures.h"
-#include "voxcd/host/view/detail/base64.h"
+#include "voxcd/host/detail/base64.h"
 
 namespace voxcd::view::detail {
 

@@ -1,4 +1,5 @@
-// Base64 (RFC 4648, with padding) of bytes: how the viewer's data carries arrays inside JSON and HTML.
+// Base64 (RFC 4648, with padding) of bytes: how the viewer's data carries arrays inside JSON and HTML (the viewer and
+// `voxcd view`'s command share it).
 #pragma once
 
 #include <cstddef>
