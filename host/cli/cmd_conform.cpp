@@ -7,6 +7,7 @@
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/device/conform.h"
 #include "voxcd/host/device/device.h"
+#include "voxcd/host/regress/campaign.h"
 #include "voxcd/ref/vectors.h"
 
 namespace voxcd::cli {
@@ -32,14 +33,7 @@ int generate(const ConformArgs& a) {
   g.seed = a.seed;
   g.jobs = a.jobs;
   g.cloud_points = a.cloud;
-  for (size_t b = 0; b < a.aim.size();) {
-    const size_t e = std::min(a.aim.find(',', b), a.aim.size());
-    if (e > b) g.aim.push_back(a.aim.substr(b, e - b));
-    b = e + 1;
-  }
-  for (const std::string& bin : g.aim)
-    if (!aimable_bin(bin))
-      throw CLI::ValidationError("--aim: no template aims at the stimulus bin '" + bin + "' (docs/verification.md)");
+  g.aim = parse_aim(a.aim, "--aim");
   if (!a.config.empty()) g.config = parse_config_pairs(a.config, "--config");
   if (a.run.lanes) g.config.LANES = *a.run.lanes;
   if (a.run.banks) g.config.BANKS = *a.run.banks;

@@ -54,11 +54,7 @@ Campaign make_campaign(const RegressArgs& a, const CLI::App& cmd) {
   }
   if (a.seeds.empty()) throw CLI::ValidationError("regress needs --seeds LIST or --campaign FILE");
   Campaign c = campaign_from_lists(a.seeds, a.configs, a.lanes, a.backends, a.jobs, a.cycles);
-  for (size_t b = 0; b < a.aim.size();) {
-    const size_t e = std::min(a.aim.find(',', b), a.aim.size());
-    if (e > b) c.aim.push_back(a.aim.substr(b, e - b));
-    b = e + 1;
-  }
+  c.aim = parse_aim(a.aim, "--aim");
   c.stall = a.stall;
   validate_campaign(c, "the command line");
   return c;

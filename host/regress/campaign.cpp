@@ -176,6 +176,17 @@ void validate_campaign(const Campaign& c, const std::string& where) {
                           "' (docs/verification.md, \"Coverage-directed stimulus\")");
 }
 
+std::vector<std::string> parse_aim(const std::string& text, const std::string& what) {
+  std::vector<std::string> out;
+  for (const std::string& bin : split(text, ',')) {
+    if (bin.empty()) continue;
+    if (!aimable_bin(bin))
+      throw CampaignError(what + ": no template aims at the stimulus bin '" + bin + "' (docs/verification.md)");
+    out.push_back(bin);
+  }
+  return out;
+}
+
 Campaign campaign_from_lists(const std::string& seeds, const std::string& configs, const std::string& lanes,
                              const std::string& backends, uint64_t jobs_per_shard, bool cycles) {
   Campaign c;

@@ -53,6 +53,9 @@ std::string describe(const Shard& s);
 std::vector<uint64_t> parse_seeds(const std::string& text, const std::string& what);
 // The shortest range text of seeds ("1-4,10"), in their order.
 std::string seeds_text(const std::vector<uint64_t>& seeds);
+// Stimulus bins from "face.x.n,job.tag.top" (empty items skipped); CampaignError naming `what` for a bin no template
+// aims at (aimable_bin of ref/vector_gen.h).
+std::vector<std::string> parse_aim(const std::string& text, const std::string& what);
 // A configuration as given ("default", "SB 8 WB 8", "SB=8 WB=8") in its single-spaced NAME VALUE form ("" for
 // the defaults); CampaignError naming `what` when it is not a valid configuration.
 std::string canonical_config(const std::string& text, const std::string& what);
