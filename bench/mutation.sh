@@ -20,5 +20,5 @@ built=$(date +%s)
   --out "$here/mutation/results.tsv"
 end=$(date +%s)
 /usr/bin/python3 "$here/mutation/report.py" "$here/mutation/results.tsv" "$here/mutation/equivalent.tsv" \
-  --build-seconds $((built - start)) --run-seconds $((end - built)) > "$here/mutation/summary.md"
+  --explained "$here/mutation/explained.tsv" --build-seconds $((built - start)) --run-seconds $((end - built)) > "$here/mutation/summary.md"
 cat "$here/mutation/summary.md"

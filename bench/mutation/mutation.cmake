@@ -4,7 +4,9 @@
 # list CONFIGS ("family|pairs" lines) is Verilated from it, the device's into NAME_models with a module like the rtl
 # backend's, NAME_backend (host/device/rtl_module.cpp, loaded through VOXCD_RTL_MODULE), and the AXI top's (family
 # axi) into NAME_axi_models with the AXI tests over it, NAME_test_axi (tests/axi/test_axi.cpp). The models are named
-# V<NAME>_..., so a process that also links the build's own models never mixes the two.
+# V<NAME>_..., so a process that also links the build's own models never mixes the two. They power up at random
+# (--x-initial unique, and VOXCD_RTL_RANDOM_POWER_UP makes the backend and the AXI tests ask for random values): a
+# register whose reset a mutant drops then holds what a real one would, not the simulator's zero.
 set(VOXCD_MUTATION_DIR ${CMAKE_CURRENT_LIST_DIR})
 function(voxcd_mutation_build name configs)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/${name})
@@ -34,13 +36,13 @@ function(voxcd_mutation_build name configs)
     if(family STREQUAL "axi")
       voxcd_model_prefix(V${name}_axi "${pairs}" prefix)
       voxcd_model(${name}_axi_models ${prefix} TOP voxcd_axi PARAMS "${pairs}" SOURCES ${schema} TRACE_FST
-                  DIRECTORY ${out}/${prefix} ARGS -Wno-fatal -Wno-WIDTH)
+                  DIRECTORY ${out}/${prefix} ARGS -Wno-fatal -Wno-WIDTH --x-initial unique)
       string(APPEND axi_includes "#include \"${prefix}.h\"\n")
       string(APPEND axi_rows " X(${prefix}, \"${pairs}\")")
     else()
       voxcd_model_prefix(V${name} "${pairs}" prefix)
       voxcd_model(${name}_models ${prefix} PARAMS "${pairs}" SOURCES ${schema} TRACE_FST DIRECTORY ${out}/${prefix}
-                  ARGS -Wno-fatal -Wno-WIDTH)
+                  ARGS -Wno-fatal -Wno-WIDTH --x-initial unique)
       string(APPEND includes "#include \"${prefix}.h\"\n")
       string(APPEND rows " X(${prefix}, ${family}, \"${pairs}\")")
     endif()
@@ -59,6 +61,7 @@ function(voxcd_mutation_build name configs)
   add_library(${name}_backend MODULE ${PROJECT_SOURCE_DIR}/host/device/rtl_module.cpp)
   target_include_directories(${name}_backend PRIVATE ${out}/include ${PROJECT_BINARY_DIR}/host/generated)
   target_link_libraries(${name}_backend PRIVATE voxcd_host ${name}_models)
+  target_compile_definitions(${name}_backend PRIVATE VOXCD_RTL_RANDOM_POWER_UP=1)
   set_target_properties(${name}_backend PROPERTIES PREFIX "")
   voxcd_warnings(${name}_backend)
 
@@ -67,7 +70,8 @@ function(voxcd_mutation_build name configs)
     target_include_directories(${name}_test_axi PRIVATE ${out}/include_axi)
     target_link_libraries(${name}_test_axi PRIVATE ${name}_axi_models voxcd_sysc_map voxcd_ref GTest::gtest
                           GTest::gtest_main)
-    target_compile_definitions(${name}_test_axi PRIVATE VOXCD_VECTORS_DIR="${PROJECT_SOURCE_DIR}/tests/vectors")
+    target_compile_definitions(${name}_test_axi PRIVATE VOXCD_VECTORS_DIR="${PROJECT_SOURCE_DIR}/tests/vectors"
+                               VOXCD_RTL_RANDOM_POWER_UP=1)
     voxcd_warnings(${name}_test_axi)
   endif()
 endfunction()

@@ -70,6 +70,12 @@ class RtlDevice final : public Device {
     ctx_ = std::make_unique<VerilatedContext>();
     ctx_->fatalOnError(false);  // an assertion in the RTL becomes a DeviceError here, not an abort
     if (!opt_.trace_path.empty()) ctx_->traceEverOn(true);
+#ifdef VOXCD_RTL_RANDOM_POWER_UP
+    // Models Verilated with --x-initial unique power up with random register values (bench/mutation): the outputs
+    // after reset must not depend on them.
+    ctx_->randReset(2);
+    ctx_->randSeed(int(opt_.stall_seed % 0x7fffffff) + 1);
+#endif
     model_ = std::make_unique<Model>(ctx_.get(), "voxcd");
     if (!opt_.trace_path.empty()) {
       trace_ = std::make_unique<VerilatedFstC>();

@@ -209,6 +209,10 @@ class Axi {
     job_beats = int(8 * kJobBytes) / job_dw;
     rec_beats = int(8 * kRecordBytes) / rec_dw;
     ctx_->fatalOnError(false);  // an RTL assertion is a test failure with its message, not an abort
+#ifdef VOXCD_RTL_RANDOM_POWER_UP
+    ctx_->randReset(2);  // random power-up values (bench/mutation's models): reset must clear what matters
+    ctx_->randSeed(int(seed % 0x7fffffff) + 1);
+#endif
     ports_ = e.make(ctx_.get());
     ports_->reset(false);
     apply();
@@ -764,26 +768,37 @@ std::vector<uint8_t> random_descriptor(const DeviceConfig& cfg, const DeviceMemo
   const uint64_t loaded_shell = mem.shell.size(), loaded_map = mem.map.size();
   bool reserved = false;
   const int changes = int(pick(3));  // 0, 1 or 2 fields changed
+  // Half the changed fields just past their limit, half anywhere in the descriptor's 32 bits (every bit of the
+  // descriptor's fields and of the sums the top checks them with toggles).
+  auto any32 = [&] { return uint32_t(rng()); };
   for (int c = 0; c < changes; ++c) {
+    const bool anywhere = pick(2);
     switch (pick(cfg.sparse() ? 15 : 14)) {
       case 0: j.mode = Mode(3); break;
       case 1: j.hit_mask = uint8_t(16 + pick(240)); break;
-      case 2: j.tag = uint32_t((uint64_t{1} << cfg.TAGW) + pick(1000)); break;
-      case 3: j.shell_count = uint32_t(loaded_shell - j.shell_base + pick(3)); break;  // up to the end, or past it
-      case 4: j.shell_base = uint32_t((uint64_t{1} << cfg.SAW) + pick(4)), j.shell_count = 0; break;
-      case 5: (pick(2) ? j.nx : j.nz) = pick(2) ? 0 : uint32_t(cfg.max_dim() + 1 + pick(5)); break;
+      case 2: j.tag = anywhere ? any32() : uint32_t((uint64_t{1} << cfg.TAGW) + pick(1000)); break;
+      case 3:  // up to the end, or past it
+        j.shell_count = anywhere ? any32() : uint32_t(loaded_shell - j.shell_base + pick(3));
+        break;
+      case 4:
+        j.shell_base = anywhere ? any32() : uint32_t((uint64_t{1} << cfg.SAW) + pick(4)), j.shell_count = 0;
+        break;
+      case 5:
+        (pick(3) == 0 ? j.nx : pick(2) ? j.ny : j.nz) =
+            anywhere ? any32() : pick(2) ? 0 : uint32_t(cfg.max_dim() + 1 + pick(5));
+        break;
       case 6: {  // the map's last word at, or one or two past, the last loaded word
         const uint64_t words = map_words(cfg, j);
         if (words <= loaded_map) j.map_base = uint32_t(loaded_map - words + pick(3));
         break;
       }
-      case 7: j.map_base = uint32_t((uint64_t{1} << cfg.MAW) + pick(8)); break;
+      case 7: j.map_base = anywhere ? any32() : uint32_t((uint64_t{1} << cfg.MAW) + pick(8)); break;
       case 8: j.M[pick(3)][pick(3)] = pick(2) ? (int64_t{1} << (cfg.MW - 1)) : -(int64_t{1} << (cfg.MW - 1)) - 1; break;
       case 9: j.t[pick(3)] = pick(2) ? (int64_t{1} << (cfg.TW - 1)) : -(int64_t{1} << (cfg.TW - 1)) - 1; break;
       case 10: j.threshold = int64_t(pick(5)) - 2; break;  // 0 is the only threshold of a 2-bit device
       case 11: reserved = true; break;
       case 12: j.sparse ^= uint8_t(1 + pick(3)); break;  // a map or shell made sparse (or dense)
-      case 13: (pick(2) ? j.brick_base : j.brick_units) = uint32_t(1 + pick(8)); break;
+      case 13: (pick(2) ? j.brick_base : j.brick_units) = anywhere ? any32() : uint32_t(1 + pick(8)); break;
       case 14: {  // a sparse map's bricks up to, or one or two words past, the end of the loaded words
         const uint64_t words = brick_words(cfg, j);
         if (j.sparse_map() && words <= loaded_map) j.brick_base = uint32_t(loaded_map - words + pick(3));
