@@ -2,7 +2,9 @@
 // with asynchronous reset they all use (after common_cells' registers.svh).
 //
 //   `VOXCD_FF(q, d, reset)          q takes d at every rising edge of clk_i, and reset while rst_ni is low
-//   `VOXCD_ASSERT(Name, prop)       prop holds at every rising edge of clk_i while rst_ni is high
+//   `VOXCD_ASSERT(Name, prop)       prop holds at every rising edge of clk_i while rst_ni is high, from the second
+//                                   edge after reset on (so that $past in prop never reads a value from before
+//                                   reset: docs/contract.md, "Reset")
 //   `VOXCD_ASSERT_INIT(Name, prop)  prop holds at elaboration (parameter sanity)
 //   `VOXCD_COVER(Name, prop)        a functional coverage bin: the cycles (clk_i rising, rst_ni high) in which prop
 //                                   holds are counted (docs/verification.md, "Functional coverage")
@@ -30,7 +32,7 @@
   `define VOXCD_COVER(__name, __prop)
 `else
   `define VOXCD_ASSERT(__name, __prop) \
-    __name: assert property (@(posedge clk_i) disable iff (!rst_ni) (__prop)) \
+    __name: assert property (@(posedge clk_i) disable iff (!rst_ni || !$past(rst_ni)) (__prop)) \
       else $error("%m: assertion %s failed", `"__name`");
   `define VOXCD_ASSERT_INIT(__name, __prop) \
     if (!(__prop)) begin : __name \
