@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "voxcd/host/device/detail/rtl_module.h"
+#include "voxcd/ref/banks.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vectors.h"
@@ -125,6 +126,7 @@ class RtlDevice final : public Device {
     m.map_we_i = 0;
     shell_words_ = mem.shell.size();
     map_words_ = mem.map.size();
+    if (cfg_.banked()) mem_ = mem;  // for the check of the conflict counter (check_conflicts)
   }
 
   std::vector<Record> run(const std::vector<Job>& jobs) override {
@@ -135,6 +137,7 @@ class RtlDevice final : public Device {
     std::bernoulli_distribution hit_stall(opt_.hit_stall_prob), done_stall(opt_.done_stall_prob);
     size_t next = 0, dones = 0;
     uint64_t idle = 0;
+    const uint32_t conflicts_before = uint32_t(m.conflicts_o);
     // A job takes at most one cycle per point and record plus the pipeline; allow far more before giving up (a sparse
     // shell's word holds up to 64 points).
     const uint64_t patience = 1000 + 64 * (uint64_t{1} << cfg_.SAW) * (cfg_.sparse() ? 64 : 1);
@@ -182,6 +185,7 @@ class RtlDevice final : public Device {
       tick();
     }
     if (m.busy_o) throw DeviceError("rtl: the device is still busy after the last completion record");
+    check_conflicts(jobs, out, uint32_t(uint32_t(m.conflicts_o) - conflicts_before));
     return out;
   }
 
@@ -189,6 +193,26 @@ class RtlDevice final : public Device {
   uint64_t cycles() const { return cycles_; }
 
  private:
+  // The bank conflict counter (conflicts_o, CW = 32 bits, which the AXI top reads as its CONFLICTS register) against
+  // ref/'s count for the stream (ref/banks.h, bank_conflicts; docs/contract.md, "Shared voxmap banks"): a mismatch is
+  // a DeviceError. A stream that is not the jobs' is left to the caller's comparison, which names its first wrong
+  // record; so is a run with a planted fault.
+  void check_conflicts(const std::vector<Job>& jobs, const std::vector<Record>& out, uint32_t counted) const {
+    if (!cfg_.banked() || faults_.write_while_busy || faults_.miss_last_completion) return;
+    std::vector<uint64_t> want;
+    try {
+      want = bank_conflicts(cfg_, mem_, jobs, out);
+    } catch (const std::invalid_argument&) {
+      return;
+    }
+    uint64_t sum = 0;
+    for (uint64_t n : want) sum += n;
+    if (uint32_t(sum) != counted)
+      throw DeviceError("rtl: the bank conflict counter (conflicts_o) counted " + std::to_string(counted) +
+                        " cycles over " + std::to_string(jobs.size()) + " jobs; the contract's count is " +
+                        std::to_string(sum) + " (ref/banks.h, bank_conflicts)");
+  }
+
   void drive_job(const Job& j) {
     Model& m = *model_;
     m.job_tag_i = j.tag;
@@ -284,6 +308,7 @@ class RtlDevice final : public Device {
   std::unique_ptr<VerilatedFstC> trace_;
   uint64_t cycles_ = 0;
   size_t shell_words_ = 0, map_words_ = 0;
+  DeviceMemory mem_;  // what load() wrote, kept on a banked device (check_conflicts)
 };
 
 std::vector<RtlModelInfo> models() {

@@ -34,7 +34,8 @@ struct Point {
 
 struct Waiver {
   std::string kind, file, pattern, reason, text;
-  int lo = 0, hi = 0;
+  int lo = 0, hi = 0;  // lines, or with bits the bit range of a toggle waiver
+  bool bits = false;
   int at = 0;  // line of the waiver file
   bool used = false;
 };
@@ -142,7 +143,17 @@ std::vector<Waiver> read_waivers(const std::string& path) {
       w.file = place.substr(0, colon);
       const std::string rest = place.substr(colon + 1);
       if (w.kind == "toggle") {
-        w.pattern = rest;
+        // SIGNAL[LO-HI]: bits LO..HI of the signals SIGNAL matches; else a pattern of the whole point name.
+        const size_t open = rest.rfind('[');
+        int lo = 0, hi = 0, used = 0;
+        if (open != std::string::npos && std::sscanf(rest.c_str() + open, "[%d-%d]%n", &lo, &hi, &used) == 2 &&
+            open + size_t(used) == rest.size()) {
+          if (lo < 0 || hi < lo) throw CoverageError(where + place + ": not a bit range (LO-HI, LO <= HI)");
+          w.pattern = rest.substr(0, open);
+          w.lo = lo, w.hi = hi, w.bits = true;
+        } else {
+          w.pattern = rest;
+        }
       } else if (std::sscanf(rest.c_str(), "%d-%d", &w.lo, &w.hi) == 2 ||
                  (std::sscanf(rest.c_str(), "%d", &w.lo) == 1 && (w.hi = w.lo))) {
         if (w.lo < 1 || w.hi < w.lo) throw CoverageError(where + place + ": not a line range");
@@ -157,10 +168,21 @@ std::vector<Waiver> read_waivers(const std::string& path) {
   return out;
 }
 
+// A toggle point "NAME[BIT]" whose NAME matches w's pattern and BIT lies in w's range.
+bool toggle_bit_in(const Waiver& w, const std::string& what) {
+  const size_t open = what.rfind('[');
+  int bit = 0, used = 0;
+  if (open == std::string::npos || std::sscanf(what.c_str() + open, "[%d]%n", &bit, &used) != 1 ||
+      open + size_t(used) != what.size())
+    return false;
+  return bit >= w.lo && bit <= w.hi && ::fnmatch(w.pattern.c_str(), what.substr(0, open).c_str(), 0) == 0;
+}
+
 bool waives(Waiver& w, const Point& p) {
   bool match = false;
   if (w.kind == "bin") match = p.kind == "functional" && ::fnmatch(w.pattern.c_str(), p.what.c_str(), 0) == 0;
   else if (w.kind != p.kind || w.file != p.file) match = false;
+  else if (w.kind == "toggle" && w.bits) match = toggle_bit_in(w, p.what);
   else if (w.kind == "toggle") match = ::fnmatch(w.pattern.c_str(), p.what.c_str(), 0) == 0;
   else match = p.line >= w.lo && p.line <= w.hi;
   if (match) w.used = true;

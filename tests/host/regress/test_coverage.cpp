@@ -130,6 +130,9 @@ TEST(Coverage, MergesShardsAppliesWaiversAndNamesEmptyBins) {
                                   {"v_branch/voxcd_fifo", "/x/rtl/voxcd_fifo.sv", 12, "if", "TOP.voxcd.u_q", 3},
                                   {"v_branch/voxcd_fifo", "/x/rtl/voxcd_fifo.sv", 12, "else", "TOP.voxcd.u_q", 0},
                                   {"v_toggle/voxcd_fifo", "/x/rtl/voxcd_fifo.sv", 3, "count_q[1]", "TOP.voxcd.u_q", 0},
+                                  {"v_toggle/voxcd_fifo", "/x/rtl/voxcd_fifo.sv", 4, "hits_q[5]", "TOP.voxcd.u_q", 0},
+                                  {"v_toggle/voxcd_fifo", "/x/rtl/voxcd_fifo.sv", 4, "hits_q[9]", "TOP.voxcd.u_q", 0},
+                                  {"v_toggle/voxcd_fifo", "/x/rtl/voxcd_fifo.sv", 4, "hits_q[10]", "TOP.voxcd.u_q", 0},
                                   {"v_user/voxcd_fifo", "/x/rtl/voxcd_fifo.sv", 20, "CoverFull",
                                    "TOP.voxcd.u_q.CoverFull", 0},
                                   {"v_user/voxcd_device", "/x/rtl/voxcd_device.sv", 30, "CoverSquash",
@@ -141,14 +144,16 @@ TEST(Coverage, MergesShardsAppliesWaiversAndNamesEmptyBins) {
   std::ofstream(d / "a-shard-1.bins") << "face.x.0 1\nface.x.n 0\n";
   const fs::path waivers = d / "w.txt";
   std::ofstream(waivers) << "# test\nbranch voxcd_fifo.sv:11-13  the else of a full queue cannot happen\n"
-                            "line voxcd_skid.sv:5  a waiver that matches nothing\n";
+                            "line voxcd_skid.sv:5  a waiver that matches nothing\n"
+                            "toggle voxcd_fifo.sv:hits_q[4-9]  a count of at most 15: bits 4 and up stay 0\n";
   const CoverageReport r = merge_coverage(d.string(), waivers.string());
   EXPECT_EQ(r.data_files, 2u);
   EXPECT_EQ(r.kinds.at("line").hit, 1u);
   EXPECT_EQ(r.kinds.at("line").missed, 0u);
   EXPECT_EQ(r.kinds.at("branch").hit, 1u);
   EXPECT_EQ(r.kinds.at("branch").waived, 1u);
-  EXPECT_EQ(r.kinds.at("toggle").missed, 1u);
+  EXPECT_EQ(r.kinds.at("toggle").missed, 2u);  // count_q[1], and hits_q[10] past the waiver's bit range
+  EXPECT_EQ(r.kinds.at("toggle").waived, 2u);  // hits_q[5] and hits_q[9]
   EXPECT_EQ(r.bins.at("u_q.CoverFull"), 2u);
   EXPECT_EQ(r.bins.at("face.x.0"), 5u);
   EXPECT_EQ(r.empty_bins, (std::vector<std::string>{"face.x.n", "g_l[*].CoverSquash"}));
@@ -158,7 +163,8 @@ TEST(Coverage, MergesShardsAppliesWaiversAndNamesEmptyBins) {
     EXPECT_TRUE(fs::exists(d / f)) << f;
   const std::string text = r.text();
   EXPECT_NE(text.find("functional bins still empty: 2"), std::string::npos) << text;
-  EXPECT_EQ(r.missed_points, (std::vector<std::string>{"voxcd_fifo.sv:3 toggle count_q[1]"}));
+  EXPECT_EQ(r.missed_points, (std::vector<std::string>{"voxcd_fifo.sv:3 toggle count_q[1]",
+                                                       "voxcd_fifo.sv:4 toggle hits_q[10]"}));
 }
 
 TEST(Coverage, BadWaiversAndEmptyDirectoriesAreErrorsThatSayWhere) {
@@ -178,6 +184,7 @@ TEST(Coverage, BadWaiversAndEmptyDirectoriesAreErrorsThatSayWhere) {
   for (const auto& [text, want] : std::vector<std::pair<std::string, std::string>>{
            {"line voxcd_fifo.sv:10\n", "w.txt:1: the waiver of voxcd_fifo.sv:10 gives no reason"},
            {"\nbogus x y\n", "w.txt:2: unknown waiver kind 'bogus'"},
+           {"toggle voxcd_fifo.sv:q[9-2] backwards\n", "w.txt:1: voxcd_fifo.sv:q[9-2]: not a bit range"},
            {"line voxcd_fifo.sv:9-3 why\n", "not a line range"},
            {"branch voxcd_fifo.sv why\n", "expected FILE:LINE"}}) {
     std::ofstream(waivers) << text;
