@@ -14,11 +14,33 @@
 //   PlacementError   host/scene/errors.h  bodies that do not fit the cube
 //   RecordError      host/scene/errors.h  a recording that cannot be written or read
 //   SizeError        host/sizing/errors.h a request no device can meet
+//   BodyError        host/api/errors.h    a body id that names no body of the world, or a value a body cannot have
 #pragma once
 
+#include <string>
+#include <utility>
+
+#include "voxcd/host/api/world_types.h"
 #include "voxcd/host/device/errors.h"
 #include "voxcd/host/object/errors.h"
 #include "voxcd/host/pairs/errors.h"
 #include "voxcd/host/scene/errors.h"
 #include "voxcd/host/sizing/errors.h"
 #include "voxcd/ref/error.h"
+
+namespace voxcd {
+
+// A body of a World that cannot be used, or a value it cannot have: an id of a body removed (its slot has moved on to
+// another generation) or never made; a pose, velocity or angular velocity that is not finite, a rotation that is not
+// a unit quaternion, a velocity given to a static body. what() is "body 3: velocity: (nan, 0, 0) is not finite"
+// (the body named by its slot, "the new body" in World::add), where() "body 3"; `body` is the id given (null for a
+// new body), `field` the value ("pose", "velocity", "angular_velocity"; "" for an id that names no body).
+struct BodyError : Error {
+  BodyError(BodyId body_, std::string field_, const std::string& place, const std::string& message)
+      : Error(place + ": " + (field_.empty() ? "" : field_ + ": ") + message, place), body(body_),
+        field(std::move(field_)) {}
+  BodyId body;
+  std::string field;
+};
+
+}  // namespace voxcd

@@ -15,12 +15,16 @@
 #include <system_error>
 #include <utility>
 
+#include <Eigen/Core>
+
 #include "voxcd/ref/error.h"
 
 namespace voxcd {
 struct FrameStats;
+class Object;
 struct ObjectFile;
 struct PairResult;
+struct RigidPose;
 struct RunConfig;
 }  // namespace voxcd
 
@@ -130,8 +134,20 @@ void bind_record(py::module_& m);
 // device_cycles (World.step() and a recording's frames add more).
 py::dict frame_counts(const FrameStats& s);
 
-// api.cpp: voxcd.collide and voxcd.World.
+// api.cpp: voxcd.collide, and the public API's arguments.
 void bind_api(py::module_& m);
+
+// An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).
+Object object_arg(const py::object& o);
+// A pose: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z, as `voxcd pair
+// --pose`), or a 4 x 4 homogeneous matrix (rotation and translation; the last row 0 0 0 1). ValueError naming
+// `what` for anything else.
+RigidPose pose_arg(const py::object& pose, const char* what);
+// Three numbers (None: zeros); ValueError naming `what` for anything else.
+Eigen::Vector3d vec3_arg(const py::object& v, const char* what);
+
+// world.cpp: voxcd.World and voxcd.BodyId.
+void bind_world(py::module_& m);
 
 // Runs f(); when it throws and the file `path` (not "") does not exist, raises FileNotFoundError carrying the
 // library's message instead of the error it would map to (docs/python.md, "Errors").

@@ -4,6 +4,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "voxcd/host/api/errors.h"
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/device/timing_table.h"
@@ -71,18 +72,23 @@ ErrorClass error_classes[] = {
     {"CapacityError", true, is<CapacityError>},   {"DeviceError", false, is<DeviceError>},
     {"SceneFileError", true, is<SceneFileError>}, {"OptionError", true, is_option},
     {"PlacementError", true, is<PlacementError>}, {"RecordError", true, is<RecordError>},
-    {"SizeError", true, is<SizeError>},           {"TimingTableError", false, is<TimingTableError>},
+    {"SizeError", true, is<SizeError>},           {"BodyError", true, is<BodyError>},
+    {"TimingTableError", false, is<TimingTableError>},
     {"EnergyTableError", false, is<EnergyTableError>},
     {"Error", false, [](const Error&) { return true; }},
 };
 
 // The exception raised for e: its class's instance with the message as its argument, and `where` (and the fields
-// some types carry: OptionError's options, SizeError's constraint and factor).
+// some types carry: OptionError's options, BodyError's body and field, SizeError's constraint and factor).
 void raise_as(const ErrorClass& c, const Error& e) {
   py::object exc = py::reinterpret_borrow<py::object>(c.type)(py::str(e.what()));
   exc.attr("where") = e.where();
   if (const auto* o = dynamic_cast<const OptionError*>(&e)) exc.attr("options") = o->options;
   if (is<ArgumentError>(e)) exc.attr("options") = e.where().empty() ? py::list() : py::list(py::make_tuple(e.where()));
+  if (const auto* b = dynamic_cast<const BodyError*>(&e)) {
+    exc.attr("body") = b->body;
+    exc.attr("field") = b->field;
+  }
   if (const auto* z = dynamic_cast<const SizeError*>(&e)) {
     exc.attr("constraint") = z->constraint;
     exc.attr("factor") = z->factor;

@@ -10,16 +10,28 @@
 
 namespace voxcd {
 
+// How a body moves (Box2D's b2BodyType, Jolt's EMotionType). A static body never moves; a kinematic one moves by its
+// velocities alone (no wall or response changes them); a dynamic one bounces off the walls and other bodies. The
+// response pushes only dynamic bodies, and a pair of which neither is dynamic is not tested.
+enum class BodyKind : uint8_t { kDynamic, kStatic, kKinematic };
+
+// Velocities are per unit of time: per frame for a frame step (World::step(), `voxcd simulate`), per second for a
+// step of dt seconds (World::step(dt)).
 struct Body {
   uint32_t type = 0;
+  BodyKind kind = BodyKind::kDynamic;                // (in the padding after `type`: a Body is as large as before)
   RigidPose pose;                                    // world = rotation * local + translation
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // world units per frame
-  Eigen::Vector3d spin = Eigen::Vector3d::Zero();      // angular velocity, radians per frame, world axes
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // world units per unit of time
+  Eigen::Vector3d spin = Eigen::Vector3d::Zero();      // angular velocity, radians per unit of time, world axes
+  bool moves() const { return kind != BodyKind::kStatic; }
+  bool pushed() const { return kind == BodyKind::kDynamic; }  // by the walls and the response
 };
 
 // How a world runs (World, and every run: RunConfig extends it with the scene and what is asked of the device).
 struct WorldDef {
   double side = 100;                // bodies move in the cube [0, side]^3 and bounce off its walls
+  bool walls = true;                // the cube's walls; false: open space (side then bounds nothing)
+  bool response = true;             // the built-in response; false: touching pairs are found and reported only
   std::string broadphase = "grid";  // broadphase_names(): grid, the fastest at every N measured
   std::string backend = "cpu";      // device_backends()
   int lanes = 4;                    // lanes of the modelled device

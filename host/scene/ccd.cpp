@@ -10,15 +10,11 @@
 
 namespace voxcd {
 
-namespace {
-
-// No point of a body of type t moves faster: its linear speed plus its spin times the farthest point's distance
-// from the rotation centre (the body's origin), as body_bounds' max_speed.
-double motion_bound(const ObjectType& t, const Body& b) {
-  return b.velocity.norm() + b.spin.norm() * (t.centre.norm() + t.radius);
+double ContinuousCollision::motion_bound(const ObjectType& t, const Body& b) const {
+  // Its linear speed plus its spin times the farthest point's distance from the rotation centre (the body's origin),
+  // as body_bounds' max_speed, over the frame (exact for a frame step: dt_ = 1).
+  return (b.velocity.norm() + b.spin.norm() * (t.centre.norm() + t.radius)) * dt_;
 }
-
-}  // namespace
 
 // Bodies per part of the per-body loops, candidates per part of the bounds.
 constexpr size_t kGrainBodies = 64, kGrainPairs = 32;
@@ -29,7 +25,8 @@ ContinuousCollision::ContinuousCollision(const std::vector<std::shared_ptr<const
 
 void ContinuousCollision::pose_at(size_t i, double t, Body& b) const {
   // The integration of Simulation::step over the time since the segment's start: at h = 1 exactly its arithmetic.
-  const double h = t - s0_[i];
+  if (!b.moves()) return;
+  const double h = (t - s0_[i]) * dt_;
   b.pose.translation = t0_[i] + b.velocity * h;
   const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
   Eigen::Quaterniond q = q0_[i];
@@ -54,8 +51,11 @@ void ContinuousCollision::candidates(const Scene& scene, double t) {
   });
   swept_->update(sweep_, calls_++);
   cand_.clear();
+  // (A pair of which neither body is dynamic is not a candidate: as in the frame, it is not tested.)
   for (const BodyPair& p : swept_->pairs())
-    if (spheres_overlap(sweep_[p.first], sweep_[p.second])) cand_.push_back(p);
+    if (spheres_overlap(sweep_[p.first], sweep_[p.second]) &&
+        (scene.bodies[p.first].pushed() || scene.bodies[p.second].pushed()))
+      cand_.push_back(p);
 }
 
 void ContinuousCollision::restart(const Scene& scene, size_t i, double t) {
@@ -164,7 +164,8 @@ void ContinuousCollision::walls(Scene& scene, std::vector<uint8_t>& moved, doubl
       Body& b = scene.bodies[i];
       const ObjectType& t = *scene.types[b.type];
       const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
-      const double tol = kTolerance * t.voxmap().voxel(), swing = b.spin.norm() * t.centre.norm();
+      if (!b.pushed()) continue;  // static and kinematic bodies ignore the walls
+      const double tol = kTolerance * t.voxmap().voxel(), swing = b.spin.norm() * t.centre.norm() * dt_;
       for (int ax = 0; ax < 3; ++ax) {
         const double low = c[ax] - t.radius, high = scene.side - c[ax] - t.radius;
         if ((low <= tol && b.velocity[ax] < 0) || (high <= tol && b.velocity[ax] > 0)) {
@@ -174,8 +175,8 @@ void ContinuousCollision::walls(Scene& scene, std::vector<uint8_t>& moved, doubl
           limit_[i] = 1;
           ++out.toi;
         }
-        const double rate_low = std::max(0.0, -b.velocity[ax]) + swing;
-        const double rate_high = std::max(0.0, b.velocity[ax]) + swing;
+        const double rate_low = std::max(0.0, -b.velocity[ax]) * dt_ + swing;  // per frame
+        const double rate_high = std::max(0.0, b.velocity[ax]) * dt_ + swing;
         if (low > tol && rate_low > 0 && low < rate_low * rest) out.dt = std::min(out.dt, low / rate_low), limit_[i] = 1;
         if (high > tol && rate_high > 0 && high < rate_high * rest)
           out.dt = std::min(out.dt, high / rate_high), limit_[i] = 1;
@@ -191,8 +192,9 @@ void ContinuousCollision::walls(Scene& scene, std::vector<uint8_t>& moved, doubl
 }
 
 CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std::vector<uint8_t>& moved,
-                                      uint64_t& wall_hits) {
+                                      uint64_t& wall_hits, double frame_dt, bool with_walls) {
   CcdStats st;
+  dt_ = frame_dt;
   const size_t n = scene.bodies.size();
   t0_.resize(n);
   q0_.resize(n);
@@ -237,7 +239,7 @@ CcdStats ContinuousCollision::advance(Scene& scene, PairCollider& collider, std:
     query(scene, collider, rest, st);
     double dt = rest;
     const bool responded = pairs(scene, moved, now, rest, dt, st);
-    walls(scene, moved, now, rest, dt, st, wall_hits);
+    if (with_walls) walls(scene, moved, now, rest, dt, st, wall_hits);
     // A response can make a body faster than its swept sphere allowed: find the candidates again, then step.
     if (responded) {
       rebuild = true;

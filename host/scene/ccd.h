@@ -38,9 +38,12 @@ class ContinuousCollision {
   // pool: threads for the per-body and per-candidate loops (null: the calling thread).
   ContinuousCollision(const std::vector<std::shared_ptr<const ObjectType>>& types, const DeviceConfig& cfg,
                       uint32_t max_iterations, bool cull, ThreadPool* pool = nullptr);
-  // Moves every body through one frame (the integration of Simulation::step, cut into steps), responding at each
-  // time of impact; sets moved[i] to 1 for every body whose velocity changed. Deterministic whatever the threads.
-  CcdStats advance(Scene& scene, PairCollider& collider, std::vector<uint8_t>& moved, uint64_t& wall_hits);
+  // Moves every body through one frame of `frame_dt` units of time (the integration of Simulation::step, cut into
+  // steps), responding at each time of impact and, with `with_walls`, reflecting off the cube's walls; sets moved[i]
+  // to 1 for every body whose velocity changed. Deterministic whatever the threads. Times within the frame are
+  // fractions of it (0 to 1) whatever its length.
+  CcdStats advance(Scene& scene, PairCollider& collider, std::vector<uint8_t>& moved, uint64_t& wall_hits,
+                   double frame_dt = 1, bool with_walls = true);
   const DistanceBound& bound() const { return bound_; }
 
   // Contact when a pair's bound is at most this fraction of the finer voxel (and a wall's gap at most this
@@ -48,6 +51,8 @@ class ContinuousCollision {
   static constexpr double kTolerance = DistanceBound::kTolerance;
 
  private:
+  // No point of body b moves farther in a frame (body_bounds' max_speed over the frame's dt_).
+  double motion_bound(const ObjectType& t, const Body& b) const;
   // The pose of body i at time t of the frame, from its segment.
   void pose_at(size_t i, double t, Body& b) const;
   // A new segment for body i from its pose at t (its velocity changes at t).
@@ -78,7 +83,8 @@ class ContinuousCollision {
   std::vector<Eigen::Vector3d> t0_;
   std::vector<Eigen::Quaterniond> q0_;
   std::vector<double> s0_;
-  std::vector<double> speed_;      // no point moves faster (world units per frame)
+  std::vector<double> speed_;      // no point moves farther in a frame (world units)
+  double dt_ = 1;                  // the frame's length in units of time (the velocities are per unit)
   std::vector<BodyBounds> sweep_;
   std::vector<BodyPair> cand_;
   uint64_t calls_ = 0;             // updates of the swept broadphase

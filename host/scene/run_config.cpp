@@ -119,6 +119,9 @@ void check_run(const Checker& k, const RunConfig& c) {
     k.fail("ccd", "continuous collision bounds each step by the distance fields: it needs distance voxmaps "
                   "(--distance-bits " + distance_bits_text() + ")");
   }
+  if (c.ccd && !c.response)
+    throw OptionError({"ccd", "response"}, "continuous collision ends each approach by the response at the time of "
+                                           "impact: it needs the response on");
   if (!c.record.empty() && c.exchange)
     k.fail("record", "a distributed run cannot be recorded yet: record it in one process");
 }

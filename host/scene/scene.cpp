@@ -103,11 +103,25 @@ BodyBounds body_bounds(const ObjectType& t, const Body& b, const Eigen::Matrix3d
 bool respond(Body& a, Body& b, const Eigen::Vector3d& n) {
   const double closing = (b.velocity - a.velocity).dot(n);
   if (closing >= 0) return false;
-  a.velocity += closing * n;
-  b.velocity -= closing * n;
-  a.spin = -a.spin;
-  b.spin = -b.spin;
-  return true;
+  if (a.pushed() && b.pushed()) {
+    a.velocity += closing * n;
+    b.velocity -= closing * n;
+    a.spin = -a.spin;
+    b.spin = -b.spin;
+    return true;
+  }
+  // Against a body the response does not push (of infinite mass): the relative velocity along n is reflected.
+  if (a.pushed()) {
+    a.velocity += 2 * closing * n;
+    a.spin = -a.spin;
+    return true;
+  }
+  if (b.pushed()) {
+    b.velocity -= 2 * closing * n;
+    b.spin = -b.spin;
+    return true;
+  }
+  return false;
 }
 
 double default_voxel(double volume, double extent) {
@@ -453,7 +467,7 @@ Simulation::Simulation(Scene scene, const RunConfig& opt) : scene_(std::move(sce
   dopt.threads = threads;
   dopt.pool = pool_;
   collider_ = std::make_unique<PairCollider>(make_device(opt.backend, cfg, dopt), scene_.types, pool_);
-  moved_.assign(scene_.bodies.size(), 1);
+  bodies_changed();
   if (opt.ccd) {
     if (!cfg.distance())
       throw std::invalid_argument("ccd: continuous collision bounds each step by the distance fields: it needs a "
@@ -473,15 +487,51 @@ constexpr size_t kAheadMidphase = 16;  // pairs ahead whose second sphere is fet
 constexpr size_t kBlockBodies = 64;    // bodies integrated, then bounded, in turn (8 KiB of bodies)
 }  // namespace
 
+void Simulation::bodies_changed() {
+  const size_t n = scene_.bodies.size();
+  moved_.assign(n, 1);
+  edited_.clear();
+  fixed_.resize(n);
+  any_fixed_ = false;
+  for (size_t i = 0; i < n; ++i) {
+    fixed_[i] = !scene_.bodies[i].pushed();
+    any_fixed_ = any_fixed_ || fixed_[i];
+  }
+}
+
+Body& Simulation::edit_body(size_t i) {
+  Body& b = scene_.bodies.at(i);
+  edited_.push_back(uint32_t(i));
+  return b;
+}
+
+void Simulation::set_bodies(std::vector<Body> bodies) {
+  for (const Body& b : bodies)
+    if (b.type >= scene_.types.size())
+      throw std::out_of_range("Simulation::set_bodies: a body of type " + std::to_string(b.type) + " of " +
+                              std::to_string(scene_.types.size()));
+  scene_.bodies = std::move(bodies);
+  bodies_changed();
+  // A broadphase that keeps state between frames keys it by index: other bodies start a fresh one.
+  if (broadphase_->keeps_state()) broadphase_ = new_broadphase();
+  requests_.clear();
+  requests_pairs_.clear();
+  results_.clear();
+  outcomes_.clear();
+}
+
 uint64_t Simulation::integrate(size_t first, size_t end) {
   uint64_t walls = 0;
+  const double dt = dt_;  // 1 for a frame step: the products below are then the velocities themselves, bit for bit
   for (size_t i = first; i < end; ++i) {
     Body& b = scene_.bodies[i];
-    b.pose.translation += b.velocity;
-    const Eigen::Quaterniond w(0, b.spin.x(), b.spin.y(), b.spin.z());
+    if (!b.moves()) continue;
+    b.pose.translation += b.velocity * dt;
+    const Eigen::Quaterniond w(0, b.spin.x() * dt, b.spin.y() * dt, b.spin.z() * dt);
     Eigen::Quaterniond q = b.pose.rotation;
     q.coeffs() += 0.5 * (w * q).coeffs();
     b.pose.rotation = q.normalized();
+    if (!opt_.walls || !b.pushed()) continue;
     const ObjectType& t = *scene_.types[b.type];
     const Eigen::Vector3d c = b.pose.rotation * t.centre + b.pose.translation;
     for (int a = 0; a < 3; ++a) {
@@ -501,6 +551,7 @@ void Simulation::compute_bounds(size_t first, size_t end) {
     const ObjectType& t = *scene_.types[b.type];
     const Placed p = placed(t, b);
     bounds_[i] = body_bounds(t, b, p.R, p.c);
+    bounds_[i].max_speed *= dt_;  // per frame of dt_ units of time (exact for a frame step: dt_ = 1)
     bounds_[i].moved_unexpectedly = moved_[i] != 0;
     sphere_[i] = {bounds_[i].centre, bounds_[i].radius};
   }
@@ -566,15 +617,19 @@ size_t Simulation::midphase(const std::vector<BodyPair>& pairs) {
   for_ranges(pool_.get(), r, [&](size_t part, size_t first, size_t end) {
     std::vector<uint32_t>& passing = passing_[part].value;
     passing.clear();
+    uint64_t kept_first = 0;  // the pairs the first test keeps (without the mid-phase, every one kept)
     for (size_t k = first; k < end; ++k) {
       const uint32_t ia = pairs[k].first, ib = pairs[k].second;
       // Pairs come by first body; the second is anywhere: its sphere is fetched a few pairs ahead.
       if (k + kAheadMidphase < end) __builtin_prefetch(&sphere_[pairs[k + kAheadMidphase].second]);
-      const bool keep = !opt_.midphase || sphere_[ia].overlaps(sphere_[ib]);
+      // (A pair of which neither body is dynamic is not tested: the response could push neither.)
+      const bool keep = (!opt_.midphase || sphere_[ia].overlaps(sphere_[ib])) &&
+                        !(any_fixed_ && fixed_[ia] && fixed_[ib]);
       keep_[k] = keep;
       if (keep && opt_.midphase) passing.push_back(uint32_t(k - first));
+      kept_first += keep;
     }
-    uint64_t kept = opt_.midphase ? 0 : end - first;
+    uint64_t kept = opt_.midphase ? 0 : kept_first;
     for (size_t j = 0; j < passing.size(); ++j) {
       if (j + kAheadMidphase < passing.size()) {
         const BodyPair& ahead = pairs[first + passing[j + kAheadMidphase]];
@@ -745,7 +800,7 @@ void Simulation::advance(FrameStats& st) {
     return;
   }
   double t0 = now();
-  const CcdStats c = ccd_->advance(scene_, *collider_, moved_, st.wall_hits);
+  const CcdStats c = ccd_->advance(scene_, *collider_, moved_, st.wall_hits, dt_, opt_.walls);
   for (const auto& [frame, ccd] : kCcdCounts) st.*frame = c.*ccd;
   st.responses += c.pair_toi;
   st.device_cycles += c.cycles;
@@ -762,6 +817,7 @@ void Simulation::respond_all(FrameStats& st) {
     st.contacts += o.contacts;
     if (o.hits == 0) continue;
     ++st.touching;
+    if (!opt_.response) continue;  // found and reported only (WorldDef::response)
     Body &a = scene_.bodies[o.a], &b = scene_.bodies[o.b];
     // The normal from A towards B (PairOutcome::normal); the line between the bounding spheres' centres when the
     // contacts give none (COUNT, or normals that cancel).
@@ -775,10 +831,14 @@ void Simulation::respond_all(FrameStats& st) {
   }
 }
 
-FrameStats Simulation::step() {
+FrameStats Simulation::step(double dt) {
   FrameStats st;
   st.frame = frame_;
-  std::fill(moved_.begin(), moved_.end(), uint8_t(0));
+  // A frame of another length makes every motion bound the broadphase was given another (they are per frame).
+  std::fill(moved_.begin(), moved_.end(), uint8_t(dt != dt_));
+  dt_ = dt;
+  for (const uint32_t i : edited_) moved_[i] = 1;
+  edited_.clear();
 
   // Integrate (explicit Euler, or without tunnelling with ccd), bouncing off the walls, and the bounds.
   advance(st);
@@ -809,7 +869,7 @@ FrameStats Simulation::step() {
   return st;
 }
 
-uint64_t Simulation::state_hash() const {
+uint64_t state_hash(const std::vector<Body>& bodies) {
   // FNV-1a over each value's bit pattern, low byte first, from the state hash's own starting value (one digit short
   // of FNV's basis: every state hash recorded so far starts there).
   uint64_t h = 1469598103934665603ull;
@@ -820,7 +880,7 @@ uint64_t Simulation::state_hash() const {
     for (int i = 0; i < 8; ++i) bytes[i] = static_cast<unsigned char>(bits >> (8 * i));
     h = fnv1a(bytes, 8, h);
   };
-  for (const Body& b : scene_.bodies) {
+  for (const Body& b : bodies) {
     for (int i = 0; i < 3; ++i) mix(b.pose.translation[i]), mix(b.velocity[i]), mix(b.spin[i]);
     for (int i = 0; i < 4; ++i) mix(b.pose.rotation.coeffs()[i]);
   }

@@ -55,6 +55,9 @@ double default_voxel(double volume, double extent);
 // (naming the density and the largest that fits), MeshError for the shape.
 Scene make_scene(const RunConfig& c);
 
+// A hash of the bodies' states (bit patterns of positions, orientations and velocities): equal runs, equal hash.
+uint64_t state_hash(const std::vector<Body>& bodies);
+
 class Simulation {
  public:
   // The device is configured from the scene: only its object types are loaded, with memories grown to fit them (or
@@ -63,9 +66,15 @@ class Simulation {
   Simulation(Scene scene, const RunConfig& config);
   // One frame: integrate, bounce off the walls (with ccd: advance without tunnelling, ContinuousCollision), bounds,
   // broadphase, pair tests, response. std::invalid_argument from the constructor when ccd is asked of a device
-  // without distance voxmaps.
-  FrameStats step();
+  // without distance voxmaps. The frame lasts `dt` units of time, the bodies' velocities being per unit: a frame
+  // step is dt = 1 (whose arithmetic is the same as before dt existed: x * 1.0 is x), World::step(dt) seconds.
+  FrameStats step(double dt = 1);
   const Scene& scene() const { return scene_; }
+  // Body i to change between frames (a pose set, a velocity): the next frame tells the broadphase it moved
+  // unexpectedly.
+  Body& edit_body(size_t i);
+  // Replaces every body (of the same types, which the device holds): the next frame starts from these.
+  void set_bodies(std::vector<Body> bodies);
   const Broadphase& broadphase() const { return *broadphase_; }
   const DeviceConfig& device_config() const { return collider_->device().config(); }
   uint64_t frame() const { return frame_; }
@@ -76,7 +85,7 @@ class Simulation {
   // The threads of the frame (WorldDef::threads; null on one thread).
   const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
   // A hash of every body's state (bit patterns of positions, orientations and velocities): equal runs, equal hash.
-  uint64_t state_hash() const;
+  uint64_t state_hash() const { return voxcd::state_hash(scene_.bodies); }
 
  private:
   // Bounds and spheres of bodies [first, end) (sized by size_bounds()); compute_bounds(): of every body, on the pool.
@@ -106,6 +115,8 @@ class Simulation {
   // The response to every touching pair that approaches along its contact normal (respond()), in pair order.
   void respond_all(FrameStats& st);
   void outcome(size_t q);
+  // The per-body state that follows the bodies (moved_, fixed_), after they were made or replaced.
+  void bodies_changed();
   std::unique_ptr<Broadphase> new_broadphase() const;
   // The broadphase's pairs, or in a distributed run those of this rank's slab (global body indices, sorted).
   const std::vector<BodyPair>& find_pairs();
@@ -129,6 +140,11 @@ class Simulation {
   };
   std::vector<Sphere> sphere_;
   std::vector<uint8_t> moved_;  // bytes, not bits: the threads write them body by body
+  std::vector<uint32_t> edited_;  // bodies changed between frames (edit_body), flagged moved in the next frame
+  // Per body: not dynamic (static or kinematic); a pair of two such bodies is not tested. any_fixed_: one is.
+  std::vector<uint8_t> fixed_;
+  bool any_fixed_ = false;
+  double dt_ = 1;               // the frame's length (step(dt)); a new length flags every body moved
   std::shared_ptr<ThreadPool> pool_;  // null on one thread
   std::vector<uint8_t> keep_;         // the mid-phase's verdict per broadphase pair
   std::vector<PartSlot<std::vector<uint32_t>>> passing_;  // midphase(): per range, its pairs whose spheres overlap
@@ -172,8 +188,10 @@ uint64_t lattice_capacity(double side, double r);
 Eigen::Vector3d scene_direction(std::mt19937_64& rng);
 
 // The response to a touching pair, n the unit normal from A towards B: when they approach along n, the velocity
-// components along n are exchanged (an elastic impulse between equal masses) and both spins reversed; false, and
-// nothing changed, when they separate already.
+// components along n are exchanged (an elastic impulse between equal masses) and both spins reversed; a dynamic
+// body against one that is not (static or kinematic: as of infinite mass) has its component along n reflected and
+// its spin reversed, the other unchanged. False, and nothing changed, when they separate already or neither is
+// dynamic.
 bool respond(Body& a, Body& b, const Eigen::Vector3d& n);
 
 // A body's world bounds: its type's smallest enclosing sphere and the world box of its type's local box.

@@ -68,8 +68,9 @@ def test_a_world_stepped_from_python_is_the_tools_run(cli):
 def test_a_world_of_ones_own():
     w = voxcd.World()
     torus = voxcd.voxelize("torus", voxel=0.1)
-    assert w.add_body(torus, [40, 50, 50], velocity=[0.25, 0, 0]) == 0
-    assert w.add_body((TETRA_V * 2, TETRA_F), [46, 50, 50], velocity=[-0.25, 0, 0]) == 1
+    assert w.add(torus, [40, 50, 50], velocity=[0.25, 0, 0]) == voxcd.BodyId(0, 1)
+    with pytest.deprecated_call():  # the form before World.add: an index
+        assert w.add_body((TETRA_V * 2, TETRA_F), [46, 50, 50], velocity=[-0.25, 0, 0]) == 1
     touching = sum(w.step()["touching"] for _ in range(30))
     assert touching > 0
     assert w.positions[0, 0] > 40

@@ -8,7 +8,7 @@ import pytest
 import voxcd
 
 BAD_INPUT = ["RangeError", "ConfigError", "VectorError", "MeshError", "ObjectFileError", "CapacityError",
-             "SceneFileError", "OptionError", "PlacementError", "RecordError", "SizeError"]
+             "SceneFileError", "OptionError", "PlacementError", "RecordError", "SizeError", "BodyError"]
 OTHERS = ["JobError", "DeviceError", "TimingTableError", "EnergyTableError"]
 
 
@@ -48,6 +48,11 @@ def test_each_error_is_raised_as_its_class(tmp_path):
     assert e.where == f"{scene}: types[0].voxel" and str(e) == f"{scene}: types[0].voxel: -1 is outside (0, 1e+12]"
     e = raised(voxcd.OptionError, voxcd.World, side=-1.0)
     assert (str(e), e.where, e.options) == ("side: -1 is outside (0, 1e+12]", "side", ["side"])
+    world = voxcd.World()
+    body = world.add(torus)
+    e = raised(voxcd.BodyError, world.set_velocity, body, [math.inf, 0, 0])
+    assert (str(e), e.where, e.body, e.field) == ("body 0: velocity: (inf, 0, 0) is not finite", "body 0", body,
+                                                  "velocity")
     e = raised(voxcd.OptionError, voxcd.simulate, frames=1, mode="SOME")
     assert (str(e), e.where, e.options) == ("mode: 'SOME' is not ALL, FIRST or COUNT", "mode", ["mode"])
     e = raised(voxcd.SizeError, voxcd.size, {"types": [{"shape": "cube", "count": 8, "voxel": 0.1}]}, accuracy=1e-12)

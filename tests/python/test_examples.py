@@ -14,6 +14,8 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "docs" / "examples" / "python"
 @pytest.mark.parametrize("script, expect", [
     ("pairs.py", ["torus: 57x57x17 voxels of 0.05", " hits, ", "torus in cube: point "]),
     ("sweep.py", ["x = -3.00:     0 hits", "x = +0.00: "]),
+    ("events.py", ["s: ring and probe began touching", "s: ring and probe stopped touching",
+                   "the probe is at x = 64.00"]),
 ])
 def test_example_runs(tmp_path, script, expect):
     env = dict(os.environ, PYTHONPATH=str(Path(voxcd.__file__).resolve().parent))  # the module under test

@@ -56,6 +56,10 @@ int main() {
   voxcd::SizeOptions size;
   size.accuracy = 1e-12;  // finer than any device's fixed-point path
   expect<voxcd::SizeError>("SizeError", [&] { voxcd::size_device("small_scene.json", size); });
+  voxcd::World world;
+  const voxcd::BodyId id = world.add(voxcd::BodyDef(torus));
+  world.remove(id);
+  expect<voxcd::BodyError>("BodyError", [&] { world.pose(id); });  // a removed body's id
   expect<voxcd::Error>("Error", [] { voxcd::Object::load("no-such-file-or-shape"); });
   return failures == 0 ? 0 : 1;
 }

@@ -38,4 +38,8 @@ with tempfile.TemporaryDirectory() as d:
     expect(voxcd.SceneFileError, voxcd.World.scene, bad_scene)
     expect(voxcd.OptionError, voxcd.World, side=-1.0)
     expect(voxcd.SizeError, voxcd.size, {"types": [{"shape": "cube", "count": 8, "voxel": 0.1}]}, accuracy=1e-12)
+    world = voxcd.World()
+    body = world.add(torus)
+    world.remove(body)
+    expect(voxcd.BodyError, world.pose, body)                # a removed body's id
     expect(voxcd.Error, voxcd.voxelize, "no-such-file-or-shape", resolution=32)
