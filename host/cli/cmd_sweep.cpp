@@ -81,7 +81,7 @@ std::string describe(const SweepSpec& s, uint64_t i) { return "point " + std::to
 mpi::RunItem runner_for(const SweepSpec& s, int rank) {
   auto runner = std::make_shared<SweepRunner>(s);
   return [runner, rank](uint64_t i) {
-    testing_fault("VOXCD_TESTING_SWEEP_FAULT", "POINT", i);
+    testing_fault("POINT", i);
     SweepRow r = runner->run(i);
     r.rank = rank;
     return sweep_row_line(r);

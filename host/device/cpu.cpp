@@ -3,6 +3,8 @@
 // device's cycles from ref/'s exact timing model.
 #include "voxcd/host/device/detail/cpu.h"
 
+#include "voxcd/host/device/parts.h"
+
 #include "voxcd/ref/fast/fast.h"
 #include "voxcd/ref/fast/thread_pool.h"
 
@@ -10,7 +12,7 @@ namespace voxcd {
 
 namespace {
 
-class CpuDevice final : public Device {
+class CpuDevice final : public Device, public PartRunner {
  public:
   CpuDevice(const DeviceConfig& cfg, const DeviceOptions& opt)
       : runner_(cfg, opt.pool                ? opt.pool
@@ -23,7 +25,6 @@ class CpuDevice final : public Device {
   std::vector<Record> run(const std::vector<Job>& jobs) override { return runner_.run(jobs); }
   void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) override { runner_.run_into(jobs, out); }
   std::shared_ptr<ThreadPool> pool() const override { return runner_.pool(); }
-  bool runs_parts() const override { return true; }
   void run_part(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out) const override {
     runner_.run_hits(jobs, n, hits, out);
   }

@@ -9,8 +9,6 @@
 
 #include "voxcd/host/device/errors.h"
 #include "voxcd/ref/config.h"
-#include "voxcd/ref/fast/hits.h"
-#include "voxcd/ref/timing.h"
 #include "voxcd/ref/types.h"
 
 namespace voxcd {
@@ -30,6 +28,9 @@ struct DeviceOptions {
   std::shared_ptr<ThreadPool> pool;
 };
 
+// A device backend: a configuration, a memory image and job streams (the contract's interface, as the hardware's). The
+// host's own path into the backends that compute on it (run parts of a batch, their pool) is internal
+// (host/device/parts.h, not installed).
 class Device {
  public:
   virtual ~Device() = default;
@@ -45,22 +46,6 @@ class Device {
   // The same stream into `out` (replacing its contents and reusing its capacity), for callers that run many
   // batches: a backend may keep its working buffers between calls too.
   virtual void run_into(const std::vector<Job>& jobs, std::vector<Record>& out) { out = run(jobs); }
-  // The pool the backend computes on (cpu), for the host's work around it (PairCollider); null when it has none.
-  virtual std::shared_ptr<ThreadPool> pool() const { return nullptr; }
-  // Backends that compute on the host (cpu) can run a part of a batch on the calling thread, with no Record made:
-  // the hits of jobs [jobs, jobs + n), every one validated first (JobError), in columns into `hits` and what each
-  // job gave into `out` (both replaced; its cycles, where the backend models them, those of the jobs as a stream of
-  // their own); calls for different parts may run at once. A host that turns hits into contacts or splits its
-  // batches itself uses it (PairCollider); the others throw DeviceError.
-  virtual bool runs_parts() const { return false; }
-  virtual void run_part(const Job* jobs, size_t n, HitColumns& hits, std::vector<JobOutcome>& out) const;
-  // The same for points [begin, end) of one job: their hits appended to `hits` (FIRST: up to the first), their
-  // number added to `count`, the job validated first when `validate`.
-  virtual void run_piece(const Job& job, uint32_t begin, uint32_t end, bool validate, HitColumns& hits,
-                         uint32_t& count) const;
-  // On a banked device (DeviceConfig::BANKS), a job's bank cycles given its hits' summary and its completion's hits,
-  // for a host that times parts itself (ref/banks.h: job_bank_cycles); a backend that runs parts implements it.
-  virtual BankCycles bank_cycles(const Job& job, const JobHits& hits, uint32_t done_hits) const;
 };
 
 // Every backend by name (ref, cpu, rtl, sysc-rtl, sysc-tlm), whether or not it can run here.

@@ -38,18 +38,6 @@ class RefDevice final : public Device {
 
 }  // namespace
 
-void Device::run_part(const Job*, size_t, HitColumns&, std::vector<JobOutcome>&) const {
-  throw DeviceError("the " + name() + " backend runs whole batches only (no run_part)");
-}
-
-void Device::run_piece(const Job&, uint32_t, uint32_t, bool, HitColumns&, uint32_t&) const {
-  throw DeviceError("the " + name() + " backend runs whole batches only (no run_piece)");
-}
-
-BankCycles Device::bank_cycles(const Job&, const JobHits&, uint32_t) const {
-  throw DeviceError("the " + name() + " backend runs whole batches only (no bank_cycles)");
-}
-
 std::vector<std::string> backend_names() { return {"ref", "cpu", "rtl", "sysc-rtl", "sysc-tlm"}; }
 
 std::vector<BackendStatus> backend_status() {
@@ -71,7 +59,10 @@ std::vector<std::string> device_backends() {
 
 namespace {
 
-// The backend by name, as it is (make_device adds the testing plant where one is set).
+// The hook of the project's tests (detail/planted.h); empty in the shipped library.
+DeviceTestingHook testing_hook = nullptr;
+
+// The backend by name, as it is (make_device passes it through the testing hook where one is set).
 std::unique_ptr<Device> make_backend(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions& opt) {
   if (backend == "ref") return std::make_unique<RefDevice>(cfg);
   if (backend == "cpu") return make_cpu_device(cfg, opt);
@@ -86,7 +77,10 @@ std::unique_ptr<Device> make_backend(const std::string& backend, const DeviceCon
 }  // namespace
 
 std::unique_ptr<Device> make_device(const std::string& backend, const DeviceConfig& cfg, const DeviceOptions& opt) {
-  return plant_from_environment(make_backend(backend, cfg, opt), backend);
+  std::unique_ptr<Device> dev = make_backend(backend, cfg, opt);
+  return testing_hook ? testing_hook(std::move(dev), backend) : std::move(dev);
 }
+
+void set_device_testing_hook(DeviceTestingHook hook) { testing_hook = hook; }
 
 }  // namespace voxcd

@@ -32,4 +32,11 @@ class MpiFrameExchange final : public FrameExchange {
   std::unique_ptr<Watchdog> dog_;  // one thread holding every exchange's deadline
 };
 
+// A testing aid (docs/scale.md, "Testing aids"): a hook called by rank `rank` as it reaches the exchange of frame
+// `frame`, which may throw, never return or end the process, so that tests drive the faults a distributed run must
+// name. Only the test build's tool (build/voxcd_testing, tests/testing/) sets it (nullptr: none, the default); the
+// shipped tool reads no environment variable for it. Set it before a run starts; it is not synchronised.
+using FrameFaultTestingHook = void (*)(int rank, uint64_t frame);
+void set_frame_fault_testing_hook(FrameFaultTestingHook hook);
+
 }  // namespace voxcd::mpi

@@ -53,8 +53,9 @@ PairCollider::Clusters PairCollider::clusters_of(const std::vector<std::array<ui
 
 PairCollider::PairCollider(std::unique_ptr<Device> device, std::vector<std::shared_ptr<const ObjectType>> types,
                            std::shared_ptr<ThreadPool> pool)
-    : device_(std::move(device)), types_(std::move(types)), pool_(std::move(pool)), image_(device_->config()) {
-  if (!pool_) pool_ = device_->pool();
+    : device_(std::move(device)), parts_(part_runner(*device_)), types_(std::move(types)), pool_(std::move(pool)),
+      image_(device_->config()) {
+  if (!pool_ && parts_) pool_ = parts_->pool();
   if (pool_ && pool_->size() <= 1) pool_ = nullptr;
   const DeviceConfig& cfg = device_->config();
   for (const auto& t : types_) {

@@ -109,7 +109,7 @@ void PairCollider::run_groups(const std::vector<PairRequest>& pairs, const PairO
     }
     jobs_.assign(all_jobs_.begin() + std::ptrdiff_t(j0), all_jobs_.begin() + std::ptrdiff_t(j1));
     sources_.assign(all_sources_.begin() + std::ptrdiff_t(j0), all_sources_.begin() + std::ptrdiff_t(j1));
-    if (pool_ && device_->runs_parts() && points >= kParallelPoints) run_pieces(pairs, p0, p1, opt);
+    if (pool_ && parts_ && points >= kParallelPoints) run_pieces(pairs, p0, p1, opt);
     else run_stream(pairs, p0, p1, opt);
     if (cycles && !jobs_.empty()) {
       // The group's first job was timed as the start of a stream; it follows the previous group's last job.
@@ -184,7 +184,7 @@ void PairCollider::run_stream(const std::vector<PairRequest>& pairs, size_t p0, 
   // A device that runs parts hands its hits over in columns, each job's cycles with them; another gives a stream of
   // records.
   const std::vector<Job>& js = jobs_;
-  if (device_->runs_parts()) device_->run_part(js.data(), js.size(), hits_, outcomes_);
+  if (parts_) parts_->run_part(js.data(), js.size(), hits_, outcomes_);
   else run_records(js);
   // Pair by pair (on the pool in ranges of pairs when they are many; a pair's jobs are consecutive): which hits make
   // contacts and where they go, the pair's hits, lookups, cycles and contacts and, for a pair with contacts, the
@@ -261,7 +261,7 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
       p.task = t;
       p.first = hits.size();
       p.count = 0;
-      device_->run_piece(j, p.begin, p.end, validated != p.job, hits, p.count);
+      parts_->run_piece(j, p.begin, p.end, validated != p.job, hits, p.count);
       validated = p.job;
       p.records = hits.size() - p.first;
       if (cycles) p.sum = job_hits(piece_slots_[p.job], hits.point.data() + p.first, p.records);
@@ -288,7 +288,7 @@ void PairCollider::run_pieces(const std::vector<PairRequest>& pairs, size_t p0, 
     res.hits += hits;  // FIRST: made 0 or 1 per direction below
     res.lookups += sources_[j].points;
     if (cycles) {
-      const BankCycles bank = cfg.banked() ? device_->bank_cycles(js[j], sum, hits) : BankCycles{};
+      const BankCycles bank = cfg.banked() ? parts_->bank_cycles(js[j], sum, hits) : BankCycles{};
       const JobSpan span = job_span(cfg, js[j], piece_slots_[j], j, sum, hits, bank);
       res.cycles += span_cycles(cfg, j ? &prev : nullptr, span);
       if (j == 0) first_span_ = span;
@@ -398,7 +398,8 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
     for (size_t j = first; j < part.jobs.size(); ++j) part.sources[j].pair = uint32_t(i);
   }
   const std::vector<Job>& js = part.jobs;
-  device_->run_part(js.data(), js.size(), part.hits, part.outcomes);
+  if (!parts_) throw DeviceError("the " + device_->name() + " backend runs whole batches only (no parts)");
+  parts_->run_part(js.data(), js.size(), part.hits, part.outcomes);
   part.any = !js.empty() && device_->models_cycles();
   if (part.any) part.first = part.outcomes.front().span, part.last = part.outcomes.back().span;
   part.first_job.resize(n + 1);

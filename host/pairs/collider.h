@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "voxcd/host/device/device.h"
+#include "voxcd/host/device/parts.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/contact.h"
 #include "voxcd/host/pairs/contacts.h"
@@ -116,7 +117,7 @@ class PairCollider {
     PairResult* first_result = nullptr;
     JobSpan first, last;
   };
-  bool runs_parts() const { return device_->runs_parts(); }
+  bool runs_parts() const { return parts_ != nullptr; }
   // Pairs [pairs, pairs + n) of a batch, the first of them pair `base` of the batch (in messages and
   // Contact::pair): their results into [out, out + n). Errors as collide()'s. Calls for different parts may run at
   // once.
@@ -145,6 +146,7 @@ class PairCollider {
 
  private:
   std::unique_ptr<Device> device_;
+  const PartRunner* parts_ = nullptr;  // device_'s, when its backend runs parts (host/device/parts.h)
   std::vector<std::shared_ptr<const ObjectType>> types_;
   std::shared_ptr<ThreadPool> pool_;
   // A run of hits (held in `cols`) of one direction of a pair that make contacts, in contact order (with their shell

@@ -45,7 +45,7 @@ ShardVectors::~ShardVectors() = default;
 
 ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, const ShardOptions& so) {
   const auto start = std::chrono::steady_clock::now();
-  testing_fault("VOXCD_TESTING_FAULT", "SHARD", s.index);
+  testing_fault("SHARD", s.index);
   auto& k = cache.cached_;
   if (!k || k->seed != s.seed || k->config != s.config || k->lanes != s.lanes || k->jobs != c.jobs_per_shard) {
     k.reset();

@@ -48,7 +48,7 @@ class ShardVectors {
 
 
 // Runs shard s of c. Never throws for what the backend does (its error is the result's); std::exception for what
-// should not happen, and for the testing faults of VOXCD_TESTING_FAULT (docs/regress.md, "Testing aids").
+// should not happen, and for the faults of the test build's testing hook (regress/testing_fault.h).
 ShardResult run_shard(const Campaign& c, const Shard& s, ShardVectors& cache, const ShardOptions& opt);
 
 // The one-line shell command that reproduces shard s on one machine with `program` (the voxcd tool's path):

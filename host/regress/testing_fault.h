@@ -1,5 +1,7 @@
-// The testing aid of runs over ranks (docs/regress.md, "Testing aids"): an environment variable KIND:ITEM makes the
-// rank that runs item ITEM fail (throw), hang or exit at once, so that tests can drive every fault a run must name.
+// The testing aid of runs over ranks (docs/regress.md, "Testing aids"): a hook that the test build's tool
+// (build/voxcd_testing, tests/testing/) sets so that the rank that runs a given shard or sweep point fails, hangs or
+// exits, and tests can drive every fault a run must name. Empty in the shipped library and tool, which read no
+// environment variable for it.
 #pragma once
 
 #include <cstdint>
@@ -7,9 +9,14 @@
 
 namespace voxcd {
 
-// Reads `variable` (unset or empty: nothing happens). When it names `item`: "fail" throws std::runtime_error, "hang"
-// never returns, "exit" ends the process with code 3. A value that is not KIND:ITEM throws std::runtime_error naming
-// the variable and the form (`unit`, "SHARD" or "POINT", names ITEM in it).
-void testing_fault(const std::string& variable, const std::string& unit, uint64_t item);
+// Called as a run reaches item `item` of `unit` ("SHARD" of a campaign, "POINT" of a sweep). It may throw, never
+// return or end the process.
+using FaultTestingHook = void (*)(const std::string& unit, uint64_t item);
+
+// Sets the hook (nullptr: none, the default). Set it before a run starts; it is not synchronised.
+void set_fault_testing_hook(FaultTestingHook hook);
+
+// The hook's call at item `item` (nothing without a hook).
+void testing_fault(const std::string& unit, uint64_t item);
 
 }  // namespace voxcd

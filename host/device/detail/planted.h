@@ -1,5 +1,7 @@
-// A testing aid: a planted difference, so that tests of `voxcd regress` and `voxcd conform` can check how a
-// failure is reported and reproduced. Not part of the public API; docs/regress.md, "Testing aids".
+// A testing aid: the hook through which the project's tests plant a difference in a device, so that tests of
+// `voxcd regress` and `voxcd conform` can check how a failure is reported and reproduced. Empty in the shipped library
+// and tool, which read no environment variable for it: only the test build's tool (build/voxcd_testing,
+// tests/testing/) sets it. Not part of the public API; docs/regress.md, "Testing aids".
 #pragma once
 
 #include <memory>
@@ -9,12 +11,10 @@
 
 namespace voxcd {
 
-// The environment variable that plants the difference: "BACKEND:LANES:SEED".
-inline constexpr const char* kPlantVariable = "VOXCD_TESTING_PLANT";
+// Wraps (or returns) every device make_device makes for `backend`.
+using DeviceTestingHook = std::unique_ptr<Device> (*)(std::unique_ptr<Device> dev, const std::string& backend);
 
-// `dev` itself when VOXCD_TESTING_PLANT is unset or names another backend or lane count; else `dev` wrapped so
-// that, on the jobs `voxcd conform --generate --seed SEED` makes for its configuration, the first record of its
-// stream differs (a hit's x plus one, or a done's hits plus one). DeviceError for a malformed variable.
-std::unique_ptr<Device> plant_from_environment(std::unique_ptr<Device> dev, const std::string& backend);
+// Sets the hook (nullptr: none, the default). Set it before any device is made; it is not synchronised.
+void set_device_testing_hook(DeviceTestingHook hook);
 
 }  // namespace voxcd

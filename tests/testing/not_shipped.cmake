@@ -1,0 +1,37 @@
+# The testing aids are not in the shipped library or tool: neither holds a VOXCD_TESTING_* name, and a plant in the
+# environment changes nothing they compute; the test build's tool (voxcd_testing) takes the same plant and fails.
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+foreach(binary ${LIBRARY} ${VOXCD})
+  file(STRINGS ${binary} names REGEX "VOXCD_TESTING")
+  if(names)
+    message(FATAL_ERROR "${binary} holds a testing aid's name: ${names}")
+  endif()
+endforeach()
+execute_process(COMMAND ${VOXCD} conform --generate --seed 3 --jobs 20 --lanes 4 -o ${WORK}/v.txt
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "voxcd conform --generate exited ${rc}:\n${out}${err}")
+endif()
+foreach(tool ${VOXCD} ${VOXCD_TESTING})
+  foreach(plant "cpu:4:3" "bogus")
+    execute_process(COMMAND ${CMAKE_COMMAND} -E env VOXCD_TESTING_PLANT=${plant} VOXCD_TESTING_FAULT=${plant}
+                            ${tool} conform ${WORK}/v.txt --backend cpu --lanes 4
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    set(rc_${plant}_${tool} ${rc})
+    set(out_${plant}_${tool} "${out}${err}")
+  endforeach()
+endforeach()
+foreach(plant "cpu:4:3" "bogus")
+  if(NOT rc_${plant}_${VOXCD} EQUAL 0)
+    message(FATAL_ERROR "the shipped tool with VOXCD_TESTING_PLANT=${plant} exited ${rc_${plant}_${VOXCD}}:\n"
+                        "${out_${plant}_${VOXCD}}")
+  endif()
+  if(rc_${plant}_${VOXCD_TESTING} EQUAL 0)
+    message(FATAL_ERROR "voxcd_testing with VOXCD_TESTING_PLANT=${plant} passed:\n${out_${plant}_${VOXCD_TESTING}}")
+  endif()
+endforeach()
+string(FIND "${out_bogus_${VOXCD_TESTING}}" "VOXCD_TESTING_PLANT is 'bogus'" at)
+if(at LESS 0)
+  message(FATAL_ERROR "voxcd_testing did not name the malformed plant:\n${out_bogus_${VOXCD_TESTING}}")
+endif()
