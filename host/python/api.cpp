@@ -4,11 +4,11 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "voxcd/host/api/collide.h"
 #include "voxcd/host/api/world.h"
 #include "voxcd/host/object/object_type.h"
-#include "voxcd/host/pairs/pose.h"
 #include "voxcd/host/python/bindings.h"
 #include "voxcd/host/scene/simulate.h"
 
@@ -34,39 +34,6 @@ Object object_arg(const py::object& o) {
   if (py::isinstance<ObjectFile>(o)) return Object(type_of(o.cast<std::shared_ptr<ObjectFile>>()));
   py::object made = py::module_::import("voxcd").attr("voxelize")(o, py::arg("resolution") = 32);
   return Object(type_of(made.cast<std::shared_ptr<ObjectFile>>()));
-}
-
-// A pose: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z, as `voxcd pair
-// --pose`), or a 4 x 4 homogeneous matrix (rotation and translation; the last row 0 0 0 1).
-Pose pose_arg(const py::object& pose, const char* what) {
-  if (pose.is_none()) return Pose{};
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pose);
-  } catch (const py::error_already_set&) {
-    a = {};
-  }
-  if (!a) value_error(std::string(what) + ": not numbers: " + py::repr(pose).cast<std::string>());
-  const double* v = a.data();
-  if (a.ndim() == 1 && (a.shape(0) == 3 || a.shape(0) == 6)) {
-    const Eigen::Vector3d t(v[0], v[1], v[2]);
-    return a.shape(0) == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t);
-  }
-  if (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4) {
-    Eigen::Matrix3d R;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) R(i, j) = v[4 * i + j];
-    if (!((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 && R.determinant() > 0))
-      value_error(std::string(what) + ": the 4 x 4 matrix's upper left 3 x 3 is not a rotation");
-    Pose p;
-    p.rotation = Eigen::Quaterniond(R).normalized();
-    p.translation = Eigen::Vector3d(v[3], v[7], v[11]);
-    return p;
-  }
-  std::string shape;
-  for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
-  value_error(std::string(what) + ": give tx, ty, tz, or tx, ty, tz, rx, ry, rz (degrees), or a 4 x 4 matrix; got "
-                                  "shape (" + shape + ")");
 }
 
 py::dict collide_py(const py::object& a, const py::object& pose_a, const py::object& b, const py::object& pose_b,
@@ -99,11 +66,19 @@ py::array body_view(const std::vector<Body>& bodies, const double* first, py::ss
                    n ? first : nullptr, owner);
 }
 
-World world_def(double side, const std::string& broadphase, const std::string& backend, int lanes,
-                const std::string& mode, bool both, int distance_bits, double margin, bool ccd, unsigned threads) {
+World world_def(double side, const std::optional<std::string>& broadphase, const std::string& backend, int lanes,
+                const std::string& mode, bool both, int distance_bits, double margin, bool ccd, unsigned threads,
+                const std::optional<std::string>& pruning) {
   WorldDef d;
   d.side = side;
-  d.broadphase = broadphase;
+  if (broadphase) d.broadphase = *broadphase;
+  if (pruning) {  // the keyword simulate() had before it was broadphase, as World's
+    if (broadphase && *broadphase != *pruning)
+      value_error("pruning: is broadphase's deprecated spelling, and names '" + *pruning +
+                  "' where broadphase names '" + *broadphase + "'");
+    deprecation("pruning is deprecated: use broadphase (the same keyword; docs/python.md, \"Deprecated spellings\")");
+    d.broadphase = *pruning;
+  }
   d.backend = backend;
   d.lanes = lanes;
   d.mode = mode_option(mode);
@@ -121,8 +96,14 @@ World world_scene(const RunArgs& a) {
   std::optional<std::string> text;
   const RunConfig options = run_options(a, py::none(), text);
   return with_file(text ? "" : options.where, [&] {
+    RunConfig config;
+    {
+      py::gil_scoped_release unlocked;
+      config = run_config(options, text);
+    }
+    warn_notes(config);
     py::gil_scoped_release unlocked;
-    return detail::world_of(run_config(options, text));
+    return detail::world_of(config);
   });
 }
 
@@ -159,18 +140,22 @@ void bind_collide(py::module_& m) {
         py::arg("margin") = 0.0, py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("threads") = 0u,
         R"(The contacts of b at pose_b against a at pose_a, in one call (the library's collide(), docs/api.md).
 a and b: Objects, or anything voxelize() takes (a mesh file, a shape, (vertices, faces) arrays, an object with
-.vertices and .faces such as a trimesh mesh), voxelised at 32 voxels along the longest side. Poses: None, 3 or 6
-numbers (tx, ty, tz[, rx, ry, rz] in degrees), or a 4 x 4 matrix. mode ALL, FIRST or COUNT; both (default True)
-also tests b's shell in a; margin: contacts within this distance outside (distance voxmaps, both objects with
+.vertices and .faces such as a trimesh mesh), voxelised at 32 voxels along the longest side. Poses: None, 3, 6, 7,
+12 or 16 numbers (tx, ty, tz; then rx, ry, rz in degrees, or qw, qx, qy, qz; or a 3 x 4 or 4 x 4 matrix, row-major),
+a 3 x 4 or 4 x 4 matrix, (R, t), or the pose dict `voxcd pair --json` prints. mode ALL, FIRST or COUNT;
+both (default True) also tests b's shell in a; margin: contacts within this distance outside (distance voxmaps, both objects with
 fields). Returns the dict Pair.query returns: hits, lookups, device_cycles, and the contacts as arrays.)");
 }
 
 // World's construction, World.scene() and its bodies: adding them and viewing their state.
 void bind_world_bodies(WorldClass& world) {
   world
-      .def(py::init(&world_def), py::kw_only(), py::arg("side") = 100.0, py::arg("broadphase") = "grid",
-           py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL", py::arg("both") = false,
-           py::arg("distance_bits") = 0, py::arg("margin") = 0.0, py::arg("ccd") = false, py::arg("threads") = 0u)
+      .def(py::init(&world_def), py::kw_only(), py::arg("side") = 100.0, py::arg("broadphase") = py::none(),
+           py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL", py::arg("both") = true,
+           py::arg("distance_bits") = 0, py::arg("margin") = 0.0, py::arg("ccd") = false, py::arg("threads") = 0u,
+           py::arg("pruning") = py::none(),
+           "An empty world (the library's WorldDef): both (default True, as collide) also tests B's shell in A's "
+           "voxmap; broadphase one of broadphases(), by default grid (pruning: its deprecated spelling).")
       .def(
           "add_body",
           [](World& w, const py::object& obj, const py::object& pose, const py::object& velocity,
@@ -180,8 +165,8 @@ void bind_world_bodies(WorldClass& world) {
           },
           py::arg("object"), py::arg("pose") = py::none(), py::kw_only(), py::arg("velocity") = py::none(),
           py::arg("spin") = py::none(),
-          "Adds a body of `object` at `pose` (None, 3 or 6 numbers, or a 4 x 4 matrix) moving by velocity (world "
-          "units) and turning by spin (radians about the world axes) per frame; returns its index.")
+          "Adds a body of `object` at `pose` (any pose collide() takes: a row of World.poses goes back in) moving by "
+          "velocity (world units) and turning by spin (radians about the world axes) per frame; returns its index.")
       .def("__len__", &World::size)
       .def_property_readonly("positions", bodies_view([](const Body& b) { return b.pose.translation.data(); }, 3),
                              "Every body's position, an (N, 3) float64 view of the world's own state (no copy; valid "
@@ -190,6 +175,22 @@ void bind_world_bodies(WorldClass& world) {
                              bodies_view([](const Body& b) { return b.pose.rotation.coeffs().data(); }, 4),
                              "Every body's orientation as a unit quaternion (x, y, z, w: scalar last, as scipy's "
                              "Rotation.from_quat), an (N, 4) float64 view (no copy; valid until a body is added).")
+      .def_property_readonly(
+          "poses",
+          [](const World& w) {
+            const auto& b = w.bodies();
+            py::array_t<double> a({py::ssize_t(b.size()), py::ssize_t(7)});
+            auto r = a.mutable_unchecked<2>();
+            for (size_t i = 0; i < b.size(); ++i) {
+              const Pose& p = b[i].pose;
+              const double v[7] = {p.translation.x(), p.translation.y(), p.translation.z(), p.rotation.w(),
+                                   p.rotation.x(),    p.rotation.y(),    p.rotation.z()};
+              for (py::ssize_t k = 0; k < 7; ++k) r(py::ssize_t(i), k) = v[k];
+            }
+            return a;
+          },
+          "Every body's pose as a new (N, 7) float64 array, tx, ty, tz, qw, qx, qy, qz: the 7-number form every pose "
+          "argument takes (add_body(obj, world.poses[i]) puts a body where body i is).")
       .def_property_readonly("velocities", bodies_view([](const Body& b) { return b.velocity.data(); }, 3),
                              "Every body's velocity (world units per frame), an (N, 3) float64 view.");
   std::apply(
