@@ -163,7 +163,7 @@ void print_scene(const Workload& w) {
 void print_cycles(const Workload& w, int lanes, int depth) {
   PairCollider col = collider(w, lanes, depth, 0);
   uint64_t lookups = 0, cycles = 0;
-  for (const PairResult& r : col.collide(w.requests, w.options)) lookups += r.lookups, cycles += r.cycles;
+  for (const PairResult& r : col.collide(w.requests, w.options)) lookups += r.lookups, cycles += r.device_cycles;
   std::printf("{\"kind\": \"cycles\", \"scene\": \"%s\", \"lanes\": %d, \"depth\": %d, \"lookups\": %llu, "
               "\"cycles\": %llu, \"device\": \"%s\"}\n",
               w.name.c_str(), lanes, depth, (unsigned long long)lookups, (unsigned long long)cycles,

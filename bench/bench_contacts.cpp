@@ -20,6 +20,7 @@
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/host/pairs/collide.h"
+#include "voxcd/host/pairs/pose_text.h"
 
 using namespace voxcd;
 

@@ -60,7 +60,7 @@ bool same_contact(const Contact& a, const Contact& b) {
 bool same_results(const std::vector<PairResult>& a, const std::vector<PairResult>& b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i) {
-    if (a[i].hits != b[i].hits || a[i].lookups != b[i].lookups || a[i].cycles != b[i].cycles ||
+    if (a[i].hits != b[i].hits || a[i].lookups != b[i].lookups || a[i].device_cycles != b[i].device_cycles ||
         a[i].contacts.size() != b[i].contacts.size())
       return false;
     for (size_t k = 0; k < a[i].contacts.size(); ++k)

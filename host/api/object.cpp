@@ -81,7 +81,33 @@ Object Object::from_arrays(const Eigen::Ref<const Eigen::Matrix<double, Eigen::D
 const std::string& Object::name() const { return type_->name; }
 double Object::voxel() const { return type_->voxmap().voxel(); }
 std::array<uint32_t, 3> Object::dims() const { return type_->voxmap().dims(); }
-size_t Object::shell_points() const { return type_->shell().size(); }
+size_t Object::shell_count() const { return type_->object.shell_count(); }
+
+namespace {
+
+// The rows of `v`, one 3-vector each.
+Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows(const std::vector<Eigen::Vector3d>& v) {
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> m(Eigen::Index(v.size()), 3);
+  for (size_t k = 0; k < v.size(); ++k) m.row(Eigen::Index(k)) = v[k].transpose();
+  return m;
+}
+
+// The dense shell, which an object holds unless its shell is sparse on a grid too large for it.
+const PointShell& dense_shell(const ObjectType& t) {
+  if (t.object.shell.size() != t.object.shell_count())
+    throw Error(t.name + ": the shell is stored sparse on a grid too large for its dense form (" +
+                std::to_string(t.object.shell_count()) + " points): it has no array of points");
+  return t.object.shell;
+}
+
+}  // namespace
+
+Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> Object::shell_points() const {
+  return rows(dense_shell(*type_).points);
+}
+Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> Object::shell_normals() const {
+  return rows(dense_shell(*type_).normals);
+}
 int Object::distance_bits() const { return type_->object.distance_bits(); }
 const MeshReport& Object::report() const { return type_->object.mesh_report; }
 void Object::save(const std::string& path) const { write_object(path, type_->object); }

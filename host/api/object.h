@@ -48,7 +48,12 @@ class Object {
   const std::string& name() const;
   double voxel() const;                      // voxel edge, mesh units
   std::array<uint32_t, 3> dims() const;      // voxels along x, y, z
-  size_t shell_points() const;
+  size_t shell_count() const;                // points of the point shell
+  // The point shell, one point a row in the object's frame, in the order a Contact's `point` indexes them (Python's
+  // Object.shell_points); shell_normals() their outward unit normals. voxcd::Error for a shell stored sparse on a grid
+  // too large for its dense form (over 1024 cells an axis: docs/objects.md, "Sparse objects").
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> shell_points() const;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> shell_normals() const;
   int distance_bits() const;                 // 0 without a distance field
   const MeshReport& report() const;          // what loading and repair found and did
   // Writes the object file (as `voxcd voxelize -o`), atomically; ObjectFileError when it cannot.

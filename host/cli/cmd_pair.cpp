@@ -12,7 +12,7 @@
 #include "voxcd/host/cli/json_text.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/object/mesh.h"
-#include "voxcd/host/pairs/pose.h"
+#include "voxcd/host/pairs/pose_text.h"
 
 namespace voxcd::cli {
 
@@ -33,16 +33,13 @@ struct PairArgs {
   size_t show = 10;
 };
 
-// "tx,ty,tz[,rx,ry,rz]": B's translation in A's frame and its rotation in degrees about x, then y, then z.
-RigidPose parse_pose(const std::string& s) {
-  std::vector<double> v;
+// B's pose in A's frame as --pose gives it (any form parse_pose reads); an error naming --pose.
+RigidPose pose_option(const std::string& s) {
   try {
-    v = parse_pose_numbers(s, false);
+    return parse_pose(s);
   } catch (const std::invalid_argument& e) {
     throw CLI::ValidationError("--pose", e.what());
   }
-  const Eigen::Vector3d t(v[0], v[1], v[2]);
-  return v.size() == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t);
 }
 
 // v with `digits` significant digits (the precision a quantity is printed with).
@@ -68,7 +65,7 @@ std::vector<PairRequest> pair_requests(const PairArgs& a, const ObjectType& ta, 
   r.a = 0;
   r.b = 1;
   if (a.random == 0) {
-    if (!a.pose.empty()) r.pose_b = parse_pose(a.pose);
+    if (!a.pose.empty()) r.pose_b = pose_option(a.pose);
     return {r};
   }
   std::mt19937_64 rng(a.seed);
@@ -99,7 +96,7 @@ struct PairRun {
 Json result_json(const PairRequest& q, const PairResult& r, bool has_cycles) {
   Json j = {{"pose_b_translation", vec_json(q.pose_b.translation)}, {"pose_a", pose_json(q.pose_a)},
             {"pose_b", pose_json(q.pose_b)}, {"hits", r.hits}, {"lookups", r.lookups}};
-  if (has_cycles) j["device_cycles"] = r.cycles;
+  if (has_cycles) j["device_cycles"] = r.device_cycles;
   Json contacts = Json::array();
   for (const Contact& c : r.contacts)
     contacts.push_back({{"shell", c.a_in_b ? "A" : "B"}, {"point", c.point}, {"position", vec_json(c.position)},
@@ -188,7 +185,7 @@ int pair_cmd(const PairArgs& a) {
   for (const PairResult& r : run.res) {
     run.hits += r.hits;
     run.lookups += r.lookups;
-    run.cycles += r.cycles;
+    run.cycles += r.device_cycles;
     run.contacts += r.contacts.size();
     run.touching += r.hits > 0;
   }
@@ -208,7 +205,10 @@ void add_pair(CLI::App& app) {
                                            "a pose or at random poses (docs/pairs.md)");
   c->add_option("a", a->a, "Object A: an object file, a mesh file or a built-in shape")->required();
   c->add_option("b", a->b, "Object B: an object file, a mesh file or a built-in shape")->required();
-  c->add_option("--pose", a->pose, "B's pose in A's frame: tx,ty,tz[,rx,ry,rz] (rotation in degrees about x, y, z)");
+  c->add_option("--pose", a->pose,
+                "B's pose in A's frame: tx,ty,tz[,rx,ry,rz] (rotation in degrees about x, then y, then z), "
+                "tx,ty,tz,qw,qx,qy,qz (a unit quaternion), 12 or 16 numbers (a 3x4 or 4x4 matrix, row-major), or "
+                "the JSON of a pose this command prints ({\"translation\": [...], \"rotation_wxyz\": [...]})");
   c->add_option("--random", a->random, "Test N random poses where the bounding spheres overlap instead");
   c->add_option("--seed", a->seed, "Seed of --random")->capture_default_str();
   CLI::Option* voxel = c->add_option("--voxel", a->object.voxel,
@@ -236,7 +236,8 @@ void add_pair(CLI::App& app) {
   c->add_option("--backend", a->backend, "Device backend: " + comma_list(backend_names()))->capture_default_str();
   c->add_option("--lanes", a->lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
   c->add_option("--mode", a->mode, "ALL (every contact), FIRST (one per direction) or COUNT")->capture_default_str();
-  c->add_flag("--both", a->opt.both_directions, "Test both directions (A's shell in B and B's shell in A)");
+  c->add_flag("--both,!--no-both", a->opt.both_directions,
+              "Test both directions, A's shell in B and B's shell in A (the default); --no-both: A's shell in B only");
   c->add_option("--show", a->show, "Contacts to print (text output)")->capture_default_str();
   c->add_flag("!--no-cull", a->opt.cull,
               "submit every shell point (by default only the clusters of points that can land in the other "

@@ -28,6 +28,7 @@ struct SimulateArgs {
   std::string config;  // a whole device configuration, "NAME VALUE" pairs
   std::string mode = "ALL";
   std::string storage = "dense";  // --storage, parsed into options.storage when given
+  std::string pruning;            // --pruning: --broadphase's deprecated spelling
   double clock_mhz = 0;  // --clock; unset: the scene file's "clock", or the run's device configuration's (run_clock)
   bool json = false;
   bool progress = true;
@@ -45,7 +46,7 @@ constexpr RunOption kRunOptions[] = {
     {"--objects", "types[0].count", "objects"}, {"--shape", "types[0].shape", "shape"},
     {"--voxel", "types[0].voxel", "voxel"},     {"--resolution", "types[0].resolution", "resolution"},
     {"--density", "density", "density"},        {"--speed", "speed", "speed"},
-    {"--seed", "seed", "seed"},                 {"--pruning", "broadphase", "pruning"},
+    {"--seed", "seed", "seed"},                 {"--broadphase", "broadphase", "broadphase"},
     {"--backend", "backend", "backend"},        {"--mode", "mode", "mode"},
     {"--both", "both_directions", "both"},      {"--frames", "frames", "frames"},
     {"--clock", "clock", "clock"},              {"--lanes", "lanes", "lanes"},
@@ -54,11 +55,25 @@ constexpr RunOption kRunOptions[] = {
     {"--storage", "storage", "storage"},
 };
 
+// --pruning, --broadphase's spelling before it was named as everywhere else: the same setting, with a note. Given
+// with --broadphase, it must name the same broadphase.
+void deprecated_pruning(const SimulateArgs& a, RunConfig& o) {
+  if (a.app->count("--pruning") == 0) return;
+  if (a.app->count("--broadphase") > 0 && a.pruning != o.broadphase)
+    throw CLI::ValidationError("--pruning", "is --broadphase's deprecated spelling, and names '" + a.pruning +
+                                                "' where --broadphase names '" + o.broadphase + "'");
+  o.broadphase = a.pruning;
+  o.given["broadphase"] = SettingSource{"", "broadphase"};
+  o.notes.push_back("--pruning is deprecated: use --broadphase (the same option; docs/scenes.md, \"Deprecated "
+                    "spellings\")");
+}
+
 // The options given, as the settings they override (the others take the scene file's values or the defaults).
 RunConfig options_given(const SimulateArgs& a) {
   RunConfig o = a.options;
   for (const RunOption& r : kRunOptions)
     if (a.app->count(r.option) > 0) o.given[r.field] = SettingSource{"", r.name};
+  deprecated_pruning(a, o);
   if (o.given.count("mode")) o.mode = mode_option(a.mode);
   if (o.given.count("storage")) o.storage = *parse_storage(a.storage);
   if (o.given.count("clock")) o.clock = clock_option(a.clock_mhz, "--clock");
@@ -80,10 +95,14 @@ Json settings_json(const SimulationSummary& s) {
     j["scene"] = c.where;
     j["types"] = Json::array();
     for (const auto& t : s.types)
-      j["types"].push_back({{"name", t->name}, {"voxel", t->voxmap().voxel()}, {"shell_points", t->shell().size()}});
+      j["types"].push_back({{"name", t->name}, {"voxel", t->voxmap().voxel()}, {"shell_count", t->shell().size()},
+                            {"shell_points", t->shell().size()}});
   }
+  // shell_points and pruning: shell_count's and broadphase's spellings before one vocabulary, kept for one release
+  // (docs/scenes.md, "Deprecated spellings").
   j.update({{"device", s.device.to_string()}, {"shape", s.shape()}, {"objects", c.objects()}, {"voxel", s.voxel()},
-            {"shell_points", type.shell().size()}, {"voxmap", {d[0], d[1], d[2]}}, {"pruning", c.broadphase},
+            {"shell_count", type.shell().size()}, {"shell_points", type.shell().size()},
+            {"voxmap", {d[0], d[1], d[2]}}, {"broadphase", c.broadphase}, {"pruning", c.broadphase},
             {"backend", c.backend}, {"mode", mode_name(c.mode)}, {"both_directions", c.both_directions}});
   if (s.distance_bits())
     j.update({{"distance_bits", s.distance_bits()}, {"band", c.band}, {"margin", c.margin}, {"ccd", c.ccd}});
@@ -165,7 +184,7 @@ void print_text(const SimulationSummary& s, double exchanged) {
   const double F = double(c.frames);
   const double rate = s.frame_rate();
   if (c.device.has_value()) std::printf("device          %s\n", s.device.to_string().c_str());
-  std::printf("pruning %s, backend %s, mode %s%s, %llu frames\n", c.broadphase.c_str(), c.backend.c_str(),
+  std::printf("broadphase %s, backend %s, mode %s%s, %llu frames\n", c.broadphase.c_str(), c.backend.c_str(),
               mode_name(c.mode), c.both_directions ? ", both directions" : "", (unsigned long long)c.frames);
   if (s.distance_bits())
     std::printf("distance        %d-bit fields over +-%g voxels, margin %g%s\n", s.distance_bits(), c.band, c.margin,
@@ -228,7 +247,9 @@ SimulationSummary run_rank(const SimulateArgs& a, mpi::World& world,
   try {
     RunConfig options = options_given(a);
     options.exchange = exchange;
-    return simulate(run_config(options), progress_bar(progress));
+    const RunConfig config = run_config(options);
+    if (world.rank() == 0) print_notes(config, "simulate");
+    return simulate(config, progress_bar(progress));
   } catch (const OptionError& e) {
     std::string names;
     for (const std::string& o : e.options) names += (names.empty() ? "--" : ", --") + o;
@@ -281,13 +302,17 @@ void add_scene_options(CLI::App* c, SimulateArgs& args) {
 // continuous collision.
 void add_device_options(CLI::App* c, SimulateArgs& args) {
   SimulateArgs* a = &args;
-  c->add_option("--pruning", a->options.broadphase, "Broadphase: " + comma_list(broadphase_names()))
+  c->add_option("--broadphase", a->options.broadphase, "Broadphase: " + comma_list(broadphase_names()))
       ->capture_default_str();
+  c->add_option("--pruning", a->pruning, "Deprecated: --broadphase's old name (the same option, with a note)");
   c->add_option("--backend", a->options.backend, "Device backend: " + comma_list(backend_names()))
       ->capture_default_str();
   c->add_option("--lanes", a->options.lanes, "Lanes of the modelled device")->check(CLI::Range(1, 64))->capture_default_str();
   c->add_option("--mode", a->mode, "ALL (every contact) or FIRST (whether a pair touches)")->capture_default_str();
-  c->add_flag("--both", a->options.both_directions, "Test both directions of every pair");
+  c->add_flag("--both,!--no-both", a->options.both_directions,
+              "Test both directions of every pair, or with --no-both one (A's shell in B's voxmap); by default as "
+              "the scene says: one for the built-in scene (the paper's), both for a scene file without "
+              "\"both_directions\"");
   c->add_option("--distance-bits", a->options.distance_bits,
                 "Distance voxmaps of B bits (4, 8 or 16): objects carry signed distance fields, contacts the "
                 "interpolated depth and the field's gradient")

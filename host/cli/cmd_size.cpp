@@ -20,6 +20,7 @@ struct SizeArgs {
 
 int size_cmd(const SizeArgs& a, const CLI::App& cmd) {
   const RunConfig f = read_scene_file(a.file);
+  print_notes(f, "size");
   const Scene scene = make_scene(f);
   SizeRequest req = a.req;
   if (cmd.count("--clock")) req.clock = clock_option(req.clock_mhz, "--clock");

@@ -65,6 +65,7 @@ SweepSpec make_spec(const SweepArgs& a, const CLI::App& cmd) {
   if (a.cost) s.cost = true;
   s.rtl_dir = a.rtl_dir;
   const RunConfig f = read_scene_file(a.scene);
+  print_notes(f, "sweep");
   if (s.lanes.empty()) s.lanes = {1, 2, 4};
   if (s.voxel_scales.empty()) s.voxel_scales = {1};
   if (s.distance_bits.empty()) s.distance_bits = {f.distance_bits};

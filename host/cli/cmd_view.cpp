@@ -112,7 +112,9 @@ int view_scene(const ViewArgs& a, const std::string& file) {
   options.where = file;
   if (a.frames) options.frames = a.frames, options.given["frames"] = SettingSource{"", "frames"};
   options.record = tmpl;
-  const SimulationSummary s = simulate(run_config(options));
+  const RunConfig config = run_config(options);
+  print_notes(config, "view");
+  const SimulationSummary s = simulate(config);
   std::printf("voxcd view: simulated %llu frames of %s\n", (unsigned long long)s.config.frames, file.c_str());
   return view_recording(a, tmpl, file);
 }
@@ -123,7 +125,7 @@ int view_object(const ViewArgs& a, const std::string& file) {
   const std::string data = view::object_view_json(v);
   const auto& d = v.object.voxmap_grid().dims;
   const std::string what = "object " + file + " (voxmap " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
-                           std::to_string(d[2]) + ", " + std::to_string(v.object.shell_points()) + " shell points)";
+                           std::to_string(d[2]) + ", " + std::to_string(v.object.shell_count()) + " shell points)";
   if (!v.note.empty()) std::fprintf(stderr, "voxcd view: %s\n", v.note.c_str());
   return show(a, what, [&] { return data; },
               [&](const view::HttpRequest& r) -> std::optional<view::HttpResponse> {
@@ -212,9 +214,14 @@ void add_view(CLI::App& app) {
   c->add_option("--distance-bits", a->pair.distance_bits, "Meshes and shapes: also a distance field of B bits (4, 8, 16)")
       ->check(CLI::IsMember(kDistanceBits));
   c->add_option("--band", a->pair.band, "Band of the distance field, voxels")->check(CLI::PositiveNumber)->capture_default_str();
-  c->add_option("--pose", a->pose, "Pair: B's first pose in A's frame, tx,ty,tz[,rx,ry,rz] (degrees)");
+  c->add_option("--pose", a->pose,
+                "Pair: B's first pose in A's frame, as voxcd pair --pose: tx,ty,tz[,rx,ry,rz] (degrees), "
+                "tx,ty,tz,qw,qx,qy,qz, a 3x4 or 4x4 matrix (12 or 16 numbers, row-major) or the pose JSON voxcd pair "
+                "prints");
   c->add_option("--backend", a->pair.backend, "Pair: device backend")->capture_default_str();
-  c->add_flag("--both", a->pair.both_directions, "Pair: test both directions");
+  c->add_flag("--both,!--no-both", a->pair.both_directions,
+              "Pair: test both directions (the default, as voxcd pair) or, with --no-both, A's shell in B's voxmap "
+              "only");
   c->add_option("--margin", a->pair.margin, "Pair on a distance device: contacts within this distance")->capture_default_str();
   c->callback([a] { exit_code() = view_cmd(*a); });
 }

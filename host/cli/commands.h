@@ -2,6 +2,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,13 @@ inline std::string default_clock_help(const std::string& device = "the device's 
          mhz_text(default_device_clock().mhz) +
          " MHz for the default one), else an estimate from the nearest one measured, named as such (docs/hardware.md, "
          "\"The default clock\")";
+}
+
+// The deprecated spellings a run's scene file or options used (RunConfig::notes), one line each on stderr, as
+// "voxcd COMMAND: NOTE".
+template <class Config>
+void print_notes(const Config& c, const char* command) {
+  for (const std::string& note : c.notes) std::fprintf(stderr, "voxcd %s: %s\n", command, note.c_str());
 }
 
 // Names as a help text lists them: "cpu, ref, rtl".

@@ -117,7 +117,9 @@ inline std::string object_json(const std::string& path, const ObjectFile& obj) {
             {"dims", {g.dims[0], g.dims[1], g.dims[2]}}, {"voxel_size", g.voxel},
             {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}}, {"voxels", g.size()},
             {"empty", counts[kEmpty]}, {"surface", counts[kSurface]}, {"interior", counts[kInterior]},
-            {"shell_points", obj.shell_points()}, {"shell_spacing", sg.voxel},
+            // shell_points: shell_count's deprecated spelling, kept for one release (docs/objects.md).
+            {"shell_count", obj.shell_count()}, {"shell_points", obj.shell_count()},
+            {"shell_spacing", sg.voxel},
             {"shell_ratio", obj.shell_ratio}, {"shell_dims", {sd[0], sd[1], sd[2]}},
             {"voxmap_bytes", mem.voxmap_bytes}, {"shell_bytes", mem.shell_bytes},
             {"memory_bytes", mem.voxmap_bytes + mem.shell_bytes}, {"memory_config", DeviceConfig{}.to_string()},
@@ -159,7 +161,7 @@ inline std::string object_text(const std::string& path, const ObjectFile& obj) {
     << "  voxmap   " << d[0] << " x " << d[1] << " x " << d[2] << " voxels of size " << g.voxel << ", origin ("
     << g.origin.x() << ", " << g.origin.y() << ", " << g.origin.z() << ")\n"
     << "  states   empty " << c[kEmpty] << ", surface " << c[kSurface] << ", interior " << c[kInterior] << "\n"
-    << "  shell    " << obj.shell_points() << (obj.shell.on_surface ? " points on the surface" : " points")
+    << "  shell    " << obj.shell_count() << (obj.shell.on_surface ? " points on the surface" : " points")
     << " at spacing " << sg.voxel << " (voxel / " << obj.shell_ratio << "), grid " << sd[0] << " x "
     << sd[1] << " x " << sd[2] << "\n"
     << "  memory   voxmap " << mem.voxmap_bytes << " bytes (" << (obj.voxmap_sparse() ? "sparse, " : "") << "MEMW "
@@ -182,14 +184,14 @@ inline std::string object_text(const std::string& path, const ObjectFile& obj) {
 // The picture of `obj` (voxmap slices, shell over the mesh when there is one) written to png_path, from the dense
 // forms (made of a sparse object's when they fit: MeshError naming the object when they do not).
 inline void write_object_picture(const std::string& png_path, const ObjectFile& obj, const Mesh* mesh) {
-  if (obj.has_dense_voxmap() && obj.has_dense_shell() && obj.shell.size() == obj.shell_points()) {
+  if (obj.has_dense_voxmap() && obj.has_dense_shell() && obj.shell.size() == obj.shell_count()) {
     write_png(png_path, object_picture(obj.voxmap, obj.shell, mesh));
     return;
   }
   ObjectFile dense = obj;
   add_dense_forms(dense);
   const auto& d = dense.voxmap_grid().dims;
-  if (!dense.has_dense_voxmap() || dense.shell.size() != dense.shell_points())
+  if (!dense.has_dense_voxmap() || dense.shell.size() != dense.shell_count())
     throw MeshError(png_path + ": no picture of an object stored sparse at " + std::to_string(d[0]) + " x " +
                     std::to_string(d[1]) + " x " + std::to_string(d[2]) + " voxels (pictures draw the dense voxmap, "
                     "at most " + std::to_string(kMaxDenseDim) + " per axis)");

@@ -61,7 +61,7 @@ struct ObjectFile {
   bool distance_near_conservative(const Eigen::Vector3d& g) const;
   // The shell's grid and point count, from whichever form is held.
   const GridPlacement& shell_grid() const { return shell_sparse() ? sparse_shell.grid : shell.grid; }
-  size_t shell_points() const { return shell_sparse() ? sparse_shell.size() : shell.size(); }
+  size_t shell_count() const { return shell_sparse() ? sparse_shell.size() : shell.size(); }
 };
 
 

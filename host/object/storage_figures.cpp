@@ -27,7 +27,7 @@ ObjectMemory dense_memory(const ObjectFile& obj, const DeviceConfig& cfg) {
   ObjectMemory m;
   const uint64_t per = uint64_t(cfg.states_per_word());
   m.voxmap_bytes = (obj.voxmap_grid().size() + per - 1) / per * uint64_t(cfg.MEMW) / 8;
-  m.shell_bytes = (uint64_t(obj.shell_points()) * 3 * uint64_t(cfg.PW) + 7) / 8;
+  m.shell_bytes = (uint64_t(obj.shell_count()) * 3 * uint64_t(cfg.PW) + 7) / 8;
   return m;
 }
 

@@ -60,7 +60,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     if (p0 == 0) out.resize(pairs.size());
     for (size_t i = p0; i < p1; ++i) {
       const PairTally& t = tally_[i];
-      out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].cycles = t.cycles;
+      out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].device_cycles = t.cycles;
       out[i].contacts.resize(t.contacts);
     }
     write_contacts(pairs, opt, [&](uint32_t pair) { return detail::ToContacts{out[pair].contacts.data()}; });
@@ -77,7 +77,7 @@ void PairCollider::collide(const std::vector<PairRequest>& pairs, const PairOpti
     for (size_t i = p0; i < p1; ++i) {
       const PairTally& t = tally_[i];
       out.first[i] = row;
-      out.hits[i] = t.hits, out.lookups[i] = t.lookups, out.cycles[i] = t.cycles;
+      out.hits[i] = t.hits, out.lookups[i] = t.lookups, out.device_cycles[i] = t.cycles;
       row += t.contacts;
     }
     out.first[p1] = row;
@@ -415,7 +415,7 @@ void PairCollider::collide_part(const PairRequest* pairs, size_t n, size_t base,
         part.tally.data(), part.rot_a.data(), part.rot_b.data(), sc);
   for (size_t i = 0; i < n; ++i) {
     const PairTally& t = part.tally[i];
-    out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].cycles = t.cycles;
+    out[i].hits = t.hits, out[i].lookups = t.lookups, out[i].device_cycles = t.cycles;
     out[i].contacts.resize(t.contacts);
   }
   for (const Scratch::Run& r : sc.runs)
@@ -431,7 +431,9 @@ void PairCollider::join_parts(Part* const* parts, size_t n) const {
     const Part& part = *parts[p];
     if (!part.any) continue;
     // Its first job's cycles: after the previous part's last job, not after the stream's start.
-    if (prev) part.first_result->cycles += span_cycles(cfg, &prev->last, part.first) - span_cycles(cfg, nullptr, part.first);
+    if (prev)
+      part.first_result->device_cycles +=
+          span_cycles(cfg, &prev->last, part.first) - span_cycles(cfg, nullptr, part.first);
     prev = &part;
   }
 }

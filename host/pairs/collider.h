@@ -36,7 +36,7 @@ struct PairRequest {
 struct PairOptions {
   Mode mode = Mode::All;
   uint8_t hit_mask = kDefaultHitMask;
-  bool both_directions = false;  // also B's shell in A's voxmap (needed to see A deep inside B's hollow, ...)
+  bool both_directions = true;  // also B's shell in A's voxmap (needed to see A deep inside B's hollow, ...)
   // Submit only the shell points that can hit in the other object's voxmap: the shell's clusters of up to
   // kClusterPoints consecutive points whose box, through the quantised pose, meets a voxel of the voxmap's grid that
   // could give a hit (a state in the hit mask; on a distance device, a cell whose nodes reach the threshold), found

@@ -30,7 +30,9 @@ struct PairResult {
   std::vector<Contact> contacts;  // A in B first, then B in A; each in ascending point order
   uint32_t hits = 0;              // over both directions (COUNT: the count; FIRST: up to 1 per direction)
   uint64_t lookups = 0;           // shell points submitted
-  uint64_t cycles = 0;            // device cycles of the pair's jobs, where the backend models them
+  // Device cycles of the pair's jobs, where the backend models them (FrameStats::device_cycles, Python's
+  // "device_cycles"; `cycles` before).
+  uint64_t device_cycles = 0;
 };
 // The result of one pair query, as collide() returns it (host/api/collide.h).
 using Contacts = PairResult;

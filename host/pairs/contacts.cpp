@@ -30,7 +30,7 @@ void ContactArrays::resize(size_t pairs, size_t rows) {
   first.resize(pairs + 1);
   hits.resize(pairs);
   lookups.resize(pairs);
-  cycles.resize(pairs);
+  device_cycles.resize(pairs);
   pair.resize(rows);
   point.resize(rows);
   a_in_b.resize(rows);

@@ -17,7 +17,7 @@ namespace voxcd {
 struct ContactArrays {
   std::vector<uint64_t> first;              // per pair its first row, then one past the last row
   std::vector<uint32_t> hits;               // per pair, PairResult::hits
-  std::vector<uint64_t> lookups, cycles;    // per pair, PairResult::lookups and cycles
+  std::vector<uint64_t> lookups, device_cycles;  // per pair, PairResult::lookups and device_cycles
   std::vector<uint32_t> pair, point;        // per row
   std::vector<uint8_t> a_in_b, state;       // per row
   std::vector<double> position, normal;     // per row x, y, z (3 values a row)

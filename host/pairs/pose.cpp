@@ -1,9 +1,6 @@
 #include "voxcd/host/pairs/pose.h"
 
 #include <cmath>
-#include <cstdlib>
-#include <sstream>
-#include <stdexcept>
 
 #include "voxcd/ref/fixed.h"
 
@@ -55,33 +52,6 @@ int64_t distance_threshold(const DeviceConfig& cfg, double margin, double voxel,
                      std::to_string((lim - 1) * unit) + "]");
   }
   return int64_t(v);
-}
-
-RigidPose euler_pose(const Eigen::Vector3d& translation, const Eigen::Vector3d& degrees) {
-  RigidPose p;
-  p.translation = translation;
-  const double k = M_PI / 180.0;
-  p.rotation = Eigen::AngleAxisd(degrees[2] * k, Eigen::Vector3d::UnitZ()) *
-               Eigen::AngleAxisd(degrees[1] * k, Eigen::Vector3d::UnitY()) *
-               Eigen::AngleAxisd(degrees[0] * k, Eigen::Vector3d::UnitX());
-  return p;
-}
-
-std::vector<double> parse_pose_numbers(const std::string& s, bool finite) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double d = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || (finite && !std::isfinite(d)))
-      throw std::invalid_argument("'" + item + "' in '" + s + "' is not a " + (finite ? "finite " : "") + "number");
-    v.push_back(d);
-  }
-  if (v.size() != 3 && v.size() != 6)
-    throw std::invalid_argument("'" + s + "' has " + std::to_string(v.size()) +
-                                " numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz");
-  return v;
 }
 
 }  // namespace voxcd

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "voxcd/host/api/collide.h"
 #include "voxcd/host/object/object_type.h"
-#include "voxcd/host/pairs/pose.h"
 #include "voxcd/host/python/bindings.h"
 
 namespace voxcd::python {
@@ -33,39 +33,6 @@ Object object_arg(const py::object& o) {
   if (py::isinstance<ObjectFile>(o)) return Object(type_of(o.cast<std::shared_ptr<ObjectFile>>()));
   py::object made = py::module_::import("voxcd").attr("voxelize")(o, py::arg("resolution") = 32);
   return Object(type_of(made.cast<std::shared_ptr<ObjectFile>>()));
-}
-
-// A pose: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z, as `voxcd pair
-// --pose`), or a 4 x 4 homogeneous matrix (rotation and translation; the last row 0 0 0 1).
-Pose pose_arg(const py::object& pose, const char* what) {
-  if (pose.is_none()) return Pose{};
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pose);
-  } catch (const py::error_already_set&) {
-    a = {};
-  }
-  if (!a) value_error(std::string(what) + ": not numbers: " + py::repr(pose).cast<std::string>());
-  const double* v = a.data();
-  if (a.ndim() == 1 && (a.shape(0) == 3 || a.shape(0) == 6)) {
-    const Eigen::Vector3d t(v[0], v[1], v[2]);
-    return a.shape(0) == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t);
-  }
-  if (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4) {
-    Eigen::Matrix3d R;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) R(i, j) = v[4 * i + j];
-    if (!((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 && R.determinant() > 0))
-      value_error(std::string(what) + ": the 4 x 4 matrix's upper left 3 x 3 is not a rotation");
-    Pose p;
-    p.rotation = Eigen::Quaterniond(R).normalized();
-    p.translation = Eigen::Vector3d(v[3], v[7], v[11]);
-    return p;
-  }
-  std::string shape;
-  for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
-  value_error(std::string(what) + ": give tx, ty, tz, or tx, ty, tz, rx, ry, rz (degrees), or a 4 x 4 matrix; got "
-                                  "shape (" + shape + ")");
 }
 
 // Three numbers (None: zeros); ValueError naming `what` for anything else.
@@ -108,9 +75,10 @@ void bind_collide(py::module_& m) {
         py::arg("margin") = 0.0, py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("threads") = 0u,
         R"(The contacts of b at pose_b against a at pose_a, in one call (the library's collide(), docs/api.md).
 a and b: Objects, or anything voxelize() takes (a mesh file, a shape, (vertices, faces) arrays, an object with
-.vertices and .faces such as a trimesh mesh), voxelised at 32 voxels along the longest side. Poses: None, 3 or 6
-numbers (tx, ty, tz[, rx, ry, rz] in degrees), or a 4 x 4 matrix. mode ALL, FIRST or COUNT; both (default True)
-also tests b's shell in a; margin: contacts within this distance outside (distance voxmaps, both objects with
+.vertices and .faces such as a trimesh mesh), voxelised at 32 voxels along the longest side. Poses: None, 3, 6, 7,
+12 or 16 numbers (tx, ty, tz; then rx, ry, rz in degrees, or qw, qx, qy, qz; or a 3 x 4 or 4 x 4 matrix, row-major),
+a 3 x 4 or 4 x 4 matrix, (R, t), or the pose dict `voxcd pair --json` prints. mode ALL, FIRST or COUNT;
+both (default True) also tests b's shell in a; margin: contacts within this distance outside (distance voxmaps, both objects with
 fields). Returns the dict Pair.query returns: hits, lookups, device_cycles, and the contacts as arrays.)");
 }
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -45,6 +46,18 @@ struct ArgumentError : Error {
 // Throws ArgumentError with the message.
 [[noreturn]] void value_error(const std::string& message);
 
+// Emits a DeprecationWarning with the message (a deprecated spelling used; docs/python.md, "Deprecated spellings");
+// raises it when the warning filters make it an error.
+void deprecation(const std::string& message);
+
+// poses.cpp: poses as every function takes them (through host/pairs/pose_text.h's parser). One pose: None (the
+// identity), 3, 6, 7, 12 or 16 numbers (translation; then degrees about x, y, z; or a quaternion w, x, y, z; or a
+// 3 x 4 or 4 x 4 matrix, row-major), a 3 x 4 or 4 x 4 matrix, (R, t), or the dict `voxcd pair --json` prints for a
+// pose. ValueError "WHAT: ..." for anything else, a number that is not finite or a rotation that is not one.
+RigidPose pose_arg(const py::object& pose, const std::string& what);
+// One pose as above, or an array of them ((N, k) for k of those counts, (N, 3, 4), (N, 4, 4)): `many` says which.
+std::vector<RigidPose> poses_arg(const py::object& pose, const std::string& what, bool& many);
+
 // The distance fields asked for (voxelize, Pair): ValueError naming the keyword for distance_bits other than 0 (no
 // field), 4, 8 or 16, or a band that is not a positive finite number of voxels.
 void check_distance_args(int distance_bits, double band);
@@ -73,11 +86,11 @@ inline auto run_args() {
       py::arg("scene") = py::none(), py::kw_only(), py::arg("frames") = py::none(), py::arg("objects") = py::none(),
       py::arg("shape") = py::none(), py::arg("voxel") = py::none(), py::arg("resolution") = py::none(),
       py::arg("density") = py::none(), py::arg("speed") = py::none(), py::arg("seed") = py::none(),
-      py::arg("pruning") = py::none(), py::arg("backend") = py::none(), py::arg("lanes") = py::none(),
+      py::arg("broadphase") = py::none(), py::arg("backend") = py::none(), py::arg("lanes") = py::none(),
       py::arg("mode") = py::none(), py::arg("both") = py::none(), py::arg("clock") = py::none(),
       py::arg("config") = py::none(), py::arg("threads") = 0u, py::arg("midphase") = true, py::arg("cull") = true,
       py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
-      py::arg("ccd") = py::none());
+      py::arg("ccd") = py::none(), py::arg("pruning") = py::none());
 }
 
 // The values of run_args(), None where not given.
@@ -88,7 +101,7 @@ struct RunArgs {
   py::object resolution;
   std::optional<double> density, speed;
   py::object seed;
-  std::optional<std::string> pruning, backend;
+  std::optional<std::string> broadphase, backend;
   std::optional<int> lanes;
   std::optional<std::string> mode;
   std::optional<bool> both;
@@ -99,6 +112,7 @@ struct RunArgs {
   std::optional<int> distance_bits;
   std::optional<double> band, margin;
   std::optional<bool> ccd;
+  std::optional<std::string> pruning;  // broadphase's deprecated spelling
 };
 
 // A function of run_args()'s arguments, then `Extra` ones, that returns finish(RunArgs, extra...): the one parameter
@@ -108,14 +122,15 @@ auto run_function(F finish) {
   return [finish](const py::object& scene, const py::object& frames, const py::object& objects,
                   std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
                   std::optional<double> density, std::optional<double> speed, const py::object& seed,
-                  std::optional<std::string> pruning, std::optional<std::string> backend, std::optional<int> lanes,
+                  std::optional<std::string> broadphase, std::optional<std::string> backend, std::optional<int> lanes,
                   std::optional<std::string> mode, std::optional<bool> both, std::optional<double> clock,
                   std::optional<std::string> config, unsigned threads, bool midphase, bool cull,
                   std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin,
-                  std::optional<bool> ccd, Extra... extra) {
+                  std::optional<bool> ccd, std::optional<std::string> pruning, Extra... extra) {
     return finish(RunArgs{scene, frames, objects, std::move(shape), voxel, resolution, density, speed, seed,
-                          std::move(pruning), std::move(backend), lanes, std::move(mode), both, clock,
-                          std::move(config), threads, midphase, cull, distance_bits, band, margin, ccd},
+                          std::move(broadphase), std::move(backend), lanes, std::move(mode), both, clock,
+                          std::move(config), threads, midphase, cull, distance_bits, band, margin, ccd,
+                          std::move(pruning)},
                   extra...);
   };
 }
@@ -123,6 +138,8 @@ auto run_function(F finish) {
 // Those arguments (and `record`) as the settings they give over the scene file (RunConfig::given; run_config applies
 // them); `text` is set to a dict scene's JSON. ValueError or TypeError naming the keyword for a value it cannot take.
 RunConfig run_options(const RunArgs& a, const py::object& record, std::optional<std::string>& text);
+// A DeprecationWarning for each deprecated spelling a run's scene file or options used (RunConfig::notes).
+void warn_notes(const RunConfig& c);
 
 // conformance.cpp: voxcd.generate_vectors and voxcd.conform.
 void bind_conformance(py::module_& m);
@@ -139,10 +156,6 @@ void bind_api(py::module_& m);
 
 // An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).
 Object object_arg(const py::object& o);
-// A pose: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z, as `voxcd pair
-// --pose`), or a 4 x 4 homogeneous matrix (rotation and translation; the last row 0 0 0 1). ValueError naming
-// `what` for anything else.
-RigidPose pose_arg(const py::object& pose, const char* what);
 // Three numbers (None: zeros); ValueError naming `what` for anything else.
 Eigen::Vector3d vec3_arg(const py::object& v, const char* what);
 

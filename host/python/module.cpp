@@ -37,6 +37,14 @@ std::string path_arg(const py::handle& h, const char* what) {
 
 void value_error(const std::string& message) { throw ArgumentError(message); }
 
+void deprecation(const std::string& message) {
+  if (PyErr_WarnEx(PyExc_DeprecationWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+}
+
+void warn_notes(const RunConfig& c) {
+  for (const std::string& note : c.notes) deprecation(note);
+}
+
 void check_distance_args(int distance_bits, double band) {
   if (distance_bits != 0 && !valid_distance_bits(distance_bits))
     value_error("distance_bits: " + std::to_string(distance_bits) + " is not " + distance_bits_text() +
@@ -146,7 +154,8 @@ PYBIND11_MODULE(voxcd, m) {
       "Every backend as {name, ready, why_not}: rtl and sysc-* need the device models (cmake --build build "
       "--target voxcd_models), which why_not names when they are not built.");
   m.def("shapes", &shape_names, "The built-in shapes, by name (for voxelize, pair and simulate).");
-  m.def("broadphases", &broadphase_names, "The broadphases, by name (for simulate(pruning=...)).");
+  m.def("broadphases", &broadphase_names,
+        "The broadphases, by name (for simulate(broadphase=...), World(broadphase=...)).");
   m.attr("EMPTY") = int(kEmpty);
   m.attr("SURFACE") = int(kSurface);
   m.attr("INTERIOR") = int(kInterior);

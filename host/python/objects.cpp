@@ -171,7 +171,7 @@ const Voxmap& dense_voxmap(const ObjectFile& o) {
   return o.voxmap;
 }
 const PointShell& dense_shell(const ObjectFile& o) {
-  if (o.shell.size() != o.shell_points())
+  if (o.shell.size() != o.shell_count())
     value_error("the object's shell is stored sparse on a grid too large for its dense form");
   return o.shell;
 }
@@ -202,7 +202,9 @@ void bind_voxmap(ObjectClass& cls) {
 // Object's point shell.
 void bind_shell(ObjectClass& cls) {
   cls.def_property_readonly("shell_points", [](const ObjectFile& o) { return rows(dense_shell(o).points); },
-                             "The point shell in the object's frame, an (N, 3) float64 array.")
+                             "The point shell in the object's frame, an (N, 3) float64 array (shell_count rows).")
+      .def_property_readonly("shell_count", &ObjectFile::shell_count,
+                             "The number of shell points (as `voxcd info`'s shell_count; C++ Object::shell_count()).")
       .def_property_readonly("shell_normals", [](const ObjectFile& o) { return rows(dense_shell(o).normals); },
                              "Each shell point's outward unit normal, an (N, 3) float64 array.")
       .def_property_readonly(
@@ -252,7 +254,7 @@ std::string object_repr(const ObjectFile& o) {
   const auto& d = o.voxmap_grid().dims;
   return "<voxcd.Object " + o.source + ": " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
          std::to_string(d[2]) + " voxels of " + py::repr(py::float_(o.voxmap_grid().voxel)).cast<std::string>() +
-         ", " + std::to_string(o.shell_points()) + " shell points" + repr_storage(o) + ">";
+         ", " + std::to_string(o.shell_count()) + " shell points" + repr_storage(o) + ">";
 }
 
 // Object's shell grid, report, save() and repr.
@@ -264,9 +266,17 @@ void bind_rest(ObjectClass& cls) {
       .def_property_readonly("shell_dims", [](const ObjectFile& o) { return dims3(o.shell_grid().dims); },
                              "Cells of the shell grid along x, y and z.")
       .def_readonly("shell_ratio", &ObjectFile::shell_ratio, "Voxel / shell spacing the shell was built with.")
-      .def_property_readonly("repair", &repair_dict,
-                             "What loading, repair and voxelising found, as `voxcd info --json` gives it under "
-                             "'repair'; None for an object file of version 1.")
+      .def_property_readonly("report", &repair_dict,
+                             "What loading, repair and voxelising found (C++ Object::report()), as `voxcd info --json` "
+                             "gives it under 'repair'; None for an object file of version 1.")
+      .def_property_readonly(
+          "repair",
+          [](const ObjectFile& o) {
+            deprecation("Object.repair is deprecated: use Object.report (the same dict; docs/python.md, "
+                        "\"Deprecated spellings\")");
+            return repair_dict(o);
+          },
+          "Deprecated: Object.report's old name (the same dict, with a DeprecationWarning).")
       .def(
           "save",
           [](const ObjectFile& o, const py::object& path) {

@@ -42,7 +42,7 @@ py::dict contacts_dict(const PairResult& r, bool cycles) {
   py::dict d;
   d["hits"] = r.hits;
   d["lookups"] = r.lookups;
-  d["device_cycles"] = cycles ? py::object(py::int_(r.cycles)) : py::none();
+  d["device_cycles"] = cycles ? py::object(py::int_(r.device_cycles)) : py::none();
   d["a_in_b"] = a_in_b;
   d["points"] = points;
   d["positions"] = positions;
@@ -154,40 +154,10 @@ std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::o
   return p;
 }
 
-// B's poses in A's frame: None (the identity), 3 or 6 numbers (translation, then rotation in degrees about x, y, z,
-// as `voxcd pair --pose`), or an (N, 3) or (N, 6) array of them. `many` tells whether it was an array of rows.
-std::vector<RigidPose> poses(const py::object& pose, bool& many) {
-  many = false;
-  if (pose.is_none()) return {RigidPose{}};
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pose);
-  } catch (const py::error_already_set&) {
-    a = {};
-  }
-  if (!a) value_error("pose: not numbers: " + py::repr(pose).cast<std::string>());
-  const bool flat = a.ndim() == 1;
-  const py::ssize_t n = flat ? 1 : a.shape(0), w = flat ? a.shape(0) : (a.ndim() == 2 ? a.shape(1) : 0);
-  if ((a.ndim() != 1 && a.ndim() != 2) || (w != 3 && w != 6)) {
-    std::string shape;
-    for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
-    value_error("pose: give tx, ty, tz or tx, ty, tz, rx, ry, rz (degrees), or an (N, 3) or (N, 6) array of them; "
-                "got shape (" + shape + ")");
-  }
-  many = !flat;
-  std::vector<RigidPose> out;
-  const double* v = a.data();
-  for (py::ssize_t k = 0; k < n; ++k, v += w) {
-    const Eigen::Vector3d t(v[0], v[1], v[2]);
-    out.push_back(w == 6 ? euler_pose(t, Eigen::Vector3d(v[3], v[4], v[5])) : euler_pose(t));
-  }
-  return out;
-}
-
 // The requests and options of a query (pose, mode, both, cull as query() takes them).
 std::vector<PairRequest> requests(const py::object& pose, bool& many) {
   std::vector<PairRequest> reqs;
-  for (const RigidPose& b : poses(pose, many)) {
+  for (const RigidPose& b : poses_arg(pose, "pose", many)) {
     PairRequest r;
     r.a = 0;
     r.b = 1;
@@ -236,7 +206,7 @@ py::dict arrays_dict(std::unique_ptr<ContactArrays> a, const std::shared_ptr<Arr
   d["first"] = view(c.first.data(), n + 1, 0, owner);
   d["hits"] = view(c.hits.data(), n, 0, owner);
   d["lookups"] = view(c.lookups.data(), n, 0, owner);
-  d["device_cycles"] = cycles ? py::object(view(c.cycles.data(), n, 0, owner)) : py::none();
+  d["device_cycles"] = cycles ? py::object(view(c.device_cycles.data(), n, 0, owner)) : py::none();
   d["pose"] = view(c.pair.data(), k, 0, owner);
   d["a_in_b"] = py::array(py::dtype::of<bool>(), {py::ssize_t(k)}, {py::ssize_t(1)}, c.a_in_b.data(), owner);
   d["points"] = view(c.point.data(), k, 0, owner);
@@ -278,9 +248,12 @@ py::object query(Pair& p, const py::object& pose, const std::string& mode, bool 
   return std::move(out);
 }
 
-const char* kQueryDoc = R"(The contacts of B at `pose` in A's frame (A at the origin): None (the identity), 3 or 6 numbers
-(tx, ty, tz[, rx, ry, rz]: rotation in degrees about x, then y, then z, as `voxcd pair --pose`), or an (N, 3) or
-(N, 6) array of poses, run in one batch. mode is ALL, FIRST or COUNT; both also tests B's shell in A's voxmap; cull
+const char* kQueryDoc = R"(The contacts of B at `pose` in A's frame (A at the origin): None (the identity), 3, 6, 7, 12
+or 16 numbers (tx, ty, tz; then rx, ry, rz in degrees about x, then y, then z, or a quaternion qw, qx, qy, qz; or a 3 x 4
+or 4 x 4 matrix, row-major: the forms of `voxcd pair --pose`), a 3 x 4 or 4 x 4 matrix, (R, t), the pose dict
+`voxcd pair --json` prints, or an (N, k) (k one of those counts), (N, 3, 4) or (N, 4, 4) array of poses, run in one
+batch. mode is ALL, FIRST or COUNT; both (default True, as collide) also tests B's shell in A's voxmap (False: A's
+shell in B's voxmap only); cull
 submits only the shell clusters that can land in the other voxmap (the contacts are the same). Returns, per pose, a
 dict: hits, lookups, device_cycles (None where the backend models none) and the contacts as arrays: a_in_b (bool:
 A's shell point in B's voxmap), points (index in its shell), positions and normals ((K, 3), world), voxels ((K, 3),
@@ -311,9 +284,9 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
            py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
            py::arg("threads") = 0)
       .def("query", &query, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
-           py::arg("both") = false, py::arg("cull") = true, kQueryDoc)
+           py::arg("both") = true, py::arg("cull") = true, kQueryDoc)
       .def("contacts", &contacts, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
-           py::arg("both") = false, py::arg("cull") = true, kContactsDoc)
+           py::arg("both") = true, py::arg("cull") = true, kContactsDoc)
       .def_readonly("voxel", &Pair::voxel, "The voxel meshes and shapes were voxelised at (0 if both were objects).")
       .def_readonly("backend", &Pair::backend)
       .def_readonly("distance_bits", &Pair::distance_bits,
@@ -346,7 +319,7 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
       },
       py::arg("a"), py::arg("b"), py::arg("pose") = py::none(), py::kw_only(), py::arg("voxel") = py::none(),
       py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL",
-      py::arg("both") = false, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
+      py::arg("both") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
       py::arg("band") = py::none(), py::arg("margin") = py::none(),
       "Pair(a, b, voxel=, resolution=, backend=, lanes=, distance_bits=, band=, margin=).query(pose, mode=, both=, "
       "cull=): the contacts of one call, the same as `voxcd pair A B --pose ... [--distance-bits B --band K "

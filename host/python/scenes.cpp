@@ -61,6 +61,7 @@ py::list types_list(const SimulationSummary& s) {
   py::list types;
   for (const auto& ty : s.types)
     types.append(py::dict(py::arg("name") = ty->name, py::arg("voxel") = ty->voxmap().voxel(),
+                          py::arg("shell_count") = ty->shell().size(),
                           py::arg("shell_points") = ty->shell().size()));
   return types;
 }
@@ -72,8 +73,9 @@ void put_config(py::dict& r, const SimulationSummary& s) {
   const auto& d = type.voxmap().dims();
   if (!c.builtin()) put(r, py::arg("scene") = c.where, py::arg("types") = types_list(s));
   put(r, py::arg("device") = s.device.to_string(), py::arg("shape") = s.shape(), py::arg("objects") = c.objects(),
-      py::arg("voxel") = s.voxel(), py::arg("shell_points") = type.shell().size(),
-      py::arg("voxmap") = py::make_tuple(d[0], d[1], d[2]), py::arg("pruning") = c.broadphase,
+      py::arg("voxel") = s.voxel(), py::arg("shell_count") = type.shell().size(),
+      py::arg("shell_points") = type.shell().size(), py::arg("voxmap") = py::make_tuple(d[0], d[1], d[2]),
+      py::arg("broadphase") = c.broadphase, py::arg("pruning") = c.broadphase,
       py::arg("backend") = c.backend, py::arg("mode") = mode_name(c.mode), py::arg("both_directions") = c.both_directions);
   if (s.distance_bits())
     put(r, py::arg("distance_bits") = s.distance_bits(), py::arg("band") = c.band, py::arg("margin") = c.margin,
@@ -135,7 +137,14 @@ RunConfig run_options(const RunArgs& a, const py::object& record, std::optional<
   if (a.density) o.density = *a.density, give("density", "density");
   if (a.speed) o.speed = *a.speed, give("speed", "speed");
   if (const auto sd = count_arg(a.seed, "seed")) o.seed = *sd, give("seed", "seed");
-  if (a.pruning) o.broadphase = *a.pruning, give("broadphase", "pruning");
+  if (a.broadphase) o.broadphase = *a.broadphase, give("broadphase", "broadphase");
+  if (a.pruning) {
+    if (a.broadphase && *a.broadphase != *a.pruning)
+      value_error("pruning: is broadphase's deprecated spelling, and names '" + *a.pruning + "' where broadphase "
+                  "names '" + *a.broadphase + "'");
+    deprecation("pruning is deprecated: use broadphase (the same keyword; docs/python.md, \"Deprecated spellings\")");
+    o.broadphase = *a.pruning, give("broadphase", "broadphase");
+  }
   if (a.backend) o.backend = *a.backend, give("backend", "backend");
   if (a.lanes) o.lanes = *a.lanes, give("lanes", "lanes");
   if (a.mode) o.mode = mode_option(*a.mode), give("mode", "mode");
@@ -160,10 +169,16 @@ py::dict simulate_scene(const RunArgs& a, const py::object& record) {
   std::optional<std::string> text;
   const RunConfig options = run_options(a, record, text);
   return with_file(text ? "" : options.where, [&] {
+    RunConfig config;
+    {
+      py::gil_scoped_release unlocked;
+      config = run_config(options, text);
+    }
+    warn_notes(config);
     SimulationSummary s;
     {
       py::gil_scoped_release unlocked;
-      s = simulate(run_config(options, text));
+      s = simulate(config);
     }
     return summary_dict(s);
   });
@@ -201,8 +216,13 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
   }
   std::string json;
   with_file(text ? "" : file, [&] {
+    RunConfig f;
+    {
+      py::gil_scoped_release unlocked;
+      f = text ? parse_scene_file(*text, file) : read_scene_file(file);
+    }
+    warn_notes(f);
     py::gil_scoped_release unlocked;
-    const RunConfig f = text ? parse_scene_file(*text, file) : read_scene_file(file);
     const Scene sc = make_scene(f);
     try {
       json = size_json(derive_size(f, sc, req));
@@ -218,8 +238,9 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
 const char* const kSimulateDoc = R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
 `voxcd simulate --json` (the state hash as a hex string). scene: None (the paper's built-in scene), a scene file,
 or a dict with a scene file's keys (docs/scenes.md). Each option given (not None) overrides the scene file, as the
-tool's option of the same name does; config is a whole device configuration as NAME VALUE pairs. distance_bits
-(4, 8 or 16), band (voxels), margin (world units) and ccd (continuous collision, which needs distance voxmaps) are
+tool's option of the same name does (both: --both or --no-both; broadphase: --broadphase, whose deprecated
+spelling pruning still works with a DeprecationWarning); config is a whole device configuration as NAME VALUE pairs.
+distance_bits (4, 8 or 16), band (voxels), margin (world units) and ccd (continuous collision, which needs distance voxmaps) are
 --distance-bits, --band, --margin and --ccd (ccd=False also turns off a scene file's "ccd"); with distance voxmaps
 the summary has distance_bits, band, margin and ccd, and with ccd the counters of no_tunnelling. clock (MHz) is the
 device clock of device_frame_rate_hz (default: the scene file's "clock", or the clock OpenSTA measured at 0.18 um for

@@ -111,14 +111,21 @@ std::string hex(uint64_t v) {
   return b;
 }
 
-PyWorld* world_def(double side, bool walls, bool response, const std::string& broadphase, const std::string& backend,
-                   int lanes, const std::string& mode, bool both, int distance_bits, double margin, bool ccd,
-                   unsigned threads) {
+PyWorld* world_def(double side, bool walls, bool response, const std::optional<std::string>& broadphase,
+                   const std::string& backend, int lanes, const std::string& mode, bool both, int distance_bits,
+                   double margin, bool ccd, unsigned threads, const std::optional<std::string>& pruning) {
   WorldDef d;
   d.side = side;
   d.walls = walls;
   d.response = response;
-  d.broadphase = broadphase;
+  if (broadphase) d.broadphase = *broadphase;
+  if (pruning) {  // the keyword simulate() had before it was broadphase, as World's
+    if (broadphase && *broadphase != *pruning)
+      value_error("pruning: is broadphase's deprecated spelling, and names '" + *pruning +
+                  "' where broadphase names '" + *broadphase + "'");
+    deprecation("pruning is deprecated: use broadphase (the same keyword; docs/python.md, \"Deprecated spellings\")");
+    d.broadphase = *pruning;
+  }
   d.backend = backend;
   d.lanes = lanes;
   d.mode = mode_option(mode);
@@ -136,8 +143,14 @@ PyWorld* world_scene(const RunArgs& a) {
   std::optional<std::string> text;
   const RunConfig options = run_options(a, py::none(), text);
   return with_file(text ? "" : options.where, [&] {
+    RunConfig config;
+    {
+      py::gil_scoped_release unlocked;
+      config = run_config(options, text);
+    }
+    warn_notes(config);
     py::gil_scoped_release unlocked;
-    return new PyWorld(detail::world_of(run_config(options, text)));
+    return new PyWorld(detail::world_of(config));
   });
 }
 
@@ -183,13 +196,15 @@ id is never valid again (World.is_valid); BodyId() is no body's.)")
 void bind_world_bodies(WorldClass& world) {
   world
       .def(py::init(&world_def), py::kw_only(), py::arg("side") = 100.0, py::arg("walls") = true,
-           py::arg("response") = true, py::arg("broadphase") = "grid", py::arg("backend") = "cpu",
-           py::arg("lanes") = 4, py::arg("mode") = "ALL", py::arg("both") = false, py::arg("distance_bits") = 0,
-           py::arg("margin") = 0.0, py::arg("ccd") = false, py::arg("threads") = 0u)
+           py::arg("response") = true, py::arg("broadphase") = py::none(), py::arg("backend") = "cpu",
+           py::arg("lanes") = 4, py::arg("mode") = "ALL", py::arg("both") = true, py::arg("distance_bits") = 0,
+           py::arg("margin") = 0.0, py::arg("ccd") = false, py::arg("threads") = 0u, py::arg("pruning") = py::none(),
+           "An empty world (the library's WorldDef): both (default True, as collide) also tests B's shell in A's "
+           "voxmap; broadphase one of broadphases(), by default grid (pruning: its deprecated spelling).")
       .def("add", &add_py, py::arg("object"), py::arg("pose") = py::none(), py::kw_only(),
            py::arg("velocity") = py::none(), py::arg("angular_velocity") = py::none(),
            py::arg("user_data") = py::none(), py::arg("kind") = "dynamic", py::arg("enabled") = true,
-           "Adds a body of `object` at `pose` (None, 3 or 6 numbers, or a 4 x 4 matrix), with velocity (world units) "
+           "Adds a body of `object` at `pose` (any pose collide() takes: a row of World.poses goes back in), with velocity (world units) "
            "and angular_velocity (radians about the world axes) per second (per frame for step()), any user_data, "
            "kind 'dynamic', 'static' or 'kinematic'; returns its BodyId.")
       .def(
@@ -248,6 +263,22 @@ void bind_world_bodies(WorldClass& world) {
                              bodies_view([](const Body& b) { return b.pose.rotation.coeffs().data(); }, 4),
                              "Every body's orientation as a unit quaternion (x, y, z, w: scalar last, as scipy's "
                              "Rotation.from_quat), an (N, 4) float64 view (no copy; valid as positions).")
+      .def_property_readonly(
+          "poses",
+          [](const PyWorld& w) {
+            const auto& b = w.world.bodies();
+            py::array_t<double> a({py::ssize_t(b.size()), py::ssize_t(7)});
+            auto r = a.mutable_unchecked<2>();
+            for (size_t i = 0; i < b.size(); ++i) {
+              const RigidPose& p = b[i].pose;
+              const double v[7] = {p.translation.x(), p.translation.y(), p.translation.z(), p.rotation.w(),
+                                   p.rotation.x(),    p.rotation.y(),    p.rotation.z()};
+              for (py::ssize_t k = 0; k < 7; ++k) r(py::ssize_t(i), k) = v[k];
+            }
+            return a;
+          },
+          "Every body's pose as a new (N, 7) float64 array, tx, ty, tz, qw, qx, qy, qz: the 7-number form every pose "
+          "argument takes (add(obj, world.poses[i]) puts a body where body i is).")
       .def_property_readonly("velocities", bodies_view([](const Body& b) { return b.velocity.data(); }, 3),
                              "Every body's velocity (world units per second, or per frame for step()), an (N, 3) "
                              "float64 view.");

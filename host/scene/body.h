@@ -36,7 +36,7 @@ struct WorldDef {
   std::string backend = "cpu";      // device_backends()
   int lanes = 4;                    // lanes of the modelled device
   Mode mode = Mode::All;            // All: every contact; First: whether pairs touch; Count: hits only
-  bool both_directions = false;     // also test B's shell in A's voxmap
+  bool both_directions = true;      // also test B's shell in A's voxmap (as collide() and voxcd pair do)
   int distance_bits = 0;            // 4, 8, 16: a distance device (every object must carry such a field); 0: 2-bit
   double margin = 0;                // distance device: contacts within this distance outside, world units
   bool ccd = false;                 // continuous collision: no body passes through another (distance device)

@@ -108,7 +108,7 @@ bool ContinuousCollision::pairs(Scene& scene, std::vector<uint8_t>& moved, doubl
   for (size_t q = 0; q < requests_.size(); ++q) {
     const PairResult& r = results_[q];
     st.lookups += r.lookups;
-    st.cycles += r.cycles;
+    st.cycles += r.device_cycles;
     const uint32_t ia = cand_[queried_[q]].first, ib = cand_[queried_[q]].second;
     Body &a = scene.bodies[ia], &b = scene.bodies[ib];
     const double va = scene.types[a.type]->voxmap().voxel(), vb = scene.types[b.type]->voxmap().voxel();

@@ -119,7 +119,8 @@ std::string record_settings(const SimulationSummary& s) {
   j["density"] = c.density;
   j["seed"] = c.seed;
   j["frames"] = c.frames;
-  j["pruning"] = c.broadphase;
+  j["broadphase"] = c.broadphase;
+  j["pruning"] = c.broadphase;  // "broadphase"'s deprecated spelling, for one release (docs/view.md)
   j["backend"] = c.backend;
   j["mode"] = mode_name(c.mode);
   j["both_directions"] = c.both_directions;

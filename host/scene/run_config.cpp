@@ -254,6 +254,7 @@ RunConfig apply_options(RunConfig c, const RunConfig& o) {
     // A whole distance configuration without distance bits of its own: the objects' fields take its SB.
     if (!o.given.count("distance_bits") && c.device->distance()) c.distance_bits = c.device->SB;
   }
+  c.notes.insert(c.notes.end(), o.notes.begin(), o.notes.end());
   c.threads = o.threads;
   c.midphase = o.midphase;
   c.cull = o.cull;

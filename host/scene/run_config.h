@@ -71,6 +71,11 @@ struct SettingSource {
 // frames on the cpu backend; WorldDef's fields are how the world runs (broadphase, backend, lanes, mode, both
 // directions, distance bits, margin, ccd, threads, the cube's side).
 struct RunConfig : WorldDef {
+  // The paper's scene tests one direction, A's shell in B's voxmap: the built-in scene keeps it, so `voxcd simulate`
+  // runs (and their state hashes) stay the paper's. A world and a scene file test both directions (WorldDef's
+  // default; parse_scene_file), unless they say otherwise.
+  RunConfig() { both_directions = false; }
+
   // The scene: the built-in scene when `where` is empty (one type, `shape` a built-in name or a mesh file, scaled so
   // that its objects fill `density` of the cube), else a scene file's types.
   std::string where;  // the scene file, for messages and the summary ("" for the built-in scene)
@@ -111,6 +116,9 @@ struct RunConfig : WorldDef {
   // The settings given (by the scene file's keys or options; the others have their defaults), keyed by their field:
   // "types[0].voxel", "density", "distance_bits", ... Errors name the source.
   std::map<std::string, SettingSource> given;
+  // Deprecated spellings the scene file or the options used, one line each ("s.json: pruning is deprecated: use
+  // \"broadphase\" ..."), for the caller to show: the tool on stderr, Python as DeprecationWarnings.
+  std::vector<std::string> notes;
 
   bool builtin() const { return where.empty(); }
   uint64_t objects() const;  // instances of every type

@@ -711,7 +711,7 @@ void Simulation::narrow_parts(const PairOptions& po) {
   for (const PairCollider::Part* p : part_ptrs_)
     if (p->any) {
       const size_t q = size_t(p->first_result - results_.data());
-      outcomes_[q].cycles = results_[q].cycles;
+      outcomes_[q].cycles = results_[q].device_cycles;
     }
 }
 
@@ -737,7 +737,7 @@ void Simulation::outcome(size_t q) {
   o.hits = r.hits;
   o.lookups = r.lookups;
   o.contacts = r.contacts.size();
-  o.cycles = r.cycles;
+  o.cycles = r.device_cycles;
   // A's outward normals where A's shell is in B, minus B's where B's is in A, in the contacts' order.
   o.normal = Eigen::Vector3d::Zero();
   for (const Contact& c : r.contacts) o.normal += c.a_in_b ? c.normal : -c.normal;

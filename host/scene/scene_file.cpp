@@ -197,6 +197,22 @@ void parse_types(const Reader& top, const std::string& where, RunConfig& f) {
   }
 }
 
+// "broadphase", or its deprecated spelling "pruning" (the tool's old option's name) with a note; both must agree.
+void parse_broadphase(const Reader& top, const std::string& where, RunConfig& f) {
+  std::string pruning;
+  const bool old = top.string("pruning", pruning, "broadphase");
+  if (old) {
+    f.broadphase = pruning;
+    f.notes.push_back(where + ": pruning is deprecated: use \"broadphase\" (the same key; docs/scenes.md, "
+                              "\"Deprecated spellings\")");
+  }
+  if (top.string("broadphase", f.broadphase) && old && f.broadphase != pruning)
+    top.fail("pruning", "is \"broadphase\"'s deprecated spelling, and names '" + pruning +
+                            "' where \"broadphase\" names '" + f.broadphase + "'");
+  if (old || top.has("broadphase"))
+    top.one_of(top.has("broadphase") ? "broadphase" : "pruning", f.broadphase, broadphase_names());
+}
+
 void parse_run(const Reader& top, const std::string& where, RunConfig& f) {
   top.number("accuracy", f.accuracy);
   top.number("contact_accuracy", f.contact_accuracy);
@@ -204,7 +220,7 @@ void parse_run(const Reader& top, const std::string& where, RunConfig& f) {
   double mhz = 0;
   if (top.number("clock", mhz)) f.clock = DeviceClock{mhz, "given by " + where + "'s \"clock\"", false};
   top.integer("frames", f.frames, 1, kMaxFrames);
-  if (top.string("broadphase", f.broadphase)) top.one_of("broadphase", f.broadphase, broadphase_names());
+  parse_broadphase(top, where, f);
   if (top.string("backend", f.backend)) top.one_of("backend", f.backend, backend_names());
   std::string mode;
   if (top.string("mode", mode)) {
@@ -238,9 +254,10 @@ RunConfig parse_scene_file(std::string_view text, const std::string& where) {
   RunConfig f;
   f.where = where;
   f.frames = 100;
+  f.both_directions = WorldDef{}.both_directions;  // a world's default; the built-in scene's is the paper's (one)
   const Reader top(j, "", where, f);
   top.only({"types", "environment", "accuracy", "contact_accuracy", "rate", "clock", "frames", "broadphase",
-            "backend", "mode", "both_directions", "distance_bits", "band", "ccd", "storage"});
+            "backend", "mode", "both_directions", "distance_bits", "band", "ccd", "storage", "pruning"});
   parse_types(top, where, f);
   if (top.has("environment")) {
     const Reader e(top.at("environment"), "environment", where, f);

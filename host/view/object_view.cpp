@@ -91,12 +91,12 @@ json states_json(const ObjectFile& o, uint64_t max_bytes, json& notes) {
 json shell_json(const ObjectFile& o, size_t limit, json& notes) {
   const PointShell& sh = o.shell;
   const size_t stride = sh.size() <= limit ? 1 : (sh.size() + limit - 1) / limit;
-  if (sh.size() < o.shell_points())
+  if (sh.size() < o.shell_count())
     notes.push_back("the shell is stored sparse on a grid too large for its dense form: no shell points");
   else if (stride > 1)
     notes.push_back("one shell point in " + std::to_string(stride) + " is drawn (at most " + std::to_string(limit) +
                     " are sent)");
-  return {{"count", o.shell_points()}, {"sent", (sh.size() + stride - 1) / stride}, {"stride", stride},
+  return {{"count", o.shell_count()}, {"sent", (sh.size() + stride - 1) / stride}, {"stride", stride},
           {"on_surface", sh.on_surface}, {"points", floats(sh.points, stride)},
           {"normals", floats(sh.normals, stride)}};
 }

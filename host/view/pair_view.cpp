@@ -1,11 +1,12 @@
 #include "voxcd/host/view/pair_view.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "voxcd/host/object/voxmap_surface.h"
-#include "voxcd/host/pairs/pose.h"
+#include "voxcd/host/pairs/pose_text.h"
 #include "voxcd/host/detail/base64.h"
 
 namespace voxcd::view {
@@ -38,10 +39,18 @@ json type_json(const std::string& name, const ObjectType& t) {
 }  // namespace
 
 PairPose parse_pair_pose(const std::string& s) {
-  const std::vector<double> v = parse_pose_numbers(s, true);
-  PairPose p{};
-  for (size_t i = 0; i < v.size(); ++i) p[i] = v[i];
-  return p;
+  const RigidPose pose = parse_pose(s);
+  // Three or six plain numbers are kept as typed (the page shows them); another form's rotation becomes degrees.
+  const bool plain = s.find_first_of("[{") == std::string::npos && std::count(s.begin(), s.end(), ',') < 6;
+  if (plain) {
+    PairPose p{};
+    std::istringstream in(s);
+    std::string item;
+    for (size_t i = 0; i < p.size() && std::getline(in, item, ','); ++i) p[i] = std::stod(item);
+    return p;
+  }
+  const Eigen::Vector3d d = euler_degrees(pose.rotation);
+  return {pose.translation.x(), pose.translation.y(), pose.translation.z(), d.x(), d.y(), d.z()};
 }
 
 PairView::PairView(const std::string& a, const std::string& b, const PairViewOptions& opt)
@@ -72,7 +81,7 @@ std::string PairView::contacts_json(const PairPose& pose) {
     contacts.push_back({{"shell", c.a_in_b ? "A" : "B"}, {"point", c.point}, {"position", vec(c.position)},
                         {"normal", vec(c.normal)}, {"depth", c.depth}});
   json j = {{"pose", pose}, {"hits", res.hits}, {"lookups", res.lookups}, {"contacts", contacts}};
-  j["device_cycles"] = collider_->device().models_cycles() ? json(res.cycles) : json(nullptr);
+  j["device_cycles"] = collider_->device().models_cycles() ? json(res.device_cycles) : json(nullptr);
   return j.dump();
 }
 

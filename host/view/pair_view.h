@@ -11,11 +11,12 @@
 
 namespace voxcd::view {
 
-// B's pose in A's frame as `voxcd pair --pose` takes it: translation, then degrees about x, y and z.
+// B's pose in A's frame as the page edits it: translation, then degrees about x, y and z.
 using PairPose = std::array<double, 6>;
 
-// "tx,ty,tz[,rx,ry,rz]"; std::invalid_argument saying what is wrong with `s` ("'x' in '1,x,3' is not a finite
-// number", "'1,2' has 2 numbers; give tx,ty,tz or tx,ty,tz,rx,ry,rz").
+// Any pose `voxcd pair --pose` takes (parse_pose: 3, 6, 7, 12 or 16 numbers, or the tool's JSON), as the page's six
+// numbers: 3 and 6 numbers as given, the others with their rotation in degrees (euler_degrees). std::invalid_argument
+// saying what is wrong with `s` ("'x' in '1,x,3' is not a number", "'1,2' has 2 numbers; give 3 (tx,ty,tz), ...").
 PairPose parse_pair_pose(const std::string& s);
 
 struct PairViewOptions {
@@ -25,7 +26,7 @@ struct PairViewOptions {
   double band = 4.0;
   double margin = 0;
   std::string backend = "cpu";
-  bool both_directions = false;
+  bool both_directions = true;  // as `voxcd pair`: both shells in the other's voxmap
 };
 
 class PairView {

@@ -98,7 +98,7 @@ void expect_plain(const DeviceConfig& cfg, const std::vector<std::shared_ptr<con
           ASSERT_EQ(arrays.first[i + 1] - arrays.first[i], want.contacts.size());
           EXPECT_EQ(arrays.hits[i], got[i].hits);
           EXPECT_EQ(arrays.lookups[i], got[i].lookups);
-          EXPECT_EQ(arrays.cycles[i], got[i].cycles);
+          EXPECT_EQ(arrays.device_cycles[i], got[i].device_cycles);
           for (size_t k = 0; k < want.contacts.size(); ++k) {
             const Contact& c = got[i].contacts[k];
             const auto& w = want.contacts[k];
@@ -182,7 +182,7 @@ TEST(PairOrder, ALargeBatchRunsInGroupsWithTheSameResultsAndCycles) {
   std::vector<PairResult> one;
   for (size_t i = 0; i < reqs.size(); ++i) {
     SCOPED_TRACE("pair " + std::to_string(i));
-    EXPECT_EQ(batch[i].cycles, cycles[i]);
+    EXPECT_EQ(batch[i].device_cycles, cycles[i]);
     col.collide({reqs[i]}, opt, one);
     ASSERT_EQ(one[0].hits, batch[i].hits);
     EXPECT_EQ(one[0].lookups, batch[i].lookups);
@@ -203,7 +203,7 @@ void expect_same_results(const std::vector<PairResult>& got, const std::vector<P
     SCOPED_TRACE("pair " + std::to_string(i));
     ASSERT_EQ(got[i].hits, want[i].hits);
     EXPECT_EQ(got[i].lookups, want[i].lookups);
-    EXPECT_EQ(got[i].cycles, want[i].cycles);
+    EXPECT_EQ(got[i].device_cycles, want[i].device_cycles);
     ASSERT_EQ(got[i].contacts.size(), want[i].contacts.size());
     for (size_t k = 0; k < want[i].contacts.size(); ++k) {
       const Contact &c = got[i].contacts[k], &w = want[i].contacts[k];

@@ -22,7 +22,7 @@ set(cases
   "--objects|128|--speed|1.5|--frames|60"
   "--objects|300|--density|0.12|--speed|0.5|--frames|40"
   "--objects|64|--distance-bits|8|--ccd|--speed|0.8|--frames|30"
-  "--objects|200|--pruning|sap|--frames|40"
+  "--objects|200|--broadphase|sap|--frames|40"
   "${scenes}/mixed.json|--frames|30")
 foreach(args IN LISTS cases)
   string(REPLACE "|" ";" argv "${args}")

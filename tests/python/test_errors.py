@@ -36,8 +36,10 @@ def test_each_error_is_raised_as_its_class(tmp_path):
     bad = tmp_path / "bad.vxo"
     bad.write_bytes(b"VOXCDOBJ and nothing else")
     assert raised(voxcd.ObjectFileError, voxcd.read_object, bad).where == str(bad)
-    e = raised(voxcd.RangeError, voxcd.collide, torus, None, torus, [math.nan, 0, 0])
-    assert e.where == "pair 0 (shape:torus, shape:torus)" and "pose of B is not finite" in str(e)
+    e = raised(voxcd.RangeError, voxcd.collide, torus, None, torus, [1e9, 0, 0])
+    assert e.where == "pair 0 (shape:torus, shape:torus)" and "does not fit signed 48-bit" in str(e)
+    e = raised(voxcd.OptionError, voxcd.collide, torus, None, torus, [math.nan, 0, 0])
+    assert e.where == "pose_b" and str(e) == "pose_b: number 1 of 3 (nan) is not finite"
     sphere = voxcd.voxelize("sphere", voxel=torus.voxel * 4)  # coarse: quick to make, even under the sanitizers
     e = raised(voxcd.CapacityError, voxcd.collide, torus, None, sphere, None, backend="rtl")
     assert "voxels differ too much for the rtl backend" in str(e)

@@ -48,11 +48,14 @@ def test_a_file_that_is_not_an_object_file(tmp_path):
 
 
 def test_nan_and_infinite_poses():
-    with pytest.raises(ValueError, match=r"pair 0 \(cube, cube\): pose of B is not finite"):
+    # The pose parser refuses them, naming the number (and, in a batch, the pose).
+    with pytest.raises(ValueError, match=r"^pose: number 1 of 3 \(nan\) is not finite$"):
         voxcd.pair("cube", "cube", [math.nan, 0, 0], voxel=0.25)
-    with pytest.raises(ValueError, match=r"pair 0 \(cube, cube\): pose of B is not finite"):
+    with pytest.raises(ValueError, match=r"^pose: number 2 of 6 \(inf\) is not finite$"):
         voxcd.pair("cube", "cube", [0, math.inf, 0, 0, 0, 0], voxel=0.25)
-    with pytest.raises(ValueError, match=r"pose: give tx, ty, tz or tx, ty, tz, rx, ry, rz .* got shape \(2\)"):
+    with pytest.raises(ValueError, match=r"^pose\[1\]: number 3 of 7 \(nan\) is not finite$"):
+        voxcd.pair("cube", "cube", [[0, 0, 0, 1, 0, 0, 0], [0, 0, math.nan, 1, 0, 0, 0]], voxel=0.25)
+    with pytest.raises(ValueError, match=r"^pose: give 3 \(tx, ty, tz\), 6 .* got shape \(2\)$"):
         voxcd.pair("cube", "cube", [1, 2], voxel=0.25)
     with pytest.raises(ValueError, match=r"T0 = -3999999999\.[0-9]+ does not fit signed 48-bit"):
         voxcd.pair("cube", "cube", [1e9, 0, 0], voxel=0.25)

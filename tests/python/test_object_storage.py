@@ -97,7 +97,7 @@ def test_a_sparse_field_reads_as_the_dense_one(cli_json, tmp_path):
     assert obj.distance_bits == info["distance"]["bits"] == 8
     assert obj.distance_step == info["distance"]["step"] == dense.distance_step
     # The cube's edges refine to level 1; the dense field lowers their conservative cells' nodes to 0 instead.
-    assert obj.bricks["distance_refined"] > 0 and dense.repair["conservative_cells"] > 0
+    assert obj.bricks["distance_refined"] > 0 and dense.report["conservative_cells"] > 0
     a, b = obj.distance, dense.distance
     assert a.shape == b.shape == tuple(n + 1 for n in obj.dims) and a.dtype == np.int16 and a.flags["F_CONTIGUOUS"]
     assert np.all((a == b) | ((b == 0) & (a > 0)))

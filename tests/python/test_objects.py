@@ -33,7 +33,7 @@ def test_voxelize_equals_the_tools_object_file(cli, tmp_path, scenes, source, op
     np.testing.assert_array_equal(obj.shell_points, ref.shell_points)
     np.testing.assert_array_equal(obj.shell_normals, ref.shell_normals)
     np.testing.assert_array_equal(obj.shell_cells, ref.shell_cells)
-    assert obj.repair == ref.repair
+    assert obj.report == ref.report
     assert obj.counts == ref.counts
     # Saved, it is the tool's file byte for byte.
     obj.save(tmp_path / "py.vxo")
@@ -50,10 +50,10 @@ def test_arrays_follow_the_voxmap_and_the_report_is_the_tools(cli_json, tmp_path
     assert [int(c) for c in counts[:3]] == [info["empty"], info["surface"], info["interior"]]
     assert counts[3] == 0
     assert obj.counts == {"empty": info["empty"], "surface": info["surface"], "interior": info["interior"]}
-    assert obj.shell_points.shape == (info["shell_points"], 3)
+    assert obj.shell_points.shape == (info["shell_count"], 3)
     assert obj.shell_spacing == pytest.approx(info["shell_spacing"], rel=1e-15)
     assert list(obj.shell_dims) == info["shell_dims"]
-    assert obj.repair == info["repair"]
+    assert obj.report == info["repair"]
     # Every shell point is the centre of its cell of the shell grid, and its normal is a unit vector.
     np.testing.assert_allclose(obj.shell_points, obj.shell_origin + (obj.shell_cells + 0.5) * obj.shell_spacing,
                                rtol=0, atol=1e-12)
@@ -68,8 +68,8 @@ def test_a_repaired_mesh_reports_what_was_repaired(tmp_path):
     # Two triangles of a tetrahedron missing: an open surface, surface only.
     (tmp_path / "open.obj").write_text("v 1 1 1\nv -1 -1 1\nv -1 1 -1\nv 1 -1 -1\nf 1 2 4\nf 1 4 3\n")
     obj = voxcd.voxelize(tmp_path / "open.obj", resolution=8)
-    assert obj.repair["closed"] is False
-    assert obj.repair["open_edges"] == 4
+    assert obj.report["closed"] is False
+    assert obj.report["open_edges"] == 4
     assert obj.counts["interior"] == 0 and obj.counts["surface"] > 0
     with pytest.raises(ValueError, match=r"open\.obj"):
         voxcd.voxelize(tmp_path / "open.obj", resolution=8, strict=True)
@@ -107,7 +107,7 @@ def test_distance_field_of_the_cube(cli, tmp_path, bits):
     # Conservative cells (docs/objects.md): along the cube's edges, nodes outside are lowered to 0.
     lowered = (d == 0) & (want > 0)
     assert np.all((d == want) | (tie & (np.abs(d - want) == 1)) | lowered)
-    assert lowered.any() and obj.repair["conservative_cells"] > 0
+    assert lowered.any() and obj.report["conservative_cells"] > 0
     assert d.min() == -qmax - 1 and d.max() == qmax
     # The shell lies on the cube's surface, within the rounding of 1/256 of the spacing.
     assert np.all(np.abs(box_distance(obj.shell_points)) <= math.sqrt(3) * obj.shell_spacing / 512 + 1e-12)

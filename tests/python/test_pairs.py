@@ -24,8 +24,9 @@ def assert_same_contacts(got, want):
     np.testing.assert_allclose(got["depths"], [c["depth"] for c in contacts], rtol=5e-6, atol=1e-9)
 
 
+# Both directions by default in the tool and the module; --no-both is both=False.
 POSES = [
-    ("0.5,0.2,0.1,10,20,30", [0.5, 0.2, 0.1, 10, 20, 30], []),
+    ("0.5,0.2,0.1,10,20,30", [0.5, 0.2, 0.1, 10, 20, 30], ["--no-both"]),
     ("1.2,0,0", [1.2, 0, 0], ["--both"]),
     ("0.3,-0.4,0.2,0,90,0", (0.3, -0.4, 0.2, 0, 90, 0), ["--mode", "FIRST", "--both"]),
     ("0.3,-0.4,0.2,45,0,0", np.array([0.3, -0.4, 0.2, 45, 0, 0]), ["--mode", "COUNT"]),
@@ -37,7 +38,9 @@ POSES = [
 def test_pair_equals_the_tool(cli_json, text, pose, opts):
     want = cli_json("pair", "cube", "torus", "--pose", text, *opts)
     mode = opts[opts.index("--mode") + 1] if "--mode" in opts else "ALL"
-    got = voxcd.pair("cube", "torus", pose, mode=mode, both="--both" in opts)
+    got = voxcd.pair("cube", "torus", pose, mode=mode, both="--no-both" not in opts)
+    if "--no-both" not in opts and "--both" not in opts:
+        assert_same_contacts(voxcd.pair("cube", "torus", pose, mode=mode), want["results"][0])  # the defaults
     assert want["pairs"] == 1
     assert_same_contacts(got, want["results"][0])
     if text == "5,5,5":
@@ -113,7 +116,7 @@ def test_queries_from_several_threads_give_the_serial_results():
 # keywords, the pose, and the query's options.
 DISTANCE = [
     (["--distance-bits", "8"], dict(distance_bits=8), "0.5,0.2,0.1,10,20,30", ["--both"]),
-    (["--distance-bits", "4", "--band", "3"], dict(distance_bits=4, band=3.0), "1.2,0,0", []),
+    (["--distance-bits", "4", "--band", "3"], dict(distance_bits=4, band=3.0), "1.2,0,0", ["--no-both"]),
     (["--distance-bits", "16", "--margin", "0.05"], dict(distance_bits=16, margin=0.05), "0.3,-0.4,0.2,0,90,0",
      ["--mode", "FIRST", "--both"]),
     (["--distance-bits", "8", "--band", "6", "--margin", "0.1"], dict(distance_bits=8, band=6.0, margin=0.1),
@@ -134,10 +137,10 @@ def test_a_distance_pair_equals_the_tool(cli_json, args, kwargs, text, opts):
     assert pair.margin == want["margin"] == kwargs.get("margin", 0)
     assert pair.a.distance_bits == pair.b.distance_bits == kwargs["distance_bits"]
     assert "SB %d " % kwargs["distance_bits"] in pair.device
-    got = pair.query(pose, mode=mode, both="--both" in opts)
+    got = pair.query(pose, mode=mode, both="--no-both" not in opts)
     assert_same_contacts(got, want["results"][0])
     # voxcd.pair takes the same keywords.
-    assert_same_contacts(voxcd.pair("cube", "torus", pose, mode=mode, both="--both" in opts, **kwargs),
+    assert_same_contacts(voxcd.pair("cube", "torus", pose, mode=mode, both="--no-both" not in opts, **kwargs),
                          want["results"][0])
     if text == "5,5,5":
         assert got["hits"] == 0

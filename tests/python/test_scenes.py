@@ -27,6 +27,7 @@ def assert_same_summary(got, want):
             assert list(got[key]) == value
         elif key == "types":
             assert [t["name"] for t in got[key]] == [t["name"] for t in value]
+            assert [t["shell_count"] for t in got[key]] == [t["shell_count"] for t in value]
             assert [t["shell_points"] for t in got[key]] == [t["shell_points"] for t in value]
             assert [t["voxel"] for t in got[key]] == pytest.approx([t["voxel"] for t in value], rel=1e-5)
         elif isinstance(value, float) or isinstance(got[key], float):
@@ -56,11 +57,11 @@ def test_a_scene_file(cli_json, scenes):
 
 def test_options_override_the_file_as_the_tools_do(cli_json, scenes):
     want = cli_json("simulate", scenes / "small.json", "--frames", "6", "--seed", "11", "--mode", "FIRST", "--both",
-                    "--pruning", "sap", "--lanes", "2", "--backend", "ref", "--speed", "0.2", "--clock", "150")
-    got = voxcd.simulate(str(scenes / "small.json"), frames=6, seed=11, mode="FIRST", both=True, pruning="sap",
+                    "--broadphase", "sap", "--lanes", "2", "--backend", "ref", "--speed", "0.2", "--clock", "150")
+    got = voxcd.simulate(str(scenes / "small.json"), frames=6, seed=11, mode="FIRST", both=True, broadphase="sap",
                          lanes=2, backend="ref", speed=0.2, clock=150)
     assert_same_summary(got, want)
-    assert (got["mode"], got["pruning"], got["lanes"], got["clock_mhz"]) == ("FIRST", "sap", 2, 150)
+    assert (got["mode"], got["broadphase"], got["lanes"], got["clock_mhz"]) == ("FIRST", "sap", 2, 150)
     assert (got["clock_source"], got["clock_estimate"]) == ("given by the clock argument", False)
 
 

@@ -270,7 +270,7 @@ async function pairCase(browser) {
     const want2 = pose('0.9,0.2,0,0,0,30');
     check(second === want2 && want2 !== want, 'contacts recomputed by the tool at the edited pose (' + second + ' vs ' + want2 + ')');
     const bad = await get(url + 'api/pair?pose=1,x,3');
-    check(bad[0] === 400 && bad[1] === "pose: 'x' in '1,x,3' is not a finite number",
+    check(bad[0] === 400 && bad[1] === "pose: 'x' in '1,x,3' is not a number",
       'a pose that is not numbers is refused with a message (' + bad + ')');
     await shot(page, 'view_pair.png');
     check(errors.length === 0, 'no console error (' + errors.join('; ') + ')');

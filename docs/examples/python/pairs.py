@@ -16,11 +16,12 @@ print(f"voxcd {voxcd.__version__}, backends {', '.join(voxcd.backends())}")
 for name, obj in (("torus", torus), ("cube", cube)):
     counts = obj.counts
     print(f"{name}: {obj.dims[0]}x{obj.dims[1]}x{obj.dims[2]} voxels of {obj.voxel:g} "
-          f"({counts['surface']} surface, {counts['interior']} interior), {len(obj.shell_points)} shell points")
+          f"({counts['surface']} surface, {counts['interior']} interior), {obj.shell_count} shell points")
 
-# The cube (B) in the torus's frame (A): moved 2 units along x, turned 30 degrees about z; both directions tested.
+# The cube (B) in the torus's frame (A): moved 2 units along x, turned 30 degrees about z; both directions are
+# tested (the default; both=False tests the cube's shell against the torus only).
 pair = voxcd.Pair(torus, cube, backend="cpu")
-result = pair.query([2.0, 0.0, 0.0, 0, 0, 30], both=True)
+result = pair.query([2.0, 0.0, 0.0, 0, 0, 30])
 print(f"{result['hits']} hits, {result['lookups']} lookups, {result['device_cycles']} device cycles")
 
 deepest = np.argsort(result["depths"])[::-1][:5]

@@ -14,7 +14,7 @@ pair = voxcd.Pair("torus", "cube", resolution=48)  # voxelised at the larger one
 xs = np.linspace(-3.0, 3.0, 25)
 # B's pose in A's frame, one row per step: translation, then rotation in degrees about x, y and z.
 poses = np.column_stack([xs, np.zeros((len(xs), 4)), np.full(len(xs), 45.0)])
-results = pair.query(poses, both=True)
+results = pair.query(poses)  # both directions, the default
 
 print(f"voxel {pair.voxel:.4f}, device {pair.device}")
 for x, r in zip(xs, results):

@@ -24,7 +24,15 @@ TEST(Api, ObjectsFromShapesFilesArraysAndMeshes) {
   def.voxel = 0.1;
   const Object torus = Object::load("torus", def);
   EXPECT_EQ(torus.voxel(), 0.1);
-  EXPECT_GT(torus.shell_points(), 0u);
+  EXPECT_GT(torus.shell_count(), 0u);
+  // The count and the points (rows of the object's frame, unit normals), as Python's shell_count and shell_points.
+  const auto points = torus.shell_points();
+  const auto normals = torus.shell_normals();
+  ASSERT_EQ(size_t(points.rows()), torus.shell_count());
+  ASSERT_EQ(size_t(normals.rows()), torus.shell_count());
+  EXPECT_EQ(Eigen::Vector3d(points.row(0).transpose()), torus.type()->shell().points[0]);
+  EXPECT_NEAR(normals.rowwise().norm().minCoeff(), 1.0, 1e-12);
+  EXPECT_NEAR(normals.rowwise().norm().maxCoeff(), 1.0, 1e-12);
   EXPECT_TRUE(torus.report().closed);
   // By default 32 voxels along the longest side.
   const Object cube = Object::load("cube");
@@ -207,6 +215,38 @@ TEST(Api, AWorldSteppedByItsCallerIsTheToolsRun) {
   ASSERT_NE(fp, nullptr);
   std::fclose(fp);
   std::remove(path.c_str());
+}
+
+// One default for one concept: every door tests both directions unless told otherwise; only the paper's built-in
+// scene keeps one direction, so `voxcd simulate`'s runs and state hashes stay the paper's.
+TEST(Api, BothDirectionsIsTheDefaultEverywhereButThePapersScene) {
+  EXPECT_TRUE(CollideOptions{}.both_directions);
+  EXPECT_TRUE(WorldDef{}.both_directions);
+  EXPECT_TRUE(PairOptions{}.both_directions);
+  EXPECT_FALSE(RunConfig{}.both_directions) << "the built-in scene is the paper's: one direction";
+  EXPECT_TRUE(run_config(RunConfig{}, std::string(R"({"types": [{"shape": "cube"}]})")).both_directions)
+      << "a scene file without \"both_directions\" runs as a World does";
+  for (const char* name : {"paper", "mixed", "small", "large"}) {
+    RunConfig o;
+    o.where = std::string(VOXCD_SCENES_DIR "/") + name + ".json";
+    EXPECT_FALSE(run_config(o).both_directions) << name << ".json says \"both_directions\": false";
+  }
+  // World's default and collide()'s give the same contacts for the same two bodies.
+  ObjectDef def;
+  def.voxel = 0.1;
+  const Object torus = Object::load("torus", def), cube = Object::load("cube", def);
+  World w;
+  Pose pa, pb;
+  pa.translation = {50, 50, 50};
+  pb.translation = {51.2, 50, 50};
+  w.add_body(torus, pa);
+  w.add_body(cube, pb);
+  w.step();
+  ASSERT_EQ(w.contacts().size(), 1u);
+  const Contacts want = collide(torus, w.bodies()[0].pose, cube, w.bodies()[1].pose);
+  EXPECT_EQ(w.contacts()[0].hits, want.hits);
+  EXPECT_EQ(w.contacts()[0].contacts.size(), want.contacts.size());
+  EXPECT_TRUE(std::any_of(want.contacts.begin(), want.contacts.end(), [](const Contact& k) { return !k.a_in_b; }));
 }
 
 TEST(Api, DevicesBackendsAndSizing) {

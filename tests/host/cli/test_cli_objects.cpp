@@ -70,13 +70,13 @@ void expect_matches(const std::string& json, const ObjectFile& obj) {
   EXPECT_EQ(json_number(json, "surface"), c[kSurface]);
   EXPECT_EQ(json_number(json, "interior"), c[kInterior]);
   EXPECT_EQ(json_number(json, "voxels"), g.size());
-  EXPECT_EQ(json_number(json, "shell_points"), obj.shell_points());
+  EXPECT_EQ(json_number(json, "shell_points"), obj.shell_count());
   EXPECT_EQ(json_number(json, "shell_spacing"), obj.shell_grid().voxel);
   // Default device widths: MEMW-bit voxmap words, three PW-bit coordinates per shell point; or the sparse forms'
   // table and bricks, and shell words.
   const DeviceConfig cfg;
   const double dense_v = std::ceil(double(g.size()) / 32) * 8;
-  const double dense_s = std::ceil(double(obj.shell_points()) * 3 * cfg.PW / 8);
+  const double dense_s = std::ceil(double(obj.shell_count()) * 3 * cfg.PW / 8);
   const double vbytes = obj.voxmap_sparse() ? double(obj.sparse_voxmap.bytes()) : dense_v;
   const double sbytes = obj.shell_sparse() ? double(obj.sparse_shell.words() * 9) : dense_s;
   EXPECT_EQ(json_number(json, "voxmap_bytes"), vbytes);
@@ -399,7 +399,7 @@ TEST(Cli, SimulateJsonNumbersAsAStreamPrintsThem) {
   const CliRun r = run("simulate --frames 5 --json --distance-bits 8");
   ASSERT_EQ(r.rc, 0) << r.out;
   EXPECT_EQ(r.out.rfind("{\"device\": \"PW ", 0), 0u) << r.out;
-  EXPECT_NE(r.out.find("\"voxel\": 1, \"shell_points\": "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"voxel\": 1, \"shell_count\": 827, \"shell_points\": 827, "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"distance_bits\": 8, \"band\": 4, \"margin\": 0, \"ccd\": false, \"frames\": 5, "),
             std::string::npos)
       << r.out;

@@ -225,7 +225,8 @@ TEST(RunConfig, ASceneFileRunsAndItsSummaryReportsItsConfiguration) {
   EXPECT_EQ(j["objects"], 12);
   EXPECT_EQ(j["seed"], 9);
   EXPECT_EQ(j["frames"], 4);
-  EXPECT_EQ(j["pruning"], "sap");
+  EXPECT_EQ(j["broadphase"], "sap");
+  EXPECT_EQ(j["pruning"], "sap") << "the deprecated spelling, kept for one release";
   EXPECT_EQ(j["mode"], "ALL");
   EXPECT_EQ(j["distance_bits"], 8);
   EXPECT_EQ(j["margin"], 0.25);
@@ -233,6 +234,48 @@ TEST(RunConfig, ASceneFileRunsAndItsSummaryReportsItsConfiguration) {
   EXPECT_EQ(j["clock_estimate"], false);
   // The same configuration runs the same: equal state hashes.
   EXPECT_EQ(simulate(c).state_hash, s.state_hash);
+}
+
+// "pruning", "broadphase"'s spelling before one vocabulary: the same setting with a note naming the file, and an
+// error naming the file and the key when both are given and differ.
+TEST(RunConfig, PruningIsBroadphasesDeprecatedSpelling) {
+  const RunConfig now = parse_scene_file(scene(R"(, "broadphase": "sap")"), "s.json");
+  const RunConfig old = parse_scene_file(scene(R"(, "pruning": "sap")"), "s.json");
+  EXPECT_EQ(old.broadphase, "sap");
+  EXPECT_TRUE(now.notes.empty());
+  ASSERT_EQ(old.notes.size(), 1u);
+  EXPECT_EQ(old.notes[0], "s.json: pruning is deprecated: use \"broadphase\" (the same key; docs/scenes.md, "
+                          "\"Deprecated spellings\")");
+  // Both, agreeing: one setting; differing: an error naming the file and the key.
+  EXPECT_EQ(parse_scene_file(scene(R"(, "pruning": "sap", "broadphase": "sap")"), "s.json").broadphase, "sap");
+  EXPECT_EQ(file_error(scene(R"(, "pruning": "sap", "broadphase": "tree")")),
+            "s.json: pruning: is \"broadphase\"'s deprecated spelling, and names 'sap' where \"broadphase\" names "
+            "'tree'");
+  EXPECT_EQ(file_error(scene(R"(, "pruning": "nope")")).rfind("s.json: pruning: 'nope' is not one of ", 0), 0u);
+  // The same run, and the note carried to the run's configuration (the tool prints it, Python warns).
+  RunConfig o;
+  o.where = "s.json";
+  const RunConfig a = run_config(o, scene(R"(, "broadphase": "sap", "frames": 3)"));
+  const RunConfig b = run_config(o, scene(R"(, "pruning": "sap", "frames": 3)"));
+  EXPECT_EQ(simulate(a).state_hash, simulate(b).state_hash);
+  EXPECT_EQ(b.notes, old.notes);
+}
+
+// A scene file without "both_directions" tests both directions (a World's default); the built-in scene one (the
+// paper's); the key and the option say otherwise.
+TEST(RunConfig, BothDirectionsDefaults) {
+  EXPECT_FALSE(RunConfig{}.both_directions);
+  EXPECT_FALSE(run_config(RunConfig{}).both_directions);
+  EXPECT_TRUE(parse_scene_file(scene(), "s.json").both_directions);
+  EXPECT_FALSE(parse_scene_file(scene(R"(, "both_directions": false)"), "s.json").both_directions);
+  RunConfig o;
+  o.where = "s.json";
+  o.both_directions = false;
+  o = given(o, "both_directions", "both");
+  EXPECT_FALSE(run_config(o, scene()).both_directions);
+  RunConfig builtin;
+  builtin.both_directions = true;
+  EXPECT_TRUE(run_config(given(builtin, "both_directions", "both")).both_directions);
 }
 
 }  // namespace

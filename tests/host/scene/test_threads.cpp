@@ -89,11 +89,11 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 ::testing::AssertionResult same_results(const std::vector<PairResult>& a, const std::vector<PairResult>& b) {
   if (a.size() != b.size()) return ::testing::AssertionFailure() << a.size() << " results against " << b.size();
   for (size_t i = 0; i < a.size(); ++i) {
-    if (a[i].hits != b[i].hits || a[i].lookups != b[i].lookups || a[i].cycles != b[i].cycles ||
+    if (a[i].hits != b[i].hits || a[i].lookups != b[i].lookups || a[i].device_cycles != b[i].device_cycles ||
         a[i].contacts.size() != b[i].contacts.size())
       return ::testing::AssertionFailure() << "pair " << i << ": hits " << a[i].hits << "/" << b[i].hits
                                            << " lookups " << a[i].lookups << "/" << b[i].lookups << " cycles "
-                                           << a[i].cycles << "/" << b[i].cycles << " contacts "
+                                           << a[i].device_cycles << "/" << b[i].device_cycles << " contacts "
                                            << a[i].contacts.size() << "/" << b[i].contacts.size();
     for (size_t k = 0; k < a[i].contacts.size(); ++k) {
       const Contact &x = a[i].contacts[k], &y = b[i].contacts[k];

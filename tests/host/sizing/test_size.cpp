@@ -646,8 +646,8 @@ TEST(SizeCli, SimulateAndSizeRunOnSceneFiles) {
   ASSERT_EQ(run(bin + " simulate " + kScenes + "/mixed.json --frames 20 --json"), 0) << output();
   EXPECT_NE(output().find("\"types\": [{\"name\": \"rock\""), std::string::npos) << output();
   // An option overrides the file.
-  ASSERT_EQ(run(bin + " simulate " + kScenes + "/mixed.json --frames 20 --pruning sap"), 0) << output();
-  EXPECT_NE(output().find("pruning sap"), std::string::npos) << output();
+  ASSERT_EQ(run(bin + " simulate " + kScenes + "/mixed.json --frames 20 --broadphase sap"), 0) << output();
+  EXPECT_NE(output().find("broadphase sap"), std::string::npos) << output();
   ASSERT_EQ(run(bin + " size " + kScenes + "/small.json --json"), 0) << output();
   EXPECT_NE(output().find(listed_configs().back().config), std::string::npos) << output();
   EXPECT_EQ(run(bin + " size " + kScenes + "/small.json --accuracy 1e-12"), 3);

@@ -83,7 +83,7 @@ TEST(ObjectView, SparseVoxmapAndShellGiveTheirBricksAndMemory) {
   // Device memory as voxcd info reports it: the dense voxmap in 64-bit words of 32 states, 9 bytes a shell point.
   const json& m = j["storage"]["memory"];
   EXPECT_EQ(m["voxmap"], json({{"stored", sm.bytes()}, {"dense", (sm.size() + 31) / 32 * 8}, {"sparse", sm.bytes()}}));
-  EXPECT_EQ(m["shell"], json({{"stored", obj.sparse_shell.bytes()}, {"dense", obj.shell_points() * 9},
+  EXPECT_EQ(m["shell"], json({{"stored", obj.sparse_shell.bytes()}, {"dense", obj.shell_count() * 9},
                               {"sparse", obj.sparse_shell.bytes()}}));
   // Every brick once, each a cell of code 3.
   const json& b = j["bricks"]["voxmap"];
@@ -97,8 +97,8 @@ TEST(ObjectView, SparseVoxmapAndShellGiveTheirBricksAndMemory) {
   for (size_t i = 0; i < xyz.size() / 3; ++i) cells.insert(cell_of(xyz, i, sm.coarse()));
   EXPECT_EQ(cells.size(), xyz.size() / 3);
   for (uint64_t t : cells) EXPECT_EQ(sm.code(t), kCodeBrick) << "cell " << t;
-  EXPECT_EQ(j["shell"]["count"], obj.shell_points());
-  EXPECT_EQ(j["shell"]["sent"], obj.shell_points());
+  EXPECT_EQ(j["shell"]["count"], obj.shell_count());
+  EXPECT_EQ(j["shell"]["sent"], obj.shell_count());
   EXPECT_TRUE(j["notes"].empty()) << j["notes"];
 }
 
@@ -174,7 +174,7 @@ TEST(ObjectView, LimitsBoundWhatThePageIsSent) {
   // The states and the nodes take more than 1000 bytes: not sent; the shell thinned to every k-th point.
   EXPECT_TRUE(j["voxmap"].is_null());
   EXPECT_TRUE(j["distance"]["q"].is_null());
-  const size_t points = obj.shell_points(), k = (points + 99) / 100;
+  const size_t points = obj.shell_count(), k = (points + 99) / 100;
   EXPECT_EQ(j["shell"]["stride"], k);
   EXPECT_EQ(j["shell"]["sent"], (points + k - 1) / k);
   EXPECT_LE(j["shell"]["sent"], 100);

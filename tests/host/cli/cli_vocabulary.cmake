@@ -1,0 +1,110 @@
+# One name and one default for each concept (issue 43; docs/scenes.md, "Deprecated spellings"), as users meet them
+# on the command line: both directions by default (--no-both for one; the built-in scene keeps the paper's one), the
+# broadphase as --broadphase and "broadphase" (--pruning and "pruning" still work, with a note, and must agree), and
+# a pose voxcd pair prints going back into --pose.
+file(MAKE_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
+
+# The output without its measured times.
+function(untimed text out_var)
+  string(REGEX REPLACE "\"seconds\": [0-9.e+-]+" "" t "${text}")
+  string(REGEX REPLACE "in [0-9.]+ ms \\([0-9.]+ ns per lookup\\)" "" t "${t}")
+  set(${out_var} "${t}" PARENT_SCOPE)
+endfunction()
+function(expect_same a b what)
+  if(NOT a STREQUAL b)
+    message(FATAL_ERROR "${what}: the outputs differ:\n${a}\n---\n${b}")
+  endif()
+endfunction()
+function(state_hash text out_var)
+  string(REGEX MATCH "state hash +([0-9a-f]+)" m "${text}")
+  if(NOT m)
+    message(FATAL_ERROR "no state hash in:\n${text}")
+  endif()
+  set(${out_var} "${CMAKE_MATCH_1}" PARENT_SCOPE)
+endfunction()
+
+# voxcd pair: both directions unless --no-both.
+set(pair ${VOXCD} pair torus cube --pose 1.2,0,0,0,0,30 --json)
+run(0 default ${pair})
+run(0 both ${pair} --both)
+run(0 one ${pair} --no-both)
+expect("${default}" "\"both_directions\": true")
+expect("${default}" "\"shell\": \"B\"")
+expect("${one}" "\"both_directions\": false")
+if(one MATCHES "\"shell\": \"B\"")
+  message(FATAL_ERROR "--no-both still tested B's shell:\n${one}")
+endif()
+string(JSON pose_b GET "${default}" results 0 pose_b)
+untimed("${default}" default)
+untimed("${both}" both)
+expect_same("${default}" "${both}" "voxcd pair and voxcd pair --both")
+
+# A pose voxcd pair prints goes back in, as its JSON or as seven numbers (translation, quaternion w x y z): the same
+# contacts, byte for byte.
+run(0 again ${VOXCD} pair torus cube --pose "${pose_b}" --json)
+untimed("${again}" again)
+expect_same("${default}" "${again}" "--pose as the JSON voxcd pair printed")
+set(seven "")
+foreach(path "translation;0" "translation;1" "translation;2" "rotation_wxyz;0" "rotation_wxyz;1" "rotation_wxyz;2"
+             "rotation_wxyz;3")
+  string(JSON x GET "${pose_b}" ${path})
+  list(APPEND seven "${x}")
+endforeach()
+string(REPLACE ";" "," seven "${seven}")
+run(0 again ${VOXCD} pair torus cube --pose "${seven}" --json)
+untimed("${again}" again)
+expect_same("${default}" "${again}" "--pose as seven numbers (${seven})")
+# A 4x4 matrix of the same pose: the same contacts (its quaternion may differ in the last digit, not the contacts).
+run(0 matrix ${VOXCD} pair torus cube --pose 0.86602540378443871,-0.5,0,1.2,0.5,0.86602540378443871,0,0,0,0,1,0,0,0,0,1)
+run(0 euler ${VOXCD} pair torus cube --pose 1.2,0,0,0,0,30)
+string(REGEX MATCH "[0-9]+ hits, [0-9]+ contacts" m "${matrix}")
+string(REGEX MATCH "[0-9]+ hits, [0-9]+ contacts" e "${euler}")
+expect_same("${m}" "${e}" "--pose as a 4x4 matrix and as degrees")
+
+# voxcd simulate: the built-in scene tests one direction (the paper's), --both both, --no-both one.
+set(sim ${VOXCD} simulate --frames 20 --no-progress)
+run(0 default ${sim})
+run(0 one ${sim} --no-both)
+run(0 both ${sim} --both)
+state_hash("${default}" h_default)
+state_hash("${one}" h_one)
+state_hash("${both}" h_both)
+expect_same("${h_default}" "${h_one}" "the built-in scene and --no-both")
+if(h_default STREQUAL h_both)
+  message(FATAL_ERROR "--both ran the built-in scene as one direction (${h_both})")
+endif()
+expect("${both}" "both directions")
+
+# --broadphase; --pruning, its deprecated spelling: the same run, with a note on stderr.
+run(0 now ${sim} --broadphase sap)
+run(0 old ${sim} --pruning sap)
+expect("${now}" "broadphase sap")
+expect("${old}" "voxcd simulate: --pruning is deprecated: use --broadphase")
+if(now MATCHES "deprecated")
+  message(FATAL_ERROR "--broadphase printed a deprecation note:\n${now}")
+endif()
+state_hash("${now}" h_now)
+state_hash("${old}" h_old)
+expect_same("${h_now}" "${h_old}" "--broadphase sap and --pruning sap")
+run(0 same ${sim} --pruning sap --broadphase sap)
+run(105 out ${sim} --pruning sap --broadphase tree)
+expect("${out}" "--pruning: is --broadphase's deprecated spelling, and names 'sap' where --broadphase names 'tree'")
+run(0 json ${sim} --broadphase sap --json)
+expect("${json}" "\"shell_count\": [0-9]+, \"shell_points\": [0-9]+, \"voxmap\": \\[[0-9, ]+\\], \"broadphase\": \"sap\", \"pruning\": \"sap\"")
+
+# Scene files: "pruning" is "broadphase" with a note naming the file; both, differing, an error naming the file and
+# the key; a file without "both_directions" tests both directions.
+file(WRITE ${WORK}/now.json "{\"types\": [{\"shape\": \"cube\", \"count\": 12}], \"broadphase\": \"sap\", \"frames\": 5}")
+file(WRITE ${WORK}/old.json "{\"types\": [{\"shape\": \"cube\", \"count\": 12}], \"pruning\": \"sap\", \"frames\": 5}")
+file(WRITE ${WORK}/both.json
+     "{\"types\": [{\"shape\": \"cube\", \"count\": 12}], \"pruning\": \"sap\", \"broadphase\": \"tree\"}")
+run(0 now ${VOXCD} simulate ${WORK}/now.json --no-progress)
+run(0 old ${VOXCD} simulate ${WORK}/old.json --no-progress)
+expect("${now}" "broadphase sap, backend cpu, mode ALL, both directions")
+expect("${old}" "voxcd simulate: ${WORK}/old\\.json: pruning is deprecated: use \"broadphase\"")
+state_hash("${now}" h_now)
+state_hash("${old}" h_old)
+expect_same("${h_now}" "${h_old}" "a scene file's \"broadphase\" and \"pruning\"")
+run(2 out ${VOXCD} simulate ${WORK}/both.json --no-progress)
+expect("${out}" "voxcd: error: ${WORK}/both\\.json: pruning: is \"broadphase\"'s deprecated spelling, and names 'sap' where \"broadphase\" names 'tree'")
