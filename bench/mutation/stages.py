@@ -19,7 +19,8 @@ SCOREBOARD_RTL = {"lanes": ["Rtl.BackPressure*", "Rtl.RandomJobs*"], "depth": ["
                   "banked": ["RtlBanks.BackPressure*", "RtlBanks.RandomJobs*"],
                   "sparse": ["RtlSparse.BackPressure*", "RtlSparse.RandomJobs*"]}
 DIRECTED_AXI = ":".join(["*RegistersAfterReset*", "*ErrorResponses*", "*RunOpensTheStream*",
-                         "*AddedLatencyIsExact*", "*VectorFiles*", "*MalformedDescriptorsAreRefused*"])
+                         "*AddedLatencyIsExact*", "*VectorFiles*", "*MalformedDescriptorsAreRefused*",
+                         "*MapAtTheEdgeOfTheLoadedWordsOnEveryAxis*", "*WritesAreRefusedFromADescriptorsFirstBeat*"])
 SCOREBOARD_AXI = "*GeneratedVectorsUnderRandomHandshakes*:*RandomDescriptors*"
 
 

@@ -552,6 +552,7 @@ TEST_P(AxiTest, ErrorResponses) {
   EXPECT_EQ(a.write(uint32_t(kRegBase + kRegConflicts), 1), kSlverr) << "CONFLICTS is read-only";
   EXPECT_EQ(a.read(uint32_t(kRegBase + 0x88), v), kDecerr) << "no register at 0x88";
   EXPECT_EQ(a.write(uint32_t(kRegBase + 0xff8), 0), kDecerr) << "no register at 0xff8";
+  EXPECT_EQ(a.read(uint32_t(kRegBase + 0x1000), v), kDecerr) << "0x1000 is past the register window";
   EXPECT_EQ(a.read(uint32_t(kRegBase + 1), v), kSlverr) << "unaligned";
   EXPECT_EQ(a.read(uint32_t(kJobBase), v), kDecerr) << "the job window is the job stream here";
   EXPECT_EQ(a.write(uint32_t(kJobBase), 0), kDecerr);
@@ -573,8 +574,17 @@ TEST_P(AxiTest, ErrorResponses) {
   EXPECT_EQ(a.write(uint32_t(kMapBase), 5, 0x1), kSlverr) << "partial WSTRB";
   EXPECT_EQ(a.reg(kRegShellWords), 0u) << "a refused shell write took effect";
   EXPECT_EQ(a.reg(kRegMapWords), 0u) << "a refused voxmap write took effect";
+  if (a.axil_dw == 32) {
+    // z commits only the x and y written since the word's last commit, both of them.
+    EXPECT_EQ(a.write(uint32_t(kShellBase + kShellStride * 5), 1), kOkay);
+    EXPECT_EQ(a.write(uint32_t(kShellBase + kShellStride * 5 + 8), 1), kSlverr) << "z after x alone";
+  }
   // The same words written properly.
   EXPECT_EQ(a.write_shell(3, {int32_t(big - 1), int32_t(-big), 7}), kOkay);
+  if (a.axil_dw == 32) {
+    EXPECT_EQ(a.write(uint32_t(kShellBase + kShellStride * 3 + 4), 2), kOkay);
+    EXPECT_EQ(a.write(uint32_t(kShellBase + kShellStride * 3 + 8), 2), kSlverr) << "z after y alone, once committed";
+  }
   EXPECT_EQ(a.write64(uint32_t(kMapBase + kMapStride * 9), 0x0123456789abcdefull), kOkay);
   EXPECT_EQ(a.reg(kRegShellWords), 4u);
   EXPECT_EQ(a.reg(kRegMapWords), 10u);
@@ -611,6 +621,31 @@ TEST_P(AxiTest, RunOpensTheStreamAndBusyRefusesWrites) {
   EXPECT_EQ(a.records[0].tag, 7u);
   // Every point lands in voxel (0, 0, 0): empty in a 2-bit map of zeros, at distance 0 (a hit) in a distance one.
   EXPECT_EQ(a.records[0].hits, a.cfg.distance() ? 4096u : 0u);
+}
+
+// 3b. From a descriptor's first beat until its job has run, the top is busy: a memory write issued in any cycle
+// around the descriptor's last beat (before, as it is taken, while the descriptor is staged and while the device
+// takes it) is refused, so no write lands between a job's descriptor and its run.
+TEST_P(AxiTest, WritesAreRefusedFromADescriptorsFirstBeat) {
+  Axi& a = *axi_;
+  DeviceMemory mem;
+  for (int k = 0; k < 4096; ++k) mem.shell.push_back({0, 0, 0});
+  Job j;
+  j.mode = Mode::Count;
+  j.shell_count = 4096;
+  mem.map.assign(map_words(a.cfg, j), 0);
+  a.load(mem);
+  ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
+  const int last = a.job_beats + 4;
+  for (int wait = 0; wait <= last; ++wait) {
+    j.tag = uint32_t(wait);
+    a.queue_job(j);
+    a.ticks(wait);
+    EXPECT_EQ(a.write(uint32_t(kShellBase), 1), kSlverr) << "a shell write " << wait << " cycles after the first beat";
+    a.run_until_records(size_t(wait) + 1);
+    a.ticks(4);
+    EXPECT_EQ(a.write(uint32_t(kShellBase), 0), kOkay) << "and accepted once the job has run";
+  }
 }
 
 // 4. Added latency: a job alone whose one record is its completion (COUNT), streams always valid and ready: the
@@ -854,6 +889,52 @@ void expect_runs(const Axi& a, const DeviceMemory& mem, const std::vector<std::v
 // descriptor is one error record, in its place, with its tag and exactly the faults ref/'s job_faults gives. With
 // one-beat descriptors the jobs between two refusals reach the device back to back (and the first job after a
 // refusal an idle device), so their cycles are the timing model's, stream by stream, plus the stalls.
+// Sends each descriptor of `sent` (its bytes, and the faults ref/'s job_faults gives it) on a running top loaded
+// with `mem`, then checks that every refused one is one error record, in its place, with its tag and exactly those
+// faults, and that the jobs between them run as ref/'s (expect_runs).
+void expect_descriptors(Axi& a, const DeviceMemory& mem,
+                        const std::vector<std::pair<std::vector<uint8_t>, uint32_t>>& sent, uint64_t seed,
+                        size_t min_refused, size_t min_run, size_t min_kinds) {
+  std::vector<Axi::Refusal> want_refused;
+  std::vector<std::vector<Job>> runs(1);  // the jobs that run, split at the refusals
+  std::vector<Job> all;
+  size_t records = 0;
+  for (const auto& [bytes, faults] : sent) {
+    a.queue_bytes(bytes, a.job_beats);
+    if (faults) {
+      want_refused.push_back({records, uint32_t(get_le(bytes.data(), 4)), faults});
+      if (!runs.back().empty()) runs.emplace_back();
+      continue;
+    }
+    Job job;
+    std::string why;
+    ASSERT_TRUE(decode_sparse_descriptor(bytes, job, why)) << why;
+    records += run_stream(a.cfg, mem, {job}).size();
+    runs.back().push_back(job);
+    all.push_back(job);
+  }
+  ASSERT_GE(want_refused.size(), min_refused) << "the descriptors must exercise the refusals";
+  ASSERT_GE(all.size(), min_run) << "and run jobs between them";
+  std::set<uint32_t> kinds;
+  for (const Axi::Refusal& r : want_refused)
+    for (uint32_t b = 1; b; b <<= 1)
+      if (r.faults & b) kinds.insert(b);
+  EXPECT_GE(kinds.size(), min_kinds) << "the rules broken";
+  a.run_until_records(records);
+  for (int i = 0; i < 100000 && a.refusals.size() < want_refused.size(); ++i) a.tick();  // refusals after the last job
+  ASSERT_EQ(a.refusals.size(), want_refused.size()) << "seed " << seed;
+  for (size_t k = 0; k < want_refused.size(); ++k) {
+    ASSERT_EQ(a.refusals[k].at, want_refused[k].at) << "error record " << k << " out of its place; seed " << seed;
+    ASSERT_EQ(a.refusals[k].tag, want_refused[k].tag) << "error record " << k << "; seed " << seed;
+    ASSERT_EQ(a.refusals[k].faults, want_refused[k].faults) << "error record " << k << " (tag "
+                                                            << want_refused[k].tag << "); seed " << seed;
+  }
+  expect_runs(a, mem, runs, seed);
+  EXPECT_EQ(a.reg(kRegDropped), want_refused.size());
+  EXPECT_EQ(a.reg(kRegJobsDone), all.size());
+  EXPECT_EQ(a.reg(kRegStatus), 0u);
+}
+
 TEST_P(AxiTest, RandomDescriptorsAreRefusedAsTheReferenceRefusesThem) {
   Axi& a = *axi_;
   a.p_lite = 0.8;
@@ -862,46 +943,58 @@ TEST_P(AxiTest, RandomDescriptorsAreRefusedAsTheReferenceRefusesThem) {
   a.load(g.memory);
   ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
   std::mt19937_64 rng(seed_ * 7 + 1);
-  std::vector<Axi::Refusal> want_refused;
-  std::vector<std::vector<Job>> runs(1);  // the jobs that run, split at the refusals
-  std::vector<Job> all;
-  size_t records = 0;
+  std::vector<std::pair<std::vector<uint8_t>, uint32_t>> sent;
   for (const Job& j : g.jobs) {
     uint32_t faults = 0;
-    const std::vector<uint8_t> bytes = random_descriptor(a.cfg, g.memory, j, rng, faults);
-    a.queue_bytes(bytes, a.job_beats);
-    Job sent;
-    std::string why;
-    if (faults) {
-      want_refused.push_back({records, uint32_t(get_le(bytes.data(), 4)), faults});
-      if (!runs.back().empty()) runs.emplace_back();
-      continue;
+    std::vector<uint8_t> bytes = random_descriptor(a.cfg, g.memory, j, rng, faults);
+    sent.emplace_back(std::move(bytes), faults);
+  }
+  expect_descriptors(a, g.memory, sent, seed_, g.jobs.size() / 4 + 1, g.jobs.size() / 4 + 1, 7);
+}
+
+// 9. The map's words at the edge of the loaded words, for every extent of each axis in turn (odd and even, the
+// smallest and the largest the device takes): a map whose last word is the last loaded one runs, one a word further
+// is refused (the map rule), so the words the top computes for each axis's extent are ref/'s map_words (a dense
+// map's states or distance nodes, a sparse map's table). On a sparse device the same for sparse maps, their bricks
+// at the start of the memory.
+TEST_P(AxiTest, MapAtTheEdgeOfTheLoadedWordsOnEveryAxis) {
+  Axi& a = *axi_;
+  a.p_rec_ready = 0.8;
+  const GeneratedVectors g = generate_vectors({seed_ + 41, 4, 600, a.cfg, {}});
+  a.load(g.memory);
+  ASSERT_EQ(a.write(uint32_t(kRegBase + kRegRun), 1), kOkay);
+  const uint64_t loaded = g.memory.map.size();
+  const uint64_t top = a.cfg.max_dim();
+  std::vector<uint32_t> extents = {1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 31, 33};
+  extents.push_back(uint32_t(top - 1));
+  extents.push_back(uint32_t(top));
+  std::vector<std::pair<std::vector<uint8_t>, uint32_t>> sent;
+  uint32_t tag = 0;
+  for (const bool sparse_map : {false, true}) {
+    if (sparse_map && !a.cfg.sparse()) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      for (const uint32_t n : extents) {
+        if (n == 0 || n > top) continue;
+        Job j = g.jobs[0];
+        j.mode = Mode::Count;
+        j.shell_base = 0, j.shell_count = 1;
+        j.sparse = sparse_map ? kSparseMap : 0;
+        j.brick_base = 0, j.brick_units = 0;
+        j.nx = j.ny = j.nz = 3;
+        (axis == 0 ? j.nx : axis == 1 ? j.ny : j.nz) = n;
+        const uint64_t words = map_words(a.cfg, j);
+        if (words > loaded) continue;
+        for (const uint64_t past : {0, 1}) {
+          j.tag = tag++ & uint32_t(a.cfg.max_tag());
+          j.map_base = uint32_t(loaded - words + past);
+          if (a.cfg.distance()) j.map_base &= ~7u;  // on a bank boundary; past the edge by 8 words instead
+          if (a.cfg.distance() && past) j.map_base = uint32_t(loaded - words + 8);
+          sent.emplace_back(sparse_descriptor(j), job_faults(a.cfg, j, g.memory.shell.size(), loaded));
+        }
+      }
     }
-    ASSERT_TRUE(decode_sparse_descriptor(bytes, sent, why)) << why;
-    records += run_stream(a.cfg, g.memory, {sent}).size();
-    runs.back().push_back(sent);
-    all.push_back(sent);
   }
-  ASSERT_GT(want_refused.size(), g.jobs.size() / 4) << "the descriptors must exercise the refusals";
-  ASSERT_GT(all.size(), g.jobs.size() / 4) << "and run jobs between them";
-  std::set<uint32_t> kinds;
-  for (const Axi::Refusal& r : want_refused)
-    for (uint32_t b = 1; b; b <<= 1)
-      if (r.faults & b) kinds.insert(b);
-  EXPECT_GE(kinds.size(), 7u) << "most rules must be broken somewhere";
-  a.run_until_records(records);
-  for (int i = 0; i < 100000 && a.refusals.size() < want_refused.size(); ++i) a.tick();  // refusals after the last job
-  ASSERT_EQ(a.refusals.size(), want_refused.size()) << "seed " << seed_;
-  for (size_t k = 0; k < want_refused.size(); ++k) {
-    ASSERT_EQ(a.refusals[k].at, want_refused[k].at) << "error record " << k << " out of its place; seed " << seed_;
-    ASSERT_EQ(a.refusals[k].tag, want_refused[k].tag) << "error record " << k << "; seed " << seed_;
-    ASSERT_EQ(a.refusals[k].faults, want_refused[k].faults) << "error record " << k << " (tag "
-                                                            << want_refused[k].tag << "); seed " << seed_;
-  }
-  expect_runs(a, g.memory, runs, seed_);
-  EXPECT_EQ(a.reg(kRegDropped), want_refused.size());
-  EXPECT_EQ(a.reg(kRegJobsDone), all.size());
-  EXPECT_EQ(a.reg(kRegStatus), 0u);
+  expect_descriptors(a, g.memory, sent, seed_, sent.size() / 4, sent.size() / 4, 1);
 }
 
 std::string model_name(const ::testing::TestParamInfo<size_t>& i) { return models()[i.param].name; }
