@@ -239,8 +239,11 @@ TEST(Api, BothDirectionsIsTheDefaultEverywhereButThePapersScene) {
   Pose pa, pb;
   pa.translation = {50, 50, 50};
   pb.translation = {51.2, 50, 50};
-  w.add_body(torus, pa);
-  w.add_body(cube, pb);
+  BodyDef da(torus), db(cube);
+  da.pose = pa;
+  db.pose = pb;
+  w.add(da);
+  w.add(db);
   w.step();
   ASSERT_EQ(w.contacts().size(), 1u);
   const Contacts want = collide(torus, w.bodies()[0].pose, cube, w.bodies()[1].pose);
