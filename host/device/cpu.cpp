@@ -4,7 +4,7 @@
 #include "voxcd/host/device/detail/cpu.h"
 
 #include "voxcd/ref/fast/fast.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

@@ -1,6 +1,7 @@
 # cmake --install build --prefix P:
 #   P/include/voxcd/       the public headers (<voxcd/voxcd.h> and what it includes, <voxcd/ref/...>, <voxcd/sysc/...>)
 #   P/lib/                 libvoxcd (voxcd::host), libvoxcd_ref (voxcd::ref), libvoxcd_ref_fast (voxcd::fast),
+#                          libvoxcd_util (voxcd::util: the thread pool of the last two; its header is internal),
 #                          libvoxcd_sysc (voxcd::sysc), libvoxcd_dpi (voxcd::dpi) and the Verilated models they load;
 #                          P/lib/voxcd/voxcd_rtl_backend.so, the rtl backend's module (it loads libvoxcd_rtl_models)
 #   P/lib/cmake/voxcd/     the CMake package: find_package(voxcd CONFIG REQUIRED)
