@@ -24,7 +24,7 @@ set(VOXCD_PUBLIC_HEADERS
   host/object/mesh.h host/object/storage.h host/object/frame.h host/pairs/contact.h host/scene/body.h
   host/device/device.h host/device/conform.h host/device/clock.h
   ref/error.h ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
-  ref/float_model.h ref/fast/fast.h ref/fast/hits.h)
+  ref/float_model.h ref/address_map.h ref/fast/fast.h ref/fast/hits.h)
 if(TARGET voxcd_sysc)
   list(APPEND VOXCD_PUBLIC_HEADERS sysc/address_map.h sysc/axi_target.h sysc/clocked_target.h sysc/host_cpu.h
                                    sysc/platform.h sysc/rtl_target.h sysc/target.h sysc/tlm_target.h)
