@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
-#include "voxcd/sysc/address_map.h"
 #include "voxcd/sysc/platform.h"
 
 using namespace voxcd;

@@ -27,7 +27,7 @@
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/scene/scene.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 using namespace voxcd;
 

@@ -3,7 +3,7 @@
 // "The AXI top").
 //
 // Contract: the register offsets, memory windows and byte layouts are those of the SystemC address map
-// (sysc/address_map.h): a descriptor is its 128 bytes and a record its 32 bytes, little-endian, spread over
+// (ref/address_map.h): a descriptor is its 128 bytes and a record its 32 bytes, little-endian, spread over
 // 1024 / JobDw and 256 / RecDw beats, the lowest bytes in the first beat, TLAST on the last. The device's stream
 // contract is unchanged: records leave in the contract's stream order, a completion's cycles are the device's.
 //
@@ -29,7 +29,7 @@
 //   descriptor breaks the format, fault bit 0, as well as bit 1: ref/pipeline.h's job_faults). A descriptor that
 //   breaks any rule is refused: the device never sees it; once
 //   the records of every job before it have left, an error record {kind 3, tag, faults} takes its place in the
-//   record stream (the rules it breaks, one bit each: sysc/address_map.h), and DROPPED counts it.
+//   record stream (the rules it breaks, one bit each: ref/address_map.h), and DROPPED counts it.
 //
 // Latency: with the job stream always valid and the record stream always ready, a job whose first descriptor beat
 // is taken in cycle f and whose completion record carries `cycles` has its completion's last beat taken in cycle
@@ -96,7 +96,7 @@ module voxcd_axi #(
   localparam logic [1:0] RespSlverr = 2'b10;
   localparam logic [1:0] RespDecerr = 2'b11;
 
-  // The address map (sysc/address_map.h).
+  // The address map (ref/address_map.h).
   localparam logic [31:0] RegSize    = 32'h0000_1000;
   localparam logic [31:0] ShellBase  = 32'h1000_0000;
   localparam logic [31:0] MapBase    = 32'h2000_0000;
@@ -110,7 +110,7 @@ module voxcd_axi #(
                           RegDropped = 12'h078, RegConflicts = 12'h080;
   localparam logic [63:0] Config0 = {8'(LANES), 8'(MEMW), 8'(DW), 8'(TW), 8'(MF), 8'(MW), 8'(PF), 8'(PW)};
   localparam logic [63:0] Config1 = {8'(BL), 8'(Depth), 8'(BANKS), 8'(WB), 8'(SB), 8'(TAGW), 8'(MAW), 8'(SAW)};
-  // The rules a refused descriptor breaks (the error record's faults; ref/pipeline.h and sysc/address_map.h).
+  // The rules a refused descriptor breaks (the error record's faults; ref/pipeline.h and ref/address_map.h).
   localparam int unsigned FaultW = 8;
   localparam int unsigned FaultReserved = 0, FaultMode = 1, FaultTag = 2, FaultShell = 3, FaultDims = 4,
                           FaultMap = 5, FaultPose = 6, FaultThreshold = 7;
@@ -132,7 +132,7 @@ module voxcd_axi #(
   logic [CW-1:0]        done_cycles, done_stalls, conflicts;  // conflicts: the device's bank conflict cycles
   logic                 dev_busy;
 
-  // The descriptor register and its fields (byte offsets of sysc/address_map.h).
+  // The descriptor register and its fields (byte offsets of ref/address_map.h).
   logic [8*JobBytes-1:0] desc_q;
   logic                  desc_full_q;
   logic [31:0]           d_tag, d_shell_base, d_shell_count, d_map_base, d_nx, d_ny, d_nz;

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/vectors.h"
-#include "voxcd/sysc/address_map.h"
 #include "voxcd/sysc/platform.h"
 
 using namespace voxcd;

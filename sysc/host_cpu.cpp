@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/fnv1a.h"
-#include "voxcd/sysc/address_map.h"
 
 namespace voxcd::sysc {
 

@@ -65,7 +65,7 @@ class HostCpu : public sc_core::sc_module {
   std::vector<Record> run(const std::vector<Job>& jobs);
   // The same into `out` (replacing its contents, reusing its capacity): the same transactions.
   void run_into(const std::vector<Job>& jobs, std::vector<Record>& out);
-  // The same transactions for `jobs` descriptors already encoded (kJobBytes each, sysc/address_map.h), leaving the
+  // The same transactions for `jobs` descriptors already encoded (kJobBytes each, ref/address_map.h), leaving the
   // result records as the device gave them (kRecordBytes each, the empty slots after the last one dropped) in
   // `records` (replaced, its capacity reused): for a caller that forwards them as bytes.
   void run_encoded(const uint8_t* descriptors, size_t jobs, std::vector<uint8_t>& records);

@@ -1,15 +1,15 @@
 // voxcd_sysc_server: the example platform in a process of its own, serving one host-side Device (backends
-// sysc-rtl and sysc-tlm) over the socket at file descriptor 3 (sysc/server_protocol.h).
+// sysc-rtl and sysc-tlm) over the socket at file descriptor 3 (ref/server_protocol.h).
 //   voxcd_sysc_server --target rtl|tlm --config "PW 24 ... LANES 4" [--trace FILE.fst]
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <string>
 
+#include "voxcd/ref/address_map.h"
+#include "voxcd/ref/server_protocol.h"
 #include "voxcd/ref/vectors.h"
-#include "voxcd/sysc/address_map.h"
 #include "voxcd/sysc/platform.h"
-#include "voxcd/sysc/server_protocol.h"
 
 using namespace voxcd;
 using namespace voxcd::sysc;

@@ -4,8 +4,8 @@
 #include <cstring>
 #include <optional>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/pipeline.h"
-#include "voxcd/sysc/address_map.h"
 
 namespace voxcd::sysc {
 

@@ -1,4 +1,4 @@
-// DeviceTarget: what both SystemC targets share: the TLM-2.0 socket, the address map (sysc/address_map.h), access
+// DeviceTarget: what both SystemC targets share: the TLM-2.0 socket, the address map (ref/address_map.h), access
 // checks and error responses, the staging of job descriptors, the result queue and the counters. How memory
 // writes, batches and time happen is the subclass's: the Verilated RTL (rtl_target.h) or the timing model
 // (tlm_target.h).
@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/types.h"
-#include "voxcd/sysc/address_map.h"
 
 namespace voxcd::sysc {
 
@@ -61,7 +61,7 @@ class DeviceTarget : public sc_core::sc_module {
   void publish(const std::vector<Record>& job_records, uint64_t conflicts = 0) {
     publish(job_records.data(), job_records.size(), conflicts);
   }
-  // The result queue holds encoded records (kRecordBytes each, sysc/address_map.h): the readable ones, then those a
+  // The result queue holds encoded records (kRecordBytes each, ref/address_map.h): the readable ones, then those a
   // target queued ahead of time and has not made readable yet. queue_records appends n slots after everything
   // queued and returns them for the caller to fill (valid until the next call); publish_queued makes the next n
   // queued records, one job's, readable and adds the job's counts.
@@ -95,7 +95,7 @@ class DeviceTarget : public sc_core::sc_module {
 
   void b_transport(tlm::tlm_generic_payload& tr, sc_core::sc_time& delay);
   tlm::tlm_response_status access(tlm::tlm_generic_payload& tr, sc_core::sc_time t, sc_core::sc_time& done);
-  // The windows of the address map (sysc/address_map.h), each with its own checks.
+  // The windows of the address map (ref/address_map.h), each with its own checks.
   tlm::tlm_response_status reg_access(const Access& a, sc_core::sc_time t);
   tlm::tlm_response_status stage_jobs(const Access& a);
   tlm::tlm_response_status read_results(const Access& a, sc_core::sc_time t, sc_core::sc_time& done);

@@ -68,7 +68,7 @@ function(voxcd_mutation_build name configs)
   if(axi_rows)
     add_executable(${name}_test_axi ${PROJECT_SOURCE_DIR}/tests/axi/test_axi.cpp)
     target_include_directories(${name}_test_axi PRIVATE ${out}/include_axi)
-    target_link_libraries(${name}_test_axi PRIVATE ${name}_axi_models voxcd_sysc_map voxcd_ref GTest::gtest
+    target_link_libraries(${name}_test_axi PRIVATE ${name}_axi_models voxcd_ref GTest::gtest
                           GTest::gtest_main)
     target_compile_definitions(${name}_test_axi PRIVATE VOXCD_VECTORS_DIR="${PROJECT_SOURCE_DIR}/tests/vectors"
                                VOXCD_RTL_RANDOM_POWER_UP=1)

@@ -6,7 +6,7 @@
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

@@ -9,19 +9,10 @@
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/device/conform.h"
 #include "voxcd/host/device/device.h"
+#include "voxcd/host/sizing/size_options.h"  // SizeOptions: what is asked of the device
 #include "voxcd/ref/config.h"
 
 namespace voxcd {
-
-// What is asked of the device; 0 (or unset) takes the scene file's value, or its default.
-struct SizeOptions {
-  double accuracy = 0;          // world units: the fixed-point path's worst error
-  double contact_accuracy = 0;  // world units: how far outside the other surface a contact may lie
-  double rate = 0;              // frames per second
-  double clock_mhz = 0;         // the device clock of the rate
-  uint64_t frames = 0;          // frames simulated to measure the scene
-  bool cost = false;            // also synthesise the configuration with yosys (LUTs, FFs, DSPs, block RAMs)
-};
 
 struct DeviceSize {
   DeviceConfig config;  // the smallest device that meets the request

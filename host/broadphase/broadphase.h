@@ -12,7 +12,7 @@
 
 namespace voxcd {
 
-class ThreadPool;  // ref/fast/thread_pool.h
+class ThreadPool;  // ref/util/thread_pool.h
 
 struct Aabb {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();

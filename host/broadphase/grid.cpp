@@ -14,7 +14,7 @@
 #include <cstring>
 
 #include "voxcd/host/broadphase/detail/common.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd::detail {
 namespace {

@@ -3,11 +3,15 @@
 #include <iostream>
 
 #include "voxcd/host/cli/commands.h"
-#include "voxcd/host/cli/object_report.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
+#include "voxcd/host/report/object_report.h"
 
 namespace voxcd::cli {
+
+using report::object_json;
+using report::object_text;
+using report::write_object_picture;
 
 namespace {
 

@@ -9,12 +9,15 @@
 
 #include "voxcd/host/api/object.h"
 #include "voxcd/host/cli/commands.h"
-#include "voxcd/host/cli/json_text.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/pairs/pose_text.h"
+#include "voxcd/host/report/json_text.h"
 
 namespace voxcd::cli {
+
+using report::Json;
+using report::json_text;
 
 namespace {
 

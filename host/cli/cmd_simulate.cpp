@@ -9,15 +9,18 @@
 #include <sstream>
 
 #include "voxcd/host/cli/commands.h"
-#include "voxcd/host/cli/json_text.h"
-#include "voxcd/host/cli/object_report.h"
 #include "voxcd/host/mpi/frame_exchange.h"
 #include "voxcd/host/mpi/world.h"
 #include "voxcd/host/object/voxelize.h"
+#include "voxcd/host/report/json_text.h"
+#include "voxcd/host/report/object_report.h"
 #include "voxcd/host/scene/simulate.h"
 #include "voxcd/ref/vectors.h"
 
 namespace voxcd::cli {
+
+using report::Json;
+using report::json_text;
 
 namespace {
 

@@ -10,10 +10,10 @@
 #include <iterator>
 
 #include "voxcd/host/cli/commands.h"
-#include "voxcd/host/cli/object_report.h"
 #include "voxcd/host/detail/text_file.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/object/shapes.h"
+#include "voxcd/host/report/object_report.h"
 #include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/simulate.h"
 #include "voxcd/host/detail/base64.h"
@@ -23,6 +23,8 @@
 #include "voxcd/host/view/server.h"
 
 namespace voxcd::cli {
+
+using report::json_text;
 
 namespace {
 

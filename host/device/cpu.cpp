@@ -6,7 +6,7 @@
 #include "voxcd/host/device/parts.h"
 
 #include "voxcd/ref/fast/fast.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

@@ -13,7 +13,7 @@
 
 namespace voxcd {
 
-class ThreadPool;  // ref/fast/thread_pool.h
+class ThreadPool;  // ref/util/thread_pool.h
 
 struct DeviceOptions {
   std::string trace_path;       // rtl: write an FST waveform here ("" = none)

@@ -13,7 +13,7 @@
 
 namespace voxcd {
 
-class ThreadPool;  // ref/fast/thread_pool.h
+class ThreadPool;  // ref/util/thread_pool.h
 
 class PartRunner {
  public:

@@ -1,7 +1,9 @@
 #include "voxcd/host/device/detail/sysc.h"
 #include "voxcd/host/package/paths.h"
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/pipeline.h"
+#include "voxcd/ref/server_protocol.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -11,9 +13,6 @@
 
 #include <cstdlib>
 #include <cstring>
-
-#include "voxcd/sysc/address_map.h"
-#include "voxcd/sysc/server_protocol.h"
 
 extern char** environ;
 

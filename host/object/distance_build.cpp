@@ -12,7 +12,7 @@
 #include "voxcd/host/object/detail/solid.h"
 #include "voxcd/host/object/detail/unresolved.h"
 #include "voxcd/host/object/distance_field.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

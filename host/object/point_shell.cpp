@@ -10,7 +10,7 @@
 
 #include "voxcd/host/object/detail/shell_grid.h"
 #include "voxcd/host/object/detail/shell_normals.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 #include "voxcd/ref/float_model.h"
 
 namespace voxcd {

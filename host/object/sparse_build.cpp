@@ -7,7 +7,7 @@
 #include "voxcd/host/object/detail/brick_build.h"
 #include "voxcd/host/object/detail/cube_walk.h"
 #include "voxcd/host/object/sparse_field.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

@@ -12,7 +12,7 @@
 #include "voxcd/host/object/detail/shell_grid.h"
 #include "voxcd/host/object/detail/shell_normals.h"
 #include "voxcd/host/object/sparse_shell.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

@@ -1,6 +1,7 @@
 // What an object takes in device memory with the default widths, in the forms it is stored in and in the other
 // forms (docs/objects.md, "Sparse objects" and "Sparse distance field"). One set of figures for `voxcd voxelize` and
-// `voxcd info` (host/cli/object_report.h prints them), the Python module's Object.memory and the viewer's object page.
+// `voxcd info` (host/report/object_report.h prints them), the Python module's Object.memory and the viewer's object
+// page.
 #pragma once
 
 #include <array>

@@ -8,7 +8,7 @@
 #include "voxcd/host/object/detail/closest.h"
 #include "voxcd/host/object/detail/shell_grid.h"
 #include "voxcd/host/object/point_shell.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

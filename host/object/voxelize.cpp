@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 #include "voxcd/host/object/detail/column_crossings.h"
 #include "voxcd/host/object/detail/solid.h"
 #include "voxcd/host/object/detail/voxel_geometry.h"

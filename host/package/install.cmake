@@ -1,6 +1,7 @@
 # cmake --install build --prefix P:
 #   P/include/voxcd/       the public headers (<voxcd/voxcd.h> and what it includes, <voxcd/ref/...>, <voxcd/sysc/...>)
 #   P/lib/                 libvoxcd (voxcd::host), libvoxcd_ref (voxcd::ref), libvoxcd_ref_fast (voxcd::fast),
+#                          libvoxcd_util (voxcd::util: the thread pool of the last two; its header is internal),
 #                          libvoxcd_sysc (voxcd::sysc), libvoxcd_dpi (voxcd::dpi) and the Verilated models they load;
 #                          P/lib/voxcd/voxcd_rtl_backend.so, the rtl backend's module (it loads libvoxcd_rtl_models)
 #   P/lib/cmake/voxcd/     the CMake package: find_package(voxcd CONFIG REQUIRED)
@@ -20,10 +21,11 @@ include(CMakePackageConfigHelpers)
 set(VOXCD_PUBLIC_HEADERS
   host/api/object.h host/api/collide.h host/api/world.h host/api/world_types.h host/api/devices.h host/api/errors.h
   host/object/errors.h host/pairs/errors.h host/device/errors.h host/scene/errors.h host/sizing/errors.h
+  host/sizing/size_options.h
   host/object/mesh.h host/object/storage.h host/object/frame.h host/pairs/contact.h host/scene/body.h
   host/device/device.h host/device/conform.h host/device/clock.h
   ref/error.h ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
-  ref/float_model.h ref/fast/fast.h ref/fast/hits.h)
+  ref/float_model.h ref/address_map.h ref/fast/fast.h ref/fast/hits.h)
 if(TARGET voxcd_sysc)
   list(APPEND VOXCD_PUBLIC_HEADERS sysc/address_map.h sysc/axi_target.h sysc/clocked_target.h sysc/host_cpu.h
                                    sysc/platform.h sysc/rtl_target.h sysc/target.h sysc/tlm_target.h)

@@ -7,7 +7,7 @@
 #include "voxcd/host/pairs/detail/cull.h"
 #include "voxcd/host/pairs/detail/shell_order.h"
 #include "voxcd/ref/banks.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
 

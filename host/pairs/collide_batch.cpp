@@ -8,7 +8,7 @@
 #include "voxcd/host/pairs/detail/contact_out.h"
 #include "voxcd/host/pairs/detail/shell_order.h"
 #include "voxcd/ref/banks.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 #include "voxcd/ref/timing.h"
 
 namespace voxcd {

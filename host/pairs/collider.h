@@ -18,7 +18,7 @@
 #include "voxcd/host/pairs/detail/shell_order.h"
 #include "voxcd/host/pairs/image.h"
 #include "voxcd/host/pairs/pose.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 #include "voxcd/ref/timing.h"
 
 namespace voxcd {

@@ -7,9 +7,9 @@
 #include <limits>
 #include <memory>
 
-#include "voxcd/host/cli/object_report.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/python/bindings.h"
+#include "voxcd/host/report/object_report.h"
 
 namespace voxcd::python {
 
@@ -70,7 +70,7 @@ py::object distance(const ObjectFile& o) {
 // What loading, repair and voxelising found: `voxcd info --json`'s "repair", made by the same function (None for an
 // object file of version 1).
 py::object repair_dict(const ObjectFile& obj) {
-  return py::module_::import("json").attr("loads")(cli::repair_json(obj).dump());
+  return py::module_::import("json").attr("loads")(report::repair_json(obj).dump());
 }
 
 // A mesh given as arrays: a (vertices, faces) pair, or an object with .vertices and .faces (trimesh) or

@@ -12,7 +12,7 @@
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/pairs/collider.h"
 #include "voxcd/host/scene/distance_bound.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

@@ -23,7 +23,7 @@
 #include "voxcd/host/scene/partition.h"
 #include "voxcd/host/scene/run_config.h"
 #include "voxcd/host/object/object_type.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 

@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "voxcd/host/api/devices.h"
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
@@ -21,6 +20,7 @@
 #include "voxcd/host/sizing/depth.h"
 #include "voxcd/host/sizing/energy_table.h"
 #include "voxcd/host/sizing/errors.h"
+#include "voxcd/host/sizing/size_options.h"
 #include "voxcd/host/sizing/storage_layout.h"
 #include "voxcd/host/device/timing_table.h"
 #include "voxcd/ref/config.h"

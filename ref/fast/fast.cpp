@@ -18,7 +18,7 @@
 #include "voxcd/ref/fast/detail/sparse_shell.h"
 #include "voxcd/ref/fast/detail/sparse_copy.h"
 #include "voxcd/ref/fast/detail/node_quads.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 #include "voxcd/ref/timing.h"
 
 namespace voxcd {

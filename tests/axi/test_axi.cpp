@@ -1,6 +1,6 @@
 // The AXI top (rtl/voxcd_axi.sv), Verilated, driven through its AXI4-Lite slave and its two AXI4-Stream ports
 // with random TVALID / TREADY and AXI4-Lite handshakes. Descriptors are packed and records unpacked with the
-// SystemC address map's own encode_job / decode_record (sysc/address_map.h). Checks: the records equal ref/'s
+// address map's own encode_job / decode_record (ref/address_map.h). Checks: the records equal ref/'s
 // (vector files and generated vectors), the cycles equal ref/timing.h's (plus the counted stalls) at the model's
 // pipeline depth, the latency the top adds is exactly the documented one, the responses are OKAY / SLVERR / DECERR
 // as documented, refused descriptors come back as error records with the faults ref/'s job_faults names, and every
@@ -25,12 +25,12 @@
 #include <type_traits>
 #include <vector>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/sparse.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/vectors.h"
-#include "voxcd/sysc/address_map.h"
 // The AXI tops (rtl/CMakeLists.txt); test_axi_cov runs the same tests on their coverage models, each test's counts
 // written into $VOXCD_COVERAGE_DIR (bench/coverage.sh, docs/verification.md).
 #ifdef VOXCD_AXI_MODELS_HEADER

@@ -6,6 +6,10 @@ import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"voxcd/([^"]+)"')
 SOURCES = ('.h', '.hpp', '.cpp', '.in')
+# What every unit may include besides its own entries: the utilities (ref/util, which may include nothing else of
+# voxcd) and the contract (ref, which every unit but ref/util may include).
+UTIL = 'ref/util'
+BASE = ('ref', UTIL)
 
 
 def read_table(path):
@@ -38,7 +42,8 @@ def unit_of(path, units):
 
 
 def closure(rules):
-    """Each unit's allowed units and headers, host/ ones transitively (ref/fast, sysc only where named); exits on a cycle."""
+    """Each unit's allowed units and headers, host/ ones transitively (ref/fast, sysc only where named); exits on a cycle.
+    Every unit may use ref/util and ref besides, except ref/util, which may use nothing but itself."""
     done, allowed = set(), {}
 
     def visit(unit, stack):
@@ -46,7 +51,7 @@ def closure(rules):
             sys.exit('layer table has a cycle: ' + ' -> '.join(stack + [unit]))
         if unit in done:
             return allowed[unit]
-        result = {unit, 'ref'}
+        result = {unit} if unit == UTIL else {unit, *BASE}
         for entry in rules.get(unit, []):
             result.add(entry)
             if entry in rules:

@@ -10,7 +10,7 @@
 
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/fast/fast.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"

@@ -5,7 +5,7 @@
 //   empty-record   says it is ready and answers loads; answers the first run with each job's completion record
 //                  followed by an empty record (kind 0), later runs with each job's completion record
 //   bad-target     runs the real server with --target nosuch (which prints its usage and ends)
-// It speaks sysc/server_protocol.h on file descriptor kServerFd and links no SystemC.
+// It speaks ref/server_protocol.h on file descriptor kServerFd and links no SystemC.
 #include <unistd.h>
 
 #include <cstdio>
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "voxcd/sysc/address_map.h"
-#include "voxcd/sysc/server_protocol.h"
+#include "voxcd/ref/address_map.h"
+#include "voxcd/ref/server_protocol.h"
 
 using namespace voxcd;
 using namespace voxcd::sysc;

@@ -9,12 +9,12 @@
 #include <memory>
 #include <random>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/banks.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vectors.h"
-#include "voxcd/sysc/address_map.h"
 #include "voxcd/sysc/platform.h"
 #include "voxcd/sysc/rtl_target.h"
 #include "tests/ref/directed_cases.h"

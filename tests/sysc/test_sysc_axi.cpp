@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <memory>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/vector_gen.h"
-#include "voxcd/sysc/address_map.h"
 #include "voxcd/sysc/axi_target.h"
 #include "voxcd/sysc/platform.h"
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <utility>
 
+#include "voxcd/ref/address_map.h"
 #include "voxcd/ref/pipeline.h"
-#include "voxcd/sysc/address_map.h"
 #include "voxcd/sysc/platform.h"
 #include "voxcd/sysc/rtl_target.h"
 #include "tests/error_text.h"

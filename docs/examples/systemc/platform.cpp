@@ -1,5 +1,5 @@
 // An sc_main of your own: voxcd's loosely-timed TLM-2.0 target (voxcd::sysc::TlmTarget) bound to a minimal
-// initiator that speaks the device's address map (<voxcd/sysc/address_map.h>, docs/systemc.md): it reads the ID and
+// initiator that speaks the device's address map (<voxcd/ref/address_map.h>, docs/systemc.md): it reads the ID and
 // CONFIG registers, writes a memory image into the shell and voxmap windows, writes job descriptors, starts them
 // with RUN, reads the result records back and checks each against the reference (ref/pipeline.h and the cycle
 // model of ref/timing.h). Exit status 0 when every record matches.
@@ -8,10 +8,10 @@
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <voxcd/host/device/clock.h>
+#include <voxcd/ref/address_map.h>
 #include <voxcd/ref/pipeline.h>
 #include <voxcd/ref/timing.h>
 #include <voxcd/ref/vector_gen.h>
-#include <voxcd/sysc/address_map.h>
 #include <voxcd/sysc/tlm_target.h>
 
 #include <cstdio>

@@ -12,7 +12,7 @@
 
 #include "voxcd/host/object/detail/voxel_geometry.h"
 #include "voxcd/host/object/detail/winding.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd::detail {
 

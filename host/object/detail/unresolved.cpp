@@ -7,7 +7,7 @@
 #include <atomic>
 #include <vector>
 
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd::detail {
 

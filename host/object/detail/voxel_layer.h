@@ -8,7 +8,7 @@
 
 #include "voxcd/host/object/detail/column_crossings.h"
 #include "voxcd/host/object/detail/layers.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd::detail {
 

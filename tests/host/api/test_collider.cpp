@@ -9,7 +9,7 @@
 
 #include <voxcd/voxcd.h>
 
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
 namespace {

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "voxcd/host/broadphase/broadphase.h"
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 #include "tests/host/test_util.h"
 
 namespace voxcd {

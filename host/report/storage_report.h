@@ -7,10 +7,10 @@
 #include <sstream>
 #include <string>
 
-#include "voxcd/host/cli/json_text.h"
+#include "voxcd/host/report/json_text.h"
 #include "voxcd/host/object/storage_figures.h"
 
-namespace voxcd::cli {
+namespace voxcd::report {
 
 // info --json's "storage" object.
 inline Json storage_json(const StorageFigures& f) {
@@ -49,4 +49,4 @@ inline std::string storage_text(const StorageFigures& f) {
   return t.str();
 }
 
-}  // namespace voxcd::cli
+}  // namespace voxcd::report

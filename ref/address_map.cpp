@@ -1,4 +1,4 @@
-#include "voxcd/sysc/address_map.h"
+#include "voxcd/ref/address_map.h"
 
 #include <cstring>
 

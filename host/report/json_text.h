@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace voxcd::cli {
+namespace voxcd::report {
 
 using Json = nlohmann::ordered_json;
 
@@ -17,4 +17,4 @@ std::string json_text(const Json& j, bool multiline = false, int float_digits = 
 // A string as a JSON string (quoted and escaped; bytes that are not UTF-8 become U+FFFD).
 std::string json_string(const std::string& s);
 
-}  // namespace voxcd::cli
+}  // namespace voxcd::report

@@ -1,4 +1,5 @@
-// Shared by `voxcd voxelize` and `voxcd info`: the description of an object file (text or JSON) and its picture.
+// Shared by `voxcd voxelize`, `voxcd info` and the Python module (an object's `repair`): the description of an object
+// file (text or JSON) and its picture.
 #pragma once
 
 #include <algorithm>
@@ -7,14 +8,14 @@
 #include <sstream>
 #include <string>
 
-#include "voxcd/host/cli/json_text.h"
-#include "voxcd/host/cli/storage_report.h"
+#include "voxcd/host/report/json_text.h"
+#include "voxcd/host/report/storage_report.h"
 
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/png.h"
 #include "voxcd/ref/config.h"
 
-namespace voxcd::cli {
+namespace voxcd::report {
 
 inline std::string hex64(uint64_t v) {
   char b[24];
@@ -198,4 +199,4 @@ inline void write_object_picture(const std::string& png_path, const ObjectFile& 
   write_png(png_path, object_picture(dense.voxmap, dense.shell, mesh));
 }
 
-}  // namespace voxcd::cli
+}  // namespace voxcd::report

@@ -1,4 +1,4 @@
-#include "voxcd/ref/fast/thread_pool.h"
+#include "voxcd/ref/util/thread_pool.h"
 
 #include <chrono>
 #include <cstdlib>

@@ -1,9 +1,10 @@
-// The byte protocol between a host-side Device (host/device/sysc.cpp) and voxcd_sysc_server, which runs the
-// SystemC platform in its own process (SystemC elaborates once per process; a Device may be made many times).
+// The byte protocol between a host-side Device (host/device/sysc.cpp) and voxcd_sysc_server (sysc/server_main.cpp),
+// which runs the SystemC platform in its own process (SystemC elaborates once per process; a Device may be made many
+// times). Here in ref/ because both sides use it and host/ may use nothing of sysc/; internal (not installed).
 // Every number is a little-endian u64. The server reads requests from file descriptor kServerFd and answers on it.
 //
 //   request LOAD: kOpLoad, shell words N, N x (x, y, z) as i64, voxmap words M, M x u64
-//   request RUN:  kOpRun, jobs N, N job descriptors (sysc/address_map.h, each kJobBytes bytes)
+//   request RUN:  kOpRun, jobs N, N job descriptors (ref/address_map.h, each kJobBytes bytes)
 //   answer: 0 then the payload, or 1 then a message (length, bytes)
 //     LOAD payload: simulated time at the end (ps)
 //     RUN payload:  records N, N result records (kRecordBytes bytes each), simulated time at the end (ps),

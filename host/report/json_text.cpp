@@ -1,10 +1,10 @@
-#include "voxcd/host/cli/json_text.h"
+#include "voxcd/host/report/json_text.h"
 
 #include <cmath>
 #include <cstdint>
 #include <sstream>
 
-namespace voxcd::cli {
+namespace voxcd::report {
 
 namespace {
 
@@ -46,4 +46,4 @@ std::string json_text(const Json& j, bool multiline, int float_digits) {
 
 std::string json_string(const std::string& s) { return json_text(Json(s)); }
 
-}  // namespace voxcd::cli
+}  // namespace voxcd::report
