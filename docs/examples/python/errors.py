@@ -32,7 +32,8 @@ with tempfile.TemporaryDirectory() as d:
         json.dump({"types": [{"shape": "cube", "voxel": -1}]}, f)
     expect(voxcd.MeshError, voxcd.voxelize, "no-such-file-or-shape", resolution=32)
     expect(voxcd.ObjectFileError, voxcd.read_object, bad_object)
-    expect(voxcd.RangeError, voxcd.collide, torus, None, torus, [math.nan, 0, 0])
+    expect(voxcd.RangeError, voxcd.collide, torus, None, torus, [1e9, 0, 0])   # beyond the fixed point
+    expect(voxcd.OptionError, voxcd.collide, torus, None, torus, [math.nan, 0, 0])   # not a pose
     expect(voxcd.CapacityError, voxcd.collide, torus, None, sphere, None, backend="rtl")
     expect(voxcd.DeviceError, voxcd.collide, torus, None, torus, None, backend="no-such-backend")
     expect(voxcd.SceneFileError, voxcd.World.scene, bad_scene)
