@@ -40,6 +40,7 @@
 #endif
 #if VM_COVERAGE
 #include <verilated_cov.h>
+#include "tests/seed.h"
 #endif
 
 namespace voxcd {
@@ -49,12 +50,7 @@ using namespace voxcd::sysc;
 
 constexpr uint8_t kOkay = 0, kSlverr = 2, kDecerr = 3;
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 20261125;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
-  return seed;
-}
+uint64_t test_seed() { return test::seed(20261125); }
 
 // ---- Descriptors with a sparse device's fields ----
 // The address map's descriptor (encode_job, decode_job) with the sparse fields at their offsets: byte 0x06 `sparse`

@@ -10,14 +10,12 @@
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "tests/ref/directed_cases.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 424242;
-}
+uint64_t test_seed() { return test::seed(424242); }
 
 void expect_same(const std::vector<Record>& want, const std::vector<Record>& got, const std::string& what) {
   ASSERT_EQ(got.size(), want.size()) << what;
@@ -68,7 +66,6 @@ std::vector<NamedConfig> configs() {
 
 TEST(Backends, RandomVectorsOnEveryConfigAndThreadCount) {
   const uint64_t seed = test_seed();
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
   for (const auto& nc : configs()) {
     GenerateOptions g;
     g.seed = seed;
@@ -96,7 +93,6 @@ TEST(Backends, RandomVectorsOnEveryConfigAndThreadCount) {
 // cycles give ref/'s timing model's exactly, for any thread count.
 TEST(Backends, CyclesAtEveryDepth) {
   const uint64_t seed = test_seed();
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
   for (int banks : {0, 2}) {
     for (int d = 0; d <= kMaxDepth; ++d) {
       GenerateOptions g;

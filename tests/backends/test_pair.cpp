@@ -64,7 +64,6 @@ double reach_into(const std::vector<Eigen::Vector3d>& samples_a, const Mesh& b) 
 
 uint64_t seed() {
   const uint64_t s = test::seed();
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)s, (unsigned long long)s);
   return s;
 }
 

@@ -27,7 +27,6 @@ std::shared_ptr<const ObjectType> type_of(const Mesh& mesh, double voxel, int bi
 
 uint64_t seed() {
   const uint64_t s = test::seed();
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)s, (unsigned long long)s);
   return s;
 }
 

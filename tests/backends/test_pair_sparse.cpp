@@ -80,7 +80,6 @@ std::vector<std::string> backends_for(const DeviceConfig& cfg) {
 
 uint64_t seed() {
   const uint64_t s = test::seed();
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)s, (unsigned long long)s);
   return s;
 }
 

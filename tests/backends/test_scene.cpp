@@ -9,12 +9,13 @@
 #include "voxcd/host/device/detail/rtl.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/object/shapes.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
 TEST(Bounds, SmallestSphereAgainstBruteForce) {
-  std::mt19937_64 rng(11);
+  std::mt19937_64 rng(test::seed(11));
   std::uniform_real_distribution<double> u(-1, 1);
   for (int trial = 0; trial < 200; ++trial) {
     std::vector<Eigen::Vector3d> p(2 + rng() % 9);

@@ -14,14 +14,9 @@
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/voxelize.h"
 #include "tests/exact_geometry.h"
+#include "tests/seed.h"
 
 namespace voxcd::test {
-
-// VOXCD_SEED replays a run; printed by every random test.
-inline uint64_t seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 20240601;
-}
 
 inline std::string tmp_path(const std::string& name) {
   return ::testing::TempDir() + "voxcd_" + std::to_string(::getpid()) + "_" + name;

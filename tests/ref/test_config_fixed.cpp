@@ -9,6 +9,7 @@
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/float_model.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
@@ -98,7 +99,7 @@ TEST(Quantize, OutOfRangeIsAnErrorNamingValueAndFormat) {
 }
 
 TEST(Quantize, TryQuantizeAgreesWithQuantize) {
-  std::mt19937_64 rng(9);
+  std::mt19937_64 rng(test::seed(9));
   std::uniform_real_distribution<double> u(-3, 3);
   const FixedFormat f{18, 16};
   for (int k = 0; k < 100000; ++k) {

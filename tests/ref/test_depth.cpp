@@ -12,6 +12,7 @@
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/vectors.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
@@ -197,7 +198,7 @@ uint64_t map_words_of(const DeviceConfig& cfg, const Job& j) {
 
 // On random jobs near every boundary, job_faults is 0 exactly when validate_job accepts the job.
 TEST(Depth, JobFaultsAgreeWithValidateJob) {
-  std::mt19937_64 rng(20261126);
+  std::mt19937_64 rng(test::seed(20261126));
   auto pick = [&](int64_t lo, int64_t hi) { return std::uniform_int_distribution<int64_t>(lo, hi)(rng); };
   size_t valid = 0, invalid = 0;
   for (int sb : {2, 8}) {

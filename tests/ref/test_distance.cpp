@@ -16,14 +16,12 @@
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/vectors.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 20261124;
-}
+uint64_t test_seed() { return test::seed(20261124); }
 
 DeviceConfig distance_config(int sb, int wb) {
   DeviceConfig c;
@@ -181,8 +179,7 @@ void run_config(const DeviceConfig& cfg, uint64_t seed, uint64_t n, Stats& st) {
 
 TEST(DistanceProperty, InterpolationIsExactAndWithinTheBoundOfTheDoubleModel) {
   const uint64_t seed = test_seed();
-  std::printf("distance property seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed,
-              (unsigned long long)seed);
+  std::printf("distance property \n");
   struct Named {
     const char* name;
     DeviceConfig cfg;

@@ -13,14 +13,12 @@
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "tests/ref/directed_cases.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 777001;
-}
+uint64_t test_seed() { return test::seed(777001); }
 
 std::vector<Record> reference(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs) {
   std::vector<Record> want = run_stream(cfg, mem, jobs);
@@ -62,8 +60,7 @@ std::vector<PathConfig> path_configs() {
 
 TEST(FastRunner, MatchesRunStreamOnEveryPathAndThreadCount) {
   const uint64_t seed = test_seed();
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu), double kernel %s\n", (unsigned long long)seed,
-              (unsigned long long)seed, FastRunner::double_kernel());
+  std::printf("double kernel %s\n", FastRunner::double_kernel());
   for (const PathConfig& pc : path_configs()) {
     GenerateOptions g;
     g.seed = seed;

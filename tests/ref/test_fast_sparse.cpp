@@ -17,14 +17,12 @@
 #include "voxcd/ref/sparse.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 20261128;
-}
+uint64_t test_seed() { return test::seed(20261128); }
 
 std::vector<Record> reference(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs) {
   std::vector<Record> want = run_stream(cfg, mem, jobs);
@@ -92,9 +90,7 @@ void check_generated(const DeviceConfig& cfg, uint64_t seed, size_t jobs, FastRu
 
 TEST(FastSparse, GeneratedVectorsOnEveryDeviceShape) {
   const uint64_t seed = test_seed();
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu); kernels: sparse %s, sparse distance %s\n",
-              (unsigned long long)seed, (unsigned long long)seed, FastRunner::sparse_kernel(),
-              FastRunner::sparse_distance_kernel());
+  std::printf("kernels: sparse %s, sparse distance %s\n", FastRunner::sparse_kernel(), FastRunner::sparse_distance_kernel());
   for (int sb : {2, 8})
     for (int banks : {0, 2})
       for (int depth : {0, 3}) {

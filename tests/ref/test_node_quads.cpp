@@ -14,14 +14,12 @@
 #include "voxcd/ref/float_model.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 20261207;
-}
+uint64_t test_seed() { return test::seed(20261207); }
 
 struct Scene {
   DeviceConfig cfg;
@@ -130,8 +128,7 @@ DeviceConfig config(int sb, int wb, int memw = 64) {
 
 TEST(DistanceFast, NodeQuadsGiveTheParityBanksAndTheSpecificationsStream) {
   const uint64_t seed = test_seed();
-  std::printf("node quads seed %llu (replay with VOXCD_SEED=%llu), kernel %s\n", (unsigned long long)seed,
-              (unsigned long long)seed, FastRunner::distance_kernel());
+  std::printf("node quads kernel %s\n", FastRunner::distance_kernel());
   const std::pair<const char*, DeviceConfig> cfgs[] = {{"SB8 WB8", config(8, 8)},
                                                         {"SB4 WB2", config(4, 2)},
                                                         {"SB4 WB8", config(4, 8)},
@@ -159,8 +156,6 @@ TEST(DistanceFast, NodeQuadsGiveTheParityBanksAndTheSpecificationsStream) {
 
 TEST(DistanceFast, NodeQuadsFollowWritesAndTheLimit) {
   const uint64_t seed = test_seed() + 1;
-  std::printf("node quads seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)(seed - 1),
-              (unsigned long long)(seed - 1));
   const DeviceConfig cfg = config(8, 8);
   Scene s = make_scene(cfg, seed);
   FastRunner fr(cfg, 1);

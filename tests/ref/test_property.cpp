@@ -12,14 +12,12 @@
 
 #include "voxcd/ref/float_model.h"
 #include "voxcd/ref/pipeline.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 20261122;
-}
+uint64_t test_seed() { return test::seed(20261122); }
 
 void random_rotation(std::mt19937_64& rng, double R[3][3]) {
   std::normal_distribution<double> n(0, 1);
@@ -107,8 +105,7 @@ void run_config(const DeviceConfig& cfg, uint64_t seed, uint64_t n, Stats& st) {
 
 TEST(Property, FixedPointAgainstExactAndDoubleModels) {
   const uint64_t seed = test_seed();
-  std::printf("property test seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed,
-              (unsigned long long)seed);
+  std::printf("property test \n");
   struct Named {
     const char* name;
     DeviceConfig cfg;

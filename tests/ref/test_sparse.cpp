@@ -18,14 +18,12 @@
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/vectors.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 20261127;
-}
+uint64_t test_seed() { return test::seed(20261127); }
 
 DeviceConfig sparse_config(int sb = 2) {
   DeviceConfig c;

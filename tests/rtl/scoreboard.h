@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "voxcd/ref/types.h"
+#include "tests/seed.h"
 
 namespace voxcd::test {
 
@@ -50,14 +51,6 @@ inline void expect_exact(const std::vector<Record>& want, const std::vector<Reco
     ++job;
   }
   ASSERT_EQ(got.size(), want.size()) << what << ": record count";
-}
-
-// The test's seed: VOXCD_SEED, else `fallback`; printed, with how to replay it.
-inline uint64_t seed_from_env(uint64_t fallback) {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : fallback;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
-  return seed;
 }
 
 }  // namespace voxcd::test

@@ -15,17 +15,16 @@
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "tests/rtl/scoreboard.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
 TEST(RtlSoak, MillionJobsUnderRandomBackPressure) {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 20261123;
+  const uint64_t seed = test::seed(20261123);
   const char* n = std::getenv("VOXCD_SOAK_JOBS");
   const size_t target = n ? size_t(std::strtoull(n, nullptr, 0)) : 1000000;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu), %zu jobs\n", (unsigned long long)seed,
-              (unsigned long long)seed, target);
+  std::printf("%zu jobs\n", target);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   const std::vector<int> lanes = rtl_lanes();

@@ -15,16 +15,12 @@
 #include "tests/ref/directed_cases.h"
 #include "tests/rtl/built_lanes.h"
 #include "tests/rtl/scoreboard.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 20261123;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
-  return seed;
-}
+uint64_t test_seed() { return test::seed(20261123); }
 
 std::vector<Record> expected_stream(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs) {
   std::vector<Record> r = run_stream(cfg, mem, jobs);

@@ -16,7 +16,7 @@
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() { return test::seed_from_env(20261125); }
+uint64_t test_seed() { return test::seed(20261125); }
 
 TEST(RtlBanks, BuildHasBankedModelsAtEveryLaneCount) {
   std::vector<int> lanes;

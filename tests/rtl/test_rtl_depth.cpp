@@ -20,7 +20,7 @@
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() { return test::seed_from_env(20261126); }
+uint64_t test_seed() { return test::seed(20261126); }
 
 // ref/'s stream for the jobs with the timing model's cycles (bank conflicts counted from the memory when banked).
 std::vector<Record> expected_stream(const DeviceConfig& cfg, const DeviceMemory& mem, const std::vector<Job>& jobs) {

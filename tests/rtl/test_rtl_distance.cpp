@@ -15,16 +15,12 @@
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 20261124;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
-  return seed;
-}
+uint64_t test_seed() { return test::seed(20261124); }
 
 std::vector<DeviceConfig> distance_models() { return rtl_distance_configs(); }
 

@@ -13,7 +13,7 @@
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() { return test::seed_from_env(20261128); }
+uint64_t test_seed() { return test::seed(20261128); }
 
 // What a stream exercises: jobs with a sparse map, a sparse shell, both, neither; hit records; bank conflict cycles
 // and FIRST windows.

@@ -14,7 +14,7 @@
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() { return test::seed_from_env(20261128); }
+uint64_t test_seed() { return test::seed(20261128); }
 
 TEST(RtlWide, BuildHasASixteenLaneDeviceWithCopiesAndOneWithSparseBanks) {
   bool copies = false, sparse_banks = false;

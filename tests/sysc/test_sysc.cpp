@@ -19,18 +19,14 @@
 #include "voxcd/sysc/rtl_target.h"
 #include "tests/ref/directed_cases.h"
 #include "tests/sysc/built_lanes.h"
+#include "tests/seed.h"
 
 namespace voxcd::sysc {
 namespace {
 
 using namespace sc_core;
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 777;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
-  return seed;
-}
+uint64_t test_seed() { return test::seed(777); }
 
 const sc_time kClock(10, SC_NS);
 

@@ -12,6 +12,7 @@
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/sysc/axi_target.h"
 #include "voxcd/sysc/platform.h"
+#include "tests/seed.h"
 
 namespace voxcd::sysc {
 namespace {
@@ -19,9 +20,7 @@ namespace {
 using namespace sc_core;
 
 TEST(SyscAxi, GeneratedVectorsThroughThePlatform) {
-  const char* s = std::getenv("VOXCD_SEED");
-  const uint64_t seed = s ? std::strtoull(s, nullptr, 0) : 4242;
-  std::printf("seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed, (unsigned long long)seed);
+  const uint64_t seed = test::seed(4242);
   PlatformOptions opt;
   opt.target = TargetKind::RtlAxi;
   opt.config = axi_target_config();

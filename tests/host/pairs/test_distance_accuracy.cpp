@@ -17,6 +17,7 @@
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
@@ -34,10 +35,7 @@ constexpr double kMissedDepth = 0.5;
 constexpr double kDeepSlack = 1.0;  // deeper than the band less 2 voxels: clamped corners (docs/pairs.md)
 constexpr double kConservativeBound = 1.7321 + 0.01;  // a hit cell's diagonal, plus the fixed-point share
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 20261124;
-}
+uint64_t test_seed() { return test::seed(20261124); }
 
 struct Loaded {
   Mesh mesh;
@@ -157,8 +155,7 @@ void run_pair(const std::string& a, const std::string& b, uint64_t seed, Stats& 
 
 TEST(DistanceAccuracy, ContactsAgainstExactGeometry) {
   const uint64_t seed = test_seed();
-  std::printf("distance accuracy seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed,
-              (unsigned long long)seed);
+  std::printf("distance accuracy \n");
   const std::pair<const char*, const char*> cases[] = {
       {"sphere", "cube"}, {"torus", "stellated"}, {"stellated", "torus"}, {"polytope36", "sphere"}, {"cube", "torus"}};
   size_t k = 0;

@@ -68,8 +68,7 @@ std::string pose_text(const std::string& pair, const RigidPose& p, uint64_t seed
 
 TEST(SparseAccuracy, TorusAgainstAnLShapedBlock) {
   const uint64_t seed = test::seed();
-  std::printf("sparse accuracy seed %llu (replay with VOXCD_SEED=%llu)\n", (unsigned long long)seed,
-              (unsigned long long)seed);
+  std::printf("sparse accuracy \n");
   const Model torus = test::diff::solid_model(make_shape("torus")),
               block = test::diff::solid_model(test::diff::l_block());
   SparseCheck check(torus, block, 12);  // the block is 3 across: voxel 0.25

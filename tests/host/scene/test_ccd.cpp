@@ -18,14 +18,12 @@
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/scene/scene.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
 
-uint64_t test_seed() {
-  const char* s = std::getenv("VOXCD_SEED");
-  return s ? std::strtoull(s, nullptr, 0) : 20261124;
-}
+uint64_t test_seed() { return test::seed(20261124); }
 
 constexpr double kSide = 20;
 constexpr double kCube = 0.4;     // the small bodies' side: 4 voxels of 0.1

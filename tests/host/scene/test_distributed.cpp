@@ -13,6 +13,7 @@
 #include "voxcd/host/scene/exchange.h"
 #include "voxcd/host/scene/partition.h"
 #include "voxcd/host/scene/scene.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
@@ -217,7 +218,7 @@ TEST(Distributed, EveryBroadphaseGivesTheSameRun) {
 }
 
 TEST(Partition, EveryOverlappingPairHasOneOwnerThatSeesBoth) {
-  std::mt19937_64 rng(7);
+  std::mt19937_64 rng(test::seed(7));
   std::uniform_real_distribution<double> u(0, 10), rad(0.05, 1.5);
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<BodyBounds> b(150);

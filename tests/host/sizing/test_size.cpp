@@ -18,6 +18,7 @@
 #include "voxcd/ref/fixed.h"
 #include "voxcd/ref/pipeline.h"
 #include "voxcd/ref/sparse.h"
+#include "tests/seed.h"
 
 namespace voxcd {
 namespace {
@@ -275,7 +276,7 @@ TEST(Size, DerivedConfigurationsFitAndAreMinimal) {
     {
       double rmax = 0;
       for (const auto& t : scene.types) rmax = std::max(rmax, t->radius);
-      std::mt19937_64 rng(3);
+      std::mt19937_64 rng(test::seed(3));
       std::normal_distribution<double> n(0, 1);
       for (const auto& p : r.extents.pairs) {
         RigidPose pa, pb;
@@ -349,8 +350,7 @@ Agreement check_against_exact(const DeviceConfig& cfg, const Scene& scene, uint6
 }
 
 TEST(Size, DerivedConfigurationsMeetTheirAccuracyOnRandomPoses) {
-  const uint64_t seed = std::getenv("VOXCD_SEED") ? std::strtoull(std::getenv("VOXCD_SEED"), nullptr, 10) : 9;
-  std::cout << "seed " << seed << " (VOXCD_SEED replays)\n";
+  const uint64_t seed = test::seed(9);
   for (const auto& l : listed_configs()) {
     SCOPED_TRACE(l.scene + ", seed " + std::to_string(seed));
     const RunConfig f = read_scene_file(kScenes + "/" + l.scene);
