@@ -46,8 +46,9 @@ Eigen::Vector3d vec3_arg(const py::object& v, const char* what) {
 namespace {
 
 py::dict collide_py(const py::object& a, const py::object& pose_a, const py::object& b, const py::object& pose_b,
-                    const std::string& mode, bool both, double margin, const std::string& backend, int lanes,
-                    unsigned threads) {
+                    const std::string& mode, bool both_directions, double margin, const std::string& backend,
+                    int lanes, unsigned threads, std::optional<bool> both) {
+  const bool directions = both_directions_arg(both_directions, both);
   const auto m = parse_mode(mode);
   if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
   if (!std::isfinite(margin)) value_error("margin: not a finite number");
@@ -55,7 +56,7 @@ py::dict collide_py(const py::object& a, const py::object& pose_a, const py::obj
   const Pose pa = pose_arg(pose_a, "pose_a"), pb = pose_arg(pose_b, "pose_b");
   CollideOptions o;
   o.mode = *m;
-  o.both_directions = both;
+  o.both_directions = directions;
   o.margin = margin;
   o.backend = backend;
   o.lanes = lanes;
@@ -71,14 +72,16 @@ py::dict collide_py(const py::object& a, const py::object& pose_a, const py::obj
 // voxcd.collide: one pair query in one call.
 void bind_collide(py::module_& m) {
   m.def("collide", &collide_py, py::arg("a"), py::arg("pose_a") = py::none(), py::arg("b"),
-        py::arg("pose_b") = py::none(), py::kw_only(), py::arg("mode") = "ALL", py::arg("both") = true,
-        py::arg("margin") = 0.0, py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("threads") = 0u,
+        py::arg("pose_b") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
+        py::arg("both_directions") = true, py::arg("margin") = 0.0, py::arg("backend") = "cpu", py::arg("lanes") = 4,
+        py::arg("threads") = 0u, py::arg("both") = py::none(),
         R"(The contacts of b at pose_b against a at pose_a, in one call (the library's collide(), docs/api.md).
 a and b: Objects, or anything voxelize() takes (a mesh file, a shape, (vertices, faces) arrays, an object with
 .vertices and .faces such as a trimesh mesh), voxelised at 32 voxels along the longest side. Poses: None, 3, 6, 7,
 12 or 16 numbers (tx, ty, tz; then rx, ry, rz in degrees, or qw, qx, qy, qz; or a 3 x 4 or 4 x 4 matrix, row-major),
 a 3 x 4 or 4 x 4 matrix, (R, t), or the pose dict `voxcd pair --json` prints. mode ALL, FIRST or COUNT;
-both (default True) also tests b's shell in a; margin: contacts within this distance outside (distance voxmaps, both objects with
+both_directions (default True, as C++ CollideOptions) also tests b's shell in a (both: its deprecated spelling);
+margin: contacts within this distance outside (distance voxmaps, both objects with
 fields). Returns the dict Pair.query returns: hits, lookups, device_cycles, and the contacts as arrays.)");
 }
 

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/object_type.h"
 #include "voxcd/host/python/bindings.h"
 #include "voxcd/host/report/object_report.h"
 
@@ -159,6 +160,28 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
   return made(make_object(mesh, src, hash, opt, &report));
 }
 
+// Object.load and Object.from_arrays: the C++ Object::load and Object::from_arrays with an ObjectDef's fields as
+// keywords and its defaults (32 voxels along the longest side, dense storage).
+ObjectPtr load_object(const py::object& source, double voxel, int64_t resolution, int distance_bits, double band,
+                      const std::string& storage, bool strict, unsigned threads) {
+  if (!(voxel >= 0 && std::isfinite(voxel)))
+    value_error("voxel: " + py::repr(py::float_(voxel)).cast<std::string>() + " is not 0 or a positive number");
+  const std::optional<double> v = voxel > 0 ? std::optional<double>(voxel) : std::nullopt;
+  const std::optional<int64_t> r = voxel > 0 ? std::nullopt : std::optional<int64_t>(resolution);
+  if (!mesh_arg(source)) {
+    const std::string path = path_arg(source, "file_or_shape");
+    if (is_object_file(path)) {
+      return with_file(path, [&] {
+        py::gil_scoped_release unlocked;
+        auto obj = std::make_shared<ObjectFile>(read_object(path));
+        require_distance_bits(*obj, distance_bits, path);
+        return obj;
+      });
+    }
+  }
+  return voxelize_source(source, v, r, std::sqrt(2.0), strict, threads, distance_bits, band, storage);
+}
+
 }  // namespace
 
 namespace {
@@ -303,6 +326,24 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
   bind_distance(c);
   bind_object_storage(c);
   bind_rest(c);
+  c.def_static("load", &load_object, py::arg("file_or_shape"), py::kw_only(), py::arg("voxel") = 0.0,
+               py::arg("resolution") = 32, py::arg("distance_bits") = 0, py::arg("band") = 4.0,
+               py::arg("storage") = "dense", py::arg("strict") = false, py::arg("threads") = 0u,
+               R"(The C++ Object::load with an ObjectDef's fields and defaults: a mesh file, a built-in shape or an
+object file (which brings its own voxel; with distance_bits it must carry a field of that many bits), voxelised at
+`voxel` (mesh units) or, when voxel is 0, at `resolution` voxels along its longest side (32).)");
+  c.def_static(
+      "from_arrays",
+      [](const py::object& vertices, const py::object& triangles, double voxel, int64_t resolution, int distance_bits,
+         double band, const std::string& storage, bool strict, unsigned threads) {
+        return load_object(py::make_tuple(vertices, triangles), voxel, resolution, distance_bits, band, storage,
+                           strict, threads);
+      },
+      py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("voxel") = 0.0, py::arg("resolution") = 32,
+      py::arg("distance_bits") = 0, py::arg("band") = 4.0, py::arg("storage") = "dense", py::arg("strict") = false,
+      py::arg("threads") = 0u,
+      R"(The C++ Object::from_arrays: a mesh as a (V, 3) array of vertices and an (F, 3) array of vertex indices,
+repaired as a file is (unless strict), with Object.load's keywords and defaults.)");
 
   m.def("voxelize", &voxelize_source, py::arg("source"), py::kw_only(), py::arg("voxel") = py::none(),
         py::arg("resolution") = py::none(), py::arg("shell_ratio") = std::sqrt(2.0), py::arg("strict") = false,

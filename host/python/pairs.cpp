@@ -167,12 +167,12 @@ std::vector<PairRequest> requests(const py::object& pose, bool& many) {
   return reqs;
 }
 
-PairOptions options(const Pair& p, const std::string& mode, bool both, bool cull) {
+PairOptions options(const Pair& p, const std::string& mode, bool both_directions, bool cull, std::optional<bool> both) {
   const auto m = parse_mode(mode);
   if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
   PairOptions opt;
   opt.mode = *m;
-  opt.both_directions = both;
+  opt.both_directions = both_directions_arg(both_directions, both);
   opt.cull = cull;
   opt.margin = p.margin;
   return opt;
@@ -218,8 +218,9 @@ py::dict arrays_dict(std::unique_ptr<ContactArrays> a, const std::shared_ptr<Arr
   return d;
 }
 
-py::dict contacts(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
-  const PairOptions opt = options(p, mode, both, cull);
+py::dict contacts(Pair& p, const py::object& pose, const std::string& mode, bool both_directions, bool cull,
+                  std::optional<bool> both) {
+  const PairOptions opt = options(p, mode, both_directions, cull, both);
   bool many = false;
   const std::vector<PairRequest> reqs = requests(pose, many);
   std::unique_ptr<ContactArrays> a = p.arrays->take();
@@ -231,8 +232,9 @@ py::dict contacts(Pair& p, const py::object& pose, const std::string& mode, bool
   return arrays_dict(std::move(a), p.arrays, p.collider->device().models_cycles());
 }
 
-py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
-  const PairOptions opt = options(p, mode, both, cull);
+py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both_directions, bool cull,
+                 std::optional<bool> both) {
+  const PairOptions opt = options(p, mode, both_directions, cull, both);
   bool many = false;
   const std::vector<PairRequest> reqs = requests(pose, many);
   std::vector<PairResult> res;
@@ -252,8 +254,8 @@ const char* kQueryDoc = R"(The contacts of B at `pose` in A's frame (A at the or
 or 16 numbers (tx, ty, tz; then rx, ry, rz in degrees about x, then y, then z, or a quaternion qw, qx, qy, qz; or a 3 x 4
 or 4 x 4 matrix, row-major: the forms of `voxcd pair --pose`), a 3 x 4 or 4 x 4 matrix, (R, t), the pose dict
 `voxcd pair --json` prints, or an (N, k) (k one of those counts), (N, 3, 4) or (N, 4, 4) array of poses, run in one
-batch. mode is ALL, FIRST or COUNT; both (default True, as collide) also tests B's shell in A's voxmap (False: A's
-shell in B's voxmap only); cull
+batch. mode is ALL, FIRST or COUNT; both_directions (default True, as collide) also tests B's shell in A's voxmap
+(False: A's shell in B's voxmap only; both: its deprecated spelling); cull
 submits only the shell clusters that can land in the other voxmap (the contacts are the same). Returns, per pose, a
 dict: hits, lookups, device_cycles (None where the backend models none) and the contacts as arrays: a_in_b (bool:
 A's shell point in B's voxmap), points (index in its shell), positions and normals ((K, 3), world), voxels ((K, 3),
@@ -264,7 +266,7 @@ the other field's gradient negated and normalised, states 0.)";
 
 const char* kContactsDoc = R"(query() for any number of poses in one batch, its contacts in flat arrays that are no copies:
 the arrays the library wrote them into, handed to numpy (and reused for a later call once all of them are freed).
-pose, mode, both and cull as query(). Returns one dict: per pose (N of them) first ((N + 1,): pose i's contacts are
+pose, mode, both_directions and cull as query(). Returns one dict: per pose (N of them) first ((N + 1,): pose i's contacts are
 rows first[i] to first[i + 1]), hits, lookups, device_cycles (None where the backend models none); per contact (K of
 them, in the order query() gives them, pose by pose) pose (the index of its pose), a_in_b, points, positions and
 normals ((K, 3)), voxels ((K, 3)), states, depths, as query() defines them.)";
@@ -284,9 +286,9 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
            py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
            py::arg("threads") = 0)
       .def("query", &query, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
-           py::arg("both") = true, py::arg("cull") = true, kQueryDoc)
+           py::arg("both_directions") = true, py::arg("cull") = true, py::arg("both") = py::none(), kQueryDoc)
       .def("contacts", &contacts, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
-           py::arg("both") = true, py::arg("cull") = true, kContactsDoc)
+           py::arg("both_directions") = true, py::arg("cull") = true, py::arg("both") = py::none(), kContactsDoc)
       .def_readonly("voxel", &Pair::voxel, "The voxel meshes and shapes were voxelised at (0 if both were objects).")
       .def_readonly("backend", &Pair::backend)
       .def_readonly("distance_bits", &Pair::distance_bits,
@@ -312,16 +314,18 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
   m.def(
       "pair",
       [](const py::object& a, const py::object& b, const py::object& pose, std::optional<double> voxel,
-         std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode, bool both,
-         bool cull, std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin) {
+         std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode,
+         bool both_directions, bool cull, std::optional<int> distance_bits, std::optional<double> band,
+         std::optional<double> margin, std::optional<bool> both) {
         const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin, 0);
-        return query(*p, pose, mode, both, cull);
+        return query(*p, pose, mode, both_directions, cull, both);
       },
       py::arg("a"), py::arg("b"), py::arg("pose") = py::none(), py::kw_only(), py::arg("voxel") = py::none(),
       py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL",
-      py::arg("both") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
-      py::arg("band") = py::none(), py::arg("margin") = py::none(),
-      "Pair(a, b, voxel=, resolution=, backend=, lanes=, distance_bits=, band=, margin=).query(pose, mode=, both=, "
+      py::arg("both_directions") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
+      py::arg("band") = py::none(), py::arg("margin") = py::none(), py::arg("both") = py::none(),
+      "Pair(a, b, voxel=, resolution=, backend=, lanes=, distance_bits=, band=, margin=).query(pose, mode=, "
+      "both_directions=, "
       "cull=): the contacts of one call, the same as `voxcd pair A B --pose ... [--distance-bits B --band K "
       "--margin M] --json`.");
 }

@@ -35,7 +35,7 @@ def test_collide_in_one_call():
     m = np.array([[np.cos(t), -np.sin(t), 0, 0.9], [np.sin(t), np.cos(t), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
     b = voxcd.voxelize(mesh, resolution=32)
     c2 = voxcd.collide(torus, np.eye(4), b, m)
-    want = voxcd.Pair(torus, b).query([0.9, 0, 0, 0, 0, 30], both=True)
+    want = voxcd.Pair(torus, b).query([0.9, 0, 0, 0, 0, 30], both_directions=True)
     assert c2["hits"] == want["hits"]
     assert np.allclose(c2["positions"], want["positions"])
     assert voxcd.collide(torus, None, b, [0.9, 0, 0, 0, 0, 30], mode="COUNT")["hits"] == want["hits"]
@@ -109,6 +109,6 @@ def test_collide_holds_no_pool_per_thread_and_pair_is_the_reusable_query():
         t.start()
         t.join()
     assert during == [before + 1] * 3 and settled(before) == before
-    got = voxcd.Pair(a, b).query([1.2, 0, 0], both=True)
+    got = voxcd.Pair(a, b).query([1.2, 0, 0], both_directions=True)
     assert got["hits"] == want["hits"]
     np.testing.assert_array_equal(got["positions"], want["positions"])
