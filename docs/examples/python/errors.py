@@ -22,7 +22,7 @@ def expect(cls, f, *args, **kwargs):
 
 
 torus = voxcd.Object.load("torus")
-sphere = voxcd.Object.load("sphere", voxel=torus.voxel / 40)   # 40 times finer: beyond the rtl models' widths
+sphere = voxcd.Object.load("sphere", voxel=torus.voxel / 4)   # 4 times finer: beyond the rtl models' widths
 with tempfile.TemporaryDirectory() as d:
     bad_object = os.path.join(d, "bad.vxo")
     with open(bad_object, "wb") as f:
