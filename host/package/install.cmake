@@ -10,7 +10,7 @@
 #   P/share/voxcd/rtl/     the RTL, its file list voxcd.f and the DPI package voxcd_dpi_pkg.sv
 #   P/share/voxcd/timing.tsv  the timing table of bench/timing.sh (the library has it compiled in)
 #   P/share/voxcd/energy.tsv  the energy table of bench/energy.sh (the library has it compiled in)
-#   P/lib/python3/dist-packages/  the Python module (import voxcd)
+#   P/lib/python3/dist-packages/  the Python module (import voxcd) and its type stubs voxcd.pyi (host/python)
 # Included last by the top-level CMakeLists.txt, when every target exists.
 include(CMakePackageConfigHelpers)
 
