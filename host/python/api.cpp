@@ -13,26 +13,52 @@ namespace voxcd::python {
 
 namespace {
 
-// The library's form of a voxcd.Object, made once per Object (the last few kept: a query loads them once).
-std::shared_ptr<const ObjectType> type_of(const std::shared_ptr<ObjectFile>& obj) {
-  static std::mutex lock;
-  static std::vector<std::pair<std::weak_ptr<ObjectFile>, std::shared_ptr<const ObjectType>>> cache;
-  const std::lock_guard<std::mutex> hold(lock);
-  for (auto& [w, t] : cache)
-    if (w.lock() == obj) return t;
-  auto t = std::make_shared<const ObjectType>(make_object_type(*obj, obj->source));
-  if (cache.size() >= 8) cache.erase(cache.begin());
-  cache.emplace_back(obj, t);
-  return t;
+// Where a voxcd.Object lives: its object file's form and, once a query has asked for it, the library's form of it,
+// kept with the object and freed with it. Found from the object through its deleter (std::get_deleter), which every
+// shared_ptr the module gives Python carries.
+struct Home {
+  ObjectFile file;
+  std::shared_ptr<const ObjectType> type;
+  std::mutex lock;
+};
+struct HomeDeleter {
+  Home* home = nullptr;
+  void operator()(Home* h) const { delete h; }
+};
+
+std::shared_ptr<Home> new_home() {
+  Home* h = new Home;
+  return std::shared_ptr<Home>(h, HomeDeleter{h});
 }
 
 }  // namespace
 
+std::shared_ptr<ObjectFile> python_object(ObjectFile obj) {
+  const std::shared_ptr<Home> h = new_home();
+  h->file = std::move(obj);
+  return std::shared_ptr<ObjectFile>(h, &h->file);
+}
+
+std::shared_ptr<ObjectFile> python_object(const std::shared_ptr<ObjectType>& type) {
+  const std::shared_ptr<Home> h = new_home();
+  h->type = type;
+  return std::shared_ptr<ObjectFile>(h, &type->object);
+}
+
+Object library_object(const std::shared_ptr<ObjectFile>& obj) {
+  const HomeDeleter* d = std::get_deleter<HomeDeleter>(obj);
+  if (!d) return Object(std::make_shared<const ObjectType>(make_object_type(*obj, obj->source)));
+  Home& h = *d->home;
+  const std::lock_guard<std::mutex> hold(h.lock);
+  if (!h.type) h.type = std::make_shared<const ObjectType>(make_object_type(h.file, h.file.source));
+  return Object(h.type);
+}
+
 // An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).
 Object object_arg(const py::object& o) {
-  if (py::isinstance<ObjectFile>(o)) return Object(type_of(o.cast<std::shared_ptr<ObjectFile>>()));
+  if (py::isinstance<ObjectFile>(o)) return library_object(o.cast<std::shared_ptr<ObjectFile>>());
   py::object made = py::module_::import("voxcd").attr("voxelize")(o, py::arg("resolution") = 32);
-  return Object(type_of(made.cast<std::shared_ptr<ObjectFile>>()));
+  return library_object(made.cast<std::shared_ptr<ObjectFile>>());
 }
 
 // Three numbers (None: zeros); ValueError naming `what` for anything else.

@@ -24,6 +24,7 @@ namespace voxcd {
 struct FrameStats;
 class Object;
 struct ObjectFile;
+struct ObjectType;
 struct PairResult;
 struct RigidPose;
 struct RunConfig;
@@ -162,6 +163,12 @@ py::dict frame_counts(const FrameStats& s);
 // api.cpp: voxcd.collide, and the public API's arguments.
 void bind_api(py::module_& m);
 
+// A voxcd.Object of an object file's form; the library's Object of it is made at its first query and kept with it.
+std::shared_ptr<ObjectFile> python_object(ObjectFile obj);
+// A voxcd.Object viewing the object of the library's form `type` (Pair.a, Pair.b), which it keeps alive.
+std::shared_ptr<ObjectFile> python_object(const std::shared_ptr<ObjectType>& type);
+// The library's Object of a voxcd.Object (made once per object; MeshError for one that cannot be queried).
+Object library_object(const std::shared_ptr<ObjectFile>& obj);
 // An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).
 Object object_arg(const py::object& o);
 // Three numbers (None: zeros); ValueError naming `what` for anything else.

@@ -142,7 +142,7 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
   // The arrays below read the dense forms: made of a sparse object's where they fit.
   auto made = [](ObjectFile obj) {
     add_dense_forms(obj);
-    return std::make_shared<ObjectFile>(std::move(obj));
+    return python_object(std::move(obj));
   };
   std::string src;
   uint64_t hash = 0;
@@ -173,7 +173,7 @@ ObjectPtr load_object(const py::object& source, double voxel, int64_t resolution
     if (is_object_file(path)) {
       return with_file(path, [&] {
         py::gil_scoped_release unlocked;
-        auto obj = std::make_shared<ObjectFile>(read_object(path));
+        auto obj = python_object(read_object(path));
         require_distance_bits(*obj, distance_bits, path);
         return obj;
       });
@@ -363,7 +363,7 @@ too large for them). Returns an Object, the same as `voxcd voxelize SOURCE --vox
         const std::string p = path_arg(path, "path");
         return with_file(p, [&] {
           py::gil_scoped_release unlocked;
-          return std::make_shared<ObjectFile>(read_object(p));
+          return python_object(read_object(p));
         });
       },
       py::arg("path"), "Reads an object file (written by `voxcd voxelize` or Object.save). ValueError naming the "

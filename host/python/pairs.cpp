@@ -306,9 +306,9 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
                     "The margin of every query, world units (used on a distance device only, as `--margin`).")
       .def_property_readonly("device", [](const Pair& p) { return p.collider->device().config().to_string(); },
                              "The device's configuration, NAME VALUE pairs.")
-      .def_property_readonly("a", [](const Pair& p) { return std::shared_ptr<ObjectFile>(p.a, &p.a->object); },
+      .def_property_readonly("a", [](const Pair& p) { return python_object(p.a); },
                              "Object A.")
-      .def_property_readonly("b", [](const Pair& p) { return std::shared_ptr<ObjectFile>(p.b, &p.b->object); },
+      .def_property_readonly("b", [](const Pair& p) { return python_object(p.b); },
                              "Object B.");
 
   m.def(
