@@ -144,8 +144,8 @@ auto option_args() {
                          py::arg("threads") = 0u, py::arg("both") = py::none());
 }
 
-const char* const kCollideDoc = R"(The contacts of b at pose_b against a at pose_a, in one call (the library's collide(), docs/api.md).
-a and b: Objects, or anything voxelize() takes (a mesh file, a shape, (vertices, faces) arrays, an object with
+const char* const kCollideDoc = R"(The contacts of b at pose_b against a at pose_a, in one call (the library's
+collide(), docs/api.md). a and b: Objects, or anything voxelize() takes (a mesh file, a shape, (vertices, faces) arrays, an object with
 .vertices and .faces such as a trimesh mesh), voxelised at 32 voxels along the longest side. Poses: None, 3, 6, 7,
 12 or 16 numbers (tx, ty, tz; then rx, ry, rz in degrees, or qw, qx, qy, qz; or a 3 x 4 or 4 x 4 matrix, row-major),
 a 3 x 4 or 4 x 4 matrix, (R, t), or the pose dict `voxcd pair --json` prints. mode ALL, FIRST or COUNT;

@@ -27,12 +27,13 @@ py::array_t<double> vec3(const Eigen::Vector3d& v) {
 
 py::tuple dims3(const std::array<uint32_t, 3>& d) { return py::make_tuple(d[0], d[1], d[2]); }
 
-// (N, 3) rows of the vectors.
-py::array_t<double> rows(const std::vector<Eigen::Vector3d>& v) {
-  py::array_t<double> a({py::ssize_t(v.size()), py::ssize_t(3)});
-  auto w = a.mutable_unchecked<2>();
-  for (size_t k = 0; k < v.size(); ++k)
-    for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = v[k][i];
+// A read-only (N, 3) numpy view of `rows`, N items of three T each, kept alive by the Python object `owner`: no copy.
+template <class T, class Item>
+py::array rows_view(const std::vector<Item>& rows, const py::handle& owner) {
+  static_assert(sizeof(Item) == 3 * sizeof(T), "an item is three values, unpadded");
+  py::array a(py::dtype::of<T>(), {py::ssize_t(rows.size()), py::ssize_t(3)},
+              {py::ssize_t(sizeof(Item)), py::ssize_t(sizeof(T))}, rows.empty() ? nullptr : rows.front().data(), owner);
+  a.attr("setflags")(py::arg("write") = false);
   return a;
 }
 
@@ -224,24 +225,21 @@ void bind_voxmap(ObjectClass& cls) {
 
 // Object's point shell.
 void bind_shell(ObjectClass& cls) {
-  cls.def_property_readonly("shell_points", [](const ObjectFile& o) { return rows(dense_shell(o).points); },
-                             "The point shell in the object's frame, an (N, 3) float64 array (shell_count rows).")
+  // Views of the shell's arrays, kept alive by the voxcd.Object (self).
+  auto shell = [](const py::object& self) -> const PointShell& { return dense_shell(self.cast<const ObjectFile&>()); };
+  cls.def_property_readonly(
+         "shell_points", [shell](const py::object& self) { return rows_view<double>(shell(self).points, self); },
+         "The point shell in the object's frame, an (N, 3) float64 array (shell_count rows): a read-only view of the "
+         "object's own (no copy).")
       .def_property_readonly("shell_count", &ObjectFile::shell_count,
                              "The number of shell points (as `voxcd info`'s shell_count; C++ Object::shell_count()).")
-      .def_property_readonly("shell_normals", [](const ObjectFile& o) { return rows(dense_shell(o).normals); },
-                             "Each shell point's outward unit normal, an (N, 3) float64 array.")
       .def_property_readonly(
-          "shell_cells",
-          [](const ObjectFile& o) {
-            const PointShell& sh = dense_shell(o);
-            py::array_t<uint32_t> a({py::ssize_t(sh.size()), py::ssize_t(3)});
-            auto w = a.mutable_unchecked<2>();
-            for (size_t k = 0; k < sh.size(); ++k)
-              for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = sh.cells[k][size_t(i)];
-            return a;
-          },
-          "Each shell point's cell of the shell grid, an (N, 3) uint32 array: the point is the cell's centre, or, "
-          "when shell_on_surface, a point of the cell's closed cube.")
+          "shell_normals", [shell](const py::object& self) { return rows_view<double>(shell(self).normals, self); },
+          "Each shell point's outward unit normal, an (N, 3) float64 array: a read-only view (no copy).")
+      .def_property_readonly(
+          "shell_cells", [shell](const py::object& self) { return rows_view<uint32_t>(shell(self).cells, self); },
+          "Each shell point's cell of the shell grid, an (N, 3) uint32 array (a read-only view, no copy): the point is "
+          "the cell's centre, or, when shell_on_surface, a point of the cell's closed cube.")
       .def_property_readonly("shell_on_surface", [](const ObjectFile& o) { return o.shell.on_surface; },
                              "True when the shell's points lie on the surface (objects with a distance field): "
                              "each is the closest point of the mesh to a surface cell's centre, rounded to 1/256 of "

@@ -161,3 +161,17 @@ def test_a_collider_gives_collides_contacts():
         voxcd.Collider(mode="SOME")
     with pytest.raises(voxcd.OptionError, match=r"^poses\[0\]: give a \(pose_a, pose_b\) pair$"):
         collider.collide(a, b, [[1, 2, 3]])
+
+
+def test_shell_arrays_view_the_objects_own_without_a_copy():
+    torus = voxcd.Object.load("torus", resolution=16)
+    points, normals, cells = torus.shell_points, torus.shell_normals, torus.shell_cells
+    assert points.shape == normals.shape == cells.shape == (torus.shell_count, 3)
+    assert points.dtype == np.float64 and cells.dtype == np.uint32
+    assert not points.flags.writeable and not points.flags.owndata and points.base is not None
+    assert np.shares_memory(torus.shell_points, points)   # the same buffer each time: the object's own
+    copy = points.copy()
+    del torus   # the views keep the object alive
+    np.testing.assert_array_equal(points, copy)
+    with pytest.raises(ValueError, match="read-only"):
+        points[0, 0] = 1
