@@ -20,6 +20,7 @@ include(CMakePackageConfigHelpers)
 # installed header includes only installed headers and compiles on its own.
 set(VOXCD_PUBLIC_HEADERS
   host/api/object.h host/api/collide.h host/api/world.h host/api/world_types.h host/api/devices.h host/api/errors.h
+  host/api/names.h
   host/object/errors.h host/pairs/errors.h host/device/errors.h host/scene/errors.h host/sizing/errors.h
   host/sizing/size_options.h
   host/object/mesh.h host/object/storage.h host/object/frame.h host/pairs/contact.h host/scene/body.h

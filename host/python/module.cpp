@@ -5,12 +5,11 @@
 #include <stdexcept>
 
 #include "voxcd/host/api/errors.h"
-#include "voxcd/host/broadphase/broadphase.h"
+#include "voxcd/host/api/names.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/device/timing_table.h"
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/object_file.h"
-#include "voxcd/host/object/shapes.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/python/bindings.h"
 #include "voxcd/host/scene/record.h"
