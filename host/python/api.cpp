@@ -39,10 +39,11 @@ std::shared_ptr<ObjectFile> python_object(ObjectFile obj) {
   return std::shared_ptr<ObjectFile>(h, &h->file);
 }
 
-std::shared_ptr<ObjectFile> python_object(const std::shared_ptr<ObjectType>& type) {
+std::shared_ptr<ObjectFile> python_object(const Object& object) {
   const std::shared_ptr<Home> h = new_home();
-  h->type = type;
-  return std::shared_ptr<ObjectFile>(h, &type->object);
+  h->type = object.type();
+  // The module's Object class reads its object and never writes it.
+  return std::shared_ptr<ObjectFile>(h, const_cast<ObjectFile*>(&h->type->object));
 }
 
 Object library_object(const std::shared_ptr<ObjectFile>& obj) {

@@ -165,8 +165,8 @@ void bind_api(py::module_& m);
 
 // A voxcd.Object of an object file's form; the library's Object of it is made at its first query and kept with it.
 std::shared_ptr<ObjectFile> python_object(ObjectFile obj);
-// A voxcd.Object viewing the object of the library's form `type` (Pair.a, Pair.b), which it keeps alive.
-std::shared_ptr<ObjectFile> python_object(const std::shared_ptr<ObjectType>& type);
+// The voxcd.Object of a C++ Object (Object.load, Object.from_arrays, Pair.a), which it keeps: no copy.
+std::shared_ptr<ObjectFile> python_object(const Object& object);
 // The library's Object of a voxcd.Object (made once per object; MeshError for one that cannot be queried).
 Object library_object(const std::shared_ptr<ObjectFile>& obj);
 // An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 
+#include "voxcd/host/api/object.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/python/bindings.h"
@@ -161,26 +162,57 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
   return made(make_object(mesh, src, hash, opt, &report));
 }
 
-// Object.load and Object.from_arrays: the C++ Object::load and Object::from_arrays with an ObjectDef's fields as
-// keywords and its defaults (32 voxels along the longest side, dense storage).
-ObjectPtr load_object(const py::object& source, double voxel, int64_t resolution, int distance_bits, double band,
-                      const std::string& storage, bool strict, unsigned threads) {
+// Object.load's and Object.from_arrays' keywords as the C++ ObjectDef; OptionError naming a keyword it cannot take.
+ObjectDef object_def(double voxel, int64_t resolution, int distance_bits, double band, const std::string& storage,
+                     bool strict, unsigned threads) {
   if (!(voxel >= 0 && std::isfinite(voxel)))
     value_error("voxel: " + py::repr(py::float_(voxel)).cast<std::string>() + " is not 0 or a positive number");
-  const std::optional<double> v = voxel > 0 ? std::optional<double>(voxel) : std::nullopt;
-  const std::optional<int64_t> r = voxel > 0 ? std::nullopt : std::optional<int64_t>(resolution);
-  if (!mesh_arg(source)) {
-    const std::string path = path_arg(source, "file_or_shape");
-    if (is_object_file(path)) {
-      return with_file(path, [&] {
-        py::gil_scoped_release unlocked;
-        auto obj = python_object(read_object(path));
-        require_distance_bits(*obj, distance_bits, path);
-        return obj;
-      });
-    }
-  }
-  return voxelize_source(source, v, r, std::sqrt(2.0), strict, threads, distance_bits, band, storage);
+  if (resolution < 1 || resolution > int64_t(UINT32_MAX))
+    value_error("resolution: " + std::to_string(resolution) + " is not a positive count of voxels");
+  check_distance_args(distance_bits, band);
+  const std::optional<ObjectStorage> kind = parse_storage(storage);
+  if (!kind) value_error("storage: '" + storage + "' is not 'auto', 'dense' or 'sparse'");
+  ObjectDef def;
+  def.voxel = voxel;
+  def.resolution = uint32_t(resolution);
+  def.distance_bits = distance_bits;
+  def.band = band;
+  def.storage = *kind;
+  def.strict = strict;
+  def.threads = threads;
+  return def;
+}
+
+// Object.load: the C++ Object::load, its ObjectDef's fields as keywords.
+ObjectPtr load_object(const py::object& source, double voxel, int64_t resolution, int distance_bits, double band,
+                      const std::string& storage, bool strict, unsigned threads) {
+  const ObjectDef def = object_def(voxel, resolution, distance_bits, band, storage, strict, threads);
+  const std::string path = path_arg(source, "file_or_shape");
+  return with_file(is_object_file(path) ? path : "", [&] {
+    py::gil_scoped_release unlocked;
+    return python_object(Object::load(path, def));
+  });
+}
+
+// Object.from_arrays: the C++ Object::from_arrays, given the arrays' own memory where they are C-contiguous float64
+// vertices and uint32 triangles (other layouts and dtypes are converted first).
+ObjectPtr from_arrays(const py::object& vertices, const py::object& triangles, double voxel, int64_t resolution,
+                      int distance_bits, double band, const std::string& storage, bool strict, unsigned threads) {
+  const ObjectDef def = object_def(voxel, resolution, distance_bits, band, storage, strict, threads);
+  const auto np = py::module_::import("numpy");
+  using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  using Triangles = py::array_t<uint32_t, py::array::c_style | py::array::forcecast>;
+  const Vertices v = Vertices::ensure(vertices);
+  if (!v || v.ndim() != 2 || v.shape(1) != 3) value_error("vertices: give a (V, 3) array of numbers");
+  const py::array t = np.attr("asarray")(triangles);
+  const char kind = t.dtype().kind();
+  if (t.ndim() != 2 || t.shape(1) != 3 || !(kind == 'i' || kind == 'u'))
+    value_error("triangles: give an (F, 3) array of integer vertex indices");
+  if (t.size() > 0 && (t.attr("min")().cast<int64_t>() < 0 || t.attr("max")().cast<uint64_t>() > UINT32_MAX))
+    value_error("triangles: a vertex index is negative or beyond 2^32 - 1");
+  const Triangles f = Triangles::ensure(t);
+  py::gil_scoped_release unlocked;
+  return python_object(Object::from_arrays(v.data(), size_t(v.shape(0)), f.data(), size_t(f.shape(0)), def));
 }
 
 }  // namespace
@@ -331,12 +363,7 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
 object file (which brings its own voxel; with distance_bits it must carry a field of that many bits), voxelised at
 `voxel` (mesh units) or, when voxel is 0, at `resolution` voxels along its longest side (32).)");
   c.def_static(
-      "from_arrays",
-      [](const py::object& vertices, const py::object& triangles, double voxel, int64_t resolution, int distance_bits,
-         double band, const std::string& storage, bool strict, unsigned threads) {
-        return load_object(py::make_tuple(vertices, triangles), voxel, resolution, distance_bits, band, storage,
-                           strict, threads);
-      },
+      "from_arrays", &from_arrays,
       py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("voxel") = 0.0, py::arg("resolution") = 32,
       py::arg("distance_bits") = 0, py::arg("band") = 4.0, py::arg("storage") = "dense", py::arg("strict") = false,
       py::arg("threads") = 0u,

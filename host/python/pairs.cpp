@@ -6,6 +6,7 @@
 #include <mutex>
 #include <optional>
 
+#include "voxcd/host/api/object.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/python/bindings.h"
@@ -306,9 +307,9 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
                     "The margin of every query, world units (used on a distance device only, as `--margin`).")
       .def_property_readonly("device", [](const Pair& p) { return p.collider->device().config().to_string(); },
                              "The device's configuration, NAME VALUE pairs.")
-      .def_property_readonly("a", [](const Pair& p) { return python_object(p.a); },
+      .def_property_readonly("a", [](const Pair& p) { return python_object(Object(p.a)); },
                              "Object A.")
-      .def_property_readonly("b", [](const Pair& p) { return python_object(p.b); },
+      .def_property_readonly("b", [](const Pair& p) { return python_object(Object(p.b)); },
                              "Object B.");
 
   m.def(

@@ -128,6 +128,15 @@ def test_objects_with_cpp_names_and_defaults():
                                                                storage="dense").states)
     with pytest.raises(voxcd.OptionError, match=r"^voxel: -1\.0 is not 0 or a positive number$"):
         voxcd.Object.load("torus", voxel=-1.0)
+    with pytest.raises(voxcd.OptionError, match=r"^triangles: a vertex index is negative"):
+        voxcd.Object.from_arrays(TETRA_V, TETRA_F - 1)
+    with pytest.raises(voxcd.OptionError, match=r"^vertices: give a \(V, 3\) array"):
+        voxcd.Object.from_arrays(TETRA_V[:, :2], TETRA_F)
+    with pytest.raises(voxcd.MeshError, match=r"^arrays: "):
+        voxcd.Object.from_arrays(TETRA_V, TETRA_F + 1)   # an index beyond the vertices
+    # The library's Object itself: the C++ names in messages ("torus", not the tool's "shape:torus").
+    with pytest.raises(voxcd.RangeError, match=r"^pair 0 \(torus, torus\)"):
+        voxcd.collide(torus, None, torus, [1e9, 0, 0])
 
 
 def test_object_files_through_object_load(tmp_path):
