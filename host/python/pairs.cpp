@@ -77,7 +77,7 @@ struct ArrayPool {
 };
 
 struct Pair {
-  std::shared_ptr<ObjectType> a, b;
+  std::shared_ptr<const ObjectType> a, b;
   double voxel = 0;
   std::string backend;
   int distance_bits = 0;  // the device's SB on a distance device (`voxcd pair --distance-bits`), else 0
@@ -109,16 +109,17 @@ DistanceArgs distance_args(std::optional<int> bits, std::optional<double> band, 
 // An object argument: an Object, or an object file, a mesh file or a built-in shape (voxelised at `voxel`, with a
 // distance field of d.bits over d.band voxels when d.bits > 0). Objects and object files are used as they are: with
 // d.bits > 0 they must carry a field of that many bits, as `voxcd pair --distance-bits` requires of object files.
-std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const DistanceArgs& d, const char* which) {
+// An Object's is its library Object's own (no copy).
+std::shared_ptr<const ObjectType> object_type(const py::object& o, double voxel, const DistanceArgs& d,
+                                              const char* which) {
   if (py::isinstance<ObjectFile>(o)) {
-    const ObjectFile obj = o.cast<const ObjectFile&>();
-    py::gil_scoped_release unlocked;
-    require_distance_bits(obj, d.bits, std::string(which) + " (" + obj.source + ")");
-    return std::make_shared<ObjectType>(make_object_type(obj, obj.source));
+    const auto obj = o.cast<std::shared_ptr<ObjectFile>>();
+    require_distance_bits(*obj, d.bits, std::string(which) + " (" + obj->source + ")");
+    return library_object(obj).type();
   }
   const std::string s = path_arg(o, which);
   py::gil_scoped_release unlocked;
-  return std::make_shared<ObjectType>(load_object_type(s, voxel, d.bits, d.band));
+  return std::make_shared<const ObjectType>(load_object_type(s, voxel, d.bits, d.band));
 }
 
 std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::optional<double> voxel,
