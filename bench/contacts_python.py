@@ -3,9 +3,9 @@
 machine's limit"). Runs build/bench_contacts (C++ and FCL, one thread each, CPU time of the thread) with --write, so
 that it leaves its objects and poses in a temporary directory; then loads the same object files and poses into
 voxcd.Pair(threads=1) and times, by the calling thread's CPU time (time.thread_time), medians of REPEATS:
-  - Pair.contacts(poses, both=True): the batch into flat numpy arrays (no copy);
-  - Pair.query(poses, both=True): the batch as a list of dicts of arrays (one copy per pose);
-  - Pair.contacts(pose, both=True) for each pose: one pose per call, each result dropped before the next call (its
+  - Pair.contacts(poses, both_directions=True): the batch into flat numpy arrays (no copy);
+  - Pair.query(poses, both_directions=True): the batch as a list of dicts of arrays (one copy per pose);
+  - Pair.contacts(pose, both_directions=True) for each pose: one pose per call, each result dropped before the next call (its
     arrays go back to the pool and the next call writes into them);
 and checks that every one gives the contacts the C++ run counted. Prints a Markdown table (and writes it to --out).
 
@@ -48,16 +48,16 @@ def main():
             pair = voxcd.Pair(os.path.join(tmp, scene + "_a.vxo"), os.path.join(tmp, scene + "_b.vxo"), threads=1)
             poses = np.loadtxt(os.path.join(tmp, scene + "_poses.txt"), ndmin=2)
             n = len(poses)
-            flat = pair.contacts(poses, both=True)
+            flat = pair.contacts(poses, both_directions=True)
             if len(flat["points"]) != c["contacts"] or int(flat["lookups"].sum()) != c["lookups"]:
                 sys.exit(f"{scene}: Python gives {len(flat['points'])} contacts and {flat['lookups'].sum()} lookups, "
                          f"C++ {c['contacts']} and {c['lookups']}")
             del flat
-            t_flat = thread_time(lambda: pair.contacts(poses, both=True), args.repeats) * 1e6 / n
-            t_list = thread_time(lambda: pair.query(poses, both=True), args.repeats) * 1e6 / n
+            t_flat = thread_time(lambda: pair.contacts(poses, both_directions=True), args.repeats) * 1e6 / n
+            t_list = thread_time(lambda: pair.query(poses, both_directions=True), args.repeats) * 1e6 / n
             def one_by_one():
                 for p in poses:
-                    got = pair.contacts(p, both=True)  # used, then dropped: its arrays go back to the pool
+                    got = pair.contacts(p, both_directions=True)  # used, then dropped: its arrays go back to the pool
                     del got
 
             t_one = thread_time(one_by_one, args.repeats) * 1e6 / n

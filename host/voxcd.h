@@ -23,5 +23,8 @@
 // A world the caller steps.
 #include "voxcd/host/api/world.h"
 
+// Names: the built-in shapes, broadphases and job modes.
+#include "voxcd/host/api/names.h"
+
 // Devices: backends by name, conformance vectors, the smallest device for a scene.
 #include "voxcd/host/api/devices.h"

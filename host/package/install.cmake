@@ -10,7 +10,7 @@
 #   P/share/voxcd/rtl/     the RTL, its file list voxcd.f and the DPI package voxcd_dpi_pkg.sv
 #   P/share/voxcd/timing.tsv  the timing table of bench/timing.sh (the library has it compiled in)
 #   P/share/voxcd/energy.tsv  the energy table of bench/energy.sh (the library has it compiled in)
-#   P/lib/python3/dist-packages/  the Python module (import voxcd)
+#   P/lib/python3/dist-packages/  the Python module (import voxcd) and its type stubs voxcd.pyi (host/python)
 # Included last by the top-level CMakeLists.txt, when every target exists.
 include(CMakePackageConfigHelpers)
 
@@ -20,6 +20,7 @@ include(CMakePackageConfigHelpers)
 # installed header includes only installed headers and compiles on its own.
 set(VOXCD_PUBLIC_HEADERS
   host/api/object.h host/api/collide.h host/api/world.h host/api/world_types.h host/api/devices.h host/api/errors.h
+  host/api/names.h
   host/object/errors.h host/pairs/errors.h host/device/errors.h host/scene/errors.h host/sizing/errors.h
   host/sizing/size_options.h
   host/object/mesh.h host/object/storage.h host/object/frame.h host/pairs/contact.h host/scene/body.h

@@ -24,6 +24,7 @@ namespace voxcd {
 struct FrameStats;
 class Object;
 struct ObjectFile;
+struct ObjectType;
 struct PairResult;
 struct RigidPose;
 struct RunConfig;
@@ -49,6 +50,12 @@ struct ArgumentError : Error {
 // Emits a DeprecationWarning with the message (a deprecated spelling used; docs/python.md, "Deprecated spellings");
 // raises it when the warning filters make it an error.
 void deprecation(const std::string& message);
+
+// The both-directions option of a call that takes `both_directions` and `both`, its deprecated spelling (None: not
+// given): `both` when given, with a DeprecationWarning; OptionError when the two are given and differ (`both_directions`
+// counts as given when it is not its default, `fallback`).
+bool both_directions_arg(bool both_directions, std::optional<bool> both, bool fallback = true);
+std::optional<bool> both_directions_arg(std::optional<bool> both_directions, std::optional<bool> both);
 
 // poses.cpp: poses as every function takes them (through host/pairs/pose_text.h's parser). One pose: None (the
 // identity), 3, 6, 7, 12 or 16 numbers (translation; then degrees about x, y, z; or a quaternion w, x, y, z; or a
@@ -87,10 +94,10 @@ inline auto run_args() {
       py::arg("shape") = py::none(), py::arg("voxel") = py::none(), py::arg("resolution") = py::none(),
       py::arg("density") = py::none(), py::arg("speed") = py::none(), py::arg("seed") = py::none(),
       py::arg("broadphase") = py::none(), py::arg("backend") = py::none(), py::arg("lanes") = py::none(),
-      py::arg("mode") = py::none(), py::arg("both") = py::none(), py::arg("clock") = py::none(),
+      py::arg("mode") = py::none(), py::arg("both_directions") = py::none(), py::arg("clock") = py::none(),
       py::arg("config") = py::none(), py::arg("threads") = 0u, py::arg("midphase") = true, py::arg("cull") = true,
       py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
-      py::arg("ccd") = py::none(), py::arg("pruning") = py::none());
+      py::arg("ccd") = py::none(), py::arg("pruning") = py::none(), py::arg("both") = py::none());
 }
 
 // The values of run_args(), None where not given.
@@ -104,7 +111,7 @@ struct RunArgs {
   std::optional<std::string> broadphase, backend;
   std::optional<int> lanes;
   std::optional<std::string> mode;
-  std::optional<bool> both;
+  std::optional<bool> both_directions;
   std::optional<double> clock;
   std::optional<std::string> config;
   unsigned threads = 0;
@@ -113,6 +120,7 @@ struct RunArgs {
   std::optional<double> band, margin;
   std::optional<bool> ccd;
   std::optional<std::string> pruning;  // broadphase's deprecated spelling
+  std::optional<bool> both;            // both_directions' deprecated spelling
 };
 
 // A function of run_args()'s arguments, then `Extra` ones, that returns finish(RunArgs, extra...): the one parameter
@@ -123,14 +131,15 @@ auto run_function(F finish) {
                   std::optional<std::string> shape, std::optional<double> voxel, const py::object& resolution,
                   std::optional<double> density, std::optional<double> speed, const py::object& seed,
                   std::optional<std::string> broadphase, std::optional<std::string> backend, std::optional<int> lanes,
-                  std::optional<std::string> mode, std::optional<bool> both, std::optional<double> clock,
+                  std::optional<std::string> mode, std::optional<bool> both_directions, std::optional<double> clock,
                   std::optional<std::string> config, unsigned threads, bool midphase, bool cull,
                   std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin,
-                  std::optional<bool> ccd, std::optional<std::string> pruning, Extra... extra) {
+                  std::optional<bool> ccd, std::optional<std::string> pruning, std::optional<bool> both,
+                  Extra... extra) {
     return finish(RunArgs{scene, frames, objects, std::move(shape), voxel, resolution, density, speed, seed,
-                          std::move(broadphase), std::move(backend), lanes, std::move(mode), both, clock,
+                          std::move(broadphase), std::move(backend), lanes, std::move(mode), both_directions, clock,
                           std::move(config), threads, midphase, cull, distance_bits, band, margin, ccd,
-                          std::move(pruning)},
+                          std::move(pruning), both},
                   extra...);
   };
 }
@@ -154,6 +163,12 @@ py::dict frame_counts(const FrameStats& s);
 // api.cpp: voxcd.collide, and the public API's arguments.
 void bind_api(py::module_& m);
 
+// A voxcd.Object of an object file's form; the library's Object of it is made at its first query and kept with it.
+std::shared_ptr<ObjectFile> python_object(ObjectFile obj);
+// The voxcd.Object of a C++ Object (Object.load, Object.from_arrays, Pair.a), which it keeps: no copy.
+std::shared_ptr<ObjectFile> python_object(const Object& object);
+// The library's Object of a voxcd.Object (made once per object; MeshError for one that cannot be queried).
+Object library_object(const std::shared_ptr<ObjectFile>& obj);
 // An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).
 Object object_arg(const py::object& o);
 // Three numbers (None: zeros); ValueError naming `what` for anything else.

@@ -5,12 +5,11 @@
 #include <stdexcept>
 
 #include "voxcd/host/api/errors.h"
-#include "voxcd/host/broadphase/broadphase.h"
+#include "voxcd/host/api/names.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/device/timing_table.h"
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/object_file.h"
-#include "voxcd/host/object/shapes.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/python/bindings.h"
 #include "voxcd/host/scene/record.h"
@@ -39,6 +38,33 @@ void value_error(const std::string& message) { throw ArgumentError(message); }
 
 void deprecation(const std::string& message) {
   if (PyErr_WarnEx(PyExc_DeprecationWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+}
+
+namespace {
+
+void warn_both() {
+  deprecation("both is deprecated: use both_directions (the same keyword; docs/python.md, \"Deprecated spellings\")");
+}
+
+[[noreturn]] void both_differ(bool both) {
+  value_error(std::string("both: is both_directions' deprecated spelling, and is ") + (both ? "True" : "False") +
+              " where both_directions is " + (both ? "False" : "True"));
+}
+
+}  // namespace
+
+bool both_directions_arg(bool both_directions, std::optional<bool> both, bool fallback) {
+  if (!both) return both_directions;
+  if (both_directions != fallback && both_directions != *both) both_differ(*both);
+  warn_both();
+  return *both;
+}
+
+std::optional<bool> both_directions_arg(std::optional<bool> both_directions, std::optional<bool> both) {
+  if (!both) return both_directions;
+  if (both_directions && *both_directions != *both) both_differ(*both);
+  warn_both();
+  return both;
 }
 
 void warn_notes(const RunConfig& c) {

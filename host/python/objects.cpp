@@ -7,7 +7,9 @@
 #include <limits>
 #include <memory>
 
+#include "voxcd/host/api/object.h"
 #include "voxcd/host/object/object_file.h"
+#include "voxcd/host/object/object_type.h"
 #include "voxcd/host/python/bindings.h"
 #include "voxcd/host/report/object_report.h"
 
@@ -26,12 +28,13 @@ py::array_t<double> vec3(const Eigen::Vector3d& v) {
 
 py::tuple dims3(const std::array<uint32_t, 3>& d) { return py::make_tuple(d[0], d[1], d[2]); }
 
-// (N, 3) rows of the vectors.
-py::array_t<double> rows(const std::vector<Eigen::Vector3d>& v) {
-  py::array_t<double> a({py::ssize_t(v.size()), py::ssize_t(3)});
-  auto w = a.mutable_unchecked<2>();
-  for (size_t k = 0; k < v.size(); ++k)
-    for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = v[k][i];
+// A read-only (N, 3) numpy view of `rows`, N items of three T each, kept alive by the Python object `owner`: no copy.
+template <class T, class Item>
+py::array rows_view(const std::vector<Item>& rows, const py::handle& owner) {
+  static_assert(sizeof(Item) == 3 * sizeof(T), "an item is three values, unpadded");
+  py::array a(py::dtype::of<T>(), {py::ssize_t(rows.size()), py::ssize_t(3)},
+              {py::ssize_t(sizeof(Item)), py::ssize_t(sizeof(T))}, rows.empty() ? nullptr : rows.front().data(), owner);
+  a.attr("setflags")(py::arg("write") = false);
   return a;
 }
 
@@ -141,7 +144,7 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
   // The arrays below read the dense forms: made of a sparse object's where they fit.
   auto made = [](ObjectFile obj) {
     add_dense_forms(obj);
-    return std::make_shared<ObjectFile>(std::move(obj));
+    return python_object(std::move(obj));
   };
   std::string src;
   uint64_t hash = 0;
@@ -157,6 +160,59 @@ ObjectPtr voxelize_source(const py::object& source, std::optional<double> voxel,
   }
   const Mesh mesh = load_source(input, &src, &hash, &report, LoadOptions{strict});
   return made(make_object(mesh, src, hash, opt, &report));
+}
+
+// Object.load's and Object.from_arrays' keywords as the C++ ObjectDef; OptionError naming a keyword it cannot take.
+ObjectDef object_def(double voxel, int64_t resolution, int distance_bits, double band, const std::string& storage,
+                     bool strict, unsigned threads) {
+  if (!(voxel >= 0 && std::isfinite(voxel)))
+    value_error("voxel: " + py::repr(py::float_(voxel)).cast<std::string>() + " is not 0 or a positive number");
+  if (resolution < 1 || resolution > int64_t(UINT32_MAX))
+    value_error("resolution: " + std::to_string(resolution) + " is not a positive count of voxels");
+  check_distance_args(distance_bits, band);
+  const std::optional<ObjectStorage> kind = parse_storage(storage);
+  if (!kind) value_error("storage: '" + storage + "' is not 'auto', 'dense' or 'sparse'");
+  ObjectDef def;
+  def.voxel = voxel;
+  def.resolution = uint32_t(resolution);
+  def.distance_bits = distance_bits;
+  def.band = band;
+  def.storage = *kind;
+  def.strict = strict;
+  def.threads = threads;
+  return def;
+}
+
+// Object.load: the C++ Object::load, its ObjectDef's fields as keywords.
+ObjectPtr load_object(const py::object& source, double voxel, int64_t resolution, int distance_bits, double band,
+                      const std::string& storage, bool strict, unsigned threads) {
+  const ObjectDef def = object_def(voxel, resolution, distance_bits, band, storage, strict, threads);
+  const std::string path = path_arg(source, "file_or_shape");
+  return with_file(is_object_file(path) ? path : "", [&] {
+    py::gil_scoped_release unlocked;
+    return python_object(Object::load(path, def));
+  });
+}
+
+// Object.from_arrays: the C++ Object::from_arrays, given the arrays' own memory where they are C-contiguous float64
+// vertices and uint32 triangles (other layouts and dtypes are converted first).
+ObjectPtr from_arrays(const py::object& vertices, const py::object& triangles, double voxel, int64_t resolution,
+                      int distance_bits, double band, const std::string& storage, bool strict, unsigned threads) {
+  const ObjectDef def = object_def(voxel, resolution, distance_bits, band, storage, strict, threads);
+  const auto np = py::module_::import("numpy");
+  using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  using Triangles = py::array_t<uint32_t, py::array::c_style | py::array::forcecast>;
+  const Vertices v = Vertices::ensure(vertices);
+  if (!v || v.ndim() != 2 || v.shape(1) != 3) value_error("vertices: give a (V, 3) array of numbers");
+  const py::array t = np.attr("asarray")(triangles);
+  const char kind = t.dtype().kind();
+  if (t.ndim() != 2 || t.shape(1) != 3 || !(kind == 'i' || kind == 'u'))
+    value_error("triangles: give an (F, 3) array of integer vertex indices");
+  if (t.size() > 0 && (t.attr("min")().cast<int64_t>() < 0 || t.attr("max")().cast<uint64_t>() > UINT32_MAX))
+    value_error("triangles: a vertex index is negative or beyond 2^32 - 1");
+  const Triangles f = Triangles::ensure(t);
+  py::gil_scoped_release unlocked;
+  return python_object(Object::from_arrays(v.data(), size_t(v.shape(0)), f.data(), size_t(f.shape(0)), def));
 }
 
 }  // namespace
@@ -201,24 +257,21 @@ void bind_voxmap(ObjectClass& cls) {
 
 // Object's point shell.
 void bind_shell(ObjectClass& cls) {
-  cls.def_property_readonly("shell_points", [](const ObjectFile& o) { return rows(dense_shell(o).points); },
-                             "The point shell in the object's frame, an (N, 3) float64 array (shell_count rows).")
+  // Views of the shell's arrays, kept alive by the voxcd.Object (self).
+  auto shell = [](const py::object& self) -> const PointShell& { return dense_shell(self.cast<const ObjectFile&>()); };
+  cls.def_property_readonly(
+         "shell_points", [shell](const py::object& self) { return rows_view<double>(shell(self).points, self); },
+         "The point shell in the object's frame, an (N, 3) float64 array (shell_count rows): a read-only view of the "
+         "object's own (no copy).")
       .def_property_readonly("shell_count", &ObjectFile::shell_count,
                              "The number of shell points (as `voxcd info`'s shell_count; C++ Object::shell_count()).")
-      .def_property_readonly("shell_normals", [](const ObjectFile& o) { return rows(dense_shell(o).normals); },
-                             "Each shell point's outward unit normal, an (N, 3) float64 array.")
       .def_property_readonly(
-          "shell_cells",
-          [](const ObjectFile& o) {
-            const PointShell& sh = dense_shell(o);
-            py::array_t<uint32_t> a({py::ssize_t(sh.size()), py::ssize_t(3)});
-            auto w = a.mutable_unchecked<2>();
-            for (size_t k = 0; k < sh.size(); ++k)
-              for (int i = 0; i < 3; ++i) w(py::ssize_t(k), i) = sh.cells[k][size_t(i)];
-            return a;
-          },
-          "Each shell point's cell of the shell grid, an (N, 3) uint32 array: the point is the cell's centre, or, "
-          "when shell_on_surface, a point of the cell's closed cube.")
+          "shell_normals", [shell](const py::object& self) { return rows_view<double>(shell(self).normals, self); },
+          "Each shell point's outward unit normal, an (N, 3) float64 array: a read-only view (no copy).")
+      .def_property_readonly(
+          "shell_cells", [shell](const py::object& self) { return rows_view<uint32_t>(shell(self).cells, self); },
+          "Each shell point's cell of the shell grid, an (N, 3) uint32 array (a read-only view, no copy): the point is "
+          "the cell's centre, or, when shell_on_surface, a point of the cell's closed cube.")
       .def_property_readonly("shell_on_surface", [](const ObjectFile& o) { return o.shell.on_surface; },
                              "True when the shell's points lie on the surface (objects with a distance field): "
                              "each is the closest point of the mesh to a surface cell's centre, rounded to 1/256 of "
@@ -303,6 +356,19 @@ shell, as `voxcd voxelize` writes them to an object file (docs/objects.md). Made
   bind_distance(c);
   bind_object_storage(c);
   bind_rest(c);
+  c.def_static("load", &load_object, py::arg("file_or_shape"), py::kw_only(), py::arg("voxel") = 0.0,
+               py::arg("resolution") = 32, py::arg("distance_bits") = 0, py::arg("band") = 4.0,
+               py::arg("storage") = "dense", py::arg("strict") = false, py::arg("threads") = 0u,
+               R"(The C++ Object::load with an ObjectDef's fields and defaults: a mesh file, a built-in shape or an
+object file (which brings its own voxel; with distance_bits it must carry a field of that many bits), voxelised at
+`voxel` (mesh units) or, when voxel is 0, at `resolution` voxels along its longest side (32).)");
+  c.def_static(
+      "from_arrays", &from_arrays,
+      py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("voxel") = 0.0, py::arg("resolution") = 32,
+      py::arg("distance_bits") = 0, py::arg("band") = 4.0, py::arg("storage") = "dense", py::arg("strict") = false,
+      py::arg("threads") = 0u,
+      R"(The C++ Object::from_arrays: a mesh as a (V, 3) array of vertices and an (F, 3) array of vertex indices,
+repaired as a file is (unless strict), with Object.load's keywords and defaults.)");
 
   m.def("voxelize", &voxelize_source, py::arg("source"), py::kw_only(), py::arg("voxel") = py::none(),
         py::arg("resolution") = py::none(), py::arg("shell_ratio") = std::sqrt(2.0), py::arg("strict") = false,
@@ -322,7 +388,7 @@ too large for them). Returns an Object, the same as `voxcd voxelize SOURCE --vox
         const std::string p = path_arg(path, "path");
         return with_file(p, [&] {
           py::gil_scoped_release unlocked;
-          return std::make_shared<ObjectFile>(read_object(p));
+          return python_object(read_object(p));
         });
       },
       py::arg("path"), "Reads an object file (written by `voxcd voxelize` or Object.save). ValueError naming the "

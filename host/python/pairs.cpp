@@ -6,6 +6,7 @@
 #include <mutex>
 #include <optional>
 
+#include "voxcd/host/api/object.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/python/bindings.h"
@@ -76,7 +77,7 @@ struct ArrayPool {
 };
 
 struct Pair {
-  std::shared_ptr<ObjectType> a, b;
+  std::shared_ptr<const ObjectType> a, b;
   double voxel = 0;
   std::string backend;
   int distance_bits = 0;  // the device's SB on a distance device (`voxcd pair --distance-bits`), else 0
@@ -108,16 +109,17 @@ DistanceArgs distance_args(std::optional<int> bits, std::optional<double> band, 
 // An object argument: an Object, or an object file, a mesh file or a built-in shape (voxelised at `voxel`, with a
 // distance field of d.bits over d.band voxels when d.bits > 0). Objects and object files are used as they are: with
 // d.bits > 0 they must carry a field of that many bits, as `voxcd pair --distance-bits` requires of object files.
-std::shared_ptr<ObjectType> object_type(const py::object& o, double voxel, const DistanceArgs& d, const char* which) {
+// An Object's is its library Object's own (no copy).
+std::shared_ptr<const ObjectType> object_type(const py::object& o, double voxel, const DistanceArgs& d,
+                                              const char* which) {
   if (py::isinstance<ObjectFile>(o)) {
-    const ObjectFile obj = o.cast<const ObjectFile&>();
-    py::gil_scoped_release unlocked;
-    require_distance_bits(obj, d.bits, std::string(which) + " (" + obj.source + ")");
-    return std::make_shared<ObjectType>(make_object_type(obj, obj.source));
+    const auto obj = o.cast<std::shared_ptr<ObjectFile>>();
+    require_distance_bits(*obj, d.bits, std::string(which) + " (" + obj->source + ")");
+    return library_object(obj).type();
   }
   const std::string s = path_arg(o, which);
   py::gil_scoped_release unlocked;
-  return std::make_shared<ObjectType>(load_object_type(s, voxel, d.bits, d.band));
+  return std::make_shared<const ObjectType>(load_object_type(s, voxel, d.bits, d.band));
 }
 
 std::unique_ptr<Pair> make_pair(const py::object& a, const py::object& b, std::optional<double> voxel,
@@ -167,12 +169,12 @@ std::vector<PairRequest> requests(const py::object& pose, bool& many) {
   return reqs;
 }
 
-PairOptions options(const Pair& p, const std::string& mode, bool both, bool cull) {
+PairOptions options(const Pair& p, const std::string& mode, bool both_directions, bool cull, std::optional<bool> both) {
   const auto m = parse_mode(mode);
   if (!m) value_error("mode: '" + mode + "' is not ALL, FIRST or COUNT");
   PairOptions opt;
   opt.mode = *m;
-  opt.both_directions = both;
+  opt.both_directions = both_directions_arg(both_directions, both);
   opt.cull = cull;
   opt.margin = p.margin;
   return opt;
@@ -218,8 +220,9 @@ py::dict arrays_dict(std::unique_ptr<ContactArrays> a, const std::shared_ptr<Arr
   return d;
 }
 
-py::dict contacts(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
-  const PairOptions opt = options(p, mode, both, cull);
+py::dict contacts(Pair& p, const py::object& pose, const std::string& mode, bool both_directions, bool cull,
+                  std::optional<bool> both) {
+  const PairOptions opt = options(p, mode, both_directions, cull, both);
   bool many = false;
   const std::vector<PairRequest> reqs = requests(pose, many);
   std::unique_ptr<ContactArrays> a = p.arrays->take();
@@ -231,8 +234,9 @@ py::dict contacts(Pair& p, const py::object& pose, const std::string& mode, bool
   return arrays_dict(std::move(a), p.arrays, p.collider->device().models_cycles());
 }
 
-py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both, bool cull) {
-  const PairOptions opt = options(p, mode, both, cull);
+py::object query(Pair& p, const py::object& pose, const std::string& mode, bool both_directions, bool cull,
+                 std::optional<bool> both) {
+  const PairOptions opt = options(p, mode, both_directions, cull, both);
   bool many = false;
   const std::vector<PairRequest> reqs = requests(pose, many);
   std::vector<PairResult> res;
@@ -252,8 +256,8 @@ const char* kQueryDoc = R"(The contacts of B at `pose` in A's frame (A at the or
 or 16 numbers (tx, ty, tz; then rx, ry, rz in degrees about x, then y, then z, or a quaternion qw, qx, qy, qz; or a 3 x 4
 or 4 x 4 matrix, row-major: the forms of `voxcd pair --pose`), a 3 x 4 or 4 x 4 matrix, (R, t), the pose dict
 `voxcd pair --json` prints, or an (N, k) (k one of those counts), (N, 3, 4) or (N, 4, 4) array of poses, run in one
-batch. mode is ALL, FIRST or COUNT; both (default True, as collide) also tests B's shell in A's voxmap (False: A's
-shell in B's voxmap only); cull
+batch. mode is ALL, FIRST or COUNT; both_directions (default True, as collide) also tests B's shell in A's voxmap
+(False: A's shell in B's voxmap only; both: its deprecated spelling); cull
 submits only the shell clusters that can land in the other voxmap (the contacts are the same). Returns, per pose, a
 dict: hits, lookups, device_cycles (None where the backend models none) and the contacts as arrays: a_in_b (bool:
 A's shell point in B's voxmap), points (index in its shell), positions and normals ((K, 3), world), voxels ((K, 3),
@@ -264,7 +268,7 @@ the other field's gradient negated and normalised, states 0.)";
 
 const char* kContactsDoc = R"(query() for any number of poses in one batch, its contacts in flat arrays that are no copies:
 the arrays the library wrote them into, handed to numpy (and reused for a later call once all of them are freed).
-pose, mode, both and cull as query(). Returns one dict: per pose (N of them) first ((N + 1,): pose i's contacts are
+pose, mode, both_directions and cull as query(). Returns one dict: per pose (N of them) first ((N + 1,): pose i's contacts are
 rows first[i] to first[i + 1]), hits, lookups, device_cycles (None where the backend models none); per contact (K of
 them, in the order query() gives them, pose by pose) pose (the index of its pose), a_in_b, points, positions and
 normals ((K, 3)), voxels ((K, 3)), states, depths, as query() defines them.)";
@@ -284,9 +288,9 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
            py::arg("distance_bits") = py::none(), py::arg("band") = py::none(), py::arg("margin") = py::none(),
            py::arg("threads") = 0)
       .def("query", &query, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
-           py::arg("both") = true, py::arg("cull") = true, kQueryDoc)
+           py::arg("both_directions") = true, py::arg("cull") = true, py::arg("both") = py::none(), kQueryDoc)
       .def("contacts", &contacts, py::arg("pose") = py::none(), py::kw_only(), py::arg("mode") = "ALL",
-           py::arg("both") = true, py::arg("cull") = true, kContactsDoc)
+           py::arg("both_directions") = true, py::arg("cull") = true, py::arg("both") = py::none(), kContactsDoc)
       .def_readonly("voxel", &Pair::voxel, "The voxel meshes and shapes were voxelised at (0 if both were objects).")
       .def_readonly("backend", &Pair::backend)
       .def_readonly("distance_bits", &Pair::distance_bits,
@@ -304,24 +308,26 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
                     "The margin of every query, world units (used on a distance device only, as `--margin`).")
       .def_property_readonly("device", [](const Pair& p) { return p.collider->device().config().to_string(); },
                              "The device's configuration, NAME VALUE pairs.")
-      .def_property_readonly("a", [](const Pair& p) { return std::shared_ptr<ObjectFile>(p.a, &p.a->object); },
+      .def_property_readonly("a", [](const Pair& p) { return python_object(Object(p.a)); },
                              "Object A.")
-      .def_property_readonly("b", [](const Pair& p) { return std::shared_ptr<ObjectFile>(p.b, &p.b->object); },
+      .def_property_readonly("b", [](const Pair& p) { return python_object(Object(p.b)); },
                              "Object B.");
 
   m.def(
       "pair",
       [](const py::object& a, const py::object& b, const py::object& pose, std::optional<double> voxel,
-         std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode, bool both,
-         bool cull, std::optional<int> distance_bits, std::optional<double> band, std::optional<double> margin) {
+         std::optional<int64_t> resolution, const std::string& backend, int lanes, const std::string& mode,
+         bool both_directions, bool cull, std::optional<int> distance_bits, std::optional<double> band,
+         std::optional<double> margin, std::optional<bool> both) {
         const std::unique_ptr<Pair> p = make_pair(a, b, voxel, resolution, backend, lanes, distance_bits, band, margin, 0);
-        return query(*p, pose, mode, both, cull);
+        return query(*p, pose, mode, both_directions, cull, both);
       },
       py::arg("a"), py::arg("b"), py::arg("pose") = py::none(), py::kw_only(), py::arg("voxel") = py::none(),
       py::arg("resolution") = py::none(), py::arg("backend") = "cpu", py::arg("lanes") = 4, py::arg("mode") = "ALL",
-      py::arg("both") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
-      py::arg("band") = py::none(), py::arg("margin") = py::none(),
-      "Pair(a, b, voxel=, resolution=, backend=, lanes=, distance_bits=, band=, margin=).query(pose, mode=, both=, "
+      py::arg("both_directions") = true, py::arg("cull") = true, py::arg("distance_bits") = py::none(),
+      py::arg("band") = py::none(), py::arg("margin") = py::none(), py::arg("both") = py::none(),
+      "Pair(a, b, voxel=, resolution=, backend=, lanes=, distance_bits=, band=, margin=).query(pose, mode=, "
+      "both_directions=, "
       "cull=): the contacts of one call, the same as `voxcd pair A B --pose ... [--distance-bits B --band K "
       "--margin M] --json`.");
 }

@@ -148,7 +148,8 @@ RunConfig run_options(const RunArgs& a, const py::object& record, std::optional<
   if (a.backend) o.backend = *a.backend, give("backend", "backend");
   if (a.lanes) o.lanes = *a.lanes, give("lanes", "lanes");
   if (a.mode) o.mode = mode_option(*a.mode), give("mode", "mode");
-  if (a.both) o.both_directions = *a.both, give("both_directions", "both");
+  if (const auto b = both_directions_arg(a.both_directions, a.both))
+    o.both_directions = *b, give("both_directions", a.both ? "both" : "both_directions");
   if (a.clock) o.clock = clock_arg(*a.clock), give("clock", "clock");
   if (a.distance_bits) o.distance_bits = *a.distance_bits, give("distance_bits", "distance_bits");
   if (a.band) o.band = *a.band, give("band", "band");
@@ -238,7 +239,7 @@ py::object size_scene(const py::object& scene, std::optional<double> accuracy, s
 const char* const kSimulateDoc = R"(Runs a scene as `voxcd simulate` does and returns its summary as a dict, with the keys and numbers of
 `voxcd simulate --json` (the state hash as a hex string). scene: None (the paper's built-in scene), a scene file,
 or a dict with a scene file's keys (docs/scenes.md). Each option given (not None) overrides the scene file, as the
-tool's option of the same name does (both: --both or --no-both; broadphase: --broadphase, whose deprecated
+tool's option of the same name does (both_directions: --both or --no-both, both its deprecated spelling; broadphase: --broadphase, whose deprecated
 spelling pruning still works with a DeprecationWarning); config is a whole device configuration as NAME VALUE pairs.
 distance_bits (4, 8 or 16), band (voxels), margin (world units) and ccd (continuous collision, which needs distance voxmaps) are
 --distance-bits, --band, --margin and --ccd (ccd=False also turns off a scene file's "ccd"); with distance voxmaps

@@ -112,8 +112,9 @@ std::string hex(uint64_t v) {
 }
 
 PyWorld* world_def(double side, bool walls, bool response, const std::optional<std::string>& broadphase,
-                   const std::string& backend, int lanes, const std::string& mode, bool both, int distance_bits,
-                   double margin, bool ccd, unsigned threads, const std::optional<std::string>& pruning) {
+                   const std::string& backend, int lanes, const std::string& mode, bool both_directions,
+                   int distance_bits, double margin, bool ccd, unsigned threads,
+                   const std::optional<std::string>& pruning, std::optional<bool> both) {
   WorldDef d;
   d.side = side;
   d.walls = walls;
@@ -129,7 +130,7 @@ PyWorld* world_def(double side, bool walls, bool response, const std::optional<s
   d.backend = backend;
   d.lanes = lanes;
   d.mode = mode_option(mode);
-  d.both_directions = both;
+  d.both_directions = both_directions_arg(both_directions, both);
   d.distance_bits = distance_bits;
   d.margin = margin;
   d.ccd = ccd;
@@ -197,10 +198,12 @@ void bind_world_bodies(WorldClass& world) {
   world
       .def(py::init(&world_def), py::kw_only(), py::arg("side") = 100.0, py::arg("walls") = true,
            py::arg("response") = true, py::arg("broadphase") = py::none(), py::arg("backend") = "cpu",
-           py::arg("lanes") = 4, py::arg("mode") = "ALL", py::arg("both") = true, py::arg("distance_bits") = 0,
-           py::arg("margin") = 0.0, py::arg("ccd") = false, py::arg("threads") = 0u, py::arg("pruning") = py::none(),
-           "An empty world (the library's WorldDef): both (default True, as collide) also tests B's shell in A's "
-           "voxmap; broadphase one of broadphases(), by default grid (pruning: its deprecated spelling).")
+           py::arg("lanes") = 4, py::arg("mode") = "ALL", py::arg("both_directions") = true,
+           py::arg("distance_bits") = 0, py::arg("margin") = 0.0, py::arg("ccd") = false, py::arg("threads") = 0u,
+           py::arg("pruning") = py::none(), py::arg("both") = py::none(),
+           "An empty world (the library's WorldDef): both_directions (default True, as collide) also tests B's shell "
+           "in A's voxmap (both: its deprecated spelling); broadphase one of broadphases(), by default grid (pruning: "
+           "its deprecated spelling).")
       .def("add", &add_py, py::arg("object"), py::arg("pose") = py::none(), py::kw_only(),
            py::arg("velocity") = py::none(), py::arg("angular_velocity") = py::none(),
            py::arg("user_data") = py::none(), py::arg("kind") = "dynamic", py::arg("enabled") = true,

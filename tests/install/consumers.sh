@@ -105,6 +105,7 @@ grep -q "voxcd::dpi" "$P/lib/cmake/voxcd/voxcdTargets.cmake" || fail "the instal
 
 pydir=$(find "$P" -type d -name dist-packages | head -n 1)
 [ -n "$pydir" ] && ls "$pydir"/voxcd*.so >/dev/null 2>&1 || fail "the installed package has no Python module under $P"
+[ -e "$pydir/voxcd.pyi" ] || fail "the installed package has no type stubs voxcd.pyi beside the Python module"
 step "Python module from $pydir"
 PYTHONPATH="$pydir" /usr/bin/python3 -c "import voxcd; print(voxcd.__version__, voxcd.backends())"
 ran=0

@@ -35,7 +35,7 @@ def test_collide_in_one_call():
     m = np.array([[np.cos(t), -np.sin(t), 0, 0.9], [np.sin(t), np.cos(t), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
     b = voxcd.voxelize(mesh, resolution=32)
     c2 = voxcd.collide(torus, np.eye(4), b, m)
-    want = voxcd.Pair(torus, b).query([0.9, 0, 0, 0, 0, 30], both=True)
+    want = voxcd.Pair(torus, b).query([0.9, 0, 0, 0, 0, 30], both_directions=True)
     assert c2["hits"] == want["hits"]
     assert np.allclose(c2["positions"], want["positions"])
     assert voxcd.collide(torus, None, b, [0.9, 0, 0, 0, 0, 30], mode="COUNT")["hits"] == want["hits"]
@@ -109,6 +109,78 @@ def test_collide_holds_no_pool_per_thread_and_pair_is_the_reusable_query():
         t.start()
         t.join()
     assert during == [before + 1] * 3 and settled(before) == before
-    got = voxcd.Pair(a, b).query([1.2, 0, 0], both=True)
+    got = voxcd.Pair(a, b).query([1.2, 0, 0], both_directions=True)
     assert got["hits"] == want["hits"]
     np.testing.assert_array_equal(got["positions"], want["positions"])
+
+
+def test_objects_with_cpp_names_and_defaults():
+    """Object.load and Object.from_arrays take an ObjectDef's fields with its defaults: 32 voxels along the longest
+    side, stored dense; an object file brings its own voxel."""
+    torus = voxcd.Object.load("torus")
+    want = voxcd.voxelize("torus", resolution=32, storage="dense")
+    assert torus.voxel == want.voxel and torus.dims == want.dims and torus.storage["voxmap"] == "dense"
+    np.testing.assert_array_equal(torus.shell_points, want.shell_points)
+    fine = voxcd.Object.load("torus", voxel=0.1)
+    assert fine.voxel == 0.1 and voxcd.Object.load("torus", resolution=16).voxel == pytest.approx(2 * torus.voxel)
+    tetra = voxcd.Object.from_arrays(TETRA_V, TETRA_F.astype(np.uint32))
+    np.testing.assert_array_equal(tetra.states, voxcd.voxelize((TETRA_V, TETRA_F), resolution=32,
+                                                               storage="dense").states)
+    with pytest.raises(voxcd.OptionError, match=r"^voxel: -1\.0 is not 0 or a positive number$"):
+        voxcd.Object.load("torus", voxel=-1.0)
+    with pytest.raises(voxcd.OptionError, match=r"^triangles: a vertex index is negative"):
+        voxcd.Object.from_arrays(TETRA_V, TETRA_F - 1)
+    with pytest.raises(voxcd.OptionError, match=r"^vertices: give a \(V, 3\) array"):
+        voxcd.Object.from_arrays(TETRA_V[:, :2], TETRA_F)
+    with pytest.raises(voxcd.MeshError, match=r"^arrays: "):
+        voxcd.Object.from_arrays(TETRA_V, TETRA_F + 1)   # an index beyond the vertices
+    # The library's Object itself: the C++ names in messages ("torus", not the tool's "shape:torus").
+    with pytest.raises(voxcd.RangeError, match=r"^pair 0 \(torus, torus\)"):
+        voxcd.collide(torus, None, torus, [1e9, 0, 0])
+
+
+def test_object_files_through_object_load(tmp_path):
+    torus = voxcd.Object.load("torus", resolution=16, distance_bits=8)
+    torus.save(tmp_path / "t.vxo")
+    again = voxcd.Object.load(tmp_path / "t.vxo", resolution=99)   # an object file brings its own voxel
+    assert again.voxel == torus.voxel and again.distance_bits == 8
+    with pytest.raises(voxcd.MeshError, match=r"the object has a 8-bit distance field|4 bits were asked for"):
+        voxcd.Object.load(tmp_path / "t.vxo", distance_bits=4)
+
+
+def test_a_collider_gives_collides_contacts():
+    """voxcd.Collider is the C++ Collider: its options are collide()'s, its results collide()'s, one pose or a batch."""
+    a, b = voxcd.Object.load("torus"), voxcd.Object.load("cube")
+    collider = voxcd.Collider(threads=1)
+    assert collider.options == {"mode": "ALL", "both_directions": True, "margin": 0.0, "backend": "cpu", "lanes": 4,
+                                "threads": 1}
+    assert collider.worker_threads == 0
+    poses = [(None, [1.2, 0, 0]), (np.eye(4), [0.9, 0, 0, 0, 0, 30]), (None, [5, 0, 0])]
+    for pose_a, pose_b in poses:
+        got, want = collider.collide(a, pose_a, b, pose_b), voxcd.collide(a, pose_a, b, pose_b)
+        assert got["hits"] == want["hits"]
+        np.testing.assert_array_equal(got["positions"], want["positions"])
+    batch = collider.collide(a, b, poses)
+    assert [r["hits"] for r in batch] == [r["hits"] for r in voxcd.collide(a, b, poses)]
+    assert [r["hits"] for r in batch] == [voxcd.collide(a, p, b, q)["hits"] for p, q in poses]
+    assert batch[0]["hits"] > 0 and batch[2]["hits"] == 0
+    first = voxcd.Collider(mode="FIRST", both_directions=False).collide(a, None, b, [1.2, 0, 0])
+    assert first["hits"] == voxcd.collide(a, None, b, [1.2, 0, 0], mode="FIRST", both_directions=False)["hits"] == 1
+    with pytest.raises(voxcd.OptionError, match=r"^mode: 'SOME' is not ALL, FIRST or COUNT$"):
+        voxcd.Collider(mode="SOME")
+    with pytest.raises(voxcd.OptionError, match=r"^poses\[0\]: give a \(pose_a, pose_b\) pair$"):
+        collider.collide(a, b, [[1, 2, 3]])
+
+
+def test_shell_arrays_view_the_objects_own_without_a_copy():
+    torus = voxcd.Object.load("torus", resolution=16)
+    points, normals, cells = torus.shell_points, torus.shell_normals, torus.shell_cells
+    assert points.shape == normals.shape == cells.shape == (torus.shell_count, 3)
+    assert points.dtype == np.float64 and cells.dtype == np.uint32
+    assert not points.flags.writeable and not points.flags.owndata and points.base is not None
+    assert np.shares_memory(torus.shell_points, points)   # the same buffer each time: the object's own
+    copy = points.copy()
+    del torus   # the views keep the object alive
+    np.testing.assert_array_equal(points, copy)
+    with pytest.raises(ValueError, match="read-only"):
+        points[0, 0] = 1

@@ -1,4 +1,6 @@
-"""The example scripts of docs/examples/python run and print what they say."""
+"""The example scripts of docs/examples/python run and print what they say. contacts.py and world.py are
+docs/examples/cpp's contacts.cpp and world.cpp in Python: the same names and defaults, the same output (world.cpp
+prints the same state hash)."""
 import os
 import subprocess
 import sys
@@ -12,6 +14,12 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "docs" / "examples" / "python"
 
 
 @pytest.mark.parametrize("script, expect", [
+    ("contacts.py", ["(0.554, 0.989, 0.326) depth 0.000"]),
+    ("world.py", ["8 bodies, 4 touching pairs over 100 frames, state hash d0f2add1681c787a",
+                  "0.88 s: bodies 1 and 2 began touching", "1.92 s: bodies 1 and 2 stopped touching",
+                  "the probe is at x = 64.00"]),
+    ("errors.py", ["MeshError ", "ObjectFileError ", "RangeError ", "CapacityError ", "BodyError "]),
+    ("collide.py", [" hits; deepest contact at "]),
     ("pairs.py", ["torus: 57x57x17 voxels of 0.05", " hits, ", "torus in cube: point "]),
     ("sweep.py", ["x = -3.00:     0 hits", "x = +0.00: "]),
     ("events.py", ["s: ring and probe began touching", "s: ring and probe stopped touching",

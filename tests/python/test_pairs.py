@@ -24,7 +24,7 @@ def assert_same_contacts(got, want):
     np.testing.assert_allclose(got["depths"], [c["depth"] for c in contacts], rtol=5e-6, atol=1e-9)
 
 
-# Both directions by default in the tool and the module; --no-both is both=False.
+# Both directions by default in the tool and the module; --no-both is both_directions=False.
 POSES = [
     ("0.5,0.2,0.1,10,20,30", [0.5, 0.2, 0.1, 10, 20, 30], ["--no-both"]),
     ("1.2,0,0", [1.2, 0, 0], ["--both"]),
@@ -38,7 +38,7 @@ POSES = [
 def test_pair_equals_the_tool(cli_json, text, pose, opts):
     want = cli_json("pair", "cube", "torus", "--pose", text, *opts)
     mode = opts[opts.index("--mode") + 1] if "--mode" in opts else "ALL"
-    got = voxcd.pair("cube", "torus", pose, mode=mode, both="--no-both" not in opts)
+    got = voxcd.pair("cube", "torus", pose, mode=mode, both_directions="--no-both" not in opts)
     if "--no-both" not in opts and "--both" not in opts:
         assert_same_contacts(voxcd.pair("cube", "torus", pose, mode=mode), want["results"][0])  # the defaults
     assert want["pairs"] == 1
@@ -54,13 +54,13 @@ def test_object_files_mesh_files_and_objects(cli, cli_json, tmp_path, scenes):
     cli("voxelize", "stellated", "--voxel", "0.1", "-o", tmp_path / "s.vxo")
     want = cli_json("pair", tmp_path / "s.vxo", mesh, "--voxel", "0.1", "--pose", "0.4,0.3,0.2,5,10,15", "--both")
     pose = [0.4, 0.3, 0.2, 5, 10, 15]
-    from_files = voxcd.pair(tmp_path / "s.vxo", mesh, pose, voxel=0.1, both=True)
+    from_files = voxcd.pair(tmp_path / "s.vxo", mesh, pose, voxel=0.1, both_directions=True)
     assert_same_contacts(from_files, want["results"][0])
     # The same objects made in Python (the tool's pair voxelises the mesh dense, with the triangles' exact normals).
     pair = voxcd.Pair(voxcd.read_object(tmp_path / "s.vxo"), voxcd.voxelize(mesh, voxel=0.1, storage="dense"))
     assert pair.voxel == 0  # nothing was voxelised by the pair itself
     assert pair.a.source == "shape:stellated" and pair.b.source == mesh
-    assert_same_contacts(pair.query(pose, both=True), want["results"][0])
+    assert_same_contacts(pair.query(pose, both_directions=True), want["results"][0])
 
 
 def test_the_default_voxel_is_the_tools(cli_json):
@@ -74,16 +74,16 @@ def test_the_default_voxel_is_the_tools(cli_json):
 def test_many_poses_in_one_batch_equal_one_at_a_time():
     pair = voxcd.Pair("torus", "cube", voxel=0.1, backend="ref")
     poses = np.array([[0.2 * k, 0.1, -0.1, 7 * k, 0, 3 * k] for k in range(8)])
-    batch = pair.query(poses, both=True)
+    batch = pair.query(poses, both_directions=True)
     assert isinstance(batch, list) and len(batch) == len(poses)
     assert sum(r["hits"] for r in batch) > 0
     for pose, got in zip(poses, batch):
-        one = pair.query(pose, both=True)
+        one = pair.query(pose, both_directions=True)
         assert one["hits"] == got["hits"] and one["lookups"] == got["lookups"]
         np.testing.assert_array_equal(one["positions"], got["positions"])
         np.testing.assert_array_equal(one["points"], got["points"])
     # Culling changes lookups, never contacts.
-    unculled = pair.query(poses, both=True, cull=False)
+    unculled = pair.query(poses, both_directions=True, cull=False)
     for a, b in zip(batch, unculled):
         assert a["hits"] == b["hits"] and a["lookups"] <= b["lookups"]
         np.testing.assert_array_equal(a["voxels"], b["voxels"])
@@ -102,9 +102,9 @@ def test_queries_from_several_threads_give_the_serial_results():
 
     pair = voxcd.Pair("stellated", "torus", voxel=0.08)
     poses = [[0.1 * k, 0.05 * k, 0, 0, 10 * k, 0] for k in range(12)]
-    serial = [pair.query(p, both=True) for p in poses]
+    serial = [pair.query(p, both_directions=True) for p in poses]
     with ThreadPoolExecutor(max_workers=4) as pool:
-        threaded = list(pool.map(lambda p: pair.query(p, both=True), poses))
+        threaded = list(pool.map(lambda p: pair.query(p, both_directions=True), poses))
     assert sum(r["hits"] for r in serial) > 0
     for a, b in zip(serial, threaded):
         assert a["hits"] == b["hits"]
@@ -137,10 +137,10 @@ def test_a_distance_pair_equals_the_tool(cli_json, args, kwargs, text, opts):
     assert pair.margin == want["margin"] == kwargs.get("margin", 0)
     assert pair.a.distance_bits == pair.b.distance_bits == kwargs["distance_bits"]
     assert "SB %d " % kwargs["distance_bits"] in pair.device
-    got = pair.query(pose, mode=mode, both="--no-both" not in opts)
+    got = pair.query(pose, mode=mode, both_directions="--no-both" not in opts)
     assert_same_contacts(got, want["results"][0])
     # voxcd.pair takes the same keywords.
-    assert_same_contacts(voxcd.pair("cube", "torus", pose, mode=mode, both="--no-both" not in opts, **kwargs),
+    assert_same_contacts(voxcd.pair("cube", "torus", pose, mode=mode, both_directions="--no-both" not in opts, **kwargs),
                          want["results"][0])
     if text == "5,5,5":
         assert got["hits"] == 0
@@ -161,13 +161,13 @@ def test_distance_object_files_and_objects_are_used_as_they_are(cli, cli_json, c
     pose = [0.4, 0.3, 0.2, 5, 10, 15]
     args = ["--voxel", "0.1", "--pose", "0.4,0.3,0.2,5,10,15", "--both", "--distance-bits", "8", "--margin", "0.02"]
     want = cli_json("pair", tmp_path / "d.vxo", mesh, *args)
-    from_files = voxcd.pair(tmp_path / "d.vxo", mesh, pose, voxel=0.1, both=True, distance_bits=8, margin=0.02)
+    from_files = voxcd.pair(tmp_path / "d.vxo", mesh, pose, voxel=0.1, both_directions=True, distance_bits=8, margin=0.02)
     assert_same_contacts(from_files, want["results"][0])
     # The same objects made in Python: the file's band (5 voxels) is kept, whatever band= says.
     pair = voxcd.Pair(voxcd.read_object(tmp_path / "d.vxo"), voxcd.voxelize(mesh, voxel=0.1, distance_bits=8),
                       distance_bits=8, band=2.0, margin=0.02)
     assert pair.band == pytest.approx(want["band"], rel=1e-6) and pair.band[0] == pytest.approx(0.5)
-    assert_same_contacts(pair.query(pose, both=True), want["results"][0])
+    assert_same_contacts(pair.query(pose, both_directions=True), want["results"][0])
 
     # Without a field, or with another one, an object cannot be used as it is: the tool's message for a file, the
     # same naming the argument for an Object.
@@ -194,14 +194,14 @@ def test_the_distance_keywords_are_not_ignored():
     fields = voxcd.Pair("cube", "torus", distance_bits=8)
     assert (states.distance_bits, states.band, states.margin) == (0, None, 0)
     assert " SB " not in states.device and "SB 8 " in fields.device
-    two, dist = states.query(pose, both=True), fields.query(pose, both=True)
+    two, dist = states.query(pose, both_directions=True), fields.query(pose, both_directions=True)
     assert two["hits"] > 0 and dist["hits"] > 0
     assert two["hits"] != dist["hits"] or not np.array_equal(two["positions"], dist["positions"])
     assert set(two["states"].tolist()) <= {voxcd.SURFACE, voxcd.INTERIOR} and two["states"].all()
     assert not dist["states"].any()
     assert fields.a.shell_on_surface and not states.a.shell_on_surface  # meshes and shapes get fields and shells
     # A margin adds the points within it; a wider band changes the fields.
-    wide = voxcd.Pair("cube", "torus", distance_bits=8, margin=0.1).query(pose, both=True)
+    wide = voxcd.Pair("cube", "torus", distance_bits=8, margin=0.1).query(pose, both_directions=True)
     assert wide["hits"] > dist["hits"] and (wide["depths"] < 0).any() and not (dist["depths"] < 0).any()
     banded = voxcd.Pair("cube", "torus", distance_bits=8, band=8.0)
     assert banded.band[0] == pytest.approx(2 * fields.band[0])
@@ -245,8 +245,8 @@ def test_contacts_in_flat_arrays_are_those_of_query():
     pair = voxcd.Pair("torus", "cube", voxel=0.1)
     poses = np.array([[0.2 * k, 0.1, -0.1, 7 * k, 0, 3 * k] for k in range(8)])
     for both in (False, True):
-        flat = pair.contacts(poses, both=both)
-        per_pose = pair.query(poses, both=both)
+        flat = pair.contacts(poses, both_directions=both)
+        per_pose = pair.query(poses, both_directions=both)
         assert flat["first"].shape == (len(poses) + 1,) and flat["first"][0] == 0
         assert flat["first"][-1] == len(flat["points"]) == sum(len(r["points"]) for r in per_pose) > 0
         for i, want in enumerate(per_pose):
@@ -267,7 +267,7 @@ def test_contact_arrays_are_views_reused_once_freed():
 
     pair = voxcd.Pair("torus", "cube", voxel=0.1)
     poses = np.array([[0.1 * k, 0, 0, 5 * k, 0, 0] for k in range(6)])
-    first = pair.contacts(poses, both=True)
+    first = pair.contacts(poses, both_directions=True)
     assert not first["positions"].flags["OWNDATA"] and first["positions"].base is not None
     kept = first["positions"]
     address = kept.__array_interface__["data"][0]
@@ -275,7 +275,7 @@ def test_contact_arrays_are_views_reused_once_freed():
     del first
     gc.collect()
     # One array still alive keeps every array of its query: a second query writes elsewhere.
-    second = pair.contacts(poses, both=True)
+    second = pair.contacts(poses, both_directions=True)
     assert second["positions"].__array_interface__["data"][0] != address
     np.testing.assert_array_equal(kept, values)
     del second
@@ -283,6 +283,6 @@ def test_contact_arrays_are_views_reused_once_freed():
     del kept
     gc.collect()
     # All freed (the first query's last): the next query of the same size writes into the first's memory again.
-    third = pair.contacts(poses, both=True)
+    third = pair.contacts(poses, both_directions=True)
     assert third["positions"].__array_interface__["data"][0] == address
     np.testing.assert_array_equal(third["positions"], values)

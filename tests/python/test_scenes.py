@@ -58,7 +58,7 @@ def test_a_scene_file(cli_json, scenes):
 def test_options_override_the_file_as_the_tools_do(cli_json, scenes):
     want = cli_json("simulate", scenes / "small.json", "--frames", "6", "--seed", "11", "--mode", "FIRST", "--both",
                     "--broadphase", "sap", "--lanes", "2", "--backend", "ref", "--speed", "0.2", "--clock", "150")
-    got = voxcd.simulate(str(scenes / "small.json"), frames=6, seed=11, mode="FIRST", both=True, broadphase="sap",
+    got = voxcd.simulate(str(scenes / "small.json"), frames=6, seed=11, mode="FIRST", both_directions=True, broadphase="sap",
                          lanes=2, backend="ref", speed=0.2, clock=150)
     assert_same_summary(got, want)
     assert (got["mode"], got["broadphase"], got["lanes"], got["clock_mhz"]) == ("FIRST", "sap", 2, 150)

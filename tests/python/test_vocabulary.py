@@ -29,7 +29,7 @@ def quaternion_wxyz(r):
 def test_both_directions_is_the_default(cli_json):
     pair = voxcd.Pair("torus", "cube")
     pose = [1.2, 0, 0, 0, 0, 30]
-    default, both, one = pair.query(pose), pair.query(pose, both=True), pair.query(pose, both=False)
+    default, both, one = pair.query(pose), pair.query(pose, both_directions=True), pair.query(pose, both_directions=False)
     assert default["hits"] == both["hits"] > one["hits"]
     assert not default["a_in_b"].all() and one["a_in_b"].all()
     assert pair.contacts(pose)["hits"].tolist() == [both["hits"]]
@@ -167,3 +167,41 @@ def test_device_cycles_is_the_one_name():
     assert r["device_cycles"] > 0 and "cycles" not in r
     assert pair.contacts([1.2, 0, 0])["device_cycles"].tolist() == [r["device_cycles"]]
     assert voxcd.World().step()["device_cycles"] == 0
+
+
+def test_both_directions_and_its_old_spelling_both():
+    pair = voxcd.Pair("torus", "cube")
+    pose = [1.2, 0, 0, 0, 0, 30]
+    one = pair.query(pose, both_directions=False)
+    calls = {
+        "Pair.query": lambda **k: pair.query(pose, **k)["hits"],
+        "Pair.contacts": lambda **k: int(pair.contacts(pose, **k)["hits"][0]),
+        "pair": lambda **k: voxcd.pair("torus", "cube", pose, **k)["hits"],
+        "collide": lambda **k: voxcd.collide(pair.a, None, pair.b, pose, **k)["hits"],
+    }
+    for name, call in calls.items():
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # both_directions warns of nothing
+            assert call(both_directions=False) == one["hits"], name
+        with pytest.warns(DeprecationWarning, match=r"^both is deprecated: use both_directions"):
+            assert call(both=False) == one["hits"], name
+        with pytest.raises(voxcd.OptionError, match=r"^both: is both_directions' deprecated spelling, and is True "
+                                                     r"where both_directions is False$"):
+            call(both=True, both_directions=False)
+    with pytest.warns(DeprecationWarning, match=r"^both is deprecated"):
+        voxcd.World(both=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        voxcd.World(both_directions=False)
+    # simulate and World.scene: None is the scene's own default.
+    want = voxcd.simulate(frames=3, objects=16, both_directions=True)
+    assert want["both_directions"] is True
+    with pytest.warns(DeprecationWarning, match=r"^both is deprecated"):
+        old = voxcd.simulate(frames=3, objects=16, both=True)
+    assert old["state_hash"] == want["state_hash"] and old["both_directions"] is True
+    with pytest.raises(voxcd.OptionError, match=r"^both: .* is False where both_directions is True$"):
+        voxcd.simulate(frames=3, objects=16, both=False, both_directions=True)
+    w = voxcd.World.scene(objects=16, both_directions=True)
+    for _ in range(3):
+        w.step()
+    assert w.state_hash == want["state_hash"]

@@ -32,7 +32,7 @@ void expect(const char* name, F&& f) {
 int main() {
   const voxcd::Object torus = voxcd::Object::load("torus");
   voxcd::ObjectDef fine;
-  fine.voxel = torus.voxel() / 40;  // voxels 40 times finer than the torus's: beyond the rtl models' widths
+  fine.voxel = torus.voxel() / 4;  // voxels 4 times finer than the torus's: beyond the rtl models' widths
   const voxcd::Object sphere = voxcd::Object::load("sphere", fine);
 
   expect<voxcd::MeshError>("MeshError", [] { voxcd::Object::load("no-such-file-or-shape"); });

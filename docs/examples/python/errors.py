@@ -21,8 +21,8 @@ def expect(cls, f, *args, **kwargs):
     raise AssertionError(f"{cls.__name__} was not raised")
 
 
-torus = voxcd.voxelize("torus", resolution=32)
-sphere = voxcd.voxelize("sphere", voxel=torus.voxel / 40)   # 40 times finer: beyond the rtl models' widths
+torus = voxcd.Object.load("torus")
+sphere = voxcd.Object.load("sphere", voxel=torus.voxel / 4)   # 4 times finer: beyond the rtl models' widths
 with tempfile.TemporaryDirectory() as d:
     bad_object = os.path.join(d, "bad.vxo")
     with open(bad_object, "wb") as f:
@@ -30,8 +30,8 @@ with tempfile.TemporaryDirectory() as d:
     bad_scene = os.path.join(d, "bad.json")
     with open(bad_scene, "w") as f:
         json.dump({"types": [{"shape": "cube", "voxel": -1}]}, f)
-    expect(voxcd.MeshError, voxcd.voxelize, "no-such-file-or-shape", resolution=32)
-    expect(voxcd.ObjectFileError, voxcd.read_object, bad_object)
+    expect(voxcd.MeshError, voxcd.Object.load, "no-such-file-or-shape")
+    expect(voxcd.ObjectFileError, voxcd.Object.load, bad_object)
     expect(voxcd.RangeError, voxcd.collide, torus, None, torus, [1e9, 0, 0])   # beyond the fixed point
     expect(voxcd.OptionError, voxcd.collide, torus, None, torus, [math.nan, 0, 0])   # not a pose
     expect(voxcd.CapacityError, voxcd.collide, torus, None, sphere, None, backend="rtl")
@@ -43,4 +43,4 @@ with tempfile.TemporaryDirectory() as d:
     body = world.add(torus)
     world.remove(body)
     expect(voxcd.BodyError, world.pose, body)                # a removed body's id
-    expect(voxcd.Error, voxcd.voxelize, "no-such-file-or-shape", resolution=32)
+    expect(voxcd.Error, voxcd.Object.load, "no-such-file-or-shape")

@@ -19,7 +19,7 @@ for name, obj in (("torus", torus), ("cube", cube)):
           f"({counts['surface']} surface, {counts['interior']} interior), {obj.shell_count} shell points")
 
 # The cube (B) in the torus's frame (A): moved 2 units along x, turned 30 degrees about z; both directions are
-# tested (the default; both=False tests the cube's shell against the torus only).
+# tested (the default; both_directions=False tests the cube's shell against the torus only).
 pair = voxcd.Pair(torus, cube, backend="cpu")
 result = pair.query([2.0, 0.0, 0.0, 0, 0, 30])
 print(f"{result['hits']} hits, {result['lookups']} lookups, {result['device_cycles']} device cycles")

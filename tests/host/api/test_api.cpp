@@ -19,6 +19,31 @@
 namespace voxcd {
 namespace {
 
+// The names the API's structs take, from the umbrella alone: each shape loads, each broadphase steps a world, each
+// mode parses (ref/types.h), and the defaults are among them.
+TEST(Api, NamesOfShapesBroadphasesAndModes) {
+  const std::vector<std::string> shapes = shape_names(), broadphases = broadphase_names();
+  ASSERT_FALSE(shapes.empty());
+  EXPECT_NE(std::find(shapes.begin(), shapes.end(), "torus"), shapes.end());
+  ObjectDef coarse;
+  coarse.resolution = 8;
+  for (const std::string& s : shapes) EXPECT_GT(Object::load(s, coarse).shell_count(), 0u) << s;
+  EXPECT_NE(std::find(broadphases.begin(), broadphases.end(), WorldDef{}.broadphase), broadphases.end());
+  for (const std::string& b : broadphases) {
+    WorldDef def;
+    def.broadphase = b;
+    World w(def);
+    for (double x : {40.0, 41.0}) {
+      BodyDef body(Object::load("cube", coarse));
+      body.pose.translation = {x, 50, 50};
+      w.add(body);
+    }
+    EXPECT_EQ(w.step().touching, 1u) << b;
+  }
+  EXPECT_EQ(mode_names(), (std::vector<std::string>{"ALL", "FIRST", "COUNT"}));
+  for (const std::string& m : mode_names()) EXPECT_TRUE(parse_mode(m).has_value()) << m;
+}
+
 TEST(Api, ObjectsFromShapesFilesArraysAndMeshes) {
   ObjectDef def;
   def.voxel = 0.1;
