@@ -37,6 +37,12 @@
 // a + cycles + 1). One register receives a descriptor, one holds it checked, one holds a record: 3 cycles more
 // than the beats.
 
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
+`ifndef VOXCD_PARAMS_SVH
+`include "voxcd_params.svh"
+`endif
 module voxcd_axi #(
   `VOXCD_DEVICE_PARAMS,
   parameter int unsigned AxilDw  = 32,     // AXI4-Lite data bits: 32 or 64

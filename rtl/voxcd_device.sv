@@ -50,6 +50,12 @@
 // Ports are plain vectors, one per record field, so that every configuration is one source and the Verilated C++
 // and SystemC ports are plain integers. The code keeps to the subset of SystemVerilog that Verilator and yosys
 // both read (one-dimensional packed vectors, one-level structs, explicit package references).
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
+`ifndef VOXCD_PARAMS_SVH
+`include "voxcd_params.svh"
+`endif
 module voxcd_device #(
   `VOXCD_DEVICE_PARAMS  // the widths, LANES, BANKS, Depth and BL (voxcd_arch_pkg.sv)
 ) (
@@ -1055,7 +1061,7 @@ module voxcd_device #(
                     info_r[0 +: InfoW], stamps_r[0 +: 2*CW], t_r[0 +: 3*TW], map_r[0 +: MapW], lane_inside_pre,
                     lane_state_pre, w_meta, r0_job_q};
 
-  // ---- Assertions (Verilator runs them with --assert; voxcd_assert.sv) ----
+  // ---- Assertions (Verilator runs them with --assert; voxcd_assert.svh) ----
   // Parameter sanity, at elaboration.
   `VOXCD_ASSERT_INIT(LanesPowerOfTwo, (LANES & (LANES - 1)) == 0 && LANES <= 64)
   `VOXCD_ASSERT_INIT(ShellBankHasARow, SAW >= LgL)

@@ -61,6 +61,12 @@
 // device R5 advances on en_out_i.
 // inside_pre_o and state_pre_o show the register before READ (R5; K on a sparse lane) of a 2-bit lane: the device's
 // banks stop reading for a FIRST job at a hit there.
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
+`ifndef VOXCD_PARAMS_SVH
+`include "voxcd_params.svh"
+`endif
 module voxcd_lane #(
   `VOXCD_LANE_PARAMS,
   parameter bit          SharedMap = 1'b0
