@@ -18,6 +18,9 @@ voxcd_bank_rounds.sv
 voxcd_shell_expand.sv
 voxcd_cell.sv
 voxcd_brick_rows.sv
+voxcd_transform.sv
+voxcd_state_lookup.sv
+voxcd_dist_lookup.sv
 voxcd_lane.sv
 voxcd_device.sv
 voxcd_axi.sv
