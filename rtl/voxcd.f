@@ -22,5 +22,6 @@ voxcd_transform.sv
 voxcd_state_lookup.sv
 voxcd_dist_lookup.sv
 voxcd_lane.sv
+voxcd_shared_banks.sv
 voxcd_device.sv
 voxcd_axi.sv

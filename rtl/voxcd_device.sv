@@ -164,7 +164,6 @@ module voxcd_device #(
   localparam int unsigned NReq  = LANES * NPar;                    // request r: lane r / NPar, parity bank r % NPar
   localparam int unsigned NumB  = Banked ? BANKS * NPar : 1;       // shared banks: word w in bank w % NumB
   localparam int unsigned LgB   = Banked ? $clog2(NumB) : 0;
-  localparam int unsigned BRowW = MAW > LgB ? MAW - LgB : 1;       // rows of one shared bank (one at NumB = 2^MAW)
 
   // ---- Jobs, slots and output records ----
   typedef struct packed {
@@ -836,133 +835,47 @@ module voxcd_device #(
   `VOXCD_FF(hits_q, hits_d, '0)
   `VOXCD_FF(points_q, points_d, '0)
 
-  // ---- Shared voxmap banks (BANKS > 0): word w is in bank w % NumB, row w / NumB ----
-  // NumB = BANKS on a 2-bit device; on a distance device each of the 8 parity banks is split BANKS ways (8 * BANKS
-  // banks), and each lane makes 8 requests, one word of each parity bank. A read stage's slot reads in rounds
-  // (voxcd_bank_rounds), one in each cycle in which the register after it may advance: R4 (the table port, into R5)
-  // and on a sparse device the brick stage (the brick port, into K), the brick stage first: the table stage takes a
-  // round only in a cycle in which the brick stage does not wait (each bank is a voxcd_ram2, one read port for each
-  // stage). A stage's slot leaves in its last round; before that the register after it takes empty slots (a bank
-  // conflict cycle each). So a slot with at most r distinct words in any one bank at a stage reaches the hit test
-  // r - 1 cycles late; a slot of a FIRST job whose hit has been found reads nothing at either stage (it is squashed:
-  // on a 2-bit device the hit is seen at the hit test, or with READ in the register before it, before the slot behind
-  // it reads; on a distance device at the hit test, after the slots behind it read in the slot registers between).
-  // ref/banks.h counts the same (first_window follows it cycle by cycle).
+  // ---- Shared voxmap banks (BANKS > 0, voxcd_shared_banks): the lanes read one voxmap; else each its own copy ----
   if (Banked) begin : g_banks
-    logic                 pre_first_hit;  // the register before READ (2-bit, HasRead) holds a FIRST job's hit
-    logic                 hit_now;        // the last register holds a FIRST job's hit
-    logic                 r4_squashed;
-    logic [NReq-1:0]      table_want;
-    logic [NumB-1:0]      table_re;
-    logic [NumB*MAW-1:0]  table_word_addr;
-    logic [NumB*MEMW-1:0] table_rdata;
-
-    always_comb begin
-      pre_first_hit = 1'b0;
-      if (HasRead && !Dist && pre_slot.valid && pre_test.mode == voxcd_arch_pkg::ModeFirst) begin
-        for (int l = 0; l < LANES; l++) begin
-          pre_first_hit = pre_first_hit ||
-                          (pre_slot.lanes[l] && lane_inside_pre[l] && pre_test.mask[lane_state_pre[2*l +: 2]]);
-        end
-      end
-    end
-    assign hit_now        = last_slot.valid && !squash && is_first && (|lane_hit);
-    assign r4_squashed = (found_q && (found_seq_q == r4_slot.seq)) || (hit_now && (last_slot.seq == r4_slot.seq)) ||
-                         (pre_first_hit && (pre_slot.seq == r4_slot.seq));
-    for (genvar r = 0; r < NReq; r++) begin : g_want
-      assign table_want[r] = r4_slot.valid && !r4_squashed && r4_slot.lanes[r / NPar] && lane_read[r];
-    end
-
-    voxcd_bank_rounds #(.NReq(NReq), .NumB(NumB), .MAW(MAW), .MEMW(MEMW)) u_table_rounds (
-      .clk_i      (clk_i),
-      .rst_ni     (rst_ni),
-      .want_i     (table_want),
-      .addr_i     (lane_addr),
-      .round_i    (advance_mid),
-      .leave_i    (advance),
-      .wait_o     (table_wait),
-      .re_o       (table_re),
-      .word_addr_o(table_word_addr),
-      .rdata_i    (table_rdata),
-      .word_o     (lane_word)
+    voxcd_shared_banks #(
+      .LANES(LANES), .MEMW(MEMW), .MAW(MAW), .SB(SB), .BANKS(BANKS), .Depth(Depth), .BL(BL), .SeqW(SeqW)
+    ) u_shared_banks (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .map_we_i      (map_we_i),
+      .map_waddr_i   (map_waddr_i),
+      .map_wdata_i   (map_wdata_i),
+      .advance_i     (advance),
+      .advance_mid_i (advance_mid),
+      .advance_out_i (advance_out),
+      .r4_valid_i    (r4_slot.valid),
+      .r4_seq_i      (r4_slot.seq),
+      .r4_lanes_i    (r4_slot.lanes),
+      .brick_valid_i (brick_slot.valid),
+      .brick_seq_i   (brick_slot.seq),
+      .brick_lanes_i (brick_slot.lanes),
+      .brick_sparse_i(stage_bricks[BrickW-1]),
+      .pre_valid_i   (pre_slot.valid),
+      .pre_seq_i     (pre_slot.seq),
+      .pre_lanes_i   (pre_slot.lanes),
+      .pre_mode_i    (voxcd_arch_pkg::mode_e'(pre_test.mode)),
+      .pre_mask_i    (pre_test.mask),
+      .inside_pre_i  (lane_inside_pre),
+      .state_pre_i   (lane_state_pre),
+      .found_i       (found_q),
+      .found_seq_i   (found_seq_q),
+      .last_hit_i    (last_slot.valid && !squash && is_first && (|lane_hit)),
+      .last_seq_i    (last_slot.seq),
+      .read_i        (lane_read),
+      .addr_i        (lane_addr),
+      .word_o        (lane_word),
+      .bread_i       (lane_bread),
+      .baddr_i       (lane_baddr),
+      .bword_o       (lane_bword),
+      .table_wait_o  (table_wait),
+      .brick_wait_o  (brick_wait),
+      .conflicts_o   (conflicts_q)
     );
-
-    if (Sparse) begin : g_brick_port
-      logic                 brick_squashed;
-      logic [NReq-1:0]      brick_want;
-      logic [NumB-1:0]      brick_re;
-      logic [NumB*MAW-1:0]  brick_word_addr;
-      logic [NumB*MEMW-1:0] brick_rdata;
-      assign brick_squashed = (found_q && (found_seq_q == brick_slot.seq)) ||
-                              (hit_now && (last_slot.seq == brick_slot.seq)) ||
-                              (pre_first_hit && (pre_slot.seq == brick_slot.seq));
-      for (genvar r = 0; r < NReq; r++) begin : g_want
-        assign brick_want[r] = brick_slot.valid && !brick_squashed && brick_slot.lanes[r / NPar] && lane_bread[r];
-      end
-      voxcd_bank_rounds #(.NReq(NReq), .NumB(NumB), .MAW(MAW), .MEMW(MEMW)) u_brick_rounds (
-        .clk_i      (clk_i),
-        .rst_ni     (rst_ni),
-        .want_i     (brick_want),
-        .addr_i     (lane_baddr),
-        .round_i    (advance_out),
-        .leave_i    (advance_mid),
-        .wait_o     (brick_wait),
-        .re_o       (brick_re),
-        .word_addr_o(brick_word_addr),
-        .rdata_i    (brick_rdata),
-        .word_o     (lane_bword)
-      );
-      for (genvar b = 0; b < NumB; b++) begin : g_bank
-        voxcd_ram2 #(
-          .Width(MEMW),
-          .AddrW(BRowW)
-        ) u_map (
-          .clk_i    (clk_i),
-          .we_i     (map_we_i && ((32'(map_waddr_i) % NumB) == b)),
-          .waddr_i  (BRowW'(map_waddr_i >> LgB)),
-          .wdata_i  (map_wdata_i),
-          .re_a_i   (table_re[b]),
-          .raddr_a_i(BRowW'(table_word_addr[MAW*b +: MAW] >> LgB)),
-          .rdata_a_o(table_rdata[MEMW*b +: MEMW]),
-          .re_b_i   (brick_re[b]),
-          .raddr_b_i(BRowW'(brick_word_addr[MAW*b +: MAW] >> LgB)),
-          .rdata_b_o(brick_rdata[MEMW*b +: MEMW])
-        );
-      end
-      // The brick port reads only for a brick cell of a sparse map: a slot at the brick stage whose job's map is
-      // sparse, and a lane whose cell is a brick (a uniform cell and a dense map read nothing there).
-      `VOXCD_ASSERT(BrickReadsOnlyBricks, !(|brick_want) || stage_bricks[BrickW-1])
-      `VOXCD_COVER(CoverBrickPortWaits, brick_wait)
-    end else begin : g_table_port
-      assign brick_wait = 1'b0;
-      for (genvar l = 0; l < LANES; l++) begin : g_no_bword  // lane by lane: a wide device's is over 8k bits
-        assign lane_bword[NPar*MEMW*l +: NPar*MEMW] = '0;
-      end
-      for (genvar b = 0; b < NumB; b++) begin : g_bank
-        voxcd_ram #(
-          .Width(MEMW),
-          .AddrW(BRowW)
-        ) u_map (
-          .clk_i  (clk_i),
-          .we_i   (map_we_i && ((32'(map_waddr_i) % NumB) == b)),
-          .waddr_i(BRowW'(map_waddr_i >> LgB)),
-          .wdata_i(map_wdata_i),
-          .re_i   (table_re[b]),
-          .raddr_i(BRowW'(table_word_addr[MAW*b +: MAW] >> LgB)),
-          .rdata_o(table_rdata[MEMW*b +: MEMW])
-        );
-      end
-      logic unused_brick;  // a dense device has no brick port
-      assign unused_brick = ^{lane_baddr, lane_bread};
-    end
-
-    `VOXCD_COVER(CoverTablePortWaits, table_wait)
-    `VOXCD_COVER(CoverSquashedSlotAtTheTableStage, r4_slot.valid && r4_squashed)
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) conflicts_q <= '0;
-      else         conflicts_q <= conflicts_q + CW'(advance_out && !advance);
-    end
   end else begin : g_copies
     assign table_wait  = 1'b0;
     assign brick_wait  = 1'b0;
