@@ -23,5 +23,6 @@ voxcd_state_lookup.sv
 voxcd_dist_lookup.sv
 voxcd_lane.sv
 voxcd_shared_banks.sv
+voxcd_hit_stage.sv
 voxcd_device.sv
 voxcd_axi.sv

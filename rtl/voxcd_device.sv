@@ -156,7 +156,6 @@ module voxcd_device #(
   localparam int unsigned LgL   = $clog2(LANES);
   localparam int unsigned RotW  = LgL > 0 ? LgL : 1;
   localparam int unsigned RowW  = SAW - LgL;                      // rows of one shell bank
-  localparam int unsigned LaneW = LgL > 0 ? LgL : 1;
   localparam int unsigned SeqW  = $clog2(NumR + 2) + 1;           // tells apart every job in flight
   localparam int unsigned InFlW = $clog2(NumR + 3);               // counts the jobs in flight: at most NumR + 2
   localparam bit          Banked = BANKS > 0;                      // the lanes share one voxmap in BANKS banks
@@ -218,21 +217,6 @@ module voxcd_device #(
   } meta_t;
   localparam int unsigned MetaW = 1 + SeqW + 1 + (PtW + 1) + LANES + RotW;
 
-  // One output record, hit or completion, as it waits in the output slice (the fields of the other kind are
-  // don't-cares).
-  typedef struct packed {
-    logic              is_done;  // a completion record (else a hit record)
-    logic [TAGW-1:0]   tag;
-    logic [PtW-1:0]    point;
-    logic [3*DW-1:0]   voxel;    // {z, y, x}
-    logic [1:0]        state;
-    logic [IW-1:0]     distance;
-    logic [PtW:0]      hits;
-    logic [PtW:0]      points;
-    logic [CW-1:0]     cycles;
-    logic [CW-1:0]     stalls;
-  } record_t;
-  localparam int unsigned RecordW = 1 + TAGW + PtW + 3 * DW + 2 + IW + 2 * (PtW + 1) + 2 * CW;
 
   // ---- Cycle and stall counters (free-running) ----
   logic          stall;                       // this cycle the pipeline is held by the output slice
@@ -746,94 +730,75 @@ module voxcd_device #(
     );
   end
 
-  logic [CW-1:0]    conflicts_q;   // bank conflict cycles since reset
+  logic [CW-1:0]    conflicts;     // bank conflict cycles since reset (voxcd_shared_banks)
 
   // ---- Hit test and record emission at the last register (R5, R8 on a distance device; K, or the registers after it,
-  // on a sparse one) ----
-  logic [LANES-1:0] lane_hit;              // lanes whose point is a hit
-  logic [LANES-1:0] emitted_d, emitted_q;  // hit records of the last slot already emitted (ALL)
-  logic             found_d, found_q;      // a FIRST job's hit has been emitted; its later slots are squashed
-  logic [SeqW-1:0]  found_seq_d, found_seq_q;
-  logic             squash;                // the last slot belongs to a FIRST job whose hit was emitted
-  logic             is_first;
-  logic [LANES-1:0] records_left;          // hit records still to emit for the last slot
-  logic             done_due;              // the last slot ends its job: a completion record follows its hits
-  logic             slot_busy;             // after this cycle's record the last slot has another one to emit
-  logic [LaneW-1:0] emit_lane;             // lowest lane in records_left: the hit record of this cycle
-  logic [PtW:0]     slot_hits, slot_points;
-  logic [PtW:0]     hits_d, hits_q, points_d, points_q;  // of the current job, over its slots before this one
-  logic             out_ready;             // the output slice takes a record (a register: no path from *_ready_i)
-  logic             emit;                  // a record enters the output slice
+  // on a sparse one), and the output slice: voxcd_hit_stage ----
+  logic             out_ready;   // the output slice takes a record (a register: no path from *_ready_i)
+  logic             slot_busy;   // after this cycle's record the last slot has another one to emit
+  logic             emit;        // a record enters the output slice
+  logic             first_hit;   // the last slot holds the first hit of a FIRST job
+  logic             found_q;     // a FIRST job's hit has been emitted (its job: found_seq_q); its later slots squashed
+  logic [SeqW-1:0]  found_seq_q;
+  logic             out_valid;   // a record waits in the output slice
+  voxcd_hit_stage #(
+    .LANES(LANES), .TAGW(TAGW), .SAW(SAW), .DW(DW), .SB(SB), .WB(WB), .BL(BL), .SeqW(SeqW)
+  ) u_hit_stage (
+    .clk_i             (clk_i),
+    .rst_ni            (rst_ni),
+    .advance_out_i     (advance_out),
+    .slot_valid_i      (last_slot.valid),
+    .slot_seq_i        (last_slot.seq),
+    .slot_last_i       (last_slot.last),
+    .slot_k_i          (last_slot.k),
+    .slot_lanes_i      (last_slot.lanes),
+    .tag_i             (last_test.tag),
+    .mode_i            (voxcd_arch_pkg::mode_e'(last_test.mode)),
+    .mask_i            (last_test.mask),
+    .thr_i             (IW'(last_test.thr)),
+    .fresh_i           (last_test.fresh),
+    .stamp_i           (last_test.stamp),
+    .stall_stamp_i     (last_test.stall_stamp),
+    .inside_i          (lane_inside),
+    .state_i           (lane_state),
+    .voxel_i           (lane_voxel),
+    .dist_i            (lane_dist),
+    .now_i             (now_q),
+    .stall_total_i     (stall_total_q),
+    .stall_total_next_i(stall_total_d),
+    .out_ready_o       (out_ready),
+    .slot_busy_o       (slot_busy),
+    .emit_o            (emit),
+    .emit_done_o       (emit_done),
+    .first_hit_o       (first_hit),
+    .first_stop_o      (first_stop),
+    .found_o           (found_q),
+    .found_seq_o       (found_seq_q),
+    .busy_o            (out_valid),
+    .hit_valid_o       (hit_valid_o),
+    .hit_ready_i       (hit_ready_i),
+    .hit_tag_o         (hit_tag_o),
+    .hit_point_o       (hit_point_o),
+    .hit_x_o           (hit_x_o),
+    .hit_y_o           (hit_y_o),
+    .hit_z_o           (hit_z_o),
+    .hit_state_o       (hit_state_o),
+    .hit_dist_o        (hit_dist_o),
+    .done_valid_o      (done_valid_o),
+    .done_ready_i      (done_ready_i),
+    .done_tag_o        (done_tag_o),
+    .done_hits_o       (done_hits_o),
+    .done_cycles_o     (done_cycles_o),
+    .done_points_o     (done_points_o),
+    .done_stalls_o     (done_stalls_o)
+  );
 
-  always_comb begin
-    for (int i = 0; i < LANES; i++) begin
-      if (Dist) lane_hit[i] = last_slot.lanes[i] && lane_inside[i] &&
-                              ($signed(lane_dist[IW*i +: IW]) <= $signed(IW'(last_test.thr)));
-      else      lane_hit[i] = last_slot.lanes[i] && lane_inside[i] && last_test.mask[lane_state[2*i +: 2]];
-    end
-  end
-
-  always_comb begin
-    is_first     = last_test.mode == voxcd_arch_pkg::ModeFirst;
-    squash       = last_slot.valid && found_q && (found_seq_q == last_slot.seq);
-    records_left = '0;
-    done_due     = 1'b0;
-    if (last_slot.valid && !squash) begin
-      if (last_test.mode == voxcd_arch_pkg::ModeAll) records_left = lane_hit & ~emitted_q;
-      else if (is_first)                       records_left = lane_hit & (~lane_hit + 1'b1) & ~emitted_q;  // lowest
-      done_due = last_slot.last || (is_first && (|lane_hit));
-    end
-    emit_lane = '0;
-    for (int i = LANES - 1; i >= 0; i--) begin
-      if (records_left[i]) emit_lane = LaneW'(i);
-    end
-    // More than one record left: two or more hits, or a hit and the completion.
-    slot_busy = ((records_left & (records_left - 1'b1)) != '0) || ((|records_left) && done_due);
-    slot_hits   = '0;
-    slot_points = '0;
-    for (int i = 0; i < LANES; i++) begin
-      slot_hits   = slot_hits + (PtW + 1)'(lane_hit[i]);
-      slot_points = slot_points + (PtW + 1)'(last_slot.lanes[i]);
-    end
-    if (is_first) slot_hits = (PtW + 1)'(|lane_hit);
-  end
-
+  // ---- Pipeline control: the enables (above) ----
   assign stall          = !out_ready;
   assign advance_out    = out_ready && !slot_busy;
   assign advance_mid    = advance_out && !brick_wait;
   assign advance        = advance_mid && !table_wait;
-  assign emit           = out_ready && ((|records_left) || done_due);
-  assign emit_done      = emit && !(|records_left);
-  assign first_stop     = advance_out && last_slot.valid && !squash && is_first && (|lane_hit);
   assign first_stop_seq = last_slot.seq;
-
-  always_comb begin
-    emitted_d   = emitted_q;
-    found_d     = found_q;
-    found_seq_d = found_seq_q;
-    hits_d      = hits_q;
-    points_d    = points_q;
-    if (out_ready && (|records_left)) emitted_d = emitted_q | (LANES'(1) << emit_lane);
-    if (advance_out) begin
-      emitted_d = '0;
-      if (first_stop) begin
-        found_d     = 1'b1;
-        found_seq_d = last_slot.seq;
-      end else if (last_slot.valid && (last_slot.seq != found_seq_q)) begin
-        found_d = 1'b0;
-      end
-      if (last_slot.valid && !squash) begin
-        hits_d   = done_due ? '0 : hits_q + slot_hits;
-        points_d = done_due ? '0 : points_q + slot_points;
-      end
-    end
-  end
-
-  `VOXCD_FF(emitted_q, emitted_d, '0)
-  `VOXCD_FF(found_q, found_d, 1'b0)
-  `VOXCD_FF(found_seq_q, found_seq_d, '0)
-  `VOXCD_FF(hits_q, hits_d, '0)
-  `VOXCD_FF(points_q, points_d, '0)
 
   // ---- Shared voxmap banks (BANKS > 0, voxcd_shared_banks): the lanes read one voxmap; else each its own copy ----
   if (Banked) begin : g_banks
@@ -864,7 +829,7 @@ module voxcd_device #(
       .state_pre_i   (lane_state_pre),
       .found_i       (found_q),
       .found_seq_i   (found_seq_q),
-      .last_hit_i    (last_slot.valid && !squash && is_first && (|lane_hit)),
+      .last_hit_i    (first_hit),
       .last_seq_i    (last_slot.seq),
       .read_i        (lane_read),
       .addr_i        (lane_addr),
@@ -874,94 +839,21 @@ module voxcd_device #(
       .bword_o       (lane_bword),
       .table_wait_o  (table_wait),
       .brick_wait_o  (brick_wait),
-      .conflicts_o   (conflicts_q)
+      .conflicts_o   (conflicts)
     );
   end else begin : g_copies
     assign table_wait  = 1'b0;
     assign brick_wait  = 1'b0;
-    assign conflicts_q = '0;
+    assign conflicts = '0;
     for (genvar l = 0; l < LANES; l++) begin : g_no_word  // lane by lane: a wide device's are over 8k bits
       assign lane_word[NPar*MEMW*l +: NPar*MEMW]  = '0;
       assign lane_bword[NPar*MEMW*l +: NPar*MEMW] = '0;
     end
     logic unused_banks;  // each lane reads its own copy
-    assign unused_banks = ^{lane_read, lane_addr, lane_bread, lane_baddr, lane_inside_pre, lane_state_pre};
+    assign unused_banks = ^{lane_read, lane_addr, lane_bread, lane_baddr, lane_inside_pre, lane_state_pre, first_hit,
+                            found_q, found_seq_q};
   end
-  assign conflicts_o = conflicts_q;
-
-  // ---- Cycle and stall accounting of the completion records ----
-  // Both count over one window: from the later of the job's acceptance and the previous completion record's
-  // emission, to this record's emission. cycles: the cycles of that window; stalls: its stall cycles (the cycles
-  // in which the output slice held the pipeline). Stalls before a job's acceptance (an idle device whose last
-  // record waits for its consumer) cannot delay it and are not counted.
-  logic [CW-1:0] since_done_d, since_done_q;            // cycles since the previous completion's emission
-  logic [CW-1:0] stalls_at_done_d, stalls_at_done_q;    // stall_total at the previous completion's emission
-  logic [CW-1:0] job_age, cycles, stalls, stalls_since_job, stalls_since_done;
-  logic          window_from_job;                       // the job was accepted after the previous completion
-  // A job accepted with no earlier job in flight (fresh) was accepted after the previous completion's emission; one
-  // accepted in the cycle of that emission may take either window (both give the same counts). Each candidate is
-  // computed from registers, side by side, and then selected: no comparison of the two windows on the path.
-  assign job_age           = now_q - last_test.stamp;
-  assign window_from_job   = last_test.fresh;
-  assign cycles            = window_from_job ? job_age : since_done_q;
-  assign stalls_since_job  = stall_total_q - last_test.stall_stamp;
-  assign stalls_since_done = stall_total_q - stalls_at_done_q;
-  assign stalls            = window_from_job ? stalls_since_job : stalls_since_done;
-
-  always_comb begin
-    since_done_d     = emit_done ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
-    stalls_at_done_d = emit_done ? stall_total_d : stalls_at_done_q;
-  end
-
-  `VOXCD_FF(since_done_q, since_done_d, '1)
-  `VOXCD_FF(stalls_at_done_q, stalls_at_done_d, '0)
-
-  // ---- Output slice: the record of this cycle, then voxcd_skid ----
-  record_t emit_record, out_record;
-  logic    out_valid, out_taken;
-  always_comb begin
-    emit_record.is_done = !(|records_left);
-    emit_record.tag     = last_test.tag;
-    emit_record.point   = PtW'(last_slot.k + (PtW + 1)'(emit_lane));
-    emit_record.voxel   = lane_voxel[3*DW*emit_lane +: 3*DW];
-    emit_record.state   = lane_state[2*emit_lane +: 2];
-    emit_record.distance = lane_dist[IW*emit_lane +: IW];  // 0 on a 2-bit device
-    emit_record.hits    = hits_q + slot_hits;
-    emit_record.points  = points_q + slot_points;
-    emit_record.cycles  = cycles;
-    emit_record.stalls  = stalls;
-  end
-
-  // The consumer's ready selects by the kind of the waiting record; it reaches only the slice.
-  assign out_taken = out_record.is_done ? done_ready_i : hit_ready_i;
-
-  voxcd_skid #(
-    .Width(RecordW)
-  ) u_out_slice (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i((|records_left) || done_due),
-    .ready_o(out_ready),
-    .data_i (emit_record),
-    .valid_o(out_valid),
-    .ready_i(out_taken),
-    .data_o (out_record)
-  );
-
-  assign hit_valid_o   = out_valid && !out_record.is_done;
-  assign hit_tag_o     = out_record.tag;
-  assign hit_point_o   = out_record.point;
-  assign hit_x_o       = out_record.voxel[0*DW +: DW];
-  assign hit_y_o       = out_record.voxel[1*DW +: DW];
-  assign hit_z_o       = out_record.voxel[2*DW +: DW];
-  assign hit_state_o   = out_record.state;
-  assign hit_dist_o    = out_record.distance;
-  assign done_valid_o  = out_valid && out_record.is_done;
-  assign done_tag_o    = out_record.tag;
-  assign done_hits_o   = out_record.hits;
-  assign done_points_o = out_record.points;
-  assign done_cycles_o = out_record.cycles;
-  assign done_stalls_o = out_record.stalls;
+  assign conflicts_o = conflicts;
 
   // The output slice holds records only behind its output register: out_valid covers both.
   assign busy_o = head_valid || out_valid || (|slot_valid);
@@ -993,8 +885,7 @@ module voxcd_device #(
   `VOXCD_ASSERT_INIT(SlotsMatchTheTimingModel,
                      NumR == voxcd_arch_pkg::PipeSlots + Depth + (Dist ? voxcd_arch_pkg::DistSlots : 0) +
                              (Sparse ? (Dist ? voxcd_arch_pkg::SparseDistSlots : voxcd_arch_pkg::SparseSlots) : 0))
-  `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) && TestW == $bits(test_t) &&
-                                        RecordW == $bits(record_t))
+  `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) && TestW == $bits(test_t))
 
   // The streams: records hold while their consumer is not ready; one record at a time, in stream order.
   `VOXCD_ASSERT(HitHeldWhileStalled, !$past(hit_valid_o && !hit_ready_i) ||
@@ -1024,23 +915,6 @@ module voxcd_device #(
 
   // ---- Functional coverage (docs/verification.md, "Functional coverage"): counted in the coverage models ----
   // Signals named cov_* are read by cover properties only (bench/mutation leaves them out: no output can change).
-  // Each mode's completion records, with and without hits.
-  logic cov_is_count;
-  assign cov_is_count = last_test.mode == voxcd_arch_pkg::ModeCount;
-  `VOXCD_COVER(CoverAllJobWithHits, emit_done && !is_first && !cov_is_count && emit_record.hits != '0)
-  `VOXCD_COVER(CoverAllJobWithoutHits, emit_done && !is_first && !cov_is_count && emit_record.hits == '0)
-  `VOXCD_COVER(CoverFirstJobWithAHit, emit_done && is_first && emit_record.hits != '0)
-  `VOXCD_COVER(CoverFirstJobWithoutHits, emit_done && is_first && emit_record.hits == '0)
-  `VOXCD_COVER(CoverCountJobWithHits, emit_done && cov_is_count && emit_record.hits != '0)
-  `VOXCD_COVER(CoverCountJobWithoutHits, emit_done && cov_is_count && emit_record.hits == '0)
-  `VOXCD_COVER(CoverJobWithoutPoints, emit_done && emit_record.points == '0)
-  // FIRST: its stop with slots of the job behind it, and those slots squashed at the hit test.
-  `VOXCD_COVER(CoverFirstStopsBeforeTheLastSlot, first_stop && !last_slot.last)
-  `VOXCD_COVER(CoverFirstSquashedSlot, squash)
-  // A slot with every lane, one with some, and one with several records to emit (the pipeline holds for it).
-  `VOXCD_COVER(CoverFullSlot, last_slot.valid && (&last_slot.lanes))
-  `VOXCD_COVER(CoverPartSlot, last_slot.valid && !(&last_slot.lanes))
-  `VOXCD_COVER(CoverSlotOfSeveralRecords, slot_busy)
   // Back-pressure on each stream, a stall while a completion record waits with a later job's slots in the
   // registers, and stalls with the job queue full.
   `VOXCD_COVER(CoverHitStreamHeld, hit_valid_o && !hit_ready_i)
@@ -1055,22 +929,6 @@ module voxcd_device #(
   // Memories written between jobs (the device idle after records have left).
   `VOXCD_COVER(CoverMapWrite, map_we_i)
   `VOXCD_COVER(CoverShellWrite, shell_we_i)
-  // A distance device's hit test: D below, at and above the threshold, for a point inside the map.
-  if (Dist) begin : g_cover_dist
-    logic [LANES-1:0] cov_below, cov_at, cov_above;
-    always_comb begin
-      for (int i = 0; i < LANES; i++) begin
-        cov_below[i] = last_slot.lanes[i] && lane_inside[i] &&
-                   ($signed(lane_dist[IW*i +: IW]) < $signed(IW'(last_test.thr)));
-        cov_at[i]    = last_slot.lanes[i] && lane_inside[i] && (lane_dist[IW*i +: IW] == IW'(last_test.thr));
-        cov_above[i] = last_slot.lanes[i] && lane_inside[i] &&
-                   ($signed(lane_dist[IW*i +: IW]) > $signed(IW'(last_test.thr)));
-      end
-    end
-    `VOXCD_COVER(CoverDistanceBelowThreshold, last_slot.valid && (|cov_below))
-    `VOXCD_COVER(CoverDistanceAtThreshold, last_slot.valid && (|cov_at))
-    `VOXCD_COVER(CoverDistanceAboveThreshold, last_slot.valid && (|cov_above))
-  end
   // A sparse device's brick stage: a slot of a sparse map whose lanes' cells are all bricks, all uniform, or both.
   if (Sparse) begin : g_cover_sparse
     logic [LANES-1:0] cov_brick_cells;
