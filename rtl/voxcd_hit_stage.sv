@@ -237,7 +237,7 @@ module voxcd_hit_stage #(
   assign out_taken = out_record.is_done ? done_ready_i : hit_ready_i;
 
   voxcd_skid #(
-    .Width($bits(record_t))
+    .Width($bits(emit_record))
   ) u_out_slice (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
