@@ -25,4 +25,7 @@ voxcd_lane.sv
 voxcd_shared_banks.sv
 voxcd_hit_stage.sv
 voxcd_device.sv
+voxcd_axi_regs.sv
+voxcd_axi_jobs.sv
+voxcd_axi_records.sv
 voxcd_axi.sv
