@@ -308,9 +308,8 @@ module voxcd_axi #(
 
 `ifndef SYNTHESIS
   // ---- Parameter sanity, at elaboration (the widths of each unit: in its module) ----
-  if (SAW > 24 || MAW > 28 || TAGW > 32 || IW > 64) begin : g_bad_windows
-    $error("the address map holds SAW <= 24, MAW <= 28, TAGW <= 32 and IW <= 64");
-  end
+  // The address map holds SAW <= 24, MAW <= 28, TAGW <= 32 and IW <= 64.
+  `VOXCD_ASSERT_INIT(WidthsFitTheAddressMap, SAW <= 24 && MAW <= 28 && TAGW <= 32 && IW <= 64)
 `endif
 
 endmodule

@@ -291,9 +291,7 @@ module voxcd_axi_jobs #(
 
 `ifndef SYNTHESIS
   // ---- Parameter sanity, at elaboration ----
-  if ((JobDw & (JobDw - 1)) != 0 || JobDw < 8 || JobDw > 8 * JobBytes) begin : g_bad_job_dw
-    $error("JobDw = %0d must be a power of two in 8..1024", JobDw);
-  end
+  `VOXCD_ASSERT_INIT(JobBeatWidthKnown, (JobDw & (JobDw - 1)) == 0 && JobDw >= 8 && JobDw <= 8 * JobBytes)
 
   // ---- AXI4-Stream rules: what the master driving the job stream promises ----
   `VOXCD_ASSERT(JobStable, s_axis_job_tvalid_i && !s_axis_job_tready_o |=>

@@ -143,9 +143,7 @@ module voxcd_axi_records #(
 
 `ifndef SYNTHESIS
   // ---- Parameter sanity, at elaboration ----
-  if ((RecDw & (RecDw - 1)) != 0 || RecDw < 8 || RecDw > 8 * RecBytes) begin : g_bad_rec_dw
-    $error("RecDw = %0d must be a power of two in 8..256", RecDw);
-  end
+  `VOXCD_ASSERT_INIT(RecordBeatWidthKnown, (RecDw & (RecDw - 1)) == 0 && RecDw >= 8 && RecDw <= 8 * RecBytes)
 
   // ---- AXI4-Stream rules: a record beat, once valid, stays valid and unchanged until it is taken ----
   `VOXCD_ASSERT(RecStable, m_axis_rec_tvalid_o && !m_axis_rec_tready_i |=>

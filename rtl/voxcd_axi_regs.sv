@@ -370,9 +370,7 @@ module voxcd_axi_regs #(
 
 `ifndef SYNTHESIS
   // ---- Parameter sanity, at elaboration ----
-  if (AxilDw != 32 && AxilDw != 64) begin : g_bad_axil_dw
-    $error("AxilDw = %0d must be 32 or 64", AxilDw);
-  end
+  `VOXCD_ASSERT_INIT(AxilDataWidthKnown, AxilDw == 32 || AxilDw == 64)
 
   // ---- AXI4-Lite rules (AMBA AXI4): what this slave and the master driving it promise ----
   // A response, once valid, stays valid and unchanged until it is taken.
