@@ -24,8 +24,8 @@
 // Structure: an issue stage takes LANES consecutive points of the head job per cycle (one lane group, a "slot")
 // and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through N = PipeSlots + Depth
 // (+ DistSlots) slot registers, R0..R5 at Depth 0 (R0..R8 on a distance device; each unit of Depth adds a register
-// stage to every lane); the hit-test stage at the last register emits the slot's records, one per cycle, into the
-// output slice (voxcd_skid: an output register and a skid register). The whole pipeline
+// stage to every lane); the hit-test stage at the last register (voxcd_hit_stage) emits the slot's records, one per
+// cycle, into the output slice (voxcd_skid: an output register and a skid register). The whole pipeline
 // advances together: it holds (a) while the output slice cannot take a record (its registered ready is low: both
 // of its registers are full, because the consumer has held the waiting record; a stall, and only those cycles
 // count as stalls) and (b) while the last slot register still has more than one record to emit. The consumer's
@@ -164,7 +164,7 @@ module voxcd_device #(
   localparam int unsigned NumB  = Banked ? BANKS * NPar : 1;       // shared banks: word w in bank w % NumB
   localparam int unsigned LgB   = Banked ? $clog2(NumB) : 0;
 
-  // ---- Jobs, slots and output records ----
+  // ---- Jobs and slots (the output records: voxcd_hit_stage) ----
   typedef struct packed {
     logic [TAGW-1:0]        tag;
     logic [1:0]             mode;
@@ -216,7 +216,6 @@ module voxcd_device #(
     logic [RotW-1:0]   rot;     // shell bank of lane 0 (W holding a sparse shell word: the word's bank)
   } meta_t;
   localparam int unsigned MetaW = 1 + SeqW + 1 + (PtW + 1) + LANES + RotW;
-
 
   // ---- Cycle and stall counters (free-running) ----
   logic          stall;                       // this cycle the pipeline is held by the output slice
@@ -738,8 +737,8 @@ module voxcd_device #(
   logic             slot_busy;   // after this cycle's record the last slot has another one to emit
   logic             emit;        // a record enters the output slice
   logic             first_hit;   // the last slot holds the first hit of a FIRST job
-  logic             found_q;     // a FIRST job's hit has been emitted (its job: found_seq_q); its later slots squashed
-  logic [SeqW-1:0]  found_seq_q;
+  logic             found;       // a FIRST job's hit has been emitted (its job: found_seq); its later slots squashed
+  logic [SeqW-1:0]  found_seq;
   logic             out_valid;   // a record waits in the output slice
   voxcd_hit_stage #(
     .LANES(LANES), .TAGW(TAGW), .SAW(SAW), .DW(DW), .SB(SB), .WB(WB), .BL(BL), .SeqW(SeqW)
@@ -772,8 +771,8 @@ module voxcd_device #(
     .emit_done_o       (emit_done),
     .first_hit_o       (first_hit),
     .first_stop_o      (first_stop),
-    .found_o           (found_q),
-    .found_seq_o       (found_seq_q),
+    .found_o           (found),
+    .found_seq_o       (found_seq),
     .busy_o            (out_valid),
     .hit_valid_o       (hit_valid_o),
     .hit_ready_i       (hit_ready_i),
@@ -827,8 +826,8 @@ module voxcd_device #(
       .pre_mask_i    (pre_test.mask),
       .inside_pre_i  (lane_inside_pre),
       .state_pre_i   (lane_state_pre),
-      .found_i       (found_q),
-      .found_seq_i   (found_seq_q),
+      .found_i       (found),
+      .found_seq_i   (found_seq),
       .last_hit_i    (first_hit),
       .last_seq_i    (last_slot.seq),
       .read_i        (lane_read),
@@ -851,7 +850,7 @@ module voxcd_device #(
     end
     logic unused_banks;  // each lane reads its own copy
     assign unused_banks = ^{lane_read, lane_addr, lane_bread, lane_baddr, lane_inside_pre, lane_state_pre, first_hit,
-                            found_q, found_seq_q};
+                            found, found_seq};
   end
   assign conflicts_o = conflicts;
 
