@@ -99,8 +99,8 @@ if ((missing)); then exit 1; fi
 
 # ---- The depths the RTL offers ----
 has_depth=0
-# voxcd_device's parameter list: in its file, or (since it is written once) in voxcd_arch_pkg.sv's macros.
-if grep -Eq '^\s*parameter\s+int\s+unsigned\s+Depth\b' "$root/rtl/voxcd_device.sv" "$root/rtl/voxcd_arch_pkg.sv"; then
+# voxcd_device's parameter list: in its file, or (since it is written once) in voxcd_params.svh's macros.
+if grep -Eqs '^\s*parameter\s+int\s+unsigned\s+Depth\b' "$root/rtl/voxcd_device.sv" "$root/rtl/voxcd_params.svh"; then
   has_depth=1
 fi
 if [ -z "$depth_list" ]; then

@@ -1,8 +1,8 @@
 // voxcd_arch_pkg: the device's default widths, counter width, pipeline depths and enums.
 //
 // Every width is also a module parameter of the same name (voxcd_device, voxcd_axi), defaulting to the value
-// here, so one RTL source builds any configuration; the parameter lists are written once, as the macros after the
-// package, which every top, wrapper and lane declares and passes on. The file's name sorts before every module's,
+// here, so one RTL source builds any configuration; the parameter lists are written once, as the macros of
+// voxcd_params.svh, which every top, wrapper and lane declares and passes on. The file's name sorts before every module's,
 // so a tool that reads rtl/*.sv in name order declares the package before its first use (rtl.lint_glob). The names
 // and defaults are those of the C++ DeviceConfig (ref/config.h); tests/rtl/test_pkg.cpp parses this file and fails
 // when the two disagree.
@@ -72,35 +72,3 @@ package voxcd_arch_pkg;
   } state_e;
 
 endpackage
-
-// The device's parameter list, written once. A lane takes the widths it computes with (VOXCD_LANE_PARAMS); the device
-// and its AXI top take the whole list (VOXCD_DEVICE_PARAMS); the _MAP macros pass a module's own values down to the
-// module it instantiates. They stay module parameters, so `-G NAME=` (Verilator) and `chparam -set NAME` (yosys)
-// set them by name. Defines outlive this file in Verilator and yosys, and every tool reads it before the modules.
-`define VOXCD_LANE_PARAMS \
-  parameter int unsigned PW    = voxcd_arch_pkg::PW, \
-  parameter int unsigned PF    = voxcd_arch_pkg::PF, \
-  parameter int unsigned MW    = voxcd_arch_pkg::MW, \
-  parameter int unsigned MF    = voxcd_arch_pkg::MF, \
-  parameter int unsigned TW    = voxcd_arch_pkg::TW, \
-  parameter int unsigned DW    = voxcd_arch_pkg::DW, \
-  parameter int unsigned MEMW  = voxcd_arch_pkg::MEMW, \
-  parameter int unsigned MAW   = voxcd_arch_pkg::MAW, \
-  parameter int unsigned SB    = voxcd_arch_pkg::SB, \
-  parameter int unsigned WB    = voxcd_arch_pkg::WB, \
-  parameter int unsigned Depth = voxcd_arch_pkg::Depth, \
-  parameter int unsigned BL    = voxcd_arch_pkg::BL, \
-  parameter int unsigned TX    = voxcd_arch_pkg::TX
-// BANKS 0: a voxmap copy per lane; B: one voxmap in B shared banks. Depth: register stages added to every lane. BL:
-// a sparse device's coarse cells (0: a dense device). TX: the lanes' transform (1: brick lanes, no lane multiplies).
-`define VOXCD_DEVICE_PARAMS \
-  `VOXCD_LANE_PARAMS, \
-  parameter int unsigned LANES = voxcd_arch_pkg::LANES, \
-  parameter int unsigned SAW   = voxcd_arch_pkg::SAW, \
-  parameter int unsigned TAGW  = voxcd_arch_pkg::TAGW, \
-  parameter int unsigned BANKS = voxcd_arch_pkg::BANKS
-`define VOXCD_LANE_PARAM_MAP \
-  .PW(PW), .PF(PF), .MW(MW), .MF(MF), .TW(TW), .DW(DW), .MEMW(MEMW), .MAW(MAW), .SB(SB), .WB(WB), .Depth(Depth), \
-  .BL(BL), .TX(TX)
-`define VOXCD_DEVICE_PARAM_MAP \
-  `VOXCD_LANE_PARAM_MAP, .LANES(LANES), .SAW(SAW), .TAGW(TAGW), .BANKS(BANKS)

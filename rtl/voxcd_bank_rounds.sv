@@ -10,6 +10,9 @@
 // a word read in an earlier round is caught the cycle after its read and held; the last round's words stay on the
 // banks' outputs (rdata_i), which read only when round_i is high, so only when that register advances. Latency: the
 // words of a slot whose requests fall in r distinct words of one bank reach the next register r - 1 cycles late.
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_bank_rounds #(
   parameter int unsigned NReq = 4,   // requests: one per lane (eight per lane on a distance device)
   parameter int unsigned NumB = 4,   // banks, a power of two

@@ -10,6 +10,9 @@
 // H ((Y>>1) + d_y + H ((Z>>1) + d_z)), d = the sub-cell's parities & ~p, in row first_i / 8 + h_p / NPW (row_o, RowW
 // bits a bank) and slot h_p % NPW (slot_o); par_o = the sub-cell's parities {Z, Y, X} & 1. The products by H are a
 // shift and an add. Latency: 0.
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_brick_rows #(
   parameter int unsigned MEMW = 64,
   parameter int unsigned MAW  = 18,

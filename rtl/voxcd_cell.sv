@@ -9,6 +9,9 @@
 // its state is state_o (the code, or 0 for a brick past the job's units); on a distance device every node is qmin
 // when deep_o (code 1), else qmax (code 0, codes 6..15, a brick past the units). level_o: a distance brick's level
 // (0 on a 2-bit device). Latency: 0.
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_cell #(
   parameter int unsigned MEMW = 64,
   parameter int unsigned MAW  = 18,

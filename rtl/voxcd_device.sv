@@ -24,8 +24,8 @@
 // Structure: an issue stage takes LANES consecutive points of the head job per cycle (one lane group, a "slot")
 // and reads them from LANES shell banks; LANES lanes (voxcd_lane) carry the slot through N = PipeSlots + Depth
 // (+ DistSlots) slot registers, R0..R5 at Depth 0 (R0..R8 on a distance device; each unit of Depth adds a register
-// stage to every lane); the hit-test stage at the last register emits the slot's records, one per cycle, into the
-// output slice (voxcd_skid: an output register and a skid register). The whole pipeline
+// stage to every lane); the hit-test stage at the last register (voxcd_hit_stage) emits the slot's records, one per
+// cycle, into the output slice (voxcd_skid: an output register and a skid register). The whole pipeline
 // advances together: it holds (a) while the output slice cannot take a record (its registered ready is low: both
 // of its registers are full, because the consumer has held the waiting record; a stall, and only those cycles
 // count as stalls) and (b) while the last slot register still has more than one record to emit. The consumer's
@@ -50,6 +50,12 @@
 // Ports are plain vectors, one per record field, so that every configuration is one source and the Verilated C++
 // and SystemC ports are plain integers. The code keeps to the subset of SystemVerilog that Verilator and yosys
 // both read (one-dimensional packed vectors, one-level structs, explicit package references).
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
+`ifndef VOXCD_PARAMS_SVH
+`include "voxcd_params.svh"
+`endif
 module voxcd_device #(
   `VOXCD_DEVICE_PARAMS  // the widths, LANES, BANKS, Depth and BL (voxcd_arch_pkg.sv)
 ) (
@@ -150,7 +156,6 @@ module voxcd_device #(
   localparam int unsigned LgL   = $clog2(LANES);
   localparam int unsigned RotW  = LgL > 0 ? LgL : 1;
   localparam int unsigned RowW  = SAW - LgL;                      // rows of one shell bank
-  localparam int unsigned LaneW = LgL > 0 ? LgL : 1;
   localparam int unsigned SeqW  = $clog2(NumR + 2) + 1;           // tells apart every job in flight
   localparam int unsigned InFlW = $clog2(NumR + 3);               // counts the jobs in flight: at most NumR + 2
   localparam bit          Banked = BANKS > 0;                      // the lanes share one voxmap in BANKS banks
@@ -158,9 +163,8 @@ module voxcd_device #(
   localparam int unsigned NReq  = LANES * NPar;                    // request r: lane r / NPar, parity bank r % NPar
   localparam int unsigned NumB  = Banked ? BANKS * NPar : 1;       // shared banks: word w in bank w % NumB
   localparam int unsigned LgB   = Banked ? $clog2(NumB) : 0;
-  localparam int unsigned BRowW = MAW > LgB ? MAW - LgB : 1;       // rows of one shared bank (one at NumB = 2^MAW)
 
-  // ---- Jobs, slots and output records ----
+  // ---- Jobs and slots (the output records: voxcd_hit_stage) ----
   typedef struct packed {
     logic [TAGW-1:0]        tag;
     logic [1:0]             mode;
@@ -212,22 +216,6 @@ module voxcd_device #(
     logic [RotW-1:0]   rot;     // shell bank of lane 0 (W holding a sparse shell word: the word's bank)
   } meta_t;
   localparam int unsigned MetaW = 1 + SeqW + 1 + (PtW + 1) + LANES + RotW;
-
-  // One output record, hit or completion, as it waits in the output slice (the fields of the other kind are
-  // don't-cares).
-  typedef struct packed {
-    logic              is_done;  // a completion record (else a hit record)
-    logic [TAGW-1:0]   tag;
-    logic [PtW-1:0]    point;
-    logic [3*DW-1:0]   voxel;    // {z, y, x}
-    logic [1:0]        state;
-    logic [IW-1:0]     distance;
-    logic [PtW:0]      hits;
-    logic [PtW:0]      points;
-    logic [CW-1:0]     cycles;
-    logic [CW-1:0]     stalls;
-  } record_t;
-  localparam int unsigned RecordW = 1 + TAGW + PtW + 3 * DW + 2 + IW + 2 * (PtW + 1) + 2 * CW;
 
   // ---- Cycle and stall counters (free-running) ----
   logic          stall;                       // this cycle the pipeline is held by the output slice
@@ -741,308 +729,130 @@ module voxcd_device #(
     );
   end
 
-  logic [CW-1:0]    conflicts_q;   // bank conflict cycles since reset
+  logic [CW-1:0]    conflicts;     // bank conflict cycles since reset (voxcd_shared_banks)
 
   // ---- Hit test and record emission at the last register (R5, R8 on a distance device; K, or the registers after it,
-  // on a sparse one) ----
-  logic [LANES-1:0] lane_hit;              // lanes whose point is a hit
-  logic [LANES-1:0] emitted_d, emitted_q;  // hit records of the last slot already emitted (ALL)
-  logic             found_d, found_q;      // a FIRST job's hit has been emitted; its later slots are squashed
-  logic [SeqW-1:0]  found_seq_d, found_seq_q;
-  logic             squash;                // the last slot belongs to a FIRST job whose hit was emitted
-  logic             is_first;
-  logic [LANES-1:0] records_left;          // hit records still to emit for the last slot
-  logic             done_due;              // the last slot ends its job: a completion record follows its hits
-  logic             slot_busy;             // after this cycle's record the last slot has another one to emit
-  logic [LaneW-1:0] emit_lane;             // lowest lane in records_left: the hit record of this cycle
-  logic [PtW:0]     slot_hits, slot_points;
-  logic [PtW:0]     hits_d, hits_q, points_d, points_q;  // of the current job, over its slots before this one
-  logic             out_ready;             // the output slice takes a record (a register: no path from *_ready_i)
-  logic             emit;                  // a record enters the output slice
+  // on a sparse one), and the output slice: voxcd_hit_stage ----
+  logic             out_ready;   // the output slice takes a record (a register: no path from *_ready_i)
+  logic             slot_busy;   // after this cycle's record the last slot has another one to emit
+  logic             emit;        // a record enters the output slice
+  logic             first_hit;   // the last slot holds the first hit of a FIRST job
+  logic             found;       // a FIRST job's hit has been emitted (its job: found_seq); its later slots squashed
+  logic [SeqW-1:0]  found_seq;
+  logic             out_valid;   // a record waits in the output slice
+  voxcd_hit_stage #(
+    .LANES(LANES), .TAGW(TAGW), .SAW(SAW), .DW(DW), .SB(SB), .WB(WB), .BL(BL), .SeqW(SeqW)
+  ) u_hit_stage (
+    .clk_i             (clk_i),
+    .rst_ni            (rst_ni),
+    .advance_out_i     (advance_out),
+    .slot_valid_i      (last_slot.valid),
+    .slot_seq_i        (last_slot.seq),
+    .slot_last_i       (last_slot.last),
+    .slot_k_i          (last_slot.k),
+    .slot_lanes_i      (last_slot.lanes),
+    .tag_i             (last_test.tag),
+    .mode_i            (last_test.mode),
+    .mask_i            (last_test.mask),
+    .thr_i             (IW'(last_test.thr)),
+    .fresh_i           (last_test.fresh),
+    .stamp_i           (last_test.stamp),
+    .stall_stamp_i     (last_test.stall_stamp),
+    .inside_i          (lane_inside),
+    .state_i           (lane_state),
+    .voxel_i           (lane_voxel),
+    .dist_i            (lane_dist),
+    .now_i             (now_q),
+    .stall_total_i     (stall_total_q),
+    .stall_total_next_i(stall_total_d),
+    .out_ready_o       (out_ready),
+    .slot_busy_o       (slot_busy),
+    .emit_o            (emit),
+    .emit_done_o       (emit_done),
+    .first_hit_o       (first_hit),
+    .first_stop_o      (first_stop),
+    .found_o           (found),
+    .found_seq_o       (found_seq),
+    .busy_o            (out_valid),
+    .hit_valid_o       (hit_valid_o),
+    .hit_ready_i       (hit_ready_i),
+    .hit_tag_o         (hit_tag_o),
+    .hit_point_o       (hit_point_o),
+    .hit_x_o           (hit_x_o),
+    .hit_y_o           (hit_y_o),
+    .hit_z_o           (hit_z_o),
+    .hit_state_o       (hit_state_o),
+    .hit_dist_o        (hit_dist_o),
+    .done_valid_o      (done_valid_o),
+    .done_ready_i      (done_ready_i),
+    .done_tag_o        (done_tag_o),
+    .done_hits_o       (done_hits_o),
+    .done_cycles_o     (done_cycles_o),
+    .done_points_o     (done_points_o),
+    .done_stalls_o     (done_stalls_o)
+  );
 
-  always_comb begin
-    for (int i = 0; i < LANES; i++) begin
-      if (Dist) lane_hit[i] = last_slot.lanes[i] && lane_inside[i] &&
-                              ($signed(lane_dist[IW*i +: IW]) <= $signed(IW'(last_test.thr)));
-      else      lane_hit[i] = last_slot.lanes[i] && lane_inside[i] && last_test.mask[lane_state[2*i +: 2]];
-    end
-  end
-
-  always_comb begin
-    is_first     = last_test.mode == voxcd_arch_pkg::ModeFirst;
-    squash       = last_slot.valid && found_q && (found_seq_q == last_slot.seq);
-    records_left = '0;
-    done_due     = 1'b0;
-    if (last_slot.valid && !squash) begin
-      if (last_test.mode == voxcd_arch_pkg::ModeAll) records_left = lane_hit & ~emitted_q;
-      else if (is_first)                       records_left = lane_hit & (~lane_hit + 1'b1) & ~emitted_q;  // lowest
-      done_due = last_slot.last || (is_first && (|lane_hit));
-    end
-    emit_lane = '0;
-    for (int i = LANES - 1; i >= 0; i--) begin
-      if (records_left[i]) emit_lane = LaneW'(i);
-    end
-    // More than one record left: two or more hits, or a hit and the completion.
-    slot_busy = ((records_left & (records_left - 1'b1)) != '0) || ((|records_left) && done_due);
-    slot_hits   = '0;
-    slot_points = '0;
-    for (int i = 0; i < LANES; i++) begin
-      slot_hits   = slot_hits + (PtW + 1)'(lane_hit[i]);
-      slot_points = slot_points + (PtW + 1)'(last_slot.lanes[i]);
-    end
-    if (is_first) slot_hits = (PtW + 1)'(|lane_hit);
-  end
-
+  // ---- Pipeline control: the enables (above) ----
   assign stall          = !out_ready;
   assign advance_out    = out_ready && !slot_busy;
   assign advance_mid    = advance_out && !brick_wait;
   assign advance        = advance_mid && !table_wait;
-  assign emit           = out_ready && ((|records_left) || done_due);
-  assign emit_done      = emit && !(|records_left);
-  assign first_stop     = advance_out && last_slot.valid && !squash && is_first && (|lane_hit);
   assign first_stop_seq = last_slot.seq;
 
-  always_comb begin
-    emitted_d   = emitted_q;
-    found_d     = found_q;
-    found_seq_d = found_seq_q;
-    hits_d      = hits_q;
-    points_d    = points_q;
-    if (out_ready && (|records_left)) emitted_d = emitted_q | (LANES'(1) << emit_lane);
-    if (advance_out) begin
-      emitted_d = '0;
-      if (first_stop) begin
-        found_d     = 1'b1;
-        found_seq_d = last_slot.seq;
-      end else if (last_slot.valid && (last_slot.seq != found_seq_q)) begin
-        found_d = 1'b0;
-      end
-      if (last_slot.valid && !squash) begin
-        hits_d   = done_due ? '0 : hits_q + slot_hits;
-        points_d = done_due ? '0 : points_q + slot_points;
-      end
-    end
-  end
-
-  `VOXCD_FF(emitted_q, emitted_d, '0)
-  `VOXCD_FF(found_q, found_d, 1'b0)
-  `VOXCD_FF(found_seq_q, found_seq_d, '0)
-  `VOXCD_FF(hits_q, hits_d, '0)
-  `VOXCD_FF(points_q, points_d, '0)
-
-  // ---- Shared voxmap banks (BANKS > 0): word w is in bank w % NumB, row w / NumB ----
-  // NumB = BANKS on a 2-bit device; on a distance device each of the 8 parity banks is split BANKS ways (8 * BANKS
-  // banks), and each lane makes 8 requests, one word of each parity bank. A read stage's slot reads in rounds
-  // (voxcd_bank_rounds), one in each cycle in which the register after it may advance: R4 (the table port, into R5)
-  // and on a sparse device the brick stage (the brick port, into K), the brick stage first: the table stage takes a
-  // round only in a cycle in which the brick stage does not wait (each bank is a voxcd_ram2, one read port for each
-  // stage). A stage's slot leaves in its last round; before that the register after it takes empty slots (a bank
-  // conflict cycle each). So a slot with at most r distinct words in any one bank at a stage reaches the hit test
-  // r - 1 cycles late; a slot of a FIRST job whose hit has been found reads nothing at either stage (it is squashed:
-  // on a 2-bit device the hit is seen at the hit test, or with READ in the register before it, before the slot behind
-  // it reads; on a distance device at the hit test, after the slots behind it read in the slot registers between).
-  // ref/banks.h counts the same (first_window follows it cycle by cycle).
+  // ---- Shared voxmap banks (BANKS > 0, voxcd_shared_banks): the lanes read one voxmap; else each its own copy ----
   if (Banked) begin : g_banks
-    logic                 pre_first_hit;  // the register before READ (2-bit, HasRead) holds a FIRST job's hit
-    logic                 hit_now;        // the last register holds a FIRST job's hit
-    logic                 r4_squashed;
-    logic [NReq-1:0]      table_want;
-    logic [NumB-1:0]      table_re;
-    logic [NumB*MAW-1:0]  table_word_addr;
-    logic [NumB*MEMW-1:0] table_rdata;
-
-    always_comb begin
-      pre_first_hit = 1'b0;
-      if (HasRead && !Dist && pre_slot.valid && pre_test.mode == voxcd_arch_pkg::ModeFirst) begin
-        for (int l = 0; l < LANES; l++) begin
-          pre_first_hit = pre_first_hit ||
-                          (pre_slot.lanes[l] && lane_inside_pre[l] && pre_test.mask[lane_state_pre[2*l +: 2]]);
-        end
-      end
-    end
-    assign hit_now        = last_slot.valid && !squash && is_first && (|lane_hit);
-    assign r4_squashed = (found_q && (found_seq_q == r4_slot.seq)) || (hit_now && (last_slot.seq == r4_slot.seq)) ||
-                         (pre_first_hit && (pre_slot.seq == r4_slot.seq));
-    for (genvar r = 0; r < NReq; r++) begin : g_want
-      assign table_want[r] = r4_slot.valid && !r4_squashed && r4_slot.lanes[r / NPar] && lane_read[r];
-    end
-
-    voxcd_bank_rounds #(.NReq(NReq), .NumB(NumB), .MAW(MAW), .MEMW(MEMW)) u_table_rounds (
-      .clk_i      (clk_i),
-      .rst_ni     (rst_ni),
-      .want_i     (table_want),
-      .addr_i     (lane_addr),
-      .round_i    (advance_mid),
-      .leave_i    (advance),
-      .wait_o     (table_wait),
-      .re_o       (table_re),
-      .word_addr_o(table_word_addr),
-      .rdata_i    (table_rdata),
-      .word_o     (lane_word)
+    voxcd_shared_banks #(
+      .LANES(LANES), .MEMW(MEMW), .MAW(MAW), .SB(SB), .BANKS(BANKS), .Depth(Depth), .BL(BL), .SeqW(SeqW)
+    ) u_shared_banks (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .map_we_i      (map_we_i),
+      .map_waddr_i   (map_waddr_i),
+      .map_wdata_i   (map_wdata_i),
+      .advance_i     (advance),
+      .advance_mid_i (advance_mid),
+      .advance_out_i (advance_out),
+      .r4_valid_i    (r4_slot.valid),
+      .r4_seq_i      (r4_slot.seq),
+      .r4_lanes_i    (r4_slot.lanes),
+      .brick_valid_i (brick_slot.valid),
+      .brick_seq_i   (brick_slot.seq),
+      .brick_lanes_i (brick_slot.lanes),
+      .brick_sparse_i(stage_bricks[BrickW-1]),
+      .pre_valid_i   (pre_slot.valid),
+      .pre_seq_i     (pre_slot.seq),
+      .pre_lanes_i   (pre_slot.lanes),
+      .pre_mode_i    (pre_test.mode),
+      .pre_mask_i    (pre_test.mask),
+      .inside_pre_i  (lane_inside_pre),
+      .state_pre_i   (lane_state_pre),
+      .found_i       (found),
+      .found_seq_i   (found_seq),
+      .last_hit_i    (first_hit),
+      .last_seq_i    (last_slot.seq),
+      .read_i        (lane_read),
+      .addr_i        (lane_addr),
+      .word_o        (lane_word),
+      .bread_i       (lane_bread),
+      .baddr_i       (lane_baddr),
+      .bword_o       (lane_bword),
+      .table_wait_o  (table_wait),
+      .brick_wait_o  (brick_wait),
+      .conflicts_o   (conflicts)
     );
-
-    if (Sparse) begin : g_brick_port
-      logic                 brick_squashed;
-      logic [NReq-1:0]      brick_want;
-      logic [NumB-1:0]      brick_re;
-      logic [NumB*MAW-1:0]  brick_word_addr;
-      logic [NumB*MEMW-1:0] brick_rdata;
-      assign brick_squashed = (found_q && (found_seq_q == brick_slot.seq)) ||
-                              (hit_now && (last_slot.seq == brick_slot.seq)) ||
-                              (pre_first_hit && (pre_slot.seq == brick_slot.seq));
-      for (genvar r = 0; r < NReq; r++) begin : g_want
-        assign brick_want[r] = brick_slot.valid && !brick_squashed && brick_slot.lanes[r / NPar] && lane_bread[r];
-      end
-      voxcd_bank_rounds #(.NReq(NReq), .NumB(NumB), .MAW(MAW), .MEMW(MEMW)) u_brick_rounds (
-        .clk_i      (clk_i),
-        .rst_ni     (rst_ni),
-        .want_i     (brick_want),
-        .addr_i     (lane_baddr),
-        .round_i    (advance_out),
-        .leave_i    (advance_mid),
-        .wait_o     (brick_wait),
-        .re_o       (brick_re),
-        .word_addr_o(brick_word_addr),
-        .rdata_i    (brick_rdata),
-        .word_o     (lane_bword)
-      );
-      for (genvar b = 0; b < NumB; b++) begin : g_bank
-        voxcd_ram2 #(
-          .Width(MEMW),
-          .AddrW(BRowW)
-        ) u_map (
-          .clk_i    (clk_i),
-          .we_i     (map_we_i && ((32'(map_waddr_i) % NumB) == b)),
-          .waddr_i  (BRowW'(map_waddr_i >> LgB)),
-          .wdata_i  (map_wdata_i),
-          .re_a_i   (table_re[b]),
-          .raddr_a_i(BRowW'(table_word_addr[MAW*b +: MAW] >> LgB)),
-          .rdata_a_o(table_rdata[MEMW*b +: MEMW]),
-          .re_b_i   (brick_re[b]),
-          .raddr_b_i(BRowW'(brick_word_addr[MAW*b +: MAW] >> LgB)),
-          .rdata_b_o(brick_rdata[MEMW*b +: MEMW])
-        );
-      end
-      // The brick port reads only for a brick cell of a sparse map: a slot at the brick stage whose job's map is
-      // sparse, and a lane whose cell is a brick (a uniform cell and a dense map read nothing there).
-      `VOXCD_ASSERT(BrickReadsOnlyBricks, !(|brick_want) || stage_bricks[BrickW-1])
-      `VOXCD_COVER(CoverBrickPortWaits, brick_wait)
-    end else begin : g_table_port
-      assign brick_wait = 1'b0;
-      for (genvar l = 0; l < LANES; l++) begin : g_no_bword  // lane by lane: a wide device's is over 8k bits
-        assign lane_bword[NPar*MEMW*l +: NPar*MEMW] = '0;
-      end
-      for (genvar b = 0; b < NumB; b++) begin : g_bank
-        voxcd_ram #(
-          .Width(MEMW),
-          .AddrW(BRowW)
-        ) u_map (
-          .clk_i  (clk_i),
-          .we_i   (map_we_i && ((32'(map_waddr_i) % NumB) == b)),
-          .waddr_i(BRowW'(map_waddr_i >> LgB)),
-          .wdata_i(map_wdata_i),
-          .re_i   (table_re[b]),
-          .raddr_i(BRowW'(table_word_addr[MAW*b +: MAW] >> LgB)),
-          .rdata_o(table_rdata[MEMW*b +: MEMW])
-        );
-      end
-      logic unused_brick;  // a dense device has no brick port
-      assign unused_brick = ^{lane_baddr, lane_bread};
-    end
-
-    `VOXCD_COVER(CoverTablePortWaits, table_wait)
-    `VOXCD_COVER(CoverSquashedSlotAtTheTableStage, r4_slot.valid && r4_squashed)
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) conflicts_q <= '0;
-      else         conflicts_q <= conflicts_q + CW'(advance_out && !advance);
-    end
   end else begin : g_copies
     assign table_wait  = 1'b0;
     assign brick_wait  = 1'b0;
-    assign conflicts_q = '0;
+    assign conflicts = '0;
     for (genvar l = 0; l < LANES; l++) begin : g_no_word  // lane by lane: a wide device's are over 8k bits
       assign lane_word[NPar*MEMW*l +: NPar*MEMW]  = '0;
       assign lane_bword[NPar*MEMW*l +: NPar*MEMW] = '0;
     end
     logic unused_banks;  // each lane reads its own copy
-    assign unused_banks = ^{lane_read, lane_addr, lane_bread, lane_baddr, lane_inside_pre, lane_state_pre};
+    assign unused_banks = ^{lane_read, lane_addr, lane_bread, lane_baddr, lane_inside_pre, lane_state_pre, first_hit,
+                            found, found_seq};
   end
-  assign conflicts_o = conflicts_q;
-
-  // ---- Cycle and stall accounting of the completion records ----
-  // Both count over one window: from the later of the job's acceptance and the previous completion record's
-  // emission, to this record's emission. cycles: the cycles of that window; stalls: its stall cycles (the cycles
-  // in which the output slice held the pipeline). Stalls before a job's acceptance (an idle device whose last
-  // record waits for its consumer) cannot delay it and are not counted.
-  logic [CW-1:0] since_done_d, since_done_q;            // cycles since the previous completion's emission
-  logic [CW-1:0] stalls_at_done_d, stalls_at_done_q;    // stall_total at the previous completion's emission
-  logic [CW-1:0] job_age, cycles, stalls, stalls_since_job, stalls_since_done;
-  logic          window_from_job;                       // the job was accepted after the previous completion
-  // A job accepted with no earlier job in flight (fresh) was accepted after the previous completion's emission; one
-  // accepted in the cycle of that emission may take either window (both give the same counts). Each candidate is
-  // computed from registers, side by side, and then selected: no comparison of the two windows on the path.
-  assign job_age           = now_q - last_test.stamp;
-  assign window_from_job   = last_test.fresh;
-  assign cycles            = window_from_job ? job_age : since_done_q;
-  assign stalls_since_job  = stall_total_q - last_test.stall_stamp;
-  assign stalls_since_done = stall_total_q - stalls_at_done_q;
-  assign stalls            = window_from_job ? stalls_since_job : stalls_since_done;
-
-  always_comb begin
-    since_done_d     = emit_done ? CW'(1) : ((since_done_q == '1) ? since_done_q : since_done_q + 1'b1);
-    stalls_at_done_d = emit_done ? stall_total_d : stalls_at_done_q;
-  end
-
-  `VOXCD_FF(since_done_q, since_done_d, '1)
-  `VOXCD_FF(stalls_at_done_q, stalls_at_done_d, '0)
-
-  // ---- Output slice: the record of this cycle, then voxcd_skid ----
-  record_t emit_record, out_record;
-  logic    out_valid, out_taken;
-  always_comb begin
-    emit_record.is_done = !(|records_left);
-    emit_record.tag     = last_test.tag;
-    emit_record.point   = PtW'(last_slot.k + (PtW + 1)'(emit_lane));
-    emit_record.voxel   = lane_voxel[3*DW*emit_lane +: 3*DW];
-    emit_record.state   = lane_state[2*emit_lane +: 2];
-    emit_record.distance = lane_dist[IW*emit_lane +: IW];  // 0 on a 2-bit device
-    emit_record.hits    = hits_q + slot_hits;
-    emit_record.points  = points_q + slot_points;
-    emit_record.cycles  = cycles;
-    emit_record.stalls  = stalls;
-  end
-
-  // The consumer's ready selects by the kind of the waiting record; it reaches only the slice.
-  assign out_taken = out_record.is_done ? done_ready_i : hit_ready_i;
-
-  voxcd_skid #(
-    .Width(RecordW)
-  ) u_out_slice (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i((|records_left) || done_due),
-    .ready_o(out_ready),
-    .data_i (emit_record),
-    .valid_o(out_valid),
-    .ready_i(out_taken),
-    .data_o (out_record)
-  );
-
-  assign hit_valid_o   = out_valid && !out_record.is_done;
-  assign hit_tag_o     = out_record.tag;
-  assign hit_point_o   = out_record.point;
-  assign hit_x_o       = out_record.voxel[0*DW +: DW];
-  assign hit_y_o       = out_record.voxel[1*DW +: DW];
-  assign hit_z_o       = out_record.voxel[2*DW +: DW];
-  assign hit_state_o   = out_record.state;
-  assign hit_dist_o    = out_record.distance;
-  assign done_valid_o  = out_valid && out_record.is_done;
-  assign done_tag_o    = out_record.tag;
-  assign done_hits_o   = out_record.hits;
-  assign done_points_o = out_record.points;
-  assign done_cycles_o = out_record.cycles;
-  assign done_stalls_o = out_record.stalls;
+  assign conflicts_o = conflicts;
 
   // The output slice holds records only behind its output register: out_valid covers both.
   assign busy_o = head_valid || out_valid || (|slot_valid);
@@ -1055,7 +865,7 @@ module voxcd_device #(
                     info_r[0 +: InfoW], stamps_r[0 +: 2*CW], t_r[0 +: 3*TW], map_r[0 +: MapW], lane_inside_pre,
                     lane_state_pre, w_meta, r0_job_q};
 
-  // ---- Assertions (Verilator runs them with --assert; voxcd_assert.sv) ----
+  // ---- Assertions (Verilator runs them with --assert; voxcd_assert.svh) ----
   // Parameter sanity, at elaboration.
   `VOXCD_ASSERT_INIT(LanesPowerOfTwo, (LANES & (LANES - 1)) == 0 && LANES <= 64)
   `VOXCD_ASSERT_INIT(ShellBankHasARow, SAW >= LgL)
@@ -1074,8 +884,7 @@ module voxcd_device #(
   `VOXCD_ASSERT_INIT(SlotsMatchTheTimingModel,
                      NumR == voxcd_arch_pkg::PipeSlots + Depth + (Dist ? voxcd_arch_pkg::DistSlots : 0) +
                              (Sparse ? (Dist ? voxcd_arch_pkg::SparseDistSlots : voxcd_arch_pkg::SparseSlots) : 0))
-  `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) && TestW == $bits(test_t) &&
-                                        RecordW == $bits(record_t))
+  `VOXCD_ASSERT_INIT(StructWidthsMatch, JobW == $bits(job_t) && MetaW == $bits(meta_t) && TestW == $bits(test_t))
 
   // The streams: records hold while their consumer is not ready; one record at a time, in stream order.
   `VOXCD_ASSERT(HitHeldWhileStalled, !$past(hit_valid_o && !hit_ready_i) ||
@@ -1105,23 +914,6 @@ module voxcd_device #(
 
   // ---- Functional coverage (docs/verification.md, "Functional coverage"): counted in the coverage models ----
   // Signals named cov_* are read by cover properties only (bench/mutation leaves them out: no output can change).
-  // Each mode's completion records, with and without hits.
-  logic cov_is_count;
-  assign cov_is_count = last_test.mode == voxcd_arch_pkg::ModeCount;
-  `VOXCD_COVER(CoverAllJobWithHits, emit_done && !is_first && !cov_is_count && emit_record.hits != '0)
-  `VOXCD_COVER(CoverAllJobWithoutHits, emit_done && !is_first && !cov_is_count && emit_record.hits == '0)
-  `VOXCD_COVER(CoverFirstJobWithAHit, emit_done && is_first && emit_record.hits != '0)
-  `VOXCD_COVER(CoverFirstJobWithoutHits, emit_done && is_first && emit_record.hits == '0)
-  `VOXCD_COVER(CoverCountJobWithHits, emit_done && cov_is_count && emit_record.hits != '0)
-  `VOXCD_COVER(CoverCountJobWithoutHits, emit_done && cov_is_count && emit_record.hits == '0)
-  `VOXCD_COVER(CoverJobWithoutPoints, emit_done && emit_record.points == '0)
-  // FIRST: its stop with slots of the job behind it, and those slots squashed at the hit test.
-  `VOXCD_COVER(CoverFirstStopsBeforeTheLastSlot, first_stop && !last_slot.last)
-  `VOXCD_COVER(CoverFirstSquashedSlot, squash)
-  // A slot with every lane, one with some, and one with several records to emit (the pipeline holds for it).
-  `VOXCD_COVER(CoverFullSlot, last_slot.valid && (&last_slot.lanes))
-  `VOXCD_COVER(CoverPartSlot, last_slot.valid && !(&last_slot.lanes))
-  `VOXCD_COVER(CoverSlotOfSeveralRecords, slot_busy)
   // Back-pressure on each stream, a stall while a completion record waits with a later job's slots in the
   // registers, and stalls with the job queue full.
   `VOXCD_COVER(CoverHitStreamHeld, hit_valid_o && !hit_ready_i)
@@ -1136,22 +928,6 @@ module voxcd_device #(
   // Memories written between jobs (the device idle after records have left).
   `VOXCD_COVER(CoverMapWrite, map_we_i)
   `VOXCD_COVER(CoverShellWrite, shell_we_i)
-  // A distance device's hit test: D below, at and above the threshold, for a point inside the map.
-  if (Dist) begin : g_cover_dist
-    logic [LANES-1:0] cov_below, cov_at, cov_above;
-    always_comb begin
-      for (int i = 0; i < LANES; i++) begin
-        cov_below[i] = last_slot.lanes[i] && lane_inside[i] &&
-                   ($signed(lane_dist[IW*i +: IW]) < $signed(IW'(last_test.thr)));
-        cov_at[i]    = last_slot.lanes[i] && lane_inside[i] && (lane_dist[IW*i +: IW] == IW'(last_test.thr));
-        cov_above[i] = last_slot.lanes[i] && lane_inside[i] &&
-                   ($signed(lane_dist[IW*i +: IW]) > $signed(IW'(last_test.thr)));
-      end
-    end
-    `VOXCD_COVER(CoverDistanceBelowThreshold, last_slot.valid && (|cov_below))
-    `VOXCD_COVER(CoverDistanceAtThreshold, last_slot.valid && (|cov_at))
-    `VOXCD_COVER(CoverDistanceAboveThreshold, last_slot.valid && (|cov_above))
-  end
   // A sparse device's brick stage: a slot of a sparse map whose lanes' cells are all bricks, all uniform, or both.
   if (Sparse) begin : g_cover_sparse
     logic [LANES-1:0] cov_brick_cells;

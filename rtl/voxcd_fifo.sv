@@ -9,6 +9,9 @@
 //
 // Properties (the VOXCD_ASSERTs below; tests/formal/voxcd_fifo_check.sv proves them and the scoreboard's):
 // the count never exceeds Depth, and the pointers agree with the count.
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_fifo #(
   parameter int unsigned Depth = 2,  // entries, at least 1
   parameter int unsigned Width = 8   // bits per entry

@@ -4,6 +4,9 @@
 // a clock edge, rdata_o shows mem[raddr_i] from the next cycle on and holds it while re_i is low (the RAM output
 // register has a clock enable, so a stalled pipeline keeps its data). Latency: 1 cycle. Reading an address in the
 // cycle it is written is not used by the device (memories are loaded before jobs run).
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_ram #(
   parameter int unsigned Width = 8,
   parameter int unsigned AddrW = 4

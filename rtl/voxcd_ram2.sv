@@ -8,6 +8,9 @@
 // output holds, a block RAM port's NO_CHANGE mode; the device writes its memories only while it is idle, when it uses
 // no word it reads), so the cell maps onto one true dual-port block RAM (port A: write, else read; port B: read) with
 // no more storage than voxcd_ram. Reading an address in the cycle it is written is not used.
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_ram2 #(
   parameter int unsigned Width = 8,
   parameter int unsigned AddrW = 4

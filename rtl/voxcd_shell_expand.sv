@@ -5,6 +5,9 @@
 // rem_i) lanes); lane i's point is bit bit_o[6*i +: 6] of the mask, whose offset in the 4 x 4 x 4 shell brick is
 // (b & 3, (b >> 2) & 3, b >> 4); rem_o is rem_i without the bits taken, so a word whose rem_o is 0 has no later slot.
 // Latency: 0 (a prefix count of the mask, then a one-hot match per lane).
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_shell_expand #(
   parameter int unsigned LANES = 4
 ) (

@@ -10,6 +10,9 @@
 // and never lowers ready_o.
 //
 // Properties (the VOXCD_ASSERTs below; tests/formal/voxcd_skid_check.sv proves them and the scoreboard's).
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_skid #(
   parameter int unsigned Width = 8  // bits per beat
 ) (

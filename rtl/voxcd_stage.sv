@@ -3,6 +3,9 @@
 // Contract: with Enable, q_o shows d_i as it was at the last clock edge where en_i was high (no reset: the
 // pipeline reads a stage's data only where its slot is valid); without Enable, q_o is d_i. Latency: 1 cycle with
 // Enable, 0 without.
+`ifndef VOXCD_ASSERT_SVH
+`include "voxcd_assert.svh"
+`endif
 module voxcd_stage #(
   parameter int unsigned Width  = 1,
   parameter bit          Enable = 1'b1

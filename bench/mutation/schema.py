@@ -15,7 +15,7 @@ def write(rtl_dir, out_dir, ms):
     os.makedirs(out_dir, exist_ok=True)
     live = [m for m in ms if not m.status]
     for name in os.listdir(rtl_dir):
-        if not (name.endswith(".sv") or name.endswith(".vlt") or name == "voxcd.f"):
+        if not (name.endswith((".sv", ".svh", ".vlt")) or name == "voxcd.f"):
             continue
         with open(os.path.join(rtl_dir, name)) as f:
             lines = f.read().split("\n")
@@ -30,7 +30,7 @@ def write(rtl_dir, out_dir, ms):
             for m in group:
                 text = f"(voxcd_mut({m.id}) ? ({m.mutated}) : {text})"
             lines = mutants.apply(lines, group[0], text)
-        if name == "voxcd_assert.sv":
+        if name == "voxcd_assert.svh":  # read once, before every module (rtl/voxcd.f)
             lines = IMPORT.split("\n") + lines
         new = "\n".join(lines)
         path = os.path.join(out_dir, name)

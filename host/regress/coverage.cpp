@@ -67,8 +67,8 @@ std::string field(const std::string& key, const std::string& k) {
   return key.substr(v, key.find('\001', v) - v);
 }
 
-// A functional bin's name: its place below the model's top ("TOP.voxcd.g_banks.u_table_rounds.CoverX" ->
-// "g_banks.u_table_rounds.CoverX"), generate indices as [*].
+// A functional bin's name: its place below the model's top ("TOP.voxcd.g_banks.u_shared_banks.u_table_rounds.CoverX" ->
+// "g_banks.u_shared_banks.u_table_rounds.CoverX"), generate indices as [*].
 std::string bin_name(const std::string& hier) {
   std::string h = hier;
   for (int i = 0; i < 2; ++i) {

@@ -30,8 +30,8 @@ struct CoverageReport {
   std::map<std::string, CoverageCount> kinds;  // "line", "branch", "toggle", "functional"
   // File (rtl/'s name) -> kind -> count; functional bins of the stimulus are under "stimulus".
   std::map<std::string, std::map<std::string, CoverageCount>> files;
-  // Every functional bin and its count: the RTL's cover properties by their place in the device ("CoverFullSlot",
-  // "g_banks.u_table_rounds.CoverSlotReadInTwoRounds") and the stimulus bins (regress/stimulus_bins.h).
+  // Every functional bin and its count: the RTL's cover properties by their place in the device ("u_hit_stage.CoverFullSlot",
+  // "g_banks.u_shared_banks.u_table_rounds.CoverSlotReadInTwoRounds") and the stimulus bins (regress/stimulus_bins.h).
   std::map<std::string, uint64_t> bins;
   std::vector<std::string> empty_bins;     // not hit and not waived
   std::vector<std::string> missed_points;  // "file:line kind what" of every code point missed (not waived)

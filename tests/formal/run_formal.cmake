@@ -13,7 +13,7 @@ if(DEFINED BREAK_FROM)
   string(REPLACE "${BREAK_FROM}" "${BREAK_TO}" source "${source}")
 endif()
 file(WRITE ${WORK}/voxcd_${CELL}.sv "${source}")
-set(script "read_verilog -formal -sv ${RTL}/voxcd_assert.sv ${WORK}/voxcd_${CELL}.sv ${CHECK}; \
+set(script "read_verilog -formal -sv ${RTL}/voxcd_assert.svh ${WORK}/voxcd_${CELL}.sv ${CHECK}; \
 prep -top ${TOP}; memory; flatten; async2sync; opt_clean; \
 sat -tempinduct -prove-asserts -set-init-zero -maxsteps 24 -verify")
 execute_process(COMMAND ${YOSYS} -l ${WORK}/yosys.log -q -p "${script}"

@@ -57,7 +57,7 @@ message("all ${n} bins of ${BINS} hit")
 # does); --aim-at-holes aims at the first and hits it.
 set(aimed ${WORK}/aimed)
 file(MAKE_DIRECTORY ${aimed})
-file(WRITE ${aimed}/bins.txt "CoverFullSlot 0\nface.x.n 0\nface.x.0 5\n")
+file(WRITE ${aimed}/bins.txt "u_hit_stage.CoverFullSlot 0\nface.x.n 0\nface.x.0 5\n")
 execute_process(COMMAND ${VOXCD} regress --seeds 7 --configs default --lanes 4 --backends rtl --jobs-per-shard 20
                         --cycles --coverage ${aimed} --aim-at-holes
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

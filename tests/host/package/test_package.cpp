@@ -40,7 +40,8 @@ TEST(Package, RtlDirHoldsEveryFileOfTheListAsTheSourceTreeHasIt) {
   };
   EXPECT_LT(at("voxcd_arch_pkg.sv"), at("voxcd_lane.sv"));
   EXPECT_LT(at("voxcd_arch_pkg.sv"), at("voxcd_device.sv"));
-  EXPECT_LT(at("voxcd_assert.sv"), at("voxcd_ram.sv"));
+  EXPECT_LT(at("voxcd_assert.svh"), at("voxcd_ram.sv"));
+  EXPECT_LT(at("voxcd_params.svh"), at("voxcd_lane.sv"));
   EXPECT_LT(at("voxcd_device.sv"), at("voxcd_axi.sv"));
   for (const std::string& f : files) {
     const std::string source = std::string(VOXCD_SOURCE_RTL) + "/" + fs::path(f).filename().string();

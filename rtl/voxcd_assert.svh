@@ -1,4 +1,4 @@
-// voxcd_assert.sv: named assertions for every module of rtl/ (after lowRISC's prim_assert.sv), and the register
+// voxcd_assert.svh: named assertions for every module of rtl/ (after lowRISC's prim_assert.sv), and the register
 // with asynchronous reset they all use (after common_cells' registers.svh).
 //
 //   `VOXCD_FF(q, d, reset)          q takes d at every rising edge of clk_i, and reset while rst_ni is low
@@ -16,9 +16,12 @@
 //   - formal (yosys read_verilog -formal, which defines FORMAL): an immediate assert in a clocked process, which
 //     `sat -prove-asserts` proves (tests/formal); covers are left out;
 //   - synthesis (SYNTHESIS defined, yosys's default): nothing.
-// A tool reads this file before the modules, with no `include: rtl/voxcd.f lists it before them, and its name
-// (like the package's, voxcd_arch_pkg.sv) sorts before every module's, so `verilator --lint-only -Wall rtl/*.sv`
-// reads it first too (tests/rtl/CMakeLists.txt, rtl.lint_glob). Defines outlive the file in Verilator and yosys.
+// A guarded include: rtl/voxcd.f lists this file before the modules, so a tool that reads the list defines the macros
+// once, and each module that uses them includes it inside `ifndef VOXCD_ASSERT_SVH, so a module read on its own (or
+// `verilator --lint-only -Wall -Irtl rtl/*.sv`, tests/rtl/CMakeLists.txt rtl.lint_glob) finds it on the include path.
+// Defines outlive the file in Verilator and yosys.
+`ifndef VOXCD_ASSERT_SVH
+`define VOXCD_ASSERT_SVH
 
 `ifdef FORMAL
   `define VOXCD_ASSERT(__name, __prop) \
@@ -47,3 +50,5 @@
     if (!rst_ni) __q <= (__reset); \
     else         __q <= (__d); \
   end
+
+`endif  // VOXCD_ASSERT_SVH
