@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "voxcd/host/object/mesh.h"
-#include "voxcd/host/sizing/detail/exact_distance.h"
+#include "voxcd/host/sizing/sweep/detail/exact_distance.h"
 #include "voxcd/host/object/voxelize.h"
 
 namespace voxcd::test {

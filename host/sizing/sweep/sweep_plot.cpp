@@ -1,4 +1,4 @@
-#include "voxcd/host/sizing/sweep_plot.h"
+#include "voxcd/host/sizing/sweep/sweep_plot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "voxcd/host/sizing/sweep.h"
+#include "voxcd/host/sizing/sweep/sweep.h"
 
 #include <chrono>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/sizing/contact_bound.h"
-#include "voxcd/host/sizing/contact_measure.h"
+#include "voxcd/host/sizing/sweep/contact_measure.h"
 #include "voxcd/host/sizing/depth.h"
 #include "voxcd/host/sizing/detail/digits.h"
 

@@ -1,11 +1,11 @@
-#include "voxcd/host/sizing/contact_measure.h"
+#include "voxcd/host/sizing/sweep/contact_measure.h"
 
 #include <algorithm>
 #include <stdexcept>
 
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/pairs/collide.h"
-#include "voxcd/host/sizing/detail/exact_distance.h"
+#include "voxcd/host/sizing/sweep/detail/exact_distance.h"
 #include "voxcd/host/sizing/size.h"
 
 namespace voxcd {

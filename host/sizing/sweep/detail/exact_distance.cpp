@@ -1,4 +1,4 @@
-#include "voxcd/host/sizing/detail/exact_distance.h"
+#include "voxcd/host/sizing/sweep/detail/exact_distance.h"
 
 #include <algorithm>
 #include <limits>

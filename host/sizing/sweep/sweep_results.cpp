@@ -1,4 +1,4 @@
-#include "voxcd/host/sizing/sweep_results.h"
+#include "voxcd/host/sizing/sweep/sweep_results.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-#include "voxcd/host/sizing/sweep_table.h"
+#include "voxcd/host/sizing/sweep/sweep_table.h"
 
 #include <algorithm>
 #include <cstdio>

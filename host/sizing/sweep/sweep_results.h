@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "voxcd/host/regress/journal.h"
-#include "voxcd/host/sizing/sweep.h"
+#include "voxcd/host/sizing/sweep/sweep.h"
 
 namespace voxcd {
 

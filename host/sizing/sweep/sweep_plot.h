@@ -5,7 +5,7 @@
 #include <string>
 
 #include "voxcd/host/object/png.h"
-#include "voxcd/host/sizing/sweep_table.h"
+#include "voxcd/host/sizing/sweep/sweep_table.h"
 
 namespace voxcd {
 

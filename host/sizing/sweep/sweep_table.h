@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "voxcd/host/sizing/sweep.h"
+#include "voxcd/host/sizing/sweep/sweep.h"
 
 namespace voxcd {
 
