@@ -8,7 +8,7 @@
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/device/timing_table.h"
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/pairs/collide.h"

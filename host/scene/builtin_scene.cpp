@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/host/scene/scene.h"

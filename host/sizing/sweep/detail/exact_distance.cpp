@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "voxcd/host/object/ray_crossing.h"
+#include "voxcd/host/mesh/ray_crossing.h"
 
 namespace voxcd::detail {
 

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd::detail {
 

@@ -6,7 +6,7 @@
 #include <cctype>
 #include <fstream>
 
-#include "voxcd/host/object/formats/formats.h"
+#include "voxcd/host/mesh/formats/formats.h"
 
 namespace voxcd::formats {
 

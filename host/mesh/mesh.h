@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "voxcd/host/object/errors.h"
+#include "voxcd/host/mesh/errors.h"
 
 namespace voxcd {
 

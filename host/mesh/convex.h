@@ -2,7 +2,7 @@
 // voxmap's error bound (docs/contract.md: zero over a convex object, whose signed distance is convex).
 #pragma once
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd {
 

@@ -1,4 +1,5 @@
-// Internal to host/object's triangle trees (closest.cpp, winding.cpp): a node's triangles split at the median.
+// Internal to the library's triangle trees (host/mesh/closest.cpp, host/object/detail/winding.cpp): a node's
+// triangles split at the median.
 #pragma once
 
 #include <Eigen/Core>

@@ -10,13 +10,13 @@
 #include <map>
 #include <unordered_map>
 
-#include "voxcd/host/object/detail/cells.h"
-#include "voxcd/host/object/detail/edge_uses.h"
-#include "voxcd/host/object/detail/point_hash.h"
-#include "voxcd/host/object/ray_crossing.h"
-#include "voxcd/host/object/detail/union_find.h"
+#include "voxcd/host/mesh/detail/cells.h"
+#include "voxcd/host/mesh/detail/edge_uses.h"
+#include "voxcd/host/mesh/detail/point_hash.h"
+#include "voxcd/host/mesh/ray_crossing.h"
+#include "voxcd/host/mesh/detail/union_find.h"
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd {
 

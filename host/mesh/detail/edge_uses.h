@@ -1,11 +1,11 @@
-// Internal to host/object (mesh.cpp's validate, repair.cpp): every use of an undirected edge by a triangle.
+// Internal to host/mesh (mesh.cpp's validate, repair.cpp): every use of an undirected edge by a triangle.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd::detail {
 

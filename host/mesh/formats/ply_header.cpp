@@ -1,12 +1,12 @@
 // The PLY header and the counts it declares, checked against the file before anything is allocated for them.
-#include "voxcd/host/object/formats/ply_header.h"
+#include "voxcd/host/mesh/formats/ply_header.h"
 
 #include <algorithm>
 #include <cctype>
 #include <sstream>
 #include <utility>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd::formats {
 

@@ -1,13 +1,13 @@
 // classify_cells() (host/object/detail/cells.h): sides joined around edges by angle; the unbounded cell found by one
 // ray; cells labelled by their distance from it.
-#include "voxcd/host/object/detail/cells.h"
+#include "voxcd/host/mesh/detail/cells.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-#include "voxcd/host/object/detail/closest.h"
-#include "voxcd/host/object/detail/union_find.h"
+#include "voxcd/host/mesh/closest.h"
+#include "voxcd/host/mesh/detail/union_find.h"
 
 namespace voxcd::detail {
 

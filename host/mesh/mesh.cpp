@@ -1,6 +1,6 @@
 // Meshes: the Mesh type's measures, welding, strict validation and load_mesh, which reads a file through the
 // reader of its format (formats/) and then repairs or validates what it read.
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "voxcd/host/object/detail/edge_uses.h"
-#include "voxcd/host/object/detail/point_hash.h"
-#include "voxcd/host/object/formats/formats.h"
+#include "voxcd/host/mesh/detail/edge_uses.h"
+#include "voxcd/host/mesh/detail/point_hash.h"
+#include "voxcd/host/mesh/formats/formats.h"
 
 namespace voxcd {
 

@@ -1,6 +1,7 @@
-// Internal to host/object (distance fields, surface shells): closest points on a triangle mesh. A bounding-volume
-// tree over the triangles finds the nearest triangle to a point (exact point-triangle distance, ties to the lowest
-// triangle index) within a radius; pseudo-normals give the outward normal of the feature the closest point lies on.
+// Internal to the library (host/mesh: repair's cells; host/object: distance fields, surface shells): closest points
+// on a triangle mesh. A bounding-volume tree over the triangles finds the nearest triangle to a point (exact
+// point-triangle distance, ties to the lowest triangle index) within a radius; pseudo-normals give the outward normal
+// of the feature the closest point lies on.
 #pragma once
 
 #include <Eigen/Core>

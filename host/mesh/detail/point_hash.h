@@ -1,4 +1,4 @@
-// Internal to host/object (mesh.cpp's weld, repair.cpp): points as keys of a hash table, exactly equal coordinates
+// Internal to host/mesh (mesh.cpp's weld, repair.cpp): points as keys of a hash table, exactly equal coordinates
 // (-0 and +0 the same) the same key, and the welding of exactly equal points.
 #pragma once
 

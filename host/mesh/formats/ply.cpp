@@ -12,8 +12,8 @@
 #include <iterator>
 #include <sstream>
 
-#include "voxcd/host/object/formats/formats.h"
-#include "voxcd/host/object/formats/ply_header.h"
+#include "voxcd/host/mesh/formats/formats.h"
+#include "voxcd/host/mesh/formats/ply_header.h"
 
 namespace voxcd::formats {
 

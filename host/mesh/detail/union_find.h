@@ -1,4 +1,4 @@
-// Internal to host/object (repair.cpp, detail/cells.cpp): disjoint sets of 0..n-1 with path halving; the smaller
+// Internal to host/mesh (repair.cpp, detail/cells.cpp): disjoint sets of 0..n-1 with path halving; the smaller
 // index is each set's representative, so that results do not depend on the order of unions.
 #pragma once
 

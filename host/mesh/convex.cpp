@@ -1,4 +1,4 @@
-#include "voxcd/host/object/convex.h"
+#include "voxcd/host/mesh/convex.h"
 
 #include <numeric>
 #include <unordered_map>

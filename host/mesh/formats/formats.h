@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd::formats {
 

@@ -1,11 +1,11 @@
 // Closest points on a triangle mesh (host/object/detail/closest.h): the point-triangle query, a median-split tree
 // over the triangles searched nearest child first, and pseudo-normals.
-#include "voxcd/host/object/detail/closest.h"
+#include "voxcd/host/mesh/closest.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 
-#include "voxcd/host/object/detail/median_split.h"
+#include "voxcd/host/mesh/median_split.h"
 
 namespace voxcd::detail {
 

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd::detail {
 

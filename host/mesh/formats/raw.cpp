@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-#include "voxcd/host/object/formats/formats.h"
+#include "voxcd/host/mesh/formats/formats.h"
 
 namespace voxcd {
 

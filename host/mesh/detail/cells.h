@@ -1,11 +1,11 @@
-// Internal to host/object (repair.cpp): the cells of space that a part with non-manifold edges bounds, and what
+// Internal to host/mesh (repair.cpp): the cells of space that a part with non-manifold edges bounds, and what
 // each of its triangles is in the solid they make (docs/objects.md, "Non-manifold parts").
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd::detail {
 

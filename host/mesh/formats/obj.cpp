@@ -2,7 +2,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "voxcd/host/object/formats/formats.h"
+#include "voxcd/host/mesh/formats/formats.h"
 
 namespace voxcd::formats {
 
