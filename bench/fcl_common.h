@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "voxcd/host/object/frame.h"
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd::bench {
 

@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/pairs/collide.h"
 

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
 

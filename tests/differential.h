@@ -24,7 +24,7 @@
 
 #include "tests/defects.h"
 #include "voxcd/host/device/device.h"
-#include "voxcd/host/object/detail/closest.h"
+#include "voxcd/host/mesh/closest.h"
 #include "voxcd/host/object/detail/winding.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/object/shapes.h"

@@ -8,8 +8,8 @@
 #include <limits>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
-#include "voxcd/host/sizing/detail/exact_distance.h"
+#include "voxcd/host/mesh/mesh.h"
+#include "voxcd/host/sizing/sweep/detail/exact_distance.h"
 #include "voxcd/host/object/voxelize.h"
 
 namespace voxcd::test {

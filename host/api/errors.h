@@ -5,7 +5,7 @@
 //   ConfigError      ref/error.h          a device configuration no device can have
 //   JobError         ref/error.h          a job the device cannot run
 //   VectorError      ref/error.h          a malformed conformance vector file
-//   MeshError        host/object/errors.h a mesh (file, arrays or shape) that cannot be used
+//   MeshError        host/mesh/errors.h   a mesh (file, arrays or shape) that cannot be used
 //   ObjectFileError  host/object/errors.h a file that is not an object file, or cannot be written
 //   CapacityError    host/pairs/errors.h  objects that do not fit a device's memories or formats
 //   DeviceError      host/device/errors.h a backend that cannot be made or cannot run

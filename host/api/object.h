@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/storage.h"
 
 namespace voxcd {

@@ -10,7 +10,7 @@
 #include "voxcd/host/api/object.h"
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/pairs/collide.h"
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/pairs/pose_text.h"
 #include "voxcd/host/report/json_text.h"
 

@@ -13,10 +13,10 @@
 #include "voxcd/host/cli/commands.h"
 #include "voxcd/host/mpi/work_run.h"
 #include "voxcd/host/mpi/world.h"
-#include "voxcd/host/sizing/sweep.h"
-#include "voxcd/host/sizing/sweep_plot.h"
-#include "voxcd/host/sizing/sweep_results.h"
-#include "voxcd/host/sizing/sweep_table.h"
+#include "voxcd/host/sizing/sweep/sweep.h"
+#include "voxcd/host/sizing/sweep/sweep_plot.h"
+#include "voxcd/host/sizing/sweep/sweep_results.h"
+#include "voxcd/host/sizing/sweep/sweep_table.h"
 
 namespace voxcd::cli {
 

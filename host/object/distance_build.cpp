@@ -7,7 +7,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "voxcd/host/object/detail/closest.h"
+#include "voxcd/host/mesh/closest.h"
 #include "voxcd/host/object/detail/node_value.h"
 #include "voxcd/host/object/detail/solid.h"
 #include "voxcd/host/object/detail/unresolved.h"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/ref/config.h"
 

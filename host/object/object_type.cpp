@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "voxcd/host/object/bounds.h"
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/ref/config.h"
 #include "voxcd/ref/types.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "voxcd/host/object/distance_field.h"
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/voxelize.h"
 #include "voxcd/ref/config.h"
 

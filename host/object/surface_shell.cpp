@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "voxcd/host/object/detail/closest.h"
+#include "voxcd/host/mesh/closest.h"
 #include "voxcd/host/object/detail/shell_grid.h"
 #include "voxcd/host/object/point_shell.h"
 #include "voxcd/ref/util/thread_pool.h"

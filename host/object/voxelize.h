@@ -9,7 +9,7 @@
 #include <functional>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/frame.h"
 #include "voxcd/ref/types.h"
 

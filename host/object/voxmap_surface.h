@@ -2,7 +2,7 @@
 // object's frame. Recordings and the viewer draw an object with it when its mesh is not at hand.
 #pragma once
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/voxelize.h"
 
 namespace voxcd {

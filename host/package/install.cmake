@@ -21,9 +21,10 @@ include(CMakePackageConfigHelpers)
 set(VOXCD_PUBLIC_HEADERS
   host/api/object.h host/api/collide.h host/api/world.h host/api/world_types.h host/api/devices.h host/api/errors.h
   host/api/names.h
-  host/object/errors.h host/pairs/errors.h host/device/errors.h host/scene/errors.h host/sizing/errors.h
+  host/mesh/errors.h host/object/errors.h host/pairs/errors.h host/device/errors.h host/scene/errors.h
+  host/sizing/errors.h
   host/sizing/size_options.h
-  host/object/mesh.h host/object/storage.h host/object/frame.h host/pairs/contact.h host/scene/body.h
+  host/mesh/mesh.h host/object/storage.h host/object/frame.h host/pairs/contact.h host/scene/body.h
   host/device/device.h host/device/conform.h host/device/clock.h
   ref/error.h ref/config.h ref/types.h ref/fixed.h ref/pipeline.h ref/timing.h ref/vectors.h ref/vector_gen.h
   ref/float_model.h ref/address_map.h ref/fast/fast.h ref/fast/hits.h)

@@ -8,7 +8,7 @@
 #include "voxcd/host/api/names.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/device/timing_table.h"
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/python/bindings.h"

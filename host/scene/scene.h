@@ -17,10 +17,13 @@
 #include "voxcd/host/broadphase/broadphase.h"
 #include "voxcd/host/pairs/collider.h"
 #include "voxcd/host/scene/body.h"
+#include "voxcd/host/scene/body_bounds.h"
 #include "voxcd/host/scene/ccd.h"
 #include "voxcd/host/scene/errors.h"
 #include "voxcd/host/scene/exchange.h"
 #include "voxcd/host/scene/partition.h"
+#include "voxcd/host/scene/placement.h"
+#include "voxcd/host/scene/response.h"
 #include "voxcd/host/scene/run_config.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/ref/util/thread_pool.h"
@@ -166,37 +169,5 @@ class Simulation {
   std::vector<BodyPair> owned_;
   uint64_t frame_ = 0;
 };
-
-// Places counts[i] bodies of scene.types[i] in the cube [0, scene.side]^3, type by type, appending them to
-// scene.bodies, with non-overlapping enclosing spheres, random orientations, velocities of up to `speed` times the
-// type's radius per frame in a random direction and spins of up to `spin` radians per frame. Deterministic for a
-// seed. First at random (random sequential addition: up to 10,000 uniform tries a body, checked against the
-// bodies placed so far through a uniform grid of cells at least as wide as the largest sphere, so O(1) a try);
-// if a body finds no place, or the tries of all bodies pass 10^6 + 4 per body, again from the start on a
-// lattice: the densest of a face-centred cubic and a simple cubic lattice in the cube, spread as wide as the
-// count allows, N of its sites taken at random and each body jittered within the spacing's slack. The lattice
-// treats every sphere as the largest. PlacementError (errors.h) when even the lattice at the closest spacing has too
-// few sites (`capacity` of them).
-void place_bodies(Scene& scene, const std::vector<uint64_t>& counts, double speed, double spin, uint64_t seed);
-
-// The scenes' random draws (a uniform rotation; a uniform unit direction), one definition so that scene files
-// place bodies exactly as the built-in scene does.
-Eigen::Quaterniond scene_rotation(std::mt19937_64& rng);
-// How many spheres of radius r place_bodies' lattice fits in the cube [0, side]^3 at the closest spacing (2r)
-// (0 when one does not fit); the most bodies it places whatever the seed.
-uint64_t lattice_capacity(double side, double r);
-Eigen::Vector3d scene_direction(std::mt19937_64& rng);
-
-// The response to a touching pair, n the unit normal from A towards B: when they approach along n, the velocity
-// components along n are exchanged (an elastic impulse between equal masses) and both spins reversed; a dynamic
-// body against one that is not (static or kinematic: as of infinite mass) has its component along n reflected and
-// its spin reversed, the other unchanged. False, and nothing changed, when they separate already or neither is
-// dynamic.
-bool respond(Body& a, Body& b, const Eigen::Vector3d& n);
-
-// A body's world bounds: its type's smallest enclosing sphere and the world box of its type's local box.
-BodyBounds body_bounds(const ObjectType& t, const Body& b);
-// The same, given R = b's rotation matrix and c = R * (t.lo + t.hi) / 2 + b's translation (its box's centre).
-BodyBounds body_bounds(const ObjectType& t, const Body& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& c);
 
 }  // namespace voxcd

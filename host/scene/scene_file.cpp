@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"

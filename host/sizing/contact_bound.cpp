@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "voxcd/host/object/convex.h"
+#include "voxcd/host/mesh/convex.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/sizing/detail/digits.h"
 #include "voxcd/host/sizing/size.h"

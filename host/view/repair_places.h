@@ -6,7 +6,7 @@
 #include <array>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd::view {
 

@@ -20,6 +20,7 @@
 #include "voxcd/ref/fast/detail/node_quads.h"
 #include "voxcd/ref/fast/detail/point_blocks.h"
 #include "voxcd/ref/fast/fast.h"
+#include "voxcd/ref/fast/detail/runner.h"
 #include "voxcd/ref/pipeline.h"
 
 namespace voxcd {
@@ -99,7 +100,7 @@ detail::DistanceJob distance_job(const DeviceConfig& cfg, const Job& j, const ui
 
 }  // namespace
 
-bool FastRunner::distance_vector(const Job& j) const {
+bool FastRunner::Impl::distance_vector(const Job& j) const {
   // Indices of node words as int32 and exact doubles throughout (see the file's comment).
   const uint64_t nodes = (uint64_t{j.nx} / 2 + 1) * (uint64_t{j.ny} / 2 + 1) * (uint64_t{j.nz} / 2 + 1);
   const int npw = cfg_.nodes_per_word(), sb = cfg_.SB;
@@ -108,7 +109,7 @@ bool FastRunner::distance_vector(const Job& j) const {
          8 * (nodes / uint64_t(npw) + 2) < (uint64_t{1} << 31);
 }
 
-const detail::NodeQuads* FastRunner::node_quads(const Job& j) const {
+const detail::NodeQuads* FastRunner::Impl::node_quads(const Job& j) const {
   // Exact doubles (IW <= 51: the biased distance too) and entries as int32 indices; then the limit.
   if (path_ != Path::Double || cfg_.IW() > 51 || cfg_.SB > 8) return nullptr;
   const uint64_t bytes = detail::node_quad_bytes(j.nx, j.ny, j.nz);
@@ -123,7 +124,7 @@ const detail::NodeQuads* FastRunner::node_quads(const Job& j) const {
   return copies_.back().get();
 }
 
-void FastRunner::drop_node_quads(uint64_t first, uint64_t end) {
+void FastRunner::Impl::drop_node_quads(uint64_t first, uint64_t end) {
   const std::lock_guard<std::mutex> lock(copies_mutex_);
   for (size_t i = copies_.size(); i-- > 0;) {
     if (copies_[i]->map_base >= end || copies_[i]->map_end <= first) continue;
@@ -137,17 +138,17 @@ void FastRunner::drop_node_quads(uint64_t first, uint64_t end) {
   }
 }
 
-void FastRunner::set_node_copy_limit(uint64_t bytes) {
+void FastRunner::Impl::set_node_copy_limit(uint64_t bytes) {
   copy_limit_ = bytes;
   drop_node_quads(0, UINT64_MAX);
 }
 
-uint64_t FastRunner::node_copy_bytes() const {
+uint64_t FastRunner::Impl::node_copy_bytes() const {
   const std::lock_guard<std::mutex> lock(copies_mutex_);
   return copy_bytes_;
 }
 
-void FastRunner::run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
+void FastRunner::Impl::run_distance_vector(const Job& j, const detail::NodeQuads* quads, uint32_t begin, uint32_t end,
                                      HitColumns& hits, uint32_t& hit_count, const detail::ShellCursor* at) const {
   const detail::DistanceJob J = distance_job(cfg_, j, map_.data(), quads);
   uint8_t hit[kDistanceBlock];
@@ -168,7 +169,7 @@ void FastRunner::run_distance_vector(const Job& j, const detail::NodeQuads* quad
   }
 }
 
-void FastRunner::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,
+void FastRunner::Impl::run_distance_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits,
                                     uint32_t& hit_count, const detail::ShellCursor* at) const {
   if (const detail::NodeQuads* q = node_quads(j)) return run_distance_vector(j, q, begin, end, hits, hit_count, at);
   if (distance_vector(j)) return run_distance_vector(j, nullptr, begin, end, hits, hit_count, at);

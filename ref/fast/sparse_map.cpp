@@ -9,6 +9,7 @@
 #include "voxcd/ref/fast/detail/point_blocks.h"
 #include "voxcd/ref/fast/detail/sparse_kernel.h"
 #include "voxcd/ref/fast/fast.h"
+#include "voxcd/ref/fast/detail/runner.h"
 #include "voxcd/ref/pipeline.h"
 
 namespace voxcd {
@@ -20,7 +21,7 @@ constexpr size_t kSparseBlock = 256;
 const char* FastRunner::sparse_kernel() { return detail::sparse_block_name(); }
 const char* FastRunner::sparse_distance_kernel() { return detail::brick_quad_block_name(); }
 
-const detail::SparseCopy* FastRunner::sparse_copy(const Job& j) const {
+const detail::SparseCopy* FastRunner::Impl::sparse_copy(const Job& j) const {
   // int32 voxels and cells (below 2^31 voxels); on a distance map exact doubles (IW <= 51) and node bytes (SB <= 8);
   // then the limit.
   if (path_ != Path::Double || j.voxels() >= (uint64_t{1} << 31)) return nullptr;
@@ -35,7 +36,7 @@ const detail::SparseCopy* FastRunner::sparse_copy(const Job& j) const {
   return sparse_copies_.back().get();
 }
 
-void FastRunner::run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& hit_count,
+void FastRunner::Impl::run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& hit_count,
                                   const detail::ShellCursor* at) const {
   const detail::ShellArrays arrays = shell_arrays();
   int32_t cx[kSparseBlock], cy[kSparseBlock], cz[kSparseBlock];
@@ -68,7 +69,7 @@ void FastRunner::run_sparse_chunk(const Job& j, uint32_t begin, uint32_t end, Hi
   run_sparse_points(j, begin, end, hits, hit_count, at);
 }
 
-void FastRunner::run_sparse_points(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& hit_count,
+void FastRunner::Impl::run_sparse_points(const Job& j, uint32_t begin, uint32_t end, HitColumns& hits, uint32_t& hit_count,
                                    const detail::ShellCursor* at) const {
   const detail::SparseReader reader(cfg_, j, map_.data());
   const int tf = cfg_.TF();

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/object_file.h"
 #include "tests/fuzz/fuzz_common.h"
 

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/object/shapes.h"
 #include "tests/fuzz/fuzz_common.h"

@@ -11,7 +11,7 @@
 #include <random>
 #include <string>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/voxelize.h"
 #include "tests/exact_geometry.h"
 #include "tests/seed.h"

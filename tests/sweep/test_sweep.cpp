@@ -9,9 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "voxcd/host/sizing/sweep.h"
-#include "voxcd/host/sizing/sweep_results.h"
-#include "voxcd/host/sizing/sweep_table.h"
+#include "voxcd/host/sizing/sweep/sweep.h"
+#include "voxcd/host/sizing/sweep/sweep_results.h"
+#include "voxcd/host/sizing/sweep/sweep_table.h"
 #include "voxcd/ref/vectors.h"
 
 namespace voxcd {

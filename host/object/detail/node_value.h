@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "voxcd/host/object/detail/closest.h"
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/closest.h"
+#include "voxcd/host/mesh/mesh.h"
 
 namespace voxcd {
 struct DistanceOptions;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "voxcd/host/object/distance_field.h"
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/voxelize.h"
 
 namespace voxcd::detail {

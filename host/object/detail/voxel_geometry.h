@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/voxelize.h"
 
 namespace voxcd::detail {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "voxcd/host/object/detail/median_split.h"
+#include "voxcd/host/mesh/median_split.h"
 
 namespace voxcd::detail {
 

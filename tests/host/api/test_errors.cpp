@@ -13,7 +13,7 @@
 #include "voxcd/host/regress/campaign.h"
 #include "voxcd/host/regress/coverage.h"
 #include "voxcd/host/sizing/energy_table.h"
-#include "voxcd/host/sizing/sweep.h"
+#include "voxcd/host/sizing/sweep/sweep.h"
 
 namespace voxcd {
 namespace {

@@ -12,7 +12,7 @@
 #include <random>
 #include <sstream>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/shapes.h"
 #include "voxcd/host/object/voxelize.h"
 #include "tests/defects.h"

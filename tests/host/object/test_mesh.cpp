@@ -8,7 +8,7 @@
 #include <random>
 #include <sstream>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/shapes.h"
 #include "tests/host/test_util.h"
 

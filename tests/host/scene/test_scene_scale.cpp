@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "voxcd/host/object/mesh.h"
+#include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/scene_file.h"
 #include "voxcd/host/object/shapes.h"

@@ -10,7 +10,7 @@
 #include <random>
 
 #include "tests/exact_geometry.h"
-#include "voxcd/host/object/convex.h"
+#include "voxcd/host/mesh/convex.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/object/shapes.h"
