@@ -1,5 +1,5 @@
 // Triangle meshes: loading (the paper's RAW triangles, PLY, and every other format assimp reads), repair of the
-// defects real exports have (host/object/repair.cpp), and the strict validation --strict keeps (finite, non-degenerate,
+// defects real exports have (host/mesh/repair.cpp), and the strict validation --strict keeps (finite, non-degenerate,
 // closed, edge-manifold, consistently oriented).
 #pragma once
 
@@ -41,7 +41,7 @@ struct MeshReport {
   size_t vertices = 0, triangles = 0;  // after repair
   size_t welded = 0;    // vertices merged: exactly equal coordinates, or (repair) within weld_tolerance
   bool flipped = false; // the mesh was inside out (negative volume) and every triangle was reversed
-  // Repair (host/object/repair.cpp):
+  // Repair (host/mesh/repair.cpp):
   size_t input_vertices = 0, input_triangles = 0;
   double weld_tolerance = 0;        // absolute: kWeldRelative x the diagonal of the bounding box
   size_t welded_near = 0;           // of those, vertices merged with one that was not exactly equal
@@ -79,7 +79,7 @@ struct LoadOptions {
   bool repair = true;   // false (and not strict): the triangles as read, nothing dropped or welded (to show repairs)
 };
 
-// Loads a mesh by file extension through the reader of its format (host/object/formats/): .raw through parse_raw,
+// Loads a mesh by file extension through the reader of its format (host/mesh/formats/): .raw through parse_raw,
 // .ply through voxcd's own reader (assimp 5.2's hangs on damaged files), everything else through assimp. Then repairs it (repair()), or with opt.strict welds and
 // validates it (prepare()). Throws MeshError naming the file (and line or triangle) when the file cannot be read
 // or holds neither triangles nor points, and in strict mode for any defect.
@@ -105,7 +105,7 @@ void validate(Mesh& m, MeshReport* report = nullptr);
 // weld + validate: the strict path (built-in shapes, --strict).
 MeshReport prepare(Mesh& m);
 
-// Repairs a triangle soup (host/object/repair.cpp): drops non-finite and degenerate triangles and exact duplicates, welds
+// Repairs a triangle soup (host/mesh/repair.cpp): drops non-finite and degenerate triangles and exact duplicates, welds
 // vertices within kWeldRelative of the model's size, closes cracks between parts (kCrackCloseRelative), decides parts
 // with non-manifold edges by the cells of space they bound (internal faces dropped, fins made sheets), orients each
 // part consistently where the surface allows it (outward, nested closed parts alternating, so cavities stay empty),
