@@ -3,7 +3,7 @@
 # simulate (the built-in scene, 20 frames; 5 frames of 64 objects; sap at 300; ccd on a distance device; a scene
 # file), voxelize (built-in shapes and tests/scenes/tetra.obj, dense, sparse and with a distance field; MESH too when
 # given, e.g. an FCL mesh), pair contacts (random poses, a pose, distance, sparse), size (tests/scenes, text and
-# JSON) and a small sweep. Timings are blanked before the outputs are compared; the object files byte for byte.
+# JSON), a small sweep and generated conformance vectors (2-bit and sparse). Timings are blanked before the outputs are compared; the object files byte for byte.
 # Exits 1 on any difference, naming the outputs that differ.
 # Usage: MESH=file.obj bash bench/output_diff.sh VOXCD_BEFORE VOXCD_AFTER [WORKDIR]
 set -uo pipefail
@@ -35,6 +35,8 @@ outputs() {  # outputs VOXCD DIR
   run pair_dist pair torus sphere --distance-bits 8 --random 20 --json
   for f in paper small mixed; do run "size_$f" size "$scenes/$f.json"; run "sizej_$f" size "$scenes/$f.json" --json; done
   run sweep sweep "$scenes/small.json" --lanes 1,2 --frames 4 --sample-frames 2 --json
+  run vectors conform --generate --seed 5 --jobs 200 -o vectors.vec
+  run vectors_sparse conform --generate --seed 6 --jobs 100 --config "LANES 4 BL 3" -o vectors_sparse.vec
 }
 
 # Timings (seconds, rates, per-stage times) differ from run to run: blanked.
@@ -52,7 +54,8 @@ for f in "$work"/before/*.out "$work"/before/*.err; do
     echo "DIFF $n"; diff <(norm "$f") <(norm "$work/after/$n") | head -6 | cut -c1-300; status=1
   fi
 done
-for f in "$work"/before/*.vox; do cmp "$f" "$work/after/$(basename "$f")" || status=1; done
-echo "$(ls "$work"/before/*.out | wc -l) outputs, $(ls "$work"/before/*.vox | wc -l) object files ($work):" \
+for f in "$work"/before/*.vox "$work"/before/*.vec; do cmp "$f" "$work/after/$(basename "$f")" || status=1; done
+echo "$(ls "$work"/before/*.out | wc -l) outputs, $(ls "$work"/before/*.vox | wc -l) object files," \
+     "$(ls "$work"/before/*.vec | wc -l) vector files ($work):" \
      "$([[ $status == 0 ]] && echo identical || echo DIFFERENT)"
 exit $status
