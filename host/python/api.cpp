@@ -5,6 +5,7 @@
 #include <mutex>
 #include <optional>
 
+#include "voxcd/host/api/access.h"
 #include "voxcd/host/api/collide.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/python/bindings.h"
@@ -30,9 +31,9 @@ std::shared_ptr<const ObjectType> type_of(const std::shared_ptr<ObjectFile>& obj
 
 // An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).
 Object object_arg(const py::object& o) {
-  if (py::isinstance<ObjectFile>(o)) return Object(type_of(o.cast<std::shared_ptr<ObjectFile>>()));
+  if (py::isinstance<ObjectFile>(o)) return ApiAccess::object_of(type_of(o.cast<std::shared_ptr<ObjectFile>>()));
   py::object made = py::module_::import("voxcd").attr("voxelize")(o, py::arg("resolution") = 32);
-  return Object(type_of(made.cast<std::shared_ptr<ObjectFile>>()));
+  return ApiAccess::object_of(type_of(made.cast<std::shared_ptr<ObjectFile>>()));
 }
 
 // Three numbers (None: zeros); ValueError naming `what` for anything else.

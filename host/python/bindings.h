@@ -24,8 +24,10 @@ namespace voxcd {
 struct FrameStats;
 class Object;
 struct ObjectFile;
-struct PairResult;
-struct RigidPose;
+struct Contacts;
+using PairResult = Contacts;
+struct Pose;
+using RigidPose = Pose;
 struct RunConfig;
 }  // namespace voxcd
 
