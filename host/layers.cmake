@@ -10,7 +10,8 @@
 #     their detail/ headers except those their other headers include (a unit's header that includes its own detail/
 #     makes that header reachable);
 #   - an entry naming one header: that header only;
-#   - ref/ and ref/util/ (every unit but ref/util, which sees itself only); version.h; voxcd.h where host/api is reached.
+#   - ref/ and ref/util/ (every unit but ref/util, which sees itself only); version.h; voxcd.h where host/api is
+#     reached.
 # The build thus holds the table's reach; tests/layers/check_includes.py (ctest -L layers) holds the finer rule, that
 # each #include names a unit the table lists for the file's own unit. Adding, removing or renaming a header re-runs
 # cmake (the headers are globbed with CONFIGURE_DEPENDS); so does an edit of host/layers.txt.

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "voxcd/host/object/mesh.h"
 #include "voxcd/host/object/storage.h"
