@@ -1,7 +1,6 @@
 // How a world runs (public: <voxcd/voxcd.h>): the definition a World is made from (host/api/world.h), after Box2D v3's
-// b2WorldDef. A plain value with defaults that the library's runs read too (host/scene/run_config.h's RunConfig
-// extends it with the scene and what is asked of the device): host/layers.txt lets host/scene include this header, and
-// only this one, of host/api.
+// b2WorldDef. A plain value with defaults, which the library's own runs extend with the scene and what is asked of the
+// device (host/layers.txt lets host/scene include this header, and only this one, of host/api).
 #pragma once
 
 #include <string>

@@ -20,7 +20,7 @@ enum class BodyKind : uint8_t { kDynamic, kStatic, kKinematic };
 struct Body {
   uint32_t type = 0;
   BodyKind kind = BodyKind::kDynamic;                // (in the padding after `type`: a Body is as large as before)
-  RigidPose pose;                                    // world = rotation * local + translation
+  Pose pose;                                         // world = rotation * local + translation
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // world units per unit of time
   Eigen::Vector3d spin = Eigen::Vector3d::Zero();      // angular velocity, radians per unit of time, world axes
   bool moves() const { return kind != BodyKind::kStatic; }
