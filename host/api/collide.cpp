@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "voxcd/host/api/access.h"
 #include "voxcd/host/device/device.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
@@ -19,18 +20,19 @@ struct Collider::Impl {
   std::unique_ptr<PairCollider> collider;
 
   PairCollider& collider_for(const Object& oa, const Object& ob) {
-    if (collider && a == oa.type() && b == ob.type()) return *collider;
+    const std::shared_ptr<const ObjectType>& ta = ApiAccess::type_of(oa);
+    const std::shared_ptr<const ObjectType>& tb = ApiAccess::type_of(ob);
+    if (collider && a == ta && b == tb) return *collider;
     collider.reset();
     a.reset(), b.reset();
     const int bits = oa.distance_bits() && ob.distance_bits() ? std::max(oa.distance_bits(), ob.distance_bits()) : 0;
-    const DeviceConfig cfg =
-        device_config_for(options.backend, options.lanes, {oa.type().get(), ob.type().get()}, bits);
+    const DeviceConfig cfg = device_config_for(options.backend, options.lanes, {ta.get(), tb.get()}, bits);
     DeviceOptions dopt;
     dopt.threads = options.threads;
     dopt.pool = pool;
     collider = std::make_unique<PairCollider>(make_device(options.backend, cfg, dopt),
-                                              std::vector<std::shared_ptr<const ObjectType>>{oa.type(), ob.type()});
-    a = oa.type(), b = ob.type();
+                                              std::vector<std::shared_ptr<const ObjectType>>{ta, tb});
+    a = ta, b = tb;
     return *collider;
   }
 

@@ -16,8 +16,8 @@
 
 namespace voxcd {
 
-// A rigid pose: world = rotation * local + translation.
-using Pose = RigidPose;
+// Pose (a rigid pose: world = rotation * local + translation) is in voxcd/host/object/frame.h, Contacts (a pair
+// query's contacts and counts) in voxcd/host/pairs/contact.h.
 
 struct CollideOptions {
   // All: every contact; First: at most the first contact of each direction (whether they touch, fastest);

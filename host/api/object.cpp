@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "voxcd/host/api/access.h"
 #include "voxcd/host/object/object_file.h"
 #include "voxcd/host/object/object_type.h"
 
@@ -18,7 +19,8 @@ Object build(const Mesh& mesh, const std::string& source, uint64_t hash, const M
   o.band = def.band;
   o.threads = def.threads;
   set_storage(o, def.storage);
-  return Object(std::make_shared<const ObjectType>(make_object_type(make_object(mesh, source, hash, o, &report), name)));
+  return ApiAccess::object_of(
+      std::make_shared<const ObjectType>(make_object_type(make_object(mesh, source, hash, o, &report), name)));
 }
 
 }  // namespace
@@ -28,7 +30,7 @@ Object Object::load(const std::string& file_or_shape, const ObjectDef& def) {
   if (is_object_file(file_or_shape)) {
     ObjectFile obj = read_object(file_or_shape);
     require_distance_bits(obj, def.distance_bits, name);
-    return Object(std::make_shared<const ObjectType>(make_object_type(std::move(obj), name)));
+    return ApiAccess::object_of(std::make_shared<const ObjectType>(make_object_type(std::move(obj), name)));
   }
   std::string source;
   uint64_t hash = 0;
@@ -78,10 +80,10 @@ Object Object::from_arrays(const Eigen::Ref<const Eigen::Matrix<double, Eigen::D
   return from_mesh(std::move(m), def);
 }
 
-const std::string& Object::name() const { return type_->name; }
-double Object::voxel() const { return type_->voxmap().voxel(); }
-std::array<uint32_t, 3> Object::dims() const { return type_->voxmap().dims(); }
-size_t Object::shell_count() const { return type_->object.shell_count(); }
+const std::string& Object::name() const { return impl_->type->name; }
+double Object::voxel() const { return impl_->type->voxmap().voxel(); }
+std::array<uint32_t, 3> Object::dims() const { return impl_->type->voxmap().dims(); }
+size_t Object::shell_count() const { return impl_->type->object.shell_count(); }
 
 namespace {
 
@@ -103,13 +105,13 @@ const PointShell& dense_shell(const ObjectType& t) {
 }  // namespace
 
 Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> Object::shell_points() const {
-  return rows(dense_shell(*type_).points);
+  return rows(dense_shell(*impl_->type).points);
 }
 Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> Object::shell_normals() const {
-  return rows(dense_shell(*type_).normals);
+  return rows(dense_shell(*impl_->type).normals);
 }
-int Object::distance_bits() const { return type_->object.distance_bits(); }
-const MeshReport& Object::report() const { return type_->object.mesh_report; }
-void Object::save(const std::string& path) const { write_object(path, type_->object); }
+int Object::distance_bits() const { return impl_->type->object.distance_bits(); }
+const MeshReport& Object::report() const { return impl_->type->object.mesh_report; }
+void Object::save(const std::string& path) const { write_object(path, impl_->type->object); }
 
 }  // namespace voxcd

@@ -7,13 +7,12 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "voxcd/host/mesh/mesh.h"
 #include "voxcd/host/object/storage.h"
 
 namespace voxcd {
-
-struct ObjectType;  // the library's own form of an object (internal)
 
 // How an object is made; the defaults make a 2-bit voxmap 32 voxels along the mesh's longest side.
 struct ObjectDef {
@@ -59,12 +58,12 @@ class Object {
   // Writes the object file (as `voxcd voxelize -o`), atomically; ObjectFileError when it cannot.
   void save(const std::string& path) const;
 
-  // The library's form of the object, for its internal interfaces.
-  const std::shared_ptr<const ObjectType>& type() const { return type_; }
-  explicit Object(std::shared_ptr<const ObjectType> type) : type_(std::move(type)) {}
+  struct Impl;  // the library's form of the object (internal: host/api/access.h)
 
  private:
-  std::shared_ptr<const ObjectType> type_;
+  friend struct ApiAccess;  // the library's own door (internal: host/api/access.h)
+  explicit Object(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+  std::shared_ptr<const Impl> impl_;
 };
 
 }  // namespace voxcd

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "voxcd/host/api/access.h"
 #include "voxcd/host/scene/record.h"
 #include "voxcd/host/scene/scene.h"
 #include "voxcd/host/scene/simulate.h"
@@ -251,10 +252,10 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   check(impl_->options);
 }
 
-World detail::world_of(const RunConfig& config) {
+World ApiAccess::world_of(const RunConfig& config) {
   auto impl = std::make_unique<World::Impl>();
   impl->scene = make_scene(config);
-  for (const auto& t : impl->scene.types) impl->objects.emplace_back(t);
+  for (const auto& t : impl->scene.types) impl->objects.push_back(ApiAccess::object_of(t));
   impl->options = config;
   impl->from_scene = true;
   const size_t n = impl->scene.bodies.size();
@@ -271,12 +272,12 @@ World detail::world_of(const RunConfig& config) {
   return World(std::move(impl));
 }
 
-World World::scene() { return detail::world_of(RunConfig{}); }
+World World::scene() { return ApiAccess::world_of(RunConfig{}); }
 
 World World::scene(const std::string& scene_file) {
   RunConfig file;
   file.where = scene_file;
-  return detail::world_of(run_config(file));
+  return ApiAccess::world_of(run_config(file));
 }
 
 World::~World() = default;
@@ -291,10 +292,11 @@ BodyId World::add(const BodyDef& def) {
   check_motion(BodyId{}, name, "angular_velocity", def.angular_velocity, def.kind);
   w.refuse_while_recording("adding");
   uint32_t type = 0;
-  while (type < w.objects.size() && w.objects[type].type() != def.object.type()) ++type;
+  const std::shared_ptr<const ObjectType>& def_type = ApiAccess::type_of(def.object);
+  while (type < w.objects.size() && ApiAccess::type_of(w.objects[type]) != def_type) ++type;
   if (type == w.objects.size()) {
     w.objects.push_back(def.object);
-    w.scene.types.push_back(def.object.type());
+    w.scene.types.push_back(def_type);
   }
   w.park();
   uint32_t s;

@@ -16,21 +16,15 @@
 #include "voxcd/host/api/collide.h"
 #include "voxcd/host/api/errors.h"
 #include "voxcd/host/api/object.h"
+#include "voxcd/host/api/world_def.h"
 #include "voxcd/host/api/world_types.h"
 #include "voxcd/host/scene/body.h"
 #include "voxcd/ref/types.h"
 
 namespace voxcd {
 
-struct RunConfig;  // a run's configuration, as `voxcd simulate` takes it (internal: host/scene/run_config.h)
-class World;
-namespace detail {
-// The world of a checked run configuration (the tool's and the Python module's door; no compatibility promise).
-World world_of(const RunConfig& config);
-}  // namespace detail
-
 // WorldDef (how a world runs: the cube, its walls, the response, the broadphase, the device) is in
-// voxcd/host/scene/body.h.
+// voxcd/host/api/world_def.h.
 class World {
  public:
   explicit World(const WorldDef& def = {});
@@ -110,7 +104,7 @@ class World {
  private:
   struct Impl;
   explicit World(std::unique_ptr<Impl> impl);
-  friend World detail::world_of(const RunConfig& config);
+  friend struct ApiAccess;  // the world of a run configuration (internal: host/api/access.h)
   std::unique_ptr<Impl> impl_;
 };
 

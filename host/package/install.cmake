@@ -19,8 +19,8 @@ include(CMakePackageConfigHelpers)
 # models' (the sysc door). Every other header is internal: not installed. tests/install/consumers.sh checks that each
 # installed header includes only installed headers and compiles on its own.
 set(VOXCD_PUBLIC_HEADERS
-  host/api/object.h host/api/collide.h host/api/world.h host/api/world_types.h host/api/devices.h host/api/errors.h
-  host/api/names.h
+  host/api/object.h host/api/collide.h host/api/world.h host/api/world_def.h host/api/world_types.h host/api/devices.h
+  host/api/errors.h host/api/names.h
   host/mesh/errors.h host/object/errors.h host/pairs/errors.h host/device/errors.h host/scene/errors.h
   host/sizing/errors.h
   host/sizing/size_options.h

@@ -26,7 +26,8 @@ struct Contact {
   double depth = 0;
 };
 
-struct PairResult {
+// The result of one pair query, as collide() returns it (host/api/collide.h).
+struct Contacts {
   std::vector<Contact> contacts;  // A in B first, then B in A; each in ascending point order
   uint32_t hits = 0;              // over both directions (COUNT: the count; FIRST: up to 1 per direction)
   uint64_t lookups = 0;           // shell points submitted
@@ -34,7 +35,7 @@ struct PairResult {
   // "device_cycles"; `cycles` before).
   uint64_t device_cycles = 0;
 };
-// The result of one pair query, as collide() returns it (host/api/collide.h).
-using Contacts = PairResult;
+// The same type by the name the library's pair tests use (host/pairs/).
+using PairResult = Contacts;
 
 }  // namespace voxcd

@@ -5,6 +5,7 @@
 #include <mutex>
 #include <optional>
 
+#include "voxcd/host/api/access.h"
 #include "voxcd/host/api/collide.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/python/bindings.h"
@@ -41,18 +42,18 @@ std::shared_ptr<ObjectFile> python_object(ObjectFile obj) {
 
 std::shared_ptr<ObjectFile> python_object(const Object& object) {
   const std::shared_ptr<Home> h = new_home();
-  h->type = object.type();
+  h->type = ApiAccess::type_of(object);
   // The module's Object class reads its object and never writes it.
   return std::shared_ptr<ObjectFile>(h, const_cast<ObjectFile*>(&h->type->object));
 }
 
 Object library_object(const std::shared_ptr<ObjectFile>& obj) {
   const HomeDeleter* d = std::get_deleter<HomeDeleter>(obj);
-  if (!d) return Object(std::make_shared<const ObjectType>(make_object_type(*obj, obj->source)));
+  if (!d) return ApiAccess::object_of(std::make_shared<const ObjectType>(make_object_type(*obj, obj->source)));
   Home& h = *d->home;
   const std::lock_guard<std::mutex> hold(h.lock);
   if (!h.type) h.type = std::make_shared<const ObjectType>(make_object_type(h.file, h.file.source));
-  return Object(h.type);
+  return ApiAccess::object_of(h.type);
 }
 
 // An object argument: a voxcd.Object, or anything voxelize takes (voxelised at 32 voxels along its longest side).

@@ -25,8 +25,10 @@ struct FrameStats;
 class Object;
 struct ObjectFile;
 struct ObjectType;
-struct PairResult;
-struct RigidPose;
+struct Contacts;
+using PairResult = Contacts;
+struct Pose;
+using RigidPose = Pose;
 struct RunConfig;
 }  // namespace voxcd
 

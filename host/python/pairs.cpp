@@ -6,6 +6,7 @@
 #include <mutex>
 #include <optional>
 
+#include "voxcd/host/api/access.h"
 #include "voxcd/host/api/object.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
@@ -115,7 +116,7 @@ std::shared_ptr<const ObjectType> object_type(const py::object& o, double voxel,
   if (py::isinstance<ObjectFile>(o)) {
     const auto obj = o.cast<std::shared_ptr<ObjectFile>>();
     require_distance_bits(*obj, d.bits, std::string(which) + " (" + obj->source + ")");
-    return library_object(obj).type();
+    return ApiAccess::type_of(library_object(obj));
   }
   const std::string s = path_arg(o, which);
   py::gil_scoped_release unlocked;
@@ -308,9 +309,9 @@ backend's threads (0, the default: one per hardware thread; 1: the calling threa
                     "The margin of every query, world units (used on a distance device only, as `--margin`).")
       .def_property_readonly("device", [](const Pair& p) { return p.collider->device().config().to_string(); },
                              "The device's configuration, NAME VALUE pairs.")
-      .def_property_readonly("a", [](const Pair& p) { return python_object(Object(p.a)); },
+      .def_property_readonly("a", [](const Pair& p) { return python_object(ApiAccess::object_of(p.a)); },
                              "Object A.")
-      .def_property_readonly("b", [](const Pair& p) { return python_object(Object(p.b)); },
+      .def_property_readonly("b", [](const Pair& p) { return python_object(ApiAccess::object_of(p.b)); },
                              "Object B.");
 
   m.def(

@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "voxcd/host/api/access.h"
 #include "voxcd/host/api/world.h"
 #include "voxcd/host/python/bindings.h"
 #include "voxcd/host/scene/run_config.h"
@@ -151,7 +152,7 @@ PyWorld* world_scene(const RunArgs& a) {
     }
     warn_notes(config);
     py::gil_scoped_release unlocked;
-    return new PyWorld(detail::world_of(config));
+    return new PyWorld(ApiAccess::world_of(config));
   });
 }
 

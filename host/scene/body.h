@@ -1,9 +1,9 @@
-// A body of a world, how a world runs and what one frame of a world did (public: <voxcd/voxcd.h>).
+// A body of a world and what one frame of a world did (public: <voxcd/voxcd.h>). How a world runs, WorldDef, is the
+// API's (host/api/world_def.h).
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <string>
 
 #include "voxcd/host/object/frame.h"
 #include "voxcd/ref/types.h"
@@ -20,27 +20,11 @@ enum class BodyKind : uint8_t { kDynamic, kStatic, kKinematic };
 struct Body {
   uint32_t type = 0;
   BodyKind kind = BodyKind::kDynamic;                // (in the padding after `type`: a Body is as large as before)
-  RigidPose pose;                                    // world = rotation * local + translation
+  Pose pose;                                         // world = rotation * local + translation
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // world units per unit of time
   Eigen::Vector3d spin = Eigen::Vector3d::Zero();      // angular velocity, radians per unit of time, world axes
   bool moves() const { return kind != BodyKind::kStatic; }
   bool pushed() const { return kind == BodyKind::kDynamic; }  // by the walls and the response
-};
-
-// How a world runs (World, and every run: RunConfig extends it with the scene and what is asked of the device).
-struct WorldDef {
-  double side = 100;                // bodies move in the cube [0, side]^3 and bounce off its walls
-  bool walls = true;                // the cube's walls; false: open space (side then bounds nothing)
-  bool response = true;             // the built-in response; false: touching pairs are found and reported only
-  std::string broadphase = "grid";  // broadphase_names(): grid, the fastest at every N measured
-  std::string backend = "cpu";      // device_backends()
-  int lanes = 4;                    // lanes of the modelled device
-  Mode mode = Mode::All;            // All: every contact; First: whether pairs touch; Count: hits only
-  bool both_directions = true;      // also test B's shell in A's voxmap (as collide() and voxcd pair do)
-  int distance_bits = 0;            // 4, 8, 16: a distance device (every object must carry such a field); 0: 2-bit
-  double margin = 0;                // distance device: contacts within this distance outside, world units
-  bool ccd = false;                 // continuous collision: no body passes through another (distance device)
-  unsigned threads = 0;             // threads of every stage of a frame (0: every CPU); never changes the results
 };
 
 struct FrameStats {

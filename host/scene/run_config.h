@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "voxcd/host/api/world_def.h"
 #include "voxcd/host/device/clock.h"
 #include "voxcd/host/object/distance_field.h"
 #include "voxcd/host/object/storage.h"

@@ -12,6 +12,7 @@
 
 #include "tests/defects.h"
 #include "tests/host/test_util.h"
+#include "voxcd/host/api/access.h"
 #include "voxcd/host/object/object_type.h"
 #include "voxcd/host/pairs/collide.h"
 #include "voxcd/host/scene/simulate.h"
@@ -55,7 +56,7 @@ TEST(Api, ObjectsFromShapesFilesArraysAndMeshes) {
   const auto normals = torus.shell_normals();
   ASSERT_EQ(size_t(points.rows()), torus.shell_count());
   ASSERT_EQ(size_t(normals.rows()), torus.shell_count());
-  EXPECT_EQ(Eigen::Vector3d(points.row(0).transpose()), torus.type()->shell().points[0]);
+  EXPECT_EQ(Eigen::Vector3d(points.row(0).transpose()), ApiAccess::type_of(torus)->shell().points[0]);
   EXPECT_NEAR(normals.rowwise().norm().minCoeff(), 1.0, 1e-12);
   EXPECT_NEAR(normals.rowwise().norm().maxCoeff(), 1.0, 1e-12);
   EXPECT_TRUE(torus.report().closed);
@@ -76,13 +77,14 @@ TEST(Api, ObjectsFromShapesFilesArraysAndMeshes) {
   const Object from_arrays = Object::from_arrays(xyz.data(), box.vertices.size(), tri.data(), box.size());
   const Object from_mesh = Object::from_mesh(box);
   EXPECT_EQ(from_arrays.dims(), from_mesh.dims());
-  EXPECT_EQ(from_arrays.type()->voxmap().words(), from_mesh.type()->voxmap().words());
+  EXPECT_EQ(ApiAccess::type_of(from_arrays)->voxmap().words(), ApiAccess::type_of(from_mesh)->voxmap().words());
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> V(box.vertices.size(), 3);
   Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> F(box.size(), 3);
   for (size_t i = 0; i < box.vertices.size(); ++i) V.row(Eigen::Index(i)) = box.vertices[i].transpose();
   for (size_t t = 0; t < box.size(); ++t)
     for (int k = 0; k < 3; ++k) F(Eigen::Index(t), k) = int(box.triangles[t][size_t(k)]);
-  EXPECT_EQ(Object::from_arrays(V, F).type()->voxmap().words(), from_mesh.type()->voxmap().words());
+  EXPECT_EQ(ApiAccess::type_of(Object::from_arrays(V, F))->voxmap().words(),
+            ApiAccess::type_of(from_mesh)->voxmap().words());
   // Bad input says what and where.
   tri[4] = 99;
   try {
@@ -108,8 +110,8 @@ TEST(Api, CollideIsTheCollidersQuery) {
   const Contacts c = collide(a, Pose{}, b, pb);
   ASSERT_GT(c.hits, 0u);
   // The same query through the collider the API stands for.
-  const DeviceConfig cfg = device_config_for("cpu", 4, {a.type().get(), b.type().get()});
-  PairCollider col(make_device("cpu", cfg), {a.type(), b.type()});
+  const DeviceConfig cfg = device_config_for("cpu", 4, {ApiAccess::type_of(a).get(), ApiAccess::type_of(b).get()});
+  PairCollider col(make_device("cpu", cfg), {ApiAccess::type_of(a), ApiAccess::type_of(b)});
   PairRequest r;
   r.a = 0, r.b = 1, r.pose_b = pb;
   PairOptions o;
@@ -137,7 +139,7 @@ TEST(Api, SparseObjectsCollideAsTheirDenseForms) {
   const Object a = Object::load("torus", def), b = Object::load("polytope36", def);
   def.storage = ObjectStorage::kSparse;
   const Object sa = Object::load("torus", def), sb = Object::load("polytope36", def);
-  ASSERT_TRUE(sa.type()->object.voxmap_sparse() && sa.type()->object.shell_sparse());
+  ASSERT_TRUE(ApiAccess::type_of(sa)->object.voxmap_sparse() && ApiAccess::type_of(sa)->object.shell_sparse());
   Pose pb;
   pb.translation = {1.0, 0.2, 0};
   pb.rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
@@ -164,11 +166,11 @@ TEST(Api, ObjectsOfVeryDifferentVoxelsShareADevice) {
   const Contacts c = collide(a, Pose{}, b, pb);
   EXPECT_GT(c.hits, 0u);
   double ratio = 0;
-  EXPECT_GT(matrix_width_for(DeviceConfig{}, {a.type().get(), b.type().get()}, &ratio), 18);
+  EXPECT_GT(matrix_width_for(DeviceConfig{}, {ApiAccess::type_of(a).get(), ApiAccess::type_of(b).get()}, &ratio), 18);
   EXPECT_GT(ratio, 3.0);
   // The rtl backend's models have MW 18: the error says what to change.
   try {
-    device_config_for("rtl", 4, {a.type().get(), b.type().get()});
+    device_config_for("rtl", 4, {ApiAccess::type_of(a).get(), ApiAccess::type_of(b).get()});
     ADD_FAILURE() << "the rtl backend took a matrix it cannot hold";
   } catch (const CapacityError& e) {
     EXPECT_NE(std::string(e.what()).find("Voxelise the objects at voxels within a factor of 2.83"), std::string::npos)

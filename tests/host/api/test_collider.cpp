@@ -9,6 +9,7 @@
 
 #include <voxcd/voxcd.h>
 
+#include "voxcd/host/api/access.h"
 #include "voxcd/ref/util/thread_pool.h"
 
 namespace voxcd {
@@ -97,7 +98,7 @@ TEST(Collider, CollideHoldsNoPoolPerThreadAndNoObjects) {
   std::weak_ptr<const ObjectType> gone;
   {
     const Object d = Object::load("icosahedron");
-    gone = d.type();
+    gone = ApiAccess::type_of(d);
     collide(s.a, Pose{}, d, s.pb);
   }
   EXPECT_TRUE(gone.expired());

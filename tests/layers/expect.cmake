@@ -1,0 +1,23 @@
+# Builds TARGET in the build tree BUILD and checks the outcome: EXPECT ok, it builds; EXPECT forbidden, it fails
+# because voxcd/HEADER is not found, though SOURCE/HEADER exists.
+if(NOT EXISTS ${SOURCE}/${HEADER})
+  message(FATAL_ERROR "${HEADER} does not exist: the probe ${TARGET} names a header the tree no longer has")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${BUILD} --target ${TARGET}
+                RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE out)
+string(REGEX REPLACE "[][+.*^$()|?\\\\]" "\\\\\\0" header_re "voxcd/${HEADER}")
+if(EXPECT STREQUAL "ok")
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "${TARGET} should build (it includes ${HEADER}, which its unit may use):\n${out}")
+  endif()
+elseif(EXPECT STREQUAL "forbidden")
+  if(result EQUAL 0)
+    message(FATAL_ERROR "${TARGET} built, but it includes ${HEADER}, which its unit may not use")
+  endif()
+  if(NOT out MATCHES "${header_re}: No such file or directory")
+    message(FATAL_ERROR "${TARGET} failed, but not because ${HEADER} is not found:\n${out}")
+  endif()
+else()
+  message(FATAL_ERROR "EXPECT is ok or forbidden, not '${EXPECT}'")
+endif()
+message(STATUS "${TARGET}: ${EXPECT}, as expected")
