@@ -110,7 +110,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="voxcd-model-cost-") as work:
         for name, obj in objs.items():
             if name.startswith("Vtb_"):
-                continue  # tests/dpi's testbenches: one prefix for several, not a list of docs/build.md
+                continue  # tests/ref/dpi's testbenches: one prefix for several, not a list of docs/build.md
             if wanted is not None and name not in wanted:
                 continue
             cost[name] = measure(a.build, obj, name, work)
@@ -129,7 +129,7 @@ def main():
             for n, s in zip(names, each):
                 print(f"| &nbsp;&nbsp;{n} | | {s:.1f} (Verilator {cost[n][0]:.1f}) | |")
     print(f"\n{len(cost)} models, {total:.0f} s in all; {testbenches} testbench "
-          "builds of tests/dpi not counted.")
+          "builds of tests/ref/dpi not counted.")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 # schema copy of rtl/ (every mutant in one source, chosen at run time by VOXCD_MUTANT); each configuration of the
 # list CONFIGS ("family|pairs" lines) is Verilated from it, the device's into NAME_models with a module like the rtl
 # backend's, NAME_backend (host/device/rtl_module.cpp, loaded through VOXCD_RTL_MODULE), and the AXI top's (family
-# axi) into NAME_axi_models with the AXI tests over it, NAME_test_axi (tests/axi/test_axi.cpp). The models are named
+# axi) into NAME_axi_models with the AXI tests over it, NAME_test_axi (tests/rtl/axi/test_axi.cpp). The models are named
 # V<NAME>_..., so a process that also links the build's own models never mixes the two. They power up at random
 # (--x-initial unique, and VOXCD_RTL_RANDOM_POWER_UP makes the backend and the AXI tests ask for random values): a
 # register whose reset a mutant drops then holds what a real one would, not the simulator's zero.
@@ -66,7 +66,7 @@ function(voxcd_mutation_build name configs)
   voxcd_warnings(${name}_backend)
 
   if(axi_rows)
-    add_executable(${name}_test_axi ${PROJECT_SOURCE_DIR}/tests/axi/test_axi.cpp)
+    add_executable(${name}_test_axi ${PROJECT_SOURCE_DIR}/tests/rtl/axi/test_axi.cpp)
     target_include_directories(${name}_test_axi PRIVATE ${out}/include_axi)
     target_link_libraries(${name}_test_axi PRIVATE ${name}_axi_models voxcd_ref GTest::gtest
                           GTest::gtest_main)

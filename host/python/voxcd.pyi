@@ -1,5 +1,5 @@
 # Type stubs of the voxcd Python module (host/python, docs/python.md): every public name, installed beside the module
-# (lib/python3/dist-packages/voxcd.pyi) so that editors and type checkers complete it. tests/python/test_stubs.py
+# (lib/python3/dist-packages/voxcd.pyi) so that editors and type checkers complete it. tests/host/python/test_stubs.py
 # checks that the stub and the module agree: the same names, and the same parameters in the same order.
 import os
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, overload

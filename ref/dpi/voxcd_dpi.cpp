@@ -154,7 +154,7 @@ std::string job_name(const Job& j) { return "job tag " + std::to_string(j.tag); 
 // Cycles and points of `job` (records `recs`), following d.prev_job back to back or starting a stream. In the
 // model a job's completion time is linear in the cycle its first slot reaches the hit test, and that cycle moves
 // by an amount fixed by the previous job alone; so job_timing over the pair gives the second job's cycles exactly
-// as over the whole stream (tests/dpi/test_dpi_api.cpp checks both on long random streams).
+// as over the whole stream (tests/ref/dpi/test_dpi_api.cpp checks both on long random streams).
 JobTiming next_timing(const Device& d, const Job& job, const std::vector<Record>& recs) {
   if (!d.prev_job) return job_timing(d.cfg, d.mem, {job}, recs).at(0);
   std::vector<Record> pair = d.prev_records;

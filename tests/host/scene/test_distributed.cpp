@@ -1,5 +1,5 @@
 // A distributed simulation (RunConfig::exchange) against one process: 2 and 3 ranks, here threads of one process
-// exchanging through memory (the MPI exchange is tested under mpirun in tests/mpi), give the same per-frame counts
+// exchanging through memory (the MPI exchange is tested under mpirun in tests/host/mpi), give the same per-frame counts
 // and the same state hash as one Simulation, on a plain scene, on fast bodies that cross the slabs every frame, on
 // bodies crowded into one corner, and with distance voxmaps and continuous collision; the slabs split the work;
 // the slab helpers keep every pair with exactly one rank.

@@ -220,7 +220,7 @@ TEST(ThreadsSimulate, FramesAreIdenticalOnOneTwoAndThreeThreads) {
 }
 
 TEST(ThreadsSimulate, TheDefaultRunKeepsItsHash) {
-  // `voxcd simulate --frames 20` (tests/python/test_scenes.py pins the same hash), on 1, 2 and 3 threads.
+  // `voxcd simulate --frames 20` (tests/host/python/test_scenes.py pins the same hash), on 1, 2 and 3 threads.
   for (unsigned threads : {1u, 2u, 3u}) {
     RunConfig o;
     o.threads = threads;

@@ -1,4 +1,4 @@
-# Installs tests/view's npm packages into DST (the build directory) with `npm ci`, exactly the versions of
+# Installs tests/host/view's npm packages into DST (the build directory) with `npm ci`, exactly the versions of
 # package-lock.json, without install scripts (puppeteer-core downloads nothing; the tests use Debian's chromium).
 # Skipped when DST already holds the install of this very lock file.
 file(COPY ${SRC}/package.json ${SRC}/package-lock.json DESTINATION ${DST})

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-SCENES = Path(__file__).resolve().parent.parent / "scenes"
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
 
 
 @pytest.fixture(scope="session")

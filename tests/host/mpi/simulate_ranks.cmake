@@ -4,8 +4,8 @@
 # collision, another broadphase, and a scene file of three types.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
-get_filename_component(scenes ${CMAKE_CURRENT_LIST_DIR}/../scenes ABSOLUTE)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
+get_filename_component(scenes ${CMAKE_CURRENT_LIST_DIR}/../../scenes ABSOLUTE)
 
 function(summary json out_var)
   set(s "")

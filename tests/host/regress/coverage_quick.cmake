@@ -1,6 +1,6 @@
 # The quick coverage campaign: the AXI tests on the AXI tops' coverage models (AXI_COV, test_axi_cov), then
-# tests/regress/coverage_quick.json on the device's coverage models with random back-pressure, merged: both must
-# pass, and every functional bin of BINS (tests/regress/coverage_bins.txt, the bins it hit when the list was
+# tests/host/regress/coverage_quick.json on the device's coverage models with random back-pressure, merged: both must
+# pass, and every functional bin of BINS (tests/host/regress/coverage_bins.txt, the bins it hit when the list was
 # made) must still be hit; a bin that is no longer hit fails the test by name. Run with -DUPDATE=ON to rewrite the
 # list from this run (docs/verification.md, "Functional coverage").
 cmake_minimum_required(VERSION 3.13)  # IN_LIST
@@ -35,8 +35,8 @@ endforeach()
 if(UPDATE)
   list(SORT hit)
   string(REPLACE ";" "\n" text "${hit}")
-  file(WRITE ${BINS} "# The functional bins tests/regress/coverage_quick.json hits (docs/verification.md): written by "
-                    "tests/regress/coverage_quick.cmake -DUPDATE=ON\n${text}\n")
+  file(WRITE ${BINS} "# The functional bins tests/host/regress/coverage_quick.json hits (docs/verification.md): written by "
+                    "tests/host/regress/coverage_quick.cmake -DUPDATE=ON\n${text}\n")
   return()
 endif()
 file(STRINGS ${BINS} want REGEX "^[^#]")

@@ -1,5 +1,5 @@
 // voxcd_device_regslice: a second implementation of the device contract, for the DPI testbench's test of a swapped
-// device (tests/dpi/CMakeLists.txt builds tb_voxcd_dpi with +define+VOXCD_DUT=voxcd_device_regslice). It is
+// device (tests/ref/dpi/CMakeLists.txt builds tb_voxcd_dpi with +define+VOXCD_DUT=voxcd_device_regslice). It is
 // voxcd_device behind a register slice that holds one output record: every record leaves at least a cycle later,
 // and the core sees its consumer ready whenever the slice is empty. Parameters and ports are voxcd_device's.
 module voxcd_device_regslice #(

@@ -10,7 +10,7 @@ import pytest
 
 import voxcd
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "docs" / "examples" / "python"
+EXAMPLES = Path(__file__).resolve().parents[3] / "docs" / "examples" / "python"
 
 
 @pytest.mark.parametrize("script, expect", [

@@ -1,5 +1,5 @@
 # Shared by the sweep scripts: the sweep they run and its checks.
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../../../cli_helpers.cmake)
 set(sweep ${SCENES}/small.json --lanes 1,2 --voxel-scale 1,2 --distance-bits 0,8 --accuracy 0.02 --frames 200
           --sample-frames 4)
 set(points 8)

@@ -3,7 +3,7 @@
 # line. Faults end the run with an error naming the rank and the shard; bad campaign and results files are refused.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
 set(campaign --seeds 1-4 --lanes 1,3 --backends ref,cpu --jobs-per-shard 30)
 set(shards 16)
 set(mpirun ${MPIEXEC} --oversubscribe)

@@ -3,7 +3,7 @@
 # run as printed, fails with the same first difference, and passes without the plant.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-include(${CMAKE_CURRENT_LIST_DIR}/../cli_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cli_helpers.cmake)
 set(seeds 1-3)
 set(jobs 40)
 # The campaign as a file (docs/regress.md): CONFIGS separates configurations with '|'.

@@ -1,4 +1,4 @@
-// The browser tests of `voxcd view` (tests/view/CMakeLists.txt): Debian's chromium, headless with software WebGL,
+// The browser tests of `voxcd view` (tests/host/view/CMakeLists.txt): Debian's chromium, headless with software WebGL,
 // driven through the DevTools protocol by puppeteer-core, loads the page the tool serves (or writes with --html) and
 // checks what it draws against the tool's own output. Usage:
 //   node view_test.js CASE VOXCD WORK SHOTS    CASE: recording, live, object, sparse, pair or html
