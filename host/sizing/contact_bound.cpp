@@ -6,7 +6,7 @@
 
 #include "voxcd/host/mesh/convex.h"
 #include "voxcd/host/object/object_file.h"
-#include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/digits.h"
 #include "voxcd/host/sizing/size.h"
 
 namespace voxcd {

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "voxcd/host/device/clock.h"
-#include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/digits.h"
 #include "voxcd/host/sizing/size.h"
 #include "voxcd/ref/timing.h"
 

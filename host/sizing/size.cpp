@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "voxcd/host/pairs/collide.h"
-#include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/digits.h"
 #include "voxcd/host/sizing/detail/energy_report.h"
 #include "voxcd/host/sizing/detail/yosys_run.h"
 #include "voxcd/ref/banks.h"

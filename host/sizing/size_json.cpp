@@ -2,7 +2,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/digits.h"
 #include "voxcd/host/sizing/detail/energy_report.h"
 #include "voxcd/host/sizing/detail/storage_report.h"
 #include "voxcd/host/sizing/size.h"

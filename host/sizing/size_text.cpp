@@ -4,7 +4,7 @@
 #include <sstream>
 #include <string>
 
-#include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/digits.h"
 #include "voxcd/host/sizing/detail/energy_report.h"
 #include "voxcd/host/sizing/detail/storage_report.h"
 #include "voxcd/host/sizing/size.h"

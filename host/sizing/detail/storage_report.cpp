@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/digits.h"
 
 namespace voxcd::detail {
 

@@ -14,7 +14,7 @@
 #include "voxcd/host/sizing/contact_bound.h"
 #include "voxcd/host/sizing/sweep/contact_measure.h"
 #include "voxcd/host/sizing/depth.h"
-#include "voxcd/host/sizing/detail/digits.h"
+#include "voxcd/host/sizing/digits.h"
 
 // A point's yosys cost in a results row: an object of its numbers, or null when not synthesised.
 namespace nlohmann {

@@ -31,6 +31,7 @@
 #include "voxcd/ref/timing.h"
 #include "voxcd/ref/vector_gen.h"
 #include "voxcd/ref/vectors.h"
+#include "tests/seed.h"
 // The AXI tops (rtl/CMakeLists.txt); test_axi_cov runs the same tests on their coverage models, each test's counts
 // written into $VOXCD_COVERAGE_DIR (bench/coverage.sh, docs/verification.md).
 #ifdef VOXCD_AXI_MODELS_HEADER
@@ -40,7 +41,6 @@
 #endif
 #if VM_COVERAGE
 #include <verilated_cov.h>
-#include "tests/seed.h"
 #endif
 
 namespace voxcd {
