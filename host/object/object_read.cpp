@@ -26,10 +26,7 @@ namespace {
 
 using detail::get_grid;
 using detail::get_vec;
-using detail::put_grid;
-using detail::put_vec;
 using detail::Reader;
-using detail::Writer;
 using detail::kClosed;
 using detail::kFlagSparseDistance;
 using detail::kFlagSparseShell;
@@ -39,10 +36,8 @@ using detail::kFlipped;
 using detail::kMagic;
 using detail::kPointsOnly;
 using detail::kReport2Counts;
-using detail::kReportCounts;
 using detail::kReportFlags;
 using detail::kSurfaceOnly;
-using detail::kVersion;
 using detail::kVersionDistance;
 using detail::kVersionReport2;
 using detail::kVersionSparse;

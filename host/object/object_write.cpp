@@ -24,11 +24,8 @@ namespace voxcd {
 
 namespace {
 
-using detail::get_grid;
-using detail::get_vec;
 using detail::put_grid;
 using detail::put_vec;
-using detail::Reader;
 using detail::Writer;
 using detail::kClosed;
 using detail::kFlagSparseDistance;
@@ -39,8 +36,6 @@ using detail::kFlipped;
 using detail::kMagic;
 using detail::kPointsOnly;
 using detail::kReport2Counts;
-using detail::kReportCounts;
-using detail::kReportFlags;
 using detail::kSurfaceOnly;
 using detail::kVersion;
 using detail::kVersionDistance;
