@@ -194,7 +194,7 @@ id is never valid again (World.is_valid); BodyId() is no body's.)")
       });
 }
 
-// World's construction, World.scene() and its bodies: adding and removing them, their state one by one and as views.
+// World's construction and its bodies coming and going: add (and add_body, deprecated), remove, is_valid.
 void bind_world_bodies(WorldClass& world) {
   world
       .def(py::init(&world_def), py::kw_only(), py::arg("side") = 100.0, py::arg("walls") = true,
@@ -229,7 +229,12 @@ void bind_world_bodies(WorldClass& world) {
              if (t) w.retiring.push_back(t);
            },
            py::arg("id"), "Removes the body; the pairs it touched end (end_events after the next step).")
-      .def("is_valid", [](const PyWorld& w, BodyId id) { return w.world.is_valid(id); }, py::arg("id"))
+      .def("is_valid", [](const PyWorld& w, BodyId id) { return w.world.is_valid(id); }, py::arg("id"));
+}
+
+// One body's state by its id: pose, velocities, user data, kind, enabled.
+void bind_world_body_state(WorldClass& world) {
+  world
       .def("pose", [](const PyWorld& w, BodyId id) { return pose_matrix(w.world.pose(id)); }, py::arg("id"),
            "The body's pose as a 4 x 4 matrix (as pose arguments take it).")
       .def("set_pose", [](PyWorld& w, BodyId id, const py::object& p) { w.world.set_pose(id, pose_arg(p, "pose")); },
@@ -256,7 +261,13 @@ void bind_world_bodies(WorldClass& world) {
       .def("kind", [](const PyWorld& w, BodyId id) { return kind_name(w.world.kind(id)); }, py::arg("id"))
       .def("is_enabled", [](const PyWorld& w, BodyId id) { return w.world.is_enabled(id); }, py::arg("id"))
       .def("set_enabled", [](PyWorld& w, BodyId id, bool on) { w.world.set_enabled(id, on); }, py::arg("id"),
-           py::arg("enabled"))
+           py::arg("enabled"));
+}
+
+// Every body at once: their count, ids, and the (N, k) arrays of positions, orientations, poses and velocities; the
+// built-in scene's world.
+void bind_world_arrays(WorldClass& world) {
+  world
       .def("__len__", [](const PyWorld& w) { return w.world.size(); })
       .def_property_readonly("ids", [](const PyWorld& w) { return w.world.ids(); },
                              "The id of each row of positions, orientations and velocities.")
@@ -368,6 +379,8 @@ broadphase and pair tests on a device each step, the built-in response (response
 only), and contact events. World(...) is empty; World.scene(...) is the scene `voxcd simulate` runs for the same
 options.)");
   bind_world_bodies(world);
+  bind_world_body_state(world);
+  bind_world_arrays(world);
   bind_world_frames(world);
 }
 
